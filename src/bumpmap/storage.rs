@@ -1,0 +1,49 @@
+//! Bump-map storage as the hardware's texture memory holds it: range-compressed RGB codes
+//! of `normal_bits` per component, or 8-bit indices into a 256-normal palette (paper §6).
+
+use super::normals::NormalMap;
+use super::palette::build_palette;
+use crate::config::PipelineConfig;
+use crate::fixed::{from_f64, Overflow, Rounding};
+use crate::model::bump_fetch::{compress, Palette};
+use glam::DVec3;
+
+/// A stored bump map.
+#[derive(Clone, Debug)]
+pub enum StoredMap {
+    Rgb { w: usize, h: usize, codes: Vec<[u32; 3]> },
+    Palettised { w: usize, h: usize, indices: Vec<u8>, palette: Palette },
+}
+
+/// Range-compress one unit normal to stored codes (round to nearest, saturate: +1.0 becomes
+/// the largest code, 2^(w-1)-1 over 2^(w-1)).
+pub fn encode_normal(cfg: &PipelineConfig, n: DVec3) -> [u32; 3] {
+    let f = cfg.normal_fmt();
+    [n.x, n.y, n.z].map(|c| compress(cfg, from_f64(c, f, Rounding::HalfUp, Overflow::Saturate).expect("finite normal")))
+}
+
+impl StoredMap {
+    /// Store `map` in the configured format.
+    pub fn store(cfg: &PipelineConfig, map: &NormalMap) -> StoredMap {
+        let codes: Vec<[u32; 3]> = map.data.iter().map(|n| encode_normal(cfg, *n)).collect();
+        if cfg.palette {
+            let (palette, indices) = build_palette(cfg, &codes);
+            StoredMap::Palettised { w: map.w, h: map.h, indices, palette }
+        } else {
+            StoredMap::Rgb { w: map.w, h: map.h, codes }
+        }
+    }
+
+    pub fn size(&self) -> (usize, usize) {
+        match self {
+            StoredMap::Rgb { w, h, .. } | StoredMap::Palettised { w, h, .. } => (*w, *h),
+        }
+    }
+
+    pub fn palette(&self) -> Option<&Palette> {
+        match self {
+            StoredMap::Palettised { palette, .. } => Some(palette),
+            StoredMap::Rgb { .. } => None,
+        }
+    }
+}

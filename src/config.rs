@@ -1,0 +1,296 @@
+//! `PipelineConfig`: the single source of truth for every width, table size, light count,
+//! rounding and ordering choice of the Gouraud bump pipeline.
+//!
+//! Number conventions (chosen so that 1.0 is exact wherever the paper multiplies by it):
+//! - bump-normal components: signed `normal_bits`, value `b / 2^(normal_bits-1)`, stored
+//!   range-compressed as offset binary (`b + 2^(normal_bits-1)`), so expanding is an MSB flip;
+//! - L and H components: signed `lh_bits` words `s1.(lh_bits-2)` (paper §4.2: 16-bit words);
+//! - fd, fs and k: unsigned `u1.F`, codes `0..=2^F`, so a full-intensity term is exact;
+//! - colours: unsigned normalised codes, `2^colour_bits - 1` is 1.0 (as in a frame buffer).
+
+use crate::error::{toml_error, Error, Result};
+use crate::fixed::{Format, Overflow, Rounding};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+/// How the power table is indexed by the dot product.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PowerIndex {
+    /// Nearest table entry: `round(fd * (N-1))`.
+    Nearest,
+    /// The entry below: `floor(fd * (N-1))`, one adder fewer.
+    Truncate,
+}
+
+/// One light per clock (paper §4.2: "n light sources are blended in n clock cycles") or all at once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LightMode {
+    Serial,
+    Parallel,
+}
+
+/// The order of the blend units around texture modulation (paper §5.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlendOrder {
+    /// DiffuseBlend → Texture → SpecularBlend (Fig. 2, the paper's recommendation).
+    DiffuseTextureSpecular,
+    /// DiffuseBlend → SpecularBlend → Texture (Fig. 3: highlights vanish on dark texels).
+    TextureLast,
+}
+
+/// Every parameter of one pipeline instance.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PipelineConfig {
+    /// Bits per bump-normal component (signed after expansion).
+    pub normal_bits: u32,
+    /// Bits per L or H component word (paper: 16).
+    pub lh_bits: u32,
+    /// Fraction bits of the clamped dot products fd and of the power-table index.
+    pub dot_bits: u32,
+    /// Power-table entries (a power of two; paper: 256, the size of a colour LUT).
+    pub power_entries: u32,
+    /// Fraction bits of a power-table entry (u1.P, so x^n = 1 is exact).
+    pub power_bits: u32,
+    pub power_index: PowerIndex,
+    /// Shininess n whose table the power ROM holds at reset (reloadable through its load port).
+    pub shininess: u32,
+    /// Colour channel bits (paper: 8).
+    pub colour_bits: u32,
+    /// Fraction bits of the per-light modulation k_i (u1.K).
+    pub k_bits: u32,
+    /// Light slots in hardware (1–8; paper: "usually two to four").
+    pub lights: u32,
+    pub light_mode: LightMode,
+    pub blend_order: BlendOrder,
+    /// Rounding of the dot-product requantisation and of each blend sum.
+    pub rounding: Rounding,
+    /// Bump map holds 8-bit indices into a 256-entry normal palette (paper §6).
+    pub palette: bool,
+    /// Hardware has a diffuse blend unit.
+    pub diffuse: bool,
+    /// Hardware has a specular path (dot, power table, specular blend).
+    pub specular: bool,
+    /// Leave fragments whose bump normal is unperturbed (0,0,1) untouched (paper §5.4.2).
+    pub skip_flat: bool,
+}
+
+impl Default for PipelineConfig {
+    fn default() -> Self {
+        PipelineConfig {
+            normal_bits: 8,
+            lh_bits: 16,
+            dot_bits: 8,
+            power_entries: 256,
+            power_bits: 8,
+            power_index: PowerIndex::Nearest,
+            shininess: 16,
+            colour_bits: 8,
+            k_bits: 8,
+            lights: 4,
+            light_mode: LightMode::Serial,
+            blend_order: BlendOrder::DiffuseTextureSpecular,
+            rounding: Rounding::HalfUp,
+            palette: false,
+            diffuse: true,
+            specular: true,
+            skip_flat: false,
+        }
+    }
+}
+
+/// Valid range of each numeric field, with the reason for its bounds.
+pub const LIMITS: &[(&str, u32, u32, &str)] = &[
+    ("normal_bits", 3, 16, "3 bits give a sign and 2 magnitude bits; 16 covers 16-bit normal maps"),
+    ("lh_bits", 4, 24, "s1.(w-2): at least 2 fraction bits; 24 keeps dot sums within 62 bits"),
+    ("dot_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
+    ("power_entries", 2, 65536, "a power of two; at most 2^dot_bits + 1 useful"),
+    ("power_bits", 2, 16, "entry fraction bits"),
+    ("shininess", 0, 1024, "the largest exponent the table generator supports"),
+    ("colour_bits", 2, 12, "frame-buffer channel width"),
+    ("k_bits", 1, 12, "modulation fraction bits"),
+    ("lights", 1, 8, "light slots in hardware"),
+];
+
+impl PipelineConfig {
+    /// Parse a TOML config; `file` names it in errors.
+    pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
+        let cfg: PipelineConfig = toml::from_str(text).map_err(|e| {
+            toml_error(file, text, &e, "see `gbump config --show` for every field with its default")
+        })?;
+        cfg.validate(file)?;
+        Ok(cfg)
+    }
+
+    /// Load from a file.
+    pub fn load(path: &std::path::Path) -> Result<PipelineConfig> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Self::from_toml(&path.display().to_string(), &text)
+    }
+
+    /// Canonical TOML (field order fixed by the struct), the input of [`Self::hash`].
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("config serialises")
+    }
+
+    /// Stable 16-hex-digit hash of the canonical TOML.
+    pub fn hash(&self) -> String {
+        let d = Sha256::digest(self.to_toml().as_bytes());
+        d.iter().take(8).map(|b| format!("{b:02x}")).collect()
+    }
+
+    /// Check every field against [`LIMITS`] and the cross-field rules.
+    pub fn validate(&self, file: &str) -> Result<()> {
+        for &(name, lo, hi, why) in LIMITS {
+            let v = self.get(name);
+            if v < lo || v > hi {
+                return Err(Error::field(file, name, format!("{v} is out of range"), format!("use {lo}..={hi} ({why})")));
+            }
+        }
+        if !self.power_entries.is_power_of_two() {
+            return Err(Error::field(
+                file,
+                "power_entries",
+                format!("{} is not a power of two", self.power_entries),
+                "use 2, 4, …, 256, … (the table is addressed by whole index bits)",
+            ));
+        }
+        if self.power_entries > (1 << self.dot_bits) + 1 {
+            return Err(Error::field(
+                file,
+                "power_entries",
+                format!("{} entries exceed the {} distinct dot-product codes", self.power_entries, (1u32 << self.dot_bits) + 1),
+                "raise dot_bits or lower power_entries",
+            ));
+        }
+        if !self.diffuse && !self.specular {
+            return Err(Error::field(file, "diffuse", "both blend units are off", "enable `diffuse` or `specular`"));
+        }
+        if self.term_fmt().sum(self.lights).width + 1 > crate::fixed::MAX_WIDTH {
+            return Err(Error::field(file, "colour_bits", "blend accumulator too wide", "lower colour_bits, dot_bits or k_bits"));
+        }
+        Ok(())
+    }
+
+    fn get(&self, name: &str) -> u32 {
+        match name {
+            "normal_bits" => self.normal_bits,
+            "lh_bits" => self.lh_bits,
+            "dot_bits" => self.dot_bits,
+            "power_entries" => self.power_entries,
+            "power_bits" => self.power_bits,
+            "shininess" => self.shininess,
+            "colour_bits" => self.colour_bits,
+            "k_bits" => self.k_bits,
+            "lights" => self.lights,
+            _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
+        }
+    }
+
+    /// Expanded bump-normal component: `s0.(nb-1)` in `nb` bits.
+    pub fn normal_fmt(&self) -> Format {
+        Format::s(self.normal_bits, self.normal_bits - 1)
+    }
+    /// L/H component: `s1.(w-2)`.
+    pub fn lh_fmt(&self) -> Format {
+        Format::s(self.lh_bits, self.lh_bits - 2)
+    }
+    /// Exact B·V before clamping.
+    pub fn dot_exact_fmt(&self) -> Format {
+        self.normal_fmt().mul(self.lh_fmt()).sum(3)
+    }
+    /// Clamped dot product fd / power index: `u1.F`.
+    pub fn dot_fmt(&self) -> Format {
+        Format::u(self.dot_bits + 1, self.dot_bits)
+    }
+    /// Power-table entry fs: `u1.P`.
+    pub fn power_fmt(&self) -> Format {
+        Format::u(self.power_bits + 1, self.power_bits)
+    }
+    /// Per-light modulation k: `u1.K`.
+    pub fn k_fmt(&self) -> Format {
+        Format::u(self.k_bits + 1, self.k_bits)
+    }
+    /// Colour channel code.
+    pub fn colour_fmt(&self) -> Format {
+        Format::u(self.colour_bits, 0)
+    }
+    /// Largest colour code (1.0).
+    pub fn colour_max(&self) -> u32 {
+        (1u32 << self.colour_bits) - 1
+    }
+    /// Fraction bits of the blend factor (fd or fs) feeding the blend units.
+    pub fn factor_frac(&self) -> u32 {
+        self.dot_bits.max(self.power_bits)
+    }
+    /// Blend factor (fd or fs aligned to a common format) so that one blend unit serves both.
+    pub fn factor_fmt(&self) -> Format {
+        Format::u(self.factor_frac() + 1, self.factor_frac())
+    }
+    /// One light's exact term f·k·Lc in colour units.
+    pub fn term_fmt(&self) -> Format {
+        self.factor_fmt().mul(self.k_fmt()).mul(self.colour_fmt())
+    }
+    /// Exact sum over all light slots.
+    pub fn acc_fmt(&self) -> Format {
+        self.term_fmt().sum(self.lights)
+    }
+    /// Index bits of the power table.
+    pub fn power_index_bits(&self) -> u32 {
+        self.power_entries.trailing_zeros()
+    }
+    /// The flat, unperturbed bump-normal code (0, 0, largest) after expansion.
+    pub fn flat_normal(&self) -> [i64; 3] {
+        [0, 0, self.normal_fmt().max_raw()]
+    }
+    /// Overflow behaviour of every narrowing in the blends: saturate, as the paper's `sat`.
+    pub fn overflow(&self) -> Overflow {
+        Overflow::Saturate
+    }
+    /// Clock cycles between accepted fragments.
+    pub fn initiation_interval(&self) -> u32 {
+        match self.light_mode {
+            LightMode::Serial => self.lights,
+            LightMode::Parallel => 1,
+        }
+    }
+    /// `name = value` lines of every resolved parameter, for file headers and manifests.
+    pub fn resolved_lines(&self) -> Vec<String> {
+        let mut v: Vec<String> = self.to_toml().lines().filter(|l| !l.trim().is_empty()).map(str::to_string).collect();
+        v.push(format!("# formats: normal {} lh {} dot {} power {} k {} colour {} term {} acc {}",
+            self.normal_fmt().name(), self.lh_fmt().name(), self.dot_fmt().name(), self.power_fmt().name(),
+            self.k_fmt().name(), self.colour_fmt().name(), self.term_fmt().name(), self.acc_fmt().name()));
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_round_trips_and_hash_is_stable() {
+        let c = PipelineConfig::default();
+        let back = PipelineConfig::from_toml("x.toml", &c.to_toml()).unwrap();
+        assert_eq!(back, c);
+        assert_eq!(back.hash(), c.hash());
+        let mut d = c.clone();
+        d.lights = 2;
+        assert_ne!(d.hash(), c.hash());
+    }
+
+    #[test]
+    fn errors_name_line_and_field() {
+        let e = PipelineConfig::from_toml("cfg.toml", "lights = 4\nnormal_bits = \"eight\"\n").unwrap_err().to_string();
+        assert!(e.starts_with("cfg.toml:2:"), "{e}");
+        let e = PipelineConfig::from_toml("cfg.toml", "lights = 9\n").unwrap_err().to_string();
+        assert!(e.contains("`lights`") && e.contains("1..=8"), "{e}");
+        let e = PipelineConfig::from_toml("cfg.toml", "power_entries = 100\n").unwrap_err().to_string();
+        assert!(e.contains("power of two"), "{e}");
+        let e = PipelineConfig::from_toml("cfg.toml", "bogus = 1\n").unwrap_err().to_string();
+        assert!(e.contains("unknown field"), "{e}");
+    }
+}

@@ -1,0 +1,61 @@
+//! Typed errors of the library. Every variant names the input it is about and, where the
+//! user can act, what to do; `main` prints it and exits non-zero.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A TOML file (scene or config) that does not parse or does not validate.
+    #[error("{file}:{line}:{col}: {msg}\n  fix: {fix}")]
+    Input { file: String, line: usize, col: usize, msg: String, fix: String },
+
+    /// A named value that is out of range, NaN or otherwise unusable.
+    #[error("{file}: field `{field}`: {msg}\n  fix: {fix}")]
+    Field { file: String, field: String, msg: String, fix: String },
+
+    #[error("unknown scene `{name}`\n  fix: run `gbump scenes` for the built-in names, or pass a path to a .toml scene file")]
+    UnknownScene { name: String },
+
+    #[error("{path}: {msg}")]
+    Io { path: PathBuf, msg: String },
+
+    #[error("{path}: cannot read image: {msg}\n  fix: give a readable greyscale or RGB PNG file")]
+    Image { path: PathBuf, msg: String },
+
+    #[error("{0}")]
+    Other(String),
+}
+
+pub type Result<T> = std::result::Result<T, Error>;
+
+impl Error {
+    /// An I/O error on `path`, with the OS message.
+    pub fn io(path: impl Into<PathBuf>, e: std::io::Error) -> Error {
+        let path = path.into();
+        let hint = match e.kind() {
+            std::io::ErrorKind::NotFound => " (check the path)",
+            std::io::ErrorKind::PermissionDenied => " (check permissions of the file or folder)",
+            _ => "",
+        };
+        Error::Io { path, msg: format!("{e}{hint}") }
+    }
+
+    pub fn field(file: &str, field: &str, msg: impl Into<String>, fix: impl Into<String>) -> Error {
+        Error::Field { file: file.to_string(), field: field.to_string(), msg: msg.into(), fix: fix.into() }
+    }
+}
+
+/// Line and column (1-based) of a byte offset in `text`.
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |s| s.chars().count()) + 1;
+    (line, col)
+}
+
+/// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
+pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Error {
+    let (line, col) = e.span().map_or((1, 1), |s| line_col(text, s.start));
+    Error::Input { file: file.to_string(), line, col, msg: e.message().trim().to_string(), fix: fix.to_string() }
+}

@@ -1,0 +1,22 @@
+//! gbump: a bit-accurate golden model of the Gouraud Bump Mapping hardware (Ernst,
+//! Rüsseler, Schulz, Wittig; Graphics Hardware 1998), with f64 references to measure it
+//! against. See ARCHITECTURE.md for the data flow and the decisions behind it.
+
+pub mod bumpmap;
+pub mod cli;
+pub mod config;
+pub mod error;
+pub mod fixed;
+pub mod measure;
+pub mod model;
+pub mod raster;
+pub mod reference;
+pub mod render;
+pub mod scene;
+pub mod units;
+
+pub use config::PipelineConfig;
+pub use error::{Error, Result};
+
+/// Tool name and version, as stamped into every generated file.
+pub const TOOL: &str = concat!("gbump ", env!("CARGO_PKG_VERSION"));

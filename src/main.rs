@@ -1,0 +1,6 @@
+fn main() {
+    if let Err(e) = gbump::cli::run() {
+        eprintln!("gbump: error: {e:#}");
+        std::process::exit(1);
+    }
+}

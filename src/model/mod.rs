@@ -1,0 +1,18 @@
+//! The bit-accurate golden model: one function per hardware unit of the paper (§4.2, §5.1),
+//! each computing exactly what its Verilog twin in `rtlgen` computes, on raw integer codes
+//! in the formats the [`PipelineConfig`](crate::config::PipelineConfig) resolves.
+//!
+//! Units, in data-flow order: [`bump_fetch`] (palette / range expansion), [`dot_clamp`]
+//! (fd = max(0, B·L), also B·H), [`power_table`] (fs = table[B·H]), [`blend`]
+//! (`diffuse_blend`, `specular_blend`), [`texture_modulate`]; [`pipeline`] chains them in
+//! the configured order.
+
+pub mod blend;
+pub mod bump_fetch;
+pub mod dot_clamp;
+pub mod pipeline;
+pub mod power_table;
+pub mod texture_modulate;
+
+pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};
+pub use power_table::PowerTable;

@@ -1,0 +1,198 @@
+//! The whole Gouraud bump pipeline for one fragment: the units of this module's siblings in
+//! the configured order (paper §5.1, Figs. 2 and 3), with the per-fragment enables of §4.2
+//! and the unperturbed-normal bypass of §5.4.2.
+
+use super::blend::{align_factor, blend};
+use super::bump_fetch::{bump_fetch_index, bump_fetch_rgb, Palette};
+use super::dot_clamp::dot_clamp;
+use super::power_table::PowerTable;
+use super::texture_modulate::texture_modulate;
+use crate::config::{BlendOrder, PipelineConfig};
+
+/// Light slots the model can hold (the config's upper limit).
+pub const MAX_LIGHTS: usize = 8;
+
+/// One bump light's state, in bump space, as the geometry engine loads it per triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LightSlot {
+    /// Light direction L_i, raw `s1.(lh-2)` components.
+    pub l: [i64; 3],
+    /// Half vector H_i, raw `s1.(lh-2)` components.
+    pub h: [i64; 3],
+    /// Light colour Lc_i, colour codes (an unused slot has colour 0).
+    pub colour: [u32; 3],
+    /// Spot/attenuation modulation k_i, raw `u1.K`.
+    pub k: i64,
+}
+
+/// The bump state of one triangle: every light slot.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BumpState {
+    pub lights: [LightSlot; MAX_LIGHTS],
+}
+
+/// A fetched bump texel: stored RGB codes, or a palette index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BumpTexel {
+    Rgb([u32; 3]),
+    Index(u8),
+}
+
+/// The per-fragment inputs of the pipeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FragmentIn {
+    pub bump: BumpTexel,
+    /// Interpolated Gouraud colour C_src.
+    pub c_src: [u32; 3],
+    /// Texel colour T (white when the object has no texture).
+    pub texel: [u32; 3],
+    pub diffuse_en: bool,
+    pub specular_en: bool,
+}
+
+/// Every intermediate value of one fragment, for per-unit vectors and debugging.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Shaded {
+    pub b: [i64; 3],
+    pub flat: bool,
+    pub fd: [i64; MAX_LIGHTS],
+    pub fs: [i64; MAX_LIGHTS],
+    /// Colour after each of the three stages, in pipeline order.
+    pub stages: [[u32; 3]; 3],
+}
+
+impl Shaded {
+    /// The final colour C_new.
+    pub fn colour(&self) -> [u32; 3] {
+        self.stages[2]
+    }
+}
+
+/// Shade one fragment. `palette` must be given when `cfg.palette` is set.
+pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>, state: &BumpState, frag: &FragmentIn) -> Shaded {
+    let n = cfg.lights as usize;
+    let b = match frag.bump {
+        BumpTexel::Rgb(rgb) => bump_fetch_rgb(cfg, rgb),
+        BumpTexel::Index(i) => bump_fetch_index(cfg, palette.expect("palette mode needs a palette"), i),
+    };
+    let flat = b == cfg.flat_normal();
+    let bypass = cfg.skip_flat && flat;
+    let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
+    let specular_on = cfg.specular && frag.specular_en && !bypass;
+
+    let mut out = Shaded { b, flat, ..Default::default() };
+    let mut kd = [0i64; MAX_LIGHTS];
+    let mut lc = [[0u32; 3]; MAX_LIGHTS];
+    let mut dfac = [0i64; MAX_LIGHTS];
+    let mut sfac = [0i64; MAX_LIGHTS];
+    for i in 0..n {
+        let s = &state.lights[i];
+        kd[i] = s.k;
+        lc[i] = s.colour;
+        if cfg.diffuse {
+            out.fd[i] = dot_clamp(cfg, b, s.l);
+            if diffuse_on {
+                dfac[i] = align_factor(cfg, out.fd[i], cfg.dot_bits);
+            }
+        }
+        if cfg.specular {
+            out.fs[i] = table.lookup(cfg, dot_clamp(cfg, b, s.h));
+            if specular_on {
+                sfac[i] = align_factor(cfg, out.fs[i], cfg.power_bits);
+            }
+        }
+    }
+    let diffuse = |c| blend(cfg, c, &dfac[..n], &kd[..n], &lc[..n]);
+    let specular = |c| blend(cfg, c, &sfac[..n], &kd[..n], &lc[..n]);
+    let texture = |c| texture_modulate(cfg, c, frag.texel);
+    let s0 = diffuse(frag.c_src);
+    let (s1, s2) = match cfg.blend_order {
+        BlendOrder::DiffuseTextureSpecular => {
+            let t = texture(s0);
+            (t, specular(t))
+        }
+        BlendOrder::TextureLast => {
+            let s = specular(s0);
+            (s, texture(s))
+        }
+    };
+    out.stages = [s0, s1, s2];
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one(cfg: &PipelineConfig) -> i64 {
+        1 << (cfg.lh_bits - 2)
+    }
+
+    fn frag(c: u32, t: u32) -> FragmentIn {
+        FragmentIn { bump: BumpTexel::Rgb([128, 128, 255]), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }
+    }
+
+    #[test]
+    fn every_light_at_full_colour_saturates() {
+        let cfg = PipelineConfig { lights: 8, ..Default::default() };
+        let t = PowerTable::build(&cfg, 1);
+        let mut st = BumpState::default();
+        for s in st.lights.iter_mut() {
+            *s = LightSlot { l: [0, 0, one(&cfg)], h: [0, 0, one(&cfg)], colour: [255; 3], k: 1 << cfg.k_bits };
+        }
+        let r = shade(&cfg, &t, None, &st, &frag(255, 255));
+        assert_eq!(r.colour(), [255; 3]);
+        let r = shade(&cfg, &t, None, &st, &frag(0, 0));
+        // Texture black kills diffuse, specular still adds in the split order (Fig. 2).
+        assert_eq!(r.stages[1], [0; 3]);
+        assert_eq!(r.colour(), [255; 3]);
+        let cfg3 = PipelineConfig { blend_order: BlendOrder::TextureLast, ..cfg };
+        assert_eq!(shade(&cfg3, &t, None, &st, &frag(0, 0)).colour(), [0; 3], "Fig. 3: black texel stays black");
+    }
+
+    #[test]
+    fn single_light_exact_value() {
+        let cfg = PipelineConfig::default();
+        let t = PowerTable::build(&cfg, 1);
+        let mut st = BumpState::default();
+        // L straight above: fd = 127/128 → 254/256; colour 200, k = 1: 200*254/256 = 198.4375 → 198.
+        st.lights[0] = LightSlot { l: [0, 0, one(&cfg)], h: [one(&cfg), 0, 0], colour: [200, 0, 0], k: 256 };
+        let r = shade(&cfg, &t, None, &st, &frag(10, 255));
+        assert_eq!(r.fd[0], 254);
+        assert_eq!(r.fs[0], 0);
+        assert_eq!(r.colour(), [208, 10, 10]);
+    }
+
+    #[test]
+    fn k_zero_and_disabled_units_change_nothing() {
+        let cfg = PipelineConfig::default();
+        let t = PowerTable::build(&cfg, 8);
+        let mut st = BumpState::default();
+        st.lights[0] = LightSlot { l: [0, 0, one(&cfg)], h: [0, 0, one(&cfg)], colour: [255; 3], k: 0 };
+        assert_eq!(shade(&cfg, &t, None, &st, &frag(77, 255)).colour(), [77; 3]);
+        st.lights[0].k = 256;
+        let mut f = frag(77, 255);
+        f.diffuse_en = false;
+        f.specular_en = false;
+        assert_eq!(shade(&cfg, &t, None, &st, &f).colour(), [77; 3]);
+        let skip = PipelineConfig { skip_flat: true, ..cfg.clone() };
+        assert_eq!(shade(&skip, &t, None, &st, &frag(77, 255)).colour(), [77; 3], "§5.4.2 bypass");
+        let mut bumped = frag(77, 255);
+        bumped.bump = BumpTexel::Rgb([140, 128, 250]);
+        assert_ne!(shade(&skip, &t, None, &st, &bumped).colour(), [77; 3]);
+    }
+
+    #[test]
+    fn serial_and_parallel_agree() {
+        let a = PipelineConfig::default();
+        let b = PipelineConfig { light_mode: crate::config::LightMode::Parallel, ..a.clone() };
+        let t = PowerTable::build(&a, 32);
+        let mut st = BumpState::default();
+        for (i, s) in st.lights.iter_mut().enumerate().take(4) {
+            *s = LightSlot { l: [1000 * i as i64, -3000, 12000], h: [-500, 2000 * i as i64, 15000], colour: [90, 180, 255], k: 200 };
+        }
+        for c in [0, 100, 255] {
+            assert_eq!(shade(&a, &t, None, &st, &frag(c, 200)), shade(&b, &t, None, &st, &frag(c, 200)));
+        }
+    }
+}

@@ -1,0 +1,99 @@
+//! power_table: fs = (B·H)^n by table lookup (paper §4.2: "a simple power table for one
+//! shininess at a time … loaded similar to a color LUT"). Entry i holds x_i^n with
+//! x_i = i/(N-1), so entry 0 is 0^n and entry N-1 is exactly 1.0. The index is
+//! fd·(N-1) (a shift and a subtract), rounded or truncated as the config says.
+
+use crate::config::{PipelineConfig, PowerIndex};
+use crate::fixed::{from_f64, shift_round, Overflow, Rounding};
+
+/// The table contents for one shininess.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PowerTable {
+    pub n: u32,
+    /// Raw `u1.P` entries.
+    pub entries: Vec<i64>,
+}
+
+/// x^n by binary exponentiation: only IEEE multiplications, so the result is the same on
+/// every platform (libm `pow` is not correctly rounded and varies between libraries).
+pub fn powi_exact(x: f64, n: u32) -> f64 {
+    let (mut acc, mut base, mut e) = (1.0f64, x, n);
+    while e > 0 {
+        if e & 1 == 1 {
+            acc *= base;
+        }
+        base *= base;
+        e >>= 1;
+    }
+    acc
+}
+
+impl PowerTable {
+    /// Build the table for shininess `n` (0^0 is taken as 1, as OpenGL's pow does).
+    pub fn build(cfg: &PipelineConfig, n: u32) -> PowerTable {
+        let last = (cfg.power_entries - 1) as f64;
+        let entries = (0..cfg.power_entries)
+            .map(|i| {
+                let x = i as f64 / last;
+                from_f64(powi_exact(x, n), cfg.power_fmt(), cfg.rounding, Overflow::Saturate).expect("finite")
+            })
+            .collect();
+        PowerTable { n, entries }
+    }
+
+    /// Index of the entry for clamped dot product `fd` (`u1.F`).
+    #[inline]
+    pub fn index(cfg: &PipelineConfig, fd: i64) -> usize {
+        let scaled = (fd as i128) * (cfg.power_entries as i128 - 1);
+        let rnd = match cfg.power_index {
+            PowerIndex::Nearest => Rounding::HalfUp,
+            PowerIndex::Truncate => Rounding::Truncate,
+        };
+        shift_round(scaled, cfg.dot_bits, rnd) as usize
+    }
+
+    /// fs for clamped dot product `fd`.
+    #[inline]
+    pub fn lookup(&self, cfg: &PipelineConfig, fd: i64) -> i64 {
+        self.entries[Self::index(cfg, fd)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ends_and_exponents() {
+        let cfg = PipelineConfig::default();
+        let one = 1i64 << cfg.power_bits;
+        for n in [0u32, 1, 2, 16, 254, 255, 1024] {
+            let t = PowerTable::build(&cfg, n);
+            assert_eq!(t.entries.len(), 256);
+            assert_eq!(*t.entries.last().unwrap(), one, "1^n = 1 for n={n}");
+            assert_eq!(t.entries[0], if n == 0 { one } else { 0 }, "0^n for n={n}");
+            assert_eq!(t.lookup(&cfg, 1 << cfg.dot_bits), one);
+            assert_eq!(t.lookup(&cfg, 0), t.entries[0]);
+        }
+        // n = 1 is the identity up to the index and entry quantisation.
+        let t = PowerTable::build(&cfg, 1);
+        for fd in 0..=256i64 {
+            assert!((t.lookup(&cfg, fd) - fd).abs() <= 1, "fd={fd}");
+        }
+    }
+
+    #[test]
+    fn index_covers_table_exactly() {
+        for idx in [PowerIndex::Nearest, PowerIndex::Truncate] {
+            let cfg = PipelineConfig { power_entries: 64, power_index: idx, ..Default::default() };
+            assert_eq!(PowerTable::index(&cfg, 0), 0);
+            assert_eq!(PowerTable::index(&cfg, 256), 63);
+            let mut prev = 0;
+            for fd in 0..=256 {
+                let i = PowerTable::index(&cfg, fd);
+                assert!(i >= prev && i <= prev + 1);
+                prev = i;
+            }
+        }
+    }
+}

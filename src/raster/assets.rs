@@ -1,0 +1,64 @@
+//! Everything per object that the renderers share: mesh, normal map (f64), stored bump
+//! map (codes), texture, per-triangle bump states, and power tables per shininess.
+
+use super::tri_state::{tri_states, TriState};
+use crate::bumpmap::{NormalMap, StoredMap};
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::model::PowerTable;
+use crate::scene::mesh::{tessellate, Mesh};
+use crate::scene::{Camera, Object, Scene, Texture};
+use glam::{DVec2, DVec3};
+use std::collections::BTreeMap;
+
+pub struct ObjectAssets {
+    pub mesh: Mesh,
+    pub normals: NormalMap,
+    pub stored: StoredMap,
+    pub tris: Vec<TriState>,
+}
+
+/// A scene made ready to render under one configuration at one size.
+pub struct Prepared<'a> {
+    pub scene: &'a Scene,
+    pub cfg: &'a PipelineConfig,
+    pub camera: Camera,
+    pub objects: Vec<ObjectAssets>,
+    pub tables: BTreeMap<u32, PowerTable>,
+}
+
+impl<'a> Prepared<'a> {
+    pub fn new(scene: &'a Scene, cfg: &'a PipelineConfig, w: u32, h: u32) -> Result<Prepared<'a>> {
+        if w == 0 || h == 0 || w > 16384 || h > 16384 {
+            return Err(Error::Other(format!("image size {w}x{h} is out of range\n  fix: use 1..=16384 pixels per side")));
+        }
+        let camera = Camera::new(&scene.camera, w, h);
+        let mut objects = Vec::new();
+        let mut tables = BTreeMap::new();
+        for o in &scene.objects {
+            let hf = o.bump.source.generate(o.bump.size as usize, &scene.base)?;
+            let mut normals = NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
+            if o.bump.cylinder_sides > 0 {
+                normals.curve_for_cylinder(o.bump.cylinder_sides);
+            }
+            let stored = StoredMap::store(cfg, &normals);
+            let mesh = tessellate(o);
+            let tris = tri_states(scene, cfg, &camera, &mesh)?;
+            tables.entry(o.shininess).or_insert_with(|| PowerTable::build(cfg, o.shininess));
+            objects.push(ObjectAssets { mesh, normals, stored, tris });
+        }
+        Ok(Prepared { scene, cfg, camera, objects, tables })
+    }
+}
+
+/// Texture colour at `uv` in [0,1]³.
+pub fn texture_at(o: &Object, uv: DVec2) -> DVec3 {
+    match &o.texture {
+        Texture::Constant { colour } => DVec3::from_array(*colour),
+        Texture::Checker { cells, a, b } => {
+            let c = *cells as f64;
+            let k = ((uv.x * c).floor() as i64 + (uv.y * c).floor() as i64).rem_euclid(2);
+            DVec3::from_array(if k == 0 { *a } else { *b })
+        }
+    }
+}

@@ -1,0 +1,85 @@
+//! Fragment records: what the pipeline receives for one covered pixel (Gouraud colour,
+//! texel, bump texel, enables, and which triangle's bump state applies), and the
+//! interpolated surface geometry the f64 renderers need.
+
+use super::assets::texture_at;
+use super::{Hit, Prepared};
+use crate::bumpmap::sample::sample_bump;
+use crate::model::FragmentIn;
+use crate::scene::lighting::gouraud_colour;
+use glam::{DVec2, DVec3};
+
+/// One fragment as the pipeline sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FragmentRecord {
+    pub x: u32,
+    pub y: u32,
+    pub obj: u32,
+    pub tri: u32,
+    pub frag: FragmentIn,
+}
+
+/// Interpolated geometry at a pixel.
+#[derive(Clone, Copy, Debug)]
+pub struct PixelGeom {
+    pub p: DVec3,
+    pub n: DVec3,
+    pub t: DVec3,
+    pub b: DVec3,
+    pub uv: DVec2,
+    /// Gouraud colour interpolated from the vertices (unclamped f64).
+    pub c_src: DVec3,
+}
+
+/// Interpolate a hit's vertex attributes (vectors are not renormalised here).
+pub fn pixel_geom(p: &Prepared, hit: &Hit) -> PixelGeom {
+    let o = &p.objects[hit.obj as usize];
+    let t = o.mesh.tris[hit.tri as usize];
+    let v = t.map(|i| o.mesh.verts[i as usize]);
+    let w = hit.bary;
+    let mix3 = |f: &dyn Fn(usize) -> DVec3| f(0) * w[0] + f(1) * w[1] + f(2) * w[2];
+    let c = |i: usize| gouraud_colour(p.scene, v[i].p, v[i].n);
+    PixelGeom {
+        p: mix3(&|i| v[i].p),
+        n: mix3(&|i| v[i].n),
+        t: mix3(&|i| v[i].t),
+        b: mix3(&|i| v[i].b),
+        uv: v[0].uv * w[0] + v[1].uv * w[1] + v[2].uv * w[2],
+        c_src: mix3(&c),
+    }
+}
+
+/// Quantise a [0,1] colour to codes (clamped; NaN cannot occur, inputs are validated).
+pub fn colour_codes(c: DVec3, max: u32) -> [u32; 3] {
+    c.to_array().map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32)
+}
+
+/// The pipeline inputs for a hit.
+pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
+    let so = &p.scene.objects[hit.obj as usize];
+    let o = &p.objects[hit.obj as usize];
+    let max = p.cfg.colour_max();
+    // Colour textures are procedural (constant or checker), point-sampled at the fragment's uv.
+    let texel = colour_codes(texture_at(so, g.uv), max);
+    FragmentIn {
+        bump: sample_bump(&o.stored, g.uv, so.bump.filter),
+        c_src: colour_codes(g.c_src, max),
+        texel,
+        diffuse_en: so.diffuse,
+        specular_en: so.specular,
+    }
+}
+
+/// Every covered pixel's fragment record, in raster order.
+pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
+    use rayon::prelude::*;
+    gb.hits
+        .par_iter()
+        .enumerate()
+        .filter_map(|(i, h)| {
+            let hit = h.as_ref()?;
+            let g = pixel_geom(p, hit);
+            Some(FragmentRecord { x: i as u32 % gb.w, y: i as u32 / gb.w, obj: hit.obj, tri: hit.tri, frag: fragment_in(p, hit, &g) })
+        })
+        .collect()
+}

@@ -1,0 +1,12 @@
+//! From scene to fragments: per-object assets (stored bump map, texture), per-triangle bump
+//! state (L_i and H_i in bump space, paper §4.1), a z-buffered rasteriser, and the fragment
+//! records that feed the golden model, the vectors and the f64 renderers.
+
+pub mod assets;
+pub mod fragment;
+pub mod rasterise;
+pub mod tri_state;
+
+pub use assets::{ObjectAssets, Prepared};
+pub use fragment::{FragmentRecord, PixelGeom};
+pub use rasterise::{GBuffer, Hit};

@@ -1,0 +1,63 @@
+//! The z-buffered triangle rasteriser. Pixel centres are sampled; a pixel belongs to a
+//! triangle when all three edge functions are ≥ 0 (either winding: closed and open shapes
+//! alike are drawn without culling); nearer depth wins, ties keep the first triangle drawn.
+//! Zero-area triangles cover nothing.
+
+use super::Prepared;
+use glam::DVec2;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub obj: u32,
+    pub tri: u32,
+    /// Barycentric weights of the triangle's three vertices.
+    pub bary: [f64; 3],
+}
+
+pub struct GBuffer {
+    pub w: u32,
+    pub h: u32,
+    pub hits: Vec<Option<Hit>>,
+}
+
+fn edge(a: DVec2, b: DVec2, p: DVec2) -> f64 {
+    (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
+}
+
+pub fn rasterise(p: &Prepared) -> GBuffer {
+    let (w, h) = (p.camera.width, p.camera.height);
+    let mut hits = vec![None; (w * h) as usize];
+    let mut depth = vec![f64::INFINITY; (w * h) as usize];
+    for (oi, o) in p.objects.iter().enumerate() {
+        let proj: Vec<(DVec2, f64)> = o.mesh.verts.iter().map(|v| p.camera.project(v.p)).collect();
+        for (ti, t) in o.mesh.tris.iter().enumerate() {
+            let [a, b, c] = t.map(|i| proj[i as usize]);
+            let area = edge(a.0, b.0, c.0);
+            if area.abs() < 1e-12 || !area.is_finite() {
+                continue;
+            }
+            let x0 = a.0.x.min(b.0.x).min(c.0.x).floor().max(0.0) as u32;
+            let x1 = (a.0.x.max(b.0.x).max(c.0.x).ceil() as i64).clamp(0, w as i64) as u32;
+            let y0 = a.0.y.min(b.0.y).min(c.0.y).floor().max(0.0) as u32;
+            let y1 = (a.0.y.max(b.0.y).max(c.0.y).ceil() as i64).clamp(0, h as i64) as u32;
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let q = DVec2::new(x as f64 + 0.5, y as f64 + 0.5);
+                    let wa = edge(b.0, c.0, q) / area;
+                    let wb = edge(c.0, a.0, q) / area;
+                    let wc = edge(a.0, b.0, q) / area;
+                    if wa < 0.0 || wb < 0.0 || wc < 0.0 {
+                        continue;
+                    }
+                    let z = wa * a.1 + wb * b.1 + wc * c.1;
+                    let i = (y * w + x) as usize;
+                    if z < depth[i] {
+                        depth[i] = z;
+                        hits[i] = Some(Hit { obj: oi as u32, tri: ti as u32, bary: [wa, wb, wc] });
+                    }
+                }
+            }
+        }
+    }
+    GBuffer { w, h, hits }
+}

@@ -1,0 +1,57 @@
+//! Per-triangle bump state: the triangle's tangent frame (the average of its vertex frames,
+//! re-orthonormalised), and each bump light's L_i and H_i in that frame, in f64 and
+//! quantised to the pipeline's L/H words. Parallel viewer and per-triangle parallel lights
+//! are the paper's simplifications (§5.4, items 2 and 3).
+
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::fixed::{from_f64, Overflow, Rounding};
+use crate::model::{BumpState, LightSlot, MAX_LIGHTS};
+use crate::scene::lighting::{half_vector, light_dir, spot_factor};
+use crate::scene::mesh::{frame, Mesh};
+use crate::scene::{Camera, Scene};
+use glam::DVec3;
+
+#[derive(Clone, Copy, Debug)]
+pub struct TriState {
+    /// Bump-space light and half vectors, light colour and k, per slot (f64).
+    pub l: [DVec3; MAX_LIGHTS],
+    pub h: [DVec3; MAX_LIGHTS],
+    pub k: [f64; MAX_LIGHTS],
+    /// The same, quantised.
+    pub fixed: BumpState,
+}
+
+pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh) -> Result<Vec<TriState>> {
+    let lights: Vec<_> = scene.bump_lights().collect();
+    scene.check_config(cfg, "pipeline config")?;
+    let lh = cfg.lh_fmt();
+    let q = |x: f64| from_f64(x, lh, Rounding::HalfUp, Overflow::Saturate).ok_or_else(|| Error::Other("non-finite light vector".into()));
+    let qk = |x: f64| from_f64(x, cfg.k_fmt(), Rounding::HalfUp, Overflow::Saturate).expect("finite k");
+    let max = cfg.colour_max() as f64;
+    let mut out = Vec::with_capacity(mesh.tris.len());
+    for t in &mesh.tris {
+        let v = t.map(|i| mesh.verts[i as usize]);
+        let centroid = (v[0].p + v[1].p + v[2].p) / 3.0;
+        let (n, tg, bn) = frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b);
+        let to_bump = |w: DVec3| DVec3::new(w.dot(tg), w.dot(bn), w.dot(n));
+        let mut st = TriState { l: [DVec3::ZERO; MAX_LIGHTS], h: [DVec3::ZERO; MAX_LIGHTS], k: [0.0; MAX_LIGHTS], fixed: BumpState::default() };
+        for (i, light) in lights.iter().enumerate() {
+            let ld = light_dir(light, centroid, n);
+            let hd = half_vector(ld, cam.to_viewer);
+            st.l[i] = to_bump(ld);
+            st.h[i] = to_bump(hd);
+            st.k[i] = light.k * spot_factor(light, centroid);
+            let l = st.l[i];
+            let h = st.h[i];
+            st.fixed.lights[i] = LightSlot {
+                l: [q(l.x)?, q(l.y)?, q(l.z)?],
+                h: [q(h.x)?, q(h.y)?, q(h.z)?],
+                colour: light.colour.map(|c| (c * max).round() as u32),
+                k: qk(st.k[i]),
+            };
+        }
+        out.push(st);
+    }
+    Ok(out)
+}

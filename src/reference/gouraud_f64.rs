@@ -1,0 +1,50 @@
+//! The Gouraud bump equations in f64: the golden model's algorithm without its quantisation.
+
+use crate::bumpmap::sample::Filter;
+use crate::config::BlendOrder;
+use crate::model::power_table::powi_exact;
+use crate::raster::{Hit, PixelGeom, Prepared};
+use glam::{DVec2, DVec3};
+
+/// Filtered normal without renormalisation: what a texture unit hands the pipeline.
+fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filter) -> DVec3 {
+    match filter {
+        Filter::Nearest => crate::bumpmap::sample::sample_normal(map, uv, Filter::Nearest),
+        Filter::Bilinear => {
+            let x = uv.x * map.w as f64 - 0.5;
+            let y = uv.y * map.h as f64 - 0.5;
+            let (x0, y0) = (x.floor(), y.floor());
+            let (fx, fy) = (x - x0, y - y0);
+            let (x0, y0) = (x0 as i64, y0 as i64);
+            map.at(x0, y0) * ((1.0 - fx) * (1.0 - fy)) + map.at(x0 + 1, y0) * (fx * (1.0 - fy)) + map.at(x0, y0 + 1) * ((1.0 - fx) * fy) + map.at(x0 + 1, y0 + 1) * (fx * fy)
+        }
+    }
+}
+
+pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let cfg = p.cfg;
+    let so = &p.scene.objects[hit.obj as usize];
+    let o = &p.objects[hit.obj as usize];
+    let ts = &o.tris[hit.tri as usize];
+    let bn = filtered_normal(&o.normals, g.uv, so.bump.filter);
+    let bypass = cfg.skip_flat && (bn - DVec3::Z).length() < 1e-9;
+    let dif_on = cfg.diffuse && so.diffuse && !bypass;
+    let spe_on = cfg.specular && so.specular && !bypass;
+    let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
+    for (i, l) in p.scene.bump_lights().enumerate() {
+        let lc = DVec3::from_array(l.colour) * ts.k[i];
+        if dif_on {
+            diff += lc * bn.dot(ts.l[i]).clamp(0.0, 1.0);
+        }
+        if spe_on {
+            spec += lc * powi_exact(bn.dot(ts.h[i]).clamp(0.0, 1.0), so.shininess);
+        }
+    }
+    let tex = crate::raster::assets::texture_at(so, g.uv);
+    let c = (g.c_src).clamp(DVec3::ZERO, DVec3::ONE);
+    let s0 = (c + diff).min(DVec3::ONE);
+    match cfg.blend_order {
+        BlendOrder::DiffuseTextureSpecular => (s0 * tex + spec).min(DVec3::ONE),
+        BlendOrder::TextureLast => (s0 + spec).min(DVec3::ONE) * tex,
+    }
+}

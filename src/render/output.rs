@@ -1,0 +1,61 @@
+//! Writing images: PNG through a temporary file and a rename, so a failed or interrupted
+//! write never leaves a partial image behind; and the difference heat map.
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Write `bytes` to `path` atomically (temporary sibling, then rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
+    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    let res = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
+    if let Err(e) = res {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(Error::io(path, e));
+    }
+    Ok(())
+}
+
+/// Encode 8-bit RGB pixels as PNG and write atomically.
+pub fn write_png(path: &Path, w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<()> {
+    let mut buf = Vec::new();
+    let flat: Vec<u8> = rgb.iter().flatten().copied().collect();
+    {
+        use image::ImageEncoder;
+        image::codecs::png::PngEncoder::new(&mut buf)
+            .write_image(&flat, w, h, image::ExtendedColorType::Rgb8)
+            .map_err(|e| Error::Other(format!("{}: PNG encoding failed: {e}", path.display())))?;
+    }
+    write_atomic(path, &buf)
+}
+
+/// Colour codes (0..=max) to 8-bit.
+pub fn codes_to_u8(c: &[[u32; 3]], max: u32) -> Vec<[u8; 3]> {
+    c.iter().map(|p| p.map(|x| ((x as u64 * 255 + max as u64 / 2) / max as u64) as u8)).collect()
+}
+
+/// [0,1] colours to 8-bit.
+pub fn f64_to_u8(c: &[[f64; 3]]) -> Vec<[u8; 3]> {
+    c.iter().map(|p| p.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8)).collect()
+}
+
+/// Heat map of per-pixel error (largest channel, in LSBs): black at 0, through blue, red and
+/// yellow to white at `scale` LSBs and above.
+pub fn heat_map(err_lsb: &[f64], scale: f64) -> Vec<[u8; 3]> {
+    const STOPS: [[f64; 3]; 5] = [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 1.0, 1.0]];
+    err_lsb
+        .iter()
+        .map(|e| {
+            let t = (e / scale.max(1e-9)).clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
+            let i = (t.floor() as usize).min(STOPS.len() - 2);
+            let f = t - i as f64;
+            [0, 1, 2].map(|c| ((STOPS[i][c] * (1.0 - f) + STOPS[i + 1][c] * f) * 255.0).round() as u8)
+        })
+        .collect()
+}
+
+/// [0,1] colours to codes, rounded to nearest.
+pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
+    c.iter().map(|p| p.map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32)).collect()
+}

@@ -1,0 +1,260 @@
+//! Scenes: camera, lights and objects, read from TOML (the built-ins ship as such files in
+//! `scenes/`). A scene says what it needs; [`Scene::derive_config`] turns that into the
+//! smallest pipeline that renders it ("model only what the scene requires").
+
+pub mod builtin;
+pub mod camera;
+pub mod lighting;
+pub mod mesh;
+pub mod teapot;
+mod validate;
+
+use crate::bumpmap::{Filter, HeightSource, NormalMethod};
+use crate::config::PipelineConfig;
+use crate::error::{toml_error, Error, Result};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+pub use camera::Camera;
+
+/// A whole scene file.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    /// Default image size [w, h].
+    #[serde(default = "default_size")]
+    pub size: [u32; 2],
+    pub camera: CameraDesc,
+    /// Ambient light, added to the Gouraud colour of every vertex.
+    #[serde(default)]
+    pub ambient: [f64; 3],
+    /// Overrides of the derived pipeline configuration (any `PipelineConfig` field).
+    #[serde(default)]
+    pub pipeline: Option<toml::Table>,
+    #[serde(default)]
+    pub lights: Vec<Light>,
+    pub objects: Vec<Object>,
+    /// Folder that relative paths (PNG height maps) are resolved against.
+    #[serde(skip)]
+    pub base: PathBuf,
+    /// Where the scene came from, for error messages.
+    #[serde(skip)]
+    pub file: String,
+}
+
+fn default_size() -> [u32; 2] {
+    [256, 256]
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    pub eye: [f64; 3],
+    pub target: [f64; 3],
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    /// Height of the orthographic view in world units (the paper's parallel viewer).
+    pub height: f64,
+    #[serde(default)]
+    pub background: [f64; 3],
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LightKind {
+    /// Parallel light; `direction` points towards the light.
+    Directional,
+    /// Light at `position`; the pipeline treats it as parallel per triangle (paper §4).
+    Point,
+    /// Spotlight at `position` shining along `direction`.
+    Spot,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Light {
+    pub kind: LightKind,
+    #[serde(default)]
+    pub direction: [f64; 3],
+    #[serde(default)]
+    pub position: [f64; 3],
+    pub colour: [f64; 3],
+    /// Acts on the bump map (a light slot of the pipeline); otherwise it is carried by the
+    /// Gouraud colour (paper §5.4.1, Fig. 6's spotlights).
+    #[serde(default = "yes")]
+    pub bump: bool,
+    /// Constant modulation k_i in [0, 1].
+    #[serde(default = "one")]
+    pub k: f64,
+    #[serde(default = "default_cutoff")]
+    pub cutoff_deg: f64,
+    #[serde(default)]
+    pub exponent: f64,
+}
+
+fn yes() -> bool {
+    true
+}
+fn one() -> f64 {
+    1.0
+}
+fn default_cutoff() -> f64 {
+    30.0
+}
+
+/// A parametric or patch shape.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Shape {
+    /// A w×h rectangle in the xy plane, normal +z.
+    Plane { size: [f64; 2] },
+    Sphere { radius: f64 },
+    /// Open cylinder along z; `sides` > 0 makes it a faceted prism (paper Figs. 5/8).
+    Cylinder { radius: f64, height: f64, #[serde(default)] sides: u32 },
+    Torus { major: f64, minor: f64 },
+    /// Newell's teapot, about 3 units tall.
+    Teapot,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Object {
+    pub shape: Shape,
+    /// Tessellation [u, v] (per patch for the teapot).
+    #[serde(default = "default_segments")]
+    pub segments: [u32; 2],
+    #[serde(default)]
+    pub translate: [f64; 3],
+    #[serde(default)]
+    pub rotate_deg: [f64; 3],
+    #[serde(default = "one")]
+    pub scale: f64,
+    /// Repeats of the bump map and texture over the surface's [0,1]² parameter square.
+    #[serde(default = "default_uv_scale")]
+    pub uv_scale: [f64; 2],
+    #[serde(default)]
+    pub shininess: u32,
+    #[serde(default = "yes")]
+    pub diffuse: bool,
+    #[serde(default = "yes")]
+    pub specular: bool,
+    #[serde(default)]
+    pub texture: Texture,
+    pub bump: BumpDesc,
+}
+
+fn default_segments() -> [u32; 2] {
+    [32, 16]
+}
+fn default_uv_scale() -> [f64; 2] {
+    [1.0, 1.0]
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Texture {
+    Constant { colour: [f64; 3] },
+    Checker { cells: u32, a: [f64; 3], b: [f64; 3] },
+}
+
+impl Default for Texture {
+    fn default() -> Self {
+        Texture::Constant { colour: [1.0; 3] }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BumpDesc {
+    pub source: HeightSource,
+    /// Side of the generated map in texels (PNG maps keep their size).
+    #[serde(default = "default_map_size")]
+    pub size: u32,
+    #[serde(default = "default_strength")]
+    pub strength: f64,
+    #[serde(default)]
+    pub method: NormalMethod,
+    #[serde(default)]
+    pub filter: Filter,
+    /// Bake the normals of a `sides`-sided cylinder into the map (paper §5.3).
+    #[serde(default)]
+    pub cylinder_sides: u32,
+}
+
+fn default_map_size() -> u32 {
+    128
+}
+fn default_strength() -> f64 {
+    4.0
+}
+
+impl Scene {
+    /// Parse scene TOML; `file` names it in errors and `base` resolves relative paths.
+    pub fn from_toml(file: &str, text: &str, base: &Path) -> Result<Scene> {
+        let mut s: Scene = toml::from_str(text)
+            .map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
+        s.base = base.to_path_buf();
+        s.file = file.to_string();
+        validate::validate(&s, text)?;
+        Ok(s)
+    }
+
+    /// A built-in name or a path to a `.toml` file.
+    pub fn load(name_or_path: &str) -> Result<Scene> {
+        if let Some(text) = builtin::get(name_or_path) {
+            return Scene::from_toml(&format!("scenes/{name_or_path}.toml"), text, Path::new("scenes"));
+        }
+        let p = Path::new(name_or_path);
+        if p.extension().is_some_and(|e| e == "toml") || p.exists() {
+            let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
+            return Scene::from_toml(name_or_path, &text, p.parent().unwrap_or(Path::new(".")));
+        }
+        Err(Error::UnknownScene { name: name_or_path.to_string() })
+    }
+
+    /// Lights that act on the bump map, in slot order.
+    pub fn bump_lights(&self) -> impl Iterator<Item = &Light> {
+        self.lights.iter().filter(|l| l.bump)
+    }
+
+    /// The smallest configuration that renders this scene, then the scene's own overrides.
+    pub fn derive_config(&self) -> Result<PipelineConfig> {
+        let mut cfg = PipelineConfig {
+            lights: self.bump_lights().count().max(1) as u32,
+            specular: self.objects.iter().any(|o| o.specular),
+            diffuse: self.objects.iter().any(|o| o.diffuse),
+            shininess: self.objects.iter().find(|o| o.specular).map_or(16, |o| o.shininess),
+            ..PipelineConfig::default()
+        };
+        if let Some(over) = &self.pipeline {
+            let mut base = toml::Table::try_from(&cfg).expect("config is a table");
+            for (k, v) in over {
+                base.insert(k.clone(), v.clone());
+            }
+            let text = toml::to_string(&base).expect("table serialises");
+            cfg = PipelineConfig::from_toml(&format!("{} [pipeline]", self.file), &text)?;
+        }
+        Ok(cfg)
+    }
+
+    /// Check that `cfg` can render this scene.
+    pub fn check_config(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
+        let n = self.bump_lights().count() as u32;
+        if n > cfg.lights {
+            return Err(Error::field(
+                cfg_file,
+                "lights",
+                format!("scene `{}` has {n} bump lights but the pipeline has {} light slots", self.name, cfg.lights),
+                format!("set lights = {n} or more"),
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,172 @@
+//! Scene validation: every number finite and in range, with the field's path and line.
+
+use super::{LightKind, Scene, Shape, Texture};
+use crate::error::{Error, Result};
+
+/// Line (1-based) where `key` is assigned inside the `index`-th `[[array]]` table, if found.
+fn locate(text: &str, array: Option<(&str, usize)>, key: &str) -> Option<usize> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut start = 0;
+    if let Some((name, idx)) = array {
+        let header = format!("[[{name}]]");
+        start = lines.iter().enumerate().filter(|(_, l)| l.trim() == header).nth(idx)?.0;
+    }
+    lines.iter().enumerate().skip(start).find(|(_, l)| {
+        let t = l.trim_start();
+        t.starts_with(key) && t[key.len()..].trim_start().starts_with('=') || t.contains(&format!(" {key} =")) || t.contains(&format!("{{ {key} ="))
+    }).map(|(i, _)| i + 1)
+}
+
+struct Checker<'a> {
+    s: &'a Scene,
+    text: &'a str,
+}
+
+impl Checker<'_> {
+    fn fail(&self, array: Option<(&str, usize)>, key: &str, path: &str, msg: String, fix: &str) -> Error {
+        let at = locate(self.text, array, key).map_or(String::new(), |l| format!(":{l}"));
+        Error::field(&format!("{}{at}", self.s.file), path, msg, fix)
+    }
+
+    fn num(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
+        if !v.is_finite() {
+            return Err(self.fail(array, key, path, format!("{v} is not a finite number"), "give a finite number"));
+        }
+        if v < lo || v > hi {
+            return Err(self.fail(array, key, path, format!("{v} is out of range"), &format!("use a value in [{lo}, {hi}]")));
+        }
+        Ok(())
+    }
+
+    fn vec3(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: [f64; 3], lo: f64, hi: f64) -> Result<()> {
+        for (i, c) in v.iter().enumerate() {
+            self.num(array, key, &format!("{path}[{i}]"), *c, lo, hi)?;
+        }
+        Ok(())
+    }
+
+    fn dir(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: [f64; 3]) -> Result<()> {
+        self.vec3(array, key, path, v, -1e6, 1e6)?;
+        if v.iter().map(|c| c * c).sum::<f64>() < 1e-24 {
+            return Err(self.fail(array, key, path, "zero-length direction".into(), "give a non-zero vector"));
+        }
+        Ok(())
+    }
+}
+
+pub fn validate(s: &Scene, text: &str) -> Result<()> {
+    let c = Checker { s, text };
+    for (i, v) in s.size.iter().enumerate() {
+        if *v == 0 || *v > 8192 {
+            return Err(c.fail(None, "size", &format!("size[{i}]"), format!("{v} is out of range"), "use 1..=8192 pixels"));
+        }
+    }
+    let cam = &s.camera;
+    c.vec3(None, "eye", "camera.eye", cam.eye, -1e6, 1e6)?;
+    c.vec3(None, "target", "camera.target", cam.target, -1e6, 1e6)?;
+    c.dir(None, "up", "camera.up", cam.up)?;
+    let view: Vec<f64> = (0..3).map(|i| cam.target[i] - cam.eye[i]).collect();
+    if view.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
+        return Err(c.fail(None, "eye", "camera.eye", "eye and target coincide".into(), "move the eye away from the target"));
+    }
+    c.num(None, "height", "camera.height", cam.height, 1e-6, 1e6)?;
+    c.vec3(None, "background", "camera.background", cam.background, 0.0, 1.0)?;
+    c.vec3(None, "ambient", "ambient", s.ambient, 0.0, 1.0)?;
+    for (i, l) in s.lights.iter().enumerate() {
+        let a = Some(("lights", i));
+        let p = format!("lights[{i}]");
+        c.vec3(a, "colour", &format!("{p}.colour"), l.colour, 0.0, 1.0)?;
+        c.num(a, "k", &format!("{p}.k"), l.k, 0.0, 1.0)?;
+        match l.kind {
+            LightKind::Directional => c.dir(a, "direction", &format!("{p}.direction"), l.direction)?,
+            LightKind::Point => c.vec3(a, "position", &format!("{p}.position"), l.position, -1e6, 1e6)?,
+            LightKind::Spot => {
+                c.vec3(a, "position", &format!("{p}.position"), l.position, -1e6, 1e6)?;
+                c.dir(a, "direction", &format!("{p}.direction"), l.direction)?;
+                c.num(a, "cutoff_deg", &format!("{p}.cutoff_deg"), l.cutoff_deg, 0.0, 90.0)?;
+                c.num(a, "exponent", &format!("{p}.exponent"), l.exponent, 0.0, 1024.0)?;
+            }
+        }
+    }
+    if s.objects.is_empty() {
+        return Err(c.fail(None, "objects", "objects", "the scene has no objects".into(), "add an [[objects]] table"));
+    }
+    for (i, o) in s.objects.iter().enumerate() {
+        let a = Some(("objects", i));
+        let p = format!("objects[{i}]");
+        let pos = |k: &str, v: f64| c.num(a, k, &format!("{p}.shape.{k}"), v, 1e-6, 1e6);
+        match &o.shape {
+            Shape::Plane { size } => {
+                pos("size", size[0])?;
+                pos("size", size[1])?;
+            }
+            Shape::Sphere { radius } => pos("radius", *radius)?,
+            Shape::Cylinder { radius, height, sides } => {
+                pos("radius", *radius)?;
+                pos("height", *height)?;
+                if *sides == 1 || *sides == 2 || *sides > 4096 {
+                    return Err(c.fail(a, "sides", &format!("{p}.shape.sides"), format!("{sides} sides"), "use 0 (smooth) or 3..=4096"));
+                }
+            }
+            Shape::Torus { major, minor } => {
+                pos("major", *major)?;
+                pos("minor", *minor)?;
+            }
+            Shape::Teapot => {}
+        }
+        for (k, v) in o.segments.iter().enumerate() {
+            if *v == 0 || *v > 1024 {
+                return Err(c.fail(a, "segments", &format!("{p}.segments[{k}]"), format!("{v} is out of range"), "use 1..=1024"));
+            }
+        }
+        c.vec3(a, "translate", &format!("{p}.translate"), o.translate, -1e6, 1e6)?;
+        c.vec3(a, "rotate_deg", &format!("{p}.rotate_deg"), o.rotate_deg, -3600.0, 3600.0)?;
+        c.num(a, "scale", &format!("{p}.scale"), o.scale, 1e-6, 1e6)?;
+        c.num(a, "uv_scale", &format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
+        c.num(a, "uv_scale", &format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
+        if o.shininess > 1024 {
+            return Err(c.fail(a, "shininess", &format!("{p}.shininess"), format!("{} is out of range", o.shininess), "use 0..=1024"));
+        }
+        match &o.texture {
+            Texture::Constant { colour } => c.vec3(a, "colour", &format!("{p}.texture.colour"), *colour, 0.0, 1.0)?,
+            Texture::Checker { cells, a: ca, b: cb } => {
+                if *cells == 0 {
+                    return Err(c.fail(a, "cells", &format!("{p}.texture.cells"), "0 cells".into(), "use 1 or more"));
+                }
+                c.vec3(a, "a", &format!("{p}.texture.a"), *ca, 0.0, 1.0)?;
+                c.vec3(a, "b", &format!("{p}.texture.b"), *cb, 0.0, 1.0)?;
+            }
+        }
+        let b = &o.bump;
+        if b.size < 2 || b.size > 4096 {
+            return Err(c.fail(a, "size", &format!("{p}.bump.size"), format!("{} is out of range", b.size), "use 2..=4096 texels"));
+        }
+        c.num(a, "strength", &format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
+        if b.cylinder_sides == 1 || b.cylinder_sides == 2 {
+            return Err(c.fail(a, "cylinder_sides", &format!("{p}.bump.cylinder_sides"), "fewer than 3 sides".into(), "use 0 or 3 and more"));
+        }
+        use crate::bumpmap::HeightSource as H;
+        match &b.source {
+            H::Bricks { rows, cols, mortar } => {
+                if *rows == 0 || *cols == 0 {
+                    return Err(c.fail(a, "rows", &format!("{p}.bump.source"), "zero rows or columns".into(), "use 1 or more"));
+                }
+                c.num(a, "mortar", &format!("{p}.bump.source.mortar"), *mortar, 1e-3, 0.45)?;
+            }
+            H::SphereCaps { cells, radius } => {
+                if *cells == 0 {
+                    return Err(c.fail(a, "cells", &format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
+                }
+                c.num(a, "radius", &format!("{p}.bump.source.radius"), *radius, 1e-3, 0.5)?;
+            }
+            H::MexicanHat { cells, sigma } => {
+                if *cells == 0 {
+                    return Err(c.fail(a, "cells", &format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
+                }
+                c.num(a, "sigma", &format!("{p}.bump.source.sigma"), *sigma, 1e-3, 1.0)?;
+            }
+            H::Flat | H::Png { .. } => {}
+        }
+    }
+    Ok(())
+}
