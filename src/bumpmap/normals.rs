@@ -23,11 +23,13 @@ pub struct NormalMap {
     pub w: usize,
     pub h: usize,
     pub data: Vec<DVec3>,
+    /// Clamp instead of wrapping across the u edges (a baked facet map must not blend its two edges).
+    pub clamp_u: bool,
 }
 
 impl NormalMap {
     pub fn at(&self, x: i64, y: i64) -> DVec3 {
-        let xi = x.rem_euclid(self.w as i64) as usize;
+        let xi = crate::bumpmap::sample::address(x, self.w, self.clamp_u);
         let yi = y.rem_euclid(self.h as i64) as usize;
         self.data[yi * self.w + xi]
     }
@@ -44,13 +46,14 @@ impl NormalMap {
                 data.push(DVec3::new(-strength * fu, -strength * fv, 1.0).normalize());
             }
         }
-        NormalMap { w: hf.w, h: hf.h, data }
+        NormalMap { w: hf.w, h: hf.h, data, clamp_u: false }
     }
 
     /// Tilt every normal about the v axis by the facet angle of a `sides`-sided prism, so that
     /// a flat facet shades like the smooth cylinder it approximates (paper §5.3, Fig. 5 B).
     pub fn curve_for_cylinder(&mut self, sides: u32) {
         let span = std::f64::consts::TAU / sides as f64;
+        self.clamp_u = true;
         for y in 0..self.h {
             for x in 0..self.w {
                 let theta = ((x as f64 + 0.5) / self.w as f64 - 0.5) * span;

@@ -1,7 +1,8 @@
 //! Palettised bump maps (paper §6: "with eight bit addressing a table lookup (bump) texture,
 //! up to 256 surface orientations can be modeled"). The palette is chosen by k-means over the
-//! map's distinct stored codes, weighted by their counts and seeded with the most frequent
-//! codes, so it is deterministic and exact whenever a map has at most 256 distinct normals.
+//! map's distinct stored codes, weighted by their counts and seeded by farthest-point
+//! sampling from the most frequent code, so it is deterministic, spreads over the whole set of
+//! orientations, and is exact whenever a map has at most 256 distinct normals.
 
 use crate::config::PipelineConfig;
 use crate::model::bump_fetch::{expand, Palette};
@@ -25,6 +26,7 @@ pub fn build_palette(cfg: &PipelineConfig, codes: &[[u32; 3]]) -> (Palette, Vec<
     let flat_code = [0, 0, cfg.normal_fmt().max_raw()].map(|b| crate::model::bump_fetch::compress(cfg, b));
     let mut centres: Vec<[f64; 3]> = uniq.iter().take(ENTRIES).map(|(c, _)| c.map(|x| expand(cfg, x) as f64)).collect();
     if uniq.len() > ENTRIES {
+        centres = farthest_points(cfg, &uniq);
         for _ in 0..ITERATIONS {
             let mut sum = vec![[0f64; 3]; centres.len()];
             let mut wsum = vec![0f64; centres.len()];
@@ -55,6 +57,22 @@ pub fn build_palette(cfg: &PipelineConfig, codes: &[[u32; 3]]) -> (Palette, Vec<
         .map(|c| *lut.entry(*c).or_insert_with(|| nearest(cfg, &snapped, *c) as u8))
         .collect();
     (Palette(entries), indices)
+}
+
+/// Greedy farthest-point seeds: each new centre is the code farthest from all chosen so far.
+fn farthest_points(cfg: &PipelineConfig, uniq: &[([u32; 3], usize)]) -> Vec<[f64; 3]> {
+    let pt = |c: [u32; 3]| c.map(|x| expand(cfg, x) as f64);
+    let mut centres = vec![pt(uniq[0].0)];
+    let mut d: Vec<f64> = uniq.iter().map(|(c, _)| dist2(cfg, *c, centres[0])).collect();
+    while centres.len() < ENTRIES {
+        let (far, _) = d.iter().enumerate().fold((0, -1.0), |best, (i, &x)| if x > best.1 { (i, x) } else { best });
+        let z = pt(uniq[far].0);
+        centres.push(z);
+        for (i, (c, _)) in uniq.iter().enumerate() {
+            d[i] = d[i].min(dist2(cfg, *c, z));
+        }
+    }
+    centres
 }
 
 fn nearest(cfg: &PipelineConfig, centres: &[[f64; 3]], c: [u32; 3]) -> usize {

@@ -31,20 +31,29 @@ fn wrap(i: i64, n: usize) -> usize {
     i.rem_euclid(n as i64) as usize
 }
 
-fn nearest_index(uv: DVec2, w: usize, h: usize) -> usize {
-    let x = wrap((uv.x * w as f64).floor() as i64, w);
+/// Texel column `i` of `n`: wrapped (tiling maps) or clamped to the edge.
+pub fn address(i: i64, n: usize, clamp: bool) -> usize {
+    if clamp {
+        i.clamp(0, n as i64 - 1) as usize
+    } else {
+        wrap(i, n)
+    }
+}
+
+fn nearest_index(uv: DVec2, w: usize, h: usize, clamp_u: bool) -> usize {
+    let x = address((uv.x * w as f64).floor() as i64, w, clamp_u);
     let y = wrap((uv.y * h as f64).floor() as i64, h);
     y * w + x
 }
 
 /// Filter a grid of integer RGB codes.
-pub fn sample_codes(codes: &[[u32; 3]], w: usize, h: usize, uv: DVec2, filter: Filter) -> [u32; 3] {
+pub fn sample_codes(codes: &[[u32; 3]], w: usize, h: usize, clamp_u: bool, uv: DVec2, filter: Filter) -> [u32; 3] {
     match filter {
-        Filter::Nearest => codes[nearest_index(uv, w, h)],
+        Filter::Nearest => codes[nearest_index(uv, w, h, clamp_u)],
         Filter::Bilinear => {
             let mut acc = [0f64; 3];
             for (x, y, wt) in footprint(uv, w, h) {
-                let c = codes[wrap(y, h) * w + wrap(x, w)];
+                let c = codes[wrap(y, h) * w + address(x, w, clamp_u)];
                 for i in 0..3 {
                     acc[i] += wt * c[i] as f64;
                 }
@@ -57,15 +66,15 @@ pub fn sample_codes(codes: &[[u32; 3]], w: usize, h: usize, uv: DVec2, filter: F
 /// The bump texel the pipeline receives at `uv`.
 pub fn sample_bump(map: &StoredMap, uv: DVec2, filter: Filter) -> BumpTexel {
     match map {
-        StoredMap::Rgb { w, h, codes } => BumpTexel::Rgb(sample_codes(codes, *w, *h, uv, filter)),
-        StoredMap::Palettised { w, h, indices, .. } => BumpTexel::Index(indices[nearest_index(uv, *w, *h)]),
+        StoredMap::Rgb { w, h, codes, clamp_u } => BumpTexel::Rgb(sample_codes(codes, *w, *h, *clamp_u, uv, filter)),
+        StoredMap::Palettised { w, h, indices, .. } => BumpTexel::Index(indices[nearest_index(uv, *w, *h, false)]),
     }
 }
 
 /// The unquantised normal at `uv`, renormalised after filtering (for the f64 images).
 pub fn sample_normal(map: &NormalMap, uv: DVec2, filter: Filter) -> DVec3 {
     match filter {
-        Filter::Nearest => map.data[nearest_index(uv, map.w, map.h)],
+        Filter::Nearest => map.data[nearest_index(uv, map.w, map.h, map.clamp_u)],
         Filter::Bilinear => {
             let mut acc = DVec3::ZERO;
             for (x, y, wt) in footprint(uv, map.w, map.h) {

@@ -11,7 +11,7 @@ use glam::DVec3;
 /// A stored bump map.
 #[derive(Clone, Debug)]
 pub enum StoredMap {
-    Rgb { w: usize, h: usize, codes: Vec<[u32; 3]> },
+    Rgb { w: usize, h: usize, codes: Vec<[u32; 3]>, clamp_u: bool },
     Palettised { w: usize, h: usize, indices: Vec<u8>, palette: Palette },
 }
 
@@ -30,7 +30,7 @@ impl StoredMap {
             let (palette, indices) = build_palette(cfg, &codes);
             StoredMap::Palettised { w: map.w, h: map.h, indices, palette }
         } else {
-            StoredMap::Rgb { w: map.w, h: map.h, codes }
+            StoredMap::Rgb { w: map.w, h: map.h, codes, clamp_u: map.clamp_u }
         }
     }
 
