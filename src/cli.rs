@@ -37,6 +37,26 @@ pub enum Cmd {
         #[arg(long, value_name = "FILE")]
         config: Option<PathBuf>,
     },
+    /// Generate the Verilog, ROM init file and interface JSON of a configuration.
+    Rtl {
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
+    /// Write LUT ROM init files (.hex, .mif, .coe): power table, bump palette, cube map.
+    Rom {
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Shininess of the power table (default: the config's).
+        #[arg(long)]
+        shininess: Option<u32>,
+        /// Side of each normalisation cube-map face.
+        #[arg(long, default_value_t = 32)]
+        cube_size: usize,
+    },
     /// Print a pipeline configuration as TOML with its hash: the default, or a scene's.
     Config {
         #[arg(long)]
@@ -44,11 +64,69 @@ pub enum Cmd {
     },
 }
 
+/// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
+#[derive(clap::Args, Clone, Debug)]
+pub struct ConfigPick {
+    /// Pipeline configuration TOML.
+    #[arg(long, value_name = "FILE", conflicts_with = "scene")]
+    pub config: Option<PathBuf>,
+    /// Derive the configuration from a scene (built-in name or file).
+    #[arg(long)]
+    pub scene: Option<String>,
+}
+
+impl ConfigPick {
+    pub fn resolve(&self) -> Result<PipelineConfig> {
+        match (&self.config, &self.scene) {
+            (Some(p), _) => PipelineConfig::load(p),
+            (None, Some(s)) => Scene::load(s)?.derive_config(),
+            (None, None) => Ok(PipelineConfig::default()),
+        }
+    }
+
+    /// The arguments that select this configuration, for regeneration commands in headers.
+    pub fn args(&self) -> String {
+        match (&self.config, &self.scene) {
+            (Some(p), _) => format!("--config {}", p.display()),
+            (None, Some(s)) => format!("--scene {s}"),
+            (None, None) => String::new(),
+        }
+    }
+}
+
+/// Write every file into `dir` atomically; on any failure remove what this call wrote.
+pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    for (i, (name, text)) in files.iter().enumerate() {
+        if let Err(e) = write_atomic(&dir.join(name), text.as_bytes()) {
+            for (n, _) in &files[..i] {
+                let _ = std::fs::remove_file(dir.join(n));
+            }
+            return Err(e);
+        }
+    }
+    Ok(())
+}
+
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render { scene, out, size, config } => render(&scene, &out, size.as_deref(), config.as_deref())?,
+        Cmd::Rtl { pick, out } => {
+            let cfg = pick.resolve()?;
+            let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
+            let files = crate::rtlgen::generate(&cfg, &cmd);
+            write_files(&out, &files)?;
+            println!("wrote {} files for config {} to {} (top {}, latency {} cycles)", files.len(), cfg.hash(), out.display(),
+                crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"), crate::rtlgen::top::latency(&cfg));
+        }
+        Cmd::Rom { pick, out, shininess, cube_size } => {
+            let cfg = pick.resolve()?;
+            let files = rom_files(&cfg, &pick, shininess, cube_size, &out)?;
+            write_files(&out, &files)?;
+            println!("wrote {} ROM files to {}", files.len(), out.display());
+        }
         Cmd::Config { scene } => {
             let cfg = match scene {
                 Some(s) => Scene::load(&s)?.derive_config()?,
@@ -134,4 +212,38 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>) ->
     println!("  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_gou.psnr_db, vs_gou.max_lsb, vs_gou.mean_lsb, 100.0 * vs_gou.over_1lsb);
     println!("  wrote {} and {name}_metrics.json in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
     Ok(())
+}
+
+fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>, cube: usize, out: &Path) -> Result<Vec<(String, String)>> {
+    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
+    let n = shininess.unwrap_or(cfg.shininess);
+    if n > 1024 {
+        return Err(Error::Other(format!("--shininess {n}: out of range\n  fix: use 0..=1024")));
+    }
+    if !(1..=1024).contains(&cube) {
+        return Err(Error::Other(format!("--cube-size {cube}: out of range\n  fix: use 1..=1024 texels per face side")));
+    }
+    let palette = match &pick.scene {
+        Some(s) => {
+            let scene = Scene::load(s)?;
+            let pcfg = PipelineConfig { palette: true, ..cfg.clone() };
+            let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
+            p.objects[0].stored.palette().cloned().expect("palette mode")
+        }
+        None => default_palette(cfg),
+    };
+    let cmd = format!("gbump rom {} --shininess {n} --cube-size {cube} --out {}", pick.args(), out.display()).replace("  ", " ");
+    let hash = &cfg.hash()[..8];
+    let mut files = Vec::new();
+    for (stem, rom) in [
+        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n)),
+        (format!("bump_palette_{hash}"), palette_rom(cfg, &palette)),
+        (format!("cube_map_{cube}"), cube_map_rom(cube)),
+    ] {
+        let hl = crate::rtlgen::header::header_lines(cfg, &cmd, &rom.name);
+        for f in RomFormat::ALL {
+            files.push((format!("{stem}.{}", f.ext()), write(&rom, f, &hl)));
+        }
+    }
+    Ok(files)
 }

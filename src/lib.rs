@@ -11,6 +11,7 @@ pub mod measure;
 pub mod model;
 pub mod raster;
 pub mod reference;
+pub mod rtlgen;
 pub mod render;
 pub mod scene;
 pub mod units;

@@ -1,0 +1,43 @@
+//! The machine-readable interface of the generated top: ports, widths, the fixed-point
+//! format of every field, latency, initiation interval and ROM files, as JSON.
+
+use super::top::{latency, top_ports};
+use super::units_v::{module_name, rom_file_name};
+use crate::config::PipelineConfig;
+use serde_json::json;
+
+pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
+    let fmt = |p: &str| -> serde_json::Value {
+        let (f, lanes, doc) = match p {
+            "in_texel" => (crate::fixed::Format::u(cfg.normal_bits, 0), 3, "stored bump texel, offset binary, x in the low bits"),
+            "in_c_src" => (cfg.colour_fmt(), 3, "Gouraud colour C_src, R in the low bits"),
+            "in_t" => (cfg.colour_fmt(), 3, "texel colour T"),
+            "in_l" => (cfg.lh_fmt(), 3 * cfg.lights, "L_i in bump space, light 0 x in the low bits"),
+            "in_h" => (cfg.lh_fmt(), 3 * cfg.lights, "H_i in bump space"),
+            "in_lc" => (cfg.colour_fmt(), 3 * cfg.lights, "light colours Lc_i"),
+            "in_k" => (cfg.k_fmt(), cfg.lights, "k_i"),
+            "out_c" => (cfg.colour_fmt(), 3, "C_new"),
+            "pt_wdata" => (cfg.power_fmt(), 1, "power-table entry"),
+            _ => return json!(null),
+        };
+        json!({"format": f.name(), "lane_bits": f.width, "lanes": lanes, "doc": doc})
+    };
+    let ports: Vec<_> = top_ports(cfg)
+        .iter()
+        .map(|(n, d, w)| json!({"name": n, "dir": d, "width": w, "field": fmt(n)}))
+        .collect();
+    let v = json!({
+        "generator": crate::TOOL,
+        "regenerate": command,
+        "config_hash": cfg.hash(),
+        "config": cfg,
+        "top": module_name(cfg, "gbump_pipeline"),
+        "clock": "clk, rising edge; rst synchronous, active high, clears the valid bits",
+        "latency_cycles": latency(cfg),
+        "initiation_interval": cfg.initiation_interval(),
+        "handshake": "a fragment is accepted on a rising edge with in_valid && in_ready; out_valid marks C_new exactly latency_cycles later",
+        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "entries": cfg.power_entries, "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
+        "ports": ports,
+    });
+    serde_json::to_string_pretty(&v).expect("json") + "\n"
+}

@@ -1,0 +1,62 @@
+//! The RTL generator: Verilog-2005 for every unit of `units::UNITS` and the top pipeline,
+//! ROM init files, and a machine-readable interface description, all from one
+//! `PipelineConfig`. Output is deterministic: the same config gives the same bytes.
+
+pub mod fixed_ops;
+pub mod interface;
+pub mod rom;
+pub mod top;
+pub mod units_v;
+pub mod writer;
+
+use crate::config::PipelineConfig;
+use header::header;
+use units_v::{module_name, rom_file_name};
+
+pub mod header;
+
+/// One generated file: name and contents.
+pub type GenFile = (String, String);
+
+/// Every file of the RTL for `cfg`; `command` is what regenerates them (for headers).
+pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
+    let mut files: Vec<GenFile> = Vec::new();
+    let mut v = |unit: &str, body: String| {
+        let name = format!("{}.v", module_name(cfg, unit));
+        files.push((name, format!("{}{body}", header(cfg, command, &format!("{unit}: Verilog-2005"), "// "))));
+    };
+    v("bump_fetch", units_v::bump_fetch(cfg, true));
+    v("bump_fetch_comb", units_v::bump_fetch(cfg, false));
+    v("dot_clamp", units_v::dot_clamp(cfg));
+    v("power_table", units_v::power_table(cfg));
+    v("light_term", units_v::light_term(cfg));
+    v("blend_finish", units_v::blend_finish(cfg));
+    v("diffuse_blend", units_v::blend(cfg, "diffuse_blend"));
+    v("specular_blend", units_v::blend(cfg, "specular_blend"));
+    v("texture_modulate", units_v::texture_modulate(cfg));
+    v("gbump_pipeline", top::top(cfg));
+    let hl = header::header_lines(cfg, command, "power_table reset contents ($readmemh)");
+    files.push((rom_file_name(cfg, "power_table", "hex"), rom::write(&rom::power_rom(cfg, cfg.shininess), rom::RomFormat::Hex, &hl)));
+    files.push((format!("{}.json", module_name(cfg, "gbump_pipeline")), interface::interface_json(cfg, command)));
+    files.push((format!("{}.vlt", module_name(cfg, "gbump_pipeline")), waivers(cfg, command)));
+    let list: String = files.iter().filter(|f| f.0.ends_with(".v")).map(|f| format!("{}\n", f.0)).collect();
+    files.push((format!("{}.f", module_name(cfg, "gbump_pipeline")), list));
+    files
+}
+
+/// Verilog source names of `files`, in order (for simulator command lines).
+pub fn sources(files: &[GenFile]) -> Vec<String> {
+    files.iter().filter(|f| f.0.ends_with(".v")).map(|f| f.0.clone()).collect()
+}
+
+/// Verilator waivers, each with its reason.
+fn waivers(cfg: &PipelineConfig, command: &str) -> String {
+    let h = &cfg.hash()[..8];
+    let mut s = String::from("`verilator_config\n");
+    s += &header(cfg, command, "Lint waivers (a comment may not begin with the tool name: it would be a metacomment)", "// ");
+    s += "// A rounding shift keeps the high bits of its sum and drops the low ones by design; the\n";
+    s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
+    s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_table_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
+    s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*texture_modulate_{h}.v\" -match \"Bits of signal are not used: 'q*\"\n");
+    s
+}

@@ -1,0 +1,243 @@
+//! One Verilog module per unit of `units::UNITS`, each emitted from the same formats the
+//! model uses. Every unit has a registered output (latency 1); `bump_fetch` can also be
+//! emitted combinationally for the serial top, where the fetched normal must be ready in the
+//! same cycle as the first light.
+
+use super::fixed_ops::requant_clamp;
+use super::writer::{range, VWriter};
+use crate::config::PipelineConfig;
+
+/// Module name: unit name plus the first 8 hex digits of the config hash, so that modules of
+/// several configurations can live in one simulation.
+pub fn module_name(cfg: &PipelineConfig, unit: &str) -> String {
+    format!("{unit}_{}", &cfg.hash()[..8])
+}
+
+fn preamble(w: &mut VWriter) {
+    w.line("`timescale 1ns / 1ps");
+    w.line("`default_nettype none");
+    w.line("");
+}
+
+fn postamble(w: &mut VWriter) {
+    w.line("`default_nettype wire");
+}
+
+/// bump_fetch: offset-binary texel → signed normal (MSB inversion). `registered` adds the
+/// output register; otherwise the module is combinational (and has no clock).
+pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
+    let nb = cfg.normal_bits;
+    let name = if registered { module_name(cfg, "bump_fetch") } else { module_name(cfg, "bump_fetch_comb") };
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line("// bump_fetch (paper §4.1; Cg §8.1.2 range expansion): stored code c → b = c - 2^(w-1),");
+    w.line("// which for offset binary is an inversion of each component's MSB.");
+    let clk = if registered { "input  wire clk,\n    " } else { "" };
+    let out_kind = if registered { "reg " } else { "wire" };
+    w.line(format!("module {name} (\n    {clk}input  wire [{}:0] texel,\n    output {out_kind} [{}:0] b\n);", 3 * nb - 1, 3 * nb - 1));
+    let flip = |i: u32| format!("{{~texel[{}], texel[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
+    let expr = format!("{{{}, {}, {}}}", flip(2), flip(1), flip(0));
+    if registered {
+        w.block("always @(posedge clk) begin", "end", |w| {
+            w.line(format!("b <= {expr};"));
+        });
+    } else {
+        w.line(format!("assign b = {expr};"));
+    }
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// dot_clamp: f = clamp(round(B·V), 0, 1) in u1.F, registered.
+pub fn dot_clamp(cfg: &PipelineConfig) -> String {
+    let (nb, lh, f) = (cfg.normal_bits, cfg.lh_bits, cfg.dot_bits);
+    let ex = cfg.dot_exact_fmt();
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// dot_clamp (paper §4.2): exact B·V in {} ({} bits), one rounding ({:?}) to {}, clamped to [0, 1].", ex.name(), ex.width, cfg.rounding, cfg.dot_fmt().name()));
+    w.line(format!("module {} (\n    input  wire clk,\n    input  wire [{}:0] b,\n    input  wire [{}:0] v,\n    output reg  [{}:0] f\n);", module_name(cfg, "dot_clamp"), 3 * nb - 1, 3 * lh - 1, f));
+    for i in 0..3 {
+        w.line(format!("wire signed [{}:0] p{i} = $signed(b[{}:{}]) * $signed(v[{}:{}]);", ex.width - 1, i * nb + nb - 1, i * nb, i * lh + lh - 1, i * lh));
+    }
+    w.line(format!("wire signed [{}:0] dot = p0 + p1 + p2;", ex.width - 1));
+    requant_clamp(&mut w, "fq", "dot", ex, f, cfg.rounding, 0, 1 << f, f + 1);
+    w.block("always @(posedge clk) begin", "end", |w| {
+        w.line("f <= fq;");
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// power_table: `R` read ports into one reloadable table; index = round(x (N-1) / 2^F).
+pub fn power_table(cfg: &PipelineConfig) -> String {
+    let (f, p, n) = (cfg.dot_bits, cfg.power_bits, cfg.power_entries);
+    let ib = cfg.power_index_bits();
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded", p + 1));
+    w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents.");
+    w.line(format!("// Index = {:?}(x * {}) >> {f}: a subtract instead of a multiplier.", cfg.power_index, n - 1));
+    w.line(format!(
+        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
+        module_name(cfg, "power_table"),
+        rom_file_name(cfg, "power_table", "hex"),
+        ib.max(1) - 1,
+        f + 1,
+        p + 1
+    ));
+    w.line(format!("reg [{p}:0] mem [0:{}];", n - 1));
+    w.line("initial $readmemh(INIT_FILE, mem);");
+    w.block("always @(posedge clk) begin", "end", |w| {
+        w.line("if (we) mem[waddr] <= wdata;");
+    });
+    w.line("genvar r;");
+    w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
+        let sw = f + 1 + ib + 1;
+        w.line(format!("wire [{}:0] xr = x[r*{} +: {}];", f, f + 1, f + 1));
+        w.line(format!("wire [{}:0] scaled = ({{{}'d0, xr}} << {ib}) - {{{}'d0, xr}};", sw - 1, ib + 1, ib + 1));
+        let half = match cfg.power_index {
+            crate::config::PowerIndex::Nearest => 1u64 << (f - 1),
+            crate::config::PowerIndex::Truncate => 0,
+        };
+        w.line(format!("wire [{}:0] rounded = scaled + {sw}'d{half};", sw - 1));
+        w.line(format!("wire [{}:0] idx = rounded[{}:{f}];", ib.max(1) - 1, f + ib.max(1) - 1));
+        w.block("always @(posedge clk) begin", "end", |w| {
+            w.line(format!("fs[r*{} +: {}] <= mem[idx];", p + 1, p + 1));
+        });
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// Name of a ROM init file of this configuration.
+pub fn rom_file_name(cfg: &PipelineConfig, what: &str, ext: &str) -> String {
+    format!("{what}_{}.{ext}", &cfg.hash()[..8])
+}
+
+/// light_term: one light's exact f·k·Lc per channel (combinational).
+pub fn light_term(cfg: &PipelineConfig) -> String {
+    let (ff, k, c) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits);
+    let tw = cfg.term_fmt().width;
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// light_term: exact f·k·Lc per channel, {} ({tw} bits); no rounding before the sum.", cfg.term_fmt().name()));
+    w.line(format!(
+        "module {} (\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] term\n);",
+        module_name(cfg, "light_term"),
+        3 * c - 1,
+        3 * tw - 1
+    ));
+    w.line(format!("wire [{}:0] fk = f * k;", ff + k + 1));
+    for ch in 0..3 {
+        w.line(format!("assign term[{}:{}] = fk * lc[{}:{}];", ch * tw + tw - 1, ch * tw, ch * c + c - 1, ch * c));
+    }
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// blend_finish: c_out = sat(c_in + round(acc)) per channel, registered.
+pub fn blend_finish(cfg: &PipelineConfig) -> String {
+    let c = cfg.colour_bits;
+    let acc = cfg.acc_fmt();
+    let shift = cfg.factor_frac() + cfg.k_bits;
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// blend_finish: c_out = sat(c_in + round_{:?}(acc >> {shift})), acc in {} ({} bits).", cfg.rounding, acc.name(), acc.width));
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] acc,\n    output reg  [{}:0] c_out\n);",
+        module_name(cfg, "blend_finish"),
+        3 * c - 1,
+        3 * acc.width - 1,
+        3 * c - 1
+    ));
+    let max = cfg.colour_max() as i64;
+    for ch in 0..3 {
+        w.line(format!("wire [{}:0] a{ch} = acc[{}:{}];", acc.width - 1, ch * acc.width + acc.width - 1, ch * acc.width));
+        // The rounded sum never exceeds the accumulator's integer range; clamp it at max
+        // already, since c_in + anything ≥ max saturates anyway.
+        requant_clamp(&mut w, &format!("add{ch}"), &format!("a{ch}"), acc, 0, cfg.rounding, 0, max, c);
+        w.line(format!("wire [{c}:0] s{ch} = {{1'b0, c_in[{}:{}]}} + {{1'b0, add{ch}}};", ch * c + c - 1, ch * c));
+    }
+    w.block("always @(posedge clk) begin", "end", |w| {
+        for ch in 0..3 {
+            w.line(format!("c_out[{}:{}] <= s{ch}[{c}] ? {c}'d{max} : s{ch}[{}:0];", ch * c + c - 1, ch * c, c - 1));
+        }
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// diffuse_blend / specular_blend (parallel form): light terms of every slot, their exact
+/// sum, and the finish, registered (latency 1).
+pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
+    let (ff, k, c, n) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits, cfg.lights);
+    let tw = cfg.term_fmt().width;
+    let aw = cfg.acc_fmt().width;
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// {unit} (paper §4.2): c_out = sat(c_in + sum_i f_i k_i Lc_i) over {n} light slot(s), exact sum."));
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] c_out\n);",
+        module_name(cfg, unit),
+        3 * c - 1,
+        n * (ff + 1) - 1,
+        n * (k + 1) - 1,
+        3 * n * c - 1,
+        3 * c - 1
+    ));
+    for i in 0..n {
+        w.line(format!("wire [{}:0] t{i};", 3 * tw - 1));
+        w.line(format!(
+            "{} lt{i} (.f(f[{}:{}]), .k(k[{}:{}]), .lc(lc[{}:{}]), .term(t{i}));",
+            module_name(cfg, "light_term"),
+            i * (ff + 1) + ff,
+            i * (ff + 1),
+            i * (k + 1) + k,
+            i * (k + 1),
+            3 * c * (i + 1) - 1,
+            3 * c * i
+        ));
+    }
+    w.line(format!("wire [{}:0] acc;", 3 * aw - 1));
+    for ch in 0..3 {
+        let terms: Vec<String> = (0..n).map(|i| super::top::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw)).collect();
+        w.line(format!("assign acc[{}:{}] = {};", ch * aw + aw - 1, ch * aw, terms.join(" + ")));
+    }
+    w.line(format!("{} fin (.clk(clk), .c_in(c_in), .acc(acc), .c_out(c_out));", module_name(cfg, "blend_finish")));
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// texture_modulate: round(c t / (2^w - 1)) by the add-and-shift identity, registered.
+pub fn texture_modulate(cfg: &PipelineConfig) -> String {
+    let c = cfg.colour_bits;
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line("// texture_modulate (paper §5.1): exact round(c·t / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] t,\n    output reg  [{}:0] c_out\n);",
+        module_name(cfg, "texture_modulate"),
+        3 * c - 1,
+        3 * c - 1,
+        3 * c - 1
+    ));
+    for ch in 0..3 {
+        w.line(format!("wire [{}:0] p{ch} = c_in[{}:{}] * t[{}:{}] + {}'d{};", 2 * c, ch * c + c - 1, ch * c, ch * c + c - 1, ch * c, 2 * c + 1, 1u64 << (c - 1)));
+        w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
+    }
+    w.block("always @(posedge clk) begin", "end", |w| {
+        for ch in 0..3 {
+            w.line(format!("c_out[{}:{}] <= q{ch}[{}:{c}];", ch * c + c - 1, ch * c, 2 * c - 1));
+        }
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    let _ = range;
+    w.finish()
+}

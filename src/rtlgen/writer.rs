@@ -1,0 +1,59 @@
+//! A small structured Verilog writer: lines at the current indent, and blocks that indent
+//! their body (after Amaranth's emitter), so no emitter assembles HDL from tab strings.
+
+#[derive(Default)]
+pub struct VWriter {
+    out: String,
+    depth: usize,
+}
+
+impl VWriter {
+    pub fn new() -> VWriter {
+        VWriter::default()
+    }
+
+    /// One line at the current indent.
+    pub fn line(&mut self, s: impl AsRef<str>) -> &mut Self {
+        let s = s.as_ref();
+        if s.is_empty() {
+            self.out.push('\n');
+        } else {
+            for _ in 0..self.depth {
+                self.out.push_str("    ");
+            }
+            self.out.push_str(s);
+            self.out.push('\n');
+        }
+        self
+    }
+
+    /// Several lines.
+    pub fn lines<I: IntoIterator<Item = S>, S: AsRef<str>>(&mut self, it: I) -> &mut Self {
+        for l in it {
+            self.line(l);
+        }
+        self
+    }
+
+    /// `open`, the body one level deeper, then `close`.
+    pub fn block(&mut self, open: impl AsRef<str>, close: impl AsRef<str>, body: impl FnOnce(&mut VWriter)) -> &mut Self {
+        self.line(open);
+        self.depth += 1;
+        body(self);
+        self.depth -= 1;
+        self.line(close)
+    }
+
+    pub fn finish(self) -> String {
+        self.out
+    }
+}
+
+/// `[w-1:0]` range text for a width (empty for 1 bit).
+pub fn range(w: u32) -> String {
+    if w <= 1 {
+        String::new()
+    } else {
+        format!("[{}:0] ", w - 1)
+    }
+}
