@@ -15,6 +15,7 @@ pub mod rtlgen;
 pub mod render;
 pub mod scene;
 pub mod units;
+pub mod vectors;
 
 pub use config::PipelineConfig;
 pub use error::{Error, Result};

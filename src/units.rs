@@ -132,3 +132,11 @@ pub fn markdown_table(cfg: &PipelineConfig) -> String {
     }
     s
 }
+
+/// The three colour stages in the configured order (paper §5.1).
+pub fn stage_order(cfg: &PipelineConfig) -> [&'static str; 3] {
+    match cfg.blend_order {
+        crate::config::BlendOrder::DiffuseTextureSpecular => ["diffuse_blend", "texture_modulate", "specular_blend"],
+        crate::config::BlendOrder::TextureLast => ["diffuse_blend", "specular_blend", "texture_modulate"],
+    }
+}

@@ -56,7 +56,12 @@ pub struct Shaded {
     pub b: [i64; 3],
     pub flat: bool,
     pub fd: [i64; MAX_LIGHTS],
+    /// Clamped B·H_i: the power table's index input.
+    pub xh: [i64; MAX_LIGHTS],
     pub fs: [i64; MAX_LIGHTS],
+    /// Aligned, enable-gated blend factors as the blend units receive them.
+    pub dfac: [i64; MAX_LIGHTS],
+    pub sfac: [i64; MAX_LIGHTS],
     /// Colour after each of the three stages, in pipeline order.
     pub stages: [[u32; 3]; 3],
 }
@@ -96,7 +101,8 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
             }
         }
         if cfg.specular {
-            out.fs[i] = table.lookup(cfg, dot_clamp(cfg, b, s.h));
+            out.xh[i] = dot_clamp(cfg, b, s.h);
+            out.fs[i] = table.lookup(cfg, out.xh[i]);
             if specular_on {
                 sfac[i] = align_factor(cfg, out.fs[i], cfg.power_bits);
             }
@@ -117,6 +123,8 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         }
     };
     out.stages = [s0, s1, s2];
+    out.dfac = dfac;
+    out.sfac = sfac;
     out
 }
 

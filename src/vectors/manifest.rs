@@ -1,0 +1,113 @@
+//! Vector-set manifests, and the check that a set on disk is whole and unchanged before a
+//! simulator is pointed at it.
+
+use super::layout::Layout;
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct FileEntry {
+    pub name: String,
+    pub bytes: u64,
+    pub sha256: String,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct ColumnEntry {
+    pub name: String,
+    pub role: String,
+    pub lsb: u32,
+    pub width: u32,
+    pub lanes: u32,
+    pub format: String,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Manifest {
+    pub generator: String,
+    pub command: String,
+    pub target: String,
+    pub module: String,
+    pub source: String,
+    pub seed: u64,
+    pub count: u64,
+    pub config_hash: String,
+    pub config: crate::PipelineConfig,
+    pub shininess: u32,
+    pub record_bits: u32,
+    pub record_bytes: u32,
+    pub columns: Vec<ColumnEntry>,
+    pub hex: Option<FileEntry>,
+    pub bin: Option<FileEntry>,
+    pub power_table: FileEntry,
+    /// Top only: cycles from accept to out_valid, and cycles between accepts.
+    pub latency: u32,
+    pub initiation_interval: u32,
+}
+
+pub fn columns(l: &Layout) -> Vec<ColumnEntry> {
+    l.columns
+        .iter()
+        .map(|c| ColumnEntry {
+            name: c.name.clone(),
+            role: format!("{:?}", c.role).to_lowercase(),
+            lsb: c.lsb,
+            width: c.width,
+            lanes: c.lanes,
+            format: c.format.clone(),
+        })
+        .collect()
+}
+
+/// sha256 of a file, hex.
+pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
+    let mut f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
+    let mut h = Sha256::new();
+    let mut buf = vec![0u8; 1 << 20];
+    let mut n = 0u64;
+    loop {
+        let k = f.read(&mut buf).map_err(|e| Error::io(p, e))?;
+        if k == 0 {
+            break;
+        }
+        n += k as u64;
+        h.update(&buf[..k]);
+    }
+    Ok((n, h.finalize().iter().map(|b| format!("{b:02x}")).collect()))
+}
+
+/// Load a manifest and check every file it names: present, right size, same sha256.
+pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
+    let dir = manifest.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let text = std::fs::read_to_string(manifest).map_err(|e| Error::io(manifest, e))?;
+    let m: Manifest = serde_json::from_str(&text).map_err(|e| Error::Input {
+        file: manifest.display().to_string(),
+        line: e.line(),
+        col: e.column(),
+        msg: format!("not a gbump vector manifest: {e}"),
+        fix: "regenerate the set with `gbump vectors`".into(),
+    })?;
+    if m.count == 0 {
+        return Err(Error::Other(format!("{}: the set holds no vectors\n  fix: a regression over zero vectors proves nothing; regenerate with a non-empty source", manifest.display())));
+    }
+    let files = [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)];
+    for f in files.into_iter().flatten() {
+        let p = dir.join(&f.name);
+        let (bytes, sha) = sha256_file(&p)?;
+        if bytes != f.bytes || sha != f.sha256 {
+            return Err(Error::Other(format!(
+                "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): truncated, corrupted or from another run\n  fix: regenerate with: {}",
+                p.display(), manifest.display(), bytes, &sha[..12], f.bytes, &f.sha256[..12.min(f.sha256.len())], m.command
+            )));
+        }
+    }
+    if let Some(b) = &m.bin {
+        if b.bytes != m.count * m.record_bytes as u64 {
+            return Err(Error::Other(format!("{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}", b.name, b.bytes, m.count, m.record_bytes, m.command)));
+        }
+    }
+    Ok((m, dir))
+}

@@ -1,0 +1,16 @@
+//! The vector dumper: stimulus and expected response from the golden model, for the top and
+//! for each unit, as `$readmemh`-ready text (one record per line) and fixed-size binary
+//! records, each set with a JSON manifest (generator, config and hash, seed, source, count,
+//! column layout, sha256 of every file). Seeded and deterministic: the same command gives the
+//! same bytes.
+
+pub mod layout;
+pub mod manifest;
+pub mod rng;
+pub mod sources;
+pub mod targets;
+pub mod writer;
+
+pub use manifest::{verify, Manifest};
+pub use sources::Source;
+pub use writer::{dump, DumpOptions, VectorSet};

@@ -1,0 +1,159 @@
+//! Where stimuli come from: fragments of real scenes, a catalogue of corner cases, seeded
+//! random cases, and exhaustive sweeps of the units small enough to sweep.
+
+use super::rng::SplitMix64;
+use super::targets::{TopStim, UnitStim};
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot, MAX_LIGHTS};
+
+/// A parsed `--source`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    Scene(String),
+    Corners,
+    Random(u64),
+    Exhaustive(String),
+}
+
+impl Source {
+    pub fn parse(s: &str) -> Result<Source> {
+        let bad = || Error::Other(format!("--source {s}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"));
+        Ok(match s.split_once(':') {
+            None if s == "corners" => Source::Corners,
+            Some(("scene", n)) if !n.is_empty() => Source::Scene(n.to_string()),
+            Some(("random", n)) => {
+                let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
+                if v == 0 || v > 1_000_000_000 {
+                    return Err(Error::Other(format!("--source {s}: count out of range\n  fix: use random:N with 1 <= N <= 10^9")));
+                }
+                Source::Random(v)
+            }
+            Some(("exhaustive", u)) => Source::Exhaustive(u.to_string()),
+            _ => return Err(bad()),
+        })
+    }
+
+    /// File-name stem.
+    pub fn stem(&self) -> String {
+        match self {
+            Source::Scene(n) => format!("scene_{}", std::path::Path::new(n).file_stem().map_or(n.clone(), |s| s.to_string_lossy().into())),
+            Source::Corners => "corners".into(),
+            Source::Random(n) => format!("random{n}"),
+            Source::Exhaustive(u) => format!("exhaustive_{u}"),
+        }
+    }
+}
+
+fn one(cfg: &PipelineConfig) -> i64 {
+    1 << (cfg.lh_bits - 2)
+}
+
+fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| (c / len * one(cfg) as f64).round() as i64).map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
+}
+
+/// A random stimulus: half realistic (unit vectors, mild colours), half raw codes over the
+/// whole of every format.
+pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
+    let cmax = cfg.colour_max() as i64;
+    let nmax = (1i64 << cfg.normal_bits) - 1;
+    let kone = 1i64 << cfg.k_bits;
+    let raw = rng.chance(0.5);
+    let lh = cfg.lh_fmt();
+    let mut state = BumpState::default();
+    for s in state.lights.iter_mut().take(cfg.lights as usize) {
+        let vec = |rng: &mut SplitMix64| {
+            if raw {
+                [0; 3].map(|_| rng.range(lh.min_raw(), lh.max_raw()))
+            } else {
+                q_vec(cfg, [rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, rng.unit() * 1.2 - 0.2])
+            }
+        };
+        *s = LightSlot {
+            l: vec(rng),
+            h: vec(rng),
+            colour: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
+        };
+    }
+    let texel = [0; 3].map(|_| rng.range(0, nmax) as u32);
+    TopStim {
+        frag: FragmentIn {
+            bump: BumpTexel::Rgb(texel),
+            c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            texel: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            diffuse_en: rng.chance(0.85),
+            specular_en: rng.chance(0.85),
+        },
+        state,
+    }
+}
+
+/// The corner-case catalogue (level 1). Each entry says why it is there.
+pub fn corners(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
+    let o = one(cfg);
+    let cmax = cfg.colour_max();
+    let half = 1u32 << (cfg.normal_bits - 1);
+    let nmax = (1u32 << cfg.normal_bits) - 1;
+    let kone = 1i64 << cfg.k_bits;
+    let flat = [half, half, nmax];
+    let lh = cfg.lh_fmt();
+    let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
+        let mut st = BumpState::default();
+        for s in st.lights.iter_mut().take(cfg.lights as usize) {
+            *s = LightSlot { l, h, colour: [lc; 3], k };
+        }
+        TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
+    };
+    let mut v = vec![
+        ("flat normal, light and half vector straight up: B·L = 1 - 2^-(w-1), the largest dot", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax)),
+        ("light exactly in the surface plane: B·L = 0", base(flat, [o, 0, 0], [o, 0, 0], cmax, kone, 10, cmax)),
+        ("light below the horizon: B·L < 0 clamps to 0 (self-shadowing)", base(flat, [0, 0, -o], [0, 0, -o], cmax, kone, 10, cmax)),
+        ("one L/H LSB above the horizon", base(flat, [o, 0, 1], [o, 0, 1], cmax, kone, 10, cmax)),
+        ("one L/H LSB below the horizon", base(flat, [o, 0, -1], [o, 0, -1], cmax, kone, 10, cmax)),
+        ("largest negative codes everywhere: the dot product's most positive exact sum", base([0, 0, 0], [lh.min_raw(); 3], [lh.min_raw(); 3], cmax, kone, 0, cmax)),
+        ("largest positive L/H against the most negative normal: the most negative sum", base([0, 0, 0], [lh.max_raw(); 3], [lh.max_raw(); 3], cmax, kone, 0, cmax)),
+        ("every light slot at full colour on a white source: saturation", base(flat, [0, 0, o], [0, 0, o], cmax, kone, cmax, cmax)),
+        ("k = 0: lights switched off by modulation", base(flat, [0, 0, o], [0, 0, o], cmax, 0, 77, cmax)),
+        ("black texel: diffuse multiplied away, specular kept in split order", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 100, 0)),
+        ("grazing light: x^n underflows to 0 in the power table", base(flat, [o, 0, 40], [o, 0, 40], cmax, kone, 0, cmax)),
+        ("normal nearly in the surface plane (largest gradient)", base([nmax, half, half + 1], [o, 0, 0], [o, 0, 0], cmax, kone, 0, cmax)),
+        ("zero colour lights: nothing to add", base(flat, [0, 0, o], [0, 0, o], 0, kone, 128, 200)),
+        ("unnormalised (long) L: dot above 1 clamps to 1", base(flat, [0, 0, lh.max_raw()], [0, 0, lh.max_raw()], cmax, kone, 0, cmax)),
+    ];
+    let mut off = base(flat, [0, 0, o], [0, 0, o], cmax, kone, 50, cmax);
+    off.frag.diffuse_en = false;
+    off.frag.specular_en = false;
+    v.push(("both blend enables off: colour passes through texture only", off));
+    // Exact ties of the dot-product rounding: B·L one half LSB of fd above a code.
+    let tie = base([half + 1, half, half], [o >> (cfg.normal_bits.min(14)), 0, 0], [0, 0, 0], cmax, kone, 0, cmax);
+    v.push(("dot product on a rounding tie", tie));
+    for slot in 0..cfg.lights as usize {
+        let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
+        s.state.lights[slot].colour = [cmax, 0, cmax / 2];
+        v.push(("a single active light slot (each slot in turn)", s));
+    }
+    let _ = MAX_LIGHTS;
+    v
+}
+
+/// Unit stimuli that sweep a small unit exhaustively.
+pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
+    let c = cfg.colour_max() as i64;
+    let nm = (1i64 << cfg.normal_bits) - 1;
+    Ok(match unit {
+        "power_table" => (0..=(1i64 << cfg.dot_bits)).map(|x| UnitStim { unit: "power_table", inputs: vec![vec![x]] }).collect(),
+        "texture_modulate" => (0..=c)
+            .flat_map(|a| (0..=c).map(move |b| UnitStim { unit: "texture_modulate", inputs: vec![vec![a, b, c - a], vec![b, a, c - b]] }))
+            .collect(),
+        "bump_fetch" => (0..=nm).map(|x| UnitStim { unit: "bump_fetch", inputs: vec![vec![x, nm - x, x ^ (nm >> 1)]] }).collect(),
+        u if crate::units::unit(u).is_some() => {
+            return Err(Error::Other(format!(
+                "exhaustive:{u}: {u} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: power_table, texture_modulate, bump_fetch"
+            )))
+        }
+        u => return Err(Error::Other(format!("exhaustive:{u}: no such unit\n  fix: one of {}", crate::vectors::targets::all_targets()[1..].join(", ")))),
+    })
+}

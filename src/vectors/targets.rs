@@ -1,0 +1,153 @@
+//! What a vector set tests: the top pipeline, or one unit of `units::UNITS`. Each target has
+//! a layout (its ports as columns, from the same table the RTL is generated from) and a way
+//! to fill a record from a stimulus evaluated by the model.
+
+use super::layout::{Layout, Record, Role};
+use crate::config::PipelineConfig;
+use crate::model::blend::blend;
+use crate::model::bump_fetch::bump_fetch_rgb;
+use crate::model::dot_clamp::dot_clamp;
+use crate::model::texture_modulate::texture_modulate;
+use crate::model::{shade, BumpState, BumpTexel, FragmentIn, PowerTable, Shaded};
+use crate::units::{Dir, UNITS};
+
+/// A top-level stimulus: one fragment with its triangle's bump state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TopStim {
+    pub frag: FragmentIn,
+    pub state: BumpState,
+}
+
+/// A unit-level stimulus: the unit's input lanes, by port, in UNITS order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnitStim {
+    pub unit: &'static str,
+    pub inputs: Vec<Vec<i64>>,
+}
+
+/// Layout of the top's vectors: its input ports, then the expected colour.
+pub fn top_layout(cfg: &PipelineConfig) -> Layout {
+    let (n, c, lh, k) = (cfg.lights, cfg.colour_bits, cfg.lh_bits, cfg.k_bits);
+    let mut l = Layout::default();
+    l.push("in_texel", Role::Stimulus, cfg.normal_bits, 3, format!("u{}.0 offset binary", cfg.normal_bits));
+    l.push("in_c_src", Role::Stimulus, c, 3, cfg.colour_fmt().name());
+    l.push("in_t", Role::Stimulus, c, 3, cfg.colour_fmt().name());
+    l.push("in_diffuse_en", Role::Stimulus, 1, 1, "bit".into());
+    l.push("in_specular_en", Role::Stimulus, 1, 1, "bit".into());
+    l.push("in_l", Role::Stimulus, lh, 3 * n, cfg.lh_fmt().name());
+    l.push("in_h", Role::Stimulus, lh, 3 * n, cfg.lh_fmt().name());
+    l.push("in_lc", Role::Stimulus, c, 3 * n, cfg.colour_fmt().name());
+    l.push("in_k", Role::Stimulus, k + 1, n, cfg.k_fmt().name());
+    l.push("out_c", Role::Expected, c, 3, cfg.colour_fmt().name());
+    l
+}
+
+/// Layout of a unit's vectors: its ports from `UNITS`, inputs then outputs.
+pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
+    let u = crate::units::unit(unit).unwrap_or_else(|| panic!("unknown unit {unit}"));
+    let mut l = Layout::default();
+    for dir in [Dir::In, Dir::Out] {
+        for p in (u.ports)(cfg).into_iter().filter(|p| p.dir == dir) {
+            let role = if dir == Dir::In { Role::Stimulus } else { Role::Expected };
+            l.push(p.name, role, p.fmt.width, p.lanes, p.fmt.name());
+        }
+    }
+    l
+}
+
+/// Fill a top record.
+pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -> Record {
+    let mut r = Record::new(l);
+    let n = cfg.lights as usize;
+    let BumpTexel::Rgb(texel) = s.frag.bump else { panic!("palette tops have no vectors yet") };
+    for i in 0..3 {
+        r.set_lane(l.column("in_texel"), i as u32, texel[i] as i64);
+        r.set_lane(l.column("in_c_src"), i as u32, s.frag.c_src[i] as i64);
+        r.set_lane(l.column("in_t"), i as u32, s.frag.texel[i] as i64);
+        r.set_lane(l.column("out_c"), i as u32, out.colour()[i] as i64);
+    }
+    r.set_lane(l.column("in_diffuse_en"), 0, s.frag.diffuse_en as i64);
+    r.set_lane(l.column("in_specular_en"), 0, s.frag.specular_en as i64);
+    for j in 0..n {
+        let ls = &s.state.lights[j];
+        for i in 0..3 {
+            let lane = (3 * j + i) as u32;
+            r.set_lane(l.column("in_l"), lane, ls.l[i]);
+            r.set_lane(l.column("in_h"), lane, ls.h[i]);
+            r.set_lane(l.column("in_lc"), lane, ls.colour[i] as i64);
+        }
+        r.set_lane(l.column("in_k"), j as u32, ls.k);
+    }
+    r
+}
+
+/// Evaluate a unit on its inputs with the model's own unit function.
+pub fn eval_unit(cfg: &PipelineConfig, table: &PowerTable, s: &UnitStim) -> Vec<Vec<i64>> {
+    let arr3 = |v: &Vec<i64>| [v[0], v[1], v[2]];
+    let col3 = |v: &Vec<i64>| [v[0] as u32, v[1] as u32, v[2] as u32];
+    let n = cfg.lights as usize;
+    match s.unit {
+        "bump_fetch" => vec![bump_fetch_rgb(cfg, col3(&s.inputs[0])).to_vec()],
+        "dot_clamp" => vec![vec![dot_clamp(cfg, arr3(&s.inputs[0]), arr3(&s.inputs[1]))]],
+        "power_table" => vec![vec![table.lookup(cfg, s.inputs[0][0])]],
+        "texture_modulate" => vec![texture_modulate(cfg, col3(&s.inputs[0]), col3(&s.inputs[1])).iter().map(|&x| x as i64).collect()],
+        "diffuse_blend" | "specular_blend" => {
+            let lc: Vec<[u32; 3]> = (0..n).map(|j| [0, 1, 2].map(|i| s.inputs[3][3 * j + i] as u32)).collect();
+            vec![blend(cfg, col3(&s.inputs[0]), &s.inputs[1], &s.inputs[2], &lc).iter().map(|&x| x as i64).collect()]
+        }
+        u => panic!("no model for unit {u}"),
+    }
+}
+
+/// Fill a unit record from its stimulus and outputs.
+pub fn unit_record(l: &Layout, s: &UnitStim, outs: &[Vec<i64>]) -> Record {
+    let mut r = Record::new(l);
+    let (ins, exps): (Vec<_>, Vec<_>) = l.columns.iter().partition(|c| c.role == Role::Stimulus);
+    for (c, vals) in ins.iter().zip(&s.inputs).chain(exps.iter().zip(outs)) {
+        for (i, v) in vals.iter().enumerate() {
+            r.set_lane(c, i as u32, *v);
+        }
+    }
+    r
+}
+
+/// The unit stimuli a top stimulus exercises, from the model's trace of it.
+pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim> {
+    let n = cfg.lights as usize;
+    let mut v = Vec::new();
+    if let BumpTexel::Rgb(texel) = s.frag.bump {
+        v.push(UnitStim { unit: "bump_fetch", inputs: vec![texel.iter().map(|&x| x as i64).collect()] });
+    }
+    let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
+    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].colour.map(|x| x as i64)).collect();
+    for j in 0..n {
+        let ls = &s.state.lights[j];
+        v.push(UnitStim { unit: "dot_clamp", inputs: vec![t.b.to_vec(), ls.l.to_vec()] });
+        v.push(UnitStim { unit: "dot_clamp", inputs: vec![t.b.to_vec(), ls.h.to_vec()] });
+        v.push(UnitStim { unit: "power_table", inputs: vec![vec![t.xh[j]]] });
+    }
+    let c = |x: [u32; 3]| x.iter().map(|&y| y as i64).collect::<Vec<_>>();
+    let blend_in = |c_in: [u32; 3], f: &[i64]| vec![c(c_in), f[..n].to_vec(), k.clone(), lc.clone()];
+    let order = crate::units::stage_order(cfg);
+    let mut c_in = s.frag.c_src;
+    for (i, unit) in order.iter().enumerate() {
+        let inputs = match *unit {
+            "diffuse_blend" => blend_in(c_in, &t.dfac),
+            "specular_blend" => blend_in(c_in, &t.sfac),
+            _ => vec![c(c_in), c(s.frag.texel)],
+        };
+        v.push(UnitStim { unit, inputs });
+        c_in = t.stages[i];
+    }
+    v
+}
+
+/// Model evaluation of a top stimulus.
+pub fn eval_top(cfg: &PipelineConfig, table: &PowerTable, s: &TopStim) -> Shaded {
+    shade(cfg, table, None, &s.state, &s.frag)
+}
+
+/// Names of every target.
+pub fn all_targets() -> Vec<&'static str> {
+    std::iter::once("top").chain(UNITS.iter().map(|u| u.name)).collect()
+}

@@ -1,0 +1,294 @@
+//! Writing vector sets: records stream to temporary files (hex and binary) with running
+//! sha256, then the files are renamed into place and the manifest written last, so an
+//! interrupted or failed dump leaves no set that looks whole.
+
+use super::layout::{Layout, Record};
+use super::manifest::{columns, FileEntry, Manifest};
+use super::rng::SplitMix64;
+use super::sources::{corners, exhaustive, random_stim, Source};
+use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::model::PowerTable;
+use rayon::prelude::*;
+use sha2::{Digest, Sha256};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug)]
+pub struct DumpOptions {
+    pub text: bool,
+    pub binary: bool,
+    pub seed: u64,
+    /// Image size for scene sources (None: the scene's own).
+    pub size: Option<(u32, u32)>,
+    /// The command line, recorded in manifests.
+    pub command: String,
+}
+
+/// A written set.
+#[derive(Clone, Debug)]
+pub struct VectorSet {
+    pub target: String,
+    pub manifest: PathBuf,
+    pub count: u64,
+}
+
+struct Sink {
+    path: PathBuf,
+    tmp: PathBuf,
+    w: BufWriter<std::fs::File>,
+    sha: Sha256,
+    bytes: u64,
+}
+
+impl Sink {
+    fn new(path: PathBuf) -> Result<Sink> {
+        let tmp = path.with_extension(format!("{}.tmp{}", path.extension().map_or(String::new(), |e| e.to_string_lossy().into()), std::process::id()));
+        let f = std::fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
+        Ok(Sink { path, tmp, w: BufWriter::with_capacity(1 << 20, f), sha: Sha256::new(), bytes: 0 })
+    }
+    fn put(&mut self, b: &[u8]) -> Result<()> {
+        self.sha.update(b);
+        self.bytes += b.len() as u64;
+        self.w.write_all(b).map_err(|e| Error::io(&self.tmp, e))
+    }
+    fn finish(mut self) -> Result<FileEntry> {
+        self.w.flush().map_err(|e| Error::io(&self.tmp, e))?;
+        self.w.get_ref().sync_all().map_err(|e| Error::io(&self.tmp, e))?;
+        std::fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))?;
+        Ok(FileEntry { name: self.path.file_name().expect("name").to_string_lossy().into(), bytes: self.bytes, sha256: std::mem::take(&mut self.sha).finalize().iter().map(|b| format!("{b:02x}")).collect() })
+    }
+}
+
+impl Drop for Sink {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.tmp);
+    }
+}
+
+/// One target's open files.
+struct SetWriter {
+    target: String,
+    layout: Layout,
+    hex: Option<Sink>,
+    bin: Option<Sink>,
+    count: u64,
+    limit: u64,
+    stem: String,
+}
+
+impl SetWriter {
+    fn new(dir: &Path, stem: &str, target: &str, layout: Layout, o: &DumpOptions, limit: u64) -> Result<SetWriter> {
+        let base = format!("{stem}_{target}");
+        Ok(SetWriter {
+            target: target.into(),
+            hex: if o.text { Some(Sink::new(dir.join(format!("{base}.hex")))?) } else { None },
+            bin: if o.binary { Some(Sink::new(dir.join(format!("{base}.bin")))?) } else { None },
+            layout,
+            count: 0,
+            limit,
+            stem: base,
+        })
+    }
+
+    fn full(&self) -> bool {
+        self.count >= self.limit
+    }
+
+    fn put(&mut self, r: &Record, line: &mut String, bytes: &mut Vec<u8>) -> Result<()> {
+        if self.full() {
+            return Ok(());
+        }
+        if let Some(h) = &mut self.hex {
+            line.clear();
+            line.push_str(&r.hex(self.layout.hex_digits()));
+            line.push('\n');
+            h.put(line.as_bytes())?;
+        }
+        if let Some(b) = &mut self.bin {
+            bytes.clear();
+            r.to_bytes(self.layout.bytes(), bytes);
+            b.put(bytes)?;
+        }
+        self.count += 1;
+        Ok(())
+    }
+
+    fn finish(self, dir: &Path, cfg: &PipelineConfig, src: &Source, o: &DumpOptions, n: u32) -> Result<VectorSet> {
+        if self.count == 0 {
+            return Err(Error::Other(format!("{}: no vectors for target {}\n  fix: choose a source that exercises it", self.stem, self.target)));
+        }
+        let hex = self.hex.map(Sink::finish).transpose()?;
+        let bin = self.bin.map(Sink::finish).transpose()?;
+        let table_name = format!("{}_power_table.hex", self.stem);
+        let tp = dir.join(&table_name);
+        let rom = crate::rtlgen::rom::power_rom(cfg, n);
+        let text = crate::rtlgen::rom::write(&rom, crate::rtlgen::rom::RomFormat::Hex, &crate::rtlgen::header::header_lines(cfg, &o.command, "power table of this vector set"));
+        crate::render::output::write_atomic(&tp, text.as_bytes())?;
+        let (bytes, sha256) = super::manifest::sha256_file(&tp)?;
+        let top = self.target == "top";
+        let m = Manifest {
+            generator: crate::TOOL.into(),
+            command: o.command.clone(),
+            target: self.target.clone(),
+            module: crate::rtlgen::units_v::module_name(cfg, if top { "gbump_pipeline" } else { &self.target }),
+            source: format!("{src:?}"),
+            seed: o.seed,
+            count: self.count,
+            config_hash: cfg.hash(),
+            config: cfg.clone(),
+            shininess: n,
+            record_bits: self.layout.bits,
+            record_bytes: self.layout.bytes() as u32,
+            columns: columns(&self.layout),
+            hex,
+            bin,
+            power_table: FileEntry { name: table_name, bytes, sha256 },
+            latency: if top { crate::rtlgen::top::latency(cfg) } else { 1 },
+            initiation_interval: if top { cfg.initiation_interval() } else { 1 },
+        };
+        let mp = dir.join(format!("{}.json", self.stem));
+        crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
+        Ok(VectorSet { target: self.target, manifest: mp, count: self.count })
+    }
+}
+
+/// Whether `unit` exists in the hardware of `cfg`.
+pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
+    match unit {
+        "diffuse_blend" => cfg.diffuse,
+        "specular_blend" | "power_table" => cfg.specular,
+        _ => true,
+    }
+}
+
+/// Top stimuli of a source, grouped by power-table shininess.
+fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+    Ok(match src {
+        Source::Corners => vec![(cfg.shininess, "corners".into(), corners(cfg).into_iter().map(|c| c.1).collect())],
+        Source::Scene(name) => {
+            let s = crate::scene::Scene::load(name)?;
+            s.check_config(cfg, "pipeline config")?;
+            let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
+            let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
+            let gb = crate::raster::rasterise::rasterise(&p);
+            let frags = crate::raster::fragment::fragments(&p, &gb);
+            let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
+            for f in frags {
+                let n = s.objects[f.obj as usize].shininess;
+                groups.entry(n).or_default().push(TopStim { frag: f.frag, state: p.objects[f.obj as usize].tris[f.tri as usize].fixed });
+            }
+            let multi = groups.len() > 1;
+            groups.into_iter().map(|(n, v)| (n, if multi { format!("{}_n{n}", src.stem()) } else { src.stem() }, v)).collect()
+        }
+        _ => unreachable!(),
+    })
+}
+
+/// Dump `src` for `targets` ("top" and unit names) into `dir`.
+pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
+    if cfg.palette {
+        return Err(Error::Other("palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)".into()));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
+    let mut out = Vec::new();
+    match src {
+        Source::Exhaustive(unit) => {
+            let stims = exhaustive(cfg, unit)?;
+            let table = PowerTable::build(cfg, cfg.shininess);
+            let mut w = SetWriter::new(dir, &src.stem(), unit, unit_layout(cfg, unit), o, u64::MAX)?;
+            write_units(cfg, &table, &stims, &mut [&mut w])?;
+            out.push(w.finish(dir, cfg, src, o, cfg.shininess)?);
+        }
+        Source::Random(n) => {
+            let table = PowerTable::build(cfg, cfg.shininess);
+            let mut ws = open(dir, &src.stem(), &targets, cfg, o, *n)?;
+            const CHUNK: u64 = 1 << 16;
+            let chunks = n.div_ceil(CHUNK);
+            for c in 0..chunks {
+                let len = CHUNK.min(n - c * CHUNK);
+                // Each chunk has its own stream, so chunks can be generated in parallel and
+                // the result still depends on the seed alone.
+                let mut rng = SplitMix64(o.seed ^ c.wrapping_mul(0xA076_1D64_78BD_642F));
+                let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
+                write_tops(cfg, &table, &stims, &mut ws)?;
+                if ws.iter().all(|w| w.full()) {
+                    break;
+                }
+            }
+            for w in ws {
+                out.push(w.finish(dir, cfg, src, o, cfg.shininess)?);
+            }
+        }
+        _ => {
+            for (n, stem, stims) in top_groups(cfg, src, o)? {
+                let table = PowerTable::build(cfg, n);
+                let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
+                write_tops(cfg, &table, &stims, &mut ws)?;
+                for w in ws {
+                    out.push(w.finish(dir, cfg, src, o, n)?);
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &DumpOptions, limit: u64) -> Result<Vec<SetWriter>> {
+    targets
+        .iter()
+        .map(|t| {
+            let l = if t == "top" { top_layout(cfg) } else { unit_layout(cfg, t) };
+            SetWriter::new(dir, stem, t, l, o, limit)
+        })
+        .collect()
+}
+
+fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &mut [SetWriter]) -> Result<()> {
+    let want_units = ws.iter().any(|w| w.target != "top" && !w.full());
+    let tl = top_layout(cfg);
+    let evals: Vec<(Record, Vec<(UnitStim, Vec<Vec<i64>>)>)> = stims
+        .par_iter()
+        .map(|s| {
+            let t = eval_top(cfg, table, s);
+            let units = if want_units {
+                unit_stims(cfg, s, &t).into_iter().filter(|u| unit_present(cfg, u.unit)).map(|u| {
+                    let out = eval_unit(cfg, table, &u);
+                    (u, out)
+                }).collect()
+            } else {
+                Vec::new()
+            };
+            (top_record(cfg, &tl, s, &t), units)
+        })
+        .collect();
+    let (mut line, mut bytes) = (String::new(), Vec::new());
+    for (rec, units) in &evals {
+        for w in ws.iter_mut() {
+            if w.target == "top" {
+                w.put(rec, &mut line, &mut bytes)?;
+            }
+        }
+        for (u, outs) in units {
+            for w in ws.iter_mut().filter(|w| w.target == u.unit) {
+                let r = unit_record(&w.layout, u, outs);
+                w.put(&r, &mut line, &mut bytes)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn write_units(cfg: &PipelineConfig, table: &PowerTable, stims: &[UnitStim], ws: &mut [&mut SetWriter]) -> Result<()> {
+    let (mut line, mut bytes) = (String::new(), Vec::new());
+    for s in stims {
+        let outs = eval_unit(cfg, table, s);
+        for w in ws.iter_mut().filter(|w| w.target == s.unit) {
+            let r = unit_record(&w.layout, s, &outs);
+            w.put(&r, &mut line, &mut bytes)?;
+        }
+    }
+    Ok(())
+}
