@@ -57,11 +57,99 @@ pub enum Cmd {
         #[arg(long, default_value_t = 32)]
         cube_size: usize,
     },
+    /// Dump stimulus/response vectors from the golden model (text, binary and a manifest).
+    Vectors {
+        /// scene:NAME | corners | random:N | exhaustive:UNIT
+        #[arg(long)]
+        source: String,
+        /// `all`, `top`, or a unit name (repeatable).
+        #[arg(long, default_value = "all")]
+        target: Vec<String>,
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Which files to write.
+        #[arg(long, value_enum, default_value = "both")]
+        format: VecFormat,
+        /// Image size for scene sources (default: the scene's).
+        #[arg(long, value_name = "WxH")]
+        size: Option<String>,
+    },
+    /// Run the generated RTL against golden vectors under Icarus and/or Verilator.
+    Regress {
+        #[arg(long, value_enum, default_value = "both")]
+        sim: SimChoice,
+        #[command(flatten)]
+        pick: ConfigPick,
+        /// Run these vector manifests (JSON files or folders of them) instead of the default suite.
+        #[arg(long, value_name = "PATH")]
+        vectors: Vec<PathBuf>,
+        /// Random top vectors on Verilator.
+        #[arg(long, default_value_t = 1_000_000)]
+        random: u64,
+        /// Random top vectors on Icarus.
+        #[arg(long, default_value_t = 100_000)]
+        random_icarus: u64,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Skip the built-in scenes' fragments.
+        #[arg(long)]
+        no_scenes: bool,
+        /// Scene image size for fragment vectors.
+        #[arg(long, value_name = "WxH")]
+        scene_size: Option<String>,
+        /// Work folder: generated RTL, vectors and cached builds.
+        #[arg(long, default_value = "target/gbump-regress")]
+        work: PathBuf,
+        /// Write JUnit XML here.
+        #[arg(long, value_name = "FILE")]
+        junit: Option<PathBuf>,
+        /// Dump waveforms (FST) of every run.
+        #[arg(long)]
+        waves: bool,
+        #[arg(long, default_value_t = 20)]
+        max_errors: u32,
+    },
+    /// Lint the generated RTL: verilator --lint-only -Wall, iverilog -Wall, and Yosys synthesis checks.
+    Lint {
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, default_value = "target/gbump-lint")]
+        work: PathBuf,
+    },
     /// Print a pipeline configuration as TOML with its hash: the default, or a scene's.
     Config {
         #[arg(long)]
         scene: Option<String>,
     },
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum VecFormat {
+    Hex,
+    Bin,
+    Both,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum SimChoice {
+    Icarus,
+    Verilator,
+    Both,
+}
+
+impl SimChoice {
+    pub fn sims(self) -> Vec<crate::sim::Sim> {
+        use crate::sim::Sim;
+        match self {
+            SimChoice::Icarus => vec![Sim::Icarus],
+            SimChoice::Verilator => vec![Sim::Verilator],
+            SimChoice::Both => vec![Sim::Icarus, Sim::Verilator],
+        }
+    }
 }
 
 /// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
@@ -127,6 +215,23 @@ pub fn run() -> anyhow::Result<()> {
             write_files(&out, &files)?;
             println!("wrote {} ROM files to {}", files.len(), out.display());
         }
+        Cmd::Vectors { source, target, pick, out, seed, format, size } => vectors(&source, &target, &pick, &out, seed, format, size.as_deref())?,
+        Cmd::Regress { sim, pick, vectors, random, random_icarus, seed, no_scenes, scene_size, work, junit, waves, max_errors } => {
+            let opts = crate::sim::regress::RegressOptions {
+                sims: sim.sims(),
+                random_verilator: random,
+                random_icarus,
+                seed,
+                scenes: !no_scenes,
+                scene_size: scene_size.as_deref().map(parse_size).transpose()?,
+                work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
+                waves,
+                max_errors,
+                command: std::env::args().collect::<Vec<_>>().join(" "),
+            };
+            regress(&pick, &vectors, &opts, junit.as_deref())?
+        }
+        Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
         Cmd::Config { scene } => {
             let cfg = match scene {
                 Some(s) => Scene::load(&s)?.derive_config()?,
@@ -246,4 +351,100 @@ fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>, cu
         }
     }
     Ok(files)
+}
+
+fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed: u64, format: VecFormat, size: Option<&str>) -> Result<()> {
+    use crate::vectors::{dump, DumpOptions, Source};
+    let src = Source::parse(source)?;
+    // A scene source renders under the scene's own configuration unless one is given.
+    let cfg = match (&src, &pick.config, &pick.scene) {
+        (Source::Scene(name), None, None) => Scene::load(name)?.derive_config()?,
+        _ => pick.resolve()?,
+    };
+    let all = crate::vectors::targets::all_targets();
+    let mut targets: Vec<String> = Vec::new();
+    for t in target {
+        if t == "all" {
+            targets.extend(all.iter().map(|s| s.to_string()));
+        } else if all.contains(&t.as_str()) {
+            targets.push(t.clone());
+        } else {
+            return Err(Error::Other(format!("--target {t}: unknown\n  fix: one of all, {}", all.join(", "))));
+        }
+    }
+    let opts = DumpOptions {
+        text: !matches!(format, VecFormat::Bin),
+        binary: !matches!(format, VecFormat::Hex),
+        seed,
+        size: size.map(parse_size).transpose()?,
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+    };
+    let t0 = std::time::Instant::now();
+    let sets = dump(&cfg, &src, &targets, out, &opts)?;
+    let secs = t0.elapsed().as_secs_f64();
+    for s in &sets {
+        println!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display());
+    }
+    let total: u64 = sets.iter().map(|s| s.count).sum();
+    println!("{total} vectors for config {} in {secs:.2} s", cfg.hash());
+    Ok(())
+}
+
+fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::RegressOptions, junit: Option<&Path>) -> Result<()> {
+    use crate::sim::regress::{run_sets, suite, write_rtl};
+    let cfg = pick.resolve()?;
+    for s in &o.sims {
+        crate::sim::require(*s)?;
+    }
+    let h = &cfg.hash()[..8];
+    let rtl = write_rtl(&cfg, &o.work.join(format!("rtl_{h}")), &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()))?;
+    let sets: Vec<(PathBuf, Option<crate::sim::Sim>)> = if vectors.is_empty() {
+        let t0 = std::time::Instant::now();
+        let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
+        println!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
+        s
+    } else {
+        let mut v = Vec::new();
+        for p in vectors {
+            if p.is_dir() {
+                let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
+                let mut found: Vec<PathBuf> = std::fs::read_dir(p).map_err(|e| Error::io(p, e))?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "json")).collect();
+                found.sort();
+                v.extend(found.into_iter().map(|f| (f, None)));
+            } else {
+                v.push((std::path::absolute(p).map_err(|e| Error::io(p, e))?, None));
+            }
+        }
+        if v.is_empty() {
+            return Err(Error::Other("--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into()));
+        }
+        v
+    };
+    let results = run_sets(&cfg, &sets, &rtl, o)?;
+    let (mut vecs, mut bad) = (0u64, 0usize);
+    println!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");
+    for r in &results {
+        match &r.outcome {
+            Ok(out) => {
+                vecs += out.passed + out.failed;
+                if out.failed > 0 {
+                    bad += 1;
+                    println!("{}", crate::sim::tail(&out.log, 40));
+                }
+                println!("{:10} {:44} {:>10} {:>8} {:>9.2}", r.sim.name(), r.set, out.passed, out.failed, out.seconds);
+            }
+            Err(e) => {
+                bad += 1;
+                println!("{:10} {:44} ERROR: {e}", r.sim.name(), r.set);
+            }
+        }
+    }
+    if let Some(j) = junit {
+        write_atomic(j, crate::sim::regress::junit(&cfg, &results).as_bytes())?;
+    }
+    println!("regress config {}: {} runs, {vecs} vectors, {} failing run(s)", cfg.hash(), results.len(), bad);
+    if bad > 0 {
+        return Err(Error::Other(format!("{bad} regression run(s) failed")));
+    }
+    Ok(())
 }

@@ -14,6 +14,7 @@ pub mod reference;
 pub mod rtlgen;
 pub mod render;
 pub mod scene;
+pub mod sim;
 pub mod units;
 pub mod vectors;
 

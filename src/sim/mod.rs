@@ -1,0 +1,128 @@
+//! Simulators behind one interface, one file each (Icarus Verilog, Verilator), driven as
+//! processes. Builds are cached by a hash of every source and flag, so a configuration is
+//! compiled once; a run's verdict is the testbench's own "N passed, N failed" line.
+
+pub mod icarus;
+pub mod lint;
+pub mod regress;
+pub mod testbench;
+pub mod verilator;
+
+use crate::error::{Error, Result};
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The simulators gbump drives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Sim {
+    Icarus,
+    Verilator,
+}
+
+impl Sim {
+    pub fn name(self) -> &'static str {
+        match self {
+            Sim::Icarus => "icarus",
+            Sim::Verilator => "verilator",
+        }
+    }
+    /// Executables this simulator needs.
+    pub fn programs(self) -> &'static [&'static str] {
+        match self {
+            Sim::Icarus => &["iverilog", "vvp"],
+            Sim::Verilator => &["verilator"],
+        }
+    }
+}
+
+/// Whether `prog` runs.
+pub fn have(prog: &str) -> bool {
+    Command::new(prog).arg("--version").output().is_ok() || Command::new(prog).arg("-V").output().is_ok()
+}
+
+/// Error unless every program of `sim` is installed; the message says how to install it.
+pub fn require(sim: Sim) -> Result<()> {
+    for p in sim.programs() {
+        if !have(p) {
+            return Err(missing(p));
+        }
+    }
+    Ok(())
+}
+
+pub fn missing(prog: &str) -> Error {
+    let pkg = match prog {
+        "vvp" | "iverilog" => "iverilog",
+        p => p,
+    };
+    Error::Other(format!("{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"))
+}
+
+/// Verdict of one simulation run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub passed: u64,
+    pub failed: u64,
+    pub seconds: f64,
+    pub log: String,
+}
+
+/// Parse the testbench's summary line.
+pub fn parse_summary(log: &str) -> Option<(u64, u64)> {
+    log.lines().rev().find_map(|l| {
+        let l = l.trim();
+        let (p, rest) = l.split_once(" passed, ")?;
+        let f = rest.strip_suffix(" failed")?;
+        Some((p.parse().ok()?, f.parse().ok()?))
+    })
+}
+
+/// Run a command, capturing stdout and stderr together; `what` names it in errors.
+pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
+    let t0 = std::time::Instant::now();
+    let out = cmd.output().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            missing(&cmd.get_program().to_string_lossy())
+        } else {
+            Error::Other(format!("{what}: cannot start {}: {e}", cmd.get_program().to_string_lossy()))
+        }
+    })?;
+    let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
+    log += &String::from_utf8_lossy(&out.stderr);
+    Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
+}
+
+/// The last `n` lines of a log, for error messages.
+pub fn tail(log: &str, n: usize) -> String {
+    let lines: Vec<&str> = log.lines().collect();
+    lines[lines.len().saturating_sub(n)..].join("\n")
+}
+
+/// A build folder keyed by the hash of `parts` (sources and flags).
+pub fn build_dir(root: &Path, kind: &str, parts: &[&str]) -> PathBuf {
+    let mut h = Sha256::new();
+    for p in parts {
+        h.update(p.as_bytes());
+        h.update([0]);
+    }
+    let key: String = h.finalize().iter().take(8).map(|b| format!("{b:02x}")).collect();
+    root.join(format!("{kind}_{key}"))
+}
+
+/// Turn a finished run into an outcome, or an error when the testbench did not report.
+pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> {
+    match parse_summary(&log) {
+        Some((passed, failed)) => {
+            if passed + failed == 0 {
+                return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}", tail(&log, 10))));
+            }
+            Ok(Outcome { passed, failed, seconds: secs, log })
+        }
+        None => Err(Error::Other(format!(
+            "{what}: the simulation ended without a \"N passed, N failed\" line (exit {}): it crashed or was cut short\n--- last lines ---\n{}",
+            if ok { "ok" } else { "non-zero" },
+            tail(&log, 15)
+        ))),
+    }
+}

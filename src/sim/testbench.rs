@@ -1,0 +1,160 @@
+//! Testbenches from the templates in `testbench/`: the template holds the protocol (reset,
+//! table load, streaming, checking, the "N passed, N failed" line); this module fills in the
+//! configuration's ports and record slices from the same layouts the vector writer uses.
+
+use crate::config::PipelineConfig;
+use crate::rtlgen::top::latency;
+use crate::rtlgen::units_v::module_name;
+use crate::vectors::layout::{Layout, Role};
+use crate::vectors::targets::{top_layout, unit_layout};
+use crate::vectors::writer::unit_present;
+
+const TB_TOP: &str = include_str!("../../testbench/tb_top.v.tpl");
+const TB_UNITS: &str = include_str!("../../testbench/tb_units.v.tpl");
+const HARNESS_TOP: &str = include_str!("../../testbench/harness_top.cpp.tpl");
+
+fn fill(mut t: String, subs: &[(&str, String)]) -> String {
+    for (k, v) in subs {
+        t = t.replace(&format!("{{{{{k}}}}}"), v);
+    }
+    assert!(!t.contains("{{"), "unfilled template field");
+    t
+}
+
+fn pt(cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+    vec![
+        ("PT_N", cfg.power_entries.to_string()),
+        ("PT_AW", cfg.power_index_bits().to_string()),
+        ("PT_W", (cfg.power_bits + 1).to_string()),
+    ]
+}
+
+fn slice(rec: &str, lsb: u32, width: u32) -> String {
+    format!("{rec}[{}:{lsb}]", lsb + width - 1)
+}
+
+/// The top testbench (Icarus and Verilator --binary).
+pub fn tb_top(cfg: &PipelineConfig) -> String {
+    let l = top_layout(cfg);
+    let mut decls = Vec::new();
+    let mut connect = Vec::new();
+    let mut assign = Vec::new();
+    let mut print = Vec::new();
+    for c in &l.columns {
+        let r = if c.width > 1 { format!("[{}:0] ", c.width - 1) } else { String::new() };
+        if c.role == Role::Stimulus {
+            decls.push(format!("    reg {r}{} = 0;", c.name));
+            assign.push(format!("            {} = {};", c.name, slice("stim", c.lsb, c.width)));
+            print.push(format!("                    $display(\"  {:15} %h\", {});", c.name, slice("chk", c.lsb, c.width)));
+        } else {
+            decls.push(format!("    wire {r}{};", c.name));
+        }
+        connect.push(format!(".{0}({0})", c.name));
+    }
+    let out = l.column("out_c");
+    let mut s = pt(cfg);
+    s.extend([
+        ("RECORD_BITS", l.bits.to_string()),
+        ("LATENCY", latency(cfg).to_string()),
+        ("TOP", module_name(cfg, "gbump_pipeline")),
+        ("DECLS", decls.join("\n")),
+        ("CONNECT", format!("        {}", connect.join(", "))),
+        ("ASSIGN", assign.join("\n")),
+        ("PRINT", print.join("\n")),
+        ("OUT_HI", (out.lsb + out.width - 1).to_string()),
+        ("OUT_LO", out.lsb.to_string()),
+    ]);
+    fill(TB_TOP.to_string(), &s)
+}
+
+/// Units present in this configuration, in `UNITS` order.
+pub fn units_of(cfg: &PipelineConfig) -> Vec<&'static str> {
+    crate::units::UNITS.iter().map(|u| u.name).filter(|u| unit_present(cfg, u)).collect()
+}
+
+/// The all-units testbench.
+pub fn tb_units(cfg: &PipelineConfig) -> String {
+    let mut decls = Vec::new();
+    let mut drive = Vec::new();
+    let mut check = Vec::new();
+    let mut max_rb = 1;
+    for (i, u) in units_of(cfg).iter().enumerate() {
+        let l: Layout = unit_layout(cfg, u);
+        max_rb = max_rb.max(l.bits);
+        let mut conns = vec![".clk(clk)".to_string()];
+        if *u == "power_table" {
+            conns.extend([".we(pt_we)".into(), ".waddr(pt_waddr)".into(), ".wdata(pt_wdata)".into()]);
+        }
+        let kw = if i == 0 { "if" } else { "else if" };
+        let mut d = vec![format!("            {kw} (unit == \"{u}\") begin")];
+        let mut k = vec![format!("            {kw} (unit == \"{u}\") begin")];
+        for c in &l.columns {
+            let sig = format!("{u}_{}", c.name);
+            let r = if c.width > 1 { format!("[{}:0] ", c.width - 1) } else { String::new() };
+            if c.role == Role::Stimulus {
+                decls.push(format!("    reg {r}{sig} = 0;"));
+                d.push(format!("                {sig} = {};", slice("rec", c.lsb, c.width)));
+            } else {
+                decls.push(format!("    wire {r}{sig};"));
+                k.push(format!("                if ({sig} !== {}) begin", slice("rec", c.lsb, c.width)));
+                k.push("                    ok = 1'b0;".into());
+                k.push("                    if (failed < max_errors) begin".into());
+                k.push(format!("                        $display(\"MISMATCH unit {u} vector %0d:\", n);"));
+                for ci in l.columns.iter().filter(|x| x.role == Role::Stimulus) {
+                    k.push(format!("                        $display(\"  {:10} %h\", {});", ci.name, slice("rec", ci.lsb, ci.width)));
+                }
+                k.push(format!("                        $display(\"  {} expected %h got %h\", {}, {sig});", c.name, slice("rec", c.lsb, c.width)));
+                k.push("                    end".into());
+                k.push("                end".into());
+            }
+            conns.push(format!(".{}({sig})", c.name));
+        }
+        d.push("            end".into());
+        k.push("            end".into());
+        drive.extend(d);
+        check.extend(k);
+        let params = if *u == "power_table" { " #(.R(1))" } else { "" };
+        decls.push(format!("    {}{params} u_{u} ({});", module_name(cfg, u), conns.join(", ")));
+    }
+    drive.push("            else begin $display(\"FATAL: unknown unit %0s\", unit); $finish; end".into());
+    let mut s = pt(cfg);
+    s.extend([("DECLS", decls.join("\n")), ("DRIVE", drive.join("\n")), ("CHECK", check.join("\n")), ("MAX_RB", max_rb.to_string())]);
+    fill(TB_UNITS.to_string(), &s)
+}
+
+/// The Verilator C++ harness for binary top vectors.
+pub fn harness_top(cfg: &PipelineConfig) -> String {
+    let l = top_layout(cfg);
+    let mut assign = Vec::new();
+    let mut print = Vec::new();
+    for c in l.columns.iter().filter(|c| c.role == Role::Stimulus) {
+        if c.width <= 64 {
+            assign.push(format!("            top.{} = get_bits(rin, {}, {});", c.name, c.lsb, c.width));
+        } else {
+            let words = c.width.div_ceil(32);
+            assign.push(format!(
+                "            for (unsigned w = 0; w < {words}; ++w) top.{}[w] = (uint32_t)get_bits(rin, {} + 32 * w, w + 1 < {words} ? 32 : {});",
+                c.name,
+                c.lsb,
+                c.width - 32 * (words - 1)
+            ));
+        }
+        let words = c.width.div_ceil(32);
+        let mut p = format!("                    printf(\"  {:15} \");", c.name);
+        p += &format!(" for (int w = {}; w >= 0; --w) printf(\"%08llx\", (unsigned long long)get_bits(rec, {} + 32 * w, w + 1 < {words} ? 32 : {}));", words - 1, c.lsb, c.width - 32 * (words - 1));
+        p += " printf(\"\\n\");";
+        print.push(p);
+    }
+    let out = l.column("out_c");
+    let mut s = pt(cfg);
+    s.extend([
+        ("TOP", module_name(cfg, "gbump_pipeline")),
+        ("RECORD_BYTES", l.bytes().to_string()),
+        ("LATENCY", latency(cfg).to_string()),
+        ("ASSIGN", assign.join("\n")),
+        ("PRINT", print.join("\n")),
+        ("OUT_LSB", out.lsb.to_string()),
+        ("OUT_W", out.width.to_string()),
+    ]);
+    fill(HARNESS_TOP.to_string(), &s)
+}

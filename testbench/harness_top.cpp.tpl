@@ -1,0 +1,138 @@
+// Verilator C++ harness template for bulk runs (gbump fills the double-braced fields).
+// Streams fixed-size binary records through the Verilated pipeline with valid/ready, checks
+// every out_c in order, stops after --max-errors mismatches (default 20) printing every field,
+// and ends with "N passed, N failed". --dump FILE writes each out_c as 8 little-endian bytes
+// (for rendering an image through the RTL); --no-check skips comparison (raw speed runs).
+// Usage: harness --vectors FILE.bin --table FILE.hex [--dump FILE] [--max-errors N]
+#include "V{{TOP}}.h"
+#include "verilated.h"
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+static const size_t RECORD_BYTES = {{RECORD_BYTES}};
+static const int PT_N = {{PT_N}};
+
+static uint64_t get_bits(const uint8_t* rec, unsigned lsb, unsigned width) {
+    uint64_t v = 0;
+    for (unsigned b = 0; b < width; ++b) {
+        unsigned pos = lsb + b;
+        v |= (uint64_t)((rec[pos >> 3] >> (pos & 7)) & 1u) << b;
+    }
+    return v;
+}
+
+static bool read_table(const char* path, std::vector<uint32_t>& out) {
+    std::ifstream f(path);
+    if (!f) return false;
+    std::string line;
+    while (std::getline(f, line)) {
+        size_t c = line.find("//");
+        if (c != std::string::npos) line = line.substr(0, c);
+        std::stringstream ss(line);
+        std::string tok;
+        if (ss >> tok) out.push_back((uint32_t)strtoul(tok.c_str(), nullptr, 16));
+    }
+    return (int)out.size() == PT_N;
+}
+
+int main(int argc, char** argv) {
+    const char* vec_path = nullptr;
+    const char* table_path = nullptr;
+    const char* dump_path = nullptr;
+    long max_errors = 20;
+    bool check = true;
+    for (int i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--vectors") && i + 1 < argc) vec_path = argv[++i];
+        else if (!strcmp(argv[i], "--table") && i + 1 < argc) table_path = argv[++i];
+        else if (!strcmp(argv[i], "--dump") && i + 1 < argc) dump_path = argv[++i];
+        else if (!strcmp(argv[i], "--max-errors") && i + 1 < argc) max_errors = atol(argv[++i]);
+        else if (!strcmp(argv[i], "--no-check")) check = false;
+    }
+    if (!vec_path || !table_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin --table FILE.hex\n", argv[0]); return 2; }
+    std::vector<uint32_t> table;
+    if (!read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, PT_N); return 2; }
+    FILE* vf = fopen(vec_path, "rb");
+    if (!vf) { fprintf(stderr, "FATAL: cannot open %s\n", vec_path); return 2; }
+    fseek(vf, 0, SEEK_END);
+    long size = ftell(vf);
+    fseek(vf, 0, SEEK_SET);
+    if (size <= 0 || size % (long)RECORD_BYTES != 0) { fprintf(stderr, "FATAL: %s: %ld bytes is not a whole number of %zu-byte records\n", vec_path, size, RECORD_BYTES); return 2; }
+    std::vector<uint8_t> data((size_t)size);
+    if (fread(data.data(), 1, data.size(), vf) != data.size()) { fprintf(stderr, "FATAL: short read of %s\n", vec_path); return 2; }
+    fclose(vf);
+    const size_t n = data.size() / RECORD_BYTES;
+    std::vector<uint64_t> dump;
+    if (dump_path) dump.reserve(n);
+
+    VerilatedContext ctx;
+    ctx.commandArgs(argc, argv);
+    V{{TOP}} top(&ctx);
+    auto tick = [&]() { top.clk = 0; top.eval(); top.clk = 1; top.eval(); };
+    top.rst = 1; top.in_valid = 0; top.pt_we = 0;
+    for (int i = 0; i < 3; ++i) tick();
+    top.rst = 0;
+    for (int i = 0; i < PT_N; ++i) { top.pt_we = 1; top.pt_waddr = i; top.pt_wdata = table[i]; tick(); }
+    top.pt_we = 0;
+
+    size_t next_in = 0, next_out = 0;
+    long passed = 0, failed = 0;
+    uint64_t cycles = 0, idle = 0;
+    auto t0 = std::chrono::steady_clock::now();
+    while (next_out < n && idle < {{LATENCY}} * 4 + 100) {
+        const uint8_t* rin = data.data() + next_in * RECORD_BYTES;
+        if (next_in < n) {
+            top.in_valid = 1;
+{{ASSIGN}}
+        } else {
+            top.in_valid = 0;
+        }
+        top.clk = 0;
+        top.eval();
+        bool accept = top.in_valid && top.in_ready;
+        if (top.out_valid) {
+            idle = 0;
+            const uint8_t* rec = data.data() + next_out * RECORD_BYTES;
+            uint64_t want = get_bits(rec, {{OUT_LSB}}, {{OUT_W}});
+            uint64_t got = (uint64_t)top.out_c;
+            if (dump_path) dump.push_back(got);
+            if (!check || want == got) ++passed;
+            else {
+                ++failed;
+                if (failed <= max_errors) {
+                    printf("MISMATCH unit gbump_pipeline vector %zu:\n", next_out);
+{{PRINT}}
+                    printf("  out_c expected %llx got %llx\n", (unsigned long long)want, (unsigned long long)got);
+                }
+                if (failed >= max_errors) { printf("stopping after %ld mismatches\n", failed); break; }
+            }
+            ++next_out;
+        } else if (next_in >= n) {
+            ++idle;
+        }
+        top.clk = 1;
+        top.eval();
+        ++cycles;
+        if (accept) ++next_in;
+    }
+    double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (next_out < n && failed < max_errors) {
+        printf("MISMATCH: %zu fragments went in but %zu came out\n", next_in, next_out);
+        failed += (long)(n - next_out);
+    }
+    if (dump_path) {
+        FILE* df = fopen(dump_path, "wb");
+        if (!df || fwrite(dump.data(), 8, dump.size(), df) != dump.size()) { fprintf(stderr, "FATAL: cannot write %s\n", dump_path); return 2; }
+        fclose(df);
+    }
+    fprintf(stderr, "%zu vectors, %llu cycles, %.3f s, %.0f vectors/s\n", n, (unsigned long long)cycles, secs, n / (secs > 0 ? secs : 1e-9));
+    printf("%ld passed, %ld failed\n", passed, failed);
+    top.final();
+    return failed ? 1 : (passed ? 0 : 1);
+}

@@ -1,0 +1,105 @@
+// Top-level testbench template (gbump fills the double-braced fields per configuration).
+// Streams $readmemh-style text vectors (one record per line) through the pipeline with
+// valid/ready, checks every out_c in order against the record's expected colour, stops after
+// +max_errors mismatches (default 20), and ends with "N passed, N failed".
+// Plusargs: +vectors=FILE +table=FILE (power table, loaded through the load port)
+//           [+waves=FILE.fst] [+max_errors=N]
+`timescale 1ns / 1ps
+`default_nettype none
+module tb_top;
+    localparam RB = {{RECORD_BITS}};
+    localparam LAT = {{LATENCY}};
+    localparam PT_N = {{PT_N}};
+    reg clk = 1'b0;
+    reg rst = 1'b1;
+    reg pt_we = 1'b0;
+    reg [{{PT_AW}}-1:0] pt_waddr = 0;
+    reg [{{PT_W}}-1:0] pt_wdata = 0;
+    reg in_valid = 1'b0;
+    wire in_ready;
+    wire out_valid;
+{{DECLS}}
+    {{TOP}} dut (
+        .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
+        .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
+{{CONNECT}}
+    );
+    always #5 clk = ~clk;
+
+    reg [RB-1:0] stim;
+    reg [RB-1:0] chk;
+    reg [{{PT_W}}-1:0] table_mem [0:PT_N-1];
+    reg [8*512-1:0] vec_file;
+    reg [8*512-1:0] table_file;
+    reg [8*512-1:0] wave_file;
+    integer fin, fchk, code, i, cycles, max_errors;
+    integer n_in = 0;
+    integer n_out = 0;
+    integer passed = 0;
+    integer failed = 0;
+    reg done = 1'b0;
+
+    task finish_run;
+        begin
+            $display("%0d passed, %0d failed", passed, failed);
+            if (passed + failed == 0) $display("FATAL: no vectors were checked");
+            $finish;
+        end
+    endtask
+
+    initial begin
+        if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
+        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
+        if (!$value$plusargs("table=%s", table_file)) begin $display("FATAL: +table=FILE is missing"); $finish; end
+        if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_top); end
+        $readmemh(table_file, table_mem);
+        fin = $fopen(vec_file, "r");
+        fchk = $fopen(vec_file, "r");
+        if (fin == 0 || fchk == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
+        repeat (3) @(negedge clk);
+        rst = 1'b0;
+        for (i = 0; i < PT_N; i = i + 1) begin
+            pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+            @(negedge clk);
+        end
+        pt_we = 1'b0;
+        code = $fscanf(fin, "%h\n", stim);
+        while (code == 1) begin
+            in_valid = 1'b1;
+{{ASSIGN}}
+            while (!in_ready) @(negedge clk);
+            @(negedge clk);
+            n_in = n_in + 1;
+            code = $fscanf(fin, "%h\n", stim);
+        end
+        in_valid = 1'b0;
+        cycles = 0;
+        while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
+        if (n_out != n_in) begin
+            $display("MISMATCH: %0d fragments went in but %0d came out", n_in, n_out);
+            failed = failed + (n_in - n_out);
+        end
+        finish_run;
+    end
+
+    always @(posedge clk) begin
+        if (!rst && out_valid) begin
+            code = $fscanf(fchk, "%h\n", chk);
+            n_out = n_out + 1;
+            if (out_c === chk[{{OUT_HI}}:{{OUT_LO}}]) passed = passed + 1;
+            else begin
+                failed = failed + 1;
+                if (failed <= max_errors) begin
+                    $display("MISMATCH unit gbump_pipeline vector %0d:", n_out - 1);
+{{PRINT}}
+                    $display("  out_c expected %h got %h", chk[{{OUT_HI}}:{{OUT_LO}}], out_c);
+                end
+                if (failed >= max_errors) begin
+                    $display("stopping after %0d mismatches", failed);
+                    finish_run;
+                end
+            end
+        end
+    end
+endmodule
+`default_nettype wire

@@ -1,0 +1,70 @@
+// Unit testbench template: every unit of the configuration instantiated once; +unit=NAME
+// selects which one the text vectors drive. Each unit has a registered output, so a record
+// is applied on one falling edge and its outputs checked on the next.
+// Plusargs: +unit=NAME +vectors=FILE +table=FILE [+waves=FILE.fst] [+max_errors=N]
+`timescale 1ns / 1ps
+`default_nettype none
+module tb_units;
+    localparam PT_N = {{PT_N}};
+    reg clk = 1'b0;
+    reg pt_we = 1'b0;
+    reg [{{PT_AW}}-1:0] pt_waddr = 0;
+    reg [{{PT_W}}-1:0] pt_wdata = 0;
+    always #5 clk = ~clk;
+{{DECLS}}
+    reg [{{MAX_RB}}-1:0] rec;
+    reg [{{PT_W}}-1:0] table_mem [0:PT_N-1];
+    reg [8*512-1:0] vec_file;
+    reg [8*512-1:0] table_file;
+    reg [8*512-1:0] wave_file;
+    reg [8*32-1:0] unit;
+    integer fin, code, i, n, max_errors;
+    integer passed = 0;
+    integer failed = 0;
+    reg ok;
+
+    task finish_run;
+        begin
+            $display("%0d passed, %0d failed", passed, failed);
+            if (passed + failed == 0) $display("FATAL: no vectors were checked");
+            $finish;
+        end
+    endtask
+
+    initial begin
+        if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
+        if (!$value$plusargs("unit=%s", unit)) begin $display("FATAL: +unit=NAME is missing"); $finish; end
+        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
+        if (!$value$plusargs("table=%s", table_file)) begin $display("FATAL: +table=FILE is missing"); $finish; end
+        if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_units); end
+        $readmemh(table_file, table_mem);
+        fin = $fopen(vec_file, "r");
+        if (fin == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
+        @(negedge clk);
+        for (i = 0; i < PT_N; i = i + 1) begin
+            pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+            @(negedge clk);
+        end
+        pt_we = 1'b0;
+        n = 0;
+        code = $fscanf(fin, "%h\n", rec);
+        while (code == 1) begin
+            ok = 1'b1;
+{{DRIVE}}
+            @(negedge clk);
+{{CHECK}}
+            if (ok) passed = passed + 1;
+            else begin
+                failed = failed + 1;
+                if (failed >= max_errors) begin
+                    $display("stopping after %0d mismatches", failed);
+                    finish_run;
+                end
+            end
+            n = n + 1;
+            code = $fscanf(fin, "%h\n", rec);
+        end
+        finish_run;
+    end
+endmodule
+`default_nettype wire
