@@ -36,6 +36,9 @@ pub enum Cmd {
         /// Pipeline configuration TOML (default: derived from the scene).
         #[arg(long, value_name = "FILE")]
         config: Option<PathBuf>,
+        /// Also render through the Verilated RTL and require it to equal the golden image.
+        #[arg(long)]
+        rtl: bool,
     },
     /// Generate the Verilog, ROM init file and interface JSON of a configuration.
     Rtl {
@@ -200,7 +203,7 @@ pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
-        Cmd::Render { scene, out, size, config } => render(&scene, &out, size.as_deref(), config.as_deref())?,
+        Cmd::Render { scene, out, size, config, rtl } => render(&scene, &out, size.as_deref(), config.as_deref(), rtl)?,
         Cmd::Rtl { pick, out } => {
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
@@ -227,7 +230,7 @@ pub fn run() -> anyhow::Result<()> {
                 work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
                 waves,
                 max_errors,
-                command: std::env::args().collect::<Vec<_>>().join(" "),
+                command: invocation(),
             };
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
@@ -281,7 +284,7 @@ pub fn scene_and_config(scene: &str, config: Option<&Path>) -> Result<(Scene, Pi
     Ok((s, cfg))
 }
 
-fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>) -> Result<()> {
+fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rtl: bool) -> Result<()> {
     let (s, cfg) = scene_and_config(scene, config)?;
     let (w, h) = match size {
         Some(sz) => parse_size(sz)?,
@@ -316,10 +319,20 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>) ->
     println!("  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_ref.psnr_db, vs_ref.max_lsb, vs_ref.mean_lsb, 100.0 * vs_ref.over_1lsb);
     println!("  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_gou.psnr_db, vs_gou.max_lsb, vs_gou.mean_lsb, 100.0 * vs_gou.over_1lsb);
     println!("  wrote {} and {name}_metrics.json in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+    if rtl {
+        let t0 = std::time::Instant::now();
+        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new("target/gbump-render"))?;
+        write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
+        let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
+        println!("  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image", t0.elapsed().as_secs_f64());
+        if differ > 0 {
+            return Err(Error::Other(format!("the RTL image differs from the golden image in {differ} pixels")));
+        }
+    }
     Ok(())
 }
 
-fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>, cube: usize, out: &Path) -> Result<Vec<(String, String)>> {
+pub fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>, cube: usize, out: &Path) -> Result<Vec<(String, String)>> {
     use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
     let n = shininess.unwrap_or(cfg.shininess);
     if n > 1024 {
@@ -377,7 +390,7 @@ fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed:
         binary: !matches!(format, VecFormat::Hex),
         seed,
         size: size.map(parse_size).transpose()?,
-        command: std::env::args().collect::<Vec<_>>().join(" "),
+        command: invocation(),
     };
     let t0 = std::time::Instant::now();
     let sets = dump(&cfg, &src, &targets, out, &opts)?;
@@ -447,4 +460,10 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         return Err(Error::Other(format!("{bad} regression run(s) failed")));
     }
     Ok(())
+}
+
+/// The command line as a user would type it (program name `gbump`, whatever the path), so
+/// that generated files do not depend on where the binary lives.
+pub fn invocation() -> String {
+    std::iter::once("gbump".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ")
 }

@@ -44,8 +44,10 @@ impl VWriter {
         self.line(close)
     }
 
+    /// The text, in ASCII: every tool in the flow (Verilator's config parser among them)
+    /// reads ASCII, so the paper's symbols in comments are spelled out.
     pub fn finish(self) -> String {
-        self.out
+        ascii(&self.out)
     }
 }
 
@@ -56,4 +58,12 @@ pub fn range(w: u32) -> String {
     } else {
         format!("[{}:0] ", w - 1)
     }
+}
+
+/// Spell out the non-ASCII symbols the emitters' comments use.
+pub fn ascii(s: &str) -> String {
+    s.replace('§', "sec. ").replace('→', "->").replace('·', "*").replace('≥', ">=").replace('≤', "<=").replace('×', "x").replace('—', "-")
+        .chars()
+        .map(|c| if c.is_ascii() { c } else { '?' })
+        .collect()
 }

@@ -5,6 +5,7 @@
 pub mod icarus;
 pub mod lint;
 pub mod regress;
+pub mod rtl_image;
 pub mod testbench;
 pub mod verilator;
 

@@ -1,0 +1,10 @@
+bump_fetch_8dc3fde1.v
+bump_fetch_comb_8dc3fde1.v
+dot_clamp_8dc3fde1.v
+power_table_8dc3fde1.v
+light_term_8dc3fde1.v
+blend_finish_8dc3fde1.v
+diffuse_blend_8dc3fde1.v
+specular_blend_8dc3fde1.v
+texture_modulate_8dc3fde1.v
+gbump_pipeline_8dc3fde1.v

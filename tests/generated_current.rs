@@ -1,0 +1,72 @@
+//! The checked-in rtl/ and vectors/ must be exactly what gbump generates today for the default
+//! configuration. Regenerate with scripts/regen.sh after an intended change.
+
+use gbump::vectors::{dump, DumpOptions, Source};
+use gbump::PipelineConfig;
+use std::path::Path;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn compare(dir: &Path, files: &[(String, Vec<u8>)]) -> Vec<String> {
+    let mut stale = Vec::new();
+    for (name, bytes) in files {
+        match std::fs::read(dir.join(name)) {
+            Ok(have) if &have == bytes => {}
+            Ok(_) => stale.push(format!("{} differs", dir.join(name).display())),
+            Err(_) => stale.push(format!("{} is missing", dir.join(name).display())),
+        }
+    }
+    stale
+}
+
+#[test]
+fn checked_in_rtl_and_roms_are_current() {
+    let cfg = PipelineConfig::default();
+    let rtl: Vec<(String, Vec<u8>)> = gbump::rtlgen::generate(&cfg, "gbump rtl --out rtl").into_iter().map(|(n, t)| (n, t.into_bytes())).collect();
+    let mut stale = compare(&root().join("rtl"), &rtl);
+    let pick = gbump::cli::ConfigPick { config: None, scene: None };
+    let roms = gbump::cli::rom_files(&cfg, &pick, Some(16), 32, Path::new("rtl/rom")).unwrap();
+    stale.extend(compare(&root().join("rtl/rom"), &roms.into_iter().map(|(n, t)| (n, t.into_bytes())).collect::<Vec<_>>()));
+    assert!(stale.is_empty(), "stale generated files (run scripts/regen.sh):\n{}", stale.join("\n"));
+}
+
+#[test]
+fn checked_in_vectors_are_current() {
+    let cfg = PipelineConfig::default();
+    let tmp = tempfile::tempdir().unwrap();
+    let all: Vec<String> = gbump::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
+    for (src, cmd) in [(Source::Corners, "gbump vectors --source corners --out vectors"), (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors")] {
+        let o = DumpOptions { text: true, binary: true, seed: 1, size: None, command: cmd.into() };
+        dump(&cfg, &src, &all, tmp.path(), &o).unwrap();
+    }
+    let files: Vec<(String, Vec<u8>)> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap())
+        })
+        .collect();
+    assert!(files.len() > 20);
+    let stale = compare(&root().join("vectors"), &files);
+    assert!(stale.is_empty(), "stale vectors (run scripts/regen.sh):\n{}", stale.join("\n"));
+    for f in &files {
+        if f.0.ends_with(".json") && !f.0.contains("power_table.") {
+            gbump::vectors::verify(&root().join("vectors").join(&f.0)).unwrap();
+        }
+    }
+}
+
+#[test]
+fn regeneration_is_deterministic() {
+    let cfg = PipelineConfig { lights: 2, light_mode: gbump::config::LightMode::Parallel, ..Default::default() };
+    assert_eq!(gbump::rtlgen::generate(&cfg, "x"), gbump::rtlgen::generate(&cfg, "x"));
+    for (name, text) in gbump::rtlgen::generate(&cfg, "x") {
+        assert!(text.is_ascii(), "{name}: generated files are ASCII");
+        if name.ends_with(".v") {
+            assert!(text.contains("`default_nettype none") && text.contains("`timescale"), "{name}");
+            assert!(text.contains("do not edit") && text.contains(&cfg.hash()), "{name}: header");
+        }
+    }
+}
