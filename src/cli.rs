@@ -123,6 +123,11 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-lint")]
         work: PathBuf,
     },
+    /// Print the interface table (every unit's ports, formats and latency) as Markdown.
+    Interface {
+        #[command(flatten)]
+        pick: ConfigPick,
+    },
     /// Print a pipeline configuration as TOML with its hash: the default, or a scene's.
     Config {
         #[arg(long)]
@@ -235,6 +240,7 @@ pub fn run() -> anyhow::Result<()> {
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
         Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
+        Cmd::Interface { pick } => print!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {
                 Some(s) => Scene::load(&s)?.derive_config()?,
@@ -466,4 +472,19 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
 /// that generated files do not depend on where the binary lives.
 pub fn invocation() -> String {
     std::iter::once("gbump".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ")
+}
+
+/// The README's interface section: top ports, then every unit's ports.
+pub fn interface_markdown(cfg: &PipelineConfig) -> String {
+    let mut s = format!(
+        "Top `{}` (config `{}`): latency {} cycles, one fragment every {} cycle(s).\n\n| port | dir | bits |\n|---|---|---|\n",
+        crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+        cfg.hash(),
+        crate::rtlgen::top::latency(cfg),
+        cfg.initiation_interval()
+    );
+    for (n, d, w) in crate::rtlgen::top::top_ports(cfg) {
+        s += &format!("| `{n}` | {d} | {w} |\n");
+    }
+    s + "\n" + &crate::units::markdown_table(cfg)
 }

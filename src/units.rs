@@ -3,7 +3,7 @@
 //! (`vectors::`) — under the same name; all of them, and the README's interface table, read
 //! their ports, formats and latency from here, so they cannot drift apart.
 
-use crate::config::{LightMode, PipelineConfig};
+use crate::config::PipelineConfig;
 use crate::fixed::Format;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,11 +52,10 @@ fn blend_ports(c: &PipelineConfig) -> Vec<Port> {
     ]
 }
 
-fn blend_latency(c: &PipelineConfig) -> u32 {
-    match c.light_mode {
-        LightMode::Parallel => 1,
-        LightMode::Serial => c.lights + 1,
-    }
+/// The blend units are emitted in their parallel form (all light terms summed in one cycle);
+/// a serial top accumulates one `light_term` per clock and closes with `blend_finish` instead.
+fn blend_latency(_: &PipelineConfig) -> u32 {
+    1
 }
 
 /// Every unit, in data-flow order.

@@ -70,3 +70,10 @@ fn regeneration_is_deterministic() {
         }
     }
 }
+
+#[test]
+fn readme_interface_table_is_current() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let table = gbump::cli::interface_markdown(&PipelineConfig::default());
+    assert!(readme.contains(&table), "README's interface table is stale: paste the output of `gbump interface`");
+}
