@@ -26,11 +26,14 @@ fn scene(lights: usize) -> Scene {
 }
 
 fn main() {
+    // `cargo bench` passes --bench; under `cargo test --all-targets` this runs as a quick smoke test.
+    let full = std::env::args().any(|a| a == "--bench");
+    let side = if full { 1024 } else { 128 };
     let threads = rayon::current_num_threads();
     for lights in [1, 4] {
         let s = scene(lights);
         let cfg = s.derive_config().unwrap();
-        let p = Prepared::new(&s, &cfg, 1024, 1024).unwrap();
+        let p = Prepared::new(&s, &cfg, side, side).unwrap();
         let gb = rasterise(&p);
         let frags = fragments(&p, &gb);
         let n = frags.len() as f64;

@@ -113,8 +113,12 @@ impl Record {
     }
 
     pub fn to_bytes(&self, n: usize, out: &mut Vec<u8>) {
-        for i in 0..n {
-            out.push((self.words[i / 8] >> ((i % 8) * 8)) as u8);
+        let full = n / 8;
+        for w in &self.words[..full] {
+            out.extend_from_slice(&w.to_le_bytes());
+        }
+        if n % 8 != 0 {
+            out.extend_from_slice(&self.words[full].to_le_bytes()[..n % 8]);
         }
     }
 

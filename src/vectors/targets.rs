@@ -60,23 +60,25 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
     let mut r = Record::new(l);
     let n = cfg.lights as usize;
     let BumpTexel::Rgb(texel) = s.frag.bump else { panic!("palette tops have no vectors yet") };
+    // Columns in `top_layout` order.
+    let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, c_out] = std::array::from_fn(|i| &l.columns[i]);
     for i in 0..3 {
-        r.set_lane(l.column("in_texel"), i as u32, texel[i] as i64);
-        r.set_lane(l.column("in_c_src"), i as u32, s.frag.c_src[i] as i64);
-        r.set_lane(l.column("in_t"), i as u32, s.frag.texel[i] as i64);
-        r.set_lane(l.column("out_c"), i as u32, out.colour()[i] as i64);
+        r.set_lane(c_texel, i as u32, texel[i] as i64);
+        r.set_lane(c_src, i as u32, s.frag.c_src[i] as i64);
+        r.set_lane(c_t, i as u32, s.frag.texel[i] as i64);
+        r.set_lane(c_out, i as u32, out.colour()[i] as i64);
     }
-    r.set_lane(l.column("in_diffuse_en"), 0, s.frag.diffuse_en as i64);
-    r.set_lane(l.column("in_specular_en"), 0, s.frag.specular_en as i64);
+    r.set_lane(c_de, 0, s.frag.diffuse_en as i64);
+    r.set_lane(c_se, 0, s.frag.specular_en as i64);
     for j in 0..n {
         let ls = &s.state.lights[j];
         for i in 0..3 {
             let lane = (3 * j + i) as u32;
-            r.set_lane(l.column("in_l"), lane, ls.l[i]);
-            r.set_lane(l.column("in_h"), lane, ls.h[i]);
-            r.set_lane(l.column("in_lc"), lane, ls.colour[i] as i64);
+            r.set_lane(c_l, lane, ls.l[i]);
+            r.set_lane(c_h, lane, ls.h[i]);
+            r.set_lane(c_lc, lane, ls.colour[i] as i64);
         }
-        r.set_lane(l.column("in_k"), j as u32, ls.k);
+        r.set_lane(c_k, j as u32, ls.k);
     }
     r
 }

@@ -96,6 +96,23 @@ impl SetWriter {
         self.count >= self.limit
     }
 
+    /// Append pre-encoded records (`n` of them) in both forms.
+    fn put_encoded(&mut self, hex: &str, bin: &[u8], n: u64) -> Result<()> {
+        let n = n.min(self.limit - self.count.min(self.limit));
+        if n == 0 {
+            return Ok(());
+        }
+        if let Some(h) = &mut self.hex {
+            let per = self.layout.hex_digits() + 1;
+            h.put(&hex.as_bytes()[..per * n as usize])?;
+        }
+        if let Some(b) = &mut self.bin {
+            b.put(&bin[..self.layout.bytes() * n as usize])?;
+        }
+        self.count += n;
+        Ok(())
+    }
+
     fn put(&mut self, r: &Record, line: &mut String, bytes: &mut Vec<u8>) -> Result<()> {
         if self.full() {
             return Ok(());
@@ -205,19 +222,64 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
         Source::Random(n) => {
             let table = PowerTable::build(cfg, cfg.shininess);
             let mut ws = open(dir, &src.stem(), &targets, cfg, o, *n)?;
-            const CHUNK: u64 = 1 << 16;
+            let table = &table;
+            const CHUNK: u64 = 1 << 14;
             let chunks = n.div_ceil(CHUNK);
-            for c in 0..chunks {
-                let len = CHUNK.min(n - c * CHUNK);
-                // Each chunk has its own stream, so chunks can be generated in parallel and
-                // the result still depends on the seed alone.
-                let mut rng = SplitMix64(o.seed ^ c.wrapping_mul(0xA076_1D64_78BD_642F));
-                let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
-                write_tops(cfg, &table, &stims, &mut ws)?;
-                if ws.iter().all(|w| w.full()) {
-                    break;
+            let tl = top_layout(cfg);
+            let batch = 4 * rayon::current_num_threads() as u64;
+            // Encoding runs on the rayon pool while a writer thread hashes and writes the
+            // previous batch, so the disk and the cores work at the same time.
+            let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<(u64, Vec<TopStim>, String, Vec<u8>)>>(1);
+            let want_units = ws.iter().any(|w| w.target != "top");
+            ws = std::thread::scope(|scope| -> Result<Vec<SetWriter>> {
+                let writer = scope.spawn(move || -> Result<Vec<SetWriter>> {
+                    for batch in rx {
+                        for (len, stims, hex, bin) in batch {
+                            for w in ws.iter_mut().filter(|w| w.target == "top") {
+                                w.put_encoded(&hex, &bin, len)?;
+                            }
+                            if want_units && ws.iter().any(|w| w.target != "top" && !w.full()) {
+                                write_tops(cfg, &table, &stims, &mut ws, false)?;
+                            }
+                        }
+                    }
+                    Ok(ws)
+                });
+                let mut c0 = 0;
+                while c0 < chunks {
+                    let c1 = (c0 + batch).min(chunks);
+                    // Unit vectors are derived from the first chunks only: each unit set stops at N.
+                    let keep_stims = want_units && c0 * CHUNK < *n;
+                    // Each chunk has its own stream, so chunks are generated in parallel and
+                    // the bytes still depend on the seed alone.
+                    let done: Vec<(u64, Vec<TopStim>, String, Vec<u8>)> = (c0..c1)
+                        .into_par_iter()
+                        .map(|c| {
+                            let len = CHUNK.min(n - c * CHUNK);
+                            let mut rng = SplitMix64(o.seed ^ c.wrapping_mul(0xA076_1D64_78BD_642F));
+                            let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
+                            let (mut hex, mut bin) = (String::new(), Vec::new());
+                            for s in &stims {
+                                let r = top_record(cfg, &tl, s, &eval_top(cfg, &table, s));
+                                if o.text {
+                                    hex.push_str(&r.hex(tl.hex_digits()));
+                                    hex.push('\n');
+                                }
+                                if o.binary {
+                                    r.to_bytes(tl.bytes(), &mut bin);
+                                }
+                            }
+                            (len, if keep_stims { stims } else { Vec::new() }, hex, bin)
+                        })
+                        .collect();
+                    if tx.send(done).is_err() {
+                        break;
+                    }
+                    c0 = c1;
                 }
-            }
+                drop(tx);
+                writer.join().expect("writer thread")
+            })?;
             for w in ws {
                 out.push(w.finish(dir, cfg, src, o, cfg.shininess)?);
             }
@@ -226,7 +288,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             for (n, stem, stims) in top_groups(cfg, src, o)? {
                 let table = PowerTable::build(cfg, n);
                 let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
-                write_tops(cfg, &table, &stims, &mut ws)?;
+                write_tops(cfg, &table, &stims, &mut ws, true)?;
                 for w in ws {
                     out.push(w.finish(dir, cfg, src, o, n)?);
                 }
@@ -246,7 +308,8 @@ fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &Du
         .collect()
 }
 
-fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &mut [SetWriter]) -> Result<()> {
+/// Write the records of `stims` for every writer (the top's only when `with_top`).
+fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &mut [SetWriter], with_top: bool) -> Result<()> {
     let want_units = ws.iter().any(|w| w.target != "top" && !w.full());
     let tl = top_layout(cfg);
     let evals: Vec<(Record, Vec<(UnitStim, Vec<Vec<i64>>)>)> = stims
@@ -267,7 +330,7 @@ fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &
     let (mut line, mut bytes) = (String::new(), Vec::new());
     for (rec, units) in &evals {
         for w in ws.iter_mut() {
-            if w.target == "top" {
+            if with_top && w.target == "top" {
                 w.put(rec, &mut line, &mut bytes)?;
             }
         }
