@@ -194,6 +194,7 @@ always @(posedge clk) begin
     v6 <= rst ? 1'b0 : v5;
 end
 assign out_valid = v6;
-assign out_c = c6;
+// The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.
+assign out_c = v6 ? c6 : 24'd0;
 endmodule
 `default_nettype wire

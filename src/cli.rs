@@ -6,6 +6,22 @@ use crate::measure::image_metrics::{compare, error_map};
 use crate::render::output::{codes_to_u8, f64_to_u8, heat_map, write_atomic, write_png};
 use crate::scene::{builtin, Scene};
 use clap::{Parser, Subcommand};
+
+/// `println!` that returns an error (naming standard output) instead of panicking when stdout
+/// is closed or full (`gbump scenes > /dev/full`, a closed pipe).
+macro_rules! outln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($t)*).map_err(|e| Error::io("<standard output>", e))?
+    }};
+}
+
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout(), $($t)*).and_then(|_| std::io::stdout().flush()).map_err(|e| Error::io("<standard output>", e))?
+    }};
+}
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -191,10 +207,10 @@ impl ConfigPick {
 }
 
 /// Write every file into `dir` atomically; on any failure remove what this call wrote.
-pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<()> {
+pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     for (i, (name, text)) in files.iter().enumerate() {
-        if let Err(e) = write_atomic(&dir.join(name), text.as_bytes()) {
+        if let Err(e) = write_atomic(&dir.join(name), text.as_ref()) {
             for (n, _) in &files[..i] {
                 let _ = std::fs::remove_file(dir.join(n));
             }
@@ -214,14 +230,14 @@ pub fn run() -> anyhow::Result<()> {
             let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
             write_files(&out, &files)?;
-            println!("wrote {} files for config {} to {} (top {}, latency {} cycles)", files.len(), cfg.hash(), out.display(),
+            outln!("wrote {} files for config {} to {} (top {}, latency {} cycles)", files.len(), cfg.hash(), out.display(),
                 crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"), crate::rtlgen::top::latency(&cfg));
         }
         Cmd::Rom { pick, out, shininess, cube_size } => {
             let cfg = pick.resolve()?;
             let files = rom_files(&cfg, &pick, shininess, cube_size, &out)?;
             write_files(&out, &files)?;
-            println!("wrote {} ROM files to {}", files.len(), out.display());
+            outln!("wrote {} ROM files to {}", files.len(), out.display());
         }
         Cmd::Vectors { source, target, pick, out, seed, format, size } => vectors(&source, &target, &pick, &out, seed, format, size.as_deref())?,
         Cmd::Regress { sim, pick, vectors, random, random_icarus, seed, no_scenes, scene_size, work, junit, waves, max_errors } => {
@@ -240,13 +256,13 @@ pub fn run() -> anyhow::Result<()> {
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
         Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
-        Cmd::Interface { pick } => print!("{}", interface_markdown(&pick.resolve()?)),
+        Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {
                 Some(s) => Scene::load(&s)?.derive_config()?,
                 None => PipelineConfig::default(),
             };
-            print!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
+            out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
         }
     }
     Ok(())
@@ -254,11 +270,11 @@ pub fn run() -> anyhow::Result<()> {
 
 fn scenes(show: Option<String>) -> Result<()> {
     match show {
-        Some(name) => print!("{}", builtin::get(&name).ok_or(Error::UnknownScene { name: name.clone() })?),
+        Some(name) => out!("{}", builtin::get(&name).ok_or(Error::UnknownScene { name: name.clone() })?),
         None => {
             for (name, text) in builtin::ALL {
                 let s = Scene::from_toml(name, text, Path::new("scenes"))?;
-                println!("{name:22} {}", s.description);
+                outln!("{name:22} {}", s.description);
             }
         }
     }
@@ -312,25 +328,27 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
         (format!("{name}_reference.png"), f64_to_u8(&img.reference)),
         (format!("{name}_diff.png"), heat_map(&emap, vs_ref.max_lsb.max(4.0))),
     ];
+    let mut blobs: Vec<(String, Vec<u8>)> = Vec::new();
     for (f, px) in &files {
-        write_png(&out.join(f), w, h, px)?;
+        blobs.push((f.clone(), crate::render::output::encode_png(w, h, px)?));
     }
     let report = serde_json::json!({
         "scene": name, "size": [w, h], "config_hash": cfg.hash(), "fragments": vs_ref.pixels,
         "golden_vs_reference": vs_ref, "golden_vs_gouraud_f64": vs_gou, "gouraud_f64_vs_reference": alg,
         "seconds": secs,
     });
-    write_atomic(&out.join(format!("{name}_metrics.json")), serde_json::to_string_pretty(&report).expect("json").as_bytes())?;
-    println!("scene {name} {w}x{h}, config {}, {} fragments, {:.2} s", cfg.hash(), vs_ref.pixels, secs);
-    println!("  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_ref.psnr_db, vs_ref.max_lsb, vs_ref.mean_lsb, 100.0 * vs_ref.over_1lsb);
-    println!("  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_gou.psnr_db, vs_gou.max_lsb, vs_gou.mean_lsb, 100.0 * vs_gou.over_1lsb);
-    println!("  wrote {} and {name}_metrics.json in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+    blobs.push((format!("{name}_metrics.json"), serde_json::to_string_pretty(&report).expect("json").into_bytes()));
+    write_files(out, &blobs)?;
+    outln!("scene {name} {w}x{h}, config {}, {} fragments, {:.2} s", cfg.hash(), vs_ref.pixels, secs);
+    outln!("  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_ref.psnr_db, vs_ref.max_lsb, vs_ref.mean_lsb, 100.0 * vs_ref.over_1lsb);
+    outln!("  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_gou.psnr_db, vs_gou.max_lsb, vs_gou.mean_lsb, 100.0 * vs_gou.over_1lsb);
+    outln!("  wrote {} and {name}_metrics.json in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
     if rtl {
         let t0 = std::time::Instant::now();
         let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new("target/gbump-render"))?;
         write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
         let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
-        println!("  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image", t0.elapsed().as_secs_f64());
+        outln!("  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image", t0.elapsed().as_secs_f64());
         if differ > 0 {
             return Err(Error::Other(format!("the RTL image differs from the golden image in {differ} pixels")));
         }
@@ -402,10 +420,10 @@ fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed:
     let sets = dump(&cfg, &src, &targets, out, &opts)?;
     let secs = t0.elapsed().as_secs_f64();
     for s in &sets {
-        println!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display());
+        outln!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display());
     }
     let total: u64 = sets.iter().map(|s| s.count).sum();
-    println!("{total} vectors for config {} in {secs:.2} s", cfg.hash());
+    outln!("{total} vectors for config {} in {secs:.2} s", cfg.hash());
     Ok(())
 }
 
@@ -420,7 +438,7 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
     let sets: Vec<(PathBuf, Option<crate::sim::Sim>)> = if vectors.is_empty() {
         let t0 = std::time::Instant::now();
         let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
-        println!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
+        outln!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
         s
     } else {
         let mut v = Vec::new();
@@ -441,27 +459,27 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
     };
     let results = run_sets(&cfg, &sets, &rtl, o)?;
     let (mut vecs, mut bad) = (0u64, 0usize);
-    println!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");
+    outln!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");
     for r in &results {
         match &r.outcome {
             Ok(out) => {
                 vecs += out.passed + out.failed;
                 if out.failed > 0 {
                     bad += 1;
-                    println!("{}", crate::sim::tail(&out.log, 40));
+                    outln!("{}", crate::sim::tail(&out.log, 40));
                 }
-                println!("{:10} {:44} {:>10} {:>8} {:>9.2}", r.sim.name(), r.set, out.passed, out.failed, out.seconds);
+                outln!("{:10} {:44} {:>10} {:>8} {:>9.2}", r.sim.name(), r.set, out.passed, out.failed, out.seconds);
             }
             Err(e) => {
                 bad += 1;
-                println!("{:10} {:44} ERROR: {e}", r.sim.name(), r.set);
+                outln!("{:10} {:44} ERROR: {e}", r.sim.name(), r.set);
             }
         }
     }
     if let Some(j) = junit {
         write_atomic(j, crate::sim::regress::junit(&cfg, &results).as_bytes())?;
     }
-    println!("regress config {}: {} runs, {vecs} vectors, {} failing run(s)", cfg.hash(), results.len(), bad);
+    outln!("regress config {}: {} runs, {vecs} vectors, {} failing run(s)", cfg.hash(), results.len(), bad);
     if bad > 0 {
         return Err(Error::Other(format!("{bad} regression run(s) failed")));
     }

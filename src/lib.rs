@@ -7,6 +7,7 @@ pub mod cli;
 pub mod config;
 pub mod error;
 pub mod fixed;
+pub mod interrupt;
 pub mod measure;
 pub mod model;
 pub mod raster;

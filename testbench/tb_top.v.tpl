@@ -82,6 +82,16 @@ module tb_top;
         finish_run;
     end
 
+    // After reset no output may be X or Z, valid or not.
+    integer x_reports = 0;
+    always @(negedge clk) begin
+        if (!rst && ((^{out_valid, in_ready, out_c}) === 1'bx)) begin
+            failed = failed + 1;
+            x_reports = x_reports + 1;
+            if (x_reports <= max_errors) $display("MISMATCH unit gbump_pipeline: X on outputs after reset at %0t: out_valid=%b in_ready=%b out_c=%h", $time, out_valid, in_ready, out_c);
+        end
+    end
+
     always @(posedge clk) begin
         if (!rst && out_valid) begin
             code = $fscanf(fchk, "%h\n", chk);

@@ -203,3 +203,53 @@ fn every_rom_read_by_a_simulator_equals_the_model() {
     let words: Vec<u64> = t.entries.iter().map(|&e| e as u64).collect();
     assert_eq!(readback(&root().join("rtl/power_table_8dc3fde1.hex"), 9, 256), words);
 }
+
+#[test]
+fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
+    use gbump::sim::regress::write_rtl;
+    let cfg = gbump::PipelineConfig::default();
+    let work = std::path::absolute(root().join("target/test-regress/xcheck")).unwrap();
+    let vectors = root().join("vectors");
+    let plus = [format!("+vectors={}", vectors.join("corners_top.hex").display()), format!("+table={}", vectors.join("corners_top_power_table.hex").display())];
+    // The generated pipeline: no X, every vector passes.
+    let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
+    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
+    let ok = gbump::sim::icarus::run(&exe, &plus, None, &work, "x").unwrap();
+    assert_eq!(ok.failed, 0, "{}", ok.log);
+    // The same pipeline with its output gate removed: its X before the first result is reported.
+    let top = rtl.0.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
+    let text = std::fs::read_to_string(top).unwrap();
+    let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
+    let (lhs, rhs) = gated.split_once(" ? ").unwrap();
+    let ungated = format!("assign out_c = {};", rhs.split(" : ").next().unwrap());
+    let _ = lhs;
+    let mutant_dir = work.join("mutant");
+    let rtl2 = write_rtl(&cfg, &mutant_dir, "x").unwrap();
+    let top2 = rtl2.0.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
+    std::fs::write(top2, text.replace(&gated, &ungated)).unwrap();
+    let exe2 = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl2.0).unwrap();
+    let bad = gbump::sim::icarus::run(&exe2, &plus, None, &work, "x").unwrap();
+    assert!(bad.failed > 0 && bad.log.contains("X on outputs after reset"), "{}", bad.log);
+}
+
+#[test]
+fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
+    use gbump::sim::regress::write_rtl;
+    let cfg = gbump::PipelineConfig::default();
+    let work = std::path::absolute(root().join("target/test-regress/xunique")).unwrap();
+    let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
+    let exe = gbump::sim::verilator::build_tb(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0, &rtl.1, false, true).unwrap();
+    let v = root().join("vectors");
+    for set in ["corners_top", "random256_top"] {
+        for seed in [1, 7, 12345] {
+            let args = [
+                format!("+vectors={}", v.join(format!("{set}.hex")).display()),
+                format!("+table={}", v.join(format!("{set}_power_table.hex")).display()),
+                format!("+verilator+seed+{seed}"),
+                "+verilator+rand+reset+2".to_string(),
+            ];
+            let o = gbump::sim::verilator::run(&exe, &args, &work, "x-unique").unwrap();
+            assert!(o.failed == 0 && o.passed > 0, "{set} seed {seed}:\n{}", o.log);
+        }
+    }
+}

@@ -6,6 +6,17 @@ use std::path::Path;
 
 /// Write `bytes` to `path` atomically (temporary sibling, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    crate::interrupt::check()?;
+    // A device or FIFO (e.g. /dev/full, /dev/stdout) is written in place: renaming over it
+    // would replace the device node.
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            if meta.is_dir() {
+                return Err(Error::Other(format!("{}: is a folder, not a file\n  fix: give a file path", path.display())));
+            }
+            return std::fs::write(path, bytes).map_err(|e| Error::io(path, e));
+        }
+    }
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
     let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
@@ -17,17 +28,20 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-/// Encode 8-bit RGB pixels as PNG and write atomically.
-pub fn write_png(path: &Path, w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<()> {
+/// Encode 8-bit RGB pixels as PNG.
+pub fn encode_png(w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<Vec<u8>> {
+    use image::ImageEncoder;
     let mut buf = Vec::new();
     let flat: Vec<u8> = rgb.iter().flatten().copied().collect();
-    {
-        use image::ImageEncoder;
-        image::codecs::png::PngEncoder::new(&mut buf)
-            .write_image(&flat, w, h, image::ExtendedColorType::Rgb8)
-            .map_err(|e| Error::Other(format!("{}: PNG encoding failed: {e}", path.display())))?;
-    }
-    write_atomic(path, &buf)
+    image::codecs::png::PngEncoder::new(&mut buf)
+        .write_image(&flat, w, h, image::ExtendedColorType::Rgb8)
+        .map_err(|e| Error::Other(format!("PNG encoding failed: {e}")))?;
+    Ok(buf)
+}
+
+/// Encode 8-bit RGB pixels as PNG and write atomically.
+pub fn write_png(path: &Path, w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<()> {
+    write_atomic(path, &encode_png(w, h, rgb)?)
 }
 
 /// Colour codes (0..=max) to 8-bit.

@@ -145,7 +145,8 @@ fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in
         cur = (format!("v{st}"), out, format!("t{st}"), String::new(), format!("sf{st}"), format!("k{st}"), format!("lc{st}"));
     }
     w.line(format!("assign out_valid = {};", cur.0));
-    w.line(format!("assign out_c = {};", cur.1));
+    w.line("// The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.");
+    w.line(format!("assign out_c = {} ? {} : {}'d0;", cur.0, cur.1, 3 * c));
 }
 
 fn flat_code(cfg: &PipelineConfig) -> String {
@@ -376,6 +377,7 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         cur = (format!("v{st}"), out, format!("t{st}"), String::new(), format!("sa{st}"));
     }
     w.line(format!("assign out_valid = {};", cur.0));
-    w.line(format!("assign out_c = {};", cur.1));
+    w.line("// The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.");
+    w.line(format!("assign out_c = {} ? {} : {}'d0;", cur.0, cur.1, 3 * c));
     let _ = ff;
 }

@@ -81,6 +81,7 @@ pub fn parse_summary(log: &str) -> Option<(u64, u64)> {
 
 /// Run a command, capturing stdout and stderr together; `what` names it in errors.
 pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
+    crate::interrupt::check()?;
     let t0 = std::time::Instant::now();
     let out = cmd.output().map_err(|e| {
         if e.kind() == std::io::ErrorKind::NotFound {
@@ -91,6 +92,15 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     })?;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
+    // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = out.status.signal() {
+            log += &format!("\n{what}: killed by signal {sig}");
+        }
+    }
+    crate::interrupt::check()?;
     Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
 }
 

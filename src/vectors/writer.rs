@@ -49,6 +49,7 @@ impl Sink {
         Ok(Sink { path, tmp, w: BufWriter::with_capacity(1 << 20, f), sha: Sha256::new(), bytes: 0 })
     }
     fn put(&mut self, b: &[u8]) -> Result<()> {
+        crate::interrupt::check()?;
         self.sha.update(b);
         self.bytes += b.len() as u64;
         self.w.write_all(b).map_err(|e| Error::io(&self.tmp, e))
