@@ -96,6 +96,12 @@ pub enum Cmd {
         /// Image size for scene sources (default: the scene's).
         #[arg(long, value_name = "WxH")]
         size: Option<String>,
+        /// Corner-catalogue level (with --source corners).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+        level: u8,
+        /// Power-table shininess for corners, random and exhaustive sources (default: the config's).
+        #[arg(long)]
+        shininess: Option<u32>,
     },
     /// Run the generated RTL against golden vectors under Icarus and/or Verilator.
     Regress {
@@ -239,7 +245,9 @@ pub fn run() -> anyhow::Result<()> {
             write_files(&out, &files)?;
             outln!("wrote {} ROM files to {}", files.len(), out.display());
         }
-        Cmd::Vectors { source, target, pick, out, seed, format, size } => vectors(&source, &target, &pick, &out, seed, format, size.as_deref())?,
+        Cmd::Vectors { source, target, pick, out, seed, format, size, level, shininess } => {
+            vectors(&source, &target, &pick, &out, seed, format, size.as_deref(), level, shininess)?
+        }
         Cmd::Regress { sim, pick, vectors, random, random_icarus, seed, no_scenes, scene_size, work, junit, waves, max_errors } => {
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
@@ -390,9 +398,16 @@ pub fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>
     Ok(files)
 }
 
-fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed: u64, format: VecFormat, size: Option<&str>) -> Result<()> {
+#[allow(clippy::too_many_arguments)]
+fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed: u64, format: VecFormat, size: Option<&str>, level: u8, shininess: Option<u32>) -> Result<()> {
     use crate::vectors::{dump, DumpOptions, Source};
-    let src = Source::parse(source)?;
+    let mut src = Source::parse(source)?;
+    if let Source::Corners(l) = &mut src {
+        *l = level;
+    }
+    if shininess.is_some_and(|n| n > 1024) {
+        return Err(Error::Other("--shininess: out of range\n  fix: use 0..=1024".into()));
+    }
     // A scene source renders under the scene's own configuration unless one is given.
     let cfg = match (&src, &pick.config, &pick.scene) {
         (Source::Scene(name), None, None) => Scene::load(name)?.derive_config()?,
@@ -415,6 +430,7 @@ fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed:
         seed,
         size: size.map(parse_size).transpose()?,
         command: invocation(),
+        shininess,
     };
     let t0 = std::time::Instant::now();
     let sets = dump(&cfg, &src, &targets, out, &opts)?;

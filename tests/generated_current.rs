@@ -37,8 +37,8 @@ fn checked_in_vectors_are_current() {
     let cfg = PipelineConfig::default();
     let tmp = tempfile::tempdir().unwrap();
     let all: Vec<String> = gbump::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
-    for (src, cmd) in [(Source::Corners, "gbump vectors --source corners --out vectors"), (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors")] {
-        let o = DumpOptions { text: true, binary: true, seed: 1, size: None, command: cmd.into() };
+    for (src, cmd) in [(Source::Corners(1), "gbump vectors --source corners --out vectors"), (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors")] {
+        let o = DumpOptions { text: true, binary: true, seed: 1, size: None, command: cmd.into(), shininess: None };
         dump(&cfg, &src, &all, tmp.path(), &o).unwrap();
     }
     let files: Vec<(String, Vec<u8>)> = std::fs::read_dir(tmp.path())

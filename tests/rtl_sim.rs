@@ -45,8 +45,10 @@ fn check_suite(text: &str, min_scenes: usize) {
         assert!(mine.iter().all(|x| x.3 == 0 && x.2 > 0), "{sim}: a run failed or was empty");
         let random_top = mine.iter().find(|x| x.1.starts_with("random") && x.1.ends_with("_top")).expect("random top set");
         assert_eq!(random_top.2, if sim == "icarus" { 100_000 } else { 1_000_000 }, "{sim} random count");
-        assert!(mine.iter().any(|x| x.1 == "corners_top"));
-        assert!(mine.iter().any(|x| x.1 == "exhaustive_power_table_power_table" && x.2 > 256));
+        assert!(mine.iter().any(|x| x.1 == "corners_level2_top"));
+        // The power table exhaustively for the reset shininess and for n = 0, 1, 2, 254, 255, 1024.
+        let power: Vec<_> = mine.iter().filter(|x| x.1.starts_with("exhaustive_power_table_n") && x.2 > 256).collect();
+        assert!(power.len() >= 6, "{sim}: exhaustive power-table sets: {power:?}");
         assert!(mine.iter().filter(|x| x.1.starts_with("scene_")).count() >= min_scenes, "{sim}: scene sets");
     }
 }
@@ -109,7 +111,7 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     assert!(text.contains("+ 17'd128;"));
     std::fs::write(tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
     let vec_dir = work.join("vectors");
-    let o = gbump::vectors::DumpOptions { text: true, binary: true, seed: 1, size: None, command: "test".into() };
+    let o = gbump::vectors::DumpOptions { text: true, binary: true, seed: 1, size: None, command: "test".into(), shininess: None };
     let sets = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Exhaustive("texture_modulate".into()), &["texture_modulate".into()], &vec_dir, &o).unwrap();
     let opts = RegressOptions { sims: vec![Sim::Icarus, Sim::Verilator], random_verilator: 0, random_icarus: 0, seed: 1, scenes: false, scene_size: None, work: work.clone(), waves: false, max_errors: 5, command: "test".into() };
     let res = run_sets(&cfg, &[(sets[0].manifest.clone(), None)], &rtl, &opts).unwrap();

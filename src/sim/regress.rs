@@ -50,8 +50,8 @@ pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<(Vec
 pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec<(PathBuf, Option<Sim>)>> {
     let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
     let mut sets = Vec::new();
-    let dopt = |seed| DumpOptions { text: true, binary: true, seed, size: o.scene_size, command: o.command.clone() };
-    for s in dump(cfg, &Source::Corners, &all, dir, &dopt(o.seed))? {
+    let dopt = |seed| DumpOptions { text: true, binary: true, seed, size: o.scene_size, command: o.command.clone(), shininess: None };
+    for s in dump(cfg, &Source::Corners(2), &all, dir, &dopt(o.seed))? {
         sets.push((s.manifest, None));
     }
     // Random sets sized per simulator: Icarus is about a hundred times slower.
@@ -77,9 +77,20 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             }
         }
     }
-    for unit in ["power_table", "texture_modulate", "bump_fetch"] {
-        if crate::vectors::writer::unit_present(cfg, unit) {
-            for s in dump(cfg, &Source::Exhaustive(unit.into()), &[unit.to_string()], dir, &dopt(o.seed))? {
+    for unit in ["texture_modulate", "bump_fetch"] {
+        for s in dump(cfg, &Source::Exhaustive(unit.into()), &[unit.to_string()], dir, &dopt(o.seed))? {
+            sets.push((s.manifest, None));
+        }
+    }
+    // The power table exhaustively for its reset shininess and for the extremes, each set
+    // loading its own table through the load port.
+    if cfg.specular {
+        let mut ns = vec![cfg.shininess, 0, 1, 2, 254, 255, 1024];
+        ns.dedup();
+        for n in ns {
+            let sub = dir.join(format!("power_n{n}"));
+            let opts = DumpOptions { shininess: Some(n), ..dopt(o.seed) };
+            for s in dump(cfg, &Source::Exhaustive("power_table".into()), &["power_table".to_string()], &sub, &opts)? {
                 sets.push((s.manifest, None));
             }
         }

@@ -19,7 +19,7 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let hash = &cfg.hash()[..8];
     let rtl = write_rtl(cfg, &work.join(format!("rtl_{hash}")), "gbump render --rtl")?;
     let vdir = work.join(format!("image_{hash}_{}", scene.name));
-    let opts = DumpOptions { text: false, binary: true, seed: 0, size: Some((w, h)), command: format!("gbump render --rtl --scene {scene_name}") };
+    let opts = DumpOptions { text: false, binary: true, seed: 0, size: Some((w, h)), command: format!("gbump render --rtl --scene {scene_name}"), shininess: None };
     let sets = dump(cfg, &Source::Scene(scene_name.to_string()), &["top".to_string()], &vdir, &opts)?;
     let exe = verilator::build_harness(&work.join("build"), &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"), &harness_top(cfg), &rtl.0, &rtl.1)?;
     // The same fragments in the same order as the dump, to know where each colour goes.

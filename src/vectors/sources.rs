@@ -11,7 +11,8 @@ use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot, MAX_LIGHTS};
 #[derive(Clone, Debug, PartialEq)]
 pub enum Source {
     Scene(String),
-    Corners,
+    /// The corner-case catalogue at a level (1: each unit's edges; 2: adds sweeps around them).
+    Corners(u8),
     Random(u64),
     Exhaustive(String),
 }
@@ -20,7 +21,7 @@ impl Source {
     pub fn parse(s: &str) -> Result<Source> {
         let bad = || Error::Other(format!("--source {s}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"));
         Ok(match s.split_once(':') {
-            None if s == "corners" => Source::Corners,
+            None if s == "corners" => Source::Corners(1),
             Some(("scene", n)) if !n.is_empty() => Source::Scene(n.to_string()),
             Some(("random", n)) => {
                 let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
@@ -38,7 +39,8 @@ impl Source {
     pub fn stem(&self) -> String {
         match self {
             Source::Scene(n) => format!("scene_{}", std::path::Path::new(n).file_stem().map_or(n.clone(), |s| s.to_string_lossy().into())),
-            Source::Corners => "corners".into(),
+            Source::Corners(1) => "corners".into(),
+            Source::Corners(l) => format!("corners_level{l}"),
             Source::Random(n) => format!("random{n}"),
             Source::Exhaustive(u) => format!("exhaustive_{u}"),
         }
@@ -91,8 +93,17 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
     }
 }
 
-/// The corner-case catalogue (level 1). Each entry says why it is there.
-pub fn corners(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
+/// The corner-case catalogue at `level`. Each entry says why it is there.
+pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
+    let mut v: Vec<(String, TopStim)> = corners_level1(cfg).into_iter().map(|(w, s)| (w.to_string(), s)).collect();
+    if level >= 2 {
+        v.extend(corners_level2(cfg));
+    }
+    v
+}
+
+/// Level 1: every unit at its edges, one vector each.
+fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let o = one(cfg);
     let cmax = cfg.colour_max();
     let half = 1u32 << (cfg.normal_bits - 1);
@@ -108,6 +119,7 @@ pub fn corners(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
         TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
     };
     let mut v = vec![
+        // Each entry: why it is there, then the stimulus.
         ("flat normal, light and half vector straight up: B·L = 1 - 2^-(w-1), the largest dot", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax)),
         ("light exactly in the surface plane: B·L = 0", base(flat, [o, 0, 0], [o, 0, 0], cmax, kone, 10, cmax)),
         ("light below the horizon: B·L < 0 clamps to 0 (self-shadowing)", base(flat, [0, 0, -o], [0, 0, -o], cmax, kone, 10, cmax)),
@@ -136,6 +148,56 @@ pub fn corners(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
         v.push(("a single active light slot (each slot in turn)", s));
     }
     let _ = MAX_LIGHTS;
+    v
+}
+
+/// Level 2: sweeps of one and two LSBs around every edge of level 1, grazing and
+/// below-horizon angles, the largest gradients in eight directions, unnormalised vectors.
+fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
+    let o = one(cfg);
+    let cmax = cfg.colour_max();
+    let half = 1u32 << (cfg.normal_bits - 1);
+    let nmax = (1u32 << cfg.normal_bits) - 1;
+    let kone = 1i64 << cfg.k_bits;
+    let lh = cfg.lh_fmt();
+    let flat = [half, half, nmax];
+    let mk = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
+        let mut st = BumpState::default();
+        for s in st.lights.iter_mut().take(cfg.lights as usize) {
+            *s = LightSlot { l: l.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), h: h.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), colour: [cmax; 3], k };
+        }
+        TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
+    };
+    let mut v = Vec::new();
+    // B·L = +1 exactly (B = -1 on x, L = -1 on x) and one or two L LSBs either side.
+    for d in -2i64..=2 {
+        v.push((format!("B·L = +1 {d:+} LSB of L (exact +1 needs B = -1: the positive range stops at 1 - 2^-(w-1))"), mk([0, half, half], [-o + d, 0, 0], [-o + d, 0, 0], kone, 0, cmax)));
+        v.push((format!("B·L = -1 {d:+} LSB of L: the most negative dot clamps to 0"), mk([half, half, 0], [0, 0, o + d], [0, 0, o + d], kone, 0, cmax)));
+        v.push((format!("B·L = 0 {d:+} LSB: either side of the clamp"), mk(flat, [o, 0, d], [o, 0, d], kone, 0, cmax)));
+    }
+    // Elevations of L and H above and below the horizon, in degrees.
+    for deg in [-45.0f64, -1.0, -0.1, 0.0, 0.05, 0.1, 0.5, 1.0, 2.0, 5.0, 30.0, 89.9] {
+        let r = deg.to_radians();
+        let l = [(r.cos() * o as f64).round() as i64, 0, (r.sin() * o as f64).round() as i64];
+        v.push((format!("light and half vector at {deg}° elevation (grazing, horizon and self-shadowing)"), mk(flat, l, l, kone, 20, cmax)));
+    }
+    // Largest gradients: normals nearly in the surface plane, eight directions.
+    let m = nmax as i64;
+    let h2 = half as i64;
+    for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, 1), (1, -1), (-1, -1)] {
+        let comp = |d: i64| (if d > 0 { m } else if d < 0 { 0 } else { h2 }) as u32;
+        v.push((format!("largest gradient towards ({dx}, {dy}): normal almost in the plane"), mk([comp(dx), comp(dy), half + 1], [dx * o / 2, dy * o / 2, o / 2], [0, 0, o], kone, 0, cmax)));
+    }
+    // Unnormalised by quantisation: components rounded up push |L| above 1.
+    let c3 = ((o as f64) / 3f64.sqrt()).ceil() as i64;
+    v.push(("L = (1,1,1)/√3 rounded up: |L| slightly above 1".into(), mk([nmax, nmax, nmax], [c3; 3], [c3; 3], kone, 0, cmax)));
+    v.push(("L and H at the largest raw code on every component: |L| ≈ 3.46".into(), mk([nmax, nmax, nmax], [lh.max_raw(); 3], [lh.max_raw(); 3], kone, 0, cmax)));
+    // k at 0, one LSB, one LSB below 1, 1; C_src at 0 and max; texel 0 and max.
+    for k in [0, 1, kone - 1, kone] {
+        for (c, t) in [(0, 0), (0, cmax), (cmax, 0), (cmax, cmax), (cmax / 2, cmax / 2 + 1)] {
+            v.push((format!("k = {k}/2^K with C_src {c}, texel {t}"), mk(flat, [0, 0, o], [0, 0, o], k, c, t)));
+        }
+    }
     v
 }
 

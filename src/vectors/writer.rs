@@ -24,6 +24,8 @@ pub struct DumpOptions {
     pub size: Option<(u32, u32)>,
     /// The command line, recorded in manifests.
     pub command: String,
+    /// Power-table shininess for non-scene sources (default: the config's).
+    pub shininess: Option<u32>,
 }
 
 /// A written set.
@@ -182,9 +184,15 @@ pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
 }
 
 /// Top stimuli of a source, grouped by power-table shininess.
-fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
     Ok(match src {
-        Source::Corners => vec![(cfg.shininess, "corners".into(), corners(cfg).into_iter().map(|c| c.1).collect())],
+        Source::Corners(level) => {
+            let cat = corners(cfg, *level);
+            // The catalogue beside the vectors: record number and why it is there.
+            let text: String = cat.iter().enumerate().map(|(i, (why, _))| format!("{i}\t{why}\n")).collect();
+            crate::render::output::write_atomic(&dir.join(format!("{}_catalogue.txt", src.stem())), text.as_bytes())?;
+            vec![(o.shininess.unwrap_or(cfg.shininess), src.stem(), cat.into_iter().map(|c| c.1).collect())]
+        }
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, "pipeline config")?;
@@ -215,13 +223,16 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
     match src {
         Source::Exhaustive(unit) => {
             let stims = exhaustive(cfg, unit)?;
-            let table = PowerTable::build(cfg, cfg.shininess);
-            let mut w = SetWriter::new(dir, &src.stem(), unit, unit_layout(cfg, unit), o, u64::MAX)?;
+            let n = o.shininess.unwrap_or(cfg.shininess);
+            let table = PowerTable::build(cfg, n);
+            let stem = if o.shininess.is_some() { format!("{}_n{n}", src.stem()) } else { src.stem() };
+            let mut w = SetWriter::new(dir, &stem, unit, unit_layout(cfg, unit), o, u64::MAX)?;
             write_units(cfg, &table, &stims, &mut [&mut w])?;
-            out.push(w.finish(dir, cfg, src, o, cfg.shininess)?);
+            out.push(w.finish(dir, cfg, src, o, n)?);
         }
         Source::Random(n) => {
-            let table = PowerTable::build(cfg, cfg.shininess);
+            let shin = o.shininess.unwrap_or(cfg.shininess);
+            let table = PowerTable::build(cfg, shin);
             let mut ws = open(dir, &src.stem(), &targets, cfg, o, *n)?;
             let table = &table;
             const CHUNK: u64 = 1 << 14;
@@ -282,11 +293,11 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                 writer.join().expect("writer thread")
             })?;
             for w in ws {
-                out.push(w.finish(dir, cfg, src, o, cfg.shininess)?);
+                out.push(w.finish(dir, cfg, src, o, shin)?);
             }
         }
         _ => {
-            for (n, stem, stims) in top_groups(cfg, src, o)? {
+            for (n, stem, stims) in top_groups(cfg, src, o, dir)? {
                 let table = PowerTable::build(cfg, n);
                 let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
                 write_tops(cfg, &table, &stims, &mut ws, true)?;
