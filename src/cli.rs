@@ -145,6 +145,22 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-lint")]
         work: PathBuf,
     },
+    /// Draw random valid configurations; generate, lint and simulate each on Verilator.
+    Fuzz {
+        /// Stop after this many minutes.
+        #[arg(long, default_value_t = 10.0)]
+        minutes: f64,
+        /// Stop after this many configurations (whichever comes first).
+        #[arg(long)]
+        configs: Option<u64>,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Random top vectors per configuration (unit sets get as many each).
+        #[arg(long, default_value_t = 2000)]
+        random: u64,
+        #[arg(long, default_value = "target/gbump-fuzz")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -264,6 +280,7 @@ pub fn run() -> anyhow::Result<()> {
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
         Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
+        Cmd::Fuzz { minutes, configs, seed, random, work } => fuzz(minutes, configs, seed, random, &work)?,
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {
@@ -521,4 +538,28 @@ pub fn interface_markdown(cfg: &PipelineConfig) -> String {
         s += &format!("| `{n}` | {d} | {w} |\n");
     }
     s + "\n" + &crate::units::markdown_table(cfg)
+}
+
+fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path) -> Result<()> {
+    if !(minutes > 0.0 && minutes.is_finite()) {
+        return Err(Error::Other(format!("--minutes {minutes}: must be a positive number")));
+    }
+    crate::sim::require(crate::sim::Sim::Verilator)?;
+    let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
+    let mut rng = crate::vectors::rng::SplitMix64(seed);
+    let t0 = std::time::Instant::now();
+    let (mut n, mut vectors) = (0u64, 0u64);
+    while t0.elapsed().as_secs_f64() < minutes * 60.0 && configs.is_none_or(|c| n < c) {
+        let cfg = crate::sim::fuzz::random_config(&mut rng);
+        let v = crate::sim::fuzz::check_config(&cfg, &work, random, seed.wrapping_add(n))?;
+        n += 1;
+        vectors += v;
+        outln!("config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {} table {}x{} colour {} k {}, {:?}, {:?})", cfg.hash(), cfg.light_mode, cfg.lights,
+            cfg.normal_bits, cfg.lh_bits, cfg.dot_bits, cfg.power_entries, cfg.power_bits + 1, cfg.colour_bits, cfg.k_bits, cfg.rounding, cfg.blend_order);
+    }
+    outln!("fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s", t0.elapsed().as_secs_f64());
+    if n == 0 {
+        return Err(Error::Other("fuzz: no configuration was checked\n  fix: give more --minutes".into()));
+    }
+    Ok(())
 }

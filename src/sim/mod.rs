@@ -3,6 +3,7 @@
 //! compiled once; a run's verdict is the testbench's own "N passed, N failed" line.
 
 pub mod icarus;
+pub mod fuzz;
 pub mod lint;
 pub mod regress;
 pub mod rtl_image;

@@ -92,8 +92,17 @@ impl Record {
     }
 
     /// Set lane `i` of column `c` (two's complement values are masked to the lane width).
+    /// # Panics
+    /// When `v` fits the lane neither as an unsigned nor as a two's-complement value: a
+    /// generator bug, which must never be masked into a silently different stimulus.
     pub fn set_lane(&mut self, c: &Column, i: u32, v: i64) {
         let lw = c.width / c.lanes;
+        assert!(
+            lw >= 63 || (v >= -(1i64 << (lw - 1)) && v < (1i64 << lw)),
+            "value {v} does not fit {}-bit lane {i} of column {}",
+            lw,
+            c.name
+        );
         let mask = if lw >= 64 { u64::MAX } else { (1u64 << lw) - 1 };
         self.set(c.lsb + i * lw, lw, v as u64 & mask);
     }

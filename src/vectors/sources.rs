@@ -111,7 +111,10 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let kone = 1i64 << cfg.k_bits;
     let flat = [half, half, nmax];
     let lh = cfg.lh_fmt();
+    // Colours below are written for 8-bit channels and scaled to the configured width.
+    let sc = |x: u32| ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32;
     let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
+        let (c, t, lc) = (if c == cmax { c } else { sc(c) }, if t == cmax { t } else { sc(t) }, if lc == cmax { lc } else { sc(lc) });
         let mut st = BumpState::default();
         for s in st.lights.iter_mut().take(cfg.lights as usize) {
             *s = LightSlot { l, h, colour: [lc; 3], k };
@@ -161,7 +164,9 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let kone = 1i64 << cfg.k_bits;
     let lh = cfg.lh_fmt();
     let flat = [half, half, nmax];
+    let sc = |x: u32| ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32;
     let mk = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
+        let (c, t) = (if c == cmax || c == cmax / 2 || c == cmax / 2 + 1 { c } else { sc(c) }, if t == cmax || t == cmax / 2 + 1 || t == cmax / 2 { t } else { sc(t) });
         let mut st = BumpState::default();
         for s in st.lights.iter_mut().take(cfg.lights as usize) {
             *s = LightSlot { l: l.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), h: h.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), colour: [cmax; 3], k };
