@@ -467,7 +467,6 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         crate::sim::require(*s)?;
     }
     let h = &cfg.hash()[..8];
-    let rtl = write_rtl(&cfg, &o.work.join(format!("rtl_{h}")), &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()))?;
     let sets: Vec<(PathBuf, Option<crate::sim::Sim>)> = if vectors.is_empty() {
         let t0 = std::time::Instant::now();
         let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
@@ -488,8 +487,14 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         if v.is_empty() {
             return Err(Error::Other("--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into()));
         }
+        // Refuse truncated, corrupted or foreign sets before anything is generated or built.
+        for (m, _) in &v {
+            crate::vectors::verify(m)?;
+        }
         v
     };
+    let rtl = write_rtl(&cfg, &o.work.join(format!("rtl_{h}")), &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()))?;
+
     let results = run_sets(&cfg, &sets, &rtl, o)?;
     let (mut vecs, mut bad) = (0u64, 0usize);
     outln!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");

@@ -255,3 +255,10 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
         }
     }
 }
+
+#[test]
+fn random_configurations_generate_lint_and_simulate_clean() {
+    let o = gbump().args(["fuzz", "--configs", "4", "--seed", "7", "--random", "1000", "--work", "target/test-regress/fuzz"]).assert().success();
+    let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert!(text.contains("fuzz: 4 configurations"), "{text}");
+}
