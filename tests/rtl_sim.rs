@@ -74,7 +74,7 @@ fn regress_four_lights_serial_dot10() {
 
 #[test]
 fn lint_is_clean_for_three_configurations() {
-    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml")] {
+    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml")] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
         if let Some(p) = cfg {
@@ -254,6 +254,11 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
             assert!(o.failed == 0 && o.passed > 0, "{set} seed {seed}:\n{}", o.log);
         }
     }
+}
+
+#[test]
+fn the_configuration_the_fuzzer_found_simulates_clean() {
+    regress(&["--sim", "both", "--config", "tests/configs/fuzz_found_wide_dot.toml", "--random", "20000", "--random-icarus", "2000", "--no-scenes"], "fuzz_found");
 }
 
 #[test]
