@@ -58,5 +58,18 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_table_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*texture_modulate_{h}.v\" -match \"Bits of signal are not used: 'q*\"\n");
+    // Every configuration has the same top ports; the enable of a blend unit this
+    // configuration leaves out is accepted and ignored.
+    for (present, en) in [(cfg.diffuse, "de"), (cfg.specular, "se")] {
+        if !present {
+            s += "// This configuration has no ";
+            s += if en == "de" { "diffuse blend" } else { "specular path" };
+            s += ": its enable, light vectors (and power-table port) stay on the interface, unused.\n";
+            let sigs: &[&str] = if en == "de" { &["in_diffuse_en", "in_l", "fr_de"] } else { &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_se"] };
+            for sig in sigs {
+                s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
+            }
+        }
+    }
     s
 }

@@ -137,7 +137,7 @@ fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in
         if rest.contains(&"texture_modulate") {
             side.push((format!("t{st}"), 3 * c, tt.clone()));
         }
-        if rest.contains(&"specular_blend") {
+        if rest.contains(&"specular_blend") && cfg.specular {
             side.extend([(format!("sf{st}"), fw, sf.clone()), (format!("k{st}"), kw, kk.clone()), (format!("lc{st}"), lw, ll.clone())]);
         }
         let side_ref: Vec<(&str, u32, String)> = side.iter().map(|(a, b, c)| (a.as_str(), *b, c.clone())).collect();
@@ -185,52 +185,74 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
     w.line("// Stage 1: bump_fetch; the rest of the fragment waits beside it.");
     w.line(format!("wire [{}:0] b1;", 3 * nb - 1));
     w.line(format!("{} u_bump_fetch (.clk(clk), .texel(in_texel), .b(b1));", module_name(cfg, "bump_fetch")));
-    regs(w, &[
-        ("v1", 1, "rst ? 1'b0 : in_valid".into()),
-        ("c1", 3 * c, "in_c_src".into()),
-        ("t1", 3 * c, "in_t".into()),
-        ("de1", 1, "in_diffuse_en".into()),
-        ("se1", 1, "in_specular_en".into()),
-        ("l1", 3 * n * lh, "in_l".into()),
-        ("h1", 3 * n * lh, "in_h".into()),
-        ("lc1", 3 * n * c, "in_lc".into()),
-        ("k1", n * (k + 1), "in_k".into()),
-    ]);
+    // A configuration without a blend unit leaves out its whole path (dot products, power
+    // table, factors); its enable and light vectors stay on the interface, waived in the .vlt.
+    let (d, sp) = (cfg.diffuse, cfg.specular);
+    let keep = |v: Vec<(&'static str, u32, String, bool)>| -> Vec<(&'static str, u32, String)> { v.into_iter().filter(|x| x.3).map(|x| (x.0, x.1, x.2)).collect() };
+    regs(w, &keep(vec![
+        ("v1", 1, "rst ? 1'b0 : in_valid".into(), true),
+        ("c1", 3 * c, "in_c_src".into(), true),
+        ("t1", 3 * c, "in_t".into(), true),
+        ("de1", 1, "in_diffuse_en".into(), d),
+        ("se1", 1, "in_specular_en".into(), sp),
+        ("l1", 3 * n * lh, "in_l".into(), d),
+        ("h1", 3 * n * lh, "in_h".into(), sp),
+        ("lc1", 3 * n * c, "in_lc".into(), true),
+        ("k1", n * (k + 1), "in_k".into(), true),
+    ]));
     let (den, sen) = enables(cfg, "de1", "se1", "b1");
     w.line("// Stage 2: dot_clamp for every L_i and H_i.");
-    w.line(format!("wire [{}:0] fd2;", n * (f + 1) - 1));
-    w.line(format!("wire [{}:0] xh2;", n * (f + 1) - 1));
-    for i in 0..n {
-        w.line(format!("{} u_dot_l{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("l1", i, 3 * lh), lane("fd2", i, f + 1)));
-        w.line(format!("{} u_dot_h{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("h1", i, 3 * lh), lane("xh2", i, f + 1)));
+    if d {
+        w.line(format!("wire [{}:0] fd2;", n * (f + 1) - 1));
     }
-    regs(w, &[
-        ("v2", 1, "rst ? 1'b0 : v1".into()),
-        ("c2", 3 * c, "c1".into()),
-        ("t2", 3 * c, "t1".into()),
-        ("de2", 1, den),
-        ("se2", 1, sen),
-        ("lc2", 3 * n * c, "lc1".into()),
-        ("k2", n * (k + 1), "k1".into()),
-    ]);
-    w.line(format!("// Stage 3: power_table with {n} read port(s)."));
-    w.line(format!("wire [{}:0] fs3;", n * (p + 1) - 1));
-    w.line(format!("{} #(.R({n})) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));", module_name(cfg, "power_table")));
-    regs(w, &[
-        ("v3", 1, "rst ? 1'b0 : v2".into()),
-        ("c3", 3 * c, "c2".into()),
-        ("t3", 3 * c, "t2".into()),
-        ("de3", 1, "de2".into()),
-        ("se3", 1, "se2".into()),
-        ("lc3", 3 * n * c, "lc2".into()),
-        ("k3", n * (k + 1), "k2".into()),
-        ("fd3", n * (f + 1), "fd2".into()),
-    ]);
-    w.line(format!("wire [{}:0] dfac3;", n * (ff + 1) - 1));
-    w.line(format!("wire [{}:0] sfac3;", n * (ff + 1) - 1));
+    if sp {
+        w.line(format!("wire [{}:0] xh2;", n * (f + 1) - 1));
+    }
     for i in 0..n {
-        w.line(format!("assign {} = {};", lane("dfac3", i, ff + 1), factor(cfg, &lane("fd3", i, f + 1), f, "de3")));
-        w.line(format!("assign {} = {};", lane("sfac3", i, ff + 1), factor(cfg, &lane("fs3", i, p + 1), p, "se3")));
+        if d {
+            w.line(format!("{} u_dot_l{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("l1", i, 3 * lh), lane("fd2", i, f + 1)));
+        }
+        if sp {
+            w.line(format!("{} u_dot_h{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("h1", i, 3 * lh), lane("xh2", i, f + 1)));
+        }
+    }
+    regs(w, &keep(vec![
+        ("v2", 1, "rst ? 1'b0 : v1".into(), true),
+        ("c2", 3 * c, "c1".into(), true),
+        ("t2", 3 * c, "t1".into(), true),
+        ("de2", 1, den, d),
+        ("se2", 1, sen, sp),
+        ("lc2", 3 * n * c, "lc1".into(), true),
+        ("k2", n * (k + 1), "k1".into(), true),
+    ]));
+    if sp {
+        w.line(format!("// Stage 3: power_table with {n} read port(s)."));
+        w.line(format!("wire [{}:0] fs3;", n * (p + 1) - 1));
+        w.line(format!("{} #(.R({n})) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));", module_name(cfg, "power_table")));
+    }
+    regs(w, &keep(vec![
+        ("v3", 1, "rst ? 1'b0 : v2".into(), true),
+        ("c3", 3 * c, "c2".into(), true),
+        ("t3", 3 * c, "t2".into(), true),
+        ("de3", 1, "de2".into(), d),
+        ("se3", 1, "se2".into(), sp),
+        ("lc3", 3 * n * c, "lc2".into(), true),
+        ("k3", n * (k + 1), "k2".into(), true),
+        ("fd3", n * (f + 1), "fd2".into(), d),
+    ]));
+    if d {
+        w.line(format!("wire [{}:0] dfac3;", n * (ff + 1) - 1));
+    }
+    if sp {
+        w.line(format!("wire [{}:0] sfac3;", n * (ff + 1) - 1));
+    }
+    for i in 0..n {
+        if d {
+            w.line(format!("assign {} = {};", lane("dfac3", i, ff + 1), factor(cfg, &lane("fd3", i, f + 1), f, "de3")));
+        }
+        if sp {
+            w.line(format!("assign {} = {};", lane("sfac3", i, ff + 1), factor(cfg, &lane("fs3", i, p + 1), p, "se3")));
+        }
     }
     w.line("// Stages 4-6: blends and texture in the configured order.");
     colour_stages(w, cfg, 3, "v3", "c3", "t3", "dfac3", "sfac3", "k3", "lc3");

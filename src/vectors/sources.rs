@@ -115,9 +115,10 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let sc = |x: u32| ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32;
     let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
         let (c, t, lc) = (if c == cmax { c } else { sc(c) }, if t == cmax { t } else { sc(t) }, if lc == cmax { lc } else { sc(lc) });
+        let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
         let mut st = BumpState::default();
         for s in st.lights.iter_mut().take(cfg.lights as usize) {
-            *s = LightSlot { l, h, colour: [lc; 3], k };
+            *s = LightSlot { l: fit(l), h: fit(h), colour: [lc; 3], k };
         }
         TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
     };
@@ -133,7 +134,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
         ("every light slot at full colour on a white source: saturation", base(flat, [0, 0, o], [0, 0, o], cmax, kone, cmax, cmax)),
         ("k = 0: lights switched off by modulation", base(flat, [0, 0, o], [0, 0, o], cmax, 0, 77, cmax)),
         ("black texel: diffuse multiplied away, specular kept in split order", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 100, 0)),
-        ("grazing light: x^n underflows to 0 in the power table", base(flat, [o, 0, 40], [o, 0, 40], cmax, kone, 0, cmax)),
+        ("grazing light: x^n underflows to 0 in the power table", base(flat, [o, 0, (o >> 8).max(1)], [o, 0, (o >> 8).max(1)], cmax, kone, 0, cmax)),
         ("normal nearly in the surface plane (largest gradient)", base([nmax, half, half + 1], [o, 0, 0], [o, 0, 0], cmax, kone, 0, cmax)),
         ("zero colour lights: nothing to add", base(flat, [0, 0, o], [0, 0, o], 0, kone, 128, 200)),
         ("unnormalised (long) L: dot above 1 clamps to 1", base(flat, [0, 0, lh.max_raw()], [0, 0, lh.max_raw()], cmax, kone, 0, cmax)),
