@@ -161,6 +161,16 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-fuzz")]
         work: PathBuf,
     },
+    /// Yosys area per unit and in total: gate equivalents, flip-flops, logic depth, ROM bits.
+    Area {
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, default_value = "target/gbump-area")]
+        work: PathBuf,
+        /// Also write the report as JSON.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -281,6 +291,14 @@ pub fn run() -> anyhow::Result<()> {
         }
         Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
         Cmd::Fuzz { minutes, configs, seed, random, work } => fuzz(minutes, configs, seed, random, &work)?,
+        Cmd::Area { pick, work, json } => {
+            let cfg = pick.resolve()?;
+            let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
+            if let Some(j) = json {
+                write_atomic(&j, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
+            }
+            out!("{}", crate::measure::area::markdown(&r));
+        }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {

@@ -1,3 +1,4 @@
 //! Measurements: image error now; area, unit error and sweeps build on it.
 
+pub mod area;
 pub mod image_metrics;

@@ -1,0 +1,100 @@
+//! Area by Yosys: each unit (and the top) synthesised alone with
+//! `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, reported as NAND2 gate
+//! equivalents (transistors / 4), with flip-flops, logic depth (`ltp -noff`) and ROM bits.
+
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::rtlgen::units_v::module_name;
+use crate::sim::{run_cmd, tail};
+use serde::Serialize;
+use std::path::Path;
+use std::process::Command;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct UnitArea {
+    pub unit: String,
+    pub module: String,
+    pub transistors: u64,
+    pub gate_equivalents: f64,
+    pub flip_flops: u64,
+    pub logic_depth: u64,
+    pub rom_bits: u64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct AreaReport {
+    pub config_hash: String,
+    pub yosys_version: String,
+    pub script: String,
+    pub units: Vec<UnitArea>,
+}
+
+/// The synthesis script for one module.
+pub fn script(files: &[String], top: &str) -> String {
+    format!(
+        "read_verilog -defer {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -o area.stat stat -tech cmos\ntee -a area.stat ltp -noff\n",
+        files.join(" ")
+    )
+}
+
+fn parse_stat(text: &str) -> Option<(u64, u64, u64)> {
+    let num = |key: &str| -> Option<u64> {
+        text.lines().rev().find(|l| l.contains(key)).and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches(['+', ')']).parse().ok()))
+    };
+    let transistors = num("Estimated number of transistors")?;
+    let ffs: u64 = text.lines().filter(|l| l.trim_start().starts_with("$_DFF")).filter_map(|l| l.split_whitespace().last()?.parse::<u64>().ok()).sum();
+    let depth = text.lines().rev().find(|l| l.contains("Longest topological path")).and_then(|l| l.split("length=").nth(1)?.trim_end_matches(['(', ')', ':']).trim_end_matches("):").parse().ok()).unwrap_or(0);
+    Some((transistors, ffs, depth))
+}
+
+/// Synthesise every unit present in `cfg` and the top.
+pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaReport> {
+    if !crate::sim::have("yosys") {
+        return Err(crate::sim::missing("yosys"));
+    }
+    let dir = work.join(format!("area_{}", &cfg.hash()[..8]));
+    let (v, _) = crate::sim::regress::write_rtl(cfg, &dir, command)?;
+    let files: Vec<String> = v.iter().map(|p| p.file_name().expect("file").to_string_lossy().into_owned()).collect();
+    let mut ver = Command::new("yosys");
+    ver.arg("-V");
+    let (_, version, _) = run_cmd(&mut ver, "yosys -V")?;
+    let mut units: Vec<(String, String)> = crate::sim::testbench::units_of(cfg).iter().map(|u| (u.to_string(), module_name(cfg, u))).collect();
+    units.push(("gbump_pipeline (top)".into(), module_name(cfg, "gbump_pipeline")));
+    let results: Vec<Result<UnitArea>> = {
+        use rayon::prelude::*;
+        units
+            .par_iter()
+            .map(|(unit, module)| {
+                let sub = dir.join(format!("syn_{module}"));
+                std::fs::create_dir_all(&sub).map_err(|e| Error::io(&sub, e))?;
+                let abs: Vec<String> = v.iter().map(|p| std::path::absolute(p).expect("path").display().to_string()).collect();
+                std::fs::write(sub.join("area.ys"), script(&abs, module)).map_err(|e| Error::io(&sub, e))?;
+                let mut c = Command::new("yosys");
+                c.args(["-q", "-s", "area.ys"]).current_dir(&sub);
+                let (ok, log, _) = run_cmd(&mut c, "yosys")?;
+                let stat = std::fs::read_to_string(sub.join("area.stat")).unwrap_or_default();
+                let (t, ffs, depth) = match (ok, parse_stat(&stat)) {
+                    (true, Some(x)) => x,
+                    _ => return Err(Error::Other(format!("yosys could not synthesise {module}:\n{}", tail(&log, 15)))),
+                };
+                let rom_bits = if unit == "power_table" || unit.starts_with("gbump_pipeline") && cfg.specular {
+                    (cfg.power_entries * (cfg.power_bits + 1)) as u64
+                } else {
+                    0
+                };
+                Ok(UnitArea { unit: unit.clone(), module: module.clone(), transistors: t, gate_equivalents: t as f64 / 4.0, flip_flops: ffs, logic_depth: depth, rom_bits })
+            })
+            .collect()
+    };
+    let units = results.into_iter().collect::<Result<Vec<_>>>()?;
+    Ok(AreaReport { config_hash: cfg.hash(), yosys_version: version.trim().to_string(), script: script(&files, "<module>"), units })
+}
+
+/// Markdown table of a report.
+pub fn markdown(r: &AreaReport) -> String {
+    let mut s = format!("Area of config `{}` ({}; script per module: `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| unit | GE | transistors | flip-flops | logic depth | ROM bits |\n|---|---:|---:|---:|---:|---:|\n", r.config_hash, r.yosys_version);
+    for u in &r.units {
+        s += &format!("| {} | {:.0} | {} | {} | {} | {} |\n", u.unit, u.gate_equivalents, u.transistors, u.flip_flops, u.logic_depth, u.rom_bits);
+    }
+    s
+}
