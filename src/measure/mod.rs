@@ -2,3 +2,4 @@
 
 pub mod area;
 pub mod image_metrics;
+pub mod unit_error;

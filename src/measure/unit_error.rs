@@ -1,0 +1,176 @@
+//! Error of the fixed-point model against exact arithmetic of the same equations, per unit
+//! and for the whole pipeline, in output LSBs: maximum, mean, the worst input, and a
+//! histogram. Inputs are the unit's own quantised inputs, so this is the error each
+//! narrowing adds, not the error of quantising the scene (that is the image error).
+
+use crate::config::{BlendOrder, PipelineConfig};
+use crate::model::blend::blend;
+use crate::model::dot_clamp::dot_clamp;
+use crate::model::power_table::powi_exact;
+use crate::model::texture_modulate::texture_modulate;
+use crate::model::{shade, BumpTexel, PowerTable};
+use crate::vectors::rng::SplitMix64;
+use crate::vectors::sources::{corners, random_stim};
+use crate::vectors::targets::TopStim;
+use serde::Serialize;
+
+/// Histogram bin upper edges, in LSBs.
+pub const BINS: [f64; 7] = [0.0, 0.5, 1.0, 2.0, 4.0, 8.0, f64::INFINITY];
+
+#[derive(Clone, Debug, Serialize)]
+pub struct ErrorStats {
+    pub unit: String,
+    pub source: String,
+    pub samples: u64,
+    pub max_lsb: f64,
+    pub mean_lsb: f64,
+    pub worst_input: String,
+    /// Counts per bin of `BINS` (error ≤ edge, above the previous edge).
+    pub histogram: Vec<u64>,
+}
+
+impl ErrorStats {
+    fn new(unit: &str, source: &str) -> ErrorStats {
+        ErrorStats { unit: unit.into(), source: source.into(), samples: 0, max_lsb: 0.0, mean_lsb: 0.0, worst_input: String::new(), histogram: vec![0; BINS.len()] }
+    }
+    fn add(&mut self, err: f64, input: impl FnOnce() -> String) {
+        let e = err.abs();
+        self.samples += 1;
+        self.mean_lsb += (e - self.mean_lsb) / self.samples as f64;
+        if e > self.max_lsb || self.worst_input.is_empty() {
+            self.max_lsb = self.max_lsb.max(e);
+            self.worst_input = input();
+        }
+        let bin = BINS.iter().position(|edge| e <= *edge + 1e-12).unwrap_or(BINS.len() - 1);
+        self.histogram[bin] += 1;
+    }
+}
+
+/// Exact evaluation of the pipeline's equations on a stimulus's quantised inputs: real dot
+/// products clamped to [0,1], exact powers, unrounded blends with saturation, exact c·t/max.
+pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, s: &TopStim) -> [f64; 3] {
+    let nf = cfg.normal_fmt();
+    let lf = cfg.lh_fmt();
+    let max = cfg.colour_max() as f64;
+    let BumpTexel::Rgb(t) = s.frag.bump else { return [0.0; 3] };
+    let b: Vec<f64> = t.iter().map(|&c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c))).collect();
+    let flat = t.iter().map(|&c| crate::model::bump_fetch::expand(cfg, c)).collect::<Vec<_>>() == cfg.flat_normal().to_vec();
+    let bypass = cfg.skip_flat && flat;
+    let d_on = cfg.diffuse && s.frag.diffuse_en && !bypass;
+    let s_on = cfg.specular && s.frag.specular_en && !bypass;
+    let (mut dif, mut spe) = ([0.0; 3], [0.0; 3]);
+    for ls in s.state.lights.iter().take(cfg.lights as usize) {
+        let dot = |v: [i64; 3]| (0..3).map(|i| b[i] * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0);
+        let k = cfg.k_fmt().to_f64(ls.k);
+        for ch in 0..3 {
+            if d_on {
+                dif[ch] += dot(ls.l) * k * ls.colour[ch] as f64;
+            }
+            if s_on {
+                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.colour[ch] as f64;
+            }
+        }
+    }
+    let mut out = [0.0; 3];
+    for ch in 0..3 {
+        let c = s.frag.c_src[ch] as f64;
+        let tex = s.frag.texel[ch] as f64 / max;
+        let c0 = (c + dif[ch]).min(max);
+        out[ch] = match cfg.blend_order {
+            BlendOrder::DiffuseTextureSpecular => (c0 * tex + spe[ch]).min(max),
+            BlendOrder::TextureLast => (c0 + spe[ch]).min(max) * tex,
+        };
+    }
+    out
+}
+
+/// Every unit's error and the pipeline's, over corners, `random` random stimuli and
+/// exhaustive sweeps where a unit is small enough.
+pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorStats> {
+    let n = cfg.shininess;
+    let table = PowerTable::build(cfg, n);
+    let mut rng = SplitMix64(seed);
+    let mut stims: Vec<(String, TopStim)> = corners(cfg, 2).into_iter().map(|(_, s)| ("corners".to_string(), s)).collect();
+    stims.extend((0..random).map(|_| ("random".to_string(), random_stim(cfg, &mut rng))));
+    let mut out = Vec::new();
+    // dot_clamp over every L and H of every stimulus.
+    let mut dot = ErrorStats::new("dot_clamp", "corners + random");
+    let nf = cfg.normal_fmt();
+    let lf = cfg.lh_fmt();
+    let one = (1u64 << cfg.dot_bits) as f64;
+    for (_, s) in &stims {
+        let BumpTexel::Rgb(t) = s.frag.bump else { continue };
+        let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
+        for ls in s.state.lights.iter().take(cfg.lights as usize) {
+            for v in [ls.l, ls.h] {
+                let exact = (0..3).map(|i| nf.to_f64(b[i]) * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0) * one;
+                dot.add(dot_clamp(cfg, b, v) as f64 - exact, || format!("B={b:?} V={v:?}"));
+            }
+        }
+    }
+    out.push(dot);
+    // power_table exhaustively over its input.
+    let mut pw = ErrorStats::new("power_table", &format!("exhaustive, n = {n}"));
+    let ps = (1u64 << cfg.power_bits) as f64;
+    for fd in 0..=(1i64 << cfg.dot_bits) {
+        let exact = powi_exact(fd as f64 / one, n) * ps;
+        pw.add(table.lookup(cfg, fd) as f64 - exact, || format!("x = {fd}/2^{}", cfg.dot_bits));
+    }
+    out.push(pw);
+    // Blends over random inputs in their own formats.
+    for unit in ["diffuse_blend", "specular_blend"] {
+        let mut st = ErrorStats::new(unit, "random");
+        let ff = cfg.factor_frac();
+        let max = cfg.colour_max() as u64;
+        for _ in 0..random {
+            let l = cfg.lights as usize;
+            let c_in = [0; 3].map(|_| rng.range(0, max as i64) as u32);
+            let f: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << ff)).collect();
+            let k: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << cfg.k_bits)).collect();
+            let lc: Vec<[u32; 3]> = (0..l).map(|_| [0; 3].map(|_| rng.range(0, max as i64) as u32)).collect();
+            let o = blend(cfg, c_in, &f, &k, &lc);
+            for ch in 0..3 {
+                let add: f64 = (0..l).map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_bits) as f64 * lc[i][ch] as f64).sum();
+                st.add(o[ch] as f64 - (c_in[ch] as f64 + add).min(max as f64), || format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}"));
+            }
+        }
+        out.push(st);
+    }
+    // texture_modulate exhaustively.
+    let mut tm = ErrorStats::new("texture_modulate", "exhaustive");
+    let max = cfg.colour_max();
+    for c in 0..=max {
+        for t in 0..=max {
+            let o = texture_modulate(cfg, [c, 0, 0], [t, 0, 0])[0];
+            tm.add(o as f64 - c as f64 * t as f64 / max as f64, || format!("c={c} t={t}"));
+        }
+    }
+    out.push(tm);
+    // The whole pipeline.
+    for src in ["corners", "random"] {
+        let mut st = ErrorStats::new("gbump_pipeline", src);
+        for (_, s) in stims.iter().filter(|(k, _)| k == src) {
+            let got = shade(cfg, &table, None, &s.state, &s.frag).colour();
+            let exact = exact_pipeline(cfg, n, s);
+            for ch in 0..3 {
+                st.add(got[ch] as f64 - exact[ch], || format!("{:?}", s.frag));
+            }
+        }
+        out.push(st);
+    }
+    out
+}
+
+/// Markdown table of unit errors.
+pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
+    let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
+    for e in stats {
+        let h: Vec<String> = e.histogram.iter().map(|x| x.to_string()).collect();
+        s += &format!("| {} | {} | {} | {:.3} | {:.4} | {} |\n", e.unit, e.source, e.samples, e.max_lsb, e.mean_lsb, h.join(" | "));
+    }
+    s += "\nWorst inputs:\n\n";
+    for e in stats {
+        s += &format!("- {} ({}): {:.3} LSB at {}\n", e.unit, e.source, e.max_lsb, e.worst_input);
+    }
+    s
+}
