@@ -187,6 +187,16 @@ pub enum Cmd {
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
     },
+    /// Compare power-unit designs (tables, interpolation, segments, squaring) for every n.
+    PowerSpace {
+        #[command(flatten)]
+        pick: ConfigPick,
+        /// Largest exponent to check.
+        #[arg(long, default_value_t = 255)]
+        max_n: u32,
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -329,6 +339,18 @@ pub fn run() -> anyhow::Result<()> {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
                     "scenes": scenes.iter().map(|(n, g, r)| serde_json::json!({"scene": n, "vs_gouraud_f64": g, "vs_reference": r})).collect::<Vec<_>>()});
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
+            }
+        }
+        Cmd::PowerSpace { pick, max_n, json } => {
+            let cfg = pick.resolve()?;
+            if !(1..=1024).contains(&max_n) {
+                return Err(Error::Other(format!("--max-n {max_n}: out of range\n  fix: use 1..=1024")).into());
+            }
+            let fm = crate::model::power_unit::PowerFormats { f: cfg.dot_bits, p: cfg.power_bits };
+            let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
+            out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
+            if let Some(j) = json {
+                write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
             }
         }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),

@@ -2,4 +2,5 @@
 
 pub mod area;
 pub mod image_metrics;
+pub mod power_space;
 pub mod unit_error;

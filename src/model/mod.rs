@@ -12,6 +12,7 @@ pub mod bump_fetch;
 pub mod dot_clamp;
 pub mod pipeline;
 pub mod power_table;
+pub mod power_unit;
 pub mod texture_modulate;
 
 pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};

@@ -1,0 +1,214 @@
+//! The design space of the power unit fs = x^n (issue: the paper's 256-entry table loses
+//! accuracy as n grows). Each design is evaluated bit-exactly on the clamped dot product
+//! x = fd / 2^F (u1.F) and produces u1.P, like `power_table`:
+//!
+//! - `Table`: the paper's table, N entries at x_i = i/(N-1), nearest or truncating index;
+//! - `Lerp`: N uniform knots with linear interpolation (one multiplier);
+//! - `Segmented`: S segments halving towards x = 1 (where x^n changes fastest), M entries
+//!   each holding the minimax constant of its interval, optionally interpolated;
+//! - `Squaring`: square-and-multiply on u1.(P+G) (the Cg tutorial's x^8 is three squarings);
+//!   no table, but up to 2·log2(n) multipliers and n fixed when the hardware is built.
+
+use crate::fixed::{shift_round, Rounding};
+use crate::model::power_table::powi_exact;
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum PowerDesign {
+    Table { entries: u32, nearest: bool },
+    Lerp { knots: u32 },
+    Segmented { segments: u32, per_segment: u32, lerp: bool },
+    Squaring { guard: u32 },
+}
+
+/// Input and output fraction bits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PowerFormats {
+    pub f: u32,
+    pub p: u32,
+}
+
+fn q(v: f64, p: u32) -> i64 {
+    (v * (1u64 << p) as f64 + 0.5).floor() as i64
+}
+
+/// Segment boundaries in y = 2^F - fd: segment s covers [lo, hi) (the first also y = 2^F).
+fn segment_bounds(f: u32, segments: u32, s: u32) -> (i64, i64) {
+    let hi = if s == 0 { (1i64 << f) + 1 } else { 1i64 << (f - s) };
+    let lo = if s + 1 == segments { 0 } else { 1i64 << (f - s - 1) };
+    (lo, hi)
+}
+
+impl PowerDesign {
+    /// A short label.
+    pub fn label(&self) -> String {
+        match self {
+            PowerDesign::Table { entries, nearest } => format!("table {entries} {}", if *nearest { "nearest" } else { "truncate" }),
+            PowerDesign::Lerp { knots } => format!("lerp {knots} knots"),
+            PowerDesign::Segmented { segments, per_segment, lerp } => format!("segmented {segments}x{per_segment}{}", if *lerp { " lerp" } else { "" }),
+            PowerDesign::Squaring { guard } => format!("squaring, {guard} guard bits"),
+        }
+    }
+
+    /// Storage the design needs, in bits.
+    pub fn rom_bits(&self, fm: PowerFormats) -> u64 {
+        let w = (fm.p + 1) as u64;
+        match *self {
+            PowerDesign::Table { entries, .. } => entries as u64 * w,
+            PowerDesign::Lerp { knots } => knots as u64 * w,
+            PowerDesign::Segmented { segments, per_segment, lerp } => (segments * (per_segment + u32::from(lerp))) as u64 * w,
+            PowerDesign::Squaring { .. } => 0,
+        }
+    }
+
+    /// Multipliers (and their operand widths) the design needs for exponents below 2^8.
+    pub fn multipliers(&self, fm: PowerFormats) -> (u32, u32) {
+        match *self {
+            PowerDesign::Table { .. } | PowerDesign::Segmented { lerp: false, .. } => (0, 0),
+            PowerDesign::Lerp { .. } | PowerDesign::Segmented { lerp: true, .. } => (1, fm.p + 1),
+            PowerDesign::Squaring { guard } => (15, fm.p + guard + 1),
+        }
+    }
+
+    /// The stored table for exponent `n` (empty for squaring).
+    pub fn table(&self, fm: PowerFormats, n: u32) -> Vec<i64> {
+        match *self {
+            PowerDesign::Table { entries, .. } => (0..entries).map(|i| q(powi_exact(i as f64 / (entries - 1) as f64, n), fm.p)).collect(),
+            PowerDesign::Lerp { knots } => (0..knots).map(|i| q(powi_exact(i as f64 / (knots - 1) as f64, n), fm.p)).collect(),
+            PowerDesign::Segmented { segments, per_segment, lerp } => {
+                let one = (1i64 << fm.f) as f64;
+                let mut t = Vec::new();
+                for s in 0..segments {
+                    let (lo, hi) = segment_bounds(fm.f, segments, s);
+                    let hi = hi.min((1 << fm.f) + 1);
+                    if lerp {
+                        // M + 1 knots at the entry boundaries of the segment, in y order.
+                        for j in 0..=per_segment {
+                            let y = lo as f64 + (hi - lo) as f64 * j as f64 / per_segment as f64;
+                            t.push(q(powi_exact((1.0 - y / one).max(0.0), n), fm.p));
+                        }
+                        continue;
+                    }
+                    for j in 0..per_segment {
+                        // Minimax constant over the codes of the entry.
+                        let a = lo + ((hi - lo) * j as i64) / per_segment as i64;
+                        let b = (lo + ((hi - lo) * (j as i64 + 1)) / per_segment as i64 - 1).max(a);
+                        let (x0, x1) = ((1.0 - b as f64 / one).max(0.0), (1.0 - a as f64 / one).max(0.0));
+                        t.push(q((powi_exact(x0, n) + powi_exact(x1, n)) / 2.0, fm.p));
+                    }
+                }
+                t
+            }
+            PowerDesign::Squaring { .. } => Vec::new(),
+        }
+    }
+
+    /// fs for input `fd` (u1.F) with the table of `table()` (or exponent `n` for squaring).
+    pub fn eval(&self, fm: PowerFormats, table: &[i64], n: u32, fd: i64) -> i64 {
+        let f = fm.f;
+        match *self {
+            PowerDesign::Table { entries, nearest } => {
+                let r = if nearest { Rounding::HalfUp } else { Rounding::Truncate };
+                table[shift_round(fd as i128 * (entries as i128 - 1), f, r) as usize]
+            }
+            PowerDesign::Lerp { knots } => {
+                let s = fd * (knots as i64 - 1);
+                let (i, fr) = ((s >> f) as usize, s & ((1 << f) - 1));
+                if i + 1 >= table.len() {
+                    return table[table.len() - 1];
+                }
+                table[i] + shift_round(((table[i + 1] - table[i]) * fr) as i128, f, Rounding::HalfUp) as i64
+            }
+            PowerDesign::Segmented { segments, per_segment, lerp } => {
+                let y = (1i64 << f) - fd;
+                let s = (0..segments).find(|&s| {
+                    let (lo, hi) = segment_bounds(f, segments, s);
+                    y >= lo && y < hi
+                });
+                let s = s.unwrap_or(segments - 1);
+                let (lo, hi) = segment_bounds(f, segments, s);
+                let hi = hi.min((1 << f) + 1);
+                let pos = (y - lo) * per_segment as i64;
+                let j = (pos / (hi - lo)).min(per_segment as i64 - 1);
+                if !lerp {
+                    return table[(s * per_segment) as usize + j as usize];
+                }
+                // Interpolate between the knots at the entry's two boundaries.
+                let base = (s * (per_segment + 1)) as usize + j as usize;
+                let w = (hi - lo) as f64 / per_segment as f64;
+                let t = (((y - lo) as f64 - w * j as f64) / w).clamp(0.0, 1.0);
+                let t_q = (t * (1u64 << f) as f64).round() as i64;
+                table[base] + shift_round(((table[base + 1] - table[base]) * t_q) as i128, f, Rounding::HalfUp) as i64
+            }
+            PowerDesign::Squaring { guard } => {
+                let w = fm.p + guard;
+                let x = shift_round((fd as i128) << w, f, Rounding::HalfUp) as i64;
+                let mut acc: i64 = 1 << w;
+                for bit in (0..32).rev() {
+                    acc = shift_round(acc as i128 * acc as i128, w, Rounding::HalfUp) as i64;
+                    if (n >> bit) & 1 == 1 {
+                        acc = shift_round(acc as i128 * x as i128, w, Rounding::HalfUp) as i64;
+                    }
+                }
+                shift_round(acc as i128, guard, Rounding::HalfUp) as i64
+            }
+        }
+    }
+
+    /// Largest error in output LSBs over every input code and every exponent in `ns`, with
+    /// the exponent and input where it occurs, and the mean.
+    pub fn worst_error(&self, fm: PowerFormats, ns: impl Iterator<Item = u32>) -> (f64, u32, i64, f64) {
+        let (mut worst, mut wn, mut wx, mut sum, mut cnt) = (0.0f64, 0, 0, 0.0, 0u64);
+        let one = (1i64 << fm.f) as f64;
+        let ps = (1u64 << fm.p) as f64;
+        for n in ns {
+            let t = self.table(fm, n);
+            for fd in 0..=(1i64 << fm.f) {
+                let e = (self.eval(fm, &t, n, fd) as f64 - powi_exact(fd as f64 / one, n) * ps).abs();
+                sum += e;
+                cnt += 1;
+                if e > worst {
+                    (worst, wn, wx) = (e, n, fd);
+                }
+            }
+        }
+        (worst, wn, wx, sum / cnt.max(1) as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_plain_table_matches_the_pipeline_unit() {
+        let cfg = crate::config::PipelineConfig::default();
+        let fm = PowerFormats { f: cfg.dot_bits, p: cfg.power_bits };
+        let d = PowerDesign::Table { entries: 256, nearest: true };
+        for n in [0, 1, 16, 255] {
+            let t = crate::model::PowerTable::build(&cfg, n);
+            assert_eq!(d.table(fm, n), t.entries);
+            for fd in 0..=256 {
+                assert_eq!(d.eval(fm, &t.entries, n, fd), t.lookup(&cfg, fd));
+            }
+        }
+    }
+
+    #[test]
+    fn a_table_with_an_entry_per_input_code_is_exactly_rounded() {
+        let fm = PowerFormats { f: 8, p: 8 };
+        let (worst, ..) = PowerDesign::Table { entries: 257, nearest: true }.worst_error(fm, 1..=255);
+        assert!(worst <= 0.5 + 1e-9, "{worst}");
+    }
+
+    #[test]
+    fn squaring_rounds_x_exactly_and_x_squared_within_a_double_rounding() {
+        let fm = PowerFormats { f: 8, p: 8 };
+        let d = PowerDesign::Squaring { guard: 4 };
+        let (w1, ..) = d.worst_error(fm, 1..=1);
+        let (w2, ..) = d.worst_error(fm, 2..=2);
+        // x^2 is rounded to P+G bits, then to P: at most 1/2 + 2^-G LSB.
+        assert!(w1 <= 0.5 + 1e-9 && w2 <= 0.5 + 1.0 / 16.0 + 1e-9, "{w1} {w2}");
+    }
+}
