@@ -196,6 +196,11 @@ pub enum Cmd {
         max_n: u32,
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
+        /// Also synthesise the plain tables and every design within 1 LSB with Yosys.
+        #[arg(long)]
+        area: bool,
+        #[arg(long, default_value = "target/gbump-power")]
+        work: PathBuf,
     },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
@@ -341,7 +346,7 @@ pub fn run() -> anyhow::Result<()> {
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
         }
-        Cmd::PowerSpace { pick, max_n, json } => {
+        Cmd::PowerSpace { pick, max_n, json, area, work } => {
             let cfg = pick.resolve()?;
             if !(1..=1024).contains(&max_n) {
                 return Err(Error::Other(format!("--max-n {max_n}: out of range\n  fix: use 1..=1024")).into());
@@ -349,6 +354,19 @@ pub fn run() -> anyhow::Result<()> {
             let fm = crate::model::power_unit::PowerFormats { f: cfg.dot_bits, p: cfg.power_bits };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
+            if area {
+                if !crate::sim::have("yosys") {
+                    return Err(crate::sim::missing("yosys").into());
+                }
+                out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
+                let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs.iter().filter(|r| r.max_lsb <= 1.0 || matches!(r.design, crate::model::power_unit::PowerDesign::Table { entries: 256, .. })).collect();
+                pick.sort_by_key(|r| r.rom_bits);
+                for r in pick {
+                    let dir = work.join(crate::rtlgen::power_units::name(&r.design, fm));
+                    let ge = crate::measure::power_space::area_ge(&r.design, fm, 16, &dir)?;
+                    out!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
+                }
+            }
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
             }

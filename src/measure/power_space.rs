@@ -70,3 +70,81 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
     }
     s
 }
+
+/// Write a design's RTL, its ROM (for exponent `n`) and return the Verilog file paths.
+fn write_design(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<(String, Vec<std::path::PathBuf>)> {
+    use crate::error::Error;
+    use crate::rtlgen::power_units::{name, rom, rom_depth, unit};
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let m = name(d, fm);
+    let mut files = vec![dir.join(format!("{m}.v"))];
+    std::fs::write(&files[0], unit(d, fm, n)).map_err(|e| Error::io(dir, e))?;
+    let depth = rom_depth(d, fm);
+    if depth > 0 {
+        let words: String = d.table(fm, n).iter().map(|v| format!("{v:x}\n")).collect();
+        std::fs::write(dir.join(format!("{m}.hex")), words).map_err(|e| Error::io(dir, e))?;
+        let rp = dir.join(format!("{m}_rom.v"));
+        std::fs::write(&rp, rom(&m, fm.p + 1, depth)).map_err(|e| Error::io(dir, e))?;
+        files.push(rp);
+    }
+    Ok((m, files))
+}
+
+/// Simulate a design under Icarus over every input code and compare with the model.
+/// Returns the number of inputs checked.
+pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<u64> {
+    use crate::error::Error;
+    let (m, files) = write_design(d, fm, n, dir)?;
+    let tb = format!(
+        "`timescale 1ns / 1ps\nmodule tb;\nreg clk = 0;\nreg [{f}:0] x = 0;\nwire [{p}:0] fs;\n{m} dut (.clk(clk), .x(x), .fs(fs));\ninteger i;\ninitial begin\n  for (i = 0; i <= {top}; i = i + 1) begin\n    x = i; #1 clk = 1; #1 clk = 0;\n    $display(\"%0d %0d\", i, fs);\n  end\n  $finish;\nend\nendmodule\n",
+        f = fm.f, p = fm.p, top = 1u64 << fm.f
+    );
+    let tbp = dir.join("tb.v");
+    std::fs::write(&tbp, tb).map_err(|e| Error::io(dir, e))?;
+    let exe = dir.join("tb.vvp");
+    let mut c = std::process::Command::new("iverilog");
+    c.args(["-g2005", "-o"]).arg(&exe).arg(&tbp).args(&files);
+    let (ok, log, _) = crate::sim::run_cmd(&mut c, "iverilog")?;
+    if !ok {
+        return Err(Error::Other(format!("iverilog failed on {m}:\n{}", crate::sim::tail(&log, 10))));
+    }
+    let mut r = std::process::Command::new("vvp");
+    r.arg("-n").arg(&exe).current_dir(dir);
+    let (_, out, _) = crate::sim::run_cmd(&mut r, "vvp")?;
+    let table = d.table(fm, n);
+    let mut checked = 0;
+    for line in out.lines() {
+        let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+        if v.len() != 2 {
+            continue;
+        }
+        let want = d.eval(fm, &table, n, v[0]);
+        if want != v[1] {
+            return Err(Error::Other(format!("{m} (n = {n}): x = {} gives {} in RTL, {want} in the model", v[0], v[1])));
+        }
+        checked += 1;
+    }
+    if checked != (1u64 << fm.f) + 1 {
+        return Err(Error::Other(format!("{m}: checked {checked} inputs\n{}", crate::sim::tail(&out, 10))));
+    }
+    Ok(checked)
+}
+
+/// Yosys gate equivalents of a design's datapath, its ROM left as a black box.
+pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<f64> {
+    use crate::error::Error;
+    let (m, files) = write_design(d, fm, n, dir)?;
+    let names: Vec<String> = files.iter().map(|p| p.file_name().expect("name").to_string_lossy().into_owned()).collect();
+    let bb = if files.len() > 1 { format!("blackbox {m}_rom\n") } else { String::new() };
+    let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -o area.stat stat -tech cmos\n", names.join(" "));
+    std::fs::write(dir.join("area.ys"), script).map_err(|e| Error::io(dir, e))?;
+    let mut c = std::process::Command::new("yosys");
+    c.args(["-q", "-s", "area.ys"]).current_dir(dir);
+    let (ok, log, _) = crate::sim::run_cmd(&mut c, "yosys")?;
+    let stat = std::fs::read_to_string(dir.join("area.stat")).unwrap_or_default();
+    let t: Option<u64> = stat.lines().rev().find(|l| l.contains("Estimated number of transistors")).and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches('+').parse().ok()));
+    match (ok, t) {
+        (true, Some(t)) => Ok(t as f64 / 4.0),
+        _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::sim::tail(&log, 10)))),
+    }
+}

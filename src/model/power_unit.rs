@@ -33,11 +33,28 @@ fn q(v: f64, p: u32) -> i64 {
     (v * (1u64 << p) as f64 + 0.5).floor() as i64
 }
 
-/// Segment boundaries in y = 2^F - fd: segment s covers [lo, hi) (the first also y = 2^F).
-fn segment_bounds(f: u32, segments: u32, s: u32) -> (i64, i64) {
-    let hi = if s == 0 { (1i64 << f) + 1 } else { 1i64 << (f - s) };
-    let lo = if s + 1 == segments { 0 } else { 1i64 << (f - s - 1) };
-    (lo, hi)
+/// The segment of y = 2^F - fd, as hardware finds it with a leading-zero count: segment 0
+/// covers y in [2^(F-1), 2^F] (y = 2^F is its last knot), segment s < S-1 covers
+/// [2^(F-1-s), 2^(F-s)), the last segment [0, 2^(F-S+1)). Returns (s, lo, log2 of width).
+pub fn segment_of(f: u32, segments: u32, y: i64) -> (u32, i64, u32) {
+    let lz = if y <= 0 { f } else { f - 1 - (63 - y.leading_zeros()).min(f - 1) };
+    let s = if y >= 1 << f { 0 } else { lz.min(segments - 1) };
+    if s + 1 == segments {
+        (s, 0, f + 1 - segments)
+    } else {
+        (s, 1i64 << (f - 1 - s), f - 1 - s)
+    }
+}
+
+/// Entry index within the segment and the remainder below it, in codes; with more entries
+/// than codes (`m > lw`) entries sit between codes and the remainder is always 0.
+fn entry_of(y: i64, lo: i64, lw: u32, m: u32) -> (i64, i64, u32) {
+    if lw >= m {
+        let sh = lw - m;
+        ((y - lo) >> sh, (y - lo) & ((1 << sh) - 1), sh)
+    } else {
+        ((y - lo) << (m - lw), 0, 0)
+    }
 }
 
 impl PowerDesign {
@@ -78,24 +95,30 @@ impl PowerDesign {
             PowerDesign::Lerp { knots } => (0..knots).map(|i| q(powi_exact(i as f64 / (knots - 1) as f64, n), fm.p)).collect(),
             PowerDesign::Segmented { segments, per_segment, lerp } => {
                 let one = (1i64 << fm.f) as f64;
+                let m = per_segment.trailing_zeros();
+                let x_of = |y: f64| (1.0 - y / one).max(0.0);
                 let mut t = Vec::new();
                 for s in 0..segments {
-                    let (lo, hi) = segment_bounds(fm.f, segments, s);
-                    let hi = hi.min((1 << fm.f) + 1);
+                    // Representative y inside the segment gives its lo and width.
+                    let probe = if s + 1 == segments { 0 } else { 1i64 << (fm.f - 1 - s) };
+                    let (_, lo, lw) = segment_of(fm.f, segments, probe);
+                    let step = (lw as f64 - m as f64).exp2();
                     if lerp {
-                        // M + 1 knots at the entry boundaries of the segment, in y order.
+                        // M + 1 knots at the entry boundaries.
                         for j in 0..=per_segment {
-                            let y = lo as f64 + (hi - lo) as f64 * j as f64 / per_segment as f64;
-                            t.push(q(powi_exact((1.0 - y / one).max(0.0), n), fm.p));
+                            t.push(q(powi_exact(x_of(lo as f64 + j as f64 * step), n), fm.p));
                         }
-                        continue;
-                    }
-                    for j in 0..per_segment {
-                        // Minimax constant over the codes of the entry.
-                        let a = lo + ((hi - lo) * j as i64) / per_segment as i64;
-                        let b = (lo + ((hi - lo) * (j as i64 + 1)) / per_segment as i64 - 1).max(a);
-                        let (x0, x1) = ((1.0 - b as f64 / one).max(0.0), (1.0 - a as f64 / one).max(0.0));
-                        t.push(q((powi_exact(x0, n) + powi_exact(x1, n)) / 2.0, fm.p));
+                    } else {
+                        // The minimax constant over the codes of each entry (segment 0's last
+                        // entry also holds y = 2^F, x = 0).
+                        for j in 0..per_segment {
+                            let a = lo as f64 + j as f64 * step;
+                            let mut b = (a + step - 1.0).max(a);
+                            if s == 0 && j + 1 == per_segment {
+                                b = one;
+                            }
+                            t.push(q((powi_exact(x_of(b), n) + powi_exact(x_of(a), n)) / 2.0, fm.p));
+                        }
                     }
                 }
                 t
@@ -122,23 +145,18 @@ impl PowerDesign {
             }
             PowerDesign::Segmented { segments, per_segment, lerp } => {
                 let y = (1i64 << f) - fd;
-                let s = (0..segments).find(|&s| {
-                    let (lo, hi) = segment_bounds(f, segments, s);
-                    y >= lo && y < hi
-                });
-                let s = s.unwrap_or(segments - 1);
-                let (lo, hi) = segment_bounds(f, segments, s);
-                let hi = hi.min((1 << f) + 1);
-                let pos = (y - lo) * per_segment as i64;
-                let j = (pos / (hi - lo)).min(per_segment as i64 - 1);
+                let (s, lo, lw) = segment_of(f, segments, y);
+                let m = per_segment.trailing_zeros();
+                let (j, r, sh) = entry_of(y, lo, lw, m);
                 if !lerp {
-                    return table[(s * per_segment) as usize + j as usize];
+                    return table[(s * per_segment) as usize + (j as usize).min(per_segment as usize - 1)];
                 }
-                // Interpolate between the knots at the entry's two boundaries.
+                // Between the knots at the entry's boundaries; y = 2^F lands exactly on knot M.
                 let base = (s * (per_segment + 1)) as usize + j as usize;
-                let w = (hi - lo) as f64 / per_segment as f64;
-                let t = (((y - lo) as f64 - w * j as f64) / w).clamp(0.0, 1.0);
-                let t_q = (t * (1u64 << f) as f64).round() as i64;
+                if r == 0 {
+                    return table[base];
+                }
+                let t_q = r << (f - sh);
                 table[base] + shift_round(((table[base + 1] - table[base]) * t_q) as i128, f, Rounding::HalfUp) as i64
             }
             PowerDesign::Squaring { guard } => {

@@ -4,6 +4,7 @@
 
 pub mod fixed_ops;
 pub mod interface;
+pub mod power_units;
 pub mod rom;
 pub mod top;
 pub mod units_v;

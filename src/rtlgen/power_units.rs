@@ -1,0 +1,166 @@
+//! Verilog for the power-unit designs of `model::power_unit`, as standalone units with a
+//! registered output (input `x`: u1.F, output `fs`: u1.P). Table-based designs read a
+//! separate ROM module (`<name>_rom`, two combinational read ports, `$readmemh` contents),
+//! so synthesis can count the datapath's gates apart from the storage, whose size is
+//! reported in bits.
+
+use super::writer::VWriter;
+use crate::model::power_unit::{segment_of, PowerDesign, PowerFormats};
+
+/// Module name of a design.
+pub fn name(d: &PowerDesign, fm: PowerFormats) -> String {
+    let tag = match *d {
+        PowerDesign::Table { entries, nearest } => format!("table{entries}{}", if nearest { "n" } else { "t" }),
+        PowerDesign::Lerp { knots } => format!("lerp{knots}"),
+        PowerDesign::Segmented { segments, per_segment, lerp } => format!("seg{segments}x{per_segment}{}", if lerp { "l" } else { "" }),
+        PowerDesign::Squaring { guard } => format!("sq{guard}"),
+    };
+    format!("pu_{tag}_f{}p{}", fm.f, fm.p)
+}
+
+fn head(w: &mut VWriter) {
+    w.line("`timescale 1ns / 1ps");
+    w.line("`default_nettype none");
+}
+
+/// The ROM module: `depth` words, two read ports.
+pub fn rom(module: &str, width: u32, depth: usize) -> String {
+    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let mut w = VWriter::new();
+    head(&mut w);
+    w.line(format!("module {module}_rom #(parameter INIT_FILE = \"{module}.hex\") (input wire [{}:0] a0, input wire [{}:0] a1, output wire [{}:0] d0, output wire [{}:0] d1);", ab - 1, ab - 1, width - 1, width - 1));
+    w.line(format!("reg [{}:0] mem [0:{}];", width - 1, depth - 1));
+    w.line("initial $readmemh(INIT_FILE, mem);");
+    w.line("assign d0 = mem[a0];");
+    w.line("assign d1 = mem[a1];");
+    w.line("endmodule");
+    w.line("`default_nettype wire");
+    w.finish()
+}
+
+/// Address bits of a design's ROM.
+pub fn rom_depth(d: &PowerDesign, fm: PowerFormats) -> usize {
+    (d.rom_bits(fm) / (fm.p as u64 + 1)) as usize
+}
+
+/// The datapath module (`n` only matters for squaring, where it is built in).
+pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
+    let (f, p) = (fm.f, fm.p);
+    let m = name(d, fm);
+    let depth = rom_depth(d, fm);
+    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let mut w = VWriter::new();
+    head(&mut w);
+    w.line(format!("// {}: x^n for x = x/2^{f} (u1.{f}) to u1.{p}, registered. See model::power_unit.", d.label()));
+    w.line(format!("module {m} (input wire clk, input wire [{f}:0] x, output reg [{p}:0] fs);"));
+    let rom_inst = |w: &mut VWriter| {
+        w.line(format!("wire [{p}:0] k0;"));
+        w.line(format!("wire [{p}:0] k1;"));
+        w.line(format!("{m}_rom u_rom (.a0(a0), .a1(a1), .d0(k0), .d1(k1));"));
+    };
+    // Rounded signed interpolation k0 + round((k1 - k0) * t / 2^F) in P+2+F+1 bits.
+    let interp = |w: &mut VWriter, t: &str, tw: u32| {
+        let pw = p + 2 + tw + 1;
+        w.line(format!("wire signed [{}:0] diff = $signed({{2'b00, k1}}) - $signed({{2'b00, k0}});", p + 2));
+        w.line(format!("wire signed [{}:0] prod = diff * $signed({{1'b0, {t}}});", pw - 1));
+        w.line(format!("wire signed [{}:0] step = (prod + {pw}'sd{}) >>> {f};", pw - 1, 1u64 << (f - 1)));
+        w.line(format!("wire [{p}:0] y_out = k0 + step[{p}:0];"));
+    };
+    match *d {
+        PowerDesign::Table { entries, nearest } => {
+            let ib = entries.trailing_zeros();
+            let sw = f + 1 + ib + 1;
+            w.line(format!("wire [{}:0] scaled = ({{{}'d0, x}} << {ib}) - {{{}'d0, x}};", sw - 1, ib + 1, ib + 1));
+            w.line(format!("wire [{}:0] rounded = scaled + {sw}'d{};", sw - 1, if nearest { 1u64 << (f - 1) } else { 0 }));
+            w.line(format!("wire [{}:0] a0 = rounded[{}:{f}];", ab - 1, f + ab - 1));
+            w.line(format!("wire [{}:0] a1 = a0;", ab - 1));
+            rom_inst(&mut w);
+            w.line("always @(posedge clk) fs <= k0;");
+        }
+        PowerDesign::Lerp { knots } => {
+            // x * (N - 1) by a constant multiply: N - 1 is not a power of two.
+            let sw = f + 1 + ab + 1;
+            w.line(format!("wire [{}:0] scaled = {{{}'d0, x}} * {sw}'d{};", sw - 1, ab + 1, knots - 1));
+            w.line(format!("wire [{}:0] i = scaled[{}:{f}];", ab - 1, f + ab - 1));
+            w.line(format!("wire [{}:0] fr = scaled[{}:0];", f - 1, f - 1));
+            w.line(format!("wire last = (i >= {ab}'d{});", knots - 1));
+            w.line(format!("wire [{}:0] a0 = last ? {ab}'d{} : i;", ab - 1, knots - 1));
+            w.line(format!("wire [{}:0] a1 = last ? {ab}'d{} : i + {ab}'d1;", ab - 1, knots - 1));
+            rom_inst(&mut w);
+            interp(&mut w, "fr", f);
+            w.line("always @(posedge clk) fs <= last ? k0 : y_out;");
+        }
+        PowerDesign::Segmented { segments, per_segment, lerp } => {
+            let mb = per_segment.trailing_zeros();
+            let sb = (32 - (segments - 1).leading_zeros()).max(1);
+            w.line(format!("wire [{f}:0] y = {{1'b1, {f}'d0}} - x;"));
+            w.line("// Segment: the leading one of y (segment 0 also holds y = 2^F).");
+            w.line(format!("reg [{}:0] s;", sb - 1));
+            w.line("integer i;");
+            w.block("always @* begin", "end", |w| {
+                w.line(format!("s = {sb}'d{};", segments - 1));
+                w.line(format!("for (i = {}; i >= 0; i = i - 1) if (y[{} - i]) s = i[{}:0];", segments as i32 - 2, f - 1, sb - 1));
+                w.line(format!("if (y[{f}]) s = {sb}'d0;"));
+            });
+            w.line(format!("reg [{f}:0] off;"));
+            w.line(format!("reg [{}:0] j;", f + mb));
+            w.line(format!("reg [{}:0] t;", f - 1));
+            w.block("always @*", "", |w| {
+                w.block("case (s)", "endcase", |w| {
+                    for s in 0..segments {
+                        let probe = if s + 1 == segments { 0 } else { 1i64 << (f - 1 - s) };
+                        let (_, lo, lw) = segment_of(f, segments, probe);
+                        let body = if lw >= mb {
+                            let sh = lw - mb;
+                            let tpart = if sh == 0 { format!("{f}'d0") } else { format!("{{off[{}:0], {}'d0}}", sh - 1, f - sh) };
+                            format!("begin off = y - {}'d{lo}; j = off >> {sh}; t = {tpart}; end", f + 1)
+                        } else {
+                            format!("begin off = y - {}'d{lo}; j = off << {}; t = {f}'d0; end", f + 1, mb - lw)
+                        };
+                        let label = if s + 1 == segments { "default".to_string() } else { format!("{sb}'d{s}") };
+                        w.line(format!("{label}: {body}"));
+                    }
+                });
+            });
+            let per = if lerp { per_segment + 1 } else { per_segment };
+            w.line(format!("wire [{}:0] jc = (j > {}) ? {}'d{} : j[{}:0];", ab - 1, per - 1, ab, per - 1, ab - 1));
+            w.line(format!("wire [{}:0] a0 = s * {ab}'d{per} + jc;", ab - 1));
+            w.line(format!("wire [{}:0] a1 = (t == {f}'d0) ? a0 : a0 + {ab}'d1;", ab - 1));
+            rom_inst(&mut w);
+            if lerp {
+                interp(&mut w, "t", f);
+                w.line(format!("always @(posedge clk) fs <= (t == {f}'d0) ? k0 : y_out;"));
+            } else {
+                w.line("always @(posedge clk) fs <= k0;");
+            }
+        }
+        PowerDesign::Squaring { guard } => {
+            let wd = p + guard;
+            w.line(format!("// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."));
+            let bits = 32 - n.leading_zeros();
+            w.line(format!("wire [{wd}:0] xw = ({{x, {wd}'d0}} + {}'d{}) >> {f};", f + wd + 1, 1u64 << (f - 1)));
+            let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
+            for (k, bit) in (0..bits).rev().enumerate() {
+                let sq = format!("sq{k}");
+                w.line(format!("wire [{}:0] {sq}_p = {acc} * {acc};", 2 * wd + 1));
+                w.line(format!("wire [{wd}:0] {sq} = ({sq}_p + {}'d{}) >> {wd};", 2 * wd + 2, 1u64 << (wd - 1)));
+                acc = sq.clone();
+                if (n >> bit) & 1 == 1 {
+                    let mu = format!("mu{k}");
+                    w.line(format!("wire [{}:0] {mu}_p = {acc} * xw;", 2 * wd + 1));
+                    w.line(format!("wire [{wd}:0] {mu} = ({mu}_p + {}'d{}) >> {wd};", 2 * wd + 2, 1u64 << (wd - 1)));
+                    acc = mu;
+                }
+            }
+            if guard == 0 {
+                w.line(format!("always @(posedge clk) fs <= {acc};"));
+            } else {
+                w.line(format!("wire [{}:0] fin = {acc} + {}'d{};", wd + 1, wd + 2, 1u64 << (guard - 1)));
+                w.line(format!("always @(posedge clk) fs <= fin[{}:{guard}];", wd));
+            }
+        }
+    }
+    w.line("endmodule");
+    w.line("`default_nettype wire");
+    w.finish()
+}
