@@ -202,6 +202,17 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-power")]
         work: PathBuf,
     },
+    /// Sweep a grid of configurations: CSV, JSON and an SVG of error against area with the Pareto front.
+    Sweep {
+        /// The space: [base] overrides and [grid] arrays of values (see sweeps/small.toml).
+        #[arg(long, value_name = "FILE")]
+        space: PathBuf,
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Cache of finished configurations (a re-run resumes from it).
+        #[arg(long, default_value = "target/gbump-sweep")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -370,6 +381,20 @@ pub fn run() -> anyhow::Result<()> {
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
             }
+        }
+        Cmd::Sweep { space, out, work } => {
+            let sp = crate::measure::sweep::Space::load(&space)?;
+            let t0 = std::time::Instant::now();
+            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, std::io::stderr().is_terminal())?;
+            let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
+            let files = vec![
+                (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),
+                (format!("{name}.json"), serde_json::to_string_pretty(&pts).expect("json")),
+                (format!("{name}.svg"), crate::measure::sweep::svg(&pts, &format!("{name}: error against area ({} configurations)", pts.len()))),
+            ];
+            write_files(&out, &files)?;
+            outln!("{} configurations in {:.0} s; Pareto front: {}", pts.len(), t0.elapsed().as_secs_f64(), pts.iter().filter(|p| p.pareto).map(|p| p.label.as_str()).collect::<Vec<_>>().join("; "));
+            outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
         }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {

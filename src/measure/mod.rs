@@ -3,4 +3,5 @@
 pub mod area;
 pub mod image_metrics;
 pub mod power_space;
+pub mod sweep;
 pub mod unit_error;
