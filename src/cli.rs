@@ -213,6 +213,13 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-sweep")]
         work: PathBuf,
     },
+    /// Measure speed: model, vector dump, Icarus, Verilator harness and raw Verilated rate.
+    Bench {
+        #[command(flatten)]
+        pick: ConfigPick,
+        #[arg(long, default_value = "target/gbump-bench")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -396,6 +403,7 @@ pub fn run() -> anyhow::Result<()> {
             outln!("{} configurations in {:.0} s; Pareto front: {}", pts.len(), t0.elapsed().as_secs_f64(), pts.iter().filter(|p| p.pareto).map(|p| p.label.as_str()).collect::<Vec<_>>().join("; "));
             outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
         }
+        Cmd::Bench { pick, work } => out!("{}", crate::measure::bench::bench(&pick.resolve()?, &work)?),
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {

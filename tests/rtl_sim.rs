@@ -114,12 +114,17 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     let o = gbump::vectors::DumpOptions { text: true, binary: true, seed: 1, size: None, command: "test".into(), shininess: None };
     let sets = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Exhaustive("texture_modulate".into()), &["texture_modulate".into()], &vec_dir, &o).unwrap();
     let opts = RegressOptions { sims: vec![Sim::Icarus, Sim::Verilator], random_verilator: 0, random_icarus: 0, seed: 1, scenes: false, scene_size: None, work: work.clone(), waves: false, max_errors: 5, command: "test".into() };
-    let res = run_sets(&cfg, &[(sets[0].manifest.clone(), None)], &rtl, &opts).unwrap();
-    assert_eq!(res.len(), 2);
+    // The unit set runs through the all-units testbench; the random top set through the top
+    // testbench on Icarus and the C++ harness on Verilator.
+    let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vec_dir, &o).unwrap();
+    let top = tops[0].manifest.clone();
+    let res = run_sets(&cfg, &[(sets[0].manifest.clone(), None), (top, None)], &rtl, &opts).unwrap();
+    assert_eq!(res.len(), 4);
     for r in res {
         let out = r.outcome.unwrap();
-        assert!(out.failed >= 5, "{:?}: the mutant passed", r.sim);
-        assert!(out.log.contains("MISMATCH unit texture_modulate") && out.log.contains("c_out expected") && out.log.contains("stopping after 5 mismatches"), "{}", out.log);
+        assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
+        let unit = if r.target == "top" { "gbump_pipeline" } else { "texture_modulate" };
+        assert!(out.log.contains(&format!("MISMATCH unit {unit}")) && out.log.contains("expected") && out.log.contains("stopping after 5 mismatches"), "{}", out.log);
     }
 }
 

@@ -1,6 +1,7 @@
 //! Measurements: image error now; area, unit error and sweeps build on it.
 
 pub mod area;
+pub mod bench;
 pub mod image_metrics;
 pub mod power_space;
 pub mod sweep;

@@ -155,6 +155,7 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("PRINT", print.join("\n")),
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
+        ("II", format!("{}.0", cfg.initiation_interval())),
     ]);
     fill(HARNESS_TOP.to_string(), &s)
 }
