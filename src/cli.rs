@@ -220,6 +220,15 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-bench")]
         work: PathBuf,
     },
+    /// Write docs/REPORT.md: area, error, the power unit's design space, a sweep and speed.
+    Report {
+        #[arg(long, default_value = "docs", value_name = "DIR")]
+        out: PathBuf,
+        #[arg(long, default_value = "sweeps/small.toml", value_name = "FILE")]
+        space: PathBuf,
+        #[arg(long, default_value = "target/gbump-report")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -404,6 +413,11 @@ pub fn run() -> anyhow::Result<()> {
             outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
         }
         Cmd::Bench { pick, work } => out!("{}", crate::measure::bench::bench(&pick.resolve()?, &work)?),
+        Cmd::Report { out, space, work } => {
+            let files = crate::measure::report::report(&out, &work, &space)?;
+            write_files(&out, &files)?;
+            outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+        }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {

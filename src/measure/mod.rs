@@ -4,5 +4,6 @@ pub mod area;
 pub mod bench;
 pub mod image_metrics;
 pub mod power_space;
+pub mod report;
 pub mod sweep;
 pub mod unit_error;
