@@ -1,0 +1,43 @@
+//! The sweep as a user runs it: a small grid, its CSV/JSON/SVG, the Pareto front, and a
+//! second run served from the cache with the same results.
+
+use assert_cmd::Command;
+
+#[test]
+fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let space = dir.path().join("tiny.toml");
+    std::fs::write(&space, "scene = \"cg_wall_front\"\n[base]\nlights = 1\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [5, 8]\npower_entries = [64, 2048]\n").unwrap();
+    let work = dir.path().join("work");
+    let run = || {
+        let o = Command::cargo_bin("gbump").unwrap().args(["sweep", "--space"]).arg(&space).arg("--out").arg(dir.path().join("out")).arg("--work").arg(&work).assert().success();
+        String::from_utf8_lossy(&o.get_output().stdout).into_owned()
+    };
+    let t0 = std::time::Instant::now();
+    let first = run();
+    let cold = t0.elapsed();
+    // power_entries = 2048 exceeds the 257 codes of an 8-bit dot product: those are skipped.
+    assert!(first.contains("2 configurations"), "{first}");
+    let csv = std::fs::read_to_string(dir.path().join("out/tiny.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "{csv}");
+    assert!(csv.contains("normal_bits=5") && csv.contains("normal_bits=8"));
+    let svg = std::fs::read_to_string(dir.path().join("out/tiny.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("paper: 10k-25k GE") && svg.matches("<circle").count() >= 2);
+    let pts: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.path().join("out/tiny.json")).unwrap()).unwrap();
+    assert!(pts.as_array().unwrap().iter().any(|p| p["pareto"] == true));
+    assert!(pts.as_array().unwrap().iter().all(|p| p["top_ge"].as_f64().unwrap() > 1000.0));
+    let t1 = std::time::Instant::now();
+    let second = run();
+    assert!(t1.elapsed() < cold / 2, "the second run should come from the cache");
+    assert_eq!(std::fs::read_to_string(dir.path().join("out/tiny.csv")).unwrap(), csv);
+    assert!(second.contains("2 configurations"));
+}
+
+#[test]
+fn power_space_finds_designs_within_one_lsb() {
+    let o = Command::cargo_bin("gbump").unwrap().args(["power-space", "--max-n", "255"]).assert().success();
+    let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    let within: Vec<&str> = text.lines().filter(|l| l.ends_with("| yes |")).collect();
+    assert!(within.iter().any(|l| l.contains("segmented") && l.contains("lerp")), "{text}");
+    assert!(within.iter().any(|l| l.contains("table 256 nearest")), "with an 8-bit dot product the paper's table is within 1 LSB");
+}
