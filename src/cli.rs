@@ -696,8 +696,8 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
         let v = crate::sim::fuzz::check_config(&cfg, &work, random, seed.wrapping_add(n))?;
         n += 1;
         vectors += v;
-        outln!("config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {} table {}x{} colour {} k {}, {:?}, {:?})", cfg.hash(), cfg.light_mode, cfg.lights,
-            cfg.normal_bits, cfg.lh_bits, cfg.dot_bits, cfg.power_entries, cfg.power_bits + 1, cfg.colour_bits, cfg.k_bits, cfg.rounding, cfg.blend_order);
+        outln!("config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {}, power {} of {}-bit words, colour {} k {}, {:?}, {:?})", cfg.hash(), cfg.light_mode, cfg.lights,
+            cfg.normal_bits, cfg.lh_bits, cfg.dot_bits, cfg.power_design().label(), cfg.power_bits + 1, cfg.colour_bits, cfg.k_bits, cfg.rounding, cfg.blend_order);
     }
     outln!("fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s", t0.elapsed().as_secs_f64());
     if n == 0 {

@@ -23,6 +23,19 @@ pub enum PowerIndex {
     Truncate,
 }
 
+/// How the power unit computes x^n (see `model::power_unit` and `gbump power-space`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PowerUnitKind {
+    /// The paper's table: `power_entries` entries, indexed as `power_index` says.
+    Table,
+    /// `power_entries` uniform knots with linear interpolation.
+    Lerp,
+    /// `power_segments` segments halving towards x = 1, `power_entries` interpolated
+    /// entries each: dense where x^n changes fastest.
+    Segmented,
+}
+
 /// One light per clock (paper §4.2: "n light sources are blended in n clock cycles") or all at once.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -56,6 +69,9 @@ pub struct PipelineConfig {
     /// Fraction bits of a power-table entry (u1.P, so x^n = 1 is exact).
     pub power_bits: u32,
     pub power_index: PowerIndex,
+    pub power_unit: PowerUnitKind,
+    /// Segments of a segmented power unit.
+    pub power_segments: u32,
     /// Shininess n whose table the power ROM holds at reset (reloadable through its load port).
     pub shininess: u32,
     /// Colour channel bits (paper: 8).
@@ -87,6 +103,8 @@ impl Default for PipelineConfig {
             power_entries: 256,
             power_bits: 8,
             power_index: PowerIndex::Nearest,
+            power_unit: PowerUnitKind::Table,
+            power_segments: 6,
             shininess: 16,
             colour_bits: 8,
             k_bits: 8,
@@ -109,6 +127,7 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ("dot_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
     ("power_entries", 2, 65536, "a power of two; at most 2^dot_bits + 1 useful"),
     ("power_bits", 2, 16, "entry fraction bits"),
+    ("power_segments", 2, 15, "segments of a segmented power unit; fewer than dot_bits"),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
     ("k_bits", 1, 12, "modulation fraction bits"),
@@ -166,6 +185,9 @@ impl PipelineConfig {
                 "raise dot_bits or lower power_entries",
             ));
         }
+        if self.power_unit == PowerUnitKind::Segmented && self.power_segments >= self.dot_bits {
+            return Err(Error::field(file, "power_segments", format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_bits), "use fewer segments or a wider dot_bits"));
+        }
         if !self.diffuse && !self.specular {
             return Err(Error::field(file, "diffuse", "both blend units are off", "enable `diffuse` or `specular`"));
         }
@@ -182,6 +204,7 @@ impl PipelineConfig {
             "dot_bits" => self.dot_bits,
             "power_entries" => self.power_entries,
             "power_bits" => self.power_bits,
+            "power_segments" => self.power_segments,
             "shininess" => self.shininess,
             "colour_bits" => self.colour_bits,
             "k_bits" => self.k_bits,
@@ -238,9 +261,30 @@ impl PipelineConfig {
     pub fn acc_fmt(&self) -> Format {
         self.term_fmt().sum(self.lights)
     }
-    /// Index bits of the power table.
+    /// Index bits of a plain power table.
     pub fn power_index_bits(&self) -> u32 {
         self.power_entries.trailing_zeros()
+    }
+    /// The power unit as a design of `model::power_unit`.
+    pub fn power_design(&self) -> crate::model::power_unit::PowerDesign {
+        use crate::model::power_unit::PowerDesign;
+        match self.power_unit {
+            PowerUnitKind::Table => PowerDesign::Table { entries: self.power_entries, nearest: self.power_index == PowerIndex::Nearest },
+            PowerUnitKind::Lerp => PowerDesign::Lerp { knots: self.power_entries },
+            PowerUnitKind::Segmented => PowerDesign::Segmented { segments: self.power_segments, per_segment: self.power_entries, lerp: true },
+        }
+    }
+    /// Input and output fraction bits of the power unit.
+    pub fn power_formats(&self) -> crate::model::power_unit::PowerFormats {
+        crate::model::power_unit::PowerFormats { f: self.dot_bits, p: self.power_bits }
+    }
+    /// Words of the power unit's loadable memory.
+    pub fn power_depth(&self) -> u32 {
+        (self.power_design().rom_bits(self.power_formats()) / (self.power_bits as u64 + 1)) as u32
+    }
+    /// Address bits of the power unit's memory (its load port).
+    pub fn power_addr_bits(&self) -> u32 {
+        (32 - (self.power_depth().max(2) - 1).leading_zeros()).max(1)
     }
     /// The flat, unperturbed bump-normal code (0, 0, largest) after expansion.
     pub fn flat_normal(&self) -> [i64; 3] {

@@ -110,3 +110,24 @@ proptest! {
         }
     }
 }
+
+/// The segmented, interpolated power unit of tests/configs/segmented_power.toml stays within
+/// 1 LSB of x^n for every input code and every n in 1..=255 (the paper's 256-entry table
+/// errs by up to 100 LSB on the same 12-bit input).
+#[test]
+fn the_segmented_power_unit_is_within_one_lsb_for_every_exponent() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/configs/segmented_power.toml")).unwrap();
+    let cfg = PipelineConfig::from_toml("segmented_power.toml", &text).unwrap();
+    let plain = PipelineConfig { power_unit: gbump::config::PowerUnitKind::Table, power_entries: 256, ..cfg.clone() };
+    let (mut worst, mut worst_plain) = (0.0f64, 0.0f64);
+    for n in 1..=255 {
+        let (t, tp) = (PowerTable::build(&cfg, n), PowerTable::build(&plain, n));
+        for fd in 0..=(1i64 << cfg.dot_bits) {
+            let exact = (fd as f64 / 4096.0).powi(n as i32) * 256.0;
+            worst = worst.max((t.lookup(&cfg, fd) as f64 - exact).abs());
+            worst_plain = worst_plain.max((tp.lookup(&plain, fd) as f64 - exact).abs());
+        }
+    }
+    assert!(worst <= 1.0, "segmented: {worst} LSB");
+    assert!(worst_plain > 50.0, "the plain table should err badly here: {worst_plain}");
+}

@@ -74,7 +74,7 @@ fn regress_four_lights_serial_dot10() {
 
 #[test]
 fn lint_is_clean_for_three_configurations() {
-    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml")] {
+    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml"), Some("tests/configs/segmented_power.toml")] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
         if let Some(p) = cfg {
@@ -167,7 +167,7 @@ fn a_testbench_given_no_vectors_fails() {
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
     let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
     std::fs::write(work.join("empty.hex"), "").unwrap();
-    let table = root().join("rtl/power_table_8dc3fde1.hex");
+    let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
     let plus = [format!("+vectors={}", work.join("empty.hex").display()), format!("+table={}", table.display())];
     let e = gbump::sim::icarus::run(&exe, &plus, None, &work, "empty").unwrap_err().to_string();
     assert!(e.contains("checked no vectors"), "{e}");
@@ -193,10 +193,11 @@ fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {
 fn every_rom_read_by_a_simulator_equals_the_model() {
     use gbump::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, parse, power_rom, RomFormat};
     let cfg = gbump::PipelineConfig::default();
+    let h = &cfg.hash()[..8];
     for (stem, rom) in [
-        ("power_table_n16_8dc3fde1", power_rom(&cfg, 16)),
-        ("bump_palette_8dc3fde1", palette_rom(&cfg, &default_palette(&cfg))),
-        ("cube_map_32", cube_map_rom(32)),
+        (format!("power_table_n16_{h}"), power_rom(&cfg, 16)),
+        (format!("bump_palette_{h}"), palette_rom(&cfg, &default_palette(&cfg))),
+        ("cube_map_32".to_string(), cube_map_rom(32)),
     ] {
         let dir = root().join("rtl/rom");
         assert_eq!(readback(&dir.join(format!("{stem}.hex")), rom.width, rom.words.len()), rom.words, "{stem}.hex under Icarus");
@@ -208,7 +209,7 @@ fn every_rom_read_by_a_simulator_equals_the_model() {
     // The reset contents the pipeline itself loads.
     let t = gbump::model::PowerTable::build(&cfg, cfg.shininess);
     let words: Vec<u64> = t.entries.iter().map(|&e| e as u64).collect();
-    assert_eq!(readback(&root().join("rtl/power_table_8dc3fde1.hex"), 9, 256), words);
+    assert_eq!(readback(&root().join(format!("rtl/power_table_{h}.hex")), 9, 256), words);
 }
 
 #[test]
@@ -259,6 +260,11 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
             assert!(o.failed == 0 && o.passed > 0, "{set} seed {seed}:\n{}", o.log);
         }
     }
+}
+
+#[test]
+fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
+    regress(&["--sim", "both", "--config", "tests/configs/segmented_power.toml", "--random", "100000", "--random-icarus", "5000", "--no-scenes"], "segmented");
 }
 
 #[test]

@@ -78,7 +78,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                     _ => return Err(Error::Other(format!("yosys could not synthesise {module}:\n{}", tail(&log, 15)))),
                 };
                 let rom_bits = if unit == "power_table" || unit.starts_with("gbump_pipeline") && cfg.specular {
-                    (cfg.power_entries * (cfg.power_bits + 1)) as u64
+                    cfg.power_depth() as u64 * (cfg.power_bits + 1) as u64
                 } else {
                     0
                 };

@@ -4,7 +4,7 @@
 //! fd·(N-1) (a shift and a subtract), rounded or truncated as the config says.
 
 use crate::config::{PipelineConfig, PowerIndex};
-use crate::fixed::{from_f64, shift_round, Overflow, Rounding};
+use crate::fixed::{shift_round, Rounding};
 
 /// The table contents for one shininess.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,19 +29,13 @@ pub fn powi_exact(x: f64, n: u32) -> f64 {
 }
 
 impl PowerTable {
-    /// Build the table for shininess `n` (0^0 is taken as 1, as OpenGL's pow does).
+    /// Build the contents for shininess `n` (0^0 is taken as 1, as OpenGL's pow does) for the
+    /// configured power unit (the paper's table, or a `model::power_unit` alternative).
     pub fn build(cfg: &PipelineConfig, n: u32) -> PowerTable {
-        let last = (cfg.power_entries - 1) as f64;
-        let entries = (0..cfg.power_entries)
-            .map(|i| {
-                let x = i as f64 / last;
-                from_f64(powi_exact(x, n), cfg.power_fmt(), cfg.rounding, Overflow::Saturate).expect("finite")
-            })
-            .collect();
-        PowerTable { n, entries }
+        PowerTable { n, entries: cfg.power_design().table(cfg.power_formats(), n) }
     }
 
-    /// Index of the entry for clamped dot product `fd` (`u1.F`).
+    /// Index of the plain table's entry for clamped dot product `fd` (`u1.F`).
     #[inline]
     pub fn index(cfg: &PipelineConfig, fd: i64) -> usize {
         let scaled = (fd as i128) * (cfg.power_entries as i128 - 1);
@@ -55,7 +49,10 @@ impl PowerTable {
     /// fs for clamped dot product `fd`.
     #[inline]
     pub fn lookup(&self, cfg: &PipelineConfig, fd: i64) -> i64 {
-        self.entries[Self::index(cfg, fd)]
+        match cfg.power_unit {
+            crate::config::PowerUnitKind::Table => self.entries[Self::index(cfg, fd)],
+            _ => cfg.power_design().eval(cfg.power_formats(), &self.entries, self.n, fd),
+        }
     }
 }
 

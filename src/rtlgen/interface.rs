@@ -36,7 +36,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "latency_cycles": latency(cfg),
         "initiation_interval": cfg.initiation_interval(),
         "handshake": "a fragment is accepted on a rising edge with in_valid && in_ready; out_valid marks C_new exactly latency_cycles later",
-        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "entries": cfg.power_entries, "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
+        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "unit": cfg.power_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
         "ports": ports,
     });
     serde_json::to_string_pretty(&v).expect("json") + "\n"

@@ -30,6 +30,9 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     v("bump_fetch_comb", units_v::bump_fetch(cfg, false));
     v("dot_clamp", units_v::dot_clamp(cfg));
     v("power_table", units_v::power_table(cfg));
+    if cfg.power_unit != crate::config::PowerUnitKind::Table {
+        v("power_core", power_units::core(&cfg.power_design(), cfg.power_formats(), &module_name(cfg, "power_core")));
+    }
     v("light_term", units_v::light_term(cfg));
     v("blend_finish", units_v::blend_finish(cfg));
     v("diffuse_blend", units_v::blend(cfg, "diffuse_blend"));
@@ -59,6 +62,13 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_table_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*texture_modulate_{h}.v\" -match \"Bits of signal are not used: 'q*\"\n");
+    if cfg.power_unit != crate::config::PowerUnitKind::Table {
+        s += "// The power core keeps the high bits of its rounded interpolation step and of the scaled\n";
+        s += "// index and drops the rest by design; an entry index never reaches its top bits.\n";
+        for sig in ["step", "scaled", "j", "off", "prod"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+        }
+    }
     // Every configuration has the same top ports; the enable of a blend unit this
     // configuration leaves out is accepted and ignored.
     for (present, en) in [(cfg.diffuse, "de"), (cfg.specular, "se")] {

@@ -43,21 +43,53 @@ pub fn rom_depth(d: &PowerDesign, fm: PowerFormats) -> usize {
     (d.rom_bits(fm) / (fm.p as u64 + 1)) as usize
 }
 
-/// The datapath module (`n` only matters for squaring, where it is built in).
+/// The datapath module (`n` only matters for squaring, where it is built in): registered,
+/// reading its own ROM module.
 pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
     let (f, p) = (fm.f, fm.p);
     let m = name(d, fm);
-    let depth = rom_depth(d, fm);
-    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
     let mut w = VWriter::new();
     head(&mut w);
     w.line(format!("// {}: x^n for x = x/2^{f} (u1.{f}) to u1.{p}, registered. See model::power_unit.", d.label()));
     w.line(format!("module {m} (input wire clk, input wire [{f}:0] x, output reg [{p}:0] fs);"));
-    let rom_inst = |w: &mut VWriter| {
+    let result = datapath(&mut w, d, fm, n, false, &|w: &mut VWriter| {
         w.line(format!("wire [{p}:0] k0;"));
         w.line(format!("wire [{p}:0] k1;"));
         w.line(format!("{m}_rom u_rom (.a0(a0), .a1(a1), .d0(k0), .d1(k1));"));
-    };
+    });
+    w.line(format!("always @(posedge clk) fs <= {result};"));
+    w.line("endmodule");
+    w.line("`default_nettype wire");
+    w.finish()
+}
+
+/// The same datapath as a combinational core that reads an external memory through
+/// (a0 -> k0, a1 -> k1): the pipeline's power unit wraps it around its loadable table.
+pub fn core(d: &PowerDesign, fm: PowerFormats, module: &str) -> String {
+    let (f, p) = (fm.f, fm.p);
+    let depth = rom_depth(d, fm);
+    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let mut w = VWriter::new();
+    head(&mut w);
+    w.line(format!("// {}: combinational core of the power unit; the table is outside.", d.label()));
+    w.line(format!(
+        "module {module} (input wire [{f}:0] x, output wire [{}:0] a0, output wire [{}:0] a1, input wire [{p}:0] k0, input wire [{p}:0] k1, output wire [{p}:0] fs_out);",
+        ab - 1,
+        ab - 1
+    ));
+    let result = datapath(&mut w, d, fm, 0, true, &|_: &mut VWriter| {});
+    w.line(format!("assign fs_out = {result};"));
+    w.line("endmodule");
+    w.line("`default_nettype wire");
+    w.finish()
+}
+
+/// Emit the datapath of `d`: address logic driving `a0`/`a1`, then `mem` (which must make
+/// `k0`/`k1` available), then the result; returns the expression of the result.
+fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: bool, mem: &dyn Fn(&mut VWriter)) -> String {
+    let (f, p) = (fm.f, fm.p);
+    let depth = rom_depth(d, fm);
+    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
     // Rounded signed interpolation k0 + round((k1 - k0) * t / 2^F) in P+2+F+1 bits.
     let interp = |w: &mut VWriter, t: &str, tw: u32| {
         let pw = p + 2 + tw + 1;
@@ -66,16 +98,24 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
         w.line(format!("wire signed [{}:0] step = (prod + {pw}'sd{}) >>> {f};", pw - 1, 1u64 << (f - 1)));
         w.line(format!("wire [{p}:0] y_out = k0 + step[{p}:0];"));
     };
+    // a0/a1 are wires of the standalone unit and output ports of the core.
+    let addr = |w: &mut VWriter, name: &str, e: &str| {
+        if ports {
+            w.line(format!("assign {name} = {e};"));
+        } else {
+            w.line(format!("wire [{}:0] {name} = {e};", ab - 1));
+        }
+    };
     match *d {
         PowerDesign::Table { entries, nearest } => {
             let ib = entries.trailing_zeros();
             let sw = f + 1 + ib + 1;
             w.line(format!("wire [{}:0] scaled = ({{{}'d0, x}} << {ib}) - {{{}'d0, x}};", sw - 1, ib + 1, ib + 1));
             w.line(format!("wire [{}:0] rounded = scaled + {sw}'d{};", sw - 1, if nearest { 1u64 << (f - 1) } else { 0 }));
-            w.line(format!("wire [{}:0] a0 = rounded[{}:{f}];", ab - 1, f + ab - 1));
-            w.line(format!("wire [{}:0] a1 = a0;", ab - 1));
-            rom_inst(&mut w);
-            w.line("always @(posedge clk) fs <= k0;");
+            addr(w, "a0", &format!("rounded[{}:{f}]", f + ab - 1));
+            addr(w, "a1", "a0");
+            mem(w);
+            "k0".into()
         }
         PowerDesign::Lerp { knots } => {
             // x * (N - 1) by a constant multiply: N - 1 is not a power of two.
@@ -84,14 +124,14 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
             w.line(format!("wire [{}:0] i = scaled[{}:{f}];", ab - 1, f + ab - 1));
             w.line(format!("wire [{}:0] fr = scaled[{}:0];", f - 1, f - 1));
             w.line(format!("wire last = (i >= {ab}'d{});", knots - 1));
-            w.line(format!("wire [{}:0] a0 = last ? {ab}'d{} : i;", ab - 1, knots - 1));
-            w.line(format!("wire [{}:0] a1 = last ? {ab}'d{} : i + {ab}'d1;", ab - 1, knots - 1));
-            rom_inst(&mut w);
-            interp(&mut w, "fr", f);
-            w.line("always @(posedge clk) fs <= last ? k0 : y_out;");
+            addr(w, "a0", &format!("last ? {ab}'d{} : i", knots - 1));
+            addr(w, "a1", &format!("last ? {ab}'d{} : i + {ab}'d1", knots - 1));
+            mem(w);
+            interp(w, "fr", f);
+            "(last ? k0 : y_out)".into()
         }
         PowerDesign::Segmented { segments, per_segment, lerp } => {
-            let mb = per_segment.trailing_zeros();
+            let mb = per_segment.trailing_zeros().max(1);
             let sb = (32 - (segments - 1).leading_zeros()).max(1);
             w.line(format!("wire [{f}:0] y = {{1'b1, {f}'d0}} - x;"));
             w.line("// Segment: the leading one of y (segment 0 also holds y = 2^F).");
@@ -113,9 +153,9 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
                         let body = if lw >= mb {
                             let sh = lw - mb;
                             let tpart = if sh == 0 { format!("{f}'d0") } else { format!("{{off[{}:0], {}'d0}}", sh - 1, f - sh) };
-                            format!("begin off = y - {}'d{lo}; j = off >> {sh}; t = {tpart}; end", f + 1)
+                            format!("begin off = y - {}'d{lo}; j = {{{mb}'d0, off}} >> {sh}; t = {tpart}; end", f + 1)
                         } else {
-                            format!("begin off = y - {}'d{lo}; j = off << {}; t = {f}'d0; end", f + 1, mb - lw)
+                            format!("begin off = y - {}'d{lo}; j = {{{mb}'d0, off}} << {}; t = {f}'d0; end", f + 1, mb - lw)
                         };
                         let label = if s + 1 == segments { "default".to_string() } else { format!("{sb}'d{s}") };
                         w.line(format!("{label}: {body}"));
@@ -124,14 +164,14 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
             });
             let per = if lerp { per_segment + 1 } else { per_segment };
             w.line(format!("wire [{}:0] jc = (j > {}) ? {}'d{} : j[{}:0];", ab - 1, per - 1, ab, per - 1, ab - 1));
-            w.line(format!("wire [{}:0] a0 = s * {ab}'d{per} + jc;", ab - 1));
-            w.line(format!("wire [{}:0] a1 = (t == {f}'d0) ? a0 : a0 + {ab}'d1;", ab - 1));
-            rom_inst(&mut w);
+            addr(w, "a0", &format!("s * {ab}'d{per} + jc"));
+            addr(w, "a1", &format!("(t == {f}'d0) ? a0 : a0 + {ab}'d1"));
+            mem(w);
             if lerp {
-                interp(&mut w, "t", f);
-                w.line(format!("always @(posedge clk) fs <= (t == {f}'d0) ? k0 : y_out;"));
+                interp(w, "t", f);
+                format!("((t == {f}'d0) ? k0 : y_out)")
             } else {
-                w.line("always @(posedge clk) fs <= k0;");
+                "k0".into()
             }
         }
         PowerDesign::Squaring { guard } => {
@@ -153,14 +193,11 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
                 }
             }
             if guard == 0 {
-                w.line(format!("always @(posedge clk) fs <= {acc};"));
+                acc
             } else {
                 w.line(format!("wire [{}:0] fin = {acc} + {}'d{};", wd + 1, wd + 2, 1u64 << (guard - 1)));
-                w.line(format!("always @(posedge clk) fs <= fin[{}:{guard}];", wd));
+                format!("fin[{}:{guard}]", wd)
             }
         }
     }
-    w.line("endmodule");
-    w.line("`default_nettype wire");
-    w.finish()
 }

@@ -113,7 +113,10 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
         name: format!("power_table n={n}"),
         width: cfg.power_bits + 1,
         words: t.entries.iter().map(|&e| e as u64).collect(),
-        layout: format!("entry i = round((i/{})^{n} * 2^{}), u1.{}", cfg.power_entries - 1, cfg.power_bits, cfg.power_bits),
+        layout: match cfg.power_unit {
+            crate::config::PowerUnitKind::Table => format!("entry i = round((i/{})^{n} * 2^{}), u1.{}", cfg.power_entries - 1, cfg.power_bits, cfg.power_bits),
+            _ => format!("{} knots for n = {n}, u1.{} (layout: model::power_unit)", cfg.power_design().label(), cfg.power_bits),
+        },
     }
 }
 

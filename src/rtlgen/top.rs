@@ -46,7 +46,7 @@ pub fn top_ports(cfg: &PipelineConfig) -> Vec<(&'static str, &'static str, u32)>
         ("clk", "input", 1),
         ("rst", "input", 1),
         ("pt_we", "input", 1),
-        ("pt_waddr", "input", cfg.power_index_bits()),
+        ("pt_waddr", "input", cfg.power_addr_bits()),
         ("pt_wdata", "input", cfg.power_bits + 1),
         ("in_valid", "input", 1),
         ("in_ready", "output", 1),

@@ -70,8 +70,12 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// power_table: `R` read ports into one reloadable table; index = round(x (N-1) / 2^F).
+/// power_table: `R` read ports into one reloadable table; index = round(x (N-1) / 2^F) for
+/// the paper's table, or the `power_core` datapath of an interpolated/segmented unit.
 pub fn power_table(cfg: &PipelineConfig) -> String {
+    if cfg.power_unit != crate::config::PowerUnitKind::Table {
+        return power_unit_with_core(cfg);
+    }
     let (f, p, n) = (cfg.dot_bits, cfg.power_bits, cfg.power_entries);
     let ib = cfg.power_index_bits();
     let mut w = VWriter::new();
@@ -105,6 +109,43 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
         w.line(format!("wire [{}:0] idx = rounded[{}:{f}];", ib.max(1) - 1, f + ib.max(1) - 1));
         w.block("always @(posedge clk) begin", "end", |w| {
             w.line(format!("fs[r*{} +: {}] <= mem[idx];", p + 1, p + 1));
+        });
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// A loadable table of `power_depth()` words read through two ports per lookup by the
+/// `power_core` datapath (interpolation needs the knots on both sides).
+fn power_unit_with_core(cfg: &PipelineConfig) -> String {
+    let (f, p) = (cfg.dot_bits, cfg.power_bits);
+    let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!("// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;", cfg.power_design().label()));
+    w.line("// INIT_FILE holds the reset contents. Each read port runs one power_core.");
+    w.line(format!(
+        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
+        module_name(cfg, "power_table"),
+        rom_file_name(cfg, "power_table", "hex"),
+        ab - 1,
+        f + 1,
+        p + 1
+    ));
+    w.line(format!("reg [{p}:0] mem [0:{}];", depth - 1));
+    w.line("initial $readmemh(INIT_FILE, mem);");
+    w.block("always @(posedge clk) begin", "end", |w| {
+        w.line("if (we) mem[waddr] <= wdata;");
+    });
+    w.line("genvar r;");
+    w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
+        w.line(format!("wire [{}:0] a0;", ab - 1));
+        w.line(format!("wire [{}:0] a1;", ab - 1));
+        w.line(format!("wire [{p}:0] y;"));
+        w.line(format!("{} u_core (.x(x[r*{} +: {}]), .a0(a0), .a1(a1), .k0(mem[a0]), .k1(mem[a1]), .fs_out(y));", module_name(cfg, "power_core"), f + 1, f + 1));
+        w.block("always @(posedge clk) begin", "end", |w| {
+            w.line(format!("fs[r*{} +: {}] <= y;", p + 1, p + 1));
         });
     });
     w.line("endmodule");

@@ -4,7 +4,7 @@
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::Sim;
-use crate::config::{BlendOrder, LightMode, PipelineConfig, PowerIndex};
+use crate::config::{BlendOrder, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
@@ -24,6 +24,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             power_entries: 1 << rng.range(1, dot_bits.min(11) as i64),
             power_bits: rng.range(2, 16) as u32,
             power_index: if rng.chance(0.5) { PowerIndex::Nearest } else { PowerIndex::Truncate },
+            power_unit: [PowerUnitKind::Table, PowerUnitKind::Lerp, PowerUnitKind::Segmented][rng.range(0, 2) as usize],
+            power_segments: rng.range(2, 8) as u32,
             shininess: [0, 1, 2, 8, 32, 255, 1024][rng.range(0, 6) as usize],
             colour_bits: rng.range(2, 12) as u32,
             k_bits: rng.range(1, 12) as u32,

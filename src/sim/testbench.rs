@@ -23,8 +23,8 @@ fn fill(mut t: String, subs: &[(&str, String)]) -> String {
 
 fn pt(cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
     vec![
-        ("PT_N", cfg.power_entries.to_string()),
-        ("PT_AW", cfg.power_index_bits().to_string()),
+        ("PT_N", cfg.power_depth().to_string()),
+        ("PT_AW", cfg.power_addr_bits().to_string()),
         ("PT_W", (cfg.power_bits + 1).to_string()),
     ]
 }
