@@ -74,7 +74,7 @@ fn regress_four_lights_serial_dot10() {
 
 #[test]
 fn lint_is_clean_for_three_configurations() {
-    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml"), Some("tests/configs/segmented_power.toml")] {
+    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml"), Some("tests/configs/fuzz_found_equal_frac.toml"), Some("tests/configs/segmented_power.toml")] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
         if let Some(p) = cfg {
@@ -268,8 +268,10 @@ fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
 }
 
 #[test]
-fn the_configuration_the_fuzzer_found_simulates_clean() {
-    regress(&["--sim", "both", "--config", "tests/configs/fuzz_found_wide_dot.toml", "--random", "20000", "--random-icarus", "2000", "--no-scenes"], "fuzz_found");
+fn the_configurations_the_fuzzer_found_simulate_clean() {
+    for (cfg, work) in [("tests/configs/fuzz_found_wide_dot.toml", "fuzz_found"), ("tests/configs/fuzz_found_equal_frac.toml", "fuzz_found_eq")] {
+        regress(&["--sim", "both", "--config", cfg, "--random", "20000", "--random-icarus", "2000", "--no-scenes"], work);
+    }
 }
 
 #[test]

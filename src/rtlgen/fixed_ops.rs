@@ -33,8 +33,12 @@ pub fn requant_clamp(w: &mut VWriter, name: &str, x: &str, from: Format, to_frac
         (ww, format!("({name}_x + $signed({{1'b0, {name}_inc}})) >>> {s}"))
     } else {
         let s = to_frac - from.frac;
-        // Appending zero bits widens exactly, where `<<<` would be sized by its operand.
-        (ww + s, format!("$signed({{{name}_x, {s}'d0}})"))
+        if s == 0 {
+            (ww, format!("{name}_x"))
+        } else {
+            // Appending zero bits widens exactly, where `<<<` would be sized by its operand.
+            (ww + s, format!("$signed({{{name}_x, {s}'d0}})"))
+        }
     };
     w.line(format!("wire signed [{}:0] {name}_r = {expr};", rw - 1));
     w.line(format!(
