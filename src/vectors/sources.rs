@@ -93,6 +93,11 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
     }
 }
 
+/// An 8-bit colour value scaled to a channel whose full scale is `cmax`.
+fn scale8(x: u32, cmax: u32) -> u32 {
+    ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32
+}
+
 /// The corner-case catalogue at `level`. Each entry says why it is there.
 pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
     let mut v: Vec<(String, TopStim)> = corners_level1(cfg).into_iter().map(|(w, s)| (w.to_string(), s)).collect();
@@ -112,7 +117,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let flat = [half, half, nmax];
     let lh = cfg.lh_fmt();
     // Colours below are written for 8-bit channels and scaled to the configured width.
-    let sc = |x: u32| ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32;
+    let sc = |x: u32| scale8(x, cmax);
     let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
         let (c, t, lc) = (if c == cmax { c } else { sc(c) }, if t == cmax { t } else { sc(t) }, if lc == cmax { lc } else { sc(lc) });
         let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
@@ -165,7 +170,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let kone = 1i64 << cfg.k_bits;
     let lh = cfg.lh_fmt();
     let flat = [half, half, nmax];
-    let sc = |x: u32| ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32;
+    let sc = |x: u32| scale8(x, cmax);
     let mk = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
         let (c, t) = (if c == cmax || c == cmax / 2 || c == cmax / 2 + 1 { c } else { sc(c) }, if t == cmax || t == cmax / 2 + 1 || t == cmax / 2 { t } else { sc(t) });
         let mut st = BumpState::default();
