@@ -8,7 +8,10 @@ fn main() {
     let side = if full { 1024 } else { 128 };
     for lights in [1, 4] {
         let (g, r, n) = gbump::measure::bench::model_rate(lights, side);
-        println!("golden model   {lights} light(s): {g:8.2} Mfragments/s ({n} fragments, {} threads)", rayon::current_num_threads());
+        println!(
+            "golden model   {lights} light(s): {g:8.2} Mfragments/s ({n} fragments, {} threads)",
+            rayon::current_num_threads()
+        );
         println!("f64 reference  {lights} light(s): {r:8.2} Mfragments/s (interpolation + shading)");
     }
 }

@@ -26,7 +26,11 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser)]
-#[command(name = "gbump", version, about = "Golden model, RTL generator and regression runner for Gouraud Bump Mapping hardware")]
+#[command(
+    name = "gbump",
+    version,
+    about = "Golden model, RTL generator and regression runner for Gouraud Bump Mapping hardware"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub cmd: Cmd,
@@ -314,25 +318,63 @@ pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
-        Cmd::Render { scene, out, size, config, rtl } => render(&scene, &out, size.as_deref(), config.as_deref(), rtl)?,
+        Cmd::Render {
+            scene,
+            out,
+            size,
+            config,
+            rtl,
+        } => render(&scene, &out, size.as_deref(), config.as_deref(), rtl)?,
         Cmd::Rtl { pick, out } => {
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
             write_files(&out, &files)?;
-            outln!("wrote {} files for config {} to {} (top {}, latency {} cycles)", files.len(), cfg.hash(), out.display(),
-                crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"), crate::rtlgen::top::latency(&cfg));
+            outln!(
+                "wrote {} files for config {} to {} (top {}, latency {} cycles)",
+                files.len(),
+                cfg.hash(),
+                out.display(),
+                crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"),
+                crate::rtlgen::top::latency(&cfg)
+            );
         }
-        Cmd::Rom { pick, out, shininess, cube_size } => {
+        Cmd::Rom {
+            pick,
+            out,
+            shininess,
+            cube_size,
+        } => {
             let cfg = pick.resolve()?;
             let files = rom_files(&cfg, &pick, shininess, cube_size, &out)?;
             write_files(&out, &files)?;
             outln!("wrote {} ROM files to {}", files.len(), out.display());
         }
-        Cmd::Vectors { source, target, pick, out, seed, format, size, level, shininess } => {
-            vectors(&source, &target, &pick, &out, seed, format, size.as_deref(), level, shininess)?
-        }
-        Cmd::Regress { sim, pick, vectors, random, random_icarus, seed, no_scenes, scene_size, work, junit, waves, max_errors } => {
+        Cmd::Vectors {
+            source,
+            target,
+            pick,
+            out,
+            seed,
+            format,
+            size,
+            level,
+            shininess,
+        } => vectors(&source, &target, &pick, &out, seed, format, size.as_deref(), level, shininess)?,
+        Cmd::Regress {
+            sim,
+            pick,
+            vectors,
+            random,
+            random_icarus,
+            seed,
+            no_scenes,
+            scene_size,
+            work,
+            junit,
+            waves,
+            max_errors,
+        } => {
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
                 random_verilator: random,
@@ -348,7 +390,13 @@ pub fn run() -> anyhow::Result<()> {
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
         Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
-        Cmd::Fuzz { minutes, configs, seed, random, work } => fuzz(minutes, configs, seed, random, &work)?,
+        Cmd::Fuzz {
+            minutes,
+            configs,
+            seed,
+            random,
+            work,
+        } => fuzz(minutes, configs, seed, random, &work)?,
         Cmd::Area { pick, work, json } => {
             let cfg = pick.resolve()?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
@@ -357,7 +405,13 @@ pub fn run() -> anyhow::Result<()> {
             }
             out!("{}", crate::measure::area::markdown(&r));
         }
-        Cmd::Error { pick, random, seed, size, json } => {
+        Cmd::Error {
+            pick,
+            random,
+            seed,
+            size,
+            json,
+        } => {
             let cfg = pick.resolve()?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
@@ -365,7 +419,15 @@ pub fn run() -> anyhow::Result<()> {
             let scenes = scene_errors(&cfg, w, h)?;
             out!("\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n");
             for (name, g, r) in &scenes {
-                out!("| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n", g.psnr_db, g.max_lsb, 100.0 * g.over_1lsb, r.psnr_db, r.max_lsb, 100.0 * r.over_1lsb);
+                out!(
+                    "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
+                    g.psnr_db,
+                    g.max_lsb,
+                    100.0 * g.over_1lsb,
+                    r.psnr_db,
+                    r.max_lsb,
+                    100.0 * r.over_1lsb
+                );
             }
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
@@ -373,12 +435,21 @@ pub fn run() -> anyhow::Result<()> {
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
         }
-        Cmd::PowerSpace { pick, max_n, json, area, work } => {
+        Cmd::PowerSpace {
+            pick,
+            max_n,
+            json,
+            area,
+            work,
+        } => {
             let cfg = pick.resolve()?;
             if !(1..=1024).contains(&max_n) {
                 return Err(Error::Other(format!("--max-n {max_n}: out of range\n  fix: use 1..=1024")).into());
             }
-            let fm = crate::model::power_unit::PowerFormats { f: cfg.dot_bits, p: cfg.power_bits };
+            let fm = crate::model::power_unit::PowerFormats {
+                f: cfg.dot_bits,
+                p: cfg.power_bits,
+            };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
             if area {
@@ -386,7 +457,10 @@ pub fn run() -> anyhow::Result<()> {
                     return Err(crate::sim::missing("yosys").into());
                 }
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
-                let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs.iter().filter(|r| r.max_lsb <= 1.0 || matches!(r.design, crate::model::power_unit::PowerDesign::Table { entries: 256, .. })).collect();
+                let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs
+                    .iter()
+                    .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, crate::model::power_unit::PowerDesign::Table { entries: 256, .. }))
+                    .collect();
                 pick.sort_by_key(|r| r.rom_bits);
                 for r in pick {
                     let dir = work.join(crate::rtlgen::power_units::name(&r.design, fm));
@@ -406,17 +480,37 @@ pub fn run() -> anyhow::Result<()> {
             let files = vec![
                 (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),
                 (format!("{name}.json"), serde_json::to_string_pretty(&pts).expect("json")),
-                (format!("{name}.svg"), crate::measure::sweep::svg(&pts, &format!("{name}: error against area ({} configurations)", pts.len()))),
+                (
+                    format!("{name}.svg"),
+                    crate::measure::sweep::svg(&pts, &format!("{name}: error against area ({} configurations)", pts.len())),
+                ),
             ];
             write_files(&out, &files)?;
-            outln!("{} configurations in {:.0} s; Pareto front: {}", pts.len(), t0.elapsed().as_secs_f64(), pts.iter().filter(|p| p.pareto).map(|p| p.label.as_str()).collect::<Vec<_>>().join("; "));
-            outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+            outln!(
+                "{} configurations in {:.0} s; Pareto front: {}",
+                pts.len(),
+                t0.elapsed().as_secs_f64(),
+                pts.iter()
+                    .filter(|p| p.pareto)
+                    .map(|p| p.label.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            );
+            outln!(
+                "wrote {} in {}",
+                files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
+                out.display()
+            );
         }
         Cmd::Bench { pick, work } => out!("{}", crate::measure::bench::bench(&pick.resolve()?, &work)?),
         Cmd::Report { out, space, work } => {
             let files = crate::measure::report::report(&out, &work, &space)?;
             write_files(&out, &files)?;
-            outln!("wrote {} in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+            outln!(
+                "wrote {} in {}",
+                files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
+                out.display()
+            );
         }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
@@ -481,7 +575,12 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
     let max = img.colour_max;
     let vs_ref = compare(&img.golden, &img.reference, &img.covered, max);
     let vs_gou = compare(&img.golden, &img.gouraud, &img.covered, max);
-    let alg = compare(&crate::render::output::quantise(&img.gouraud, max), &img.reference, &img.covered, max);
+    let alg = compare(
+        &crate::render::output::quantise(&img.gouraud, max),
+        &img.reference,
+        &img.covered,
+        max,
+    );
     let emap = error_map(&img.golden, &img.reference, &img.covered, max);
     let name = &s.name;
     let files = [
@@ -499,44 +598,89 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
         "golden_vs_reference": vs_ref, "golden_vs_gouraud_f64": vs_gou, "gouraud_f64_vs_reference": alg,
         "seconds": secs,
     });
-    blobs.push((format!("{name}_metrics.json"), serde_json::to_string_pretty(&report).expect("json").into_bytes()));
+    blobs.push((
+        format!("{name}_metrics.json"),
+        serde_json::to_string_pretty(&report).expect("json").into_bytes(),
+    ));
     write_files(out, &blobs)?;
-    outln!("scene {name} {w}x{h}, config {}, {} fragments, {:.2} s", cfg.hash(), vs_ref.pixels, secs);
-    outln!("  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_ref.psnr_db, vs_ref.max_lsb, vs_ref.mean_lsb, 100.0 * vs_ref.over_1lsb);
-    outln!("  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB", vs_gou.psnr_db, vs_gou.max_lsb, vs_gou.mean_lsb, 100.0 * vs_gou.over_1lsb);
-    outln!("  wrote {} and {name}_metrics.json in {}", files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "), out.display());
+    outln!(
+        "scene {name} {w}x{h}, config {}, {} fragments, {:.2} s",
+        cfg.hash(),
+        vs_ref.pixels,
+        secs
+    );
+    outln!(
+        "  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
+        vs_ref.psnr_db,
+        vs_ref.max_lsb,
+        vs_ref.mean_lsb,
+        100.0 * vs_ref.over_1lsb
+    );
+    outln!(
+        "  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
+        vs_gou.psnr_db,
+        vs_gou.max_lsb,
+        vs_gou.mean_lsb,
+        100.0 * vs_gou.over_1lsb
+    );
+    outln!(
+        "  wrote {} and {name}_metrics.json in {}",
+        files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
+        out.display()
+    );
     if rtl {
         let t0 = std::time::Instant::now();
         let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new("target/gbump-render"))?;
         write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
         let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
-        outln!("  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image", t0.elapsed().as_secs_f64());
+        outln!(
+            "  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image",
+            t0.elapsed().as_secs_f64()
+        );
         if differ > 0 {
-            return Err(Error::Other(format!("the RTL image differs from the golden image in {differ} pixels")));
+            return Err(Error::Other(format!(
+                "the RTL image differs from the golden image in {differ} pixels"
+            )));
         }
     }
     Ok(())
 }
 
-pub fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>, cube: usize, out: &Path) -> Result<Vec<(String, String)>> {
+pub fn rom_files(
+    cfg: &PipelineConfig,
+    pick: &ConfigPick,
+    shininess: Option<u32>,
+    cube: usize,
+    out: &Path,
+) -> Result<Vec<(String, String)>> {
     use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
     let n = shininess.unwrap_or(cfg.shininess);
     if n > 1024 {
         return Err(Error::Other(format!("--shininess {n}: out of range\n  fix: use 0..=1024")));
     }
     if !(1..=1024).contains(&cube) {
-        return Err(Error::Other(format!("--cube-size {cube}: out of range\n  fix: use 1..=1024 texels per face side")));
+        return Err(Error::Other(format!(
+            "--cube-size {cube}: out of range\n  fix: use 1..=1024 texels per face side"
+        )));
     }
     let palette = match &pick.scene {
         Some(s) => {
             let scene = Scene::load(s)?;
-            let pcfg = PipelineConfig { palette: true, ..cfg.clone() };
+            let pcfg = PipelineConfig {
+                palette: true,
+                ..cfg.clone()
+            };
             let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
             p.objects[0].stored.palette().cloned().expect("palette mode")
         }
         None => default_palette(cfg),
     };
-    let cmd = format!("gbump rom {} --shininess {n} --cube-size {cube} --out {}", pick.args(), out.display()).replace("  ", " ");
+    let cmd = format!(
+        "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
+        pick.args(),
+        out.display()
+    )
+    .replace("  ", " ");
     let hash = &cfg.hash()[..8];
     let mut files = Vec::new();
     for (stem, rom) in [
@@ -553,7 +697,17 @@ pub fn rom_files(cfg: &PipelineConfig, pick: &ConfigPick, shininess: Option<u32>
 }
 
 #[allow(clippy::too_many_arguments)]
-fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed: u64, format: VecFormat, size: Option<&str>, level: u8, shininess: Option<u32>) -> Result<()> {
+fn vectors(
+    source: &str,
+    target: &[String],
+    pick: &ConfigPick,
+    out: &Path,
+    seed: u64,
+    format: VecFormat,
+    size: Option<&str>,
+    level: u8,
+    shininess: Option<u32>,
+) -> Result<()> {
     use crate::vectors::{dump, DumpOptions, Source};
     let mut src = Source::parse(source)?;
     if let Source::Corners(l) = &mut src {
@@ -575,7 +729,10 @@ fn vectors(source: &str, target: &[String], pick: &ConfigPick, out: &Path, seed:
         } else if all.contains(&t.as_str()) {
             targets.push(t.clone());
         } else {
-            return Err(Error::Other(format!("--target {t}: unknown\n  fix: one of all, {}", all.join(", "))));
+            return Err(Error::Other(format!(
+                "--target {t}: unknown\n  fix: one of all, {}",
+                all.join(", ")
+            )));
         }
     }
     let opts = DumpOptions {
@@ -614,7 +771,11 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         for p in vectors {
             if p.is_dir() {
                 let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-                let mut found: Vec<PathBuf> = std::fs::read_dir(p).map_err(|e| Error::io(p, e))?.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "json")).collect();
+                let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                    .map_err(|e| Error::io(p, e))?
+                    .filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                    .collect();
                 found.sort();
                 v.extend(found.into_iter().map(|f| (f, None)));
             } else {
@@ -622,7 +783,9 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
             }
         }
         if v.is_empty() {
-            return Err(Error::Other("--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into()));
+            return Err(Error::Other(
+                "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
+            ));
         }
         // Refuse truncated, corrupted or foreign sets before anything is generated or built.
         for (m, _) in &v {
@@ -630,7 +793,11 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         }
         v
     };
-    let rtl = write_rtl(&cfg, &o.work.join(format!("rtl_{h}")), &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()))?;
+    let rtl = write_rtl(
+        &cfg,
+        &o.work.join(format!("rtl_{h}")),
+        &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()),
+    )?;
 
     let results = run_sets(&cfg, &sets, &rtl, o)?;
     let (mut vecs, mut bad) = (0u64, 0usize);
@@ -643,7 +810,14 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
                     bad += 1;
                     outln!("{}", crate::sim::tail(&out.log, 40));
                 }
-                outln!("{:10} {:44} {:>10} {:>8} {:>9.2}", r.sim.name(), r.set, out.passed, out.failed, out.seconds);
+                outln!(
+                    "{:10} {:44} {:>10} {:>8} {:>9.2}",
+                    r.sim.name(),
+                    r.set,
+                    out.passed,
+                    out.failed,
+                    out.seconds
+                );
             }
             Err(e) => {
                 bad += 1;
@@ -654,7 +828,12 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
     if let Some(j) = junit {
         write_atomic(j, crate::sim::regress::junit(&cfg, &results).as_bytes())?;
     }
-    outln!("regress config {}: {} runs, {vecs} vectors, {} failing run(s)", cfg.hash(), results.len(), bad);
+    outln!(
+        "regress config {}: {} runs, {vecs} vectors, {} failing run(s)",
+        cfg.hash(),
+        results.len(),
+        bad
+    );
     if bad > 0 {
         return Err(Error::Other(format!("{bad} regression run(s) failed")));
     }
@@ -664,7 +843,10 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
 /// The command line as a user would type it (program name `gbump`, whatever the path), so
 /// that generated files do not depend on where the binary lives.
 pub fn invocation() -> String {
-    std::iter::once("gbump".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ")
+    std::iter::once("gbump".to_string())
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The README's interface section: top ports, then every unit's ports.
@@ -696,18 +878,46 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
         let v = crate::sim::fuzz::check_config(&cfg, &work, random, seed.wrapping_add(n))?;
         n += 1;
         vectors += v;
-        outln!("config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {}, power {} of {}-bit words, colour {} k {}, {:?}, {:?})", cfg.hash(), cfg.light_mode, cfg.lights,
-            cfg.normal_bits, cfg.lh_bits, cfg.dot_bits, cfg.power_design().label(), cfg.power_bits + 1, cfg.colour_bits, cfg.k_bits, cfg.rounding, cfg.blend_order);
+        outln!(
+            "config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {}, power {} of {}-bit words, colour {} k {}, {:?}, {:?})",
+            cfg.hash(),
+            cfg.light_mode,
+            cfg.lights,
+            cfg.normal_bits,
+            cfg.lh_bits,
+            cfg.dot_bits,
+            cfg.power_design().label(),
+            cfg.power_bits + 1,
+            cfg.colour_bits,
+            cfg.k_bits,
+            cfg.rounding,
+            cfg.blend_order
+        );
     }
-    outln!("fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s", t0.elapsed().as_secs_f64());
+    outln!(
+        "fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s",
+        t0.elapsed().as_secs_f64()
+    );
     if n == 0 {
-        return Err(Error::Other("fuzz: no configuration was checked\n  fix: give more --minutes".into()));
+        return Err(Error::Other(
+            "fuzz: no configuration was checked\n  fix: give more --minutes".into(),
+        ));
     }
     Ok(())
 }
 
 /// Image error of every built-in scene that fits `cfg`'s light slots.
-pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<(String, crate::measure::image_metrics::ImageError, crate::measure::image_metrics::ImageError)>> {
+pub fn scene_errors(
+    cfg: &PipelineConfig,
+    w: u32,
+    h: u32,
+) -> Result<
+    Vec<(
+        String,
+        crate::measure::image_metrics::ImageError,
+        crate::measure::image_metrics::ImageError,
+    )>,
+> {
     let mut out = Vec::new();
     for (name, _) in builtin::ALL {
         let s = Scene::load(name)?;

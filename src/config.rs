@@ -122,8 +122,18 @@ impl Default for PipelineConfig {
 
 /// Valid range of each numeric field, with the reason for its bounds.
 pub const LIMITS: &[(&str, u32, u32, &str)] = &[
-    ("normal_bits", 3, 16, "3 bits give a sign and 2 magnitude bits; 16 covers 16-bit normal maps"),
-    ("lh_bits", 4, 24, "s1.(w-2): at least 2 fraction bits; 24 keeps dot sums within 62 bits"),
+    (
+        "normal_bits",
+        3,
+        16,
+        "3 bits give a sign and 2 magnitude bits; 16 covers 16-bit normal maps",
+    ),
+    (
+        "lh_bits",
+        4,
+        24,
+        "s1.(w-2): at least 2 fraction bits; 24 keeps dot sums within 62 bits",
+    ),
     ("dot_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
     ("power_entries", 2, 65536, "a power of two; at most 2^dot_bits + 1 useful"),
     ("power_bits", 2, 16, "entry fraction bits"),
@@ -137,9 +147,8 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
 impl PipelineConfig {
     /// Parse a TOML config; `file` names it in errors.
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
-        let cfg: PipelineConfig = toml::from_str(text).map_err(|e| {
-            toml_error(file, text, &e, "see `gbump config --show` for every field with its default")
-        })?;
+        let cfg: PipelineConfig =
+            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "see `gbump config --show` for every field with its default"))?;
         cfg.validate(file)?;
         Ok(cfg)
     }
@@ -166,7 +175,12 @@ impl PipelineConfig {
         for &(name, lo, hi, why) in LIMITS {
             let v = self.get(name);
             if v < lo || v > hi {
-                return Err(Error::field(file, name, format!("{v} is out of range"), format!("use {lo}..={hi} ({why})")));
+                return Err(Error::field(
+                    file,
+                    name,
+                    format!("{v} is out of range"),
+                    format!("use {lo}..={hi} ({why})"),
+                ));
             }
         }
         if !self.power_entries.is_power_of_two() {
@@ -181,18 +195,37 @@ impl PipelineConfig {
             return Err(Error::field(
                 file,
                 "power_entries",
-                format!("{} entries exceed the {} distinct dot-product codes", self.power_entries, (1u32 << self.dot_bits) + 1),
+                format!(
+                    "{} entries exceed the {} distinct dot-product codes",
+                    self.power_entries,
+                    (1u32 << self.dot_bits) + 1
+                ),
                 "raise dot_bits or lower power_entries",
             ));
         }
         if self.power_unit == PowerUnitKind::Segmented && self.power_segments >= self.dot_bits {
-            return Err(Error::field(file, "power_segments", format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_bits), "use fewer segments or a wider dot_bits"));
+            return Err(Error::field(
+                file,
+                "power_segments",
+                format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_bits),
+                "use fewer segments or a wider dot_bits",
+            ));
         }
         if !self.diffuse && !self.specular {
-            return Err(Error::field(file, "diffuse", "both blend units are off", "enable `diffuse` or `specular`"));
+            return Err(Error::field(
+                file,
+                "diffuse",
+                "both blend units are off",
+                "enable `diffuse` or `specular`",
+            ));
         }
         if self.term_fmt().sum(self.lights).width + 1 > crate::fixed::MAX_WIDTH {
-            return Err(Error::field(file, "colour_bits", "blend accumulator too wide", "lower colour_bits, dot_bits or k_bits"));
+            return Err(Error::field(
+                file,
+                "colour_bits",
+                "blend accumulator too wide",
+                "lower colour_bits, dot_bits or k_bits",
+            ));
         }
         Ok(())
     }
@@ -269,14 +302,24 @@ impl PipelineConfig {
     pub fn power_design(&self) -> crate::model::power_unit::PowerDesign {
         use crate::model::power_unit::PowerDesign;
         match self.power_unit {
-            PowerUnitKind::Table => PowerDesign::Table { entries: self.power_entries, nearest: self.power_index == PowerIndex::Nearest },
+            PowerUnitKind::Table => PowerDesign::Table {
+                entries: self.power_entries,
+                nearest: self.power_index == PowerIndex::Nearest,
+            },
             PowerUnitKind::Lerp => PowerDesign::Lerp { knots: self.power_entries },
-            PowerUnitKind::Segmented => PowerDesign::Segmented { segments: self.power_segments, per_segment: self.power_entries, lerp: true },
+            PowerUnitKind::Segmented => PowerDesign::Segmented {
+                segments: self.power_segments,
+                per_segment: self.power_entries,
+                lerp: true,
+            },
         }
     }
     /// Input and output fraction bits of the power unit.
     pub fn power_formats(&self) -> crate::model::power_unit::PowerFormats {
-        crate::model::power_unit::PowerFormats { f: self.dot_bits, p: self.power_bits }
+        crate::model::power_unit::PowerFormats {
+            f: self.dot_bits,
+            p: self.power_bits,
+        }
     }
     /// Words of the power unit's loadable memory.
     pub fn power_depth(&self) -> u32 {
@@ -303,10 +346,23 @@ impl PipelineConfig {
     }
     /// `name = value` lines of every resolved parameter, for file headers and manifests.
     pub fn resolved_lines(&self) -> Vec<String> {
-        let mut v: Vec<String> = self.to_toml().lines().filter(|l| !l.trim().is_empty()).map(str::to_string).collect();
-        v.push(format!("# formats: normal {} lh {} dot {} power {} k {} colour {} term {} acc {}",
-            self.normal_fmt().name(), self.lh_fmt().name(), self.dot_fmt().name(), self.power_fmt().name(),
-            self.k_fmt().name(), self.colour_fmt().name(), self.term_fmt().name(), self.acc_fmt().name()));
+        let mut v: Vec<String> = self
+            .to_toml()
+            .lines()
+            .filter(|l| !l.trim().is_empty())
+            .map(str::to_string)
+            .collect();
+        v.push(format!(
+            "# formats: normal {} lh {} dot {} power {} k {} colour {} term {} acc {}",
+            self.normal_fmt().name(),
+            self.lh_fmt().name(),
+            self.dot_fmt().name(),
+            self.power_fmt().name(),
+            self.k_fmt().name(),
+            self.colour_fmt().name(),
+            self.term_fmt().name(),
+            self.acc_fmt().name()
+        ));
         v
     }
 }
@@ -328,11 +384,15 @@ mod tests {
 
     #[test]
     fn errors_name_line_and_field() {
-        let e = PipelineConfig::from_toml("cfg.toml", "lights = 4\nnormal_bits = \"eight\"\n").unwrap_err().to_string();
+        let e = PipelineConfig::from_toml("cfg.toml", "lights = 4\nnormal_bits = \"eight\"\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("cfg.toml:2:"), "{e}");
         let e = PipelineConfig::from_toml("cfg.toml", "lights = 9\n").unwrap_err().to_string();
         assert!(e.contains("`lights`") && e.contains("1..=8"), "{e}");
-        let e = PipelineConfig::from_toml("cfg.toml", "power_entries = 100\n").unwrap_err().to_string();
+        let e = PipelineConfig::from_toml("cfg.toml", "power_entries = 100\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("power of two"), "{e}");
         let e = PipelineConfig::from_toml("cfg.toml", "bogus = 1\n").unwrap_err().to_string();
         assert!(e.contains("unknown field"), "{e}");

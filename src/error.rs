@@ -8,11 +8,22 @@ use thiserror::Error;
 pub enum Error {
     /// A TOML file (scene or config) that does not parse or does not validate.
     #[error("{file}:{line}:{col}: {msg}\n  fix: {fix}")]
-    Input { file: String, line: usize, col: usize, msg: String, fix: String },
+    Input {
+        file: String,
+        line: usize,
+        col: usize,
+        msg: String,
+        fix: String,
+    },
 
     /// A named value that is out of range, NaN or otherwise unusable.
     #[error("{file}: field `{field}`: {msg}\n  fix: {fix}")]
-    Field { file: String, field: String, msg: String, fix: String },
+    Field {
+        file: String,
+        field: String,
+        msg: String,
+        fix: String,
+    },
 
     #[error("unknown scene `{name}`\n  fix: run `gbump scenes` for the built-in names, or pass a path to a .toml scene file")]
     UnknownScene { name: String },
@@ -38,11 +49,19 @@ impl Error {
             std::io::ErrorKind::PermissionDenied => " (check permissions of the file or folder)",
             _ => "",
         };
-        Error::Io { path, msg: format!("{e}{hint}") }
+        Error::Io {
+            path,
+            msg: format!("{e}{hint}"),
+        }
     }
 
     pub fn field(file: &str, field: &str, msg: impl Into<String>, fix: impl Into<String>) -> Error {
-        Error::Field { file: file.to_string(), field: field.to_string(), msg: msg.into(), fix: fix.into() }
+        Error::Field {
+            file: file.to_string(),
+            field: field.to_string(),
+            msg: msg.into(),
+            fix: fix.into(),
+        }
     }
 }
 
@@ -57,5 +76,11 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 /// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
 pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Error {
     let (line, col) = e.span().map_or((1, 1), |s| line_col(text, s.start));
-    Error::Input { file: file.to_string(), line, col, msg: e.message().trim().to_string(), fix: fix.to_string() }
+    Error::Input {
+        file: file.to_string(),
+        line,
+        col,
+        msg: e.message().trim().to_string(),
+        fix: fix.to_string(),
+    }
 }

@@ -19,7 +19,9 @@ pub fn install() {
 /// Error if an interrupt arrived.
 pub fn check() -> Result<()> {
     if INTERRUPTED.load(Ordering::Relaxed) {
-        Err(Error::Other("interrupted: nothing partial was kept\n  fix: run the command again".into()))
+        Err(Error::Other(
+            "interrupted: nothing partial was kept\n  fix: run the command again".into(),
+        ))
     } else {
         Ok(())
     }

@@ -39,7 +39,13 @@ pub struct Unit {
 }
 
 fn p(name: &'static str, dir: Dir, fmt: Format, lanes: u32, doc: &'static str) -> Port {
-    Port { name, dir, fmt, lanes, doc }
+    Port {
+        name,
+        dir,
+        fmt,
+        lanes,
+        doc,
+    }
 }
 
 fn blend_ports(c: &PipelineConfig) -> Vec<Port> {
@@ -47,7 +53,13 @@ fn blend_ports(c: &PipelineConfig) -> Vec<Port> {
         p("c_in", Dir::In, c.colour_fmt(), 3, "colour in (R, G, B)"),
         p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
         p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
-        p("lc", Dir::In, c.colour_fmt(), 3 * c.lights, "light colours Lc_i (R, G, B per light)"),
+        p(
+            "lc",
+            Dir::In,
+            c.colour_fmt(),
+            3 * c.lights,
+            "light colours Lc_i (R, G, B per light)",
+        ),
         p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(sum f_i k_i Lc_i))"),
     ]
 }
@@ -68,7 +80,13 @@ pub const UNITS: &[Unit] = &[
                 if c.palette {
                     p("texel", Dir::In, Format::u(8, 0), 1, "palette index")
                 } else {
-                    p("texel", Dir::In, Format::u(c.normal_bits, 0), 3, "range-compressed normal (offset binary)")
+                    p(
+                        "texel",
+                        Dir::In,
+                        Format::u(c.normal_bits, 0),
+                        3,
+                        "range-compressed normal (offset binary)",
+                    )
                 },
                 p("b", Dir::Out, c.normal_fmt(), 3, "bump normal B"),
             ]
@@ -98,7 +116,12 @@ pub const UNITS: &[Unit] = &[
         },
         latency: |_| 1,
     },
-    Unit { name: "diffuse_blend", source: "paper §4.2, §5.1: C' = sat(C_src + sum fd_i k_i Lc_i)", ports: blend_ports, latency: blend_latency },
+    Unit {
+        name: "diffuse_blend",
+        source: "paper §4.2, §5.1: C' = sat(C_src + sum fd_i k_i Lc_i)",
+        ports: blend_ports,
+        latency: blend_latency,
+    },
     Unit {
         name: "texture_modulate",
         source: "paper §5.1: the texture stage between the blends",
@@ -111,7 +134,12 @@ pub const UNITS: &[Unit] = &[
         },
         latency: |_| 1,
     },
-    Unit { name: "specular_blend", source: "paper §4.2, §5.1: C_new = sat(C'' + sum fs_i k_i Lc_i)", ports: blend_ports, latency: blend_latency },
+    Unit {
+        name: "specular_blend",
+        source: "paper §4.2, §5.1: C_new = sat(C'' + sum fs_i k_i Lc_i)",
+        ports: blend_ports,
+        latency: blend_latency,
+    },
 ];
 
 /// Look a unit up by name.
@@ -124,9 +152,20 @@ pub fn markdown_table(cfg: &PipelineConfig) -> String {
     let mut s = String::from("| unit | port | dir | format | lanes | bits | meaning |\n|---|---|---|---|---|---|---|\n");
     for u in UNITS {
         for (i, port) in (u.ports)(cfg).iter().enumerate() {
-            let name = if i == 0 { format!("`{}` (latency {})", u.name, (u.latency)(cfg)) } else { String::new() };
+            let name = if i == 0 {
+                format!("`{}` (latency {})", u.name, (u.latency)(cfg))
+            } else {
+                String::new()
+            };
             let dir = if port.dir == Dir::In { "in" } else { "out" };
-            s += &format!("| {name} | `{}` | {dir} | {} | {} | {} | {} |\n", port.name, port.fmt.name(), port.lanes, port.bits(), port.doc);
+            s += &format!(
+                "| {name} | `{}` | {dir} | {} | {} | {} | {} |\n",
+                port.name,
+                port.fmt.name(),
+                port.lanes,
+                port.bits(),
+                port.doc
+            );
         }
     }
     s

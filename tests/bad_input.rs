@@ -24,7 +24,17 @@ fn render(extra: &[&'static str]) -> Vec<&'static str> {
 }
 
 fn render_cfg() -> Vec<&'static str> {
-    vec!["render", "--scene", "cg_wall_front", "--size", "32x16", "--config", "c.toml", "--out", "out"]
+    vec![
+        "render",
+        "--scene",
+        "cg_wall_front",
+        "--size",
+        "32x16",
+        "--config",
+        "c.toml",
+        "--out",
+        "out",
+    ]
 }
 
 fn cases() -> Vec<Case> {
@@ -37,60 +47,325 @@ fn cases() -> Vec<Case> {
     };
     let bump = "source = { kind = \"bricks\", rows = 8, cols = 4, mortar = 0.08 }";
     vec![
-        ("unclosed table header", scene(r("[camera]", "[camera")), render(&[]), vec!["s.toml:", "fix:"]),
-        ("string for a number", scene(r("shininess = 8", "shininess = \"eight\"")), render(&[]), vec!["s.toml:", "invalid type"]),
-        ("NaN", scene(r("height = 2.0", "height = nan")), render(&[]), vec!["s.toml", "camera.height", "finite"]),
-        ("+infinity", scene(r("colour = [0.95, 0.95, 0.95]", "colour = [inf, 0.95, 0.95]")), render(&[]), vec!["lights[0].colour[0]", "finite"]),
-        ("-infinity", scene(r("ambient = [0.05, 0.05, 0.05]", "ambient = [-inf, 0.05, 0.05]")), render(&[]), vec!["ambient[0]", "finite"]),
-        ("zero image size", scene(r("size = [256, 128]", "size = [0, 128]")), render_nosize(), vec!["size[0]", "1..=8192"]),
-        ("negative image size", scene(r("size = [256, 128]", "size = [-5, 128]")), render_nosize(), vec!["s.toml:", "invalid value"]),
-        ("huge image size", scene(r("size = [256, 128]", "size = [100000, 128]")), render_nosize(), vec!["size[0]", "1..=8192"]),
-        ("unknown field", scene(r("shininess = 8", "shininess = 8\nshinyness = 3")), render(&[]), vec!["unknown field", "shinyness"]),
-        ("missing camera", scene(|t| t.replace("[camera]", "[kamera]")), render(&[]), vec!["s.toml", "kamera"]),
-        ("no objects", scene(|t| t[..t.find("[[objects]]").unwrap()].to_string()), render(&[]), vec!["s.toml", "objects"]),
-        ("zero light direction", scene(r("kind = \"point\"\nposition = [0.0, 0.0, 3.0]", "kind = \"directional\"\ndirection = [0.0, 0.0, 0.0]")), render(&[]), vec!["lights[0].direction", "non-zero"]),
-        ("eye on the target", scene(r("eye = [0.0, 0.0, 6.0]", "eye = [0.0, 0.0, 0.0]")), render(&[]), vec!["camera.eye", "coincide"]),
-        ("k above 1", scene(r("colour = [0.95, 0.95, 0.95]", "colour = [0.95, 0.95, 0.95]\nk = 1.5")), render(&[]), vec!["lights[0].k", "[0, 1]"]),
-        ("colour above 1", scene(r("colour = [0.95, 0.95, 0.95]", "colour = [2.0, 0.95, 0.95]")), render(&[]), vec!["lights[0].colour[0]", "out of range"]),
-        ("spot cut-off of 120 degrees", scene(r("kind = \"point\"\nposition = [0.0, 0.0, 3.0]", "kind = \"spot\"\nposition = [0.0, 0.0, 3.0]\ndirection = [0.0, 0.0, -1.0]\ncutoff_deg = 120.0")), render(&[]), vec!["lights[0].cutoff_deg", "[0, 90]"]),
-        ("negative bump strength", scene(r("strength = 10.0", "strength = -1.0")), render(&[]), vec!["objects[0].bump.strength"]),
-        ("bump map of size 0", scene(r("size = 128, strength", "size = 0, strength")), render(&[]), vec!["objects[0].bump.size", "2..=4096"]),
-        ("bump map of size 1", scene(r("size = 128, strength", "size = 1, strength")), render(&[]), vec!["objects[0].bump.size"]),
-        ("zero segments", scene(r("segments = [16, 8]", "segments = [0, 8]")), render(&[]), vec!["objects[0].segments[0]", "1..=1024"]),
-        ("prism with two sides", scene(r("shape = { kind = \"plane\", size = [4.0, 2.0] }", "shape = { kind = \"cylinder\", radius = 1.0, height = 1.0, sides = 2 }")), render(&[]), vec!["objects[0].shape.sides"]),
-        ("sphere of radius 0", scene(r("shape = { kind = \"plane\", size = [4.0, 2.0] }", "shape = { kind = \"sphere\", radius = 0.0 }")), render(&[]), vec!["objects[0].shape.radius"]),
-        ("unknown shape", scene(r("kind = \"plane\"", "kind = \"dodecahedron\"")), render(&[]), vec!["s.toml:", "dodecahedron"]),
-        ("unknown height source", scene(r("kind = \"bricks\"", "kind = \"cobbles\"")), render(&[]), vec!["s.toml:", "cobbles"]),
-        ("mortar wider than a brick", scene(r("mortar = 0.08", "mortar = 0.9")), render(&[]), vec!["objects[0].bump.source.mortar"]),
-        ("missing PNG height map", scene(r(bump, "source = { kind = \"png\", path = \"none.png\" }")), render(&[]), vec!["none.png", "PNG"]),
-        ("corrupt PNG height map", vec![("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"bad.png\" }", 1)), ("bad.png", "\u{89}PNG not really".into())], render(&[]), vec!["bad.png", "PNG"]),
-        ("unknown scene name", vec![], vec!["render", "--scene", "nosuchscene", "--out", "out"], vec!["unknown scene", "gbump scenes"]),
-        ("missing scene file", vec![], vec!["render", "--scene", "missing.toml", "--out", "out"], vec!["missing.toml", "check the path"]),
-        ("empty scene file", vec![("s.toml", String::new())], render(&[]), vec!["s.toml:", "missing field"]),
-        ("normal_bits 0", cfg("normal_bits = 0\n"), render_cfg(), vec!["c.toml", "normal_bits", "3..=16"]),
-        ("normal_bits 1", cfg("normal_bits = 1\n"), render_cfg(), vec!["normal_bits", "3..=16"]),
+        (
+            "unclosed table header",
+            scene(r("[camera]", "[camera")),
+            render(&[]),
+            vec!["s.toml:", "fix:"],
+        ),
+        (
+            "string for a number",
+            scene(r("shininess = 8", "shininess = \"eight\"")),
+            render(&[]),
+            vec!["s.toml:", "invalid type"],
+        ),
+        (
+            "NaN",
+            scene(r("height = 2.0", "height = nan")),
+            render(&[]),
+            vec!["s.toml", "camera.height", "finite"],
+        ),
+        (
+            "+infinity",
+            scene(r("colour = [0.95, 0.95, 0.95]", "colour = [inf, 0.95, 0.95]")),
+            render(&[]),
+            vec!["lights[0].colour[0]", "finite"],
+        ),
+        (
+            "-infinity",
+            scene(r("ambient = [0.05, 0.05, 0.05]", "ambient = [-inf, 0.05, 0.05]")),
+            render(&[]),
+            vec!["ambient[0]", "finite"],
+        ),
+        (
+            "zero image size",
+            scene(r("size = [256, 128]", "size = [0, 128]")),
+            render_nosize(),
+            vec!["size[0]", "1..=8192"],
+        ),
+        (
+            "negative image size",
+            scene(r("size = [256, 128]", "size = [-5, 128]")),
+            render_nosize(),
+            vec!["s.toml:", "invalid value"],
+        ),
+        (
+            "huge image size",
+            scene(r("size = [256, 128]", "size = [100000, 128]")),
+            render_nosize(),
+            vec!["size[0]", "1..=8192"],
+        ),
+        (
+            "unknown field",
+            scene(r("shininess = 8", "shininess = 8\nshinyness = 3")),
+            render(&[]),
+            vec!["unknown field", "shinyness"],
+        ),
+        (
+            "missing camera",
+            scene(|t| t.replace("[camera]", "[kamera]")),
+            render(&[]),
+            vec!["s.toml", "kamera"],
+        ),
+        (
+            "no objects",
+            scene(|t| t[..t.find("[[objects]]").unwrap()].to_string()),
+            render(&[]),
+            vec!["s.toml", "objects"],
+        ),
+        (
+            "zero light direction",
+            scene(r(
+                "kind = \"point\"\nposition = [0.0, 0.0, 3.0]",
+                "kind = \"directional\"\ndirection = [0.0, 0.0, 0.0]",
+            )),
+            render(&[]),
+            vec!["lights[0].direction", "non-zero"],
+        ),
+        (
+            "eye on the target",
+            scene(r("eye = [0.0, 0.0, 6.0]", "eye = [0.0, 0.0, 0.0]")),
+            render(&[]),
+            vec!["camera.eye", "coincide"],
+        ),
+        (
+            "k above 1",
+            scene(r("colour = [0.95, 0.95, 0.95]", "colour = [0.95, 0.95, 0.95]\nk = 1.5")),
+            render(&[]),
+            vec!["lights[0].k", "[0, 1]"],
+        ),
+        (
+            "colour above 1",
+            scene(r("colour = [0.95, 0.95, 0.95]", "colour = [2.0, 0.95, 0.95]")),
+            render(&[]),
+            vec!["lights[0].colour[0]", "out of range"],
+        ),
+        (
+            "spot cut-off of 120 degrees",
+            scene(r(
+                "kind = \"point\"\nposition = [0.0, 0.0, 3.0]",
+                "kind = \"spot\"\nposition = [0.0, 0.0, 3.0]\ndirection = [0.0, 0.0, -1.0]\ncutoff_deg = 120.0",
+            )),
+            render(&[]),
+            vec!["lights[0].cutoff_deg", "[0, 90]"],
+        ),
+        (
+            "negative bump strength",
+            scene(r("strength = 10.0", "strength = -1.0")),
+            render(&[]),
+            vec!["objects[0].bump.strength"],
+        ),
+        (
+            "bump map of size 0",
+            scene(r("size = 128, strength", "size = 0, strength")),
+            render(&[]),
+            vec!["objects[0].bump.size", "2..=4096"],
+        ),
+        (
+            "bump map of size 1",
+            scene(r("size = 128, strength", "size = 1, strength")),
+            render(&[]),
+            vec!["objects[0].bump.size"],
+        ),
+        (
+            "zero segments",
+            scene(r("segments = [16, 8]", "segments = [0, 8]")),
+            render(&[]),
+            vec!["objects[0].segments[0]", "1..=1024"],
+        ),
+        (
+            "prism with two sides",
+            scene(r(
+                "shape = { kind = \"plane\", size = [4.0, 2.0] }",
+                "shape = { kind = \"cylinder\", radius = 1.0, height = 1.0, sides = 2 }",
+            )),
+            render(&[]),
+            vec!["objects[0].shape.sides"],
+        ),
+        (
+            "sphere of radius 0",
+            scene(r(
+                "shape = { kind = \"plane\", size = [4.0, 2.0] }",
+                "shape = { kind = \"sphere\", radius = 0.0 }",
+            )),
+            render(&[]),
+            vec!["objects[0].shape.radius"],
+        ),
+        (
+            "unknown shape",
+            scene(r("kind = \"plane\"", "kind = \"dodecahedron\"")),
+            render(&[]),
+            vec!["s.toml:", "dodecahedron"],
+        ),
+        (
+            "unknown height source",
+            scene(r("kind = \"bricks\"", "kind = \"cobbles\"")),
+            render(&[]),
+            vec!["s.toml:", "cobbles"],
+        ),
+        (
+            "mortar wider than a brick",
+            scene(r("mortar = 0.08", "mortar = 0.9")),
+            render(&[]),
+            vec!["objects[0].bump.source.mortar"],
+        ),
+        (
+            "missing PNG height map",
+            scene(r(bump, "source = { kind = \"png\", path = \"none.png\" }")),
+            render(&[]),
+            vec!["none.png", "PNG"],
+        ),
+        (
+            "corrupt PNG height map",
+            vec![
+                ("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"bad.png\" }", 1)),
+                ("bad.png", "\u{89}PNG not really".into()),
+            ],
+            render(&[]),
+            vec!["bad.png", "PNG"],
+        ),
+        (
+            "unknown scene name",
+            vec![],
+            vec!["render", "--scene", "nosuchscene", "--out", "out"],
+            vec!["unknown scene", "gbump scenes"],
+        ),
+        (
+            "missing scene file",
+            vec![],
+            vec!["render", "--scene", "missing.toml", "--out", "out"],
+            vec!["missing.toml", "check the path"],
+        ),
+        (
+            "empty scene file",
+            vec![("s.toml", String::new())],
+            render(&[]),
+            vec!["s.toml:", "missing field"],
+        ),
+        (
+            "normal_bits 0",
+            cfg("normal_bits = 0\n"),
+            render_cfg(),
+            vec!["c.toml", "normal_bits", "3..=16"],
+        ),
+        (
+            "normal_bits 1",
+            cfg("normal_bits = 1\n"),
+            render_cfg(),
+            vec!["normal_bits", "3..=16"],
+        ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
         ("dot_bits 64", cfg("dot_bits = 64\n"), render_cfg(), vec!["dot_bits", "2..=16"]),
-        ("negative width", cfg("colour_bits = -8\n"), render_cfg(), vec!["c.toml:1:", "invalid value"]),
-        ("table size not a power of two", cfg("power_entries = 100\n"), render_cfg(), vec!["power_entries", "power of two"]),
-        ("table larger than the index", cfg("dot_bits = 4\npower_entries = 256\n"), render_cfg(), vec!["power_entries", "dot_bits"]),
+        (
+            "negative width",
+            cfg("colour_bits = -8\n"),
+            render_cfg(),
+            vec!["c.toml:1:", "invalid value"],
+        ),
+        (
+            "table size not a power of two",
+            cfg("power_entries = 100\n"),
+            render_cfg(),
+            vec!["power_entries", "power of two"],
+        ),
+        (
+            "table larger than the index",
+            cfg("dot_bits = 4\npower_entries = 256\n"),
+            render_cfg(),
+            vec!["power_entries", "dot_bits"],
+        ),
         ("zero light slots", cfg("lights = 0\n"), render_cfg(), vec!["lights", "1..=8"]),
         ("nine light slots", cfg("lights = 9\n"), render_cfg(), vec!["lights", "1..=8"]),
-        ("unknown rounding", cfg("rounding = \"sideways\"\n"), render_cfg(), vec!["c.toml:1:", "sideways"]),
-        ("fewer slots than the scene's lights", cfg("lights = 1\n"), vec!["render", "--scene", "torus_caps", "--config", "c.toml", "--out", "out"], vec!["2 bump lights", "lights = 2"]),
-        ("no blend unit at all", cfg("diffuse = false\nspecular = false\n"), render_cfg(), vec!["diffuse", "enable"]),
-        ("size 0x10", vec![], vec!["render", "--scene", "cg_wall_front", "--size", "0x10", "--out", "out"], vec!["--size", "WxH"]),
-        ("size abc", vec![], vec!["render", "--scene", "cg_wall_front", "--size", "abc", "--out", "out"], vec!["--size", "WxH"]),
-        ("random:0", vec![], vec!["vectors", "--source", "random:0", "--out", "out"], vec!["random:N", "1 <= N"]),
-        ("unknown source", vec![], vec!["vectors", "--source", "bogus", "--out", "out"], vec!["--source bogus", "scene:NAME"]),
-        ("unsweepable unit", vec![], vec!["vectors", "--source", "exhaustive:dot_clamp", "--out", "out"], vec!["dot_clamp", "random:N"]),
-        ("unknown target", vec![], vec!["vectors", "--source", "corners", "--target", "alu", "--out", "out"], vec!["--target alu", "top"]),
-        ("shininess 5000", vec![], vec!["vectors", "--source", "corners", "--shininess", "5000", "--out", "out"], vec!["--shininess", "0..=1024"]),
-        ("cube map of size 0", vec![], vec!["rom", "--cube-size", "0", "--out", "out"], vec!["--cube-size", "1..=1024"]),
-        ("palette configuration has no RTL vectors", cfg("palette = true\n"), vec!["vectors", "--source", "corners", "--config", "c.toml", "--out", "out"], vec!["palette", "palette = false"]),
-        ("corrupt vector manifest", vec![("m.json", "{ not json".into())], vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "out"], vec!["m.json", "manifest"]),
-        ("fuzz for -1 minutes", vec![], vec!["fuzz", "--minutes=-1", "--work", "out"], vec!["--minutes", "positive"]),
-        ("output folder is a file", vec![("out", "I am a file".into())], vec!["rtl", "--out", "out"], vec!["out"]),
+        (
+            "unknown rounding",
+            cfg("rounding = \"sideways\"\n"),
+            render_cfg(),
+            vec!["c.toml:1:", "sideways"],
+        ),
+        (
+            "fewer slots than the scene's lights",
+            cfg("lights = 1\n"),
+            vec!["render", "--scene", "torus_caps", "--config", "c.toml", "--out", "out"],
+            vec!["2 bump lights", "lights = 2"],
+        ),
+        (
+            "no blend unit at all",
+            cfg("diffuse = false\nspecular = false\n"),
+            render_cfg(),
+            vec!["diffuse", "enable"],
+        ),
+        (
+            "size 0x10",
+            vec![],
+            vec!["render", "--scene", "cg_wall_front", "--size", "0x10", "--out", "out"],
+            vec!["--size", "WxH"],
+        ),
+        (
+            "size abc",
+            vec![],
+            vec!["render", "--scene", "cg_wall_front", "--size", "abc", "--out", "out"],
+            vec!["--size", "WxH"],
+        ),
+        (
+            "random:0",
+            vec![],
+            vec!["vectors", "--source", "random:0", "--out", "out"],
+            vec!["random:N", "1 <= N"],
+        ),
+        (
+            "unknown source",
+            vec![],
+            vec!["vectors", "--source", "bogus", "--out", "out"],
+            vec!["--source bogus", "scene:NAME"],
+        ),
+        (
+            "unsweepable unit",
+            vec![],
+            vec!["vectors", "--source", "exhaustive:dot_clamp", "--out", "out"],
+            vec!["dot_clamp", "random:N"],
+        ),
+        (
+            "unknown target",
+            vec![],
+            vec!["vectors", "--source", "corners", "--target", "alu", "--out", "out"],
+            vec!["--target alu", "top"],
+        ),
+        (
+            "shininess 5000",
+            vec![],
+            vec!["vectors", "--source", "corners", "--shininess", "5000", "--out", "out"],
+            vec!["--shininess", "0..=1024"],
+        ),
+        (
+            "cube map of size 0",
+            vec![],
+            vec!["rom", "--cube-size", "0", "--out", "out"],
+            vec!["--cube-size", "1..=1024"],
+        ),
+        (
+            "palette configuration has no RTL vectors",
+            cfg("palette = true\n"),
+            vec!["vectors", "--source", "corners", "--config", "c.toml", "--out", "out"],
+            vec!["palette", "palette = false"],
+        ),
+        (
+            "corrupt vector manifest",
+            vec![("m.json", "{ not json".into())],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "out"],
+            vec!["m.json", "manifest"],
+        ),
+        (
+            "fuzz for -1 minutes",
+            vec![],
+            vec!["fuzz", "--minutes=-1", "--work", "out"],
+            vec!["--minutes", "positive"],
+        ),
+        (
+            "output folder is a file",
+            vec![("out", "I am a file".into())],
+            vec!["rtl", "--out", "out"],
+            vec!["out"],
+        ),
     ]
 }
 
@@ -103,7 +378,13 @@ fn leftovers(dir: &Path) -> Vec<String> {
     if out.is_file() {
         return vec![];
     }
-    std::fs::read_dir(&out).map(|d| d.filter_map(|e| e.ok()).map(|e| e.file_name().to_string_lossy().into_owned()).collect()).unwrap_or_default()
+    std::fs::read_dir(&out)
+        .map(|d| {
+            d.filter_map(|e| e.ok())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default()
 }
 
 #[test]
@@ -116,7 +397,12 @@ fn every_bad_input_is_refused_cleanly() {
         for (f, text) in &files {
             std::fs::write(dir.path().join(f), text).unwrap();
         }
-        let out = Command::cargo_bin("gbump").unwrap().args(&args).current_dir(dir.path()).output().unwrap();
+        let out = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(&args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
         let err = String::from_utf8_lossy(&out.stderr).into_owned();
         let problems: Vec<String> = [
             (out.status.success(), "exit status 0".to_string()),
@@ -133,15 +419,28 @@ fn every_bad_input_is_refused_cleanly() {
             failures.push(format!("{name}: {}\n    stderr: {}", problems.join("; "), err.trim()));
         }
     }
-    assert!(failures.is_empty(), "{} case(s) misbehaved:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} case(s) misbehaved:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
 fn a_full_stdout_and_an_unwritable_folder_are_errors() {
     let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump")).arg("config").stdout(full).output().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .arg("config")
+        .stdout(full)
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("No space left"));
-    let o = Command::cargo_bin("gbump").unwrap().args(["rtl", "--out", "/proc/gbump-no"]).output().unwrap();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["rtl", "--out", "/proc/gbump-no"])
+        .output()
+        .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("/proc/gbump-no"));
 }
 
@@ -153,7 +452,12 @@ fn writing_into_a_full_device_fails_and_removes_what_was_written() {
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
     std::os::unix::fs::symlink("/dev/full", out.join("cg_wall_front_metrics.json")).unwrap();
-    let o = Command::cargo_bin("gbump").unwrap().args(["render", "--scene", "cg_wall_front", "--size", "16x8", "--out"]).arg(&out).output().unwrap();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["render", "--scene", "cg_wall_front", "--size", "16x8", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("No space left"), "{err}");
     let left: Vec<_> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
@@ -187,7 +491,15 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
     }
     let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
-    let o = Command::cargo_bin("gbump").unwrap().env("PATH", path).args(["regress", "--sim", "icarus", "--work"]).arg(dir.path().join("w")).arg("--vectors").arg(vectors).output().unwrap();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .env("PATH", path)
+        .args(["regress", "--sim", "icarus", "--work"])
+        .arg(dir.path().join("w"))
+        .arg("--vectors")
+        .arg(vectors)
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success(), "{text}");
     assert!(text.contains("crashed") && text.contains("signal 11"), "{text}");
@@ -206,10 +518,15 @@ fn an_interrupted_dump_leaves_nothing_behind() {
     unsafe_kill(child.id());
     let st = child.wait().unwrap();
     assert!(!st.success());
-    let left: Vec<_> = std::fs::read_dir(dir.path().join("out")).map(|d| d.map(|e| e.unwrap().file_name()).collect()).unwrap_or_default();
+    let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
+        .map(|d| d.map(|e| e.unwrap().file_name()).collect())
+        .unwrap_or_default();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
 
 fn unsafe_kill(pid: u32) {
-    std::process::Command::new("kill").args(["-INT", &pid.to_string()]).status().unwrap();
+    std::process::Command::new("kill")
+        .args(["-INT", &pid.to_string()])
+        .status()
+        .unwrap();
 }

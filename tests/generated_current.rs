@@ -24,12 +24,22 @@ fn compare(dir: &Path, files: &[(String, Vec<u8>)]) -> Vec<String> {
 #[test]
 fn checked_in_rtl_and_roms_are_current() {
     let cfg = PipelineConfig::default();
-    let rtl: Vec<(String, Vec<u8>)> = gbump::rtlgen::generate(&cfg, "gbump rtl --out rtl").into_iter().map(|(n, t)| (n, t.into_bytes())).collect();
+    let rtl: Vec<(String, Vec<u8>)> = gbump::rtlgen::generate(&cfg, "gbump rtl --out rtl")
+        .into_iter()
+        .map(|(n, t)| (n, t.into_bytes()))
+        .collect();
     let mut stale = compare(&root().join("rtl"), &rtl);
     let pick = gbump::cli::ConfigPick { config: None, scene: None };
     let roms = gbump::cli::rom_files(&cfg, &pick, Some(16), 32, Path::new("rtl/rom")).unwrap();
-    stale.extend(compare(&root().join("rtl/rom"), &roms.into_iter().map(|(n, t)| (n, t.into_bytes())).collect::<Vec<_>>()));
-    assert!(stale.is_empty(), "stale generated files (run scripts/regen.sh):\n{}", stale.join("\n"));
+    stale.extend(compare(
+        &root().join("rtl/rom"),
+        &roms.into_iter().map(|(n, t)| (n, t.into_bytes())).collect::<Vec<_>>(),
+    ));
+    assert!(
+        stale.is_empty(),
+        "stale generated files (run scripts/regen.sh):\n{}",
+        stale.join("\n")
+    );
 }
 
 #[test]
@@ -37,8 +47,18 @@ fn checked_in_vectors_are_current() {
     let cfg = PipelineConfig::default();
     let tmp = tempfile::tempdir().unwrap();
     let all: Vec<String> = gbump::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
-    for (src, cmd) in [(Source::Corners(1), "gbump vectors --source corners --out vectors"), (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors")] {
-        let o = DumpOptions { text: true, binary: true, seed: 1, size: None, command: cmd.into(), shininess: None };
+    for (src, cmd) in [
+        (Source::Corners(1), "gbump vectors --source corners --out vectors"),
+        (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors"),
+    ] {
+        let o = DumpOptions {
+            text: true,
+            binary: true,
+            seed: 1,
+            size: None,
+            command: cmd.into(),
+            shininess: None,
+        };
         dump(&cfg, &src, &all, tmp.path(), &o).unwrap();
     }
     let files: Vec<(String, Vec<u8>)> = std::fs::read_dir(tmp.path())
@@ -60,7 +80,11 @@ fn checked_in_vectors_are_current() {
 
 #[test]
 fn regeneration_is_deterministic() {
-    let cfg = PipelineConfig { lights: 2, light_mode: gbump::config::LightMode::Parallel, ..Default::default() };
+    let cfg = PipelineConfig {
+        lights: 2,
+        light_mode: gbump::config::LightMode::Parallel,
+        ..Default::default()
+    };
     assert_eq!(gbump::rtlgen::generate(&cfg, "x"), gbump::rtlgen::generate(&cfg, "x"));
     for (name, text) in gbump::rtlgen::generate(&cfg, "x") {
         assert!(text.is_ascii(), "{name}: generated files are ASCII");
@@ -75,5 +99,8 @@ fn regeneration_is_deterministic() {
 fn readme_interface_table_is_current() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
     let table = gbump::cli::interface_markdown(&PipelineConfig::default());
-    assert!(readme.contains(&table), "README's interface table is stale: paste the output of `gbump interface`");
+    assert!(
+        readme.contains(&table),
+        "README's interface table is stale: paste the output of `gbump interface`"
+    );
 }

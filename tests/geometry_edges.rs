@@ -23,11 +23,11 @@ fn orthonormal(n: DVec3, t: DVec3, b: DVec3) {
 fn frames_survive_every_degenerate_input() {
     let z = DVec3::ZERO;
     for (n, pu, pv) in [
-        (z, z, z),                              // nothing at all: falls back to +Z and any tangent
-        (DVec3::Z, z, DVec3::Y),                // zero ∂P/∂u (a pole): tangent from N × ∂P/∂v
-        (DVec3::Z, DVec3::Z, z),                // tangent parallel to the normal
-        (z, DVec3::X, DVec3::Y),                // zero normal: from ∂P/∂u × ∂P/∂v
-        (DVec3::Z, DVec3::X, -DVec3::Y),        // mirrored uv: the binormal follows ∂P/∂v
+        (z, z, z),                       // nothing at all: falls back to +Z and any tangent
+        (DVec3::Z, z, DVec3::Y),         // zero ∂P/∂u (a pole): tangent from N × ∂P/∂v
+        (DVec3::Z, DVec3::Z, z),         // tangent parallel to the normal
+        (z, DVec3::X, DVec3::Y),         // zero normal: from ∂P/∂u × ∂P/∂v
+        (DVec3::Z, DVec3::X, -DVec3::Y), // mirrored uv: the binormal follows ∂P/∂v
         (DVec3::new(1e-300, 0.0, 0.0), DVec3::new(0.0, 1e-300, 0.0), z),
     ] {
         let (a, b, c) = frame(n, pu, pv);
@@ -48,7 +48,15 @@ fn scene_with(light: &str) -> Scene {
 fn assert_images_finite(s: &Scene) {
     let cfg = s.derive_config().unwrap();
     let img = render(s, &cfg, 64, 32, false).unwrap();
-    assert!(img.gouraud.iter().chain(&img.reference).flatten().all(|x| x.is_finite() && (0.0..=1.0).contains(x)), "{}", s.name);
+    assert!(
+        img.gouraud
+            .iter()
+            .chain(&img.reference)
+            .flatten()
+            .all(|x| x.is_finite() && (0.0..=1.0).contains(x)),
+        "{}",
+        s.name
+    );
     assert!(img.golden.iter().flatten().all(|c| *c <= img.colour_max));
     assert!(img.covered.iter().filter(|c| **c).count() > 1000);
 }
@@ -72,7 +80,10 @@ fn lights_parallel_to_the_view_on_the_horizon_and_behind_render_without_nan() {
     let horizon = scene_with("[[lights]]\nkind = \"directional\"\ndirection = [1.0, 0.0, 0.0]\ncolour = [1.0, 1.0, 1.0]\n");
     let cfg = horizon.derive_config().unwrap();
     let p = Prepared::new(&horizon, &cfg, 8, 8).unwrap();
-    assert!(p.objects[0].tris.iter().all(|t| t.fixed.lights[0].l[2] == 0), "a horizon light has no normal component");
+    assert!(
+        p.objects[0].tris.iter().all(|t| t.fixed.lights[0].l[2] == 0),
+        "a horizon light has no normal component"
+    );
 }
 
 #[test]
@@ -80,13 +91,27 @@ fn zero_area_coincident_and_mirrored_triangles_leave_no_nan() {
     let s = Scene::load("cg_wall_front").unwrap();
     let cfg = s.derive_config().unwrap();
     let mut p = Prepared::new(&s, &cfg, 48, 24).unwrap();
-    let v = |x: f64, y: f64, u: f64, n: DVec3| Vertex { p: DVec3::new(x, y, 0.0), n, t: DVec3::X, b: DVec3::Y, uv: DVec2::new(u, y) };
+    let v = |x: f64, y: f64, u: f64, n: DVec3| Vertex {
+        p: DVec3::new(x, y, 0.0),
+        n,
+        t: DVec3::X,
+        b: DVec3::Y,
+        uv: DVec2::new(u, y),
+    };
     let mut mesh = Mesh::default();
     mesh.verts = vec![
-        v(-1.0, -0.8, 0.0, DVec3::Z), v(1.0, -0.8, 1.0, DVec3::Z), v(0.0, 0.8, 0.5, DVec3::Z),  // ordinary
-        v(0.0, 0.0, 0.0, DVec3::Z), v(0.0, 0.0, 0.0, DVec3::Z), v(0.0, 0.0, 0.0, DVec3::Z),     // coincident
-        v(-1.0, 0.0, 0.0, DVec3::ZERO), v(0.0, 0.0, 0.5, DVec3::ZERO), v(1.0, 0.0, 1.0, DVec3::ZERO), // collinear, zero normals
-        v(-1.9, -0.9, 1.0, DVec3::Z), v(-1.2, -0.9, 0.0, DVec3::Z), v(-1.5, 0.9, 0.5, DVec3::Z), // mirrored in u
+        v(-1.0, -0.8, 0.0, DVec3::Z),
+        v(1.0, -0.8, 1.0, DVec3::Z),
+        v(0.0, 0.8, 0.5, DVec3::Z), // ordinary
+        v(0.0, 0.0, 0.0, DVec3::Z),
+        v(0.0, 0.0, 0.0, DVec3::Z),
+        v(0.0, 0.0, 0.0, DVec3::Z), // coincident
+        v(-1.0, 0.0, 0.0, DVec3::ZERO),
+        v(0.0, 0.0, 0.5, DVec3::ZERO),
+        v(1.0, 0.0, 1.0, DVec3::ZERO), // collinear, zero normals
+        v(-1.9, -0.9, 1.0, DVec3::Z),
+        v(-1.2, -0.9, 0.0, DVec3::Z),
+        v(-1.5, 0.9, 0.5, DVec3::Z), // mirrored in u
     ];
     mesh.tris = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11]];
     let tris = tri_states(&s, &cfg, &p.camera, &mesh).unwrap();

@@ -25,7 +25,9 @@ fn every_builtin_scene_matches_its_golden_png() {
             write_png(&path, W, H, &px).unwrap();
             continue;
         }
-        let want = image::open(&path).unwrap_or_else(|e| panic!("{}: {e} (run with GBUMP_BLESS=1 to create)", path.display())).to_rgb8();
+        let want = image::open(&path)
+            .unwrap_or_else(|e| panic!("{}: {e} (run with GBUMP_BLESS=1 to create)", path.display()))
+            .to_rgb8();
         let got: Vec<u8> = px.iter().flatten().copied().collect();
         let diff = want.as_raw().iter().zip(&got).filter(|(a, b)| a != b).count();
         if diff > 0 {
@@ -39,13 +41,26 @@ fn every_builtin_scene_matches_its_golden_png() {
 /// formats it must stay close to the golden image. Bounds are measured values with margin.
 #[test]
 fn quantisation_error_is_bounded() {
-    for (name, min_psnr) in [("torus_caps", 36.0), ("cg_wall_front", 36.0), ("cylinder_smooth", 33.0), ("flat_artifact", 36.0)] {
+    for (name, min_psnr) in [
+        ("torus_caps", 36.0),
+        ("cg_wall_front", 36.0),
+        ("cylinder_smooth", 33.0),
+        ("flat_artifact", 36.0),
+    ] {
         let s = Scene::load(name).unwrap();
         let cfg = s.derive_config().unwrap();
         let img = render(&s, &cfg, 128, 96, false).unwrap();
         let e = gbump::measure::image_metrics::compare(&img.golden, &img.gouraud, &img.covered, img.colour_max);
-        println!("{name}: golden vs f64 Gouraud PSNR {:.2} dB, max {:.1} LSB, mean {:.3} LSB", e.psnr_db, e.max_lsb, e.mean_lsb);
-        assert!(e.psnr_db >= min_psnr, "{name}: PSNR {:.2} dB below {min_psnr} dB (max {:.1} LSB)", e.psnr_db, e.max_lsb);
+        println!(
+            "{name}: golden vs f64 Gouraud PSNR {:.2} dB, max {:.1} LSB, mean {:.3} LSB",
+            e.psnr_db, e.max_lsb, e.mean_lsb
+        );
+        assert!(
+            e.psnr_db >= min_psnr,
+            "{name}: PSNR {:.2} dB below {min_psnr} dB (max {:.1} LSB)",
+            e.psnr_db,
+            e.max_lsb
+        );
         assert!(e.pixels > 1000, "{name}: only {} pixels covered", e.pixels);
     }
 }
@@ -63,9 +78,16 @@ fn wide_formats_converge_on_f64_equations() {
     let wide = render(&s, &cfg, 128, 64, false).unwrap();
     let en = gbump::measure::image_metrics::compare(&narrow.golden, &narrow.gouraud, &narrow.covered, 255);
     let ew = gbump::measure::image_metrics::compare(&wide.golden, &wide.gouraud, &wide.covered, 255);
-    println!("8-bit: mean {:.3} LSB max {:.2}; 14-bit: mean {:.3} LSB max {:.2}", en.mean_lsb, en.max_lsb, ew.mean_lsb, ew.max_lsb);
+    println!(
+        "8-bit: mean {:.3} LSB max {:.2}; 14-bit: mean {:.3} LSB max {:.2}",
+        en.mean_lsb, en.max_lsb, ew.mean_lsb, ew.max_lsb
+    );
     assert!(ew.mean_lsb < en.mean_lsb, "wider formats must not be worse");
-    assert!(ew.max_lsb <= 1.0, "14-bit normals and dots: max error {:.2} LSB should be colour rounding only", ew.max_lsb);
+    assert!(
+        ew.max_lsb <= 1.0,
+        "14-bit normals and dots: max error {:.2} LSB should be colour rounding only",
+        ew.max_lsb
+    );
 }
 
 /// A palettised map (256 normals, paper §6) costs accuracy but stays recognisably close

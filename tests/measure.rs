@@ -7,10 +7,20 @@ use assert_cmd::Command;
 fn area_reports_every_unit_with_yosys_figures() {
     let dir = tempfile::tempdir().unwrap();
     let json = dir.path().join("area.json");
-    let o = Command::cargo_bin("gbump").unwrap()
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["area", "--config", "tests/configs/one_light_parallel.toml", "--work", "target/test-area", "--json"]).arg(&json)
-        .assert().success();
+        .args([
+            "area",
+            "--config",
+            "tests/configs/one_light_parallel.toml",
+            "--work",
+            "target/test-area",
+            "--json",
+        ])
+        .arg(&json)
+        .assert()
+        .success();
     let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
     assert!(text.contains("Yosys 0.") && text.contains("abc -g cmos2"), "{text}");
     let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
@@ -22,7 +32,10 @@ fn area_reports_every_unit_with_yosys_figures() {
     }
     let get = |name: &str| units.iter().find(|u| u["unit"].as_str().unwrap().starts_with(name)).unwrap();
     assert_eq!(get("power_table")["rom_bits"], 256 * 9);
-    assert!(get("power_table")["flip_flops"].as_u64().unwrap() >= 256 * 9, "a loadable table is a register file");
+    assert!(
+        get("power_table")["flip_flops"].as_u64().unwrap() >= 256 * 9,
+        "a loadable table is a register file"
+    );
     assert!(get("dot_clamp")["logic_depth"].as_u64().unwrap() > 10);
     let top = get("gbump_pipeline")["gate_equivalents"].as_f64().unwrap();
     let dot = get("dot_clamp")["gate_equivalents"].as_f64().unwrap();
@@ -33,10 +46,28 @@ fn area_reports_every_unit_with_yosys_figures() {
 fn error_report_bounds_each_unit() {
     let dir = tempfile::tempdir().unwrap();
     let json = dir.path().join("err.json");
-    Command::cargo_bin("gbump").unwrap().args(["error", "--random", "3000", "--size", "48x36", "--json"]).arg(&json).assert().success();
+    Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["error", "--random", "3000", "--size", "48x36", "--json"])
+        .arg(&json)
+        .assert()
+        .success();
     let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
-    let unit = |name: &str, src: &str| r["units"].as_array().unwrap().iter().find(|u| u["unit"] == name && u["source"].as_str().unwrap().starts_with(src)).unwrap().clone();
-    for (u, src) in [("dot_clamp", "corners"), ("diffuse_blend", "random"), ("specular_blend", "random"), ("texture_modulate", "exhaustive")] {
+    let unit = |name: &str, src: &str| {
+        r["units"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|u| u["unit"] == name && u["source"].as_str().unwrap().starts_with(src))
+            .unwrap()
+            .clone()
+    };
+    for (u, src) in [
+        ("dot_clamp", "corners"),
+        ("diffuse_blend", "random"),
+        ("specular_blend", "random"),
+        ("texture_modulate", "exhaustive"),
+    ] {
         let e = unit(u, src);
         assert!(e["max_lsb"].as_f64().unwrap() <= 0.5 + 1e-9, "{u}: {e}");
         assert!(e["samples"].as_u64().unwrap() > 100);

@@ -123,7 +123,11 @@ proptest! {
 fn the_segmented_power_unit_is_within_one_lsb_for_every_exponent() {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/configs/segmented_power.toml")).unwrap();
     let cfg = PipelineConfig::from_toml("segmented_power.toml", &text).unwrap();
-    let plain = PipelineConfig { power_unit: gbump::config::PowerUnitKind::Table, power_entries: 256, ..cfg.clone() };
+    let plain = PipelineConfig {
+        power_unit: gbump::config::PowerUnitKind::Table,
+        power_entries: 256,
+        ..cfg.clone()
+    };
     let (mut worst, mut worst_plain) = (0.0f64, 0.0f64);
     for n in 1..=255 {
         let (t, tp) = (PowerTable::build(&cfg, n), PowerTable::build(&plain, n));

@@ -8,12 +8,30 @@ use gbump::model::power_unit::{PowerDesign, PowerFormats};
 fn power_unit_rtl_matches_the_model_exhaustively() {
     let work = tempfile::tempdir().unwrap();
     let designs = [
-        PowerDesign::Table { entries: 256, nearest: true },
-        PowerDesign::Table { entries: 128, nearest: false },
+        PowerDesign::Table {
+            entries: 256,
+            nearest: true,
+        },
+        PowerDesign::Table {
+            entries: 128,
+            nearest: false,
+        },
         PowerDesign::Lerp { knots: 64 },
-        PowerDesign::Segmented { segments: 6, per_segment: 16, lerp: true },
-        PowerDesign::Segmented { segments: 4, per_segment: 64, lerp: false },
-        PowerDesign::Segmented { segments: 8, per_segment: 64, lerp: true },
+        PowerDesign::Segmented {
+            segments: 6,
+            per_segment: 16,
+            lerp: true,
+        },
+        PowerDesign::Segmented {
+            segments: 4,
+            per_segment: 64,
+            lerp: false,
+        },
+        PowerDesign::Segmented {
+            segments: 8,
+            per_segment: 64,
+            lerp: true,
+        },
         PowerDesign::Squaring { guard: 6 },
     ];
     for fm in [PowerFormats { f: 8, p: 8 }, PowerFormats { f: 12, p: 8 }] {

@@ -16,7 +16,11 @@ fn gbump() -> Command {
 }
 
 fn regress(args: &[&str], work: &str) -> String {
-    let out = gbump().arg("regress").args(args).args(["--work", &format!("target/test-regress/{work}")]).assert();
+    let out = gbump()
+        .arg("regress")
+        .args(args)
+        .args(["--work", &format!("target/test-regress/{work}")])
+        .assert();
     let o = out.get_output();
     let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "regress {args:?} failed:\n{text}");
@@ -43,13 +47,26 @@ fn check_suite(text: &str, min_scenes: usize) {
     for sim in ["icarus", "verilator"] {
         let mine: Vec<_> = r.iter().filter(|x| x.0 == sim).collect();
         assert!(mine.iter().all(|x| x.3 == 0 && x.2 > 0), "{sim}: a run failed or was empty");
-        let random_top = mine.iter().find(|x| x.1.starts_with("random") && x.1.ends_with("_top")).expect("random top set");
-        assert_eq!(random_top.2, if sim == "icarus" { 100_000 } else { 1_000_000 }, "{sim} random count");
+        let random_top = mine
+            .iter()
+            .find(|x| x.1.starts_with("random") && x.1.ends_with("_top"))
+            .expect("random top set");
+        assert_eq!(
+            random_top.2,
+            if sim == "icarus" { 100_000 } else { 1_000_000 },
+            "{sim} random count"
+        );
         assert!(mine.iter().any(|x| x.1 == "corners_level2_top"));
         // The power table exhaustively for the reset shininess and for n = 0, 1, 2, 254, 255, 1024.
-        let power: Vec<_> = mine.iter().filter(|x| x.1.starts_with("exhaustive_power_table_n") && x.2 > 256).collect();
+        let power: Vec<_> = mine
+            .iter()
+            .filter(|x| x.1.starts_with("exhaustive_power_table_n") && x.2 > 256)
+            .collect();
         assert!(power.len() >= 6, "{sim}: exhaustive power-table sets: {power:?}");
-        assert!(mine.iter().filter(|x| x.1.starts_with("scene_")).count() >= min_scenes, "{sim}: scene sets");
+        assert!(
+            mine.iter().filter(|x| x.1.starts_with("scene_")).count() >= min_scenes,
+            "{sim}: scene sets"
+        );
     }
 }
 
@@ -61,20 +78,33 @@ fn regress_default_config_on_both_simulators() {
 
 #[test]
 fn regress_one_light_parallel() {
-    let t = regress(&["--sim", "both", "--config", "tests/configs/one_light_parallel.toml"], "one_light_parallel");
+    let t = regress(
+        &["--sim", "both", "--config", "tests/configs/one_light_parallel.toml"],
+        "one_light_parallel",
+    );
     // Scenes with two bump lights do not fit one light slot; the other eleven run.
     check_suite(&t, 11);
 }
 
 #[test]
 fn regress_four_lights_serial_dot10() {
-    let t = regress(&["--sim", "both", "--config", "tests/configs/four_serial_dot10.toml"], "four_serial_dot10");
+    let t = regress(
+        &["--sim", "both", "--config", "tests/configs/four_serial_dot10.toml"],
+        "four_serial_dot10",
+    );
     check_suite(&t, 12);
 }
 
 #[test]
 fn lint_is_clean_for_three_configurations() {
-    for cfg in [None, Some("tests/configs/one_light_parallel.toml"), Some("tests/configs/four_serial_dot10.toml"), Some("tests/configs/fuzz_found_wide_dot.toml"), Some("tests/configs/fuzz_found_equal_frac.toml"), Some("tests/configs/segmented_power.toml")] {
+    for cfg in [
+        None,
+        Some("tests/configs/one_light_parallel.toml"),
+        Some("tests/configs/four_serial_dot10.toml"),
+        Some("tests/configs/fuzz_found_wide_dot.toml"),
+        Some("tests/configs/fuzz_found_equal_frac.toml"),
+        Some("tests/configs/segmented_power.toml"),
+    ] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
         if let Some(p) = cfg {
@@ -89,7 +119,11 @@ fn lint_is_clean_for_three_configurations() {
 fn images_through_the_rtl_equal_the_golden_images() {
     for scene in ["torus_caps", "blend_split", "cylinder_smooth"] {
         let dir = tempfile::tempdir().unwrap();
-        let o = gbump().args(["render", "--rtl", "--size", "96x72", "--scene", scene, "--out"]).arg(dir.path()).assert().success();
+        let o = gbump()
+            .args(["render", "--rtl", "--size", "96x72", "--scene", scene, "--out"])
+            .arg(dir.path())
+            .assert()
+            .success();
         let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
         assert!(text.contains("0 pixel(s) differ"), "{text}");
         let a = image::open(dir.path().join(format!("{scene}_rtl.png"))).unwrap().to_rgb8();
@@ -111,9 +145,34 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     assert!(text.contains("+ 17'd128;"));
     std::fs::write(tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
     let vec_dir = work.join("vectors");
-    let o = gbump::vectors::DumpOptions { text: true, binary: true, seed: 1, size: None, command: "test".into(), shininess: None };
-    let sets = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Exhaustive("texture_modulate".into()), &["texture_modulate".into()], &vec_dir, &o).unwrap();
-    let opts = RegressOptions { sims: vec![Sim::Icarus, Sim::Verilator], random_verilator: 0, random_icarus: 0, seed: 1, scenes: false, scene_size: None, work: work.clone(), waves: false, max_errors: 5, command: "test".into() };
+    let o = gbump::vectors::DumpOptions {
+        text: true,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let sets = gbump::vectors::dump(
+        &cfg,
+        &gbump::vectors::Source::Exhaustive("texture_modulate".into()),
+        &["texture_modulate".into()],
+        &vec_dir,
+        &o,
+    )
+    .unwrap();
+    let opts = RegressOptions {
+        sims: vec![Sim::Icarus, Sim::Verilator],
+        random_verilator: 0,
+        random_icarus: 0,
+        seed: 1,
+        scenes: false,
+        scene_size: None,
+        work: work.clone(),
+        waves: false,
+        max_errors: 5,
+        command: "test".into(),
+    };
     // The unit set runs through the all-units testbench; the random top set through the top
     // testbench on Icarus and the C++ harness on Verilator.
     let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vec_dir, &o).unwrap();
@@ -124,16 +183,29 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
         let out = r.outcome.unwrap();
         assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
         let unit = if r.target == "top" { "gbump_pipeline" } else { "texture_modulate" };
-        assert!(out.log.contains(&format!("MISMATCH unit {unit}")) && out.log.contains("expected") && out.log.contains("stopping after 5 mismatches"), "{}", out.log);
+        assert!(
+            out.log.contains(&format!("MISMATCH unit {unit}"))
+                && out.log.contains("expected")
+                && out.log.contains("stopping after 5 mismatches"),
+            "{}",
+            out.log
+        );
     }
 }
 
 #[test]
 fn a_missing_simulator_is_an_error_that_names_the_fix() {
     let empty = tempfile::tempdir().unwrap();
-    let o = gbump().env("PATH", empty.path()).args(["regress", "--sim", "icarus", "--work", "target/test-regress/nosim"]).assert().failure();
+    let o = gbump()
+        .env("PATH", empty.path())
+        .args(["regress", "--sim", "icarus", "--work", "target/test-regress/nosim"])
+        .assert()
+        .failure();
     let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
-    assert!(err.contains("iverilog is not installed") && err.contains("apt-get install -y iverilog"), "{err}");
+    assert!(
+        err.contains("iverilog is not installed") && err.contains("apt-get install -y iverilog"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -148,15 +220,26 @@ fn truncated_or_corrupted_vectors_are_refused_before_simulation() {
     let hex = dir.path().join("corners_top.hex");
     let text = std::fs::read_to_string(&hex).unwrap();
     std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
-    let o = gbump().args(["regress", "--sim", "icarus", "--work", "target/test-regress/trunc", "--vectors"]).arg(dir.path().join("corners_top.json")).assert().failure();
+    let o = gbump()
+        .args(["regress", "--sim", "icarus", "--work", "target/test-regress/trunc", "--vectors"])
+        .arg(dir.path().join("corners_top.json"))
+        .assert()
+        .failure();
     let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
-    assert!(err.contains("corners_top.hex") && err.contains("does not match its manifest") && err.contains("regenerate"), "{err}");
+    assert!(
+        err.contains("corners_top.hex") && err.contains("does not match its manifest") && err.contains("regenerate"),
+        "{err}"
+    );
     let bin = dir.path().join("corners_top.bin");
     let mut b = std::fs::read(&bin).unwrap();
     b[3] ^= 1;
     std::fs::write(&hex, &text).unwrap();
     std::fs::write(&bin, b).unwrap();
-    let o = gbump().args(["regress", "--sim", "verilator", "--work", "target/test-regress/trunc", "--vectors"]).arg(dir.path().join("corners_top.json")).assert().failure();
+    let o = gbump()
+        .args(["regress", "--sim", "verilator", "--work", "target/test-regress/trunc", "--vectors"])
+        .arg(dir.path().join("corners_top.json"))
+        .assert()
+        .failure();
     assert!(String::from_utf8_lossy(&o.get_output().stderr).contains("corners_top.bin"));
 }
 
@@ -168,7 +251,10 @@ fn a_testbench_given_no_vectors_fails() {
     let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
     std::fs::write(work.join("empty.hex"), "").unwrap();
     let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
-    let plus = [format!("+vectors={}", work.join("empty.hex").display()), format!("+table={}", table.display())];
+    let plus = [
+        format!("+vectors={}", work.join("empty.hex").display()),
+        format!("+table={}", table.display()),
+    ];
     let e = gbump::sim::icarus::run(&exe, &plus, None, &work, "empty").unwrap_err().to_string();
     assert!(e.contains("checked no vectors"), "{e}");
 }
@@ -177,7 +263,8 @@ fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {
     let work = tempfile::tempdir().unwrap();
     let exe = work.path().join("rb.vvp");
     let st = std::process::Command::new("iverilog")
-        .args(["-g2005", "-o"]).arg(&exe)
+        .args(["-g2005", "-o"])
+        .arg(&exe)
         .arg(format!("-Prom_readback.WIDTH={width}"))
         .arg(format!("-Prom_readback.DEPTH={depth}"))
         .arg(format!("-Prom_readback.FILE=\"{}\"", hex.display()))
@@ -186,7 +273,11 @@ fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {
         .expect("iverilog is not installed: run scripts/install-tools.sh");
     assert!(st.success());
     let out = std::process::Command::new("vvp").arg("-n").arg(&exe).output().unwrap();
-    String::from_utf8_lossy(&out.stdout).lines().filter(|l| !l.is_empty() && !l.contains("$finish")).map(|l| u64::from_str_radix(l.trim(), 16).unwrap_or_else(|_| panic!("{l}"))).collect()
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter(|l| !l.is_empty() && !l.contains("$finish"))
+        .map(|l| u64::from_str_radix(l.trim(), 16).unwrap_or_else(|_| panic!("{l}")))
+        .collect()
 }
 
 #[test]
@@ -200,7 +291,11 @@ fn every_rom_read_by_a_simulator_equals_the_model() {
         ("cube_map_32".to_string(), cube_map_rom(32)),
     ] {
         let dir = root().join("rtl/rom");
-        assert_eq!(readback(&dir.join(format!("{stem}.hex")), rom.width, rom.words.len()), rom.words, "{stem}.hex under Icarus");
+        assert_eq!(
+            readback(&dir.join(format!("{stem}.hex")), rom.width, rom.words.len()),
+            rom.words,
+            "{stem}.hex under Icarus"
+        );
         for f in [RomFormat::Mif, RomFormat::Coe] {
             let text = std::fs::read_to_string(dir.join(format!("{stem}.{}", f.ext()))).unwrap();
             assert_eq!(parse(&text, f).unwrap(), rom.words, "{stem}.{}", f.ext());
@@ -218,7 +313,10 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/xcheck")).unwrap();
     let vectors = root().join("vectors");
-    let plus = [format!("+vectors={}", vectors.join("corners_top.hex").display()), format!("+table={}", vectors.join("corners_top_power_table.hex").display())];
+    let plus = [
+        format!("+vectors={}", vectors.join("corners_top.hex").display()),
+        format!("+table={}", vectors.join("corners_top_power_table.hex").display()),
+    ];
     // The generated pipeline: no X, every vector passes.
     let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
     let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
@@ -246,7 +344,16 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/xunique")).unwrap();
     let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::verilator::build_tb(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0, &rtl.1, false, true).unwrap();
+    let exe = gbump::sim::verilator::build_tb(
+        &work.join("build"),
+        "tb_top",
+        &gbump::sim::testbench::tb_top(&cfg),
+        &rtl.0,
+        &rtl.1,
+        false,
+        true,
+    )
+    .unwrap();
     let v = root().join("vectors");
     for set in ["corners_top", "random256_top"] {
         for seed in [1, 7, 12345] {
@@ -264,19 +371,61 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
 
 #[test]
 fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
-    regress(&["--sim", "both", "--config", "tests/configs/segmented_power.toml", "--random", "100000", "--random-icarus", "5000", "--no-scenes"], "segmented");
+    regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            "tests/configs/segmented_power.toml",
+            "--random",
+            "100000",
+            "--random-icarus",
+            "5000",
+            "--no-scenes",
+        ],
+        "segmented",
+    );
 }
 
 #[test]
 fn the_configurations_the_fuzzer_found_simulate_clean() {
-    for (cfg, work) in [("tests/configs/fuzz_found_wide_dot.toml", "fuzz_found"), ("tests/configs/fuzz_found_equal_frac.toml", "fuzz_found_eq")] {
-        regress(&["--sim", "both", "--config", cfg, "--random", "20000", "--random-icarus", "2000", "--no-scenes"], work);
+    for (cfg, work) in [
+        ("tests/configs/fuzz_found_wide_dot.toml", "fuzz_found"),
+        ("tests/configs/fuzz_found_equal_frac.toml", "fuzz_found_eq"),
+    ] {
+        regress(
+            &[
+                "--sim",
+                "both",
+                "--config",
+                cfg,
+                "--random",
+                "20000",
+                "--random-icarus",
+                "2000",
+                "--no-scenes",
+            ],
+            work,
+        );
     }
 }
 
 #[test]
 fn random_configurations_generate_lint_and_simulate_clean() {
-    let o = gbump().args(["fuzz", "--configs", "4", "--seed", "7", "--random", "1000", "--work", "target/test-regress/fuzz"]).assert().success();
+    let o = gbump()
+        .args([
+            "fuzz",
+            "--configs",
+            "4",
+            "--seed",
+            "7",
+            "--random",
+            "1000",
+            "--work",
+            "target/test-regress/fuzz",
+        ])
+        .assert()
+        .success();
     let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
     assert!(text.contains("fuzz: 4 configurations"), "{text}");
 }

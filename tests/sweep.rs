@@ -10,7 +10,16 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     std::fs::write(&space, "scene = \"cg_wall_front\"\n[base]\nlights = 1\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [5, 8]\npower_entries = [64, 2048]\n").unwrap();
     let work = dir.path().join("work");
     let run = || {
-        let o = Command::cargo_bin("gbump").unwrap().args(["sweep", "--space"]).arg(&space).arg("--out").arg(dir.path().join("out")).arg("--work").arg(&work).assert().success();
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["sweep", "--space"])
+            .arg(&space)
+            .arg("--out")
+            .arg(dir.path().join("out"))
+            .arg("--work")
+            .arg(&work)
+            .assert()
+            .success();
         String::from_utf8_lossy(&o.get_output().stdout).into_owned()
     };
     let t0 = std::time::Instant::now();
@@ -35,9 +44,16 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
 
 #[test]
 fn power_space_finds_designs_within_one_lsb() {
-    let o = Command::cargo_bin("gbump").unwrap().args(["power-space", "--max-n", "255"]).assert().success();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["power-space", "--max-n", "255"])
+        .assert()
+        .success();
     let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
     let within: Vec<&str> = text.lines().filter(|l| l.ends_with("| yes |")).collect();
     assert!(within.iter().any(|l| l.contains("segmented") && l.contains("lerp")), "{text}");
-    assert!(within.iter().any(|l| l.contains("table 256 nearest")), "with an 8-bit dot product the paper's table is within 1 LSB");
+    assert!(
+        within.iter().any(|l| l.contains("table 256 nearest")),
+        "with an 8-bit dot product the paper's table is within 1 LSB"
+    );
 }

@@ -98,12 +98,24 @@ impl HeightSource {
             }
             HeightSource::Png { path } => {
                 let p = if path.is_absolute() { path.clone() } else { base.join(path) };
-                let img = image::open(&p).map_err(|e| Error::Image { path: p.clone(), msg: e.to_string() })?.to_luma16();
+                let img = image::open(&p)
+                    .map_err(|e| Error::Image {
+                        path: p.clone(),
+                        msg: e.to_string(),
+                    })?
+                    .to_luma16();
                 let (w, h) = (img.width() as usize, img.height() as usize);
                 if w < 2 || h < 2 {
-                    return Err(Error::Image { path: p, msg: format!("{w}x{h} is too small (at least 2x2)") });
+                    return Err(Error::Image {
+                        path: p,
+                        msg: format!("{w}x{h} is too small (at least 2x2)"),
+                    });
                 }
-                HeightField { w, h, data: img.pixels().map(|px| px.0[0] as f64 / 65535.0).collect() }
+                HeightField {
+                    w,
+                    h,
+                    data: img.pixels().map(|px| px.0[0] as f64 / 65535.0).collect(),
+                }
             }
         })
     }

@@ -46,7 +46,12 @@ impl NormalMap {
                 data.push(DVec3::new(-strength * fu, -strength * fv, 1.0).normalize());
             }
         }
-        NormalMap { w: hf.w, h: hf.h, data, clamp_u: false }
+        NormalMap {
+            w: hf.w,
+            h: hf.h,
+            data,
+            clamp_u: false,
+        }
     }
 
     /// Tilt every normal about the v axis by the facet angle of a `sides`-sided prism, so that
@@ -76,7 +81,11 @@ mod tests {
         for m in [NormalMethod::Eq2, NormalMethod::Cg] {
             assert!(NormalMap::from_height(&hf, m, 4.0).data.iter().all(|n| *n == DVec3::Z));
         }
-        let ramp = HeightField { w: 4, h: 4, data: (0..16).map(|i| (i % 4) as f64 * 0.25).collect() };
+        let ramp = HeightField {
+            w: 4,
+            h: 4,
+            data: (0..16).map(|i| (i % 4) as f64 * 0.25).collect(),
+        };
         let n = NormalMap::from_height(&ramp, NormalMethod::Cg, 1.0).at(1, 1);
         assert!(n.x < 0.0 && n.y.abs() < 1e-12, "uphill in +u tilts the normal to -u: {n}");
     }

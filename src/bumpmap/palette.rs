@@ -65,7 +65,10 @@ fn farthest_points(cfg: &PipelineConfig, uniq: &[([u32; 3], usize)]) -> Vec<[f64
     let mut centres = vec![pt(uniq[0].0)];
     let mut d: Vec<f64> = uniq.iter().map(|(c, _)| dist2(cfg, *c, centres[0])).collect();
     while centres.len() < ENTRIES {
-        let (far, _) = d.iter().enumerate().fold((0, -1.0), |best, (i, &x)| if x > best.1 { (i, x) } else { best });
+        let (far, _) = d
+            .iter()
+            .enumerate()
+            .fold((0, -1.0), |best, (i, &x)| if x > best.1 { (i, x) } else { best });
         let z = pt(uniq[far].0);
         centres.push(z);
         for (i, (c, _)) in uniq.iter().enumerate() {
@@ -92,7 +95,10 @@ mod tests {
 
     #[test]
     fn few_normals_are_kept_exactly() {
-        let cfg = PipelineConfig { palette: true, ..Default::default() };
+        let cfg = PipelineConfig {
+            palette: true,
+            ..Default::default()
+        };
         let codes: Vec<[u32; 3]> = (0..1000u32).map(|i| [100 + i % 7, 128, 250]).collect();
         let (p, idx) = build_palette(&cfg, &codes);
         for (c, i) in codes.iter().zip(&idx) {
@@ -102,13 +108,24 @@ mod tests {
 
     #[test]
     fn many_normals_stay_close() {
-        let cfg = PipelineConfig { palette: true, ..Default::default() };
+        let cfg = PipelineConfig {
+            palette: true,
+            ..Default::default()
+        };
         let codes: Vec<[u32; 3]> = (0..4096u32).map(|i| [64 + i % 64, 64 + i / 64, 240]).collect();
         let (p, idx) = build_palette(&cfg, &codes);
-        let worst = codes.iter().zip(&idx).map(|(c, i)| {
-            let e = p.0[*i as usize];
-            (0..3).map(|k| (c[k] as i64 - e[k] as i64).abs()).max().unwrap()
-        }).max().unwrap();
-        assert!(worst <= 4, "4096 codes on a 64x64 grid into 256 entries: worst component error {worst}");
+        let worst = codes
+            .iter()
+            .zip(&idx)
+            .map(|(c, i)| {
+                let e = p.0[*i as usize];
+                (0..3).map(|k| (c[k] as i64 - e[k] as i64).abs()).max().unwrap()
+            })
+            .max()
+            .unwrap();
+        assert!(
+            worst <= 4,
+            "4096 codes on a 64x64 grid into 256 entries: worst component error {worst}"
+        );
     }
 }

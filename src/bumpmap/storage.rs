@@ -11,8 +11,18 @@ use glam::DVec3;
 /// A stored bump map.
 #[derive(Clone, Debug)]
 pub enum StoredMap {
-    Rgb { w: usize, h: usize, codes: Vec<[u32; 3]>, clamp_u: bool },
-    Palettised { w: usize, h: usize, indices: Vec<u8>, palette: Palette },
+    Rgb {
+        w: usize,
+        h: usize,
+        codes: Vec<[u32; 3]>,
+        clamp_u: bool,
+    },
+    Palettised {
+        w: usize,
+        h: usize,
+        indices: Vec<u8>,
+        palette: Palette,
+    },
 }
 
 /// Range-compress one unit normal to stored codes (round to nearest, saturate: +1.0 becomes
@@ -28,9 +38,19 @@ impl StoredMap {
         let codes: Vec<[u32; 3]> = map.data.iter().map(|n| encode_normal(cfg, *n)).collect();
         if cfg.palette {
             let (palette, indices) = build_palette(cfg, &codes);
-            StoredMap::Palettised { w: map.w, h: map.h, indices, palette }
+            StoredMap::Palettised {
+                w: map.w,
+                h: map.h,
+                indices,
+                palette,
+            }
         } else {
-            StoredMap::Rgb { w: map.w, h: map.h, codes, clamp_u: map.clamp_u }
+            StoredMap::Rgb {
+                w: map.w,
+                h: map.h,
+                codes,
+                clamp_u: map.clamp_u,
+            }
         }
     }
 

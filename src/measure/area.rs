@@ -39,11 +39,30 @@ pub fn script(files: &[String], top: &str) -> String {
 
 fn parse_stat(text: &str) -> Option<(u64, u64, u64)> {
     let num = |key: &str| -> Option<u64> {
-        text.lines().rev().find(|l| l.contains(key)).and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches(['+', ')']).parse().ok()))
+        text.lines()
+            .rev()
+            .find(|l| l.contains(key))
+            .and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches(['+', ')']).parse().ok()))
     };
     let transistors = num("Estimated number of transistors")?;
-    let ffs: u64 = text.lines().filter(|l| l.trim_start().starts_with("$_DFF")).filter_map(|l| l.split_whitespace().last()?.parse::<u64>().ok()).sum();
-    let depth = text.lines().rev().find(|l| l.contains("Longest topological path")).and_then(|l| l.split("length=").nth(1)?.trim_end_matches(['(', ')', ':']).trim_end_matches("):").parse().ok()).unwrap_or(0);
+    let ffs: u64 = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("$_DFF"))
+        .filter_map(|l| l.split_whitespace().last()?.parse::<u64>().ok())
+        .sum();
+    let depth = text
+        .lines()
+        .rev()
+        .find(|l| l.contains("Longest topological path"))
+        .and_then(|l| {
+            l.split("length=")
+                .nth(1)?
+                .trim_end_matches(['(', ')', ':'])
+                .trim_end_matches("):")
+                .parse()
+                .ok()
+        })
+        .unwrap_or(0);
     Some((transistors, ffs, depth))
 }
 
@@ -54,11 +73,17 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
     }
     let dir = work.join(format!("area_{}", &cfg.hash()[..8]));
     let (v, _) = crate::sim::regress::write_rtl(cfg, &dir, command)?;
-    let files: Vec<String> = v.iter().map(|p| p.file_name().expect("file").to_string_lossy().into_owned()).collect();
+    let files: Vec<String> = v
+        .iter()
+        .map(|p| p.file_name().expect("file").to_string_lossy().into_owned())
+        .collect();
     let mut ver = Command::new("yosys");
     ver.arg("-V");
     let (_, version, _) = run_cmd(&mut ver, "yosys -V")?;
-    let mut units: Vec<(String, String)> = crate::sim::testbench::units_of(cfg).iter().map(|u| (u.to_string(), module_name(cfg, u))).collect();
+    let mut units: Vec<(String, String)> = crate::sim::testbench::units_of(cfg)
+        .iter()
+        .map(|u| (u.to_string(), module_name(cfg, u)))
+        .collect();
     units.push(("gbump_pipeline (top)".into(), module_name(cfg, "gbump_pipeline")));
     let results: Vec<Result<UnitArea>> = {
         use rayon::prelude::*;
@@ -67,7 +92,10 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
             .map(|(unit, module)| {
                 let sub = dir.join(format!("syn_{module}"));
                 std::fs::create_dir_all(&sub).map_err(|e| Error::io(&sub, e))?;
-                let abs: Vec<String> = v.iter().map(|p| std::path::absolute(p).expect("path").display().to_string()).collect();
+                let abs: Vec<String> = v
+                    .iter()
+                    .map(|p| std::path::absolute(p).expect("path").display().to_string())
+                    .collect();
                 std::fs::write(sub.join("area.ys"), script(&abs, module)).map_err(|e| Error::io(&sub, e))?;
                 let mut c = Command::new("yosys");
                 c.args(["-q", "-s", "area.ys"]).current_dir(&sub);
@@ -82,19 +110,35 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                 } else {
                     0
                 };
-                Ok(UnitArea { unit: unit.clone(), module: module.clone(), transistors: t, gate_equivalents: t as f64 / 4.0, flip_flops: ffs, logic_depth: depth, rom_bits })
+                Ok(UnitArea {
+                    unit: unit.clone(),
+                    module: module.clone(),
+                    transistors: t,
+                    gate_equivalents: t as f64 / 4.0,
+                    flip_flops: ffs,
+                    logic_depth: depth,
+                    rom_bits,
+                })
             })
             .collect()
     };
     let units = results.into_iter().collect::<Result<Vec<_>>>()?;
-    Ok(AreaReport { config_hash: cfg.hash(), yosys_version: version.trim().to_string(), script: script(&files, "<module>"), units })
+    Ok(AreaReport {
+        config_hash: cfg.hash(),
+        yosys_version: version.trim().to_string(),
+        script: script(&files, "<module>"),
+        units,
+    })
 }
 
 /// Markdown table of a report.
 pub fn markdown(r: &AreaReport) -> String {
     let mut s = format!("Area of config `{}` ({}; script per module: `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| unit | GE | transistors | flip-flops | logic depth | ROM bits |\n|---|---:|---:|---:|---:|---:|\n", r.config_hash, r.yosys_version);
     for u in &r.units {
-        s += &format!("| {} | {:.0} | {} | {} | {} | {} |\n", u.unit, u.gate_equivalents, u.transistors, u.flip_flops, u.logic_depth, u.rom_bits);
+        s += &format!(
+            "| {} | {:.0} | {} | {} | {} | {} |\n",
+            u.unit, u.gate_equivalents, u.transistors, u.flip_flops, u.logic_depth, u.rom_bits
+        );
     }
     s
 }

@@ -17,7 +17,8 @@ use std::time::Instant;
 
 /// A full-coverage brick wall lit by `lights` parallel lights.
 pub fn bench_scene(lights: usize) -> Scene {
-    let mut text = String::from("name = \"bench\"\n[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nheight = 1.9\n");
+    let mut text =
+        String::from("name = \"bench\"\n[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nheight = 1.9\n");
     let dirs = ["[0.3, 0.2, 1.0]", "[-0.5, 0.1, 0.8]", "[0.1, -0.6, 0.7]", "[0.6, 0.6, 0.5]"];
     for d in dirs.iter().take(lights) {
         text += &format!("[[lights]]\nkind = \"directional\"\ndirection = {d}\ncolour = [0.5, 0.5, 0.5]\n");
@@ -34,9 +35,27 @@ pub fn model_rate(lights: usize, side: u32) -> (f64, f64, usize) {
     let gb = rasterise(&p);
     let frags = fragments(&p, &gb);
     let bar = indicatif::ProgressBar::hidden();
-    let best = |f: &dyn Fn()| (0..3).map(|_| { let t = Instant::now(); f(); t.elapsed().as_secs_f64() }).fold(f64::INFINITY, f64::min);
-    let g = best(&|| { std::hint::black_box(golden_image(&p, &frags, &bar)); });
-    let r = best(&|| { std::hint::black_box(gb.hits.par_iter().flatten().map(|h| perpixel::shade(&p, h, &pixel_geom(&p, h)).x).sum::<f64>()); });
+    let best = |f: &dyn Fn()| {
+        (0..3)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let g = best(&|| {
+        std::hint::black_box(golden_image(&p, &frags, &bar));
+    });
+    let r = best(&|| {
+        std::hint::black_box(
+            gb.hits
+                .par_iter()
+                .flatten()
+                .map(|h| perpixel::shade(&p, h, &pixel_geom(&p, h)).x)
+                .sum::<f64>(),
+        );
+    });
     let n = frags.len() as f64;
     (n / g / 1e6, n / r / 1e6, frags.len())
 }
@@ -53,36 +72,90 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let vdir = work.join("vectors");
     let _ = std::fs::remove_dir_all(&vdir);
     let all = ["top".to_string()];
-    let o = crate::vectors::DumpOptions { text: false, binary: true, seed: 1, size: None, command: "gbump bench".into(), shininess: None };
+    let o = crate::vectors::DumpOptions {
+        text: false,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "gbump bench".into(),
+        shininess: None,
+    };
     let t = Instant::now();
     let sets = crate::vectors::dump(cfg, &crate::vectors::Source::Random(2_000_000), &all, &vdir, &o)?;
     let secs = t.elapsed().as_secs_f64();
     let (m, dir) = crate::vectors::verify(&sets[0].manifest)?;
     let bytes = m.bin.as_ref().expect("bin").bytes as f64;
-    s += &format!("| vector dump (binary, top) | {:.0} MB/s | 2,000,000 records of {} bytes in {secs:.2} s |\n", bytes / secs / 1e6, m.record_bytes);
+    s += &format!(
+        "| vector dump (binary, top) | {:.0} MB/s | 2,000,000 records of {} bytes in {secs:.2} s |\n",
+        bytes / secs / 1e6,
+        m.record_bytes
+    );
     let (v, vlt) = crate::sim::regress::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
     let table = dir.join(&m.power_table.name).display().to_string();
     if crate::sim::have("verilator") {
-        let exe = crate::sim::verilator::build_harness(&work.join("build"), &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"), &crate::sim::testbench::harness_top(cfg), &v, &vlt)?;
+        let exe = crate::sim::verilator::build_harness(
+            &work.join("build"),
+            &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+            &crate::sim::testbench::harness_top(cfg),
+            &v,
+            &vlt,
+        )?;
         let bin = dir.join(&m.bin.as_ref().expect("bin").name).display().to_string();
-        let out = crate::sim::verilator::run(&exe, &["--vectors".into(), bin.clone(), "--table".into(), table.clone()], &work, "harness")?;
-        s += &format!("| Verilator C++ harness | {:.2} M vectors/s | {} vectors checked in {:.2} s (file load included) |\n", out.passed as f64 / out.seconds / 1e6, out.passed, out.seconds);
-        let raw = crate::sim::verilator::run(&exe, &["--vectors".into(), bin, "--table".into(), table.clone(), "--raw".into(), "20000000".into()], &work, "raw")?;
+        let out = crate::sim::verilator::run(
+            &exe,
+            &["--vectors".into(), bin.clone(), "--table".into(), table.clone()],
+            &work,
+            "harness",
+        )?;
+        s += &format!(
+            "| Verilator C++ harness | {:.2} M vectors/s | {} vectors checked in {:.2} s (file load included) |\n",
+            out.passed as f64 / out.seconds / 1e6,
+            out.passed,
+            out.seconds
+        );
+        let raw = crate::sim::verilator::run(
+            &exe,
+            &[
+                "--vectors".into(),
+                bin,
+                "--table".into(),
+                table.clone(),
+                "--raw".into(),
+                "20000000".into(),
+            ],
+            &work,
+            "raw",
+        )?;
         let line = raw.log.lines().find(|l| l.starts_with("raw:")).unwrap_or("").to_string();
-        s += &format!("| Verilated model, no I/O | {} | `harness --raw 20000000` |\n", line.trim_start_matches("raw: "));
+        s += &format!(
+            "| Verilated model, no I/O | {} | `harness --raw 20000000` |\n",
+            line.trim_start_matches("raw: ")
+        );
     } else {
         s += "| Verilator | not installed | scripts/install-tools.sh |\n";
     }
     if crate::sim::have("iverilog") {
         let hexdir = work.join("hex");
         let _ = std::fs::remove_dir_all(&hexdir);
-        let ho = crate::vectors::DumpOptions { text: true, binary: false, ..o };
+        let ho = crate::vectors::DumpOptions {
+            text: true,
+            binary: false,
+            ..o
+        };
         let hs = crate::vectors::dump(cfg, &crate::vectors::Source::Random(20_000), &all, &hexdir, &ho)?;
         let (hm, hd) = crate::vectors::verify(&hs[0].manifest)?;
         let exe = crate::sim::icarus::build(&work.join("build"), "tb_top", &crate::sim::testbench::tb_top(cfg), &v)?;
-        let plus = [format!("+vectors={}", hd.join(&hm.hex.as_ref().expect("hex").name).display()), format!("+table={}", hd.join(&hm.power_table.name).display())];
+        let plus = [
+            format!("+vectors={}", hd.join(&hm.hex.as_ref().expect("hex").name).display()),
+            format!("+table={}", hd.join(&hm.power_table.name).display()),
+        ];
         let out = crate::sim::icarus::run(&exe, &plus, None, &work, "icarus")?;
-        s += &format!("| Icarus, Verilog testbench | {:.0} vectors/s | {} text vectors in {:.2} s |\n", out.passed as f64 / out.seconds, out.passed, out.seconds);
+        s += &format!(
+            "| Icarus, Verilog testbench | {:.0} vectors/s | {} text vectors in {:.2} s |\n",
+            out.passed as f64 / out.seconds,
+            out.passed,
+            out.seconds
+        );
     } else {
         s += "| Icarus | not installed | scripts/install-tools.sh |\n";
     }

@@ -21,7 +21,15 @@ pub fn error_map(golden: &[[u32; 3]], other: &[[f64; 3]], covered: &[bool], max:
         .iter()
         .zip(other)
         .zip(covered)
-        .map(|((g, o), c)| if *c { (0..3).map(|i| (g[i] as f64 - o[i].clamp(0.0, 1.0) * max as f64).abs()).fold(0.0, f64::max) } else { 0.0 })
+        .map(|((g, o), c)| {
+            if *c {
+                (0..3)
+                    .map(|i| (g[i] as f64 - o[i].clamp(0.0, 1.0) * max as f64).abs())
+                    .fold(0.0, f64::max)
+            } else {
+                0.0
+            }
+        })
         .collect()
 }
 
@@ -44,8 +52,18 @@ pub fn compare(golden: &[[u32; 3]], other: &[[f64; 3]], covered: &[bool], max: u
     }
     let samples = (3 * n).max(1) as f64;
     let mse = se / samples;
-    let psnr = if mse == 0.0 { f64::INFINITY } else { 10.0 * ((max as f64).powi(2) / mse).log10() };
-    ImageError { psnr_db: psnr, max_lsb: worst, mean_lsb: sum / samples, over_1lsb: over as f64 / n.max(1) as f64, pixels: n }
+    let psnr = if mse == 0.0 {
+        f64::INFINITY
+    } else {
+        10.0 * ((max as f64).powi(2) / mse).log10()
+    };
+    ImageError {
+        psnr_db: psnr,
+        max_lsb: worst,
+        mean_lsb: sum / samples,
+        over_1lsb: over as f64 / n.max(1) as f64,
+        pixels: n,
+    }
 }
 
 #[cfg(test)]

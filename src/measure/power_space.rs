@@ -32,7 +32,11 @@ pub fn default_designs() -> Vec<PowerDesign> {
     for segments in [4, 6, 8, 10, 12] {
         for per_segment in [8, 16, 32, 64] {
             for lerp in [false, true] {
-                v.push(PowerDesign::Segmented { segments, per_segment, lerp });
+                v.push(PowerDesign::Segmented {
+                    segments,
+                    per_segment,
+                    lerp,
+                });
             }
         }
     }
@@ -52,7 +56,17 @@ pub fn evaluate(fm: PowerFormats, designs: &[PowerDesign], max_n: u32) -> Vec<De
         .map(|d| {
             let (max_lsb, worst_n, worst_x, mean_lsb) = d.worst_error(fm, 1..=max_n);
             let (m, mb) = d.multipliers(fm);
-            DesignResult { design: *d, label: d.label(), rom_bits: d.rom_bits(fm), multipliers: m, multiplier_bits: mb, max_lsb, worst_n, worst_x, mean_lsb }
+            DesignResult {
+                design: *d,
+                label: d.label(),
+                rom_bits: d.rom_bits(fm),
+                multipliers: m,
+                multiplier_bits: mb,
+                max_lsb,
+                worst_n,
+                worst_x,
+                mean_lsb,
+            }
         })
         .collect()
 }
@@ -63,10 +77,30 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
         fm.f, fm.f, fm.p
     );
     let mut sorted: Vec<&DesignResult> = rs.iter().collect();
-    sorted.sort_by(|a, b| (a.max_lsb > 1.0).cmp(&(b.max_lsb > 1.0)).then(a.multipliers.cmp(&b.multipliers)).then(a.rom_bits.cmp(&b.rom_bits)));
+    sorted.sort_by(|a, b| {
+        (a.max_lsb > 1.0)
+            .cmp(&(b.max_lsb > 1.0))
+            .then(a.multipliers.cmp(&b.multipliers))
+            .then(a.rom_bits.cmp(&b.rom_bits))
+    });
     for r in sorted {
-        let m = if r.multipliers == 0 { "0".to_string() } else { format!("{} x {}b", r.multipliers, r.multiplier_bits) };
-        s += &format!("| {} | {} | {} | {:.3} | {}, {}/2^{} | {:.4} | {} |\n", r.label, r.rom_bits, m, r.max_lsb, r.worst_n, r.worst_x, fm.f, r.mean_lsb, if r.max_lsb <= 1.0 { "yes" } else { "no" });
+        let m = if r.multipliers == 0 {
+            "0".to_string()
+        } else {
+            format!("{} x {}b", r.multipliers, r.multiplier_bits)
+        };
+        s += &format!(
+            "| {} | {} | {} | {:.3} | {}, {}/2^{} | {:.4} | {} |\n",
+            r.label,
+            r.rom_bits,
+            m,
+            r.max_lsb,
+            r.worst_n,
+            r.worst_x,
+            fm.f,
+            r.mean_lsb,
+            if r.max_lsb <= 1.0 { "yes" } else { "no" }
+        );
     }
     s
 }
@@ -120,12 +154,18 @@ pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Pa
         }
         let want = d.eval(fm, &table, n, v[0]);
         if want != v[1] {
-            return Err(Error::Other(format!("{m} (n = {n}): x = {} gives {} in RTL, {want} in the model", v[0], v[1])));
+            return Err(Error::Other(format!(
+                "{m} (n = {n}): x = {} gives {} in RTL, {want} in the model",
+                v[0], v[1]
+            )));
         }
         checked += 1;
     }
     if checked != (1u64 << fm.f) + 1 {
-        return Err(Error::Other(format!("{m}: checked {checked} inputs\n{}", crate::sim::tail(&out, 10))));
+        return Err(Error::Other(format!(
+            "{m}: checked {checked} inputs\n{}",
+            crate::sim::tail(&out, 10)
+        )));
     }
     Ok(checked)
 }
@@ -134,15 +174,26 @@ pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Pa
 pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<f64> {
     use crate::error::Error;
     let (m, files) = write_design(d, fm, n, dir)?;
-    let names: Vec<String> = files.iter().map(|p| p.file_name().expect("name").to_string_lossy().into_owned()).collect();
-    let bb = if files.len() > 1 { format!("blackbox {m}_rom\n") } else { String::new() };
+    let names: Vec<String> = files
+        .iter()
+        .map(|p| p.file_name().expect("name").to_string_lossy().into_owned())
+        .collect();
+    let bb = if files.len() > 1 {
+        format!("blackbox {m}_rom\n")
+    } else {
+        String::new()
+    };
     let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -o area.stat stat -tech cmos\n", names.join(" "));
     std::fs::write(dir.join("area.ys"), script).map_err(|e| Error::io(dir, e))?;
     let mut c = std::process::Command::new("yosys");
     c.args(["-q", "-s", "area.ys"]).current_dir(dir);
     let (ok, log, _) = crate::sim::run_cmd(&mut c, "yosys")?;
     let stat = std::fs::read_to_string(dir.join("area.stat")).unwrap_or_default();
-    let t: Option<u64> = stat.lines().rev().find(|l| l.contains("Estimated number of transistors")).and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches('+').parse().ok()));
+    let t: Option<u64> = stat
+        .lines()
+        .rev()
+        .find(|l| l.contains("Estimated number of transistors"))
+        .and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches('+').parse().ok()));
     match (ok, t) {
         (true, Some(t)) => Ok(t as f64 / 4.0),
         _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::sim::tail(&log, 10)))),

@@ -10,10 +10,20 @@ fn power_section(fm: PowerFormats, work: &Path) -> Result<String> {
     let rs = super::power_space::evaluate(fm, &super::power_space::default_designs(), 255);
     let mut s = super::power_space::markdown(fm, &rs, 255);
     s += "\nYosys area of the datapath (ROM as a black box):\n\n| design | max error (LSB) | ROM bits | datapath GE |\n|---|---:|---:|---:|\n";
-    let mut pick: Vec<_> = rs.iter().filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerDesign::Table { entries: 256, .. })).collect();
+    let mut pick: Vec<_> = rs
+        .iter()
+        .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerDesign::Table { entries: 256, .. }))
+        .collect();
     pick.sort_by_key(|r| r.rom_bits);
     for r in pick {
-        let ge = super::power_space::area_ge(&r.design, fm, 16, &work.join(format!("power_f{}", fm.f)).join(crate::rtlgen::power_units::name(&r.design, fm)))?;
+        let ge = super::power_space::area_ge(
+            &r.design,
+            fm,
+            16,
+            &work
+                .join(format!("power_f{}", fm.f))
+                .join(crate::rtlgen::power_units::name(&r.design, fm)),
+        )?;
         s += &format!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
     }
     Ok(s)
@@ -32,11 +42,25 @@ pub fn report(out: &Path, work: &Path, space: &Path) -> Result<Vec<(String, Stri
     md += &super::unit_error::markdown(&cfg, &errs);
     md += "\n### Image error per scene\n\n| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n";
     for (name, g, r) in crate::cli::scene_errors(&cfg, 192, 144)? {
-        md += &format!("| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n", g.psnr_db, g.max_lsb, 100.0 * g.over_1lsb, r.psnr_db, r.max_lsb, 100.0 * r.over_1lsb);
+        md += &format!(
+            "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
+            g.psnr_db,
+            g.max_lsb,
+            100.0 * g.over_1lsb,
+            r.psnr_db,
+            r.max_lsb,
+            100.0 * r.over_1lsb
+        );
     }
     md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
-    md += &power_section(PowerFormats { f: cfg.dot_bits, p: cfg.power_bits }, work)?;
+    md += &power_section(
+        PowerFormats {
+            f: cfg.dot_bits,
+            p: cfg.power_bits,
+        },
+        work,
+    )?;
     md += "\n### 12-bit dot product\n\n";
     md += &power_section(PowerFormats { f: 12, p: cfg.power_bits }, work)?;
     md += "\n## Sweep: error against area\n\n";
@@ -44,10 +68,24 @@ pub fn report(out: &Path, work: &Path, space: &Path) -> Result<Vec<(String, Stri
     let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), false)?;
     md += &format!("`gbump sweep --space {}`; ![error against area](sweep.svg)\n\n| configuration | top GE | blend units GE | fragments/clock | latency | max err | mean err | PSNR vs reference | Pareto |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n", space.display());
     for p in &pts {
-        md += &format!("| {} | {:.0} | {:.0} | {:.2} | {} | {:.2} | {:.4} | {:.2} | {} |\n", p.label, p.top_ge, p.blend_ge, p.fragments_per_clock, p.latency, p.max_error_lsb, p.mean_error_lsb, p.psnr_vs_reference_db, if p.pareto { "yes" } else { "" });
+        md += &format!(
+            "| {} | {:.0} | {:.0} | {:.2} | {} | {:.2} | {:.4} | {:.2} | {} |\n",
+            p.label,
+            p.top_ge,
+            p.blend_ge,
+            p.fragments_per_clock,
+            p.latency,
+            p.max_error_lsb,
+            p.mean_error_lsb,
+            p.psnr_vs_reference_db,
+            if p.pareto { "yes" } else { "" }
+        );
     }
     md += "\n### Against the paper\n\nErnst et al. put the blending units at 10,000-25,000 gate equivalents. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's register file and the pipeline registers that carry the bump state with each fragment.\n\n";
     md += "## Speed\n\n`gbump bench`\n\n";
     md += &super::bench::bench(&cfg, &work.join("bench"))?;
-    Ok(vec![("REPORT.md".into(), md), ("sweep.svg".into(), super::sweep::svg(&pts, "error against area"))])
+    Ok(vec![
+        ("REPORT.md".into(), md),
+        ("sweep.svg".into(), super::sweep::svg(&pts, "error against area")),
+    ])
 }

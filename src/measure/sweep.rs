@@ -48,9 +48,21 @@ impl Space {
     pub fn load(path: &Path) -> Result<Space> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let file = path.display().to_string();
-        let s: Space = toml::from_str(&text).map_err(|e| toml_error(&file, &text, &e, "a sweep space has [base] (optional) and [grid] with arrays of values"))?;
+        let s: Space = toml::from_str(&text).map_err(|e| {
+            toml_error(
+                &file,
+                &text,
+                &e,
+                "a sweep space has [base] (optional) and [grid] with arrays of values",
+            )
+        })?;
         if s.grid.is_empty() {
-            return Err(Error::field(&file, "grid", "empty", "give at least one field with an array of values"));
+            return Err(Error::field(
+                &file,
+                "grid",
+                "empty",
+                "give at least one field with an array of values",
+            ));
         }
         Ok(s)
     }
@@ -59,7 +71,14 @@ impl Space {
     pub fn configs(&self, file: &str) -> Result<Vec<(String, PipelineConfig)>> {
         let mut combos: Vec<(Vec<String>, toml::Table)> = vec![(Vec::new(), self.base.clone())];
         for (k, v) in &self.grid {
-            let vals = v.as_array().ok_or_else(|| Error::field(file, &format!("grid.{k}"), "not an array", format!("write {k} = [value, value, ...]")))?;
+            let vals = v.as_array().ok_or_else(|| {
+                Error::field(
+                    file,
+                    &format!("grid.{k}"),
+                    "not an array",
+                    format!("write {k} = [value, value, ...]"),
+                )
+            })?;
             if vals.is_empty() {
                 return Err(Error::field(file, &format!("grid.{k}"), "empty array", "give at least one value"));
             }
@@ -86,7 +105,9 @@ impl Space {
             }
         }
         if out.is_empty() {
-            return Err(Error::Other(format!("{file}: no valid configuration in the grid\n  fix: check the ranges with `gbump config`")));
+            return Err(Error::Other(format!(
+                "{file}: no valid configuration in the grid\n  fix: check the ranges with `gbump config`"
+            )));
         }
         Ok(out)
     }
@@ -98,15 +119,27 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> R
     if let Ok(text) = std::fs::read_to_string(&cache) {
         if let Ok(p) = serde_json::from_str::<Point>(&text) {
             if p.config == *cfg {
-                return Ok(Point { label: label.to_string(), ..p });
+                return Ok(Point {
+                    label: label.to_string(),
+                    ..p
+                });
             }
         }
     }
     let area = super::area::area(cfg, &work.join("area"), "gbump sweep")?;
-    let ge = |name: &str| area.units.iter().filter(|u| u.unit.starts_with(name)).map(|u| u.gate_equivalents).sum::<f64>();
+    let ge = |name: &str| {
+        area.units
+            .iter()
+            .filter(|u| u.unit.starts_with(name))
+            .map(|u| u.gate_equivalents)
+            .sum::<f64>()
+    };
     let top = area.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")).expect("top");
     let errs = super::unit_error::unit_errors(cfg, 20_000, 1);
-    let pipe = errs.iter().find(|e| e.unit == "gbump_pipeline" && e.source == "random").expect("pipeline error");
+    let pipe = errs
+        .iter()
+        .find(|e| e.unit == "gbump_pipeline" && e.source == "random")
+        .expect("pipeline error");
     let s = crate::scene::Scene::load(scene)?;
     let mut scfg = cfg.clone();
     scfg.lights = scfg.lights.max(s.bump_lights().count() as u32);
@@ -137,15 +170,26 @@ pub fn mark_pareto(points: &mut [Point]) {
     let snapshot: Vec<(f64, f64)> = points.iter().map(|p| (p.top_ge, p.mean_error_lsb)).collect();
     for (i, p) in points.iter_mut().enumerate() {
         let (a, e) = snapshot[i];
-        p.pareto = !snapshot.iter().enumerate().any(|(j, &(a2, e2))| j != i && a2 <= a && e2 <= e && (a2 < a || e2 < e));
+        p.pareto = !snapshot
+            .iter()
+            .enumerate()
+            .any(|(j, &(a2, e2))| j != i && a2 <= a && e2 <= e && (a2 < a || e2 < e));
     }
 }
 
 /// Run a sweep (parallel, with a progress bar when `progress`).
 pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool) -> Result<Vec<Point>> {
     let configs = space.configs(file)?;
-    let bar = if progress { indicatif::ProgressBar::new(configs.len() as u64) } else { indicatif::ProgressBar::hidden() };
-    bar.set_style(indicatif::ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} configurations {msg}").expect("template").progress_chars("=> "));
+    let bar = if progress {
+        indicatif::ProgressBar::new(configs.len() as u64)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} configurations {msg}")
+            .expect("template")
+            .progress_chars("=> "),
+    );
     let mut points = configs
         .par_iter()
         .map(|(label, cfg)| {
@@ -164,7 +208,18 @@ pub fn csv(points: &[Point]) -> String {
     for p in points {
         s += &format!(
             "{},\"{}\",{:.0},{:.0},{},{},{:.4},{},{:.3},{:.4},{:.2},{}\n",
-            p.config_hash, p.label, p.top_ge, p.blend_ge, p.flip_flops, p.rom_bits, p.fragments_per_clock, p.latency, p.max_error_lsb, p.mean_error_lsb, p.psnr_vs_reference_db, p.pareto
+            p.config_hash,
+            p.label,
+            p.top_ge,
+            p.blend_ge,
+            p.flip_flops,
+            p.rom_bits,
+            p.fragments_per_clock,
+            p.latency,
+            p.max_error_lsb,
+            p.mean_error_lsb,
+            p.psnr_vs_reference_db,
+            p.pareto
         );
     }
     s
@@ -184,21 +239,58 @@ pub fn svg(points: &[Point], title: &str) -> String {
     for i in 0..=5 {
         let xv = x0 + (x1 - x0) * i as f64 / 5.0;
         let yv = y0 + (y1 - y0) * i as f64 / 5.0;
-        s += &format!("<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n", px(xv), h - m + 16.0, xv);
-        s += &format!("<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.3}</text>\n", m - 6.0, py(yv) + 4.0, yv);
+        s += &format!(
+            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n",
+            px(xv),
+            h - m + 16.0,
+            xv
+        );
+        s += &format!(
+            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.3}</text>\n",
+            m - 6.0,
+            py(yv) + 4.0,
+            yv
+        );
     }
-    s += &format!("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">top area, NAND2 gate equivalents (Yosys)</text>\n", w / 2.0, h - 22.0);
-    s += &format!("<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">mean error vs exact arithmetic, LSB</text>\n", h / 2.0, h / 2.0);
+    s += &format!(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">top area, NAND2 gate equivalents (Yosys)</text>\n",
+        w / 2.0,
+        h - 22.0
+    );
+    s += &format!(
+        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">mean error vs exact arithmetic, LSB</text>\n",
+        h / 2.0,
+        h / 2.0
+    );
     // The paper's 10,000–25,000 GE estimate for the blend units, as a band.
-    s += &format!("<rect x=\"{:.1}\" y=\"{}\" width=\"{:.1}\" height=\"{}\" fill=\"#2a7\" opacity=\"0.08\"/>\n", px(10_000.0), 0.8 * m, (px(25_000.0) - px(10_000.0)).max(0.0), h - 1.8 * m);
-    s += &format!("<text x=\"{:.1}\" y=\"{}\" fill=\"#2a7\">paper: 10k-25k GE</text>\n", px(10_000.0) + 4.0, 0.8 * m + 12.0);
+    s += &format!(
+        "<rect x=\"{:.1}\" y=\"{}\" width=\"{:.1}\" height=\"{}\" fill=\"#2a7\" opacity=\"0.08\"/>\n",
+        px(10_000.0),
+        0.8 * m,
+        (px(25_000.0) - px(10_000.0)).max(0.0),
+        h - 1.8 * m
+    );
+    s += &format!(
+        "<text x=\"{:.1}\" y=\"{}\" fill=\"#2a7\">paper: 10k-25k GE</text>\n",
+        px(10_000.0) + 4.0,
+        0.8 * m + 12.0
+    );
     let mut front: Vec<&Point> = points.iter().filter(|p| p.pareto).collect();
     front.sort_by(|a, b| a.top_ge.total_cmp(&b.top_ge));
-    let path: Vec<String> = front.iter().map(|p| format!("{:.1},{:.1}", px(p.top_ge), py(p.mean_error_lsb))).collect();
-    s += &format!("<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\"/>\n", path.join(" "));
+    let path: Vec<String> = front
+        .iter()
+        .map(|p| format!("{:.1},{:.1}", px(p.top_ge), py(p.mean_error_lsb)))
+        .collect();
+    s += &format!(
+        "<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\"/>\n",
+        path.join(" ")
+    );
     for p in points {
         let (cx, cy) = (px(p.top_ge), py(p.mean_error_lsb));
-        s += &format!("<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"3.5\" fill=\"#246\"><title>{}</title></circle>\n", esc(&p.label));
+        s += &format!(
+            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"3.5\" fill=\"#246\"><title>{}</title></circle>\n",
+            esc(&p.label)
+        );
         if p.pareto {
             s += &format!("<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"7\" fill=\"none\" stroke=\"#c33\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"9\">{}</text>\n", cx + 8.0, cy - 6.0, esc(&p.label));
         }

@@ -31,7 +31,15 @@ pub struct ErrorStats {
 
 impl ErrorStats {
     fn new(unit: &str, source: &str) -> ErrorStats {
-        ErrorStats { unit: unit.into(), source: source.into(), samples: 0, max_lsb: 0.0, mean_lsb: 0.0, worst_input: String::new(), histogram: vec![0; BINS.len()] }
+        ErrorStats {
+            unit: unit.into(),
+            source: source.into(),
+            samples: 0,
+            max_lsb: 0.0,
+            mean_lsb: 0.0,
+            worst_input: String::new(),
+            histogram: vec![0; BINS.len()],
+        }
     }
     fn add(&mut self, err: f64, input: impl FnOnce() -> String) {
         let e = err.abs();
@@ -130,8 +138,12 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
             let lc: Vec<[u32; 3]> = (0..l).map(|_| [0; 3].map(|_| rng.range(0, max as i64) as u32)).collect();
             let o = blend(cfg, c_in, &f, &k, &lc);
             for ch in 0..3 {
-                let add: f64 = (0..l).map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_bits) as f64 * lc[i][ch] as f64).sum();
-                st.add(o[ch] as f64 - (c_in[ch] as f64 + add).min(max as f64), || format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}"));
+                let add: f64 = (0..l)
+                    .map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_bits) as f64 * lc[i][ch] as f64)
+                    .sum();
+                st.add(o[ch] as f64 - (c_in[ch] as f64 + add).min(max as f64), || {
+                    format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}")
+                });
             }
         }
         out.push(st);
@@ -166,7 +178,15 @@ pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
     let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
     for e in stats {
         let h: Vec<String> = e.histogram.iter().map(|x| x.to_string()).collect();
-        s += &format!("| {} | {} | {} | {:.3} | {:.4} | {} |\n", e.unit, e.source, e.samples, e.max_lsb, e.mean_lsb, h.join(" | "));
+        s += &format!(
+            "| {} | {} | {} | {:.3} | {:.4} | {} |\n",
+            e.unit,
+            e.source,
+            e.samples,
+            e.max_lsb,
+            e.mean_lsb,
+            h.join(" | ")
+        );
     }
     s += "\nWorst inputs:\n\n";
     for e in stats {

@@ -33,7 +33,7 @@ mod tests {
         let flat = cfg.flat_normal();
         // B·L = 127/128 for the flat normal under a light straight above.
         assert_eq!(dot_clamp(&cfg, flat, [0, 0, one]), 254); // 127/128 * 256 = 254
-        // A normal pointing away: negative, clamps to 0.
+                                                             // A normal pointing away: negative, clamps to 0.
         assert_eq!(dot_clamp(&cfg, flat, [0, 0, -one]), 0);
         // Exactly perpendicular.
         assert_eq!(dot_clamp(&cfg, flat, [one, 0, 0]), 0);

@@ -85,7 +85,11 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
     let specular_on = cfg.specular && frag.specular_en && !bypass;
 
-    let mut out = Shaded { b, flat, ..Default::default() };
+    let mut out = Shaded {
+        b,
+        flat,
+        ..Default::default()
+    };
     let mut kd = [0i64; MAX_LIGHTS];
     let mut lc = [[0u32; 3]; MAX_LIGHTS];
     let mut dfac = [0i64; MAX_LIGHTS];
@@ -137,16 +141,30 @@ mod tests {
     }
 
     fn frag(c: u32, t: u32) -> FragmentIn {
-        FragmentIn { bump: BumpTexel::Rgb([128, 128, 255]), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }
+        FragmentIn {
+            bump: BumpTexel::Rgb([128, 128, 255]),
+            c_src: [c; 3],
+            texel: [t; 3],
+            diffuse_en: true,
+            specular_en: true,
+        }
     }
 
     #[test]
     fn every_light_at_full_colour_saturates() {
-        let cfg = PipelineConfig { lights: 8, ..Default::default() };
+        let cfg = PipelineConfig {
+            lights: 8,
+            ..Default::default()
+        };
         let t = PowerTable::build(&cfg, 1);
         let mut st = BumpState::default();
         for s in st.lights.iter_mut() {
-            *s = LightSlot { l: [0, 0, one(&cfg)], h: [0, 0, one(&cfg)], colour: [255; 3], k: 1 << cfg.k_bits };
+            *s = LightSlot {
+                l: [0, 0, one(&cfg)],
+                h: [0, 0, one(&cfg)],
+                colour: [255; 3],
+                k: 1 << cfg.k_bits,
+            };
         }
         let r = shade(&cfg, &t, None, &st, &frag(255, 255));
         assert_eq!(r.colour(), [255; 3]);
@@ -154,8 +172,15 @@ mod tests {
         // Texture black kills diffuse, specular still adds in the split order (Fig. 2).
         assert_eq!(r.stages[1], [0; 3]);
         assert_eq!(r.colour(), [255; 3]);
-        let cfg3 = PipelineConfig { blend_order: BlendOrder::TextureLast, ..cfg };
-        assert_eq!(shade(&cfg3, &t, None, &st, &frag(0, 0)).colour(), [0; 3], "Fig. 3: black texel stays black");
+        let cfg3 = PipelineConfig {
+            blend_order: BlendOrder::TextureLast,
+            ..cfg
+        };
+        assert_eq!(
+            shade(&cfg3, &t, None, &st, &frag(0, 0)).colour(),
+            [0; 3],
+            "Fig. 3: black texel stays black"
+        );
     }
 
     #[test]
@@ -164,7 +189,12 @@ mod tests {
         let t = PowerTable::build(&cfg, 1);
         let mut st = BumpState::default();
         // L straight above: fd = 127/128 → 254/256; colour 200, k = 1: 200*254/256 = 198.4375 → 198.
-        st.lights[0] = LightSlot { l: [0, 0, one(&cfg)], h: [one(&cfg), 0, 0], colour: [200, 0, 0], k: 256 };
+        st.lights[0] = LightSlot {
+            l: [0, 0, one(&cfg)],
+            h: [one(&cfg), 0, 0],
+            colour: [200, 0, 0],
+            k: 256,
+        };
         let r = shade(&cfg, &t, None, &st, &frag(10, 255));
         assert_eq!(r.fd[0], 254);
         assert_eq!(r.fs[0], 0);
@@ -176,14 +206,22 @@ mod tests {
         let cfg = PipelineConfig::default();
         let t = PowerTable::build(&cfg, 8);
         let mut st = BumpState::default();
-        st.lights[0] = LightSlot { l: [0, 0, one(&cfg)], h: [0, 0, one(&cfg)], colour: [255; 3], k: 0 };
+        st.lights[0] = LightSlot {
+            l: [0, 0, one(&cfg)],
+            h: [0, 0, one(&cfg)],
+            colour: [255; 3],
+            k: 0,
+        };
         assert_eq!(shade(&cfg, &t, None, &st, &frag(77, 255)).colour(), [77; 3]);
         st.lights[0].k = 256;
         let mut f = frag(77, 255);
         f.diffuse_en = false;
         f.specular_en = false;
         assert_eq!(shade(&cfg, &t, None, &st, &f).colour(), [77; 3]);
-        let skip = PipelineConfig { skip_flat: true, ..cfg.clone() };
+        let skip = PipelineConfig {
+            skip_flat: true,
+            ..cfg.clone()
+        };
         assert_eq!(shade(&skip, &t, None, &st, &frag(77, 255)).colour(), [77; 3], "§5.4.2 bypass");
         let mut bumped = frag(77, 255);
         bumped.bump = BumpTexel::Rgb([140, 128, 250]);
@@ -193,11 +231,19 @@ mod tests {
     #[test]
     fn serial_and_parallel_agree() {
         let a = PipelineConfig::default();
-        let b = PipelineConfig { light_mode: crate::config::LightMode::Parallel, ..a.clone() };
+        let b = PipelineConfig {
+            light_mode: crate::config::LightMode::Parallel,
+            ..a.clone()
+        };
         let t = PowerTable::build(&a, 32);
         let mut st = BumpState::default();
         for (i, s) in st.lights.iter_mut().enumerate().take(4) {
-            *s = LightSlot { l: [1000 * i as i64, -3000, 12000], h: [-500, 2000 * i as i64, 15000], colour: [90, 180, 255], k: 200 };
+            *s = LightSlot {
+                l: [1000 * i as i64, -3000, 12000],
+                h: [-500, 2000 * i as i64, 15000],
+                colour: [90, 180, 255],
+                k: 200,
+            };
         }
         for c in [0, 100, 255] {
             assert_eq!(shade(&a, &t, None, &st, &frag(c, 200)), shade(&b, &t, None, &st, &frag(c, 200)));

@@ -32,7 +32,10 @@ impl PowerTable {
     /// Build the contents for shininess `n` (0^0 is taken as 1, as OpenGL's pow does) for the
     /// configured power unit (the paper's table, or a `model::power_unit` alternative).
     pub fn build(cfg: &PipelineConfig, n: u32) -> PowerTable {
-        PowerTable { n, entries: cfg.power_design().table(cfg.power_formats(), n) }
+        PowerTable {
+            n,
+            entries: cfg.power_design().table(cfg.power_formats(), n),
+        }
     }
 
     /// Index of the plain table's entry for clamped dot product `fd` (`u1.F`).
@@ -82,7 +85,11 @@ mod tests {
     #[test]
     fn index_covers_table_exactly() {
         for idx in [PowerIndex::Nearest, PowerIndex::Truncate] {
-            let cfg = PipelineConfig { power_entries: 64, power_index: idx, ..Default::default() };
+            let cfg = PipelineConfig {
+                power_entries: 64,
+                power_index: idx,
+                ..Default::default()
+            };
             assert_eq!(PowerTable::index(&cfg, 0), 0);
             assert_eq!(PowerTable::index(&cfg, 256), 63);
             let mut prev = 0;

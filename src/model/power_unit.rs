@@ -63,7 +63,11 @@ impl PowerDesign {
         match self {
             PowerDesign::Table { entries, nearest } => format!("table {entries} {}", if *nearest { "nearest" } else { "truncate" }),
             PowerDesign::Lerp { knots } => format!("lerp {knots} knots"),
-            PowerDesign::Segmented { segments, per_segment, lerp } => format!("segmented {segments}x{per_segment}{}", if *lerp { " lerp" } else { "" }),
+            PowerDesign::Segmented {
+                segments,
+                per_segment,
+                lerp,
+            } => format!("segmented {segments}x{per_segment}{}", if *lerp { " lerp" } else { "" }),
             PowerDesign::Squaring { guard } => format!("squaring, {guard} guard bits"),
         }
     }
@@ -74,7 +78,11 @@ impl PowerDesign {
         match *self {
             PowerDesign::Table { entries, .. } => entries as u64 * w,
             PowerDesign::Lerp { knots } => knots as u64 * w,
-            PowerDesign::Segmented { segments, per_segment, lerp } => (segments * (per_segment + u32::from(lerp))) as u64 * w,
+            PowerDesign::Segmented {
+                segments,
+                per_segment,
+                lerp,
+            } => (segments * (per_segment + u32::from(lerp))) as u64 * w,
             PowerDesign::Squaring { .. } => 0,
         }
     }
@@ -91,9 +99,15 @@ impl PowerDesign {
     /// The stored table for exponent `n` (empty for squaring).
     pub fn table(&self, fm: PowerFormats, n: u32) -> Vec<i64> {
         match *self {
-            PowerDesign::Table { entries, .. } => (0..entries).map(|i| q(powi_exact(i as f64 / (entries - 1) as f64, n), fm.p)).collect(),
+            PowerDesign::Table { entries, .. } => (0..entries)
+                .map(|i| q(powi_exact(i as f64 / (entries - 1) as f64, n), fm.p))
+                .collect(),
             PowerDesign::Lerp { knots } => (0..knots).map(|i| q(powi_exact(i as f64 / (knots - 1) as f64, n), fm.p)).collect(),
-            PowerDesign::Segmented { segments, per_segment, lerp } => {
+            PowerDesign::Segmented {
+                segments,
+                per_segment,
+                lerp,
+            } => {
                 let one = (1i64 << fm.f) as f64;
                 let m = per_segment.trailing_zeros();
                 let x_of = |y: f64| (1.0 - y / one).max(0.0);
@@ -143,7 +157,11 @@ impl PowerDesign {
                 }
                 table[i] + shift_round(((table[i + 1] - table[i]) * fr) as i128, f, Rounding::HalfUp) as i64
             }
-            PowerDesign::Segmented { segments, per_segment, lerp } => {
+            PowerDesign::Segmented {
+                segments,
+                per_segment,
+                lerp,
+            } => {
                 let y = (1i64 << f) - fd;
                 let (s, lo, lw) = segment_of(f, segments, y);
                 let m = per_segment.trailing_zeros();
@@ -202,8 +220,14 @@ mod tests {
     #[test]
     fn the_plain_table_matches_the_pipeline_unit() {
         let cfg = crate::config::PipelineConfig::default();
-        let fm = PowerFormats { f: cfg.dot_bits, p: cfg.power_bits };
-        let d = PowerDesign::Table { entries: 256, nearest: true };
+        let fm = PowerFormats {
+            f: cfg.dot_bits,
+            p: cfg.power_bits,
+        };
+        let d = PowerDesign::Table {
+            entries: 256,
+            nearest: true,
+        };
         for n in [0, 1, 16, 255] {
             let t = crate::model::PowerTable::build(&cfg, n);
             assert_eq!(d.table(fm, n), t.entries);
@@ -216,7 +240,11 @@ mod tests {
     #[test]
     fn a_table_with_an_entry_per_input_code_is_exactly_rounded() {
         let fm = PowerFormats { f: 8, p: 8 };
-        let (worst, ..) = PowerDesign::Table { entries: 257, nearest: true }.worst_error(fm, 1..=255);
+        let (worst, ..) = PowerDesign::Table {
+            entries: 257,
+            nearest: true,
+        }
+        .worst_error(fm, 1..=255);
         assert!(worst <= 0.5 + 1e-9, "{worst}");
     }
 

@@ -30,7 +30,9 @@ pub struct Prepared<'a> {
 impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, cfg: &'a PipelineConfig, w: u32, h: u32) -> Result<Prepared<'a>> {
         if w == 0 || h == 0 || w > 16384 || h > 16384 {
-            return Err(Error::Other(format!("image size {w}x{h} is out of range\n  fix: use 1..=16384 pixels per side")));
+            return Err(Error::Other(format!(
+                "image size {w}x{h} is out of range\n  fix: use 1..=16384 pixels per side"
+            )));
         }
         let camera = Camera::new(&scene.camera, w, h);
         let mut objects = Vec::new();
@@ -45,9 +47,20 @@ impl<'a> Prepared<'a> {
             let mesh = tessellate(o);
             let tris = tri_states(scene, cfg, &camera, &mesh)?;
             tables.entry(o.shininess).or_insert_with(|| PowerTable::build(cfg, o.shininess));
-            objects.push(ObjectAssets { mesh, normals, stored, tris });
+            objects.push(ObjectAssets {
+                mesh,
+                normals,
+                stored,
+                tris,
+            });
         }
-        Ok(Prepared { scene, cfg, camera, objects, tables })
+        Ok(Prepared {
+            scene,
+            cfg,
+            camera,
+            objects,
+            tables,
+        })
     }
 }
 

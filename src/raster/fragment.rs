@@ -79,7 +79,13 @@ pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
         .filter_map(|(i, h)| {
             let hit = h.as_ref()?;
             let g = pixel_geom(p, hit);
-            Some(FragmentRecord { x: i as u32 % gb.w, y: i as u32 / gb.w, obj: hit.obj, tri: hit.tri, frag: fragment_in(p, hit, &g) })
+            Some(FragmentRecord {
+                x: i as u32 % gb.w,
+                y: i as u32 / gb.w,
+                obj: hit.obj,
+                tri: hit.tri,
+                frag: fragment_in(p, hit, &g),
+            })
         })
         .collect()
 }

@@ -53,7 +53,11 @@ pub fn rasterise(p: &Prepared) -> GBuffer {
                     let i = (y * w + x) as usize;
                     if z < depth[i] {
                         depth[i] = z;
-                        hits[i] = Some(Hit { obj: oi as u32, tri: ti as u32, bary: [wa, wb, wc] });
+                        hits[i] = Some(Hit {
+                            obj: oi as u32,
+                            tri: ti as u32,
+                            bary: [wa, wb, wc],
+                        });
                     }
                 }
             }

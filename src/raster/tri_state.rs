@@ -35,7 +35,12 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
         let centroid = (v[0].p + v[1].p + v[2].p) / 3.0;
         let (n, tg, bn) = frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b);
         let to_bump = |w: DVec3| DVec3::new(w.dot(tg), w.dot(bn), w.dot(n));
-        let mut st = TriState { l: [DVec3::ZERO; MAX_LIGHTS], h: [DVec3::ZERO; MAX_LIGHTS], k: [0.0; MAX_LIGHTS], fixed: BumpState::default() };
+        let mut st = TriState {
+            l: [DVec3::ZERO; MAX_LIGHTS],
+            h: [DVec3::ZERO; MAX_LIGHTS],
+            k: [0.0; MAX_LIGHTS],
+            fixed: BumpState::default(),
+        };
         for (i, light) in lights.iter().enumerate() {
             let ld = light_dir(light, centroid, n);
             let hd = half_vector(ld, cam.to_viewer);

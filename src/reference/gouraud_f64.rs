@@ -16,7 +16,10 @@ fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filter) -
             let (x0, y0) = (x.floor(), y.floor());
             let (fx, fy) = (x - x0, y - y0);
             let (x0, y0) = (x0 as i64, y0 as i64);
-            map.at(x0, y0) * ((1.0 - fx) * (1.0 - fy)) + map.at(x0 + 1, y0) * (fx * (1.0 - fy)) + map.at(x0, y0 + 1) * ((1.0 - fx) * fy) + map.at(x0 + 1, y0 + 1) * (fx * fy)
+            map.at(x0, y0) * ((1.0 - fx) * (1.0 - fy))
+                + map.at(x0 + 1, y0) * (fx * (1.0 - fy))
+                + map.at(x0, y0 + 1) * ((1.0 - fx) * fy)
+                + map.at(x0 + 1, y0 + 1) * (fx * fy)
         }
     }
 }

@@ -54,8 +54,16 @@ pub fn render(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32, progress: boo
     let p = Prepared::new(scene, cfg, w, h)?;
     let gb = rasterise(&p);
     let frags = fragments(&p, &gb);
-    let bar = if progress { ProgressBar::new(frags.len() as u64 * 2) } else { ProgressBar::hidden() };
-    bar.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} fragments").expect("template").progress_chars("=> "));
+    let bar = if progress {
+        ProgressBar::new(frags.len() as u64 * 2)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} fragments")
+            .expect("template")
+            .progress_chars("=> "),
+    );
     bar.set_message(format!("render {}", scene.name));
     let golden = golden_image(&p, &frags, &bar);
     let bg = scene.camera.background;
@@ -73,5 +81,13 @@ pub fn render(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32, progress: boo
     bar.inc(frags.len() as u64);
     bar.finish_and_clear();
     let (gouraud, reference) = pairs.into_iter().unzip();
-    Ok(Images { w, h, colour_max: cfg.colour_max(), golden, gouraud, reference, covered: gb.hits.iter().map(Option::is_some).collect() })
+    Ok(Images {
+        w,
+        h,
+        colour_max: cfg.colour_max(),
+        golden,
+        gouraud,
+        reference,
+        covered: gb.hits.iter().map(Option::is_some).collect(),
+    })
 }

@@ -12,13 +12,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     if let Ok(meta) = std::fs::metadata(path) {
         if !meta.is_file() {
             if meta.is_dir() {
-                return Err(Error::Other(format!("{}: is a folder, not a file\n  fix: give a file path", path.display())));
+                return Err(Error::Other(format!(
+                    "{}: is a folder, not a file\n  fix: give a file path",
+                    path.display()
+                )));
             }
             return std::fs::write(path, bytes).map_err(|e| Error::io(path, e));
         }
     }
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
     let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
     let res = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
     if let Err(e) = res {
@@ -46,7 +51,9 @@ pub fn write_png(path: &Path, w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<()> {
 
 /// Colour codes (0..=max) to 8-bit.
 pub fn codes_to_u8(c: &[[u32; 3]], max: u32) -> Vec<[u8; 3]> {
-    c.iter().map(|p| p.map(|x| ((x as u64 * 255 + max as u64 / 2) / max as u64) as u8)).collect()
+    c.iter()
+        .map(|p| p.map(|x| ((x as u64 * 255 + max as u64 / 2) / max as u64) as u8))
+        .collect()
 }
 
 /// [0,1] colours to 8-bit.
@@ -71,5 +78,7 @@ pub fn heat_map(err_lsb: &[f64], scale: f64) -> Vec<[u8; 3]> {
 
 /// [0,1] colours to codes, rounded to nearest.
 pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
-    c.iter().map(|p| p.map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32)).collect()
+    c.iter()
+        .map(|p| p.map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32))
+        .collect()
 }

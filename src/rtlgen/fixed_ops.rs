@@ -20,7 +20,11 @@ pub fn slit(w: u32, v: i64) -> String {
 /// `lo >= 0`). Mirrors `fixed::requant(.., Overflow::Saturate)` followed by a clamp.
 pub fn requant_clamp(w: &mut VWriter, name: &str, x: &str, from: Format, to_frac: u32, rnd: Rounding, lo: i64, hi: i64, out_w: u32) {
     let ww = from.width + 2;
-    let ext = if from.signed { format!("$signed({{{{2{{{x}[{}]}}}}, {x}}})", from.width - 1) } else { format!("$signed({{2'b00, {x}}})") };
+    let ext = if from.signed {
+        format!("$signed({{{{2{{{x}[{}]}}}}, {x}}})", from.width - 1)
+    } else {
+        format!("$signed({{2'b00, {x}}})")
+    };
     w.line(format!("wire signed [{}:0] {name}_x = {ext};", ww - 1));
     let (rw, expr) = if from.frac > to_frac {
         let s = from.frac - to_frac;

@@ -9,7 +9,11 @@ use serde_json::json;
 pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
     let fmt = |p: &str| -> serde_json::Value {
         let (f, lanes, doc) = match p {
-            "in_texel" => (crate::fixed::Format::u(cfg.normal_bits, 0), 3, "stored bump texel, offset binary, x in the low bits"),
+            "in_texel" => (
+                crate::fixed::Format::u(cfg.normal_bits, 0),
+                3,
+                "stored bump texel, offset binary, x in the low bits",
+            ),
             "in_c_src" => (cfg.colour_fmt(), 3, "Gouraud colour C_src, R in the low bits"),
             "in_t" => (cfg.colour_fmt(), 3, "texel colour T"),
             "in_l" => (cfg.lh_fmt(), 3 * cfg.lights, "L_i in bump space, light 0 x in the low bits"),

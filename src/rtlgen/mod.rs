@@ -24,14 +24,20 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     let mut files: Vec<GenFile> = Vec::new();
     let mut v = |unit: &str, body: String| {
         let name = format!("{}.v", module_name(cfg, unit));
-        files.push((name, format!("{}{body}", header(cfg, command, &format!("{unit}: Verilog-2005"), "// "))));
+        files.push((
+            name,
+            format!("{}{body}", header(cfg, command, &format!("{unit}: Verilog-2005"), "// ")),
+        ));
     };
     v("bump_fetch", units_v::bump_fetch(cfg, true));
     v("bump_fetch_comb", units_v::bump_fetch(cfg, false));
     v("dot_clamp", units_v::dot_clamp(cfg));
     v("power_table", units_v::power_table(cfg));
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
-        v("power_core", power_units::core(&cfg.power_design(), cfg.power_formats(), &module_name(cfg, "power_core")));
+        v(
+            "power_core",
+            power_units::core(&cfg.power_design(), cfg.power_formats(), &module_name(cfg, "power_core")),
+        );
     }
     v("light_term", units_v::light_term(cfg));
     v("blend_finish", units_v::blend_finish(cfg));
@@ -40,8 +46,14 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     v("texture_modulate", units_v::texture_modulate(cfg));
     v("gbump_pipeline", top::top(cfg));
     let hl = header::header_lines(cfg, command, "power_table reset contents ($readmemh)");
-    files.push((rom_file_name(cfg, "power_table", "hex"), rom::write(&rom::power_rom(cfg, cfg.shininess), rom::RomFormat::Hex, &hl)));
-    files.push((format!("{}.json", module_name(cfg, "gbump_pipeline")), interface::interface_json(cfg, command)));
+    files.push((
+        rom_file_name(cfg, "power_table", "hex"),
+        rom::write(&rom::power_rom(cfg, cfg.shininess), rom::RomFormat::Hex, &hl),
+    ));
+    files.push((
+        format!("{}.json", module_name(cfg, "gbump_pipeline")),
+        interface::interface_json(cfg, command),
+    ));
     files.push((format!("{}.vlt", module_name(cfg, "gbump_pipeline")), waivers(cfg, command)));
     let list: String = files.iter().filter(|f| f.0.ends_with(".v")).map(|f| format!("{}\n", f.0)).collect();
     files.push((format!("{}.f", module_name(cfg, "gbump_pipeline")), list));
@@ -57,7 +69,12 @@ pub fn sources(files: &[GenFile]) -> Vec<String> {
 fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     let h = &cfg.hash()[..8];
     let mut s = String::from("`verilator_config\n");
-    s += &header(cfg, command, "Lint waivers (a comment may not begin with the tool name: it would be a metacomment)", "// ");
+    s += &header(
+        cfg,
+        command,
+        "Lint waivers (a comment may not begin with the tool name: it would be a metacomment)",
+        "// ",
+    );
     s += "// A rounding shift keeps the high bits of its sum and drops the low ones by design; the\n";
     s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_table_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
@@ -76,7 +93,11 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             s += "// This configuration has no ";
             s += if en == "de" { "diffuse blend" } else { "specular path" };
             s += ": its enable, light vectors (and power-table port) stay on the interface, unused.\n";
-            let sigs: &[&str] = if en == "de" { &["in_diffuse_en", "in_l", "fr_de"] } else { &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_se"] };
+            let sigs: &[&str] = if en == "de" {
+                &["in_diffuse_en", "in_l", "fr_de"]
+            } else {
+                &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_se"]
+            };
             for sig in sigs {
                 s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
             }

@@ -12,7 +12,11 @@ pub fn name(d: &PowerDesign, fm: PowerFormats) -> String {
     let tag = match *d {
         PowerDesign::Table { entries, nearest } => format!("table{entries}{}", if nearest { "n" } else { "t" }),
         PowerDesign::Lerp { knots } => format!("lerp{knots}"),
-        PowerDesign::Segmented { segments, per_segment, lerp } => format!("seg{segments}x{per_segment}{}", if lerp { "l" } else { "" }),
+        PowerDesign::Segmented {
+            segments,
+            per_segment,
+            lerp,
+        } => format!("seg{segments}x{per_segment}{}", if lerp { "l" } else { "" }),
         PowerDesign::Squaring { guard } => format!("sq{guard}"),
     };
     format!("pu_{tag}_f{}p{}", fm.f, fm.p)
@@ -50,7 +54,10 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
     let m = name(d, fm);
     let mut w = VWriter::new();
     head(&mut w);
-    w.line(format!("// {}: x^n for x = x/2^{f} (u1.{f}) to u1.{p}, registered. See model::power_unit.", d.label()));
+    w.line(format!(
+        "// {}: x^n for x = x/2^{f} (u1.{f}) to u1.{p}, registered. See model::power_unit.",
+        d.label()
+    ));
     w.line(format!("module {m} (input wire clk, input wire [{f}:0] x, output reg [{p}:0] fs);"));
     let result = datapath(&mut w, d, fm, n, false, &|w: &mut VWriter| {
         w.line(format!("wire [{p}:0] k0;"));
@@ -71,7 +78,10 @@ pub fn core(d: &PowerDesign, fm: PowerFormats, module: &str) -> String {
     let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
     let mut w = VWriter::new();
     head(&mut w);
-    w.line(format!("// {}: combinational core of the power unit; the table is outside.", d.label()));
+    w.line(format!(
+        "// {}: combinational core of the power unit; the table is outside.",
+        d.label()
+    ));
     w.line(format!(
         "module {module} (input wire [{f}:0] x, output wire [{}:0] a0, output wire [{}:0] a1, input wire [{p}:0] k0, input wire [{p}:0] k1, output wire [{p}:0] fs_out);",
         ab - 1,
@@ -93,9 +103,16 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
     // Rounded signed interpolation k0 + round((k1 - k0) * t / 2^F) in P+2+F+1 bits.
     let interp = |w: &mut VWriter, t: &str, tw: u32| {
         let pw = p + 2 + tw + 1;
-        w.line(format!("wire signed [{}:0] diff = $signed({{2'b00, k1}}) - $signed({{2'b00, k0}});", p + 2));
+        w.line(format!(
+            "wire signed [{}:0] diff = $signed({{2'b00, k1}}) - $signed({{2'b00, k0}});",
+            p + 2
+        ));
         w.line(format!("wire signed [{}:0] prod = diff * $signed({{1'b0, {t}}});", pw - 1));
-        w.line(format!("wire signed [{}:0] step = (prod + {pw}'sd{}) >>> {f};", pw - 1, 1u64 << (f - 1)));
+        w.line(format!(
+            "wire signed [{}:0] step = (prod + {pw}'sd{}) >>> {f};",
+            pw - 1,
+            1u64 << (f - 1)
+        ));
         w.line(format!("wire [{p}:0] y_out = k0 + step[{p}:0];"));
     };
     // a0/a1 are wires of the standalone unit and output ports of the core.
@@ -110,8 +127,17 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
         PowerDesign::Table { entries, nearest } => {
             let ib = entries.trailing_zeros();
             let sw = f + 1 + ib + 1;
-            w.line(format!("wire [{}:0] scaled = ({{{}'d0, x}} << {ib}) - {{{}'d0, x}};", sw - 1, ib + 1, ib + 1));
-            w.line(format!("wire [{}:0] rounded = scaled + {sw}'d{};", sw - 1, if nearest { 1u64 << (f - 1) } else { 0 }));
+            w.line(format!(
+                "wire [{}:0] scaled = ({{{}'d0, x}} << {ib}) - {{{}'d0, x}};",
+                sw - 1,
+                ib + 1,
+                ib + 1
+            ));
+            w.line(format!(
+                "wire [{}:0] rounded = scaled + {sw}'d{};",
+                sw - 1,
+                if nearest { 1u64 << (f - 1) } else { 0 }
+            ));
             addr(w, "a0", &format!("rounded[{}:{f}]", f + ab - 1));
             addr(w, "a1", "a0");
             mem(w);
@@ -130,7 +156,11 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             interp(w, "fr", f);
             "(last ? k0 : y_out)".into()
         }
-        PowerDesign::Segmented { segments, per_segment, lerp } => {
+        PowerDesign::Segmented {
+            segments,
+            per_segment,
+            lerp,
+        } => {
             let mb = per_segment.trailing_zeros().max(1);
             let sb = (32 - (segments - 1).leading_zeros()).max(1);
             w.line(format!("wire [{f}:0] y = {{1'b1, {f}'d0}} - x;"));
@@ -139,7 +169,12 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             w.line("integer i;");
             w.block("always @* begin", "end", |w| {
                 w.line(format!("s = {sb}'d{};", segments - 1));
-                w.line(format!("for (i = {}; i >= 0; i = i - 1) if (y[{} - i]) s = i[{}:0];", segments as i32 - 2, f - 1, sb - 1));
+                w.line(format!(
+                    "for (i = {}; i >= 0; i = i - 1) if (y[{} - i]) s = i[{}:0];",
+                    segments as i32 - 2,
+                    f - 1,
+                    sb - 1
+                ));
                 w.line(format!("if (y[{f}]) s = {sb}'d0;"));
             });
             w.line(format!("reg [{f}:0] off;"));
@@ -152,18 +187,37 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
                         let (_, lo, lw) = segment_of(f, segments, probe);
                         let body = if lw >= mb {
                             let sh = lw - mb;
-                            let tpart = if sh == 0 { format!("{f}'d0") } else { format!("{{off[{}:0], {}'d0}}", sh - 1, f - sh) };
+                            let tpart = if sh == 0 {
+                                format!("{f}'d0")
+                            } else {
+                                format!("{{off[{}:0], {}'d0}}", sh - 1, f - sh)
+                            };
                             format!("begin off = y - {}'d{lo}; j = {{{mb}'d0, off}} >> {sh}; t = {tpart}; end", f + 1)
                         } else {
-                            format!("begin off = y - {}'d{lo}; j = {{{mb}'d0, off}} << {}; t = {f}'d0; end", f + 1, mb - lw)
+                            format!(
+                                "begin off = y - {}'d{lo}; j = {{{mb}'d0, off}} << {}; t = {f}'d0; end",
+                                f + 1,
+                                mb - lw
+                            )
                         };
-                        let label = if s + 1 == segments { "default".to_string() } else { format!("{sb}'d{s}") };
+                        let label = if s + 1 == segments {
+                            "default".to_string()
+                        } else {
+                            format!("{sb}'d{s}")
+                        };
                         w.line(format!("{label}: {body}"));
                     }
                 });
             });
             let per = if lerp { per_segment + 1 } else { per_segment };
-            w.line(format!("wire [{}:0] jc = (j > {}) ? {}'d{} : j[{}:0];", ab - 1, per - 1, ab, per - 1, ab - 1));
+            w.line(format!(
+                "wire [{}:0] jc = (j > {}) ? {}'d{} : j[{}:0];",
+                ab - 1,
+                per - 1,
+                ab,
+                per - 1,
+                ab - 1
+            ));
             addr(w, "a0", &format!("s * {ab}'d{per} + jc"));
             addr(w, "a1", &format!("(t == {f}'d0) ? a0 : a0 + {ab}'d1"));
             mem(w);
@@ -176,19 +230,33 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
         }
         PowerDesign::Squaring { guard } => {
             let wd = p + guard;
-            w.line(format!("// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."));
+            w.line(format!(
+                "// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."
+            ));
             let bits = 32 - n.leading_zeros();
-            w.line(format!("wire [{wd}:0] xw = ({{x, {wd}'d0}} + {}'d{}) >> {f};", f + wd + 1, 1u64 << (f - 1)));
+            w.line(format!(
+                "wire [{wd}:0] xw = ({{x, {wd}'d0}} + {}'d{}) >> {f};",
+                f + wd + 1,
+                1u64 << (f - 1)
+            ));
             let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
             for (k, bit) in (0..bits).rev().enumerate() {
                 let sq = format!("sq{k}");
                 w.line(format!("wire [{}:0] {sq}_p = {acc} * {acc};", 2 * wd + 1));
-                w.line(format!("wire [{wd}:0] {sq} = ({sq}_p + {}'d{}) >> {wd};", 2 * wd + 2, 1u64 << (wd - 1)));
+                w.line(format!(
+                    "wire [{wd}:0] {sq} = ({sq}_p + {}'d{}) >> {wd};",
+                    2 * wd + 2,
+                    1u64 << (wd - 1)
+                ));
                 acc = sq.clone();
                 if (n >> bit) & 1 == 1 {
                     let mu = format!("mu{k}");
                     w.line(format!("wire [{}:0] {mu}_p = {acc} * xw;", 2 * wd + 1));
-                    w.line(format!("wire [{wd}:0] {mu} = ({mu}_p + {}'d{}) >> {wd};", 2 * wd + 2, 1u64 << (wd - 1)));
+                    w.line(format!(
+                        "wire [{wd}:0] {mu} = ({mu}_p + {}'d{}) >> {wd};",
+                        2 * wd + 2,
+                        1u64 << (wd - 1)
+                    ));
                     acc = mu;
                 }
             }

@@ -49,7 +49,13 @@ pub fn write(rom: &Rom, fmt: RomFormat, header: &[String]) -> String {
         RomFormat::Mif => "-- ",
         RomFormat::Coe => "; ",
     };
-    for l in header.iter().chain(std::iter::once(&format!("{}: {} words of {} bits; {}", rom.name, rom.words.len(), rom.width, rom.layout))) {
+    for l in header.iter().chain(std::iter::once(&format!(
+        "{}: {} words of {} bits; {}",
+        rom.name,
+        rom.words.len(),
+        rom.width,
+        rom.layout
+    ))) {
         s += &format!("{comment}{l}\n");
     }
     match fmt {
@@ -59,7 +65,11 @@ pub fn write(rom: &Rom, fmt: RomFormat, header: &[String]) -> String {
             }
         }
         RomFormat::Mif => {
-            s += &format!("WIDTH={};\nDEPTH={};\nADDRESS_RADIX=HEX;\nDATA_RADIX=HEX;\nCONTENT BEGIN\n", rom.width, rom.words.len());
+            s += &format!(
+                "WIDTH={};\nDEPTH={};\nADDRESS_RADIX=HEX;\nDATA_RADIX=HEX;\nCONTENT BEGIN\n",
+                rom.width,
+                rom.words.len()
+            );
             for (a, w) in rom.words.iter().enumerate() {
                 s += &format!("    {a:x} : {w:0d$x};\n");
             }
@@ -114,8 +124,17 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
         width: cfg.power_bits + 1,
         words: t.entries.iter().map(|&e| e as u64).collect(),
         layout: match cfg.power_unit {
-            crate::config::PowerUnitKind::Table => format!("entry i = round((i/{})^{n} * 2^{}), u1.{}", cfg.power_entries - 1, cfg.power_bits, cfg.power_bits),
-            _ => format!("{} knots for n = {n}, u1.{} (layout: model::power_unit)", cfg.power_design().label(), cfg.power_bits),
+            crate::config::PowerUnitKind::Table => format!(
+                "entry i = round((i/{})^{n} * 2^{}), u1.{}",
+                cfg.power_entries - 1,
+                cfg.power_bits,
+                cfg.power_bits
+            ),
+            _ => format!(
+                "{} knots for n = {n}, u1.{} (layout: model::power_unit)",
+                cfg.power_design().label(),
+                cfg.power_bits
+            ),
         },
     }
 }
@@ -141,7 +160,11 @@ pub fn palette_rom(cfg: &PipelineConfig, p: &Palette) -> Rom {
     Rom {
         name: "bump_palette".into(),
         width: 3 * nb,
-        words: p.0.iter().map(|e| e[0] as u64 | (e[1] as u64) << nb | (e[2] as u64) << (2 * nb)).collect(),
+        words: p
+            .0
+            .iter()
+            .map(|e| e[0] as u64 | (e[1] as u64) << nb | (e[2] as u64) << (2 * nb))
+            .collect(),
         layout: format!("{{z, y, x}}, {nb}-bit offset-binary components, x in bits [{}:0]", nb - 1),
     }
 }
@@ -177,7 +200,10 @@ pub fn cube_map_rom(size: usize) -> Rom {
         name: format!("normalisation_cube_map {size}x{size}x6"),
         width: 24,
         words,
-        layout: format!("address = face*{} + t*{size} + s, faces +X -X +Y -Y +Z -Z; {{B, G, R}} = range-compressed (z, y, x)", size * size),
+        layout: format!(
+            "address = face*{} + t*{size} + s, faces +X -X +Y -Y +Z -Z; {{B, G, R}} = range-compressed (z, y, x)",
+            size * size
+        ),
     }
 }
 
@@ -206,6 +232,9 @@ mod tests {
         let t = (((tc + 1.0) / 2.0) * 32.0) as usize;
         let w = rom.words[t * 32 + s];
         let rgb = [w & 255, (w >> 8) & 255, w >> 16].map(|c| c as f64 / 255.0);
-        assert!((rgb[0] - 0.93).abs() < 0.02 && (rgb[1] - 0.72).abs() < 0.03 && (rgb[2] - 0.63).abs() < 0.03, "{rgb:?}");
+        assert!(
+            (rgb[0] - 0.93).abs() < 0.02 && (rgb[1] - 0.72).abs() < 0.03 && (rgb[2] - 0.63).abs() < 0.03,
+            "{rgb:?}"
+        );
     }
 }

@@ -87,7 +87,10 @@ fn factor(cfg: &PipelineConfig, src: &str, src_frac: u32, en: &str) -> String {
 /// Registers `name <= expr` for a list, inside an always block.
 fn regs(w: &mut VWriter, decls: &[(&str, u32, String)]) {
     for (name, width, _) in decls {
-        w.line(format!("reg {}{name};", if *width > 1 { format!("[{}:0] ", width - 1) } else { String::new() }));
+        w.line(format!(
+            "reg {}{name};",
+            if *width > 1 { format!("[{}:0] ", width - 1) } else { String::new() }
+        ));
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         for (name, _, e) in decls {
@@ -98,7 +101,18 @@ fn regs(w: &mut VWriter, decls: &[(&str, u32, String)]) {
 
 /// The three colour stages (blend / texture / blend in the configured order), from stage
 /// `s0` colour `c_in` with factors, k and lc at that stage; emits `c_out` and `v_out`.
-fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in: &str, t: &str, dfac: &str, sfac: &str, k: &str, lc: &str) {
+fn colour_stages(
+    w: &mut VWriter,
+    cfg: &PipelineConfig,
+    s: u32,
+    v_in: &str,
+    c_in: &str,
+    t: &str,
+    dfac: &str,
+    sfac: &str,
+    k: &str,
+    lc: &str,
+) {
     let n = cfg.lights;
     let c = cfg.colour_bits;
     let fw = n * (cfg.factor_frac() + 1);
@@ -109,7 +123,15 @@ fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in
         BlendOrder::TextureLast => ["diffuse_blend", "specular_blend", "texture_modulate"],
     };
     // Side signals travel with the colour; each stage takes what it needs at its own cycle.
-    let mut cur = (v_in.to_string(), c_in.to_string(), t.to_string(), dfac.to_string(), sfac.to_string(), k.to_string(), lc.to_string());
+    let mut cur = (
+        v_in.to_string(),
+        c_in.to_string(),
+        t.to_string(),
+        dfac.to_string(),
+        sfac.to_string(),
+        k.to_string(),
+        lc.to_string(),
+    );
     for (i, unit) in order.iter().enumerate() {
         let st = s + i as u32 + 1;
         let (v, cc, tt, df, sf, kk, ll) = cur.clone();
@@ -126,10 +148,16 @@ fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in
             w.line(format!("always @(posedge clk) {out}_r <= {cc};"));
             w.line(format!("assign {out} = {out}_r;"));
         } else if *unit == "texture_modulate" {
-            w.line(format!("{} u_{unit} (.clk(clk), .c_in({cc}), .t({tt}), .c_out({out}));", module_name(cfg, unit)));
+            w.line(format!(
+                "{} u_{unit} (.clk(clk), .c_in({cc}), .t({tt}), .c_out({out}));",
+                module_name(cfg, unit)
+            ));
         } else {
             let f = if *unit == "diffuse_blend" { &df } else { &sf };
-            w.line(format!("{} u_{unit} (.clk(clk), .c_in({cc}), .f({f}), .k({kk}), .lc({ll}), .c_out({out}));", module_name(cfg, unit)));
+            w.line(format!(
+                "{} u_{unit} (.clk(clk), .c_in({cc}), .f({f}), .k({kk}), .lc({ll}), .c_out({out}));",
+                module_name(cfg, unit)
+            ));
         }
         let mut side = vec![(format!("v{st}"), 1, format!("rst ? 1'b0 : {v}"))];
         // Side signals travel only as far as a later stage uses them.
@@ -138,11 +166,23 @@ fn colour_stages(w: &mut VWriter, cfg: &PipelineConfig, s: u32, v_in: &str, c_in
             side.push((format!("t{st}"), 3 * c, tt.clone()));
         }
         if rest.contains(&"specular_blend") && cfg.specular {
-            side.extend([(format!("sf{st}"), fw, sf.clone()), (format!("k{st}"), kw, kk.clone()), (format!("lc{st}"), lw, ll.clone())]);
+            side.extend([
+                (format!("sf{st}"), fw, sf.clone()),
+                (format!("k{st}"), kw, kk.clone()),
+                (format!("lc{st}"), lw, ll.clone()),
+            ]);
         }
         let side_ref: Vec<(&str, u32, String)> = side.iter().map(|(a, b, c)| (a.as_str(), *b, c.clone())).collect();
         regs(w, &side_ref);
-        cur = (format!("v{st}"), out, format!("t{st}"), String::new(), format!("sf{st}"), format!("k{st}"), format!("lc{st}"));
+        cur = (
+            format!("v{st}"),
+            out,
+            format!("t{st}"),
+            String::new(),
+            format!("sf{st}"),
+            format!("k{st}"),
+            format!("lc{st}"),
+        );
     }
     w.line(format!("assign out_valid = {};", cur.0));
     w.line("// The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.");
@@ -160,7 +200,14 @@ pub fn top(cfg: &PipelineConfig) -> String {
     w.line("`timescale 1ns / 1ps");
     w.line("`default_nettype none");
     w.line("");
-    w.line(format!("// gbump_pipeline: {:?} lights ({} slot(s)), blend order {:?}, latency {} cycles, one fragment every {} cycle(s).", cfg.light_mode, cfg.lights, cfg.blend_order, latency(cfg), cfg.initiation_interval()));
+    w.line(format!(
+        "// gbump_pipeline: {:?} lights ({} slot(s)), blend order {:?}, latency {} cycles, one fragment every {} cycle(s).",
+        cfg.light_mode,
+        cfg.lights,
+        cfg.blend_order,
+        latency(cfg),
+        cfg.initiation_interval()
+    ));
     w.line(format!("module {} (\n{}\n);", module_name(cfg, "gbump_pipeline"), port_list(cfg)));
     match cfg.light_mode {
         LightMode::Parallel => parallel_body(&mut w, cfg),
@@ -172,34 +219,54 @@ pub fn top(cfg: &PipelineConfig) -> String {
 }
 
 fn enables(cfg: &PipelineConfig, de: &str, se: &str, b: &str) -> (String, String) {
-    let bypass = if cfg.skip_flat { format!(" & ~({b} == {})", flat_code(cfg)) } else { String::new() };
+    let bypass = if cfg.skip_flat {
+        format!(" & ~({b} == {})", flat_code(cfg))
+    } else {
+        String::new()
+    };
     let d = if cfg.diffuse { format!("{de}{bypass}") } else { "1'b0".into() };
     let s = if cfg.specular { format!("{se}{bypass}") } else { "1'b0".into() };
     (d, s)
 }
 
 fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
-    let (n, c, lh, k, nb, f, p) = (cfg.lights, cfg.colour_bits, cfg.lh_bits, cfg.k_bits, cfg.normal_bits, cfg.dot_bits, cfg.power_bits);
+    let (n, c, lh, k, nb, f, p) = (
+        cfg.lights,
+        cfg.colour_bits,
+        cfg.lh_bits,
+        cfg.k_bits,
+        cfg.normal_bits,
+        cfg.dot_bits,
+        cfg.power_bits,
+    );
     let ff = cfg.factor_frac();
     w.line("assign in_ready = 1'b1;");
     w.line("// Stage 1: bump_fetch; the rest of the fragment waits beside it.");
     w.line(format!("wire [{}:0] b1;", 3 * nb - 1));
-    w.line(format!("{} u_bump_fetch (.clk(clk), .texel(in_texel), .b(b1));", module_name(cfg, "bump_fetch")));
+    w.line(format!(
+        "{} u_bump_fetch (.clk(clk), .texel(in_texel), .b(b1));",
+        module_name(cfg, "bump_fetch")
+    ));
     // A configuration without a blend unit leaves out its whole path (dot products, power
     // table, factors); its enable and light vectors stay on the interface, waived in the .vlt.
     let (d, sp) = (cfg.diffuse, cfg.specular);
-    let keep = |v: Vec<(&'static str, u32, String, bool)>| -> Vec<(&'static str, u32, String)> { v.into_iter().filter(|x| x.3).map(|x| (x.0, x.1, x.2)).collect() };
-    regs(w, &keep(vec![
-        ("v1", 1, "rst ? 1'b0 : in_valid".into(), true),
-        ("c1", 3 * c, "in_c_src".into(), true),
-        ("t1", 3 * c, "in_t".into(), true),
-        ("de1", 1, "in_diffuse_en".into(), d),
-        ("se1", 1, "in_specular_en".into(), sp),
-        ("l1", 3 * n * lh, "in_l".into(), d),
-        ("h1", 3 * n * lh, "in_h".into(), sp),
-        ("lc1", 3 * n * c, "in_lc".into(), true),
-        ("k1", n * (k + 1), "in_k".into(), true),
-    ]));
+    let keep = |v: Vec<(&'static str, u32, String, bool)>| -> Vec<(&'static str, u32, String)> {
+        v.into_iter().filter(|x| x.3).map(|x| (x.0, x.1, x.2)).collect()
+    };
+    regs(
+        w,
+        &keep(vec![
+            ("v1", 1, "rst ? 1'b0 : in_valid".into(), true),
+            ("c1", 3 * c, "in_c_src".into(), true),
+            ("t1", 3 * c, "in_t".into(), true),
+            ("de1", 1, "in_diffuse_en".into(), d),
+            ("se1", 1, "in_specular_en".into(), sp),
+            ("l1", 3 * n * lh, "in_l".into(), d),
+            ("h1", 3 * n * lh, "in_h".into(), sp),
+            ("lc1", 3 * n * c, "in_lc".into(), true),
+            ("k1", n * (k + 1), "in_k".into(), true),
+        ]),
+    );
     let (den, sen) = enables(cfg, "de1", "se1", "b1");
     w.line("// Stage 2: dot_clamp for every L_i and H_i.");
     if d {
@@ -210,36 +277,55 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
     }
     for i in 0..n {
         if d {
-            w.line(format!("{} u_dot_l{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("l1", i, 3 * lh), lane("fd2", i, f + 1)));
+            w.line(format!(
+                "{} u_dot_l{i} (.clk(clk), .b(b1), .v({}), .f({}));",
+                module_name(cfg, "dot_clamp"),
+                lane("l1", i, 3 * lh),
+                lane("fd2", i, f + 1)
+            ));
         }
         if sp {
-            w.line(format!("{} u_dot_h{i} (.clk(clk), .b(b1), .v({}), .f({}));", module_name(cfg, "dot_clamp"), lane("h1", i, 3 * lh), lane("xh2", i, f + 1)));
+            w.line(format!(
+                "{} u_dot_h{i} (.clk(clk), .b(b1), .v({}), .f({}));",
+                module_name(cfg, "dot_clamp"),
+                lane("h1", i, 3 * lh),
+                lane("xh2", i, f + 1)
+            ));
         }
     }
-    regs(w, &keep(vec![
-        ("v2", 1, "rst ? 1'b0 : v1".into(), true),
-        ("c2", 3 * c, "c1".into(), true),
-        ("t2", 3 * c, "t1".into(), true),
-        ("de2", 1, den, d),
-        ("se2", 1, sen, sp),
-        ("lc2", 3 * n * c, "lc1".into(), true),
-        ("k2", n * (k + 1), "k1".into(), true),
-    ]));
+    regs(
+        w,
+        &keep(vec![
+            ("v2", 1, "rst ? 1'b0 : v1".into(), true),
+            ("c2", 3 * c, "c1".into(), true),
+            ("t2", 3 * c, "t1".into(), true),
+            ("de2", 1, den, d),
+            ("se2", 1, sen, sp),
+            ("lc2", 3 * n * c, "lc1".into(), true),
+            ("k2", n * (k + 1), "k1".into(), true),
+        ]),
+    );
     if sp {
         w.line(format!("// Stage 3: power_table with {n} read port(s)."));
         w.line(format!("wire [{}:0] fs3;", n * (p + 1) - 1));
-        w.line(format!("{} #(.R({n})) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));", module_name(cfg, "power_table")));
+        w.line(format!(
+            "{} #(.R({n})) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));",
+            module_name(cfg, "power_table")
+        ));
     }
-    regs(w, &keep(vec![
-        ("v3", 1, "rst ? 1'b0 : v2".into(), true),
-        ("c3", 3 * c, "c2".into(), true),
-        ("t3", 3 * c, "t2".into(), true),
-        ("de3", 1, "de2".into(), d),
-        ("se3", 1, "se2".into(), sp),
-        ("lc3", 3 * n * c, "lc2".into(), true),
-        ("k3", n * (k + 1), "k2".into(), true),
-        ("fd3", n * (f + 1), "fd2".into(), d),
-    ]));
+    regs(
+        w,
+        &keep(vec![
+            ("v3", 1, "rst ? 1'b0 : v2".into(), true),
+            ("c3", 3 * c, "c2".into(), true),
+            ("t3", 3 * c, "t2".into(), true),
+            ("de3", 1, "de2".into(), d),
+            ("se3", 1, "se2".into(), sp),
+            ("lc3", 3 * n * c, "lc2".into(), true),
+            ("k3", n * (k + 1), "k2".into(), true),
+            ("fd3", n * (f + 1), "fd2".into(), d),
+        ]),
+    );
     if d {
         w.line(format!("wire [{}:0] dfac3;", n * (ff + 1) - 1));
     }
@@ -248,10 +334,18 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
     }
     for i in 0..n {
         if d {
-            w.line(format!("assign {} = {};", lane("dfac3", i, ff + 1), factor(cfg, &lane("fd3", i, f + 1), f, "de3")));
+            w.line(format!(
+                "assign {} = {};",
+                lane("dfac3", i, ff + 1),
+                factor(cfg, &lane("fd3", i, f + 1), f, "de3")
+            ));
         }
         if sp {
-            w.line(format!("assign {} = {};", lane("sfac3", i, ff + 1), factor(cfg, &lane("fs3", i, p + 1), p, "se3")));
+            w.line(format!(
+                "assign {} = {};",
+                lane("sfac3", i, ff + 1),
+                factor(cfg, &lane("fs3", i, p + 1), p, "se3")
+            ));
         }
     }
     w.line("// Stages 4-6: blends and texture in the configured order.");
@@ -259,7 +353,15 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
 }
 
 fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
-    let (n, c, lh, k, nb, f, p) = (cfg.lights, cfg.colour_bits, cfg.lh_bits, cfg.k_bits, cfg.normal_bits, cfg.dot_bits, cfg.power_bits);
+    let (n, c, lh, k, nb, f, p) = (
+        cfg.lights,
+        cfg.colour_bits,
+        cfg.lh_bits,
+        cfg.k_bits,
+        cfg.normal_bits,
+        cfg.dot_bits,
+        cfg.power_bits,
+    );
     let ff = cfg.factor_frac();
     let tw = cfg.term_fmt().width;
     let aw = cfg.acc_fmt().width;
@@ -296,7 +398,10 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         ("fr_k", n * (k + 1), "in_k"),
     ];
     for (name, wd, _) in fr {
-        w.line(format!("reg {}{name};", if wd > 1 { format!("[{}:0] ", wd - 1) } else { String::new() }));
+        w.line(format!(
+            "reg {}{name};",
+            if wd > 1 { format!("[{}:0] ", wd - 1) } else { String::new() }
+        ));
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         w.block("if (accept) begin", "end", |w| {
@@ -306,44 +411,70 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         });
     });
     w.line(format!("wire [{}:0] b0;", 3 * nb - 1));
-    w.line(format!("{} u_bump_fetch (.texel(fr_texel), .b(b0));", module_name(cfg, "bump_fetch_comb")));
+    w.line(format!(
+        "{} u_bump_fetch (.texel(fr_texel), .b(b0));",
+        module_name(cfg, "bump_fetch_comb")
+    ));
     let (den, sen) = enables(cfg, "fr_de", "fr_se", "b0");
     w.line(format!("wire [{}:0] l_sel = fr_l[j*{} +: {}];", 3 * lh - 1, 3 * lh, 3 * lh));
     w.line(format!("wire [{}:0] h_sel = fr_h[j*{} +: {}];", 3 * lh - 1, 3 * lh, 3 * lh));
     w.line(format!("wire [{}:0] fd1;", f));
     w.line(format!("wire [{}:0] xh1;", f));
-    w.line(format!("{} u_dot_l (.clk(clk), .b(b0), .v(l_sel), .f(fd1));", module_name(cfg, "dot_clamp")));
-    w.line(format!("{} u_dot_h (.clk(clk), .b(b0), .v(h_sel), .f(xh1));", module_name(cfg, "dot_clamp")));
-    regs(w, &[
-        ("v1", 1, "rst ? 1'b0 : busy".into()),
-        ("first1", 1, format!("j == {jb}'d0")),
-        ("last1", 1, "last_j".into()),
-        ("lc1", 3 * c, format!("fr_lc[j*{} +: {}]", 3 * c, 3 * c)),
-        ("k1", k + 1, format!("fr_k[j*{} +: {}]", k + 1, k + 1)),
-        ("de1", 1, den),
-        ("se1", 1, sen),
-        ("c1", 3 * c, "fr_c".into()),
-        ("t1", 3 * c, "fr_t".into()),
-    ]);
+    w.line(format!(
+        "{} u_dot_l (.clk(clk), .b(b0), .v(l_sel), .f(fd1));",
+        module_name(cfg, "dot_clamp")
+    ));
+    w.line(format!(
+        "{} u_dot_h (.clk(clk), .b(b0), .v(h_sel), .f(xh1));",
+        module_name(cfg, "dot_clamp")
+    ));
+    regs(
+        w,
+        &[
+            ("v1", 1, "rst ? 1'b0 : busy".into()),
+            ("first1", 1, format!("j == {jb}'d0")),
+            ("last1", 1, "last_j".into()),
+            ("lc1", 3 * c, format!("fr_lc[j*{} +: {}]", 3 * c, 3 * c)),
+            ("k1", k + 1, format!("fr_k[j*{} +: {}]", k + 1, k + 1)),
+            ("de1", 1, den),
+            ("se1", 1, sen),
+            ("c1", 3 * c, "fr_c".into()),
+            ("t1", 3 * c, "fr_t".into()),
+        ],
+    );
     w.line(format!("wire [{p}:0] fs2;"));
-    w.line(format!("{} #(.R(1)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));", module_name(cfg, "power_table")));
-    regs(w, &[
-        ("v2", 1, "rst ? 1'b0 : v1".into()),
-        ("first2", 1, "first1".into()),
-        ("last2", 1, "last1".into()),
-        ("lc2", 3 * c, "lc1".into()),
-        ("k2", k + 1, "k1".into()),
-        ("de2", 1, "de1".into()),
-        ("se2", 1, "se1".into()),
-        ("c2", 3 * c, "c1".into()),
-        ("t2", 3 * c, "t1".into()),
-        ("fd2", f + 1, "fd1".into()),
-    ]);
+    w.line(format!(
+        "{} #(.R(1)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));",
+        module_name(cfg, "power_table")
+    ));
+    regs(
+        w,
+        &[
+            ("v2", 1, "rst ? 1'b0 : v1".into()),
+            ("first2", 1, "first1".into()),
+            ("last2", 1, "last1".into()),
+            ("lc2", 3 * c, "lc1".into()),
+            ("k2", k + 1, "k1".into()),
+            ("de2", 1, "de1".into()),
+            ("se2", 1, "se1".into()),
+            ("c2", 3 * c, "c1".into()),
+            ("t2", 3 * c, "t1".into()),
+            ("fd2", f + 1, "fd1".into()),
+        ],
+    );
     w.line("// Accumulate one light's terms per cycle; the sum is exact, as in the parallel form.");
     w.line(format!("wire [{}:0] dterm;", 3 * tw - 1));
     w.line(format!("wire [{}:0] sterm;", 3 * tw - 1));
-    w.line(format!("{} u_dterm (.f({}), .k(k2), .lc(lc2), .term(dterm));", module_name(cfg, "light_term"), factor(cfg, "fd2", f, "de2")));
-    w.line(format!("{} u_sterm (.f({}), .k(k2), .lc(lc2), .term(sterm));", module_name(cfg, "light_term"), factor(cfg, "fs2", p, "se2")));
+    w.line(format!(
+        "{} u_dterm (.f({}), .k(k2), .lc(lc2), .term(dterm));",
+        module_name(cfg, "light_term"),
+        factor(cfg, "fd2", f, "de2")
+    ));
+    w.line(format!(
+        "{} u_sterm (.f({}), .k(k2), .lc(lc2), .term(sterm));",
+        module_name(cfg, "light_term"),
+        factor(cfg, "fs2", p, "se2")
+    ));
     w.line(format!("reg [{}:0] dacc;", 3 * aw - 1));
     w.line(format!("reg [{}:0] sacc;", 3 * aw - 1));
     w.line(format!("wire [{}:0] dacc_next;", 3 * aw - 1));
@@ -362,19 +493,28 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         w.line("if (v2) dacc <= dacc_next;");
         w.line("if (v2) sacc <= sacc_next;");
     });
-    regs(w, &[
-        ("v3", 1, "rst ? 1'b0 : (v2 && last2)".into()),
-        ("c3", 3 * c, "c2".into()),
-        ("t3", 3 * c, "t2".into()),
-        ("da3", 3 * aw, "dacc_next".into()),
-        ("sa3", 3 * aw, "sacc_next".into()),
-    ]);
+    regs(
+        w,
+        &[
+            ("v3", 1, "rst ? 1'b0 : (v2 && last2)".into()),
+            ("c3", 3 * c, "c2".into()),
+            ("t3", 3 * c, "t2".into()),
+            ("da3", 3 * aw, "dacc_next".into()),
+            ("sa3", 3 * aw, "sacc_next".into()),
+        ],
+    );
     // The finish stages reuse blend_finish on the accumulated sums.
     let order: [&str; 3] = match cfg.blend_order {
         BlendOrder::DiffuseTextureSpecular => ["diffuse", "texture", "specular"],
         BlendOrder::TextureLast => ["diffuse", "specular", "texture"],
     };
-    let mut cur = ("v3".to_string(), "c3".to_string(), "t3".to_string(), "da3".to_string(), "sa3".to_string());
+    let mut cur = (
+        "v3".to_string(),
+        "c3".to_string(),
+        "t3".to_string(),
+        "da3".to_string(),
+        "sa3".to_string(),
+    );
     let _ = &cur.3;
     for (i, what) in order.iter().enumerate() {
         let st = 4 + i as u32;
@@ -382,9 +522,18 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         let out = format!("c{st}");
         w.line(format!("wire [{}:0] {out};", 3 * c - 1));
         match *what {
-            "texture" => w.line(format!("{} u_texture_modulate (.clk(clk), .c_in({cc}), .t({tt}), .c_out({out}));", module_name(cfg, "texture_modulate"))),
-            "diffuse" => w.line(format!("{} u_diffuse_finish (.clk(clk), .c_in({cc}), .acc({da}), .c_out({out}));", module_name(cfg, "blend_finish"))),
-            _ => w.line(format!("{} u_specular_finish (.clk(clk), .c_in({cc}), .acc({sa}), .c_out({out}));", module_name(cfg, "blend_finish"))),
+            "texture" => w.line(format!(
+                "{} u_texture_modulate (.clk(clk), .c_in({cc}), .t({tt}), .c_out({out}));",
+                module_name(cfg, "texture_modulate")
+            )),
+            "diffuse" => w.line(format!(
+                "{} u_diffuse_finish (.clk(clk), .c_in({cc}), .acc({da}), .c_out({out}));",
+                module_name(cfg, "blend_finish")
+            )),
+            _ => w.line(format!(
+                "{} u_specular_finish (.clk(clk), .c_in({cc}), .acc({sa}), .c_out({out}));",
+                module_name(cfg, "blend_finish")
+            )),
         };
         let rest = &order[i + 1..];
         let mut side = vec![(format!("v{st}"), 1, format!("rst ? 1'b0 : {v}"))];

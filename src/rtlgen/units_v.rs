@@ -27,14 +27,22 @@ fn postamble(w: &mut VWriter) {
 /// output register; otherwise the module is combinational (and has no clock).
 pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     let nb = cfg.normal_bits;
-    let name = if registered { module_name(cfg, "bump_fetch") } else { module_name(cfg, "bump_fetch_comb") };
+    let name = if registered {
+        module_name(cfg, "bump_fetch")
+    } else {
+        module_name(cfg, "bump_fetch_comb")
+    };
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line("// bump_fetch (paper §4.1; Cg §8.1.2 range expansion): stored code c → b = c - 2^(w-1),");
     w.line("// which for offset binary is an inversion of each component's MSB.");
     let clk = if registered { "input  wire clk,\n    " } else { "" };
     let out_kind = if registered { "reg " } else { "wire" };
-    w.line(format!("module {name} (\n    {clk}input  wire [{}:0] texel,\n    output {out_kind} [{}:0] b\n);", 3 * nb - 1, 3 * nb - 1));
+    w.line(format!(
+        "module {name} (\n    {clk}input  wire [{}:0] texel,\n    output {out_kind} [{}:0] b\n);",
+        3 * nb - 1,
+        3 * nb - 1
+    ));
     let flip = |i: u32| format!("{{~texel[{}], texel[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
     let expr = format!("{{{}, {}, {}}}", flip(2), flip(1), flip(0));
     if registered {
@@ -55,10 +63,29 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     let ex = cfg.dot_exact_fmt();
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// dot_clamp (paper §4.2): exact B·V in {} ({} bits), one rounding ({:?}) to {}, clamped to [0, 1].", ex.name(), ex.width, cfg.rounding, cfg.dot_fmt().name()));
-    w.line(format!("module {} (\n    input  wire clk,\n    input  wire [{}:0] b,\n    input  wire [{}:0] v,\n    output reg  [{}:0] f\n);", module_name(cfg, "dot_clamp"), 3 * nb - 1, 3 * lh - 1, f));
+    w.line(format!(
+        "// dot_clamp (paper §4.2): exact B·V in {} ({} bits), one rounding ({:?}) to {}, clamped to [0, 1].",
+        ex.name(),
+        ex.width,
+        cfg.rounding,
+        cfg.dot_fmt().name()
+    ));
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] b,\n    input  wire [{}:0] v,\n    output reg  [{}:0] f\n);",
+        module_name(cfg, "dot_clamp"),
+        3 * nb - 1,
+        3 * lh - 1,
+        f
+    ));
     for i in 0..3 {
-        w.line(format!("wire signed [{}:0] p{i} = $signed(b[{}:{}]) * $signed(v[{}:{}]);", ex.width - 1, i * nb + nb - 1, i * nb, i * lh + lh - 1, i * lh));
+        w.line(format!(
+            "wire signed [{}:0] p{i} = $signed(b[{}:{}]) * $signed(v[{}:{}]);",
+            ex.width - 1,
+            i * nb + nb - 1,
+            i * nb,
+            i * lh + lh - 1,
+            i * lh
+        ));
     }
     w.line(format!("wire signed [{}:0] dot = p0 + p1 + p2;", ex.width - 1));
     requant_clamp(&mut w, "fq", "dot", ex, f, cfg.rounding, 0, 1 << f, f + 1);
@@ -80,27 +107,26 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     let ib = cfg.power_index_bits();
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded", p + 1));
-    w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents.");
-    w.line(format!("// Index = {:?}(x * {}) >> {f}: a subtract instead of a multiplier.", cfg.power_index, n - 1));
     w.line(format!(
-        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
-        module_name(cfg, "power_table"),
-        rom_file_name(cfg, "power_table", "hex"),
-        ib.max(1) - 1,
-        f + 1,
+        "// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded",
         p + 1
     ));
-    w.line(format!("reg [{p}:0] mem [0:{}];", n - 1));
-    w.line("initial $readmemh(INIT_FILE, mem);");
-    w.block("always @(posedge clk) begin", "end", |w| {
-        w.line("if (we) mem[waddr] <= wdata;");
-    });
-    w.line("genvar r;");
+    w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents.");
+    w.line(format!(
+        "// Index = {:?}(x * {}) >> {f}: a subtract instead of a multiplier.",
+        cfg.power_index,
+        n - 1
+    ));
+    power_table_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         let sw = f + 1 + ib + 1;
         w.line(format!("wire [{}:0] xr = x[r*{} +: {}];", f, f + 1, f + 1));
-        w.line(format!("wire [{}:0] scaled = ({{{}'d0, xr}} << {ib}) - {{{}'d0, xr}};", sw - 1, ib + 1, ib + 1));
+        w.line(format!(
+            "wire [{}:0] scaled = ({{{}'d0, xr}} << {ib}) - {{{}'d0, xr}};",
+            sw - 1,
+            ib + 1,
+            ib + 1
+        ));
         let half = match cfg.power_index {
             crate::config::PowerIndex::Nearest => 1u64 << (f - 1),
             crate::config::PowerIndex::Truncate => 0,
@@ -116,6 +142,26 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
+/// The power table's module header, loadable memory (reset contents from INIT_FILE) and
+/// write port: the same for every kind of power unit.
+fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
+    let (f, p) = (cfg.dot_bits, cfg.power_bits);
+    w.line(format!(
+        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
+        module_name(cfg, "power_table"),
+        rom_file_name(cfg, "power_table", "hex"),
+        cfg.power_addr_bits() - 1,
+        f + 1,
+        p + 1
+    ));
+    w.line(format!("reg [{p}:0] mem [0:{}];", cfg.power_depth() - 1));
+    w.line("initial $readmemh(INIT_FILE, mem);");
+    w.block("always @(posedge clk) begin", "end", |w| {
+        w.line("if (we) mem[waddr] <= wdata;");
+    });
+    w.line("genvar r;");
+}
+
 /// A loadable table of `power_depth()` words read through two ports per lookup by the
 /// `power_core` datapath (interpolation needs the knots on both sides).
 fn power_unit_with_core(cfg: &PipelineConfig) -> String {
@@ -123,27 +169,22 @@ fn power_unit_with_core(cfg: &PipelineConfig) -> String {
     let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;", cfg.power_design().label()));
-    w.line("// INIT_FILE holds the reset contents. Each read port runs one power_core.");
     w.line(format!(
-        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
-        module_name(cfg, "power_table"),
-        rom_file_name(cfg, "power_table", "hex"),
-        ab - 1,
-        f + 1,
-        p + 1
+        "// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
+        cfg.power_design().label()
     ));
-    w.line(format!("reg [{p}:0] mem [0:{}];", depth - 1));
-    w.line("initial $readmemh(INIT_FILE, mem);");
-    w.block("always @(posedge clk) begin", "end", |w| {
-        w.line("if (we) mem[waddr] <= wdata;");
-    });
-    w.line("genvar r;");
+    w.line("// INIT_FILE holds the reset contents. Each read port runs one power_core.");
+    power_table_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         w.line(format!("wire [{}:0] a0;", ab - 1));
         w.line(format!("wire [{}:0] a1;", ab - 1));
         w.line(format!("wire [{p}:0] y;"));
-        w.line(format!("{} u_core (.x(x[r*{} +: {}]), .a0(a0), .a1(a1), .k0(mem[a0]), .k1(mem[a1]), .fs_out(y));", module_name(cfg, "power_core"), f + 1, f + 1));
+        w.line(format!(
+            "{} u_core (.x(x[r*{} +: {}]), .a0(a0), .a1(a1), .k0(mem[a0]), .k1(mem[a1]), .fs_out(y));",
+            module_name(cfg, "power_core"),
+            f + 1,
+            f + 1
+        ));
         w.block("always @(posedge clk) begin", "end", |w| {
             w.line(format!("fs[r*{} +: {}] <= y;", p + 1, p + 1));
         });
@@ -164,7 +205,10 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     let tw = cfg.term_fmt().width;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// light_term: exact f·k·Lc per channel, {} ({tw} bits); no rounding before the sum.", cfg.term_fmt().name()));
+    w.line(format!(
+        "// light_term: exact f·k·Lc per channel, {} ({tw} bits); no rounding before the sum.",
+        cfg.term_fmt().name()
+    ));
     w.line(format!(
         "module {} (\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] term\n);",
         module_name(cfg, "light_term"),
@@ -173,7 +217,13 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     ));
     w.line(format!("wire [{}:0] fk = f * k;", ff + k + 1));
     for ch in 0..3 {
-        w.line(format!("assign term[{}:{}] = fk * lc[{}:{}];", ch * tw + tw - 1, ch * tw, ch * c + c - 1, ch * c));
+        w.line(format!(
+            "assign term[{}:{}] = fk * lc[{}:{}];",
+            ch * tw + tw - 1,
+            ch * tw,
+            ch * c + c - 1,
+            ch * c
+        ));
     }
     w.line("endmodule");
     postamble(&mut w);
@@ -187,7 +237,12 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
     let shift = cfg.factor_frac() + cfg.k_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// blend_finish: c_out = sat(c_in + round_{:?}(acc >> {shift})), acc in {} ({} bits).", cfg.rounding, acc.name(), acc.width));
+    w.line(format!(
+        "// blend_finish: c_out = sat(c_in + round_{:?}(acc >> {shift})), acc in {} ({} bits).",
+        cfg.rounding,
+        acc.name(),
+        acc.width
+    ));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] acc,\n    output reg  [{}:0] c_out\n);",
         module_name(cfg, "blend_finish"),
@@ -197,15 +252,29 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
     ));
     let max = cfg.colour_max() as i64;
     for ch in 0..3 {
-        w.line(format!("wire [{}:0] a{ch} = acc[{}:{}];", acc.width - 1, ch * acc.width + acc.width - 1, ch * acc.width));
+        w.line(format!(
+            "wire [{}:0] a{ch} = acc[{}:{}];",
+            acc.width - 1,
+            ch * acc.width + acc.width - 1,
+            ch * acc.width
+        ));
         // The rounded sum never exceeds the accumulator's integer range; clamp it at max
         // already, since c_in + anything ≥ max saturates anyway.
         requant_clamp(&mut w, &format!("add{ch}"), &format!("a{ch}"), acc, 0, cfg.rounding, 0, max, c);
-        w.line(format!("wire [{c}:0] s{ch} = {{1'b0, c_in[{}:{}]}} + {{1'b0, add{ch}}};", ch * c + c - 1, ch * c));
+        w.line(format!(
+            "wire [{c}:0] s{ch} = {{1'b0, c_in[{}:{}]}} + {{1'b0, add{ch}}};",
+            ch * c + c - 1,
+            ch * c
+        ));
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         for ch in 0..3 {
-            w.line(format!("c_out[{}:{}] <= s{ch}[{c}] ? {c}'d{max} : s{ch}[{}:0];", ch * c + c - 1, ch * c, c - 1));
+            w.line(format!(
+                "c_out[{}:{}] <= s{ch}[{c}] ? {c}'d{max} : s{ch}[{}:0];",
+                ch * c + c - 1,
+                ch * c,
+                c - 1
+            ));
         }
     });
     w.line("endmodule");
@@ -221,7 +290,9 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     let aw = cfg.acc_fmt().width;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line(format!("// {unit} (paper §4.2): c_out = sat(c_in + sum_i f_i k_i Lc_i) over {n} light slot(s), exact sum."));
+    w.line(format!(
+        "// {unit} (paper §4.2): c_out = sat(c_in + sum_i f_i k_i Lc_i) over {n} light slot(s), exact sum."
+    ));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] c_out\n);",
         module_name(cfg, unit),
@@ -246,10 +317,15 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     }
     w.line(format!("wire [{}:0] acc;", 3 * aw - 1));
     for ch in 0..3 {
-        let terms: Vec<String> = (0..n).map(|i| super::top::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw)).collect();
+        let terms: Vec<String> = (0..n)
+            .map(|i| super::top::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw))
+            .collect();
         w.line(format!("assign acc[{}:{}] = {};", ch * aw + aw - 1, ch * aw, terms.join(" + ")));
     }
-    w.line(format!("{} fin (.clk(clk), .c_in(c_in), .acc(acc), .c_out(c_out));", module_name(cfg, "blend_finish")));
+    w.line(format!(
+        "{} fin (.clk(clk), .c_in(c_in), .acc(acc), .c_out(c_out));",
+        module_name(cfg, "blend_finish")
+    ));
     w.line("endmodule");
     postamble(&mut w);
     w.finish()
@@ -269,7 +345,16 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
         3 * c - 1
     ));
     for ch in 0..3 {
-        w.line(format!("wire [{}:0] p{ch} = c_in[{}:{}] * t[{}:{}] + {}'d{};", 2 * c, ch * c + c - 1, ch * c, ch * c + c - 1, ch * c, 2 * c + 1, 1u64 << (c - 1)));
+        w.line(format!(
+            "wire [{}:0] p{ch} = c_in[{}:{}] * t[{}:{}] + {}'d{};",
+            2 * c,
+            ch * c + c - 1,
+            ch * c,
+            ch * c + c - 1,
+            ch * c,
+            2 * c + 1,
+            1u64 << (c - 1)
+        ));
         w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
     }
     w.block("always @(posedge clk) begin", "end", |w| {

@@ -62,7 +62,13 @@ pub fn range(w: u32) -> String {
 
 /// Spell out the non-ASCII symbols the emitters' comments use.
 pub fn ascii(s: &str) -> String {
-    s.replace('§', "sec. ").replace('→', "->").replace('·', "*").replace('≥', ">=").replace('≤', "<=").replace('×', "x").replace('—', "-")
+    s.replace('§', "sec. ")
+        .replace('→', "->")
+        .replace('·', "*")
+        .replace('≥', ">=")
+        .replace('≤', "<=")
+        .replace('×', "x")
+        .replace('—', "-")
         .chars()
         .map(|c| if c.is_ascii() { c } else { '?' })
         .collect()

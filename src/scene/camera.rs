@@ -32,7 +32,17 @@ impl Camera {
         let right = right.normalize();
         let up = right.cross(fwd);
         let half_h = d.height / 2.0;
-        Camera { eye, target, right, up, to_viewer: -fwd, half_h, half_w: half_h * width as f64 / height as f64, width, height }
+        Camera {
+            eye,
+            target,
+            right,
+            up,
+            to_viewer: -fwd,
+            half_h,
+            half_w: half_h * width as f64 / height as f64,
+            width,
+            height,
+        }
     }
 
     /// Pixel coordinates (x right, y down, pixel centres at +0.5) and depth (smaller is nearer).

@@ -20,7 +20,9 @@ pub fn spot_factor(l: &Light, p: DVec3) -> f64 {
         return 1.0;
     }
     let axis = DVec3::from_array(l.direction).normalize();
-    let Some(to_p) = (p - DVec3::from_array(l.position)).try_normalize() else { return 1.0 };
+    let Some(to_p) = (p - DVec3::from_array(l.position)).try_normalize() else {
+        return 1.0;
+    };
     let c = axis.dot(to_p);
     if c < l.cutoff_deg.to_radians().cos() {
         0.0

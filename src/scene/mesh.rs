@@ -49,7 +49,13 @@ fn grid(segs: [u32; 2], uv_scale: [f64; 2], f: impl Fn(f64, f64) -> (DVec3, DVec
             let (u, v) = (i as f64 / su as f64, j as f64 / sv as f64);
             let (p, pu, pv) = f(u, v);
             let (n, t, b) = frame(pu.cross(pv), pu, pv);
-            mesh.verts.push(Vertex { p, n, t, b, uv: DVec2::new(u * uv_scale[0], v * uv_scale[1]) });
+            mesh.verts.push(Vertex {
+                p,
+                n,
+                t,
+                b,
+                uv: DVec2::new(u * uv_scale[0], v * uv_scale[1]),
+            });
         }
     }
     let row = su as u32 + 1;
@@ -70,36 +76,60 @@ pub fn tessellate(o: &Object) -> Mesh {
     match &o.shape {
         Shape::Plane { size } => {
             let (w, h) = (size[0], size[1]);
-            grid(s, uvs, |u, v| (DVec3::new((u - 0.5) * w, (v - 0.5) * h, 0.0), DVec3::X * w, DVec3::Y * h), &mut m);
+            grid(
+                s,
+                uvs,
+                |u, v| (DVec3::new((u - 0.5) * w, (v - 0.5) * h, 0.0), DVec3::X * w, DVec3::Y * h),
+                &mut m,
+            );
         }
-        Shape::Sphere { radius: r } => grid(s, uvs, |u, v| {
-            let (th, ph) = (u * TAU, (v - 0.5) * PI);
-            let p = DVec3::new(ph.cos() * th.cos(), ph.cos() * th.sin(), ph.sin()) * *r;
-            let pu = DVec3::new(-ph.cos() * th.sin(), ph.cos() * th.cos(), 0.0) * r * TAU;
-            let pv = DVec3::new(-ph.sin() * th.cos(), -ph.sin() * th.sin(), ph.cos()) * r * PI;
-            // At the poles ∂P/∂u vanishes; the outward radial direction is still the normal.
-            let n = p.normalize();
-            (p, if pu.length() < 1e-9 { n.cross(pv) } else { pu }, pv)
-        }, &mut m),
-        Shape::Cylinder { radius: r, height: h, sides } => {
+        Shape::Sphere { radius: r } => grid(
+            s,
+            uvs,
+            |u, v| {
+                let (th, ph) = (u * TAU, (v - 0.5) * PI);
+                let p = DVec3::new(ph.cos() * th.cos(), ph.cos() * th.sin(), ph.sin()) * *r;
+                let pu = DVec3::new(-ph.cos() * th.sin(), ph.cos() * th.cos(), 0.0) * r * TAU;
+                let pv = DVec3::new(-ph.sin() * th.cos(), -ph.sin() * th.sin(), ph.cos()) * r * PI;
+                // At the poles ∂P/∂u vanishes; the outward radial direction is still the normal.
+                let n = p.normalize();
+                (p, if pu.length() < 1e-9 { n.cross(pv) } else { pu }, pv)
+            },
+            &mut m,
+        ),
+        Shape::Cylinder {
+            radius: r,
+            height: h,
+            sides,
+        } => {
             let segs = if *sides > 0 { [*sides, s[1]] } else { s };
-            grid(segs, uvs, |u, v| {
-                let th = u * TAU;
-                let p = DVec3::new(r * th.cos(), r * th.sin(), (v - 0.5) * h);
-                (p, DVec3::new(-th.sin(), th.cos(), 0.0) * r * TAU, DVec3::Z * *h)
-            }, &mut m);
+            grid(
+                segs,
+                uvs,
+                |u, v| {
+                    let th = u * TAU;
+                    let p = DVec3::new(r * th.cos(), r * th.sin(), (v - 0.5) * h);
+                    (p, DVec3::new(-th.sin(), th.cos(), 0.0) * r * TAU, DVec3::Z * *h)
+                },
+                &mut m,
+            );
             if *sides > 0 {
                 facet_cylinder(&mut m, *sides as usize, s[1] as usize);
             }
         }
-        Shape::Torus { major: big, minor: small } => grid(s, uvs, |u, v| {
-            let (a, b) = (u * TAU, v * TAU);
-            let ring = big + small * b.cos();
-            let p = DVec3::new(ring * a.cos(), ring * a.sin(), small * b.sin());
-            let pu = DVec3::new(-ring * a.sin(), ring * a.cos(), 0.0) * TAU;
-            let pv = DVec3::new(-small * b.sin() * a.cos(), -small * b.sin() * a.sin(), small * b.cos()) * TAU;
-            (p, pu, pv)
-        }, &mut m),
+        Shape::Torus { major: big, minor: small } => grid(
+            s,
+            uvs,
+            |u, v| {
+                let (a, b) = (u * TAU, v * TAU);
+                let ring = big + small * b.cos();
+                let p = DVec3::new(ring * a.cos(), ring * a.sin(), small * b.sin());
+                let pu = DVec3::new(-ring * a.sin(), ring * a.cos(), 0.0) * TAU;
+                let pv = DVec3::new(-small * b.sin() * a.cos(), -small * b.sin() * a.sin(), small * b.cos()) * TAU;
+                (p, pu, pv)
+            },
+            &mut m,
+        ),
         Shape::Teapot => {
             for patch in teapot::patches() {
                 grid(s, uvs, |u, v| teapot::eval(&patch, u, v), &mut m);
@@ -126,7 +156,13 @@ fn facet_cylinder(m: &mut Mesh, sides: usize, rows: usize) {
                 let src = old.verts[j * row + k];
                 // Facet-local u runs 0..1 across the facet so the baked map repeats per facet.
                 let u = if k == i { 0.0 } else { 1.0 };
-                m.verts.push(Vertex { p: src.p, n, t, b: n.cross(t), uv: DVec2::new(u, src.uv.y) });
+                m.verts.push(Vertex {
+                    p: src.p,
+                    n,
+                    t,
+                    b: n.cross(t),
+                    uv: DVec2::new(u, src.uv.y),
+                });
             }
         }
         for j in 0..rows as u32 {

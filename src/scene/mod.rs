@@ -114,11 +114,23 @@ fn default_cutoff() -> f64 {
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Shape {
     /// A w×h rectangle in the xy plane, normal +z.
-    Plane { size: [f64; 2] },
-    Sphere { radius: f64 },
+    Plane {
+        size: [f64; 2],
+    },
+    Sphere {
+        radius: f64,
+    },
     /// Open cylinder along z; `sides` > 0 makes it a faceted prism (paper Figs. 5/8).
-    Cylinder { radius: f64, height: f64, #[serde(default)] sides: u32 },
-    Torus { major: f64, minor: f64 },
+    Cylinder {
+        radius: f64,
+        height: f64,
+        #[serde(default)]
+        sides: u32,
+    },
+    Torus {
+        major: f64,
+        minor: f64,
+    },
     /// Newell's teapot, about 3 units tall.
     Teapot,
 }
@@ -198,8 +210,8 @@ fn default_strength() -> f64 {
 impl Scene {
     /// Parse scene TOML; `file` names it in errors and `base` resolves relative paths.
     pub fn from_toml(file: &str, text: &str, base: &Path) -> Result<Scene> {
-        let mut s: Scene = toml::from_str(text)
-            .map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
+        let mut s: Scene =
+            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
         s.base = base.to_path_buf();
         s.file = file.to_string();
         validate::validate(&s, text)?;
@@ -216,7 +228,9 @@ impl Scene {
             let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
             return Scene::from_toml(name_or_path, &text, p.parent().unwrap_or(Path::new(".")));
         }
-        Err(Error::UnknownScene { name: name_or_path.to_string() })
+        Err(Error::UnknownScene {
+            name: name_or_path.to_string(),
+        })
     }
 
     /// Lights that act on the bump map, in slot order.
@@ -251,7 +265,10 @@ impl Scene {
             return Err(Error::field(
                 cfg_file,
                 "lights",
-                format!("scene `{}` has {n} bump lights but the pipeline has {} light slots", self.name, cfg.lights),
+                format!(
+                    "scene `{}` has {n} bump lights but the pipeline has {} light slots",
+                    self.name, cfg.lights
+                ),
                 format!("set lights = {n} or more"),
             ));
         }

@@ -21,12 +21,17 @@ pub fn patches() -> Vec<[DVec3; 16]> {
         }
     }
     // Centre the teapot on the origin: the data sits on z = 0 with its rim at z ≈ 2.4.
-    idx.iter().map(|p| std::array::from_fn(|k| verts[p[k]] - DVec3::new(0.0, 0.0, 1.575))).collect()
+    idx.iter()
+        .map(|p| std::array::from_fn(|k| verts[p[k]] - DVec3::new(0.0, 0.0, 1.575)))
+        .collect()
 }
 
 fn bern(t: f64) -> ([f64; 4], [f64; 4]) {
     let s = 1.0 - t;
-    ([s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t], [-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t * t, 3.0 * t * t])
+    (
+        [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t],
+        [-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t * t, 3.0 * t * t],
+    )
 }
 
 /// Position and partial derivatives of `patch` at (u, v). The data's rows run along v; the

@@ -11,10 +11,17 @@ fn locate(text: &str, array: Option<(&str, usize)>, key: &str) -> Option<usize> 
         let header = format!("[[{name}]]");
         start = lines.iter().enumerate().filter(|(_, l)| l.trim() == header).nth(idx)?.0;
     }
-    lines.iter().enumerate().skip(start).find(|(_, l)| {
-        let t = l.trim_start();
-        t.starts_with(key) && t[key.len()..].trim_start().starts_with('=') || t.contains(&format!(" {key} =")) || t.contains(&format!("{{ {key} ="))
-    }).map(|(i, _)| i + 1)
+    lines
+        .iter()
+        .enumerate()
+        .skip(start)
+        .find(|(_, l)| {
+            let t = l.trim_start();
+            t.starts_with(key) && t[key.len()..].trim_start().starts_with('=')
+                || t.contains(&format!(" {key} ="))
+                || t.contains(&format!("{{ {key} ="))
+        })
+        .map(|(i, _)| i + 1)
 }
 
 struct Checker<'a> {
@@ -33,7 +40,13 @@ impl Checker<'_> {
             return Err(self.fail(array, key, path, format!("{v} is not a finite number"), "give a finite number"));
         }
         if v < lo || v > hi {
-            return Err(self.fail(array, key, path, format!("{v} is out of range"), &format!("use a value in [{lo}, {hi}]")));
+            return Err(self.fail(
+                array,
+                key,
+                path,
+                format!("{v} is out of range"),
+                &format!("use a value in [{lo}, {hi}]"),
+            ));
         }
         Ok(())
     }
@@ -58,7 +71,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     let c = Checker { s, text };
     for (i, v) in s.size.iter().enumerate() {
         if *v == 0 || *v > 8192 {
-            return Err(c.fail(None, "size", &format!("size[{i}]"), format!("{v} is out of range"), "use 1..=8192 pixels"));
+            return Err(c.fail(
+                None,
+                "size",
+                &format!("size[{i}]"),
+                format!("{v} is out of range"),
+                "use 1..=8192 pixels",
+            ));
         }
     }
     let cam = &s.camera;
@@ -67,7 +86,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     c.dir(None, "up", "camera.up", cam.up)?;
     let view: Vec<f64> = (0..3).map(|i| cam.target[i] - cam.eye[i]).collect();
     if view.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
-        return Err(c.fail(None, "eye", "camera.eye", "eye and target coincide".into(), "move the eye away from the target"));
+        return Err(c.fail(
+            None,
+            "eye",
+            "camera.eye",
+            "eye and target coincide".into(),
+            "move the eye away from the target",
+        ));
     }
     c.num(None, "height", "camera.height", cam.height, 1e-6, 1e6)?;
     c.vec3(None, "background", "camera.background", cam.background, 0.0, 1.0)?;
@@ -89,7 +114,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         }
     }
     if s.objects.is_empty() {
-        return Err(c.fail(None, "objects", "objects", "the scene has no objects".into(), "add an [[objects]] table"));
+        return Err(c.fail(
+            None,
+            "objects",
+            "objects",
+            "the scene has no objects".into(),
+            "add an [[objects]] table",
+        ));
     }
     for (i, o) in s.objects.iter().enumerate() {
         let a = Some(("objects", i));
@@ -105,7 +136,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 pos("radius", *radius)?;
                 pos("height", *height)?;
                 if *sides == 1 || *sides == 2 || *sides > 4096 {
-                    return Err(c.fail(a, "sides", &format!("{p}.shape.sides"), format!("{sides} sides"), "use 0 (smooth) or 3..=4096"));
+                    return Err(c.fail(
+                        a,
+                        "sides",
+                        &format!("{p}.shape.sides"),
+                        format!("{sides} sides"),
+                        "use 0 (smooth) or 3..=4096",
+                    ));
                 }
             }
             Shape::Torus { major, minor } => {
@@ -116,7 +153,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         }
         for (k, v) in o.segments.iter().enumerate() {
             if *v == 0 || *v > 1024 {
-                return Err(c.fail(a, "segments", &format!("{p}.segments[{k}]"), format!("{v} is out of range"), "use 1..=1024"));
+                return Err(c.fail(
+                    a,
+                    "segments",
+                    &format!("{p}.segments[{k}]"),
+                    format!("{v} is out of range"),
+                    "use 1..=1024",
+                ));
             }
         }
         c.vec3(a, "translate", &format!("{p}.translate"), o.translate, -1e6, 1e6)?;
@@ -125,7 +168,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         c.num(a, "uv_scale", &format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
         c.num(a, "uv_scale", &format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
         if o.shininess > 1024 {
-            return Err(c.fail(a, "shininess", &format!("{p}.shininess"), format!("{} is out of range", o.shininess), "use 0..=1024"));
+            return Err(c.fail(
+                a,
+                "shininess",
+                &format!("{p}.shininess"),
+                format!("{} is out of range", o.shininess),
+                "use 0..=1024",
+            ));
         }
         match &o.texture {
             Texture::Constant { colour } => c.vec3(a, "colour", &format!("{p}.texture.colour"), *colour, 0.0, 1.0)?,
@@ -139,17 +188,35 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         }
         let b = &o.bump;
         if b.size < 2 || b.size > 4096 {
-            return Err(c.fail(a, "size", &format!("{p}.bump.size"), format!("{} is out of range", b.size), "use 2..=4096 texels"));
+            return Err(c.fail(
+                a,
+                "size",
+                &format!("{p}.bump.size"),
+                format!("{} is out of range", b.size),
+                "use 2..=4096 texels",
+            ));
         }
         c.num(a, "strength", &format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
         if b.cylinder_sides == 1 || b.cylinder_sides == 2 {
-            return Err(c.fail(a, "cylinder_sides", &format!("{p}.bump.cylinder_sides"), "fewer than 3 sides".into(), "use 0 or 3 and more"));
+            return Err(c.fail(
+                a,
+                "cylinder_sides",
+                &format!("{p}.bump.cylinder_sides"),
+                "fewer than 3 sides".into(),
+                "use 0 or 3 and more",
+            ));
         }
         use crate::bumpmap::HeightSource as H;
         match &b.source {
             H::Bricks { rows, cols, mortar } => {
                 if *rows == 0 || *cols == 0 {
-                    return Err(c.fail(a, "rows", &format!("{p}.bump.source"), "zero rows or columns".into(), "use 1 or more"));
+                    return Err(c.fail(
+                        a,
+                        "rows",
+                        &format!("{p}.bump.source"),
+                        "zero rows or columns".into(),
+                        "use 1 or more",
+                    ));
                 }
                 c.num(a, "mortar", &format!("{p}.bump.source.mortar"), *mortar, 1e-3, 0.45)?;
             }

@@ -27,7 +27,10 @@ pub fn build(root: &Path, top: &str, tb: &str, rtl: &[PathBuf]) -> Result<PathBu
     cmd.args(["-g2005", "-Wall", "-s", top, "-o"]).arg(&tmp).arg(&tb_path).args(rtl);
     let (ok, log, _) = run_cmd(&mut cmd, "iverilog")?;
     if !ok {
-        return Err(Error::Other(format!("iverilog failed to compile {top}:\n{}", super::tail(&log, 20))));
+        return Err(Error::Other(format!(
+            "iverilog failed to compile {top}:\n{}",
+            super::tail(&log, 20)
+        )));
     }
     std::fs::rename(&tmp, &exe).map_err(|e| Error::io(&exe, e))?;
     Ok(exe)

@@ -33,7 +33,10 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
     for f in &files {
         let top = f.trim_end_matches(".v");
         let mut c = Command::new("verilator");
-        c.args(["--lint-only", "-Wall", "--top-module", top]).args(&waivers).args(&files).current_dir(&dir);
+        c.args(["--lint-only", "-Wall", "--top-module", top])
+            .args(&waivers)
+            .args(&files)
+            .current_dir(&dir);
         let (ok, log, _) = run_cmd(&mut c, "verilator --lint-only")?;
         if !ok || log.contains("%Warning") {
             problems.push(format!("verilator --lint-only -Wall --top-module {top}:\n{}", tail(&log, 20)));
@@ -55,7 +58,12 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
     if !ok {
         problems.push(format!("yosys synthesis check ({}):\n{}", sp.display(), tail(&log, 20)));
     }
-    println!("lint config {}: verilator ({} tops), iverilog, yosys: {}", cfg.hash(), files.len(), if problems.is_empty() { "clean" } else { "PROBLEMS" });
+    println!(
+        "lint config {}: verilator ({} tops), iverilog, yosys: {}",
+        cfg.hash(),
+        files.len(),
+        if problems.is_empty() { "clean" } else { "PROBLEMS" }
+    );
     if problems.is_empty() {
         Ok(())
     } else {

@@ -2,8 +2,8 @@
 //! processes. Builds are cached by a hash of every source and flag, so a configuration is
 //! compiled once; a run's verdict is the testbench's own "N passed, N failed" line.
 
-pub mod icarus;
 pub mod fuzz;
+pub mod icarus;
 pub mod lint;
 pub mod regress;
 pub mod rtl_image;
@@ -58,7 +58,9 @@ pub fn missing(prog: &str) -> Error {
         "vvp" | "iverilog" => "iverilog",
         p => p,
     };
-    Error::Other(format!("{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"))
+    Error::Other(format!(
+        "{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"
+    ))
 }
 
 /// Verdict of one simulation run.

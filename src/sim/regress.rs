@@ -50,12 +50,23 @@ pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<(Vec
 pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec<(PathBuf, Option<Sim>)>> {
     let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
     let mut sets = Vec::new();
-    let dopt = |seed| DumpOptions { text: true, binary: true, seed, size: o.scene_size, command: o.command.clone(), shininess: None };
+    let dopt = |seed| DumpOptions {
+        text: true,
+        binary: true,
+        seed,
+        size: o.scene_size,
+        command: o.command.clone(),
+        shininess: None,
+    };
     for s in dump(cfg, &Source::Corners(2), &all, dir, &dopt(o.seed))? {
         sets.push((s.manifest, None));
     }
     // Random sets sized per simulator: Icarus is about a hundred times slower.
-    let sizes: Vec<(Sim, u64)> = o.sims.iter().map(|s| (*s, if *s == Sim::Icarus { o.random_icarus } else { o.random_verilator })).collect();
+    let sizes: Vec<(Sim, u64)> = o
+        .sims
+        .iter()
+        .map(|s| (*s, if *s == Sim::Icarus { o.random_icarus } else { o.random_verilator }))
+        .collect();
     for (sim, n) in sizes {
         if n == 0 {
             continue;
@@ -94,8 +105,17 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
         ns.dedup();
         for n in ns {
             let sub = dir.join(format!("power_n{n}"));
-            let opts = DumpOptions { shininess: Some(n), ..dopt(o.seed) };
-            for s in dump(cfg, &Source::Exhaustive("power_table".into()), &["power_table".to_string()], &sub, &opts)? {
+            let opts = DumpOptions {
+                shininess: Some(n),
+                ..dopt(o.seed)
+            };
+            for s in dump(
+                cfg,
+                &Source::Exhaustive("power_table".into()),
+                &["power_table".to_string()],
+                &sub,
+                &opts,
+            )? {
                 sets.push((s.manifest, None));
             }
         }
@@ -104,7 +124,12 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
 }
 
 /// Run the sets in `sets` on each simulator of `o`.
-pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &(Vec<PathBuf>, Vec<PathBuf>), o: &RegressOptions) -> Result<Vec<RunResult>> {
+pub fn run_sets(
+    cfg: &PipelineConfig,
+    sets: &[(PathBuf, Option<Sim>)],
+    rtl: &(Vec<PathBuf>, Vec<PathBuf>),
+    o: &RegressOptions,
+) -> Result<Vec<RunResult>> {
     let build_root = o.work.join("build");
     let mut results = Vec::new();
     for &sim in &o.sims {
@@ -139,8 +164,23 @@ pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &(Ve
                 match sim {
                     Sim::Icarus => icarus::run(exe, &plus, waves.as_deref(), &o.work, &what),
                     Sim::Verilator if is_top && !o.waves => {
-                        let bin = m.bin.as_ref().ok_or_else(|| Error::Other(format!("{set}: no binary records for the Verilator harness")))?;
-                        verilator::run(exe, &["--vectors".into(), dir.join(&bin.name).display().to_string(), "--table".into(), table.clone(), "--max-errors".into(), max.clone()], &o.work, &what)
+                        let bin = m
+                            .bin
+                            .as_ref()
+                            .ok_or_else(|| Error::Other(format!("{set}: no binary records for the Verilator harness")))?;
+                        verilator::run(
+                            exe,
+                            &[
+                                "--vectors".into(),
+                                dir.join(&bin.name).display().to_string(),
+                                "--table".into(),
+                                table.clone(),
+                                "--max-errors".into(),
+                                max.clone(),
+                            ],
+                            &o.work,
+                            &what,
+                        )
                     }
                     Sim::Verilator => {
                         if let Some(w) = &waves {
@@ -155,7 +195,13 @@ pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &(Ve
                 if top_exe.is_none() {
                     top_exe = Some(match sim {
                         Sim::Icarus => icarus::build(&build_root, "tb_top", &tb_top(cfg), &rtl.0)?,
-                        Sim::Verilator if !o.waves => verilator::build_harness(&build_root, &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"), &harness_top(cfg), &rtl.0, &rtl.1)?,
+                        Sim::Verilator if !o.waves => verilator::build_harness(
+                            &build_root,
+                            &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+                            &harness_top(cfg),
+                            &rtl.0,
+                            &rtl.1,
+                        )?,
                         Sim::Verilator => verilator::build_tb(&build_root, "tb_top", &tb_top(cfg), &rtl.0, &rtl.1, true, false)?,
                     });
                 }
@@ -170,7 +216,12 @@ pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &(Ve
                 units_exe.clone().expect("built")
             };
             let outcome = run(&exe, is_top).map_err(|e| e.to_string());
-            results.push(RunResult { sim, set, target: m.target.clone(), outcome });
+            results.push(RunResult {
+                sim,
+                set,
+                target: m.target.clone(),
+                outcome,
+            });
         }
     }
     Ok(results)
@@ -178,9 +229,18 @@ pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &(Ve
 
 /// JUnit XML of a regression.
 pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
-    let esc = |s: &str| s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;");
+    let esc = |s: &str| {
+        s.replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+            .replace('"', "&quot;")
+    };
     let failures = results.iter().filter(|r| !matches!(&r.outcome, Ok(o) if o.failed == 0)).count();
-    let mut s = format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n", cfg.hash(), results.len());
+    let mut s = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n",
+        cfg.hash(),
+        results.len()
+    );
     for r in results {
         let name = format!("{}.{}", r.sim.name(), r.set);
         match &r.outcome {

@@ -19,9 +19,22 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let hash = &cfg.hash()[..8];
     let rtl = write_rtl(cfg, &work.join(format!("rtl_{hash}")), "gbump render --rtl")?;
     let vdir = work.join(format!("image_{hash}_{}", scene.name));
-    let opts = DumpOptions { text: false, binary: true, seed: 0, size: Some((w, h)), command: format!("gbump render --rtl --scene {scene_name}"), shininess: None };
+    let opts = DumpOptions {
+        text: false,
+        binary: true,
+        seed: 0,
+        size: Some((w, h)),
+        command: format!("gbump render --rtl --scene {scene_name}"),
+        shininess: None,
+    };
     let sets = dump(cfg, &Source::Scene(scene_name.to_string()), &["top".to_string()], &vdir, &opts)?;
-    let exe = verilator::build_harness(&work.join("build"), &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"), &harness_top(cfg), &rtl.0, &rtl.1)?;
+    let exe = verilator::build_harness(
+        &work.join("build"),
+        &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+        &harness_top(cfg),
+        &rtl.0,
+        &rtl.1,
+    )?;
     // The same fragments in the same order as the dump, to know where each colour goes.
     let p = Prepared::new(&scene, cfg, w, h)?;
     let frags = fragments(&p, &rasterise(&p));
@@ -29,14 +42,29 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let mut img = vec![bg; (w * h) as usize];
     for set in sets {
         let (m, dir) = verify(&set.manifest)?;
-        let mine: Vec<_> = frags.iter().filter(|f| scene.objects[f.obj as usize].shininess == m.shininess).collect();
+        let mine: Vec<_> = frags
+            .iter()
+            .filter(|f| scene.objects[f.obj as usize].shininess == m.shininess)
+            .collect();
         let out = dir.join(format!("{}.rtl_out", m.module));
         let bin = dir.join(&m.bin.as_ref().expect("binary set").name);
-        let args = ["--vectors".to_string(), bin.display().to_string(), "--table".into(), dir.join(&m.power_table.name).display().to_string(), "--dump".into(), out.display().to_string(), "--no-check".into()];
+        let args = [
+            "--vectors".to_string(),
+            bin.display().to_string(),
+            "--table".into(),
+            dir.join(&m.power_table.name).display().to_string(),
+            "--dump".into(),
+            out.display().to_string(),
+            "--no-check".into(),
+        ];
         let res = verilator::run(&exe, &args, &dir, "verilator render")?;
         let bytes = std::fs::read(&out).map_err(|e| Error::io(&out, e))?;
         if bytes.len() != mine.len() * 8 || res.passed as usize != mine.len() {
-            return Err(Error::Other(format!("the RTL returned {} colours for {} fragments", bytes.len() / 8, mine.len())));
+            return Err(Error::Other(format!(
+                "the RTL returned {} colours for {} fragments",
+                bytes.len() / 8,
+                mine.len()
+            )));
         }
         let c = cfg.colour_bits;
         let mask = (1u64 << c) - 1;

@@ -41,11 +41,19 @@ pub fn tb_top(cfg: &PipelineConfig) -> String {
     let mut assign = Vec::new();
     let mut print = Vec::new();
     for c in &l.columns {
-        let r = if c.width > 1 { format!("[{}:0] ", c.width - 1) } else { String::new() };
+        let r = if c.width > 1 {
+            format!("[{}:0] ", c.width - 1)
+        } else {
+            String::new()
+        };
         if c.role == Role::Stimulus {
             decls.push(format!("    reg {r}{} = 0;", c.name));
             assign.push(format!("            {} = {};", c.name, slice("stim", c.lsb, c.width)));
-            print.push(format!("                    $display(\"  {:15} %h\", {});", c.name, slice("chk", c.lsb, c.width)));
+            print.push(format!(
+                "                    $display(\"  {:15} %h\", {});",
+                c.name,
+                slice("chk", c.lsb, c.width)
+            ));
         } else {
             decls.push(format!("    wire {r}{};", c.name));
         }
@@ -69,7 +77,11 @@ pub fn tb_top(cfg: &PipelineConfig) -> String {
 
 /// Units present in this configuration, in `UNITS` order.
 pub fn units_of(cfg: &PipelineConfig) -> Vec<&'static str> {
-    crate::units::UNITS.iter().map(|u| u.name).filter(|u| unit_present(cfg, u)).collect()
+    crate::units::UNITS
+        .iter()
+        .map(|u| u.name)
+        .filter(|u| unit_present(cfg, u))
+        .collect()
 }
 
 /// The all-units testbench.
@@ -90,7 +102,11 @@ pub fn tb_units(cfg: &PipelineConfig) -> String {
         let mut k = vec![format!("            {kw} (unit == \"{u}\") begin")];
         for c in &l.columns {
             let sig = format!("{u}_{}", c.name);
-            let r = if c.width > 1 { format!("[{}:0] ", c.width - 1) } else { String::new() };
+            let r = if c.width > 1 {
+                format!("[{}:0] ", c.width - 1)
+            } else {
+                String::new()
+            };
             if c.role == Role::Stimulus {
                 decls.push(format!("    reg {r}{sig} = 0;"));
                 d.push(format!("                {sig} = {};", slice("rec", c.lsb, c.width)));
@@ -101,9 +117,17 @@ pub fn tb_units(cfg: &PipelineConfig) -> String {
                 k.push("                    if (failed < max_errors) begin".into());
                 k.push(format!("                        $display(\"MISMATCH unit {u} vector %0d:\", n);"));
                 for ci in l.columns.iter().filter(|x| x.role == Role::Stimulus) {
-                    k.push(format!("                        $display(\"  {:10} %h\", {});", ci.name, slice("rec", ci.lsb, ci.width)));
+                    k.push(format!(
+                        "                        $display(\"  {:10} %h\", {});",
+                        ci.name,
+                        slice("rec", ci.lsb, ci.width)
+                    ));
                 }
-                k.push(format!("                        $display(\"  {} expected %h got %h\", {}, {sig});", c.name, slice("rec", c.lsb, c.width)));
+                k.push(format!(
+                    "                        $display(\"  {} expected %h got %h\", {}, {sig});",
+                    c.name,
+                    slice("rec", c.lsb, c.width)
+                ));
                 k.push("                    end".into());
                 k.push("                end".into());
             }
@@ -118,7 +142,12 @@ pub fn tb_units(cfg: &PipelineConfig) -> String {
     }
     drive.push("            else begin $display(\"FATAL: unknown unit %0s\", unit); $finish; end".into());
     let mut s = pt(cfg);
-    s.extend([("DECLS", decls.join("\n")), ("DRIVE", drive.join("\n")), ("CHECK", check.join("\n")), ("MAX_RB", max_rb.to_string())]);
+    s.extend([
+        ("DECLS", decls.join("\n")),
+        ("DRIVE", drive.join("\n")),
+        ("CHECK", check.join("\n")),
+        ("MAX_RB", max_rb.to_string()),
+    ]);
     fill(TB_UNITS.to_string(), &s)
 }
 
@@ -141,7 +170,12 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         }
         let words = c.width.div_ceil(32);
         let mut p = format!("                    printf(\"  {:15} \");", c.name);
-        p += &format!(" for (int w = {}; w >= 0; --w) printf(\"%08llx\", (unsigned long long)get_bits(rec, {} + 32 * w, w + 1 < {words} ? 32 : {}));", words - 1, c.lsb, c.width - 32 * (words - 1));
+        p += &format!(
+            " for (int w = {}; w >= 0; --w) printf(\"%08llx\", (unsigned long long)get_bits(rec, {} + 32 * w, w + 1 < {words} ? 32 : {}));",
+            words - 1,
+            c.lsb,
+            c.width - 32 * (words - 1)
+        );
         p += " printf(\"\\n\");";
         print.push(p);
     }

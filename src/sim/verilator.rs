@@ -20,7 +20,10 @@ fn verilator_build(dir: &Path, args: Vec<String>, exe: &Path, what: &str) -> Res
     cmd.args(&args).current_dir(dir);
     let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
     if !ok || !exe.exists() {
-        return Err(Error::Other(format!("verilator failed to build {what}:\n{}", super::tail(&log, 25))));
+        return Err(Error::Other(format!(
+            "verilator failed to build {what}:\n{}",
+            super::tail(&log, 25)
+        )));
     }
     Ok(())
 }
@@ -39,7 +42,22 @@ pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &[PathBuf], vlt: &[PathBu
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     let tb_path = dir.join(format!("{top}.v"));
     std::fs::write(&tb_path, tb).map_err(|e| Error::io(&tb_path, e))?;
-    let mut args: Vec<String> = ["--binary", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", top, "-Mdir", "obj", "-o"].iter().map(|s| s.to_string()).collect();
+    let mut args: Vec<String> = [
+        "--binary",
+        "-j",
+        "2",
+        "-Wno-fatal",
+        "-Wno-lint",
+        "-Wno-style",
+        "--top-module",
+        top,
+        "-Mdir",
+        "obj",
+        "-o",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     args.push(format!("../{top}"));
     if waves {
         args.push("--trace-fst".into());
@@ -67,10 +85,27 @@ pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &[PathBuf], vlt: &[
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     let cpp_path = dir.join("harness.cpp");
     std::fs::write(&cpp_path, cpp).map_err(|e| Error::io(&cpp_path, e))?;
-    let mut args: Vec<String> = ["--cc", "--exe", "--build", "-j", "2", "-O3", "--x-assign", "fast", "--x-initial", "fast", "-Wno-fatal", "--top-module", top, "-Mdir", "obj", "-o"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+    let mut args: Vec<String> = [
+        "--cc",
+        "--exe",
+        "--build",
+        "-j",
+        "2",
+        "-O3",
+        "--x-assign",
+        "fast",
+        "--x-initial",
+        "fast",
+        "-Wno-fatal",
+        "--top-module",
+        top,
+        "-Mdir",
+        "obj",
+        "-o",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     args.push("../harness".into());
     args.extend(vlt.iter().map(|p| p.display().to_string()));
     args.push(cpp_path.display().to_string());

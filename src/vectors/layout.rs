@@ -32,7 +32,14 @@ pub struct Layout {
 impl Layout {
     pub fn push(&mut self, name: &str, role: Role, lane_bits: u32, lanes: u32, format: String) {
         let width = lane_bits * lanes;
-        self.columns.push(Column { name: name.to_string(), role, lsb: self.bits, width, lanes, format });
+        self.columns.push(Column {
+            name: name.to_string(),
+            role,
+            lsb: self.bits,
+            width,
+            lanes,
+            format,
+        });
         self.bits += width;
     }
 
@@ -45,7 +52,10 @@ impl Layout {
     }
 
     pub fn column(&self, name: &str) -> &Column {
-        self.columns.iter().find(|c| c.name == name).unwrap_or_else(|| panic!("no column {name}"))
+        self.columns
+            .iter()
+            .find(|c| c.name == name)
+            .unwrap_or_else(|| panic!("no column {name}"))
     }
 }
 
@@ -57,7 +67,9 @@ pub struct Record {
 
 impl Record {
     pub fn new(layout: &Layout) -> Record {
-        Record { words: vec![0; (layout.bits as usize).div_ceil(64).max(1)] }
+        Record {
+            words: vec![0; (layout.bits as usize).div_ceil(64).max(1)],
+        }
     }
 
     /// Put the low `width` (≤ 64) bits of `v` at `lsb`; at most two word updates.

@@ -91,7 +91,10 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         fix: "regenerate the set with `gbump vectors`".into(),
     })?;
     if m.count == 0 {
-        return Err(Error::Other(format!("{}: the set holds no vectors\n  fix: a regression over zero vectors proves nothing; regenerate with a non-empty source", manifest.display())));
+        return Err(Error::Other(format!(
+            "{}: the set holds no vectors\n  fix: a regression over zero vectors proves nothing; regenerate with a non-empty source",
+            manifest.display()
+        )));
     }
     let files = [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)];
     for f in files.into_iter().flatten() {
@@ -106,7 +109,10 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
     }
     if let Some(b) = &m.bin {
         if b.bytes != m.count * m.record_bytes as u64 {
-            return Err(Error::Other(format!("{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}", b.name, b.bytes, m.count, m.record_bytes, m.command)));
+            return Err(Error::Other(format!(
+                "{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}",
+                b.name, b.bytes, m.count, m.record_bytes, m.command
+            )));
         }
     }
     Ok((m, dir))

@@ -19,14 +19,20 @@ pub enum Source {
 
 impl Source {
     pub fn parse(s: &str) -> Result<Source> {
-        let bad = || Error::Other(format!("--source {s}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"));
+        let bad = || {
+            Error::Other(format!(
+                "--source {s}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"
+            ))
+        };
         Ok(match s.split_once(':') {
             None if s == "corners" => Source::Corners(1),
             Some(("scene", n)) if !n.is_empty() => Source::Scene(n.to_string()),
             Some(("random", n)) => {
                 let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
                 if v == 0 || v > 1_000_000_000 {
-                    return Err(Error::Other(format!("--source {s}: count out of range\n  fix: use random:N with 1 <= N <= 10^9")));
+                    return Err(Error::Other(format!(
+                        "--source {s}: count out of range\n  fix: use random:N with 1 <= N <= 10^9"
+                    )));
                 }
                 Source::Random(v)
             }
@@ -38,7 +44,12 @@ impl Source {
     /// File-name stem.
     pub fn stem(&self) -> String {
         match self {
-            Source::Scene(n) => format!("scene_{}", std::path::Path::new(n).file_stem().map_or(n.clone(), |s| s.to_string_lossy().into())),
+            Source::Scene(n) => format!(
+                "scene_{}",
+                std::path::Path::new(n)
+                    .file_stem()
+                    .map_or(n.clone(), |s| s.to_string_lossy().into())
+            ),
             Source::Corners(1) => "corners".into(),
             Source::Corners(l) => format!("corners_level{l}"),
             Source::Random(n) => format!("random{n}"),
@@ -53,7 +64,8 @@ fn one(cfg: &PipelineConfig) -> i64 {
 
 fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
     let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|c| (c / len * one(cfg) as f64).round() as i64).map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
+    v.map(|c| (c / len * one(cfg) as f64).round() as i64)
+        .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
 }
 
 /// A random stimulus: half realistic (unit vectors, mild colours), half raw codes over the
@@ -119,37 +131,105 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     // Colours below are written for 8-bit channels and scaled to the configured width.
     let sc = |x: u32| scale8(x, cmax);
     let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
-        let (c, t, lc) = (if c == cmax { c } else { sc(c) }, if t == cmax { t } else { sc(t) }, if lc == cmax { lc } else { sc(lc) });
+        let (c, t, lc) = (
+            if c == cmax { c } else { sc(c) },
+            if t == cmax { t } else { sc(t) },
+            if lc == cmax { lc } else { sc(lc) },
+        );
         let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
         let mut st = BumpState::default();
         for s in st.lights.iter_mut().take(cfg.lights as usize) {
-            *s = LightSlot { l: fit(l), h: fit(h), colour: [lc; 3], k };
+            *s = LightSlot {
+                l: fit(l),
+                h: fit(h),
+                colour: [lc; 3],
+                k,
+            };
         }
-        TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
+        TopStim {
+            frag: FragmentIn {
+                bump: BumpTexel::Rgb(texel),
+                c_src: [c; 3],
+                texel: [t; 3],
+                diffuse_en: true,
+                specular_en: true,
+            },
+            state: st,
+        }
     };
     let mut v = vec![
         // Each entry: why it is there, then the stimulus.
-        ("flat normal, light and half vector straight up: B·L = 1 - 2^-(w-1), the largest dot", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax)),
-        ("light exactly in the surface plane: B·L = 0", base(flat, [o, 0, 0], [o, 0, 0], cmax, kone, 10, cmax)),
-        ("light below the horizon: B·L < 0 clamps to 0 (self-shadowing)", base(flat, [0, 0, -o], [0, 0, -o], cmax, kone, 10, cmax)),
-        ("one L/H LSB above the horizon", base(flat, [o, 0, 1], [o, 0, 1], cmax, kone, 10, cmax)),
-        ("one L/H LSB below the horizon", base(flat, [o, 0, -1], [o, 0, -1], cmax, kone, 10, cmax)),
-        ("largest negative codes everywhere: the dot product's most positive exact sum", base([0, 0, 0], [lh.min_raw(); 3], [lh.min_raw(); 3], cmax, kone, 0, cmax)),
-        ("largest positive L/H against the most negative normal: the most negative sum", base([0, 0, 0], [lh.max_raw(); 3], [lh.max_raw(); 3], cmax, kone, 0, cmax)),
-        ("every light slot at full colour on a white source: saturation", base(flat, [0, 0, o], [0, 0, o], cmax, kone, cmax, cmax)),
-        ("k = 0: lights switched off by modulation", base(flat, [0, 0, o], [0, 0, o], cmax, 0, 77, cmax)),
-        ("black texel: diffuse multiplied away, specular kept in split order", base(flat, [0, 0, o], [0, 0, o], cmax, kone, 100, 0)),
-        ("grazing light: x^n underflows to 0 in the power table", base(flat, [o, 0, (o >> 8).max(1)], [o, 0, (o >> 8).max(1)], cmax, kone, 0, cmax)),
-        ("normal nearly in the surface plane (largest gradient)", base([nmax, half, half + 1], [o, 0, 0], [o, 0, 0], cmax, kone, 0, cmax)),
-        ("zero colour lights: nothing to add", base(flat, [0, 0, o], [0, 0, o], 0, kone, 128, 200)),
-        ("unnormalised (long) L: dot above 1 clamps to 1", base(flat, [0, 0, lh.max_raw()], [0, 0, lh.max_raw()], cmax, kone, 0, cmax)),
+        (
+            "flat normal, light and half vector straight up: B·L = 1 - 2^-(w-1), the largest dot",
+            base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax),
+        ),
+        (
+            "light exactly in the surface plane: B·L = 0",
+            base(flat, [o, 0, 0], [o, 0, 0], cmax, kone, 10, cmax),
+        ),
+        (
+            "light below the horizon: B·L < 0 clamps to 0 (self-shadowing)",
+            base(flat, [0, 0, -o], [0, 0, -o], cmax, kone, 10, cmax),
+        ),
+        (
+            "one L/H LSB above the horizon",
+            base(flat, [o, 0, 1], [o, 0, 1], cmax, kone, 10, cmax),
+        ),
+        (
+            "one L/H LSB below the horizon",
+            base(flat, [o, 0, -1], [o, 0, -1], cmax, kone, 10, cmax),
+        ),
+        (
+            "largest negative codes everywhere: the dot product's most positive exact sum",
+            base([0, 0, 0], [lh.min_raw(); 3], [lh.min_raw(); 3], cmax, kone, 0, cmax),
+        ),
+        (
+            "largest positive L/H against the most negative normal: the most negative sum",
+            base([0, 0, 0], [lh.max_raw(); 3], [lh.max_raw(); 3], cmax, kone, 0, cmax),
+        ),
+        (
+            "every light slot at full colour on a white source: saturation",
+            base(flat, [0, 0, o], [0, 0, o], cmax, kone, cmax, cmax),
+        ),
+        (
+            "k = 0: lights switched off by modulation",
+            base(flat, [0, 0, o], [0, 0, o], cmax, 0, 77, cmax),
+        ),
+        (
+            "black texel: diffuse multiplied away, specular kept in split order",
+            base(flat, [0, 0, o], [0, 0, o], cmax, kone, 100, 0),
+        ),
+        (
+            "grazing light: x^n underflows to 0 in the power table",
+            base(flat, [o, 0, (o >> 8).max(1)], [o, 0, (o >> 8).max(1)], cmax, kone, 0, cmax),
+        ),
+        (
+            "normal nearly in the surface plane (largest gradient)",
+            base([nmax, half, half + 1], [o, 0, 0], [o, 0, 0], cmax, kone, 0, cmax),
+        ),
+        (
+            "zero colour lights: nothing to add",
+            base(flat, [0, 0, o], [0, 0, o], 0, kone, 128, 200),
+        ),
+        (
+            "unnormalised (long) L: dot above 1 clamps to 1",
+            base(flat, [0, 0, lh.max_raw()], [0, 0, lh.max_raw()], cmax, kone, 0, cmax),
+        ),
     ];
     let mut off = base(flat, [0, 0, o], [0, 0, o], cmax, kone, 50, cmax);
     off.frag.diffuse_en = false;
     off.frag.specular_en = false;
     v.push(("both blend enables off: colour passes through texture only", off));
     // Exact ties of the dot-product rounding: B·L one half LSB of fd above a code.
-    let tie = base([half + 1, half, half], [o >> (cfg.normal_bits.min(14)), 0, 0], [0, 0, 0], cmax, kone, 0, cmax);
+    let tie = base(
+        [half + 1, half, half],
+        [o >> (cfg.normal_bits.min(14)), 0, 0],
+        [0, 0, 0],
+        cmax,
+        kone,
+        0,
+        cmax,
+    );
     v.push(("dot product on a rounding tie", tie));
     for slot in 0..cfg.lights as usize {
         let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
@@ -172,41 +252,105 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let flat = [half, half, nmax];
     let sc = |x: u32| scale8(x, cmax);
     let mk = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
-        let (c, t) = (if c == cmax || c == cmax / 2 || c == cmax / 2 + 1 { c } else { sc(c) }, if t == cmax || t == cmax / 2 + 1 || t == cmax / 2 { t } else { sc(t) });
+        let (c, t) = (
+            if c == cmax || c == cmax / 2 || c == cmax / 2 + 1 {
+                c
+            } else {
+                sc(c)
+            },
+            if t == cmax || t == cmax / 2 + 1 || t == cmax / 2 {
+                t
+            } else {
+                sc(t)
+            },
+        );
         let mut st = BumpState::default();
         for s in st.lights.iter_mut().take(cfg.lights as usize) {
-            *s = LightSlot { l: l.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), h: h.map(|x| x.clamp(lh.min_raw(), lh.max_raw())), colour: [cmax; 3], k };
+            *s = LightSlot {
+                l: l.map(|x| x.clamp(lh.min_raw(), lh.max_raw())),
+                h: h.map(|x| x.clamp(lh.min_raw(), lh.max_raw())),
+                colour: [cmax; 3],
+                k,
+            };
         }
-        TopStim { frag: FragmentIn { bump: BumpTexel::Rgb(texel), c_src: [c; 3], texel: [t; 3], diffuse_en: true, specular_en: true }, state: st }
+        TopStim {
+            frag: FragmentIn {
+                bump: BumpTexel::Rgb(texel),
+                c_src: [c; 3],
+                texel: [t; 3],
+                diffuse_en: true,
+                specular_en: true,
+            },
+            state: st,
+        }
     };
     let mut v = Vec::new();
     // B·L = +1 exactly (B = -1 on x, L = -1 on x) and one or two L LSBs either side.
     for d in -2i64..=2 {
-        v.push((format!("B·L = +1 {d:+} LSB of L (exact +1 needs B = -1: the positive range stops at 1 - 2^-(w-1))"), mk([0, half, half], [-o + d, 0, 0], [-o + d, 0, 0], kone, 0, cmax)));
-        v.push((format!("B·L = -1 {d:+} LSB of L: the most negative dot clamps to 0"), mk([half, half, 0], [0, 0, o + d], [0, 0, o + d], kone, 0, cmax)));
-        v.push((format!("B·L = 0 {d:+} LSB: either side of the clamp"), mk(flat, [o, 0, d], [o, 0, d], kone, 0, cmax)));
+        v.push((
+            format!("B·L = +1 {d:+} LSB of L (exact +1 needs B = -1: the positive range stops at 1 - 2^-(w-1))"),
+            mk([0, half, half], [-o + d, 0, 0], [-o + d, 0, 0], kone, 0, cmax),
+        ));
+        v.push((
+            format!("B·L = -1 {d:+} LSB of L: the most negative dot clamps to 0"),
+            mk([half, half, 0], [0, 0, o + d], [0, 0, o + d], kone, 0, cmax),
+        ));
+        v.push((
+            format!("B·L = 0 {d:+} LSB: either side of the clamp"),
+            mk(flat, [o, 0, d], [o, 0, d], kone, 0, cmax),
+        ));
     }
     // Elevations of L and H above and below the horizon, in degrees.
     for deg in [-45.0f64, -1.0, -0.1, 0.0, 0.05, 0.1, 0.5, 1.0, 2.0, 5.0, 30.0, 89.9] {
         let r = deg.to_radians();
         let l = [(r.cos() * o as f64).round() as i64, 0, (r.sin() * o as f64).round() as i64];
-        v.push((format!("light and half vector at {deg}° elevation (grazing, horizon and self-shadowing)"), mk(flat, l, l, kone, 20, cmax)));
+        v.push((
+            format!("light and half vector at {deg}° elevation (grazing, horizon and self-shadowing)"),
+            mk(flat, l, l, kone, 20, cmax),
+        ));
     }
     // Largest gradients: normals nearly in the surface plane, eight directions.
     let m = nmax as i64;
     let h2 = half as i64;
     for (dx, dy) in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, 1), (1, -1), (-1, -1)] {
-        let comp = |d: i64| (if d > 0 { m } else if d < 0 { 0 } else { h2 }) as u32;
-        v.push((format!("largest gradient towards ({dx}, {dy}): normal almost in the plane"), mk([comp(dx), comp(dy), half + 1], [dx * o / 2, dy * o / 2, o / 2], [0, 0, o], kone, 0, cmax)));
+        let comp = |d: i64| {
+            (if d > 0 {
+                m
+            } else if d < 0 {
+                0
+            } else {
+                h2
+            }) as u32
+        };
+        v.push((
+            format!("largest gradient towards ({dx}, {dy}): normal almost in the plane"),
+            mk(
+                [comp(dx), comp(dy), half + 1],
+                [dx * o / 2, dy * o / 2, o / 2],
+                [0, 0, o],
+                kone,
+                0,
+                cmax,
+            ),
+        ));
     }
     // Unnormalised by quantisation: components rounded up push |L| above 1.
     let c3 = ((o as f64) / 3f64.sqrt()).ceil() as i64;
-    v.push(("L = (1,1,1)/√3 rounded up: |L| slightly above 1".into(), mk([nmax, nmax, nmax], [c3; 3], [c3; 3], kone, 0, cmax)));
-    v.push(("L and H at the largest raw code on every component: |L| ≈ 3.46".into(), mk([nmax, nmax, nmax], [lh.max_raw(); 3], [lh.max_raw(); 3], kone, 0, cmax)));
+    v.push((
+        "L = (1,1,1)/√3 rounded up: |L| slightly above 1".into(),
+        mk([nmax, nmax, nmax], [c3; 3], [c3; 3], kone, 0, cmax),
+    ));
+    v.push((
+        "L and H at the largest raw code on every component: |L| ≈ 3.46".into(),
+        mk([nmax, nmax, nmax], [lh.max_raw(); 3], [lh.max_raw(); 3], kone, 0, cmax),
+    ));
     // k at 0, one LSB, one LSB below 1, 1; C_src at 0 and max; texel 0 and max.
     for k in [0, 1, kone - 1, kone] {
         for (c, t) in [(0, 0), (0, cmax), (cmax, 0), (cmax, cmax), (cmax / 2, cmax / 2 + 1)] {
-            v.push((format!("k = {k}/2^K with C_src {c}, texel {t}"), mk(flat, [0, 0, o], [0, 0, o], k, c, t)));
+            v.push((
+                format!("k = {k}/2^K with C_src {c}, texel {t}"),
+                mk(flat, [0, 0, o], [0, 0, o], k, c, t),
+            ));
         }
     }
     v

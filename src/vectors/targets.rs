@@ -29,7 +29,13 @@ pub struct UnitStim {
 pub fn top_layout(cfg: &PipelineConfig) -> Layout {
     let (n, c, lh, k) = (cfg.lights, cfg.colour_bits, cfg.lh_bits, cfg.k_bits);
     let mut l = Layout::default();
-    l.push("in_texel", Role::Stimulus, cfg.normal_bits, 3, format!("u{}.0 offset binary", cfg.normal_bits));
+    l.push(
+        "in_texel",
+        Role::Stimulus,
+        cfg.normal_bits,
+        3,
+        format!("u{}.0 offset binary", cfg.normal_bits),
+    );
     l.push("in_c_src", Role::Stimulus, c, 3, cfg.colour_fmt().name());
     l.push("in_t", Role::Stimulus, c, 3, cfg.colour_fmt().name());
     l.push("in_diffuse_en", Role::Stimulus, 1, 1, "bit".into());
@@ -59,7 +65,9 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
 pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -> Record {
     let mut r = Record::new(l);
     let n = cfg.lights as usize;
-    let BumpTexel::Rgb(texel) = s.frag.bump else { panic!("palette tops have no vectors yet") };
+    let BumpTexel::Rgb(texel) = s.frag.bump else {
+        panic!("palette tops have no vectors yet")
+    };
     // Columns in `top_layout` order.
     let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, c_out] = std::array::from_fn(|i| &l.columns[i]);
     for i in 0..3 {
@@ -92,10 +100,16 @@ pub fn eval_unit(cfg: &PipelineConfig, table: &PowerTable, s: &UnitStim) -> Vec<
         "bump_fetch" => vec![bump_fetch_rgb(cfg, col3(&s.inputs[0])).to_vec()],
         "dot_clamp" => vec![vec![dot_clamp(cfg, arr3(&s.inputs[0]), arr3(&s.inputs[1]))]],
         "power_table" => vec![vec![table.lookup(cfg, s.inputs[0][0])]],
-        "texture_modulate" => vec![texture_modulate(cfg, col3(&s.inputs[0]), col3(&s.inputs[1])).iter().map(|&x| x as i64).collect()],
+        "texture_modulate" => vec![texture_modulate(cfg, col3(&s.inputs[0]), col3(&s.inputs[1]))
+            .iter()
+            .map(|&x| x as i64)
+            .collect()],
         "diffuse_blend" | "specular_blend" => {
             let lc: Vec<[u32; 3]> = (0..n).map(|j| [0, 1, 2].map(|i| s.inputs[3][3 * j + i] as u32)).collect();
-            vec![blend(cfg, col3(&s.inputs[0]), &s.inputs[1], &s.inputs[2], &lc).iter().map(|&x| x as i64).collect()]
+            vec![blend(cfg, col3(&s.inputs[0]), &s.inputs[1], &s.inputs[2], &lc)
+                .iter()
+                .map(|&x| x as i64)
+                .collect()]
         }
         u => panic!("no model for unit {u}"),
     }
@@ -118,15 +132,27 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     let n = cfg.lights as usize;
     let mut v = Vec::new();
     if let BumpTexel::Rgb(texel) = s.frag.bump {
-        v.push(UnitStim { unit: "bump_fetch", inputs: vec![texel.iter().map(|&x| x as i64).collect()] });
+        v.push(UnitStim {
+            unit: "bump_fetch",
+            inputs: vec![texel.iter().map(|&x| x as i64).collect()],
+        });
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
     let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].colour.map(|x| x as i64)).collect();
     for j in 0..n {
         let ls = &s.state.lights[j];
-        v.push(UnitStim { unit: "dot_clamp", inputs: vec![t.b.to_vec(), ls.l.to_vec()] });
-        v.push(UnitStim { unit: "dot_clamp", inputs: vec![t.b.to_vec(), ls.h.to_vec()] });
-        v.push(UnitStim { unit: "power_table", inputs: vec![vec![t.xh[j]]] });
+        v.push(UnitStim {
+            unit: "dot_clamp",
+            inputs: vec![t.b.to_vec(), ls.l.to_vec()],
+        });
+        v.push(UnitStim {
+            unit: "dot_clamp",
+            inputs: vec![t.b.to_vec(), ls.h.to_vec()],
+        });
+        v.push(UnitStim {
+            unit: "power_table",
+            inputs: vec![vec![t.xh[j]]],
+        });
     }
     let c = |x: [u32; 3]| x.iter().map(|&y| y as i64).collect::<Vec<_>>();
     let blend_in = |c_in: [u32; 3], f: &[i64]| vec![c(c_in), f[..n].to_vec(), k.clone(), lc.clone()];

@@ -46,9 +46,19 @@ struct Sink {
 
 impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
-        let tmp = path.with_extension(format!("{}.tmp{}", path.extension().map_or(String::new(), |e| e.to_string_lossy().into()), std::process::id()));
+        let tmp = path.with_extension(format!(
+            "{}.tmp{}",
+            path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
+            std::process::id()
+        ));
         let f = std::fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
-        Ok(Sink { path, tmp, w: BufWriter::with_capacity(1 << 20, f), sha: Sha256::new(), bytes: 0 })
+        Ok(Sink {
+            path,
+            tmp,
+            w: BufWriter::with_capacity(1 << 20, f),
+            sha: Sha256::new(),
+            bytes: 0,
+        })
     }
     fn put(&mut self, b: &[u8]) -> Result<()> {
         crate::interrupt::check()?;
@@ -60,7 +70,15 @@ impl Sink {
         self.w.flush().map_err(|e| Error::io(&self.tmp, e))?;
         self.w.get_ref().sync_all().map_err(|e| Error::io(&self.tmp, e))?;
         std::fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))?;
-        Ok(FileEntry { name: self.path.file_name().expect("name").to_string_lossy().into(), bytes: self.bytes, sha256: std::mem::take(&mut self.sha).finalize().iter().map(|b| format!("{b:02x}")).collect() })
+        Ok(FileEntry {
+            name: self.path.file_name().expect("name").to_string_lossy().into(),
+            bytes: self.bytes,
+            sha256: std::mem::take(&mut self.sha)
+                .finalize()
+                .iter()
+                .map(|b| format!("{b:02x}"))
+                .collect(),
+        })
     }
 }
 
@@ -86,8 +104,16 @@ impl SetWriter {
         let base = format!("{stem}_{target}");
         Ok(SetWriter {
             target: target.into(),
-            hex: if o.text { Some(Sink::new(dir.join(format!("{base}.hex")))?) } else { None },
-            bin: if o.binary { Some(Sink::new(dir.join(format!("{base}.bin")))?) } else { None },
+            hex: if o.text {
+                Some(Sink::new(dir.join(format!("{base}.hex")))?)
+            } else {
+                None
+            },
+            bin: if o.binary {
+                Some(Sink::new(dir.join(format!("{base}.bin")))?)
+            } else {
+                None
+            },
             layout,
             count: 0,
             limit,
@@ -137,14 +163,21 @@ impl SetWriter {
 
     fn finish(self, dir: &Path, cfg: &PipelineConfig, src: &Source, o: &DumpOptions, n: u32) -> Result<VectorSet> {
         if self.count == 0 {
-            return Err(Error::Other(format!("{}: no vectors for target {}\n  fix: choose a source that exercises it", self.stem, self.target)));
+            return Err(Error::Other(format!(
+                "{}: no vectors for target {}\n  fix: choose a source that exercises it",
+                self.stem, self.target
+            )));
         }
         let hex = self.hex.map(Sink::finish).transpose()?;
         let bin = self.bin.map(Sink::finish).transpose()?;
         let table_name = format!("{}_power_table.hex", self.stem);
         let tp = dir.join(&table_name);
         let rom = crate::rtlgen::rom::power_rom(cfg, n);
-        let text = crate::rtlgen::rom::write(&rom, crate::rtlgen::rom::RomFormat::Hex, &crate::rtlgen::header::header_lines(cfg, &o.command, "power table of this vector set"));
+        let text = crate::rtlgen::rom::write(
+            &rom,
+            crate::rtlgen::rom::RomFormat::Hex,
+            &crate::rtlgen::header::header_lines(cfg, &o.command, "power table of this vector set"),
+        );
         crate::render::output::write_atomic(&tp, text.as_bytes())?;
         let (bytes, sha256) = super::manifest::sha256_file(&tp)?;
         let top = self.target == "top";
@@ -164,13 +197,21 @@ impl SetWriter {
             columns: columns(&self.layout),
             hex,
             bin,
-            power_table: FileEntry { name: table_name, bytes, sha256 },
+            power_table: FileEntry {
+                name: table_name,
+                bytes,
+                sha256,
+            },
             latency: if top { crate::rtlgen::top::latency(cfg) } else { 1 },
             initiation_interval: if top { cfg.initiation_interval() } else { 1 },
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
-        Ok(VectorSet { target: self.target, manifest: mp, count: self.count })
+        Ok(VectorSet {
+            target: self.target,
+            manifest: mp,
+            count: self.count,
+        })
     }
 }
 
@@ -191,7 +232,11 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
             // The catalogue beside the vectors: record number and why it is there.
             let text: String = cat.iter().enumerate().map(|(i, (why, _))| format!("{i}\t{why}\n")).collect();
             crate::render::output::write_atomic(&dir.join(format!("{}_catalogue.txt", src.stem())), text.as_bytes())?;
-            vec![(o.shininess.unwrap_or(cfg.shininess), src.stem(), cat.into_iter().map(|c| c.1).collect())]
+            vec![(
+                o.shininess.unwrap_or(cfg.shininess),
+                src.stem(),
+                cat.into_iter().map(|c| c.1).collect(),
+            )]
         }
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
@@ -203,10 +248,16 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
             let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
             for f in frags {
                 let n = s.objects[f.obj as usize].shininess;
-                groups.entry(n).or_default().push(TopStim { frag: f.frag, state: p.objects[f.obj as usize].tris[f.tri as usize].fixed });
+                groups.entry(n).or_default().push(TopStim {
+                    frag: f.frag,
+                    state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
+                });
             }
             let multi = groups.len() > 1;
-            groups.into_iter().map(|(n, v)| (n, if multi { format!("{}_n{n}", src.stem()) } else { src.stem() }, v)).collect()
+            groups
+                .into_iter()
+                .map(|(n, v)| (n, if multi { format!("{}_n{n}", src.stem()) } else { src.stem() }, v))
+                .collect()
         }
         _ => unreachable!(),
     })
@@ -215,7 +266,10 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
 /// Dump `src` for `targets` ("top" and unit names) into `dir`.
 pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
     if cfg.palette {
-        return Err(Error::Other("palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)".into()));
+        return Err(Error::Other(
+            "palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)"
+                .into(),
+        ));
     }
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
@@ -225,7 +279,11 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             let stims = exhaustive(cfg, unit)?;
             let n = o.shininess.unwrap_or(cfg.shininess);
             let table = PowerTable::build(cfg, n);
-            let stem = if o.shininess.is_some() { format!("{}_n{n}", src.stem()) } else { src.stem() };
+            let stem = if o.shininess.is_some() {
+                format!("{}_n{n}", src.stem())
+            } else {
+                src.stem()
+            };
             let mut w = SetWriter::new(dir, &stem, unit, unit_layout(cfg, unit), o, u64::MAX)?;
             write_units(cfg, &table, &stims, &mut [&mut w])?;
             out.push(w.finish(dir, cfg, src, o, n)?);
@@ -329,10 +387,14 @@ fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &
         .map(|s| {
             let t = eval_top(cfg, table, s);
             let units = if want_units {
-                unit_stims(cfg, s, &t).into_iter().filter(|u| unit_present(cfg, u.unit)).map(|u| {
-                    let out = eval_unit(cfg, table, &u);
-                    (u, out)
-                }).collect()
+                unit_stims(cfg, s, &t)
+                    .into_iter()
+                    .filter(|u| unit_present(cfg, u.unit))
+                    .map(|u| {
+                        let out = eval_unit(cfg, table, &u);
+                        (u, out)
+                    })
+                    .collect()
             } else {
                 Vec::new()
             };
