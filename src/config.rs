@@ -256,7 +256,7 @@ impl PipelineConfig {
     }
     /// Exact B·V before clamping.
     pub fn dot_exact_fmt(&self) -> Format {
-        self.normal_fmt().mul(self.lh_fmt()).sum(3)
+        self.normal_fmt().product(self.lh_fmt()).sum(3)
     }
     /// Clamped dot product fd / power index: `u1.F`.
     pub fn dot_fmt(&self) -> Format {
@@ -288,7 +288,7 @@ impl PipelineConfig {
     }
     /// One light's exact term f·k·Lc in colour units.
     pub fn term_fmt(&self) -> Format {
-        self.factor_fmt().mul(self.k_fmt()).mul(self.colour_fmt())
+        self.factor_fmt().product(self.k_fmt()).product(self.colour_fmt())
     }
     /// Exact sum over all light slots.
     pub fn acc_fmt(&self) -> Format {

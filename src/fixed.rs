@@ -97,7 +97,7 @@ impl Format {
     }
 
     /// The format of an exact product `self * other`.
-    pub fn mul(self, other: Format) -> Format {
+    pub fn product(self, other: Format) -> Format {
         let signed = self.signed || other.signed;
         // An unsigned operand gains a sign bit when it meets a signed one.
         let wa = self.width + u32::from(signed && !self.signed);
@@ -278,8 +278,8 @@ mod tests {
 
     #[test]
     fn formats_of_exact_results() {
-        assert_eq!(Format::s(8, 7).mul(Format::s(16, 14)), Format::s(24, 21));
-        assert_eq!(Format::u(9, 8).mul(Format::s(16, 14)), Format::s(26, 22));
+        assert_eq!(Format::s(8, 7).product(Format::s(16, 14)), Format::s(24, 21));
+        assert_eq!(Format::u(9, 8).product(Format::s(16, 14)), Format::s(26, 22));
         assert_eq!(Format::s(24, 21).sum(3), Format::s(26, 21));
         assert_eq!(Format::s(24, 21).sum(1), Format::s(24, 21));
         assert_eq!(Format::s(16, 14).name(), "s1.14");

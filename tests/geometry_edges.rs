@@ -98,8 +98,7 @@ fn zero_area_coincident_and_mirrored_triangles_leave_no_nan() {
         b: DVec3::Y,
         uv: DVec2::new(u, y),
     };
-    let mut mesh = Mesh::default();
-    mesh.verts = vec![
+    let mesh_verts = vec![
         v(-1.0, -0.8, 0.0, DVec3::Z),
         v(1.0, -0.8, 1.0, DVec3::Z),
         v(0.0, 0.8, 0.5, DVec3::Z), // ordinary
@@ -113,7 +112,10 @@ fn zero_area_coincident_and_mirrored_triangles_leave_no_nan() {
         v(-1.2, -0.9, 0.0, DVec3::Z),
         v(-1.5, 0.9, 0.5, DVec3::Z), // mirrored in u
     ];
-    mesh.tris = vec![[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11]];
+    let mesh = Mesh {
+        verts: mesh_verts,
+        tris: vec![[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11]],
+    };
     let tris = tri_states(&s, &cfg, &p.camera, &mesh).unwrap();
     for t in &tris {
         assert!(t.l[0].is_finite() && t.h[0].is_finite());

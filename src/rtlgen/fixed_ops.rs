@@ -18,6 +18,8 @@ pub fn slit(w: u32, v: i64) -> String {
 /// Declare `name`: `x` (a wire of format `from`) requantised to `to_frac` fraction bits with
 /// `rnd`, then clamped to `[lo, hi]` and truncated to `out_w` bits (unsigned output when
 /// `lo >= 0`). Mirrors `fixed::requant(.., Overflow::Saturate)` followed by a clamp.
+// The arguments are the operation's own parameters (source, destination, rounding, bounds).
+#[allow(clippy::too_many_arguments)]
 pub fn requant_clamp(w: &mut VWriter, name: &str, x: &str, from: Format, to_frac: u32, rnd: Rounding, lo: i64, hi: i64, out_w: u32) {
     let ww = from.width + 2;
     let ext = if from.signed {

@@ -101,6 +101,8 @@ fn regs(w: &mut VWriter, decls: &[(&str, u32, String)]) {
 
 /// The three colour stages (blend / texture / blend in the configured order), from stage
 /// `s0` colour `c_in` with factors, k and lc at that stage; emits `c_out` and `v_out`.
+// One argument per signal bundle that travels with the colour.
+#[allow(clippy::too_many_arguments)]
 fn colour_stages(
     w: &mut VWriter,
     cfg: &PipelineConfig,

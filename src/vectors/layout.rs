@@ -138,7 +138,7 @@ impl Record {
         for w in &self.words[..full] {
             out.extend_from_slice(&w.to_le_bytes());
         }
-        if n % 8 != 0 {
+        if !n.is_multiple_of(8) {
             out.extend_from_slice(&self.words[full].to_le_bytes()[..n % 8]);
         }
     }

@@ -70,8 +70,8 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
     };
     // Columns in `top_layout` order.
     let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, c_out] = std::array::from_fn(|i| &l.columns[i]);
-    for i in 0..3 {
-        r.set_lane(c_texel, i as u32, texel[i] as i64);
+    for (i, &tx) in texel.iter().enumerate() {
+        r.set_lane(c_texel, i as u32, tx as i64);
         r.set_lane(c_src, i as u32, s.frag.c_src[i] as i64);
         r.set_lane(c_t, i as u32, s.frag.texel[i] as i64);
         r.set_lane(c_out, i as u32, out.colour()[i] as i64);

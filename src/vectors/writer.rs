@@ -309,7 +309,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                                 w.put_encoded(&hex, &bin, len)?;
                             }
                             if want_units && ws.iter().any(|w| w.target != "top" && !w.full()) {
-                                write_tops(cfg, &table, &stims, &mut ws, false)?;
+                                write_tops(cfg, table, &stims, &mut ws, false)?;
                             }
                         }
                     }
@@ -330,7 +330,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                             let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
                             let (mut hex, mut bin) = (String::new(), Vec::new());
                             for s in &stims {
-                                let r = top_record(cfg, &tl, s, &eval_top(cfg, &table, s));
+                                let r = top_record(cfg, &tl, s, &eval_top(cfg, table, s));
                                 if o.text {
                                     hex.push_str(&r.hex(tl.hex_digits()));
                                     hex.push('\n');
@@ -378,11 +378,14 @@ fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &Du
         .collect()
 }
 
+/// A unit stimulus with the model's outputs.
+type UnitEval = (UnitStim, Vec<Vec<i64>>);
+
 /// Write the records of `stims` for every writer (the top's only when `with_top`).
 fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &mut [SetWriter], with_top: bool) -> Result<()> {
     let want_units = ws.iter().any(|w| w.target != "top" && !w.full());
     let tl = top_layout(cfg);
-    let evals: Vec<(Record, Vec<(UnitStim, Vec<Vec<i64>>)>)> = stims
+    let evals: Vec<(Record, Vec<UnitEval>)> = stims
         .par_iter()
         .map(|s| {
             let t = eval_top(cfg, table, s);
