@@ -417,18 +417,10 @@ pub fn run() -> anyhow::Result<()> {
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
             let (w, h) = parse_size(&size)?;
             let scenes = scene_errors(&cfg, w, h)?;
-            out!("\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n");
-            for (name, g, r) in &scenes {
-                out!(
-                    "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
-                    g.psnr_db,
-                    g.max_lsb,
-                    100.0 * g.over_1lsb,
-                    r.psnr_db,
-                    r.max_lsb,
-                    100.0 * r.over_1lsb
-                );
-            }
+            out!(
+                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
+                scene_error_table(&scenes)
+            );
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
                     "scenes": scenes.iter().map(|(n, g, r)| serde_json::json!({"scene": n, "vs_gouraud_f64": g, "vs_reference": r})).collect::<Vec<_>>()});
@@ -906,18 +898,32 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
     Ok(())
 }
 
+/// Rows of `scene_errors` as a Markdown table.
+pub fn scene_error_table(rows: &[SceneError]) -> String {
+    let mut s = String::from("| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n");
+    for (name, g, r) in rows {
+        s += &format!(
+            "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
+            g.psnr_db,
+            g.max_lsb,
+            100.0 * g.over_1lsb,
+            r.psnr_db,
+            r.max_lsb,
+            100.0 * r.over_1lsb
+        );
+    }
+    s
+}
+
+/// A scene's name and its golden image's error against the f64 Gouraud image and the reference.
+pub type SceneError = (
+    String,
+    crate::measure::image_metrics::ImageError,
+    crate::measure::image_metrics::ImageError,
+);
+
 /// Image error of every built-in scene that fits `cfg`'s light slots.
-pub fn scene_errors(
-    cfg: &PipelineConfig,
-    w: u32,
-    h: u32,
-) -> Result<
-    Vec<(
-        String,
-        crate::measure::image_metrics::ImageError,
-        crate::measure::image_metrics::ImageError,
-    )>,
-> {
+pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {
     let mut out = Vec::new();
     for (name, _) in builtin::ALL {
         let s = Scene::load(name)?;

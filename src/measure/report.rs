@@ -40,18 +40,8 @@ pub fn report(out: &Path, work: &Path, space: &Path) -> Result<Vec<(String, Stri
     md += "## Error against exact arithmetic (default configuration)\n\n`gbump error`\n\n";
     let errs = super::unit_error::unit_errors(&cfg, 50_000, 1);
     md += &super::unit_error::markdown(&cfg, &errs);
-    md += "\n### Image error per scene\n\n| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n";
-    for (name, g, r) in crate::cli::scene_errors(&cfg, 192, 144)? {
-        md += &format!(
-            "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
-            g.psnr_db,
-            g.max_lsb,
-            100.0 * g.over_1lsb,
-            r.psnr_db,
-            r.max_lsb,
-            100.0 * r.over_1lsb
-        );
-    }
+    md += "\n### Image error per scene\n\n";
+    md += &crate::cli::scene_error_table(&crate::cli::scene_errors(&cfg, 192, 144)?);
     md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
     md += &power_section(

@@ -239,25 +239,21 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
                 f + wd + 1,
                 1u64 << (f - 1)
             ));
-            let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
-            for (k, bit) in (0..bits).rev().enumerate() {
-                let sq = format!("sq{k}");
-                w.line(format!("wire [{}:0] {sq}_p = {acc} * {acc};", 2 * wd + 1));
+            // name = round_half_up(a * b) on u1.wd.
+            let product = |w: &mut VWriter, name: String, a: &str, b: &str| {
+                w.line(format!("wire [{}:0] {name}_p = {a} * {b};", 2 * wd + 1));
                 w.line(format!(
-                    "wire [{wd}:0] {sq} = ({sq}_p + {}'d{}) >> {wd};",
+                    "wire [{wd}:0] {name} = ({name}_p + {}'d{}) >> {wd};",
                     2 * wd + 2,
                     1u64 << (wd - 1)
                 ));
-                acc = sq.clone();
+                name
+            };
+            let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
+            for (k, bit) in (0..bits).rev().enumerate() {
+                acc = product(w, format!("sq{k}"), &acc, &acc);
                 if (n >> bit) & 1 == 1 {
-                    let mu = format!("mu{k}");
-                    w.line(format!("wire [{}:0] {mu}_p = {acc} * xw;", 2 * wd + 1));
-                    w.line(format!(
-                        "wire [{wd}:0] {mu} = ({mu}_p + {}'d{}) >> {wd};",
-                        2 * wd + 2,
-                        1u64 << (wd - 1)
-                    ));
-                    acc = mu;
+                    acc = product(w, format!("mu{k}"), &acc, "xw");
                 }
             }
             if guard == 0 {

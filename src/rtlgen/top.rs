@@ -231,8 +231,9 @@ fn enables(cfg: &PipelineConfig, de: &str, se: &str, b: &str) -> (String, String
     (d, s)
 }
 
-fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
-    let (n, c, lh, k, nb, f, p) = (
+/// (lights, colour, L/H, k, normal, dot and power-entry bits) of a configuration.
+fn widths(cfg: &PipelineConfig) -> (u32, u32, u32, u32, u32, u32, u32) {
+    (
         cfg.lights,
         cfg.colour_bits,
         cfg.lh_bits,
@@ -240,7 +241,11 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
         cfg.normal_bits,
         cfg.dot_bits,
         cfg.power_bits,
-    );
+    )
+}
+
+fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
+    let (n, c, lh, k, nb, f, p) = widths(cfg);
     let ff = cfg.factor_frac();
     w.line("assign in_ready = 1'b1;");
     w.line("// Stage 1: bump_fetch; the rest of the fragment waits beside it.");
@@ -355,16 +360,7 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
 }
 
 fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
-    let (n, c, lh, k, nb, f, p) = (
-        cfg.lights,
-        cfg.colour_bits,
-        cfg.lh_bits,
-        cfg.k_bits,
-        cfg.normal_bits,
-        cfg.dot_bits,
-        cfg.power_bits,
-    );
-    let ff = cfg.factor_frac();
+    let (n, c, lh, k, nb, f, p) = widths(cfg);
     let tw = cfg.term_fmt().width;
     let aw = cfg.acc_fmt().width;
     let jb = (32 - (n.max(2) - 1).leading_zeros()).max(1);
@@ -510,17 +506,11 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         BlendOrder::DiffuseTextureSpecular => ["diffuse", "texture", "specular"],
         BlendOrder::TextureLast => ["diffuse", "specular", "texture"],
     };
-    let mut cur = (
-        "v3".to_string(),
-        "c3".to_string(),
-        "t3".to_string(),
-        "da3".to_string(),
-        "sa3".to_string(),
-    );
-    let _ = &cur.3;
+    // The diffuse finish is always the first stage, so its sum is da3 and never travels.
+    let mut cur = ("v3".to_string(), "c3".to_string(), "t3".to_string(), "sa3".to_string());
     for (i, what) in order.iter().enumerate() {
         let st = 4 + i as u32;
-        let (v, cc, tt, da, sa) = cur.clone();
+        let (v, cc, tt, sa) = cur.clone();
         let out = format!("c{st}");
         w.line(format!("wire [{}:0] {out};", 3 * c - 1));
         match *what {
@@ -529,7 +519,7 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
                 module_name(cfg, "texture_modulate")
             )),
             "diffuse" => w.line(format!(
-                "{} u_diffuse_finish (.clk(clk), .c_in({cc}), .acc({da}), .c_out({out}));",
+                "{} u_diffuse_finish (.clk(clk), .c_in({cc}), .acc(da3), .c_out({out}));",
                 module_name(cfg, "blend_finish")
             )),
             _ => w.line(format!(
@@ -547,10 +537,9 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
         }
         let side_ref: Vec<(&str, u32, String)> = side.iter().map(|(a, b, c)| (a.as_str(), *b, c.clone())).collect();
         regs(w, &side_ref);
-        cur = (format!("v{st}"), out, format!("t{st}"), String::new(), format!("sa{st}"));
+        cur = (format!("v{st}"), out, format!("t{st}"), format!("sa{st}"));
     }
     w.line(format!("assign out_valid = {};", cur.0));
     w.line("// The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.");
     w.line(format!("assign out_c = {} ? {} : {}'d0;", cur.0, cur.1, 3 * c));
-    let _ = ff;
 }

@@ -4,7 +4,7 @@
 //! same cycle as the first light.
 
 use super::fixed_ops::requant_clamp;
-use super::writer::{range, VWriter};
+use super::writer::VWriter;
 use crate::config::PipelineConfig;
 
 /// Module name: unit name plus the first 8 hex digits of the config hash, so that modules of
@@ -364,6 +364,5 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
     });
     w.line("endmodule");
     postamble(&mut w);
-    let _ = range;
     w.finish()
 }

@@ -6,112 +6,92 @@ use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn sources(rtl: &[PathBuf], extra: &[String]) -> Result<Vec<String>> {
-    let mut parts = extra.to_vec();
+/// Build `exe_name` from the generated `source` (written as `source_name`) and the RTL with
+/// `flags`, in a folder keyed by the hash of everything that goes in; a finished build is
+/// reused.
+#[allow(clippy::too_many_arguments)]
+fn cached_build(
+    root: &Path,
+    kind: &str,
+    exe_name: &str,
+    source_name: &str,
+    source: &str,
+    flags: &[String],
+    rtl: &[PathBuf],
+    vlt: &[PathBuf],
+) -> Result<PathBuf> {
+    require(Sim::Verilator)?;
+    let mut parts = vec![source.to_string(), flags.join(" ")];
     for f in rtl {
         parts.push(std::fs::read_to_string(f).map_err(|e| Error::io(f, e))?);
     }
-    Ok(parts)
-}
-
-fn verilator_build(dir: &Path, args: Vec<String>, exe: &Path, what: &str) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
+    let dir = build_dir(root, kind, &refs);
+    let exe = dir.join(exe_name);
+    if exe.exists() {
+        return Ok(exe);
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+    let src = dir.join(source_name);
+    std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
     let mut cmd = Command::new("verilator");
-    cmd.args(&args).current_dir(dir);
+    cmd.args(["-j", "2", "-Wno-fatal", "-Mdir", "obj", "-o"])
+        .arg(format!("../{exe_name}"))
+        .args(flags)
+        .args(vlt)
+        .arg(&src)
+        .args(rtl)
+        .current_dir(&dir);
     let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
     if !ok || !exe.exists() {
         return Err(Error::Other(format!(
-            "verilator failed to build {what}:\n{}",
+            "verilator failed to build {exe_name}:\n{}",
             super::tail(&log, 25)
         )));
     }
-    Ok(())
+    Ok(exe)
+}
+
+fn strings(v: &[&str]) -> Vec<String> {
+    v.iter().map(|s| s.to_string()).collect()
 }
 
 /// Build a Verilog testbench with `--binary`. `vlt` holds lint waivers for the RTL.
 pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &[PathBuf], vlt: &[PathBuf], waves: bool, x_unique: bool) -> Result<PathBuf> {
-    require(Sim::Verilator)?;
-    let flags = format!("binary waves={waves} x_unique={x_unique}");
-    let parts = sources(rtl, &[tb.to_string(), top.to_string(), flags])?;
-    let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
-    let dir = build_dir(root, &format!("verilator_{top}"), &refs);
-    let exe = dir.join(top);
-    if exe.exists() {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-    let tb_path = dir.join(format!("{top}.v"));
-    std::fs::write(&tb_path, tb).map_err(|e| Error::io(&tb_path, e))?;
-    let mut args: Vec<String> = [
-        "--binary",
-        "-j",
-        "2",
-        "-Wno-fatal",
-        "-Wno-lint",
-        "-Wno-style",
-        "--top-module",
-        top,
-        "-Mdir",
-        "obj",
-        "-o",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.push(format!("../{top}"));
+    let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", top]);
     if waves {
-        args.push("--trace-fst".into());
+        flags.push("--trace-fst".into());
     }
     if x_unique {
-        args.extend(["--x-assign", "unique", "--x-initial", "unique"].map(String::from));
+        flags.extend(strings(&["--x-assign", "unique", "--x-initial", "unique"]));
     }
-    args.extend(vlt.iter().map(|p| p.display().to_string()));
-    args.push(tb_path.display().to_string());
-    args.extend(rtl.iter().map(|p| p.display().to_string()));
-    verilator_build(&dir, args, &exe, top)?;
-    Ok(exe)
+    cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb, &flags, rtl, vlt)
 }
 
 /// Build the C++ harness around the top module `top`.
 pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &[PathBuf], vlt: &[PathBuf]) -> Result<PathBuf> {
-    require(Sim::Verilator)?;
-    let parts = sources(rtl, &[cpp.to_string(), top.to_string(), "harness".into()])?;
-    let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
-    let dir = build_dir(root, &format!("verilator_harness_{top}"), &refs);
-    let exe = dir.join("harness");
-    if exe.exists() {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-    let cpp_path = dir.join("harness.cpp");
-    std::fs::write(&cpp_path, cpp).map_err(|e| Error::io(&cpp_path, e))?;
-    let mut args: Vec<String> = [
+    let flags = strings(&[
         "--cc",
         "--exe",
         "--build",
-        "-j",
-        "2",
         "-O3",
         "--x-assign",
         "fast",
         "--x-initial",
         "fast",
-        "-Wno-fatal",
         "--top-module",
         top,
-        "-Mdir",
-        "obj",
-        "-o",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    args.push("../harness".into());
-    args.extend(vlt.iter().map(|p| p.display().to_string()));
-    args.push(cpp_path.display().to_string());
-    args.extend(rtl.iter().map(|p| p.display().to_string()));
-    verilator_build(&dir, args, &exe, "the C++ harness")?;
-    Ok(exe)
+    ]);
+    cached_build(
+        root,
+        &format!("verilator_harness_{top}"),
+        "harness",
+        "harness.cpp",
+        cpp,
+        &flags,
+        rtl,
+        vlt,
+    )
 }
 
 /// Run a built executable (testbench with plusargs, or harness with options).

@@ -5,7 +5,7 @@ use super::rng::SplitMix64;
 use super::targets::{TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot, MAX_LIGHTS};
+use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot};
 
 /// A parsed `--source`.
 #[derive(Clone, Debug, PartialEq)]
@@ -105,6 +105,31 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
     }
 }
 
+/// A corner stimulus: every light slot the same, grey colours given in the configuration's
+/// codes, L and H clamped into their format, both blend enables on.
+#[allow(clippy::too_many_arguments)]
+fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32) -> TopStim {
+    let lh = cfg.lh_fmt();
+    let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
+    let mut state = BumpState::default();
+    for s in state.lights.iter_mut().take(cfg.lights as usize) {
+        *s = LightSlot {
+            l: fit(l),
+            h: fit(h),
+            colour: [lc; 3],
+            k,
+        };
+    }
+    let frag = FragmentIn {
+        bump: BumpTexel::Rgb(texel),
+        c_src: [c; 3],
+        texel: [t; 3],
+        diffuse_en: true,
+        specular_en: true,
+    };
+    TopStim { frag, state }
+}
+
 /// An 8-bit colour value scaled to a channel whose full scale is `cmax`.
 fn scale8(x: u32, cmax: u32) -> u32 {
     ((x as u64 * cmax as u64 + 127) / 255).min(cmax as u64) as u32
@@ -136,26 +161,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
             if t == cmax { t } else { sc(t) },
             if lc == cmax { lc } else { sc(lc) },
         );
-        let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
-        let mut st = BumpState::default();
-        for s in st.lights.iter_mut().take(cfg.lights as usize) {
-            *s = LightSlot {
-                l: fit(l),
-                h: fit(h),
-                colour: [lc; 3],
-                k,
-            };
-        }
-        TopStim {
-            frag: FragmentIn {
-                bump: BumpTexel::Rgb(texel),
-                c_src: [c; 3],
-                texel: [t; 3],
-                diffuse_en: true,
-                specular_en: true,
-            },
-            state: st,
-        }
+        corner_stim(cfg, texel, l, h, lc, k, c, t)
     };
     let mut v = vec![
         // Each entry: why it is there, then the stimulus.
@@ -236,7 +242,6 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
         s.state.lights[slot].colour = [cmax, 0, cmax / 2];
         v.push(("a single active light slot (each slot in turn)", s));
     }
-    let _ = MAX_LIGHTS;
     v
 }
 
@@ -264,25 +269,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
                 sc(t)
             },
         );
-        let mut st = BumpState::default();
-        for s in st.lights.iter_mut().take(cfg.lights as usize) {
-            *s = LightSlot {
-                l: l.map(|x| x.clamp(lh.min_raw(), lh.max_raw())),
-                h: h.map(|x| x.clamp(lh.min_raw(), lh.max_raw())),
-                colour: [cmax; 3],
-                k,
-            };
-        }
-        TopStim {
-            frag: FragmentIn {
-                bump: BumpTexel::Rgb(texel),
-                c_src: [c; 3],
-                texel: [t; 3],
-                diffuse_en: true,
-                specular_en: true,
-            },
-            state: st,
-        }
+        corner_stim(cfg, texel, l, h, cmax, k, c, t)
     };
     let mut v = Vec::new();
     // B·L = +1 exactly (B = -1 on x, L = -1 on x) and one or two L LSBs either side.
