@@ -25,8 +25,12 @@
 `timescale 1ns / 1ps
 `default_nettype none
 
-// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 9 cycles, one fragment every 4 cycle(s).
-module gbump_pipeline_49f49213 (
+// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 10 cycles, one fragment every 4 cycle(s).
+// INIT_FILE: the power table's contents at power-up (rst does not restore them); a path
+// relative to the simulator's working folder, so pass an absolute one from elsewhere.
+module gbump_pipeline_49f49213 #(
+    parameter INIT_FILE = "power_table_49f49213.hex"
+) (
     input  wire clk,
     input  wire rst,
     input  wire pt_we,
@@ -117,7 +121,7 @@ always @(posedge clk) begin
     t1 <= fr_t;
 end
 wire [8:0] fs2;
-power_table_49f49213 #(.R(1)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));
+power_table_49f49213 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));
 reg v2;
 reg first2;
 reg last2;

@@ -386,6 +386,8 @@ pub fn run() -> anyhow::Result<()> {
                 waves,
                 max_errors,
                 command: invocation(),
+                bubbles: 29,
+                power_up: true,
             };
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }

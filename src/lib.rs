@@ -3,6 +3,7 @@
 //! against. See ARCHITECTURE.md for the data flow and the decisions behind it.
 
 pub mod bumpmap;
+pub mod cache;
 pub mod cli;
 pub mod config;
 pub mod error;
@@ -16,8 +17,10 @@ pub mod render;
 pub mod rtlgen;
 pub mod scene;
 pub mod sim;
+pub mod temp_files;
 pub mod units;
 pub mod vectors;
+pub mod work_lock;
 
 pub use config::PipelineConfig;
 pub use error::{Error, Result};

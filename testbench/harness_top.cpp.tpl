@@ -1,11 +1,15 @@
 // Verilator C++ harness template for bulk runs (gbump fills the double-braced fields).
 // Streams fixed-size binary records through the Verilated pipeline with valid/ready, checks
-// every out_c in order, stops after --max-errors mismatches (default 20) printing every field,
-// and ends with "N passed, N failed". --dump FILE writes each out_c as 8 little-endian bytes
+// every out_c in order and, for every vector, the timing the interface file states (out_valid
+// sampled high exactly LATENCY rising edges after the accepting edge; accepts exactly II edges
+// apart while a fragment is on offer), stops after --max-errors mismatches (default 20)
+// printing every field, and ends with "N passed, N failed". Without --table the pipeline runs
+// on its power-up table (INIT_FILE); --bubbles N idles in_valid 1-3 cycles before every Nth
+// record. --dump FILE writes each out_c as 8 little-endian bytes
 // (for rendering an image through the RTL); --no-check skips comparison (raw speed runs).
 // --raw CYCLES clocks the model that many cycles on the first record with no file I/O and
 // prints its evaluation rate (the upper bound of any regression).
-// Usage: harness --vectors FILE.bin --table FILE.hex [--dump FILE] [--max-errors N] [--raw CYCLES]
+// Usage: harness --vectors FILE.bin [--table FILE.hex] [--bubbles N] [--dump FILE] [--max-errors N] [--raw CYCLES]
 #include "V{{TOP}}.h"
 #include "verilated.h"
 #include <chrono>
@@ -20,6 +24,9 @@
 
 static const size_t RECORD_BYTES = {{RECORD_BYTES}};
 static const int PT_N = {{PT_N}};
+static const long long LATENCY = {{LATENCY}};
+static const long long II = {{II}};
+static const size_t FLIGHT = 64;
 
 // Bits [lsb, lsb+width) of a little-endian record (width <= 64): one unaligned 8-byte load
 // and a shift. The record buffer is padded so the load never leaves it.
@@ -53,6 +60,7 @@ int main(int argc, char** argv) {
     long max_errors = 20;
     bool check = true;
     long long raw_cycles = 0;
+    long bubbles = 0;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--vectors") && i + 1 < argc) vec_path = argv[++i];
         else if (!strcmp(argv[i], "--table") && i + 1 < argc) table_path = argv[++i];
@@ -60,10 +68,12 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--max-errors") && i + 1 < argc) max_errors = atol(argv[++i]);
         else if (!strcmp(argv[i], "--no-check")) check = false;
         else if (!strcmp(argv[i], "--raw") && i + 1 < argc) raw_cycles = atoll(argv[++i]);
+        else if (!strcmp(argv[i], "--bubbles") && i + 1 < argc) bubbles = atol(argv[++i]);
+        else { fprintf(stderr, "FATAL: unknown argument %s\n", argv[i]); return 2; }
     }
-    if (!vec_path || !table_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin --table FILE.hex\n", argv[0]); return 2; }
+    if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
     std::vector<uint32_t> table;
-    if (!read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, PT_N); return 2; }
+    if (table_path && !read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, PT_N); return 2; }
     FILE* vf = fopen(vec_path, "rb");
     if (!vf) { fprintf(stderr, "FATAL: cannot open %s\n", vec_path); return 2; }
     fseek(vf, 0, SEEK_END);
@@ -84,7 +94,8 @@ int main(int argc, char** argv) {
     top.rst = 1; top.in_valid = 0; top.pt_we = 0;
     for (int i = 0; i < 3; ++i) tick();
     top.rst = 0;
-    for (int i = 0; i < PT_N; ++i) { top.pt_we = 1; top.pt_waddr = i; top.pt_wdata = table[i]; tick(); }
+    if (table_path)
+        for (int i = 0; i < PT_N; ++i) { top.pt_we = 1; top.pt_waddr = i; top.pt_wdata = table[i]; tick(); }
     top.pt_we = 0;
 
     if (raw_cycles > 0) {
@@ -94,18 +105,32 @@ int main(int argc, char** argv) {
         auto r0 = std::chrono::steady_clock::now();
         for (long long c = 0; c < raw_cycles; ++c) tick();
         double rs = std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
-        printf("raw: %lld cycles in %.3f s, %.0f cycles/s, %.0f fragments/s\n", raw_cycles, rs, raw_cycles / rs, raw_cycles / rs / {{II}});
+        printf("raw: %lld cycles in %.3f s, %.0f cycles/s, %.0f fragments/s\n", raw_cycles, rs, raw_cycles / rs, raw_cycles / rs / (double)II);
         printf("1 passed, 0 failed\n");
         top.final();
         return 0;
     }
     size_t next_in = 0, next_out = 0;
-    long passed = 0, failed = 0;
+    long passed = 0, failed = 0, timing_errors = 0;
     uint64_t cycles = 0, idle = 0;
+    // Timing: the edge of every accept still in flight, and of the last one.
+    long long acc_cyc[FLIGHT];
+    long long last_acc = -1;
+    long gap = 0;
+    size_t gapped_for = (size_t)-1;
+    auto timing = [&](const char* what, long long got, long long want) {
+        ++failed;
+        if (++timing_errors <= max_errors)
+            printf("MISMATCH unit gbump_pipeline timing: %s: %lld rising edges, the interface states %lld (vector %zu, edge %llu)\n", what, got, want, next_out, (unsigned long long)cycles);
+    };
     auto t0 = std::chrono::steady_clock::now();
-    while (next_out < n && idle < {{LATENCY}} * 4 + 100) {
+    while (next_out < n && idle < LATENCY * 4 + 100 && failed < max_errors) {
         const uint8_t* rin = data.data() + next_in * RECORD_BYTES;
-        if (next_in < n) {
+        if (bubbles > 0 && next_in < n && next_in % bubbles == (size_t)bubbles - 1 && gapped_for != next_in) {
+            gap = 1 + (long)((next_in / bubbles) % 3);
+            gapped_for = next_in;
+        }
+        if (next_in < n && gap == 0) {
             top.in_valid = 1;
 {{ASSIGN}}
         } else {
@@ -113,9 +138,21 @@ int main(int argc, char** argv) {
         }
         top.clk = 0;
         top.eval();
+        // Sampled before the rising edge, as the design's registers see them.
         bool accept = top.in_valid && top.in_ready;
+        const long long cyc = (long long)cycles;
+        if (accept) {
+            if (last_acc >= 0 && cyc - last_acc < II) timing("accepts closer than the initiation interval", cyc - last_acc, II);
+            if (next_in - next_out >= FLIGHT) { printf("FATAL: more than %zu fragments in flight\n", FLIGHT); break; }
+            acc_cyc[next_in % FLIGHT] = cyc;
+            last_acc = cyc;
+        } else if (top.in_valid && (last_acc < 0 || cyc - last_acc >= II)) {
+            timing("in_ready low beyond the initiation interval", last_acc < 0 ? cyc : cyc - last_acc, II);
+        }
         if (top.out_valid) {
             idle = 0;
+            if (next_out >= next_in + (accept ? 1 : 0)) { timing("out_valid with no fragment in flight", 0, LATENCY); break; }
+            if (cyc - acc_cyc[next_out % FLIGHT] != LATENCY) timing("latency", cyc - acc_cyc[next_out % FLIGHT], LATENCY);
             const uint8_t* rec = data.data() + next_out * RECORD_BYTES;
             uint64_t want = get_bits(rec, {{OUT_LSB}}, {{OUT_W}});
             uint64_t got = (uint64_t)top.out_c;
@@ -128,7 +165,6 @@ int main(int argc, char** argv) {
 {{PRINT}}
                     printf("  out_c expected %llx got %llx\n", (unsigned long long)want, (unsigned long long)got);
                 }
-                if (failed >= max_errors) { printf("stopping after %ld mismatches\n", failed); break; }
             }
             ++next_out;
         } else if (next_in >= n) {
@@ -138,7 +174,9 @@ int main(int argc, char** argv) {
         top.eval();
         ++cycles;
         if (accept) ++next_in;
+        if (gap > 0) --gap;
     }
+    if (failed >= max_errors) printf("stopping after %ld mismatches\n", failed);
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (next_out < n && failed < max_errors) {
         printf("MISMATCH: %zu fragments went in but %zu came out\n", next_in, next_out);

@@ -1,8 +1,13 @@
 // Top-level testbench template (gbump fills the double-braced fields per configuration).
 // Streams $readmemh-style text vectors (one record per line) through the pipeline with
-// valid/ready, checks every out_c in order against the record's expected colour, stops after
-// +max_errors mismatches (default 20), and ends with "N passed, N failed".
-// Plusargs: +vectors=FILE +table=FILE (power table, loaded through the load port)
+// valid/ready, checks every out_c in order against the record's expected colour, and checks
+// the timing the interface file states for every vector: out_valid is sampled high exactly
+// LAT rising edges after the edge that accepted the fragment, and accepts are exactly II
+// edges apart whenever a fragment was on offer. Stops after +max_errors mismatches (default
+// 20) and ends with "N passed, N failed".
+// Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
+//           it the pipeline runs on its power-up contents (INIT_FILE)
+//           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth record
 //           [+waves=FILE.fst] [+max_errors=N]
 `timescale 1ns / 1ps
 `default_nettype none
@@ -19,7 +24,7 @@ module tb_top;
     wire in_ready;
     wire out_valid;
 {{DECLS}}
-    {{TOP}} dut (
+    {{TOP}} #(.INIT_FILE({{INIT_FILE}})) dut (
         .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
 {{CONNECT}}
@@ -32,7 +37,15 @@ module tb_top;
     reg [8*512-1:0] vec_file;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
-    integer fin, fchk, code, i, cycles, max_errors;
+    integer fin, fchk, code, i, cycles, max_errors, bubbles, gap;
+    // Timing: the edge count, the edge of every accept still in flight, the last accept.
+    localparam II = {{II}};
+    localparam FLIGHT = 64;
+    integer cyc = 0;
+    integer acc_cyc [0:FLIGHT-1];
+    integer last_acc = -1;
+    integer timing_errors = 0;
+    reg load_table;
     integer n_in = 0;
     integer n_out = 0;
     integer passed = 0;
@@ -50,21 +63,28 @@ module tb_top;
     initial begin
         if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
         if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
-        if (!$value$plusargs("table=%s", table_file)) begin $display("FATAL: +table=FILE is missing"); $finish; end
+        load_table = $value$plusargs("table=%s", table_file);
+        if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
         if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_top); end
-        $readmemh(table_file, table_mem);
+        if (load_table) $readmemh(table_file, table_mem);
         fin = $fopen(vec_file, "r");
         fchk = $fopen(vec_file, "r");
         if (fin == 0 || fchk == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
         repeat (3) @(negedge clk);
         rst = 1'b0;
-        for (i = 0; i < PT_N; i = i + 1) begin
-            pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
-            @(negedge clk);
+        if (load_table) begin
+            for (i = 0; i < PT_N; i = i + 1) begin
+                pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+                @(negedge clk);
+            end
         end
         pt_we = 1'b0;
         code = $fscanf(fin, "%h\n", stim);
         while (code == 1) begin
+            if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin
+                in_valid = 1'b0;
+                for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
+            end
             in_valid = 1'b1;
 {{ASSIGN}}
             while (!in_ready) @(negedge clk);
@@ -92,9 +112,33 @@ module tb_top;
         end
     end
 
+    task timing_error(input integer got, input integer want, input [8*64-1:0] what);
+        begin
+            failed = failed + 1;
+            timing_errors = timing_errors + 1;
+            if (timing_errors <= max_errors)
+                $display("MISMATCH unit gbump_pipeline timing: %0s: %0d rising edges, the interface states %0d (vector %0d, edge %0d)", what, got, want, n_out, cyc);
+            if (failed >= max_errors) begin
+                $display("stopping after %0d mismatches", failed);
+                finish_run;
+            end
+        end
+    endtask
+
+    // Sampled at the rising edge, before the design's registers take their new values.
     always @(posedge clk) begin
+        if (!rst && in_valid && in_ready) begin
+            if (last_acc >= 0 && cyc - last_acc < II) timing_error(cyc - last_acc, II, "accepts closer than the initiation interval");
+            if (n_in - n_out >= FLIGHT) begin $display("FATAL: more than %0d fragments in flight", FLIGHT); finish_run; end
+            acc_cyc[n_in % FLIGHT] = cyc;
+            last_acc = cyc;
+        end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II)) begin
+            timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
+        end
         if (!rst && out_valid) begin
             code = $fscanf(fchk, "%h\n", chk);
+            if (n_out >= n_in + (in_valid && in_ready ? 1 : 0)) timing_error(0, LAT, "out_valid with no fragment in flight");
+            else if (cyc - acc_cyc[n_out % FLIGHT] != LAT) timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency");
             n_out = n_out + 1;
             if (out_c === chk[{{OUT_HI}}:{{OUT_LO}}]) passed = passed + 1;
             else begin
@@ -110,6 +154,7 @@ module tb_top;
                 end
             end
         end
+        cyc = cyc + 1;
     end
 endmodule
 `default_nettype wire

@@ -57,6 +57,8 @@ fn check_suite(text: &str, min_scenes: usize) {
             "{sim} random count"
         );
         assert!(mine.iter().any(|x| x.1 == "corners_level2_top"));
+        // One top set also runs on the power table's power-up contents, nothing loaded.
+        assert!(mine.iter().any(|x| x.1 == "corners_level2_top+power-up"), "{sim}: no power-up run");
         // The power table exhaustively for the reset shininess and for n = 0, 1, 2, 254, 255, 1024.
         let power: Vec<_> = mine
             .iter()
@@ -140,7 +142,11 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     let work = std::path::absolute(root().join("target/test-regress/mutant")).unwrap();
     let rtl_dir = work.join("rtl");
     let rtl = write_rtl(&cfg, &rtl_dir, "mutant").unwrap();
-    let tm = rtl.0.iter().find(|p| p.to_string_lossy().contains("texture_modulate")).unwrap();
+    let tm = rtl
+        .sources
+        .iter()
+        .find(|p| p.to_string_lossy().contains("texture_modulate"))
+        .unwrap();
     let text = std::fs::read_to_string(tm).unwrap();
     assert!(text.contains("+ 17'd128;"));
     std::fs::write(tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
@@ -172,6 +178,8 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
         waves: false,
         max_errors: 5,
         command: "test".into(),
+        bubbles: 7,
+        power_up: false,
     };
     // The unit set runs through the all-units testbench; the random top set through the top
     // testbench on Icarus and the C++ harness on Verilator.
@@ -248,7 +256,7 @@ fn a_testbench_given_no_vectors_fails() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/empty")).unwrap();
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
+    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl), &rtl).unwrap();
     std::fs::write(work.join("empty.hex"), "").unwrap();
     let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
     let plus = [
@@ -319,20 +327,24 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     ];
     // The generated pipeline: no X, every vector passes.
     let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl.0).unwrap();
+    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl), &rtl).unwrap();
     let ok = gbump::sim::icarus::run(&exe, &plus, None, &work, "x").unwrap();
     assert_eq!(ok.failed, 0, "{}", ok.log);
     // The same pipeline with its output gate removed: its X before the first result is reported.
-    let top = rtl.0.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
+    let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
     let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
     let (_, rhs) = gated.split_once(" ? ").unwrap();
     let ungated = format!("assign out_c = {};", rhs.split(" : ").next().unwrap());
     let mutant_dir = work.join("mutant");
     let rtl2 = write_rtl(&cfg, &mutant_dir, "x").unwrap();
-    let top2 = rtl2.0.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
+    let top2 = rtl2
+        .sources
+        .iter()
+        .find(|p| p.to_string_lossy().contains("gbump_pipeline"))
+        .unwrap();
     std::fs::write(top2, text.replace(&gated, &ungated)).unwrap();
-    let exe2 = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg), &rtl2.0).unwrap();
+    let exe2 = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl2), &rtl2).unwrap();
     let bad = gbump::sim::icarus::run(&exe2, &plus, None, &work, "x").unwrap();
     assert!(bad.failed > 0 && bad.log.contains("X on outputs after reset"), "{}", bad.log);
 }
@@ -346,9 +358,8 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
     let exe = gbump::sim::verilator::build_tb(
         &work.join("build"),
         "tb_top",
-        &gbump::sim::testbench::tb_top(&cfg),
-        &rtl.0,
-        &rtl.1,
+        &gbump::sim::testbench::tb_top(&cfg, &rtl),
+        &rtl,
         false,
         true,
     )

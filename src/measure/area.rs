@@ -72,7 +72,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
         return Err(crate::sim::missing("yosys"));
     }
     let dir = work.join(format!("area_{}", &cfg.hash()[..8]));
-    let (v, _) = crate::sim::regress::write_rtl(cfg, &dir, command)?;
+    let v = crate::sim::regress::write_rtl(cfg, &dir, command)?.sources;
     let files: Vec<String> = v
         .iter()
         .map(|p| p.file_name().expect("file").to_string_lossy().into_owned())

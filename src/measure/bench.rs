@@ -90,15 +90,14 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         bytes / secs / 1e6,
         m.record_bytes
     );
-    let (v, vlt) = crate::sim::regress::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
+    let rtl = crate::sim::regress::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
     let table = dir.join(&m.power_table.name).display().to_string();
     if crate::sim::have("verilator") {
         let exe = crate::sim::verilator::build_harness(
             &work.join("build"),
             &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
             &crate::sim::testbench::harness_top(cfg),
-            &v,
-            &vlt,
+            &rtl,
         )?;
         let bin = dir.join(&m.bin.as_ref().expect("bin").name).display().to_string();
         let out = crate::sim::verilator::run(
@@ -144,7 +143,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         };
         let hs = crate::vectors::dump(cfg, &crate::vectors::Source::Random(20_000), &all, &hexdir, &ho)?;
         let (hm, hd) = crate::vectors::verify(&hs[0].manifest)?;
-        let exe = crate::sim::icarus::build(&work.join("build"), "tb_top", &crate::sim::testbench::tb_top(cfg), &v)?;
+        let exe = crate::sim::icarus::build(&work.join("build"), "tb_top", &crate::sim::testbench::tb_top(cfg, &rtl), &rtl)?;
         let plus = [
             format!("+vectors={}", hd.join(&hm.hex.as_ref().expect("hex").name).display()),
             format!("+table={}", hd.join(&hm.power_table.name).display()),

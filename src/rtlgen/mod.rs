@@ -101,6 +101,9 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             for sig in sigs {
                 s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
             }
+            if en == "se" {
+                s += &format!("lint_off -rule UNUSEDPARAM -file \"*gbump_pipeline_{h}.v\" -match \"Parameter is not used: 'INIT_FILE'\"\n");
+            }
         }
     }
     s

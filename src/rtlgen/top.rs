@@ -5,7 +5,7 @@
 //! ports) → three blend/texture stages in the configured order; latency 6.
 //! Serial lights (paper §4.2, n clocks per fragment): the fragment is held while a counter
 //! walks the light slots through one dot_clamp pair, one power-table port and two
-//! accumulators; `in_ready` is low while it does; latency n + 5.
+//! accumulators; `in_ready` is low while it does; latency n + 6.
 //! The bump state (L_i, H_i, Lc_i, k_i) enters with each fragment, so vectors are
 //! self-contained; a production design would hold it in per-triangle registers.
 
@@ -13,11 +13,18 @@ use super::units_v::module_name;
 use super::writer::VWriter;
 use crate::config::{BlendOrder, LightMode, PipelineConfig};
 
-/// Clock cycles from an accepted fragment to its `out_valid`.
+/// Register stages of the three colour units (two blends and the texture modulation).
+const COLOUR_STAGES: u32 = 3;
+
+/// Rising edges from the one that accepts a fragment (`in_valid && in_ready` high) to the
+/// one at which its `out_valid` is first sampled high. Every testbench checks it per vector.
 pub fn latency(cfg: &PipelineConfig) -> u32 {
     match cfg.light_mode {
-        LightMode::Parallel => 6,
-        LightMode::Serial => cfg.lights + 5,
+        // bump_fetch, dot_clamp, power_table, then the colour stages.
+        LightMode::Parallel => 3 + COLOUR_STAGES,
+        // The accepting edge captures the fragment; one edge per light slot through
+        // dot_clamp; the power table; the accumulator; then the colour stages.
+        LightMode::Serial => 1 + cfg.lights + 1 + 1 + COLOUR_STAGES,
     }
 }
 
@@ -210,7 +217,14 @@ pub fn top(cfg: &PipelineConfig) -> String {
         latency(cfg),
         cfg.initiation_interval()
     ));
-    w.line(format!("module {} (\n{}\n);", module_name(cfg, "gbump_pipeline"), port_list(cfg)));
+    w.line("// INIT_FILE: the power table's contents at power-up (rst does not restore them); a path");
+    w.line("// relative to the simulator's working folder, so pass an absolute one from elsewhere.");
+    w.line(format!(
+        "module {} #(\n    parameter INIT_FILE = \"{}\"\n) (\n{}\n);",
+        module_name(cfg, "gbump_pipeline"),
+        super::units_v::rom_file_name(cfg, "power_table", "hex"),
+        port_list(cfg)
+    ));
     match cfg.light_mode {
         LightMode::Parallel => parallel_body(&mut w, cfg),
         LightMode::Serial => serial_body(&mut w, cfg),
@@ -316,7 +330,7 @@ fn parallel_body(w: &mut VWriter, cfg: &PipelineConfig) {
         w.line(format!("// Stage 3: power_table with {n} read port(s)."));
         w.line(format!("wire [{}:0] fs3;", n * (p + 1) - 1));
         w.line(format!(
-            "{} #(.R({n})) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));",
+            "{} #(.R({n}), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh2), .fs(fs3));",
             module_name(cfg, "power_table")
         ));
     }
@@ -442,7 +456,7 @@ fn serial_body(w: &mut VWriter, cfg: &PipelineConfig) {
     );
     w.line(format!("wire [{p}:0] fs2;"));
     w.line(format!(
-        "{} #(.R(1)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));",
+        "{} #(.R(1), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));",
         module_name(cfg, "power_table")
     ));
     regs(

@@ -61,8 +61,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     let rtl = write_rtl(cfg, &dir.join("rtl"), "gbump fuzz")?;
     let mut lint = Command::new("verilator");
     lint.args(["--lint-only", "-Wall", "--top-module", &format!("gbump_pipeline_{h}")])
-        .args(&rtl.1)
-        .args(&rtl.0);
+        .args(&rtl.waivers)
+        .args(&rtl.sources);
     let (ok, log, _) = super::run_cmd(&mut lint, "verilator --lint-only")?;
     if !ok || log.contains("%Warning") {
         return Err(Error::Other(format!(
@@ -97,6 +97,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         waves: false,
         max_errors: 10,
         command: "gbump fuzz".into(),
+        bubbles: 29,
+        power_up: true,
     };
     let mut checked = 0;
     for r in run_sets(cfg, &sets, &rtl, &opts)? {

@@ -26,7 +26,9 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
         }
     }
     let dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
-    let (v, vlt) = crate::sim::regress::write_rtl(cfg, &dir, &format!("gbump rtl {pick_args} --out {}", dir.display()))?;
+    let crate::sim::rtl_files::Rtl {
+        sources: v, waivers: vlt, ..
+    } = crate::sim::regress::write_rtl(cfg, &dir, &format!("gbump rtl {pick_args} --out {}", dir.display()))?;
     let files: Vec<String> = v.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let waivers: Vec<String> = vlt.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let mut problems = Vec::new();

@@ -6,13 +6,12 @@ pub mod fuzz;
 pub mod icarus;
 pub mod lint;
 pub mod regress;
+pub mod rtl_files;
 pub mod rtl_image;
 pub mod testbench;
 pub mod verilator;
 
 use crate::error::{Error, Result};
-use sha2::{Digest, Sha256};
-use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The simulators gbump drives.
@@ -113,19 +112,65 @@ pub fn tail(log: &str, n: usize) -> String {
     lines[lines.len().saturating_sub(n)..].join("\n")
 }
 
-/// A build folder keyed by the hash of `parts` (sources and flags).
-pub fn build_dir(root: &Path, kind: &str, parts: &[&str]) -> PathBuf {
-    let mut h = Sha256::new();
-    for p in parts {
-        h.update(p.as_bytes());
-        h.update([0]);
+/// The cache key of a simulator build: the testbench, every RTL file and waiver, the flags
+/// and the versions of the tools involved.
+pub fn build_key(kind: &str, source: &str, flags: &[String], rtl: &rtl_files::Rtl, tools: &[&str]) -> Result<String> {
+    let mut k = crate::cache::Key::new(kind);
+    k.add(source.as_bytes());
+    for f in flags {
+        k.add(f.as_bytes());
     }
-    let key: String = h.finalize().iter().take(8).map(|b| format!("{b:02x}")).collect();
-    root.join(format!("{kind}_{key}"))
+    for f in rtl.sources.iter().chain(&rtl.waivers) {
+        k.add_file(f)?;
+    }
+    for t in tools {
+        k.add_tool(t);
+    }
+    Ok(k.finish())
 }
 
-/// Turn a finished run into an outcome, or an error when the testbench did not report.
+/// Lines of a simulation log in which the simulator warned or erred: a memory file that did
+/// not load (`$readmemh`), a file that did not open. Any of them fails the run, because the
+/// simulation went on with contents nobody meant (X, or an old table).
+pub fn simulator_warnings(log: &str) -> Vec<&str> {
+    log.lines()
+        .filter(|l| {
+            let t = l.trim_start();
+            let low = t.to_ascii_lowercase();
+            t.starts_with("WARNING")
+                || t.starts_with("ERROR")
+                || t.starts_with("%Warning")
+                || t.starts_with("%Error")
+                || low.contains("$readmem")
+                || low.contains("unable to open")
+        })
+        .collect()
+}
+
+/// Turn a finished run into an outcome, or an error when the testbench did not report, gave
+/// up (a FATAL line), or the simulator warned.
 pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> {
+    let warned = simulator_warnings(&log);
+    if !warned.is_empty() {
+        return Err(Error::Other(format!(
+            "{what}: the simulator warned, so the run does not count (a warning means it went on with contents nobody meant):\n{}\n  fix: {}",
+            warned.iter().take(10).copied().collect::<Vec<_>>().join("\n"),
+            if warned.iter().any(|l| l.to_ascii_lowercase().contains("readmem")) {
+                "a memory init file did not load: check the path given to INIT_FILE (absolute, or relative to the folder the simulator runs in)"
+            } else {
+                "read the lines above; rerun with --waves to see the signals"
+            }
+        )));
+    }
+    if parse_summary(&log) == Some((0, 0)) {
+        return Err(Error::Other(format!(
+            "{what}: the testbench checked no vectors\n{}",
+            tail(&log, 10)
+        )));
+    }
+    if let Some(fatal) = log.lines().find(|l| l.trim_start().starts_with("FATAL")) {
+        return Err(Error::Other(format!("{what}: the testbench gave up: {}", fatal.trim())));
+    }
     match parse_summary(&log) {
         Some((passed, failed)) => {
             if passed + failed == 0 {

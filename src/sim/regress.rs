@@ -3,10 +3,12 @@
 //! Top sets run through the C++ harness on Verilator (binary records) and through the
 //! Verilog testbench on Icarus (text); unit sets through the all-units testbench on both.
 
+pub use super::rtl_files::{write_rtl, Rtl};
 use super::testbench::{harness_top, tb_top, tb_units};
 use super::{icarus, verilator, Outcome, Sim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
+use crate::rtlgen::units_v::module_name;
 use crate::vectors::{dump, verify, DumpOptions, Source};
 use std::path::{Path, PathBuf};
 
@@ -35,15 +37,10 @@ pub struct RegressOptions {
     pub waves: bool,
     pub max_errors: u32,
     pub command: String,
-}
-
-/// RTL files written for `cfg` into `dir`: (verilog sources, lint waivers).
-pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<(Vec<PathBuf>, Vec<PathBuf>)> {
-    let files = crate::rtlgen::generate(cfg, command);
-    crate::cli::write_files(dir, &files)?;
-    let v = files.iter().filter(|f| f.0.ends_with(".v")).map(|f| dir.join(&f.0)).collect();
-    let vlt = files.iter().filter(|f| f.0.ends_with(".vlt")).map(|f| dir.join(&f.0)).collect();
-    Ok((v, vlt))
+    /// Idle in_valid for 1-3 cycles before every Nth top record (0: never).
+    pub bubbles: u32,
+    /// Also run one top set on the power table's power-up contents.
+    pub power_up: bool,
 }
 
 /// The default suite: corners, random, every compatible built-in scene, exhaustive sweeps.
@@ -123,105 +120,142 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     Ok(sets)
 }
 
-/// Run the sets in `sets` on each simulator of `o`.
-pub fn run_sets(
-    cfg: &PipelineConfig,
-    sets: &[(PathBuf, Option<Sim>)],
-    rtl: &(Vec<PathBuf>, Vec<PathBuf>),
-    o: &RegressOptions,
-) -> Result<Vec<RunResult>> {
+/// How one set runs on one simulator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Bench {
+    /// The Verilog top testbench on text records (Icarus, or Verilator `--binary`).
+    TopTb,
+    /// The Verilator C++ harness on binary records.
+    Harness,
+    /// The all-units Verilog testbench on text records.
+    Units,
+}
+
+/// The bench a set runs on, or why it cannot run on `sim` (checked before anything is built).
+fn bench_for(sim: Sim, m: &crate::vectors::manifest::Manifest, set: &str, waves: bool) -> Result<Bench> {
+    let top = m.target == "top";
+    match (sim, top) {
+        (Sim::Verilator, true) if m.bin.is_some() && !waves => Ok(Bench::Harness),
+        _ if m.hex.is_some() => Ok(if top { Bench::TopTb } else { Bench::Units }),
+        (Sim::Verilator, true) => Err(Error::Other(format!(
+            "{set}: --waves needs text records (the Verilog testbench), and this set has only binary ones\n  fix: dump it again with `gbump vectors ... --format both`, or run without --waves"
+        ))),
+        _ => Err(Error::Other(format!(
+            "{set}: the {} testbench reads text records, and this set has only binary ones\n  fix: dump it again with `gbump vectors ... --format hex` (or `both`){}",
+            sim.name(),
+            if top { ", or run it with --sim verilator (its C++ harness reads binary records)" } else { "" }
+        ))),
+    }
+}
+
+/// Check every set against `cfg` and the simulators before anything is built.
+pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &RegressOptions) -> Result<()> {
+    for (manifest, only) in sets {
+        let (m, _) = verify(manifest)?;
+        if m.config_hash != cfg.hash() {
+            return Err(Error::Other(format!(
+                "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or pass its config",
+                manifest.display(),
+                m.config_hash,
+                cfg.hash()
+            )));
+        }
+        for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {
+            bench_for(sim, &m, &manifest.display().to_string(), o.waves)?;
+        }
+    }
+    Ok(())
+}
+
+/// Run the sets in `sets` on each simulator of `o`. Top sets run with the power table loaded
+/// through the load port; with `o.power_up`, the first top set made for the reset shininess
+/// runs once more on the table's power-up contents (INIT_FILE), nothing loaded.
+pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &Rtl, o: &RegressOptions) -> Result<Vec<RunResult>> {
+    check_sets(cfg, sets, o)?;
     let build_root = o.work.join("build");
     let mut results = Vec::new();
     for &sim in &o.sims {
         super::require(sim)?;
-        let mut top_exe: Option<PathBuf> = None;
-        let mut units_exe: Option<PathBuf> = None;
+        let mut exes: Vec<(Bench, PathBuf)> = Vec::new();
+        let mut power_up_done = !o.power_up;
         for (manifest, only) in sets {
             if only.is_some_and(|s| s != sim) {
                 continue;
             }
             let (m, dir) = verify(manifest)?;
-            if m.config_hash != cfg.hash() {
-                return Err(Error::Other(format!(
-                    "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or pass its config",
-                    manifest.display(), m.config_hash, cfg.hash()
-                )));
-            }
             let set = manifest.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-            let table = dir.join(&m.power_table.name).display().to_string();
-            let what = format!("{} {set}", sim.name());
-            let max = o.max_errors.to_string();
-            let waves = o.waves.then(|| o.work.join(format!("{set}_{}.fst", sim.name())));
-            let run = |exe: &Path, is_top: bool| -> Result<Outcome> {
-                let hex = m.hex.as_ref().map(|f| dir.join(&f.name).display().to_string());
-                let mut plus = vec![format!("+table={table}"), format!("+max_errors={max}")];
-                if let Some(h) = &hex {
-                    plus.push(format!("+vectors={h}"));
-                }
-                if !is_top {
-                    plus.push(format!("+unit={}", m.target));
-                }
-                match sim {
-                    Sim::Icarus => icarus::run(exe, &plus, waves.as_deref(), &o.work, &what),
-                    Sim::Verilator if is_top && !o.waves => {
-                        let bin = m
-                            .bin
-                            .as_ref()
-                            .ok_or_else(|| Error::Other(format!("{set}: no binary records for the Verilator harness")))?;
-                        verilator::run(
-                            exe,
-                            &[
-                                "--vectors".into(),
-                                dir.join(&bin.name).display().to_string(),
-                                "--table".into(),
-                                table.clone(),
-                                "--max-errors".into(),
-                                max.clone(),
-                            ],
-                            &o.work,
-                            &what,
-                        )
-                    }
-                    Sim::Verilator => {
-                        if let Some(w) = &waves {
-                            plus.push(format!("+waves={}", w.display()));
+            let bench = bench_for(sim, &m, &set, o.waves)?;
+            let exe = match exes.iter().find(|e| e.0 == bench) {
+                Some(e) => e.1.clone(),
+                None => {
+                    let top = module_name(cfg, "gbump_pipeline");
+                    let exe = match (bench, sim) {
+                        (Bench::Harness, _) => verilator::build_harness(&build_root, &top, &harness_top(cfg), rtl)?,
+                        (Bench::TopTb, Sim::Icarus) => icarus::build(&build_root, "tb_top", &tb_top(cfg, rtl), rtl)?,
+                        (Bench::TopTb, Sim::Verilator) => {
+                            verilator::build_tb(&build_root, "tb_top", &tb_top(cfg, rtl), rtl, o.waves, false)?
                         }
-                        verilator::run(exe, &plus, &o.work, &what)
+                        (Bench::Units, Sim::Icarus) => icarus::build(&build_root, "tb_units", &tb_units(cfg, rtl), rtl)?,
+                        (Bench::Units, Sim::Verilator) => {
+                            verilator::build_tb(&build_root, "tb_units", &tb_units(cfg, rtl), rtl, o.waves, false)?
+                        }
+                    };
+                    exes.push((bench, exe.clone()));
+                    exe
+                }
+            };
+            let mut loads = vec![true];
+            if bench != Bench::Units && !power_up_done && m.shininess == cfg.shininess {
+                loads.push(false);
+                power_up_done = true;
+            }
+            for load in loads {
+                let name = if load { set.clone() } else { format!("{set}+power-up") };
+                let what = format!("{} {name}", sim.name());
+                let waves = o.waves.then(|| o.work.join(format!("{name}_{}.fst", sim.name())));
+                let table = load.then(|| dir.join(&m.power_table.name).display().to_string());
+                let file = |f: &Option<crate::vectors::manifest::FileEntry>| {
+                    f.as_ref().map(|f| dir.join(&f.name).display().to_string()).unwrap_or_default()
+                };
+                let outcome = match bench {
+                    Bench::Harness => {
+                        let mut args = vec!["--vectors".into(), file(&m.bin), "--max-errors".into(), o.max_errors.to_string()];
+                        if let Some(t) = &table {
+                            args.extend(["--table".into(), t.clone()]);
+                        }
+                        if o.bubbles > 0 {
+                            args.extend(["--bubbles".into(), o.bubbles.to_string()]);
+                        }
+                        verilator::run(&exe, &args, &o.work, &what)
                     }
-                }
-            };
-            let is_top = m.target == "top";
-            let exe = if is_top {
-                if top_exe.is_none() {
-                    top_exe = Some(match sim {
-                        Sim::Icarus => icarus::build(&build_root, "tb_top", &tb_top(cfg), &rtl.0)?,
-                        Sim::Verilator if !o.waves => verilator::build_harness(
-                            &build_root,
-                            &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
-                            &harness_top(cfg),
-                            &rtl.0,
-                            &rtl.1,
-                        )?,
-                        Sim::Verilator => verilator::build_tb(&build_root, "tb_top", &tb_top(cfg), &rtl.0, &rtl.1, true, false)?,
-                    });
-                }
-                top_exe.clone().expect("built")
-            } else {
-                if units_exe.is_none() {
-                    units_exe = Some(match sim {
-                        Sim::Icarus => icarus::build(&build_root, "tb_units", &tb_units(cfg), &rtl.0)?,
-                        Sim::Verilator => verilator::build_tb(&build_root, "tb_units", &tb_units(cfg), &rtl.0, &rtl.1, o.waves, false)?,
-                    });
-                }
-                units_exe.clone().expect("built")
-            };
-            let outcome = run(&exe, is_top).map_err(|e| e.to_string());
-            results.push(RunResult {
-                sim,
-                set,
-                target: m.target.clone(),
-                outcome,
-            });
+                    _ => {
+                        let mut plus = vec![format!("+vectors={}", file(&m.hex)), format!("+max_errors={}", o.max_errors)];
+                        if let Some(t) = &table {
+                            plus.push(format!("+table={t}"));
+                        }
+                        if bench == Bench::Units {
+                            plus.push(format!("+unit={}", m.target));
+                        } else if o.bubbles > 0 {
+                            plus.push(format!("+bubbles={}", o.bubbles));
+                        }
+                        match sim {
+                            Sim::Icarus => icarus::run(&exe, &plus, waves.as_deref(), &o.work, &what),
+                            Sim::Verilator => {
+                                if let Some(w) = &waves {
+                                    plus.push(format!("+waves={}", w.display()));
+                                }
+                                verilator::run(&exe, &plus, &o.work, &what)
+                            }
+                        }
+                    }
+                };
+                results.push(RunResult {
+                    sim,
+                    set: name,
+                    target: m.target.clone(),
+                    outcome: outcome.map_err(|e| e.to_string()),
+                });
+            }
         }
     }
     Ok(results)

@@ -32,8 +32,7 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
         &work.join("build"),
         &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
         &harness_top(cfg),
-        &rtl.0,
-        &rtl.1,
+        &rtl,
     )?;
     // The same fragments in the same order as the dump, to know where each colour goes.
     let p = Prepared::new(&scene, cfg, w, h)?;

@@ -2,6 +2,7 @@
 //! table load, streaming, checking, the "N passed, N failed" line); this module fills in the
 //! configuration's ports and record slices from the same layouts the vector writer uses.
 
+use super::rtl_files::{verilog_string, Rtl};
 use crate::config::PipelineConfig;
 use crate::rtlgen::top::latency;
 use crate::rtlgen::units_v::module_name;
@@ -29,12 +30,17 @@ fn pt(cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
     ]
 }
 
+fn init_literal(rtl: &Rtl) -> String {
+    verilog_string(&rtl.init_file.display().to_string())
+}
+
 fn slice(rec: &str, lsb: u32, width: u32) -> String {
     format!("{rec}[{}:{lsb}]", lsb + width - 1)
 }
 
-/// The top testbench (Icarus and Verilator --binary).
-pub fn tb_top(cfg: &PipelineConfig) -> String {
+/// The top testbench (Icarus and Verilator --binary); the pipeline powers up with `rtl`'s
+/// init file.
+pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
     let l = top_layout(cfg);
     let mut decls = Vec::new();
     let mut connect = Vec::new();
@@ -64,6 +70,8 @@ pub fn tb_top(cfg: &PipelineConfig) -> String {
     s.extend([
         ("RECORD_BITS", l.bits.to_string()),
         ("LATENCY", latency(cfg).to_string()),
+        ("II", cfg.initiation_interval().to_string()),
+        ("INIT_FILE", init_literal(rtl)),
         ("TOP", module_name(cfg, "gbump_pipeline")),
         ("DECLS", decls.join("\n")),
         ("CONNECT", format!("        {}", connect.join(", "))),
@@ -85,7 +93,7 @@ pub fn units_of(cfg: &PipelineConfig) -> Vec<&'static str> {
 }
 
 /// The all-units testbench.
-pub fn tb_units(cfg: &PipelineConfig) -> String {
+pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
     let mut decls = Vec::new();
     let mut drive = Vec::new();
     let mut check = Vec::new();
@@ -137,7 +145,11 @@ pub fn tb_units(cfg: &PipelineConfig) -> String {
         k.push("            end".into());
         drive.extend(d);
         check.extend(k);
-        let params = if *u == "power_table" { " #(.R(1))" } else { "" };
+        let params = if *u == "power_table" {
+            format!(" #(.R(1), .INIT_FILE({}))", init_literal(rtl))
+        } else {
+            String::new()
+        };
         decls.push(format!("    {}{params} u_{u} ({});", module_name(cfg, u), conns.join(", ")));
     }
     drive.push("            else begin $display(\"FATAL: unknown unit %0s\", unit); $finish; end".into());
@@ -189,7 +201,7 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("PRINT", print.join("\n")),
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
-        ("II", format!("{}.0", cfg.initiation_interval())),
+        ("II", cfg.initiation_interval().to_string()),
     ]);
     fill(HARNESS_TOP.to_string(), &s)
 }

@@ -1,55 +1,41 @@
 //! Verilator: `--binary` builds the Verilog testbenches; `--cc --exe --build` builds the C++
 //! harness that streams binary vectors. Both compile with two jobs (the machine has two cores).
 
-use super::{build_dir, outcome, require, run_cmd, Outcome, Sim};
+use super::rtl_files::Rtl;
+use super::{build_key, outcome, require, run_cmd, Outcome, Sim};
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Build `exe_name` from the generated `source` (written as `source_name`) and the RTL with
-/// `flags`, in a folder keyed by the hash of everything that goes in; a finished build is
-/// reused.
-#[allow(clippy::too_many_arguments)]
-fn cached_build(
-    root: &Path,
-    kind: &str,
-    exe_name: &str,
-    source_name: &str,
-    source: &str,
-    flags: &[String],
-    rtl: &[PathBuf],
-    vlt: &[PathBuf],
-) -> Result<PathBuf> {
+/// `flags`, in a folder keyed by everything that goes in (the C++ compiler included), built
+/// under a temporary name and verified on reuse.
+fn cached_build(root: &Path, kind: &str, exe_name: &str, source_name: &str, source: &str, flags: &[String], rtl: &Rtl) -> Result<PathBuf> {
     require(Sim::Verilator)?;
-    let mut parts = vec![source.to_string(), flags.join(" ")];
-    for f in rtl {
-        parts.push(std::fs::read_to_string(f).map_err(|e| Error::io(f, e))?);
-    }
-    let refs: Vec<&str> = parts.iter().map(String::as_str).collect();
-    let dir = build_dir(root, kind, &refs);
-    let exe = dir.join(exe_name);
-    if exe.exists() {
-        return Ok(exe);
-    }
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
-    let src = dir.join(source_name);
-    std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
-    let mut cmd = Command::new("verilator");
-    cmd.args(["-j", "2", "-Wno-fatal", "-Mdir", "obj", "-o"])
-        .arg(format!("../{exe_name}"))
-        .args(flags)
-        .args(vlt)
-        .arg(&src)
-        .args(rtl)
-        .current_dir(&dir);
-    let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
-    if !ok || !exe.exists() {
-        return Err(Error::Other(format!(
-            "verilator failed to build {exe_name}:\n{}",
-            super::tail(&log, 25)
-        )));
-    }
-    Ok(exe)
+    let key = build_key(kind, source, flags, rtl, &["verilator", "c++"])?;
+    let dir = crate::cache::build_dir(&root.join(format!("{kind}_{key}")), &[exe_name], |dir| {
+        let src = dir.join(source_name);
+        std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
+        let mut cmd = Command::new("verilator");
+        cmd.args(["-j", "2", "-Wno-fatal", "-Mdir", "obj", "-o"])
+            .arg(format!("../{exe_name}"))
+            .args(flags)
+            .args(&rtl.waivers)
+            .arg(&src)
+            .args(&rtl.sources)
+            .current_dir(dir);
+        let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
+        if !ok || !dir.join(exe_name).exists() {
+            return Err(Error::Other(format!(
+                "verilator failed to build {exe_name}:\n{}",
+                super::tail(&log, 25)
+            )));
+        }
+        // The object folder is only needed while linking.
+        let _ = std::fs::remove_dir_all(dir.join("obj"));
+        Ok(())
+    })?;
+    Ok(dir.join(exe_name))
 }
 
 fn strings(v: &[&str]) -> Vec<String> {
@@ -57,7 +43,7 @@ fn strings(v: &[&str]) -> Vec<String> {
 }
 
 /// Build a Verilog testbench with `--binary`. `vlt` holds lint waivers for the RTL.
-pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &[PathBuf], vlt: &[PathBuf], waves: bool, x_unique: bool) -> Result<PathBuf> {
+pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &Rtl, waves: bool, x_unique: bool) -> Result<PathBuf> {
     let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", top]);
     if waves {
         flags.push("--trace-fst".into());
@@ -65,12 +51,13 @@ pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &[PathBuf], vlt: &[PathBu
     if x_unique {
         flags.extend(strings(&["--x-assign", "unique", "--x-initial", "unique"]));
     }
-    cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb, &flags, rtl, vlt)
+    cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb, &flags, rtl)
 }
 
-/// Build the C++ harness around the top module `top`.
-pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &[PathBuf], vlt: &[PathBuf]) -> Result<PathBuf> {
-    let flags = strings(&[
+/// Build the C++ harness around the top module `top`; its power table powers up with the
+/// RTL's init file.
+pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &Rtl) -> Result<PathBuf> {
+    let mut flags = strings(&[
         "--cc",
         "--exe",
         "--build",
@@ -82,6 +69,10 @@ pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &[PathBuf], vlt: &[
         "--top-module",
         top,
     ]);
+    flags.push(format!(
+        "-GINIT_FILE={}",
+        super::rtl_files::verilog_string(&rtl.init_file.display().to_string())
+    ));
     cached_build(
         root,
         &format!("verilator_harness_{top}"),
@@ -90,7 +81,6 @@ pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &[PathBuf], vlt: &[
         cpp,
         &flags,
         rtl,
-        vlt,
     )
 }
 

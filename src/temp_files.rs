@@ -1,0 +1,75 @@
+//! Temporary names. Everything gbump writes goes to `<name>.tmp<pid>` first and is renamed
+//! into place, so a killed run leaves only such names behind; any run that later writes into
+//! the same folder removes those whose process is gone.
+
+use std::path::{Path, PathBuf};
+
+/// The temporary sibling of `path` for this process.
+pub fn temp_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+    path.with_file_name(format!("{name}.tmp{}", std::process::id()))
+}
+
+/// The process id a temporary name belongs to, if `name` is one.
+fn owner(name: &str) -> Option<u32> {
+    let (_, pid) = name.rsplit_once(".tmp")?;
+    if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    pid.parse().ok()
+}
+
+fn alive(pid: u32) -> bool {
+    if pid == std::process::id() {
+        return true;
+    }
+    // Without /proc (not Linux) nothing is known to be dead, so nothing is removed.
+    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Remove the temporary files and folders of dead processes in `dir`, and in its subfolders
+/// down to `depth` levels. Returns how many were removed.
+pub fn clean_stale(dir: &Path, depth: u32) -> usize {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    let mut removed = 0;
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
+        match owner(&name) {
+            Some(pid) if !alive(pid) => {
+                let gone = if is_dir {
+                    std::fs::remove_dir_all(e.path())
+                } else {
+                    std::fs::remove_file(e.path())
+                };
+                removed += gone.is_ok() as usize;
+            }
+            Some(_) => {}
+            None if is_dir && depth > 0 => removed += clean_stale(&e.path(), depth - 1),
+            None => {}
+        }
+    }
+    removed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_names_of_dead_processes_are_removed() {
+        let d = tempfile::tempdir().unwrap();
+        let mine = temp_path(&d.path().join("a.bin"));
+        std::fs::write(&mine, b"x").unwrap();
+        // pid 0 is never a user process: its temporary files are stale.
+        std::fs::write(d.path().join("b.bin.tmp0"), b"x").unwrap();
+        std::fs::create_dir_all(d.path().join("sub/build_1.tmp0/obj")).unwrap();
+        std::fs::write(d.path().join("keep.tmpfile"), b"x").unwrap();
+        assert_eq!(clean_stale(d.path(), 2), 2);
+        assert!(mine.exists());
+        assert!(d.path().join("keep.tmpfile").exists());
+        assert!(!d.path().join("sub/build_1.tmp0").exists());
+    }
+}

@@ -1,0 +1,57 @@
+//! One gbump run per work folder. Two runs sharing a folder would link, rename and delete
+//! each other's half-built files; the second one waits, saying who holds the folder. The lock
+//! is an OS file lock, so a killed holder releases it at once. The holder also clears what
+//! killed runs left behind (temporary files, half-built caches).
+
+use crate::error::{Error, Result};
+use std::fs::{File, TryLockError};
+use std::io::{Read, Seek, Write};
+use std::path::{Path, PathBuf};
+
+pub const LOCK_NAME: &str = ".gbump.lock";
+
+/// Held for as long as the value lives.
+pub struct WorkLock {
+    _file: File,
+    pub dir: PathBuf,
+}
+
+impl WorkLock {
+    /// Lock `dir` (created if missing) for the command `what`; waits while another run holds it.
+    pub fn acquire(dir: &Path, what: &str) -> Result<WorkLock> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        let path = dir.join(LOCK_NAME);
+        let mut file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .map_err(|e| Error::io(&path, e))?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(TryLockError::WouldBlock) => {
+                let mut holder = String::new();
+                let _ = file.read_to_string(&mut holder);
+                let holder = holder.trim();
+                eprintln!(
+                    "waiting for {}: in use by {} (another gbump run; it is released when that run ends)",
+                    dir.display(),
+                    if holder.is_empty() { "another process" } else { holder }
+                );
+                file.lock().map_err(|e| Error::io(&path, e))?;
+            }
+            Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
+        }
+        let me = format!("pid {}: {what}\n", std::process::id());
+        let _ = file
+            .set_len(0)
+            .and_then(|_| file.rewind())
+            .and_then(|_| file.write_all(me.as_bytes()));
+        crate::temp_files::clean_stale(dir, 4);
+        Ok(WorkLock {
+            _file: file,
+            dir: dir.to_path_buf(),
+        })
+    }
+}

@@ -1,0 +1,194 @@
+//! The protocol the interface file documents, checked on the real simulators: latency and
+//! initiation interval per vector (a testbench told a wrong number fails), the power table's
+//! power-up contents from any folder (a missing init file fails), and sets in a format a
+//! simulator's bench cannot read refused before anything is built.
+
+use assert_cmd::Command;
+use gbump::sim::regress::{write_rtl, Rtl};
+use gbump::sim::testbench::{harness_top, tb_top};
+use gbump::sim::{icarus, verilator, Outcome};
+use gbump::vectors::{dump, verify, DumpOptions, Source};
+use gbump::PipelineConfig;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn work(name: &str) -> PathBuf {
+    let w = root().join("target/test-protocol").join(name);
+    let _ = std::fs::remove_dir_all(&w);
+    std::fs::create_dir_all(&w).unwrap();
+    w
+}
+
+/// Corner vectors of the top (text and binary): (hex, bin) paths.
+fn corner_vectors(cfg: &PipelineConfig, dir: &Path) -> (String, String) {
+    let o = DumpOptions {
+        text: true,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let sets = dump(cfg, &Source::Corners(2), &["top".into()], dir, &o).unwrap();
+    let (m, d) = verify(&sets[0].manifest).unwrap();
+    let f = |e: &Option<gbump::vectors::manifest::FileEntry>| d.join(&e.as_ref().unwrap().name).display().to_string();
+    (f(&m.hex), f(&m.bin))
+}
+
+fn config(path: Option<&str>) -> PipelineConfig {
+    path.map_or_else(PipelineConfig::default, |p| PipelineConfig::load(&root().join(p)).unwrap())
+}
+
+fn icarus_top(w: &Path, rtl: &Rtl, tb: &str, hex: &str, extra: &[&str], cwd: &Path) -> gbump::Result<Outcome> {
+    let exe = icarus::build(&w.join("build"), "tb_top", tb, rtl)?;
+    let mut plus = vec![format!("+vectors={hex}"), "+max_errors=5".to_string()];
+    plus.extend(extra.iter().map(|s| s.to_string()));
+    icarus::run(&exe, &plus, None, cwd, "icarus")
+}
+
+fn harness(w: &Path, cfg: &PipelineConfig, rtl: &Rtl, cpp: &str, bin: &str, extra: &[&str], cwd: &Path) -> gbump::Result<Outcome> {
+    let top = gbump::rtlgen::units_v::module_name(cfg, "gbump_pipeline");
+    let exe = verilator::build_harness(&w.join("build"), &top, cpp, rtl)?;
+    let mut args = vec!["--vectors".to_string(), bin.to_string(), "--max-errors".into(), "5".into()];
+    args.extend(extra.iter().map(|s| s.to_string()));
+    verilator::run(&exe, &args, cwd, "verilator")
+}
+
+/// Both benches, told the documented numbers, pass (with bubbles); told a latency or an
+/// initiation interval one off, they fail on the first vectors with a timing mismatch.
+fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let (hex, bin) = corner_vectors(&cfg, &w.join("vectors"));
+    let (lat, ii) = (gbump::rtlgen::top::latency(&cfg), cfg.initiation_interval());
+    // The interface file states the numbers the benches check.
+    let top = gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(rtl.dir.join(format!("{top}.json"))).unwrap()).unwrap();
+    assert_eq!(json["latency_cycles"], lat);
+    assert_eq!(json["initiation_interval"], ii);
+    let table = format!("+table={}", rtl.init_file.display());
+    let tb = tb_top(&cfg, &rtl);
+    let cpp = harness_top(&cfg);
+    let (tb_lat, tb_ii) = (format!("localparam LAT = {lat};"), format!("localparam II = {ii};"));
+    let (cpp_lat, cpp_ii) = (
+        format!("static const long long LATENCY = {lat};"),
+        format!("static const long long II = {ii};"),
+    );
+    assert!(tb.contains(&tb_lat) && tb.contains(&tb_ii) && cpp.contains(&cpp_lat) && cpp.contains(&cpp_ii));
+    let ok = icarus_top(&w, &rtl, &tb, &hex, &[&table, "+bubbles=3"], &w).unwrap();
+    assert!(ok.failed == 0 && ok.passed > 0, "{}", ok.log);
+    let t = rtl.init_file.display().to_string();
+    let ok = harness(&w, &cfg, &rtl, &cpp, &bin, &["--bubbles", "3", "--table", &t], &w).unwrap();
+    assert!(ok.failed == 0 && ok.passed > 0, "{}", ok.log);
+    let mut mutants = vec![(lat + 1, ii), (lat - 1, ii), (lat, ii + 1)];
+    if ii > 1 {
+        mutants.push((lat, ii - 1));
+    }
+    for (l, i) in mutants {
+        let tbm = tb
+            .replace(&tb_lat, &format!("localparam LAT = {l};"))
+            .replace(&tb_ii, &format!("localparam II = {i};"));
+        let bad = icarus_top(&w, &rtl, &tbm, &hex, &[&table], &w).unwrap();
+        assert!(
+            bad.failed > 0 && bad.log.contains("timing"),
+            "icarus, latency {l}, II {i}:\n{}",
+            bad.log
+        );
+    }
+    // Verilator builds are slower: one latency and one interval mutant.
+    for (l, i) in [(lat + 1, ii), (lat, ii + 1)] {
+        let m = cpp
+            .replace(&cpp_lat, &format!("static const long long LATENCY = {l};"))
+            .replace(&cpp_ii, &format!("static const long long II = {i};"));
+        let bad = harness(&w, &cfg, &rtl, &m, &bin, &[], &w).unwrap();
+        assert!(
+            bad.failed > 0 && bad.log.contains("timing"),
+            "verilator, latency {l}, II {i}:\n{}",
+            bad.log
+        );
+    }
+}
+
+#[test]
+fn serial_tops_are_checked_against_their_documented_latency_and_interval() {
+    timing_is_checked(None, "serial4");
+    timing_is_checked(Some("tests/configs/four_serial_dot10.toml"), "serial4_dot10");
+}
+
+#[test]
+fn parallel_tops_are_checked_against_their_documented_latency_and_interval() {
+    timing_is_checked(Some("tests/configs/one_light_parallel.toml"), "parallel1");
+}
+
+#[test]
+fn the_power_up_table_loads_from_any_folder_and_a_missing_init_file_fails() {
+    let cfg = PipelineConfig::default();
+    let w = work("powerup");
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let (hex, bin) = corner_vectors(&cfg, &w.join("vectors"));
+    // Nothing loaded through the port, started from another folder.
+    let elsewhere = tempfile::tempdir().unwrap();
+    let o = icarus_top(&w, &rtl, &tb_top(&cfg, &rtl), &hex, &[], elsewhere.path()).unwrap();
+    assert!(o.failed == 0 && o.passed > 0, "{}", o.log);
+    let o = harness(&w, &cfg, &rtl, &harness_top(&cfg), &bin, &[], elsewhere.path()).unwrap();
+    assert!(o.failed == 0 && o.passed > 0, "{}", o.log);
+    // An init file that does not exist: the simulator's warning fails the run.
+    let lost = Rtl {
+        init_file: w.join("no_such_table.hex"),
+        ..rtl.clone()
+    };
+    let e = icarus_top(&w, &lost, &tb_top(&cfg, &lost), &hex, &[], elsewhere.path())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("$readmemh") && e.contains("INIT_FILE"), "{e}");
+    let e = harness(&w, &cfg, &lost, &harness_top(&cfg), &bin, &[], elsewhere.path())
+        .unwrap_err()
+        .to_string();
+    assert!(e.to_lowercase().contains("readmem") || e.contains("no_such_table"), "{e}");
+}
+
+fn gbump() -> Command {
+    let mut c = Command::cargo_bin("gbump").unwrap();
+    c.current_dir(root());
+    c
+}
+
+#[test]
+fn a_set_in_a_format_the_bench_cannot_read_is_refused_or_routed_before_building() {
+    let w = work("formats");
+    for fmt in ["hex", "bin"] {
+        gbump()
+            .args(["vectors", "--source", "corners", "--target", "top", "--format", fmt, "--out"])
+            .arg(w.join(fmt))
+            .assert()
+            .success();
+    }
+    // Binary records on Icarus: refused up front, naming the set and both fixes.
+    let o = gbump()
+        .args(["regress", "--sim", "icarus", "--work"])
+        .arg(w.join("work_bin"))
+        .arg("--vectors")
+        .arg(w.join("bin"))
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+    assert!(
+        err.contains("only binary") && err.contains("--format") && err.contains("--sim verilator"),
+        "{err}"
+    );
+    assert!(!w.join("work_bin/build").exists(), "something was built before the refusal");
+    // Text records on Verilator: the Verilog testbench runs them.
+    let o = gbump()
+        .args(["regress", "--sim", "verilator", "--work"])
+        .arg(w.join("work_hex"))
+        .arg("--vectors")
+        .arg(w.join("hex"))
+        .assert()
+        .success();
+    let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert!(out.contains("corners_top") && out.contains(", 0 failing run(s)"), "{out}");
+}
