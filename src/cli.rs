@@ -314,8 +314,32 @@ pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<
     Ok(())
 }
 
+/// The work folder a command builds and caches in, if it has one.
+fn work_folder(cmd: &Cmd) -> Option<&Path> {
+    match cmd {
+        Cmd::Regress { work, .. }
+        | Cmd::Lint { work, .. }
+        | Cmd::Fuzz { work, .. }
+        | Cmd::Area { work, .. }
+        | Cmd::Sweep { work, .. }
+        | Cmd::Bench { work, .. }
+        | Cmd::Report { work, .. } => Some(work),
+        Cmd::PowerSpace { work, area: true, .. } => Some(work),
+        Cmd::Render { rtl: true, .. } => Some(Path::new(crate::sim::rtl_image::RENDER_WORK)),
+        _ => None,
+    }
+}
+
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
+    // One run per work folder, in a folder every simulator and make can take.
+    let _lock = match work_folder(&cli.cmd) {
+        Some(w) => {
+            crate::sim::check_tool_path(w, "--work")?;
+            Some(crate::work_lock::WorkLock::acquire(w, &invocation())?)
+        }
+        None => None,
+    };
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render {
@@ -624,7 +648,7 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
     );
     if rtl {
         let t0 = std::time::Instant::now();
-        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new("target/gbump-render"))?;
+        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new(crate::sim::rtl_image::RENDER_WORK))?;
         write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
         let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
         outln!(
@@ -763,6 +787,7 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
     } else {
         let mut v = Vec::new();
         for p in vectors {
+            crate::sim::check_tool_path(p, "--vectors")?;
             if p.is_dir() {
                 let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
                 let mut found: Vec<PathBuf> = std::fs::read_dir(p)

@@ -57,3 +57,31 @@ fn power_space_finds_designs_within_one_lsb() {
         "with an 8-bit dot product the paper's table is within 1 LSB"
     );
 }
+
+#[test]
+fn one_work_folder_never_serves_one_scenes_results_for_another() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = "[base]\nlights = 1\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [8]\n";
+    let run = |scene: &str, work: &str| -> String {
+        let space = dir.path().join(format!("{scene}.toml"));
+        std::fs::write(&space, format!("scene = \"{scene}\"\n{grid}")).unwrap();
+        Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["sweep", "--space"])
+            .arg(&space)
+            .arg("--out")
+            .arg(dir.path().join(work).join("out"))
+            .arg("--work")
+            .arg(dir.path().join(work))
+            .assert()
+            .success();
+        let csv = std::fs::read_to_string(dir.path().join(work).join(format!("out/{scene}.csv"))).unwrap();
+        let row = csv.lines().nth(1).unwrap().to_string();
+        row.split(',').nth(10).unwrap().to_string()
+    };
+    let torus = run("torus_caps", "shared");
+    let wall_shared = run("cg_wall_front", "shared");
+    let wall_fresh = run("cg_wall_front", "fresh");
+    assert_ne!(torus, wall_shared, "the second scene was served the first scene's PSNR");
+    assert_eq!(wall_shared, wall_fresh, "a shared work folder and a fresh one disagree");
+}

@@ -6,11 +6,11 @@ use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
 use crate::sim::{run_cmd, tail};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::process::Command;
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct UnitArea {
     pub unit: String,
     pub module: String,
@@ -21,7 +21,7 @@ pub struct UnitArea {
     pub rom_bits: u64,
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct AreaReport {
     pub config_hash: String,
     pub yosys_version: String,
@@ -97,6 +97,8 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                     .map(|p| std::path::absolute(p).expect("path").display().to_string())
                     .collect();
                 std::fs::write(sub.join("area.ys"), script(&abs, module)).map_err(|e| Error::io(&sub, e))?;
+                // A report left by an earlier run must never stand in for this one.
+                let _ = std::fs::remove_file(sub.join("area.stat"));
                 let mut c = Command::new("yosys");
                 c.args(["-q", "-s", "area.ys"]).current_dir(&sub);
                 let (ok, log, _) = run_cmd(&mut c, "yosys")?;

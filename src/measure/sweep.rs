@@ -113,9 +113,49 @@ impl Space {
     }
 }
 
-/// Measure one configuration (cached in `work/points/<hash>.json`).
+/// Image size and random stimuli per point: part of every point's cache key.
+const IMAGE: (u32, u32) = (128, 96);
+const ERROR_SAMPLES: u64 = 20_000;
+
+/// The cache key of one point: everything its numbers depend on.
+fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene) -> Result<String> {
+    let mut k = crate::cache::Key::new("sweep point");
+    k.add(cfg.hash().as_bytes())
+        .add(cfg.to_toml().as_bytes())
+        .add(scene.fingerprint()?.as_bytes())
+        .add(&IMAGE.0.to_le_bytes())
+        .add(&IMAGE.1.to_le_bytes())
+        .add(&ERROR_SAMPLES.to_le_bytes())
+        .add(super::area::script(&[], "").as_bytes())
+        .add_tool("yosys");
+    Ok(k.finish())
+}
+
+/// Yosys area of `cfg`, shared by every point of the same configuration whatever the scene.
+fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaReport> {
+    let mut k = crate::cache::Key::new("area");
+    k.add(cfg.to_toml().as_bytes())
+        .add(super::area::script(&[], "").as_bytes())
+        .add_tool("yosys");
+    let file = work.join("area").join(format!("{}.json", k.finish()));
+    if let Some(r) = std::fs::read_to_string(&file)
+        .ok()
+        .and_then(|t| serde_json::from_str::<super::area::AreaReport>(&t).ok())
+    {
+        if r.config_hash == cfg.hash() {
+            return Ok(r);
+        }
+    }
+    let r = super::area::area(cfg, &work.join("area"), "gbump sweep")?;
+    crate::render::output::write_atomic(&file, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
+    Ok(r)
+}
+
+/// Measure one configuration on `scene` (cached in `work/points/<key>.json`, the key made of
+/// the configuration, the scene and its files, the sizes, gbump's and Yosys's versions).
 pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> Result<Point> {
-    let cache = work.join("points").join(format!("{}.json", cfg.hash()));
+    let s = crate::scene::Scene::load(scene)?;
+    let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s)?));
     if let Ok(text) = std::fs::read_to_string(&cache) {
         if let Ok(p) = serde_json::from_str::<Point>(&text) {
             if p.config == *cfg {
@@ -126,7 +166,7 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> R
             }
         }
     }
-    let area = super::area::area(cfg, &work.join("area"), "gbump sweep")?;
+    let area = cached_area(cfg, work)?;
     let ge = |name: &str| {
         area.units
             .iter()
@@ -135,15 +175,14 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> R
             .sum::<f64>()
     };
     let top = area.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")).expect("top");
-    let errs = super::unit_error::unit_errors(cfg, 20_000, 1);
+    let errs = super::unit_error::unit_errors(cfg, ERROR_SAMPLES, 1);
     let pipe = errs
         .iter()
         .find(|e| e.unit == "gbump_pipeline" && e.source == "random")
         .expect("pipeline error");
-    let s = crate::scene::Scene::load(scene)?;
     let mut scfg = cfg.clone();
     scfg.lights = scfg.lights.max(s.bump_lights().count() as u32);
-    let img = crate::render::render(&s, &scfg, 128, 96, false)?;
+    let img = crate::render::render(&s, &scfg, IMAGE.0, IMAGE.1, false)?;
     let psnr = super::image_metrics::compare(&img.golden, &img.reference, &img.covered, img.colour_max).psnr_db;
     let p = Point {
         config_hash: cfg.hash(),

@@ -30,6 +30,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         return Err(Error::io(path, e));
     }
+    // What a killed run left in this folder goes now that a run has written there.
+    crate::temp_files::clean_stale(dir, 0);
     Ok(())
 }
 

@@ -4,6 +4,7 @@
 
 pub mod builtin;
 pub mod camera;
+mod fingerprint;
 pub mod lighting;
 pub mod mesh;
 pub mod teapot;

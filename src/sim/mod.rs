@@ -12,6 +12,7 @@ pub mod testbench;
 pub mod verilator;
 
 use crate::error::{Error, Result};
+use std::path::Path;
 use std::process::Command;
 
 /// The simulators gbump drives.
@@ -60,6 +61,27 @@ pub fn missing(prog: &str) -> Error {
     Error::Other(format!(
         "{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"
     ))
+}
+
+/// Refuse a folder or file the simulators would be handed that they cannot take whole:
+/// Verilator's makefiles split paths at spaces, Verilog string literals end at quotes, and
+/// plusargs end at whitespace. `flag` names the option in the message.
+pub fn check_tool_path(p: &Path, flag: &str) -> Result<()> {
+    let abs = std::path::absolute(p).map_err(|e| Error::io(p, e))?;
+    let text = abs.to_string_lossy();
+    let bad: Vec<char> = text
+        .chars()
+        .filter(|c| !c.is_ascii() || c.is_ascii_whitespace() || c.is_ascii_control() || "\"'\\$`;&|<>*?#%!{}()[]=".contains(*c))
+        .collect();
+    if bad.is_empty() {
+        return Ok(());
+    }
+    Err(Error::Other(format!(
+        "{flag} {}: the path holds {} (in {}), which make, Verilator or a plusarg would split or misread\n  fix: use a folder whose absolute path has only letters, digits and - _ . / + , : @ ~",
+        p.display(),
+        bad.iter().map(|c| format!("{c:?}")).collect::<Vec<_>>().join(" "),
+        text
+    )))
 }
 
 /// Verdict of one simulation run.

@@ -12,6 +12,9 @@ use crate::scene::Scene;
 use crate::vectors::{dump, verify, DumpOptions, Source};
 use std::path::Path;
 
+/// Where `gbump render --rtl` builds and caches.
+pub const RENDER_WORK: &str = "target/gbump-render";
+
 /// The image the RTL renders: background where no fragment lands.
 pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &Path) -> Result<Vec<[u32; 3]>> {
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
