@@ -39,7 +39,10 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "clock": "clk, rising edge; rst synchronous, active high, clears the valid bits",
         "latency_cycles": latency(cfg),
         "initiation_interval": cfg.initiation_interval(),
-        "handshake": "a fragment is accepted on a rising edge with in_valid && in_ready; out_valid marks C_new exactly latency_cycles later",
+        "handshake": "a fragment is accepted at a rising edge at which in_valid && in_ready are high; its C_new is on out_c, with out_valid high, when sampled at the rising edge exactly latency_cycles later; results leave in order",
+        "latency_definition": "rising edges from the edge that accepts a fragment to the edge at which its out_valid is first sampled high",
+        "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
+        "parameters": {"INIT_FILE": {"default": rom_file_name(cfg, "power_table", "hex"), "doc": "$readmemh file with the power table's power-up contents; relative paths resolve against the simulator's working folder"}},
         "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "unit": cfg.power_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
         "ports": ports,
     });
