@@ -225,12 +225,17 @@ impl Scene {
         }
         let p = Path::new(name_or_path);
         if p.extension().is_some_and(|e| e == "toml") || p.exists() {
-            let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
+            let text = crate::limits::read_text(p)?;
             return Scene::from_toml(name_or_path, &text, p.parent().unwrap_or(Path::new(".")));
         }
         Err(Error::UnknownScene {
             name: name_or_path.to_string(),
         })
+    }
+
+    /// Triangles of the whole scene once tessellated.
+    pub fn triangles(&self) -> u64 {
+        self.objects.iter().map(mesh::triangle_count).sum()
     }
 
     /// Lights that act on the bump map, in slot order.
