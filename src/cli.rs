@@ -544,7 +544,11 @@ fn scenes(show: Option<String>) -> Result<()> {
 /// Parse `WxH`.
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     let max = crate::limits::MAX_IMAGE_SIDE;
-    let bad = || Error::Other(format!("--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"));
+    let bad = || {
+        Error::Other(format!(
+            "--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"
+        ))
+    };
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
     if w == 0 || h == 0 || w > max || h > max {
@@ -662,8 +666,8 @@ pub fn rom_files(
     cube: usize,
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
-    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
+    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
     let n = shininess.unwrap_or(cfg.shininess);
     check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
     check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;

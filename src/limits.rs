@@ -42,22 +42,66 @@ pub const MAX_NAME_CHARS: u64 = 64;
 
 /// (name, value, what it bounds) of every limit, for the README and `gbump limits`.
 pub const ALL: &[(&str, u64, &str)] = &[
-    ("MAX_IMAGE_SIDE", MAX_IMAGE_SIDE as u64, "pixels per side of a rendered image (`--size`, scene `size`)"),
+    (
+        "MAX_IMAGE_SIDE",
+        MAX_IMAGE_SIDE as u64,
+        "pixels per side of a rendered image (`--size`, scene `size`)",
+    ),
     ("MAX_TRIANGLES", MAX_TRIANGLES, "triangles of a scene after tessellation"),
-    ("MAX_SEGMENTS", MAX_SEGMENTS as u64, "tessellation segments per direction of an object"),
+    (
+        "MAX_SEGMENTS",
+        MAX_SEGMENTS as u64,
+        "tessellation segments per direction of an object",
+    ),
     ("MAX_CYLINDER_SIDES", MAX_CYLINDER_SIDES as u64, "sides of a faceted cylinder"),
-    ("MAX_BUMP_SIDE", MAX_BUMP_SIDE as u64, "texels per side of a bump map (generated, or a PNG's header)"),
-    ("MAX_INPUT_BYTES", MAX_INPUT_BYTES, "bytes of a scene, configuration or sweep-space file"),
-    ("MAX_MEMORY_BYTES", MAX_MEMORY_BYTES, "planned memory of a render or error run (or MemAvailable, if lower)"),
-    ("RENDER_BYTES_PER_PIXEL", RENDER_BYTES_PER_PIXEL, "planned bytes per pixel of a render"),
-    ("RENDER_BYTES_PER_TRIANGLE", RENDER_BYTES_PER_TRIANGLE, "planned bytes per triangle of a render"),
+    (
+        "MAX_BUMP_SIDE",
+        MAX_BUMP_SIDE as u64,
+        "texels per side of a bump map (generated, or a PNG's header)",
+    ),
+    (
+        "MAX_INPUT_BYTES",
+        MAX_INPUT_BYTES,
+        "bytes of a scene, configuration or sweep-space file",
+    ),
+    (
+        "MAX_MEMORY_BYTES",
+        MAX_MEMORY_BYTES,
+        "planned memory of a render or error run (or MemAvailable, if lower)",
+    ),
+    (
+        "RENDER_BYTES_PER_PIXEL",
+        RENDER_BYTES_PER_PIXEL,
+        "planned bytes per pixel of a render",
+    ),
+    (
+        "RENDER_BYTES_PER_TRIANGLE",
+        RENDER_BYTES_PER_TRIANGLE,
+        "planned bytes per triangle of a render",
+    ),
     ("MAX_SWEEP_POINTS", MAX_SWEEP_POINTS, "configurations in a sweep grid"),
-    ("MAX_RANDOM_VECTORS", MAX_RANDOM_VECTORS, "random vectors of one set (`random:N`, `--random`)"),
+    (
+        "MAX_RANDOM_VECTORS",
+        MAX_RANDOM_VECTORS,
+        "random vectors of one set (`random:N`, `--random`)",
+    ),
     ("MAX_ERROR_STIMULI", MAX_ERROR_STIMULI, "random stimuli of `gbump error --random`"),
-    ("MAX_EXHAUSTIVE_VECTORS", MAX_EXHAUSTIVE_VECTORS, "vectors of an exhaustive sweep (`exhaustive:UNIT`)"),
+    (
+        "MAX_EXHAUSTIVE_VECTORS",
+        MAX_EXHAUSTIVE_VECTORS,
+        "vectors of an exhaustive sweep (`exhaustive:UNIT`)",
+    ),
     ("MAX_SHININESS", MAX_SHININESS as u64, "shininess n of a power table"),
-    ("MAX_CUBE_SIDE", MAX_CUBE_SIDE as u64, "texels per side of a cube-map face (`--cube-size`)"),
-    ("MAX_NAME_CHARS", MAX_NAME_CHARS, "characters of a name that becomes part of a file name"),
+    (
+        "MAX_CUBE_SIDE",
+        MAX_CUBE_SIDE as u64,
+        "texels per side of a cube-map face (`--cube-size`)",
+    ),
+    (
+        "MAX_NAME_CHARS",
+        MAX_NAME_CHARS,
+        "characters of a name that becomes part of a file name",
+    ),
 ];
 
 /// The README's "Limits" table.
@@ -138,10 +182,5 @@ pub fn read_text(path: &Path) -> Result<String> {
             path.display()
         )));
     }
-    String::from_utf8(buf).map_err(|_| {
-        Error::Other(format!(
-            "{}: not UTF-8 text\n  fix: give a TOML text file",
-            path.display()
-        ))
-    })
+    String::from_utf8(buf).map_err(|_| Error::Other(format!("{}: not UTF-8 text\n  fix: give a TOML text file", path.display())))
 }

@@ -23,9 +23,7 @@ pub fn check(file: &str, field: &str, name: &str) -> Result<()> {
         file,
         field,
         format!("`{name}` cannot be part of a file name"),
-        format!(
-            "use 1..={MAX_NAME_CHARS} letters, digits, `_`, `.` or `-`, not starting with `.` or `-` (no `/`, no spaces)"
-        ),
+        format!("use 1..={MAX_NAME_CHARS} letters, digits, `_`, `.` or `-`, not starting with `.` or `-` (no `/`, no spaces)"),
     ))
 }
 
@@ -39,7 +37,20 @@ mod tests {
             assert!(is_safe(ok), "{ok}");
         }
         let long = "a".repeat(65);
-        for bad in ["", "../escaped", "/tmp/x", ".hidden", "-rf", "a/b", "a b", "a\\b", "é", &long, "..", "a\0b"] {
+        for bad in [
+            "",
+            "../escaped",
+            "/tmp/x",
+            ".hidden",
+            "-rf",
+            "a/b",
+            "a b",
+            "a\\b",
+            "é",
+            &long,
+            "..",
+            "a\0b",
+        ] {
             assert!(!is_safe(bad), "{bad:?}");
         }
     }

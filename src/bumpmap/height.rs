@@ -120,7 +120,10 @@ impl HeightSource {
 /// `MAX_BUMP_SIDE` (a small file can declare a picture of gigabytes).
 fn read_png(p: &std::path::Path) -> Result<image::DynamicImage> {
     use crate::limits::MAX_BUMP_SIDE;
-    let bad = |msg: String| Error::Image { path: p.to_path_buf(), msg };
+    let bad = |msg: String| Error::Image {
+        path: p.to_path_buf(),
+        msg,
+    };
     let open = || {
         image::ImageReader::open(p)
             .and_then(|r| r.with_guessed_format())

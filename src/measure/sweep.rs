@@ -74,9 +74,10 @@ impl Space {
         let mut points: u64 = 1;
         for (k, v) in &spans.grid {
             let field = format!("grid.{k}");
-            let vals = v.get_ref().as_array().ok_or_else(|| {
-                Error::field(&at(v.span()), &field, "not an array", format!("write {k} = [value, value, ...]"))
-            })?;
+            let vals = v
+                .get_ref()
+                .as_array()
+                .ok_or_else(|| Error::field(&at(v.span()), &field, "not an array", format!("write {k} = [value, value, ...]")))?;
             if vals.is_empty() {
                 return Err(Error::field(&at(v.span()), &field, "empty array", "give at least one value"));
             }

@@ -304,13 +304,20 @@ impl Scene {
                 // The merged table's line says nothing here: find the override that fails alone.
                 let alone = |k: &String, v: &toml::Value| {
                     let t = toml::Table::from_iter([(k.clone(), v.clone())]);
-                    matches!(PipelineConfig::from_toml("", &toml::to_string(&t).expect("table")), Err(Error::Input { .. }))
+                    matches!(
+                        PipelineConfig::from_toml("", &toml::to_string(&t).expect("table")),
+                        Err(Error::Input { .. })
+                    )
                 };
                 let key = self.pipeline.iter().flatten().find(|(k, v)| alone(k, v));
                 let key = key.map_or(String::new(), |(k, _)| k.clone());
                 Error::Field {
                     file: self.pipeline_at(&key),
-                    field: if key.is_empty() { "pipeline".into() } else { format!("pipeline.{key}") },
+                    field: if key.is_empty() {
+                        "pipeline".into()
+                    } else {
+                        format!("pipeline.{key}")
+                    },
                     msg,
                     fix,
                 }

@@ -190,7 +190,10 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         let named: Vec<&str> = if t == "all" {
             all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
         } else if !all.contains(&t.as_str()) {
-            return Err(Error::Other(format!("--target {t}: unknown\n  fix: one of all, {}", all.join(", "))));
+            return Err(Error::Other(format!(
+                "--target {t}: unknown\n  fix: one of all, {}",
+                all.join(", ")
+            )));
         } else if !super::writer::unit_present(cfg, t) {
             let field = if t == "diffuse_blend" { "diffuse" } else { "specular" };
             return Err(Error::Other(format!(
@@ -209,7 +212,9 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         }
     }
     if out.is_empty() {
-        return Err(Error::Other("--target: no target\n  fix: give --target all, top or a unit name".into()));
+        return Err(Error::Other(
+            "--target: no target\n  fix: give --target all, top or a unit name".into(),
+        ));
     }
     Ok(out)
 }
