@@ -382,6 +382,10 @@ pub fn run() -> anyhow::Result<()> {
             check_count("--random-icarus", random_icarus, 0, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
             // Stopping after zero mismatches would report nothing about a failing run.
             check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
+            if let (Some(sz), false) = (&scene_size, no_scenes) {
+                let (w, h) = parse_size(sz)?;
+                check_builtin_renders(w, h)?;
+            }
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
                 random_verilator: random,
@@ -422,10 +426,7 @@ pub fn run() -> anyhow::Result<()> {
             let cfg = pick.resolve()?;
             let (w, h) = parse_size(&size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
-            for (name, _) in builtin::ALL {
-                let s = Scene::load(name)?;
-                crate::limits::check_render(&s.file, w, h, s.triangles())?;
-            }
+            check_builtin_renders(w, h)?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
             let scenes = scene_errors(&cfg, w, h)?;
@@ -727,6 +728,11 @@ fn vectors(
         _ => pick.resolve()?,
     };
     let targets = crate::vectors::targets::resolve(&cfg, target)?;
+    if size.is_some() && !matches!(src, Source::Scene(_)) {
+        return Err(Error::Other(format!(
+            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
+        )));
+    }
     let opts = DumpOptions {
         text: !matches!(format, VecFormat::Bin),
         binary: !matches!(format, VecFormat::Hex),
@@ -930,6 +936,15 @@ pub type SceneError = (
     crate::measure::image_metrics::ImageError,
     crate::measure::image_metrics::ImageError,
 );
+
+/// Refuse a size at which some built-in scene cannot be rendered, before any is.
+fn check_builtin_renders(w: u32, h: u32) -> Result<()> {
+    for (name, _) in builtin::ALL {
+        let s = Scene::load(name)?;
+        crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    }
+    Ok(())
+}
 
 /// Image error of every built-in scene that fits `cfg`'s light slots.
 pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {

@@ -592,6 +592,29 @@ fn cases() -> Vec<Case> {
             vec!["sp.toml:3", "base.bogus", "unknown field"],
         ),
         (
+            "manifest naming a file outside its folder",
+            vec![(
+                "m.json",
+                include_str!("../vectors/corners_top.json")
+                    .replacen("\"name\": \"corners_top.hex\"", "\"name\": \"../corners_top.hex\"", 1)
+                    .into(),
+            )],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
+            vec!["m.json", "files[].name", "../corners_top.hex"],
+        ),
+        (
+            "regress --scene-size 8192x8192",
+            vec![],
+            vec!["regress", "--scene-size", "8192x8192", "--work", "w"],
+            vec!["8192x8192", "MAX_MEMORY_BYTES"],
+        ),
+        (
+            "--size for a source without an image",
+            vec![],
+            vec!["vectors", "--source", "corners", "--size", "64x64", "--out", "out"],
+            vec!["--size", "scene:NAME"],
+        ),
+        (
             "output folder is a file",
             vec![("out", "I am a file".into())],
             vec!["rtl", "--out", "out"],
@@ -621,7 +644,7 @@ fn leftovers(dir: &Path) -> Vec<String> {
 #[test]
 fn every_bad_input_is_refused_cleanly() {
     let cases = cases();
-    assert!(cases.len() >= 80, "{} cases", cases.len());
+    assert!(cases.len() >= 87, "{} cases", cases.len());
     let mut failures = Vec::new();
     for (name, files, args, needles) in cases {
         let dir = tempfile::tempdir().unwrap();
