@@ -116,10 +116,10 @@ pub enum Cmd {
         /// Run these vector manifests (JSON files or folders of them) instead of the default suite.
         #[arg(long, value_name = "PATH")]
         vectors: Vec<PathBuf>,
-        /// Random top vectors on Verilator.
+        /// Random top vectors on Verilator (0 skips the random sets).
         #[arg(long, default_value_t = 1_000_000)]
         random: u64,
-        /// Random top vectors on Icarus.
+        /// Random top vectors on Icarus (0 skips the random sets).
         #[arg(long, default_value_t = 100_000)]
         random_icarus: u64,
         #[arg(long, default_value_t = 1)]
@@ -243,6 +243,8 @@ pub enum Cmd {
         #[arg(long)]
         scene: Option<String>,
     },
+    /// Print the bounds on every size and count (the README's Limits table) as Markdown.
+    Limits,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -399,6 +401,15 @@ pub fn run() -> anyhow::Result<()> {
             waves,
             max_errors,
         } => {
+            use crate::limits::{check_count, MAX_RANDOM_VECTORS};
+            check_count("--random", random, 0, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
+            check_count("--random-icarus", random_icarus, 0, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
+            // Stopping after zero mismatches would report nothing about a failing run.
+            check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
+            if let (Some(sz), false) = (&scene_size, no_scenes) {
+                let (w, h) = parse_size(sz)?;
+                check_builtin_renders(w, h)?;
+            }
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
                 random_verilator: random,
@@ -439,9 +450,11 @@ pub fn run() -> anyhow::Result<()> {
             json,
         } => {
             let cfg = pick.resolve()?;
+            let (w, h) = parse_size(&size)?;
+            crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
+            check_builtin_renders(w, h)?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
-            let (w, h) = parse_size(&size)?;
             let scenes = scene_errors(&cfg, w, h)?;
             out!(
                 "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
@@ -461,8 +474,9 @@ pub fn run() -> anyhow::Result<()> {
             work,
         } => {
             let cfg = pick.resolve()?;
-            if !(1..=1024).contains(&max_n) {
-                return Err(Error::Other(format!("--max-n {max_n}: out of range\n  fix: use 1..=1024")).into());
+            crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
+            if area && !crate::sim::have("yosys") {
+                return Err(crate::sim::missing("yosys").into());
             }
             let fm = crate::model::power_unit::PowerFormats {
                 f: cfg.dot_bits,
@@ -471,9 +485,6 @@ pub fn run() -> anyhow::Result<()> {
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
             if area {
-                if !crate::sim::have("yosys") {
-                    return Err(crate::sim::missing("yosys").into());
-                }
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
                 let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs
                     .iter()
@@ -491,10 +502,11 @@ pub fn run() -> anyhow::Result<()> {
             }
         }
         Cmd::Sweep { space, out, work } => {
+            let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
+            crate::names::check(&space.display().to_string(), "file name", &name)?;
             let sp = crate::measure::sweep::Space::load(&space)?;
             let t0 = std::time::Instant::now();
             let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, std::io::stderr().is_terminal())?;
-            let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
             let files = vec![
                 (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),
                 (format!("{name}.json"), serde_json::to_string_pretty(&pts).expect("json")),
@@ -538,6 +550,7 @@ pub fn run() -> anyhow::Result<()> {
             };
             out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
         }
+        Cmd::Limits => out!("{}", crate::limits::markdown()),
     }
     Ok(())
 }
@@ -557,10 +570,15 @@ fn scenes(show: Option<String>) -> Result<()> {
 
 /// Parse `WxH`.
 pub fn parse_size(s: &str) -> Result<(u32, u32)> {
-    let bad = || Error::Other(format!("--size {s}: expected WxH with 1..=16384 pixels per side, e.g. 512x384"));
+    let max = crate::limits::MAX_IMAGE_SIDE;
+    let bad = || {
+        Error::Other(format!(
+            "--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"
+        ))
+    };
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+    if w == 0 || h == 0 || w > max || h > max {
         return Err(bad());
     }
     Ok((w, h))
@@ -586,7 +604,11 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
         Some(sz) => parse_size(sz)?,
         None => (s.size[0], s.size[1]),
     };
-    std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
+    crate::names::check(&s.file, "name", &s.name)?;
+    crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    if rtl {
+        crate::sim::require(crate::sim::Sim::Verilator)?;
+    }
     let t0 = std::time::Instant::now();
     let img = crate::render::render(&s, &cfg, w, h, std::io::stderr().is_terminal())?;
     let secs = t0.elapsed().as_secs_f64();
@@ -671,16 +693,11 @@ pub fn rom_files(
     cube: usize,
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
+    use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
     use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
     let n = shininess.unwrap_or(cfg.shininess);
-    if n > 1024 {
-        return Err(Error::Other(format!("--shininess {n}: out of range\n  fix: use 0..=1024")));
-    }
-    if !(1..=1024).contains(&cube) {
-        return Err(Error::Other(format!(
-            "--cube-size {cube}: out of range\n  fix: use 1..=1024 texels per face side"
-        )));
-    }
+    check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
+    check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
     let palette = match &pick.scene {
         Some(s) => {
             let scene = Scene::load(s)?;
@@ -731,27 +748,16 @@ fn vectors(
     if let Source::Corners(l) = &mut src {
         *l = level;
     }
-    if shininess.is_some_and(|n| n > 1024) {
-        return Err(Error::Other("--shininess: out of range\n  fix: use 0..=1024".into()));
-    }
     // A scene source renders under the scene's own configuration unless one is given.
     let cfg = match (&src, &pick.config, &pick.scene) {
         (Source::Scene(name), None, None) => Scene::load(name)?.derive_config()?,
         _ => pick.resolve()?,
     };
-    let all = crate::vectors::targets::all_targets();
-    let mut targets: Vec<String> = Vec::new();
-    for t in target {
-        if t == "all" {
-            targets.extend(all.iter().map(|s| s.to_string()));
-        } else if all.contains(&t.as_str()) {
-            targets.push(t.clone());
-        } else {
-            return Err(Error::Other(format!(
-                "--target {t}: unknown\n  fix: one of all, {}",
-                all.join(", ")
-            )));
-        }
+    let targets = crate::vectors::targets::resolve(&cfg, target)?;
+    if size.is_some() && !matches!(src, Source::Scene(_)) {
+        return Err(Error::Other(format!(
+            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
+        )));
     }
     let opts = DumpOptions {
         text: !matches!(format, VecFormat::Bin),
@@ -761,8 +767,9 @@ fn vectors(
         command: invocation(),
         shininess,
     };
+    crate::vectors::check(&cfg, &src, &opts)?;
     let t0 = std::time::Instant::now();
-    let sets = dump(&cfg, &src, &targets, out, &opts)?;
+    let sets = crate::render::output::undo_on_error(out, || dump(&cfg, &src, &targets, out, &opts))?;
     let secs = t0.elapsed().as_secs_f64();
     for s in &sets {
         outln!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display());
@@ -884,9 +891,17 @@ pub fn interface_markdown(cfg: &PipelineConfig) -> String {
 }
 
 fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path) -> Result<()> {
+    use crate::limits::{check_count, MAX_RANDOM_VECTORS};
     if !(minutes > 0.0 && minutes.is_finite()) {
-        return Err(Error::Other(format!("--minutes {minutes}: must be a positive number")));
+        return Err(Error::Other(format!(
+            "--minutes {minutes}: must be a positive number\n  fix: e.g. --minutes 10"
+        )));
     }
+    if let Some(c) = configs {
+        check_count("--configs", c, 1, u64::MAX, "")?;
+    }
+    // A testbench over zero vectors proves nothing (and fails).
+    check_count("--random", random, 1, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
     crate::sim::require(crate::sim::Sim::Verilator)?;
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
     let mut rng = crate::vectors::rng::SplitMix64(seed);
@@ -948,6 +963,15 @@ pub type SceneError = (
     crate::measure::image_metrics::ImageError,
     crate::measure::image_metrics::ImageError,
 );
+
+/// Refuse a size at which some built-in scene cannot be rendered, before any is.
+fn check_builtin_renders(w: u32, h: u32) -> Result<()> {
+    for (name, _) in builtin::ALL {
+        let s = Scene::load(name)?;
+        crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    }
+    Ok(())
+}
 
 /// Image error of every built-in scene that fits `cfg`'s light slots.
 pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {

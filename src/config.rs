@@ -148,14 +148,14 @@ impl PipelineConfig {
     /// Parse a TOML config; `file` names it in errors.
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
         let cfg: PipelineConfig =
-            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "see `gbump config --show` for every field with its default"))?;
+            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))?;
         cfg.validate(file)?;
         Ok(cfg)
     }
 
     /// Load from a file.
     pub fn load(path: &std::path::Path) -> Result<PipelineConfig> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = crate::limits::read_text(path)?;
         Self::from_toml(&path.display().to_string(), &text)
     }
 

@@ -5,16 +5,56 @@ use assert_cmd::Command;
 use std::path::Path;
 
 const WALL: &str = include_str!("../scenes/cg_wall_front.toml");
+const TORUS: &str = include_str!("../scenes/torus_caps.toml");
 
 /// (case, files to create, arguments, substrings the error must contain)
-type Case = (&'static str, Vec<(&'static str, String)>, Vec<&'static str>, Vec<&'static str>);
+type Case = (&'static str, Vec<(&'static str, Vec<u8>)>, Vec<&'static str>, Vec<&'static str>);
 
-fn scene(edit: impl Fn(&str) -> String) -> Vec<(&'static str, String)> {
-    vec![("s.toml", edit(WALL))]
+fn scene(edit: impl Fn(&str) -> String) -> Vec<(&'static str, Vec<u8>)> {
+    vec![("s.toml", edit(WALL).into())]
 }
 
-fn cfg(text: &str) -> Vec<(&'static str, String)> {
-    vec![("c.toml", text.to_string())]
+fn cfg(text: &str) -> Vec<(&'static str, Vec<u8>)> {
+    vec![("c.toml", text.into())]
+}
+
+fn space(text: &str) -> Vec<(&'static str, Vec<u8>)> {
+    vec![("sp.toml", text.into())]
+}
+
+fn sweep() -> Vec<&'static str> {
+    vec!["sweep", "--space", "sp.toml", "--out", "out", "--work", "w"]
+}
+
+/// A PNG of little more than a header declaring `w`×`h` greyscale pixels: tiny on disk, huge decoded.
+fn png_header(w: u32, h: u32) -> Vec<u8> {
+    let crc = |bytes: &[u8]| {
+        let mut c = 0xffff_ffffu32;
+        for b in bytes {
+            c ^= *b as u32;
+            for _ in 0..8 {
+                c = if c & 1 == 1 { 0xedb8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+        }
+        !c
+    };
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend(w.to_be_bytes());
+    ihdr.extend(h.to_be_bytes());
+    ihdr.extend([8, 0, 0, 0, 0]);
+    let mut v = b"\x89PNG\r\n\x1a\n".to_vec();
+    v.extend(13u32.to_be_bytes());
+    v.extend(&ihdr);
+    v.extend(crc(&ihdr).to_be_bytes());
+    // A first IDAT chunk ends the header; its (truncated) zlib stream is never reached.
+    let idat = b"IDAT\x78\x9c";
+    v.extend(2u32.to_be_bytes());
+    v.extend(idat);
+    v.extend(crc(idat).to_be_bytes());
+    v.extend(0u32.to_be_bytes());
+    v.extend(b"IEND");
+    v.extend(crc(b"IEND").to_be_bytes());
+    v
 }
 
 fn render(extra: &[&'static str]) -> Vec<&'static str> {
@@ -218,7 +258,7 @@ fn cases() -> Vec<Case> {
         (
             "corrupt PNG height map",
             vec![
-                ("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"bad.png\" }", 1)),
+                ("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"bad.png\" }", 1).into()),
                 ("bad.png", "\u{89}PNG not really".into()),
             ],
             render(&[]),
@@ -238,7 +278,7 @@ fn cases() -> Vec<Case> {
         ),
         (
             "empty scene file",
-            vec![("s.toml", String::new())],
+            vec![("s.toml", Vec::new())],
             render(&[]),
             vec!["s.toml:", "missing field"],
         ),
@@ -360,6 +400,220 @@ fn cases() -> Vec<Case> {
             vec!["fuzz", "--minutes=-1", "--work", "out"],
             vec!["--minutes", "positive"],
         ),
+        // A name that becomes part of a path (issue item 5).
+        (
+            "scene name climbs out of --out",
+            scene(r("name = \"cg_wall_front\"", "name = \"../escaped\"")),
+            render(&[]),
+            vec!["s.toml:3", "`name`", "../escaped", "fix:"],
+        ),
+        (
+            "absolute scene name",
+            scene(r("name = \"cg_wall_front\"", "name = \"/tmp/gbump-absolute-name\"")),
+            render(&[]),
+            vec!["s.toml:3", "`name`", "fix:"],
+        ),
+        (
+            "hidden scene name",
+            scene(r("name = \"cg_wall_front\"", "name = \".hidden\"")),
+            render(&[]),
+            vec!["s.toml:3", "`name`"],
+        ),
+        (
+            "scene file stem with a space as a vector source",
+            vec![("my scene.toml", WALL.into())],
+            vec!["vectors", "--source", "scene:my scene.toml", "--target", "top", "--out", "out"],
+            vec!["scene:NAME", "my scene", "fix:"],
+        ),
+        (
+            "sweep space with a hidden stem",
+            vec![(".sp.toml", "[grid]\nlights = [1, 2]\n".into())],
+            vec!["sweep", "--space", ".sp.toml", "--out", "out", "--work", "w"],
+            vec![".sp.toml", "file name", "fix:"],
+        ),
+        // Sizes and counts bounded before allocating (item 6).
+        (
+            "PNG header declaring 12000x12000",
+            vec![
+                ("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"big.png\" }", 1).into()),
+                ("big.png", png_header(12000, 12000)),
+            ],
+            render(&[]),
+            vec!["big.png", "12000x12000", "MAX_BUMP_SIDE"],
+        ),
+        (
+            "teapot at the largest segments",
+            scene(|t| {
+                t.replacen("kind = \"plane\", size = [4.0, 2.0]", "kind = \"teapot\"", 1)
+                    .replacen("segments = [16, 8]", "segments = [1024, 1024]", 1)
+            }),
+            render(&[]),
+            vec!["s.toml", "MAX_TRIANGLES", "segments"],
+        ),
+        (
+            "--size 16384x16384",
+            vec![],
+            vec!["render", "--scene", "cg_wall_front", "--size", "16384x16384", "--out", "out"],
+            vec!["--size", "MAX_IMAGE_SIDE"],
+        ),
+        (
+            "--size 8192x8192 does not fit in memory",
+            vec![],
+            vec!["render", "--scene", "cg_wall_front", "--size", "8192x8192", "--out", "out"],
+            vec!["8192x8192", "GiB", "MAX_MEMORY_BYTES", "fix:"],
+        ),
+        (
+            "sweep grid of 423360 points",
+            space("[grid]\nlights = [1, 2, 3, 4, 5, 6, 7, 8]\nnormal_bits = [3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]\nlh_bits = [4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24]\ndot_bits = [2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]\nk_bits = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]\n"),
+            sweep(),
+            vec!["sp.toml", "423360", "MAX_SWEEP_POINTS"],
+        ),
+        (
+            "config read from /dev/urandom",
+            vec![],
+            vec!["render", "--scene", "cg_wall_front", "--config", "/dev/urandom", "--out", "out"],
+            vec!["/dev/urandom", "MAX_INPUT_BYTES"],
+        ),
+        (
+            "scene read from /dev/urandom",
+            vec![],
+            vec!["render", "--scene", "/dev/urandom", "--out", "out"],
+            vec!["/dev/urandom", "MAX_INPUT_BYTES"],
+        ),
+        (
+            "error --random beyond its memory bound",
+            vec![],
+            vec!["error", "--random", "10000000000"],
+            vec!["--random", "MAX_ERROR_STIMULI"],
+        ),
+        (
+            "exhaustive texture_modulate at 12-bit colour",
+            cfg("colour_bits = 12\n"),
+            vec!["vectors", "--source", "exhaustive:texture_modulate", "--config", "c.toml", "--out", "out"],
+            vec!["MAX_EXHAUSTIVE_VECTORS", "random:N"],
+        ),
+        // Every input checked before the first expensive step or output (item 7).
+        (
+            "sweep of an unknown scene",
+            space("scene = \"nosuchscene\"\n[grid]\nlights = [1, 2]\n"),
+            sweep(),
+            vec!["sp.toml:1", "`scene`", "nosuchscene", "gbump scenes"],
+        ),
+        (
+            "error --size 0x0",
+            vec![],
+            vec!["error", "--size", "0x0", "--random", "10"],
+            vec!["--size 0x0", "WxH"],
+        ),
+        (
+            "report with a missing space",
+            vec![],
+            vec!["report", "--space", "nosuch.toml", "--out", "out", "--work", "w"],
+            vec!["nosuch.toml", "check the path"],
+        ),
+        // Zero and empty refused before anything is written (item 8).
+        (
+            "error --random 0",
+            vec![],
+            vec!["error", "--random", "0"],
+            vec!["--random", "0 is below 1"],
+        ),
+        (
+            "exhaustive power table without a specular path",
+            cfg("specular = false\n"),
+            vec!["vectors", "--source", "exhaustive:power_table", "--config", "c.toml", "--out", "out"],
+            vec!["power_table", "specular = false", "fix:"],
+        ),
+        (
+            "target absent from the configuration",
+            cfg("diffuse = false\n"),
+            vec!["vectors", "--source", "corners", "--target", "diffuse_blend", "--config", "c.toml", "--out", "out"],
+            vec!["--target diffuse_blend", "diffuse = false"],
+        ),
+        (
+            "the same target twice",
+            vec![],
+            vec!["vectors", "--source", "corners", "--target", "top", "--target", "top", "--out", "out"],
+            vec!["--target top", "second time"],
+        ),
+        (
+            "a target already in all",
+            vec![],
+            vec!["vectors", "--source", "random:10", "--target", "all", "--target", "bump_fetch", "--out", "out"],
+            vec!["--target bump_fetch", "second time"],
+        ),
+        (
+            "fuzz --configs 0",
+            vec![],
+            vec!["fuzz", "--configs", "0", "--work", "w"],
+            vec!["--configs", "0 is below 1"],
+        ),
+        (
+            "fuzz --random 0",
+            vec![],
+            vec!["fuzz", "--random", "0", "--work", "w"],
+            vec!["--random", "0 is below 1"],
+        ),
+        (
+            "regress --max-errors 0",
+            vec![],
+            vec!["regress", "--max-errors", "0", "--work", "w"],
+            vec!["--max-errors", "0 is below 1"],
+        ),
+        // Messages point at the right line and name the right file (item 9).
+        (
+            "wrong type in a scene's [pipeline]",
+            scene(r("[camera]", "[pipeline]\nlights = \"two\"\n\n[camera]")),
+            render(&[]),
+            vec!["s.toml:9", "pipeline.lights", "invalid type"],
+        ),
+        (
+            "out-of-range value in a scene's [pipeline]",
+            scene(r("[camera]", "[pipeline]\nshininess = 8\ndot_bits = 99\n\n[camera]")),
+            render(&[]),
+            vec!["s.toml:10", "pipeline.dot_bits", "2..=16"],
+        ),
+        (
+            "[pipeline] lights below the scene's bump lights",
+            vec![("t.toml", TORUS.replacen("[camera]", "[pipeline]\nlights = 1\n\n[camera]", 1).into())],
+            vec!["render", "--scene", "t.toml", "--size", "16x16", "--out", "out"],
+            vec!["t.toml:9", "pipeline.lights", "(t.toml) has 2 bump lights", "lights = 2"],
+        ),
+        (
+            "wrong type in a sweep grid",
+            space("scene = \"torus_caps\"\n\n[grid]\nlights = [1, 2]\nnormal_bits = [6, \"eight\"]\n"),
+            sweep(),
+            vec!["sp.toml:5", "grid.normal_bits", "invalid type"],
+        ),
+        (
+            "unknown field in a sweep base",
+            space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
+            sweep(),
+            vec!["sp.toml:3", "base.bogus", "unknown field"],
+        ),
+        (
+            "manifest naming a file outside its folder",
+            vec![(
+                "m.json",
+                include_str!("../vectors/corners_top.json")
+                    .replacen("\"name\": \"corners_top.hex\"", "\"name\": \"../corners_top.hex\"", 1)
+                    .into(),
+            )],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
+            vec!["m.json", "files[].name", "../corners_top.hex"],
+        ),
+        (
+            "regress --scene-size 8192x8192",
+            vec![],
+            vec!["regress", "--scene-size", "8192x8192", "--work", "w"],
+            vec!["8192x8192", "MAX_MEMORY_BYTES"],
+        ),
+        (
+            "--size for a source without an image",
+            vec![],
+            vec!["vectors", "--source", "corners", "--size", "64x64", "--out", "out"],
+            vec!["--size", "scene:NAME"],
+        ),
         (
             "output folder is a file",
             vec![("out", "I am a file".into())],
@@ -390,30 +644,40 @@ fn leftovers(dir: &Path) -> Vec<String> {
 #[test]
 fn every_bad_input_is_refused_cleanly() {
     let cases = cases();
-    assert!(cases.len() >= 40, "{} cases", cases.len());
+    assert!(cases.len() >= 87, "{} cases", cases.len());
     let mut failures = Vec::new();
     for (name, files, args, needles) in cases {
         let dir = tempfile::tempdir().unwrap();
+        // The case's folder is the parent of `out`: anything new beside `out` escaped it.
+        let root = dir.path().join("case");
+        std::fs::create_dir(&root).unwrap();
         for (f, text) in &files {
-            std::fs::write(dir.path().join(f), text).unwrap();
+            std::fs::write(root.join(f), text).unwrap();
         }
         let out = Command::cargo_bin("gbump")
             .unwrap()
             .args(&args)
-            .current_dir(dir.path())
+            .current_dir(&root)
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        let escaped = std::fs::read_dir(dir.path())
+            .unwrap()
+            .chain(std::fs::read_dir(&root).unwrap())
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "case" && n != "out" && !files.iter().any(|f| f.0 == n));
         let problems: Vec<String> = [
             (out.status.success(), "exit status 0".to_string()),
             (err.contains("panicked"), "panic".to_string()),
             (!err.contains("error:"), "no error message".to_string()),
+            (!out.stdout.is_empty(), "printed results before refusing".to_string()),
         ]
         .into_iter()
         .filter(|(bad, _)| *bad)
         .map(|(_, m)| m)
         .chain(needles.iter().filter(|n| !err.contains(*n)).map(|n| format!("message lacks `{n}`")))
-        .chain(leftovers(dir.path()).into_iter().map(|f| format!("left output behind: {f}")))
+        .chain(leftovers(&root).into_iter().map(|f| format!("left output behind: {f}")))
+        .chain(escaped.map(|f| format!("wrote outside the case folder: {f}")))
         .collect();
         if !problems.is_empty() {
             failures.push(format!("{name}: {}\n    stderr: {}", problems.join("; "), err.trim()));

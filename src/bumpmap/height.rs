@@ -98,12 +98,7 @@ impl HeightSource {
             }
             HeightSource::Png { path } => {
                 let p = if path.is_absolute() { path.clone() } else { base.join(path) };
-                let img = image::open(&p)
-                    .map_err(|e| Error::Image {
-                        path: p.clone(),
-                        msg: e.to_string(),
-                    })?
-                    .to_luma16();
+                let img = read_png(&p)?.to_luma16();
                 let (w, h) = (img.width() as usize, img.height() as usize);
                 if w < 2 || h < 2 {
                     return Err(Error::Image {
@@ -119,4 +114,31 @@ impl HeightSource {
             }
         })
     }
+}
+
+/// Decode a height-map image, refusing from its header alone one larger than
+/// `MAX_BUMP_SIDE` (a small file can declare a picture of gigabytes).
+fn read_png(p: &std::path::Path) -> Result<image::DynamicImage> {
+    use crate::limits::MAX_BUMP_SIDE;
+    let bad = |msg: String| Error::Image {
+        path: p.to_path_buf(),
+        msg,
+    };
+    let open = || {
+        image::ImageReader::open(p)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| bad(e.to_string()))
+    };
+    let (w, h) = open()?.into_dimensions().map_err(|e| bad(e.to_string()))?;
+    if w > MAX_BUMP_SIDE || h > MAX_BUMP_SIDE {
+        return Err(bad(format!(
+            "its header declares {w}x{h} texels, more than MAX_BUMP_SIDE = {MAX_BUMP_SIDE} per side (scale it down)"
+        )));
+    }
+    let mut r = open()?;
+    let mut lim = image::Limits::default();
+    lim.max_image_width = Some(MAX_BUMP_SIDE);
+    lim.max_image_height = Some(MAX_BUMP_SIDE);
+    r.limits(lim);
+    r.decode().map_err(|e| bad(e.to_string()))
 }

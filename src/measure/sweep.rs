@@ -45,8 +45,10 @@ pub struct Point {
 }
 
 impl Space {
+    /// Read and check a space: every field name and value type (at its own line), the grid's
+    /// size and the scene, so a sweep never fails after its first Yosys run.
     pub fn load(path: &Path) -> Result<Space> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = crate::limits::read_text(path)?;
         let file = path.display().to_string();
         let s: Space = toml::from_str(&text).map_err(|e| {
             toml_error(
@@ -56,6 +58,8 @@ impl Space {
                 "a sweep space has [base] (optional) and [grid] with arrays of values",
             )
         })?;
+        let spans: Spans = toml::from_str(&text).map_err(|e| toml_error(&file, &text, &e, "check the sweep space"))?;
+        let at = |span: std::ops::Range<usize>| format!("{file}:{}", crate::error::line_col(&text, span.start).0);
         if s.grid.is_empty() {
             return Err(Error::field(
                 &file,
@@ -64,6 +68,47 @@ impl Space {
                 "give at least one field with an array of values",
             ));
         }
+        for (k, v) in &spans.base {
+            check_value(&text, &file, &format!("base.{k}"), k, v.get_ref(), v.span())?;
+        }
+        let mut points: u64 = 1;
+        for (k, v) in &spans.grid {
+            let field = format!("grid.{k}");
+            let vals = v
+                .get_ref()
+                .as_array()
+                .ok_or_else(|| Error::field(&at(v.span()), &field, "not an array", format!("write {k} = [value, value, ...]")))?;
+            if vals.is_empty() {
+                return Err(Error::field(&at(v.span()), &field, "empty array", "give at least one value"));
+            }
+            for x in vals {
+                check_value(&text, &file, &field, k, x, v.span())?;
+            }
+            points = points.saturating_mul(vals.len() as u64);
+        }
+        let max = crate::limits::MAX_SWEEP_POINTS;
+        if points > max {
+            return Err(Error::field(
+                &file,
+                "grid",
+                format!("{points} combinations, more than MAX_SWEEP_POINTS = {max}"),
+                "give fewer values per field, or split the sweep into several spaces",
+            ));
+        }
+        let scene_at = spans.scene.as_ref().map_or(file.clone(), |sp| at(sp.span()));
+        match crate::scene::Scene::load(&s.scene) {
+            Err(Error::UnknownScene { name }) => {
+                return Err(Error::field(
+                    &scene_at,
+                    "scene",
+                    format!("unknown scene `{name}`"),
+                    "run `gbump scenes` for the built-in names, or give a path to a .toml scene file",
+                ))
+            }
+            Err(e) => return Err(e),
+            Ok(_) => {}
+        }
+        s.configs(&file)?;
         Ok(s)
     }
 
@@ -110,6 +155,37 @@ impl Space {
             )));
         }
         Ok(out)
+    }
+}
+
+/// The keys of a space with their spans, so errors point at the line of the value.
+#[derive(Deserialize)]
+struct Spans {
+    #[serde(default)]
+    base: std::collections::BTreeMap<String, toml::Spanned<toml::Value>>,
+    #[serde(default)]
+    grid: std::collections::BTreeMap<String, toml::Spanned<toml::Value>>,
+    #[serde(default)]
+    scene: Option<toml::Spanned<String>>,
+}
+
+/// Refuse an unknown field or a value of the wrong type at its own line; a value out of range
+/// is left to the grid (it may be valid beside another field's value, or is skipped).
+fn check_value(text: &str, file: &str, field: &str, key: &str, v: &toml::Value, span: std::ops::Range<usize>) -> Result<()> {
+    let mut t = toml::Table::new();
+    t.insert(key.to_string(), v.clone());
+    match PipelineConfig::from_toml(file, &toml::to_string(&t).expect("table")) {
+        Err(Error::Input { msg, fix, .. }) => {
+            let (line, col) = crate::error::line_col(text, span.start);
+            Err(Error::Input {
+                file: file.to_string(),
+                line,
+                col,
+                msg: format!("`{field}`: {msg}"),
+                fix,
+            })
+        }
+        _ => Ok(()),
     }
 }
 

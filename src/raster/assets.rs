@@ -4,7 +4,7 @@
 use super::tri_state::{tri_states, TriState};
 use crate::bumpmap::{NormalMap, StoredMap};
 use crate::config::PipelineConfig;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::model::PowerTable;
 use crate::scene::mesh::{tessellate, Mesh};
 use crate::scene::{Camera, Object, Scene, Texture};
@@ -29,11 +29,7 @@ pub struct Prepared<'a> {
 
 impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, cfg: &'a PipelineConfig, w: u32, h: u32) -> Result<Prepared<'a>> {
-        if w == 0 || h == 0 || w > 16384 || h > 16384 {
-            return Err(Error::Other(format!(
-                "image size {w}x{h} is out of range\n  fix: use 1..=16384 pixels per side"
-            )));
-        }
+        crate::limits::check_render(&scene.file, w, h, scene.triangles())?;
         let camera = Camera::new(&scene.camera, w, h);
         let mut objects = Vec::new();
         let mut tables = BTreeMap::new();

@@ -35,6 +35,28 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
+/// Run `f`, which writes into `dir`; if it fails, remove every entry it added to `dir`, so a
+/// failure midway (a second set, a full disk) leaves nothing that looks like a result.
+pub fn undo_on_error<T>(dir: &Path, f: impl FnOnce() -> Result<T>) -> Result<T> {
+    let list = || -> std::collections::BTreeSet<std::ffi::OsString> {
+        std::fs::read_dir(dir)
+            .map(|d| d.filter_map(|e| e.ok().map(|e| e.file_name())).collect())
+            .unwrap_or_default()
+    };
+    let before = list();
+    let existed = dir.exists();
+    let r = f();
+    if r.is_err() {
+        for name in list().difference(&before) {
+            let _ = std::fs::remove_file(dir.join(name));
+        }
+        if !existed {
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
+    r
+}
+
 /// Encode 8-bit RGB pixels as PNG.
 pub fn encode_png(w: u32, h: u32, rgb: &[[u8; 3]]) -> Result<Vec<u8>> {
     use image::ImageEncoder;

@@ -68,6 +68,16 @@ fn grid(segs: [u32; 2], uv_scale: [f64; 2], f: impl Fn(f64, f64) -> (DVec3, DVec
     }
 }
 
+/// Triangles `tessellate` makes of `o`, counted before any is built (see `limits.rs`).
+pub fn triangle_count(o: &Object) -> u64 {
+    let [su, sv] = o.segments.map(u64::from);
+    match &o.shape {
+        Shape::Cylinder { sides, .. } if *sides > 0 => 2 * u64::from(*sides) * sv,
+        Shape::Teapot => 32 * 2 * su * sv,
+        _ => 2 * su * sv,
+    }
+}
+
 /// Tessellate an object and place it in the world.
 pub fn tessellate(o: &Object) -> Mesh {
     let mut m = Mesh::default();

@@ -44,6 +44,17 @@ pub struct Scene {
     /// Where the scene came from, for error messages.
     #[serde(skip)]
     pub file: String,
+    /// Line of each `[pipeline]` key (and of the table, under ""), for error messages.
+    #[serde(skip)]
+    pub pipeline_lines: std::collections::BTreeMap<String, usize>,
+}
+
+/// The `[pipeline]` table with spans: its overrides are checked after parsing, so their
+/// errors must be mapped back to the scene file's own lines.
+#[derive(Deserialize)]
+struct PipelineSpans {
+    #[serde(default)]
+    pipeline: Option<toml::Spanned<std::collections::BTreeMap<String, toml::Spanned<toml::Value>>>>,
 }
 
 fn default_size() -> [u32; 2] {
@@ -215,6 +226,13 @@ impl Scene {
             toml::from_str(text).map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
         s.base = base.to_path_buf();
         s.file = file.to_string();
+        if let Ok(PipelineSpans { pipeline: Some(t) }) = toml::from_str(text) {
+            let line = |at: usize| crate::error::line_col(text, at).0;
+            s.pipeline_lines.insert(String::new(), line(t.span().start));
+            for (k, v) in t.get_ref() {
+                s.pipeline_lines.insert(k.clone(), line(v.span().start));
+            }
+        }
         validate::validate(&s, text)?;
         Ok(s)
     }
@@ -226,12 +244,17 @@ impl Scene {
         }
         let p = Path::new(name_or_path);
         if p.extension().is_some_and(|e| e == "toml") || p.exists() {
-            let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
+            let text = crate::limits::read_text(p)?;
             return Scene::from_toml(name_or_path, &text, p.parent().unwrap_or(Path::new(".")));
         }
         Err(Error::UnknownScene {
             name: name_or_path.to_string(),
         })
+    }
+
+    /// Triangles of the whole scene once tessellated.
+    pub fn triangles(&self) -> u64 {
+        self.objects.iter().map(mesh::triangle_count).sum()
     }
 
     /// Lights that act on the bump map, in slot order.
@@ -254,9 +277,60 @@ impl Scene {
                 base.insert(k.clone(), v.clone());
             }
             let text = toml::to_string(&base).expect("table serialises");
-            cfg = PipelineConfig::from_toml(&format!("{} [pipeline]", self.file), &text)?;
+            cfg = PipelineConfig::from_toml(&self.file, &text).map_err(|e| self.at_pipeline_line(e))?;
+            let at = self.pipeline_at("lights");
+            self.check_config(&cfg, &at).map_err(|e| match e {
+                Error::Field { file, field, msg, fix } => Error::Field {
+                    file,
+                    field: format!("pipeline.{field}"),
+                    msg,
+                    fix,
+                },
+                e => e,
+            })?;
         }
         Ok(cfg)
+    }
+
+    /// `file:line` of `key` in `[pipeline]` (of the table when the key is not there).
+    fn pipeline_at(&self, key: &str) -> String {
+        let line = self.pipeline_lines.get(key).or_else(|| self.pipeline_lines.get(""));
+        line.map_or(self.file.clone(), |l| format!("{}:{l}", self.file))
+    }
+
+    /// An override's error, which names a line of the merged table, moved to the scene's line.
+    fn at_pipeline_line(&self, e: Error) -> Error {
+        match e {
+            Error::Input { msg, fix, .. } => {
+                // The merged table's line says nothing here: find the override that fails alone.
+                let alone = |k: &String, v: &toml::Value| {
+                    let t = toml::Table::from_iter([(k.clone(), v.clone())]);
+                    matches!(
+                        PipelineConfig::from_toml("", &toml::to_string(&t).expect("table")),
+                        Err(Error::Input { .. })
+                    )
+                };
+                let key = self.pipeline.iter().flatten().find(|(k, v)| alone(k, v));
+                let key = key.map_or(String::new(), |(k, _)| k.clone());
+                Error::Field {
+                    file: self.pipeline_at(&key),
+                    field: if key.is_empty() {
+                        "pipeline".into()
+                    } else {
+                        format!("pipeline.{key}")
+                    },
+                    msg,
+                    fix,
+                }
+            }
+            Error::Field { field, msg, fix, .. } => Error::Field {
+                file: self.pipeline_at(&field),
+                field: format!("pipeline.{field}"),
+                msg,
+                fix,
+            },
+            e => e,
+        }
     }
 
     /// Check that `cfg` can render this scene.
@@ -267,8 +341,8 @@ impl Scene {
                 cfg_file,
                 "lights",
                 format!(
-                    "scene `{}` has {n} bump lights but the pipeline has {} light slots",
-                    self.name, cfg.lights
+                    "scene `{}` ({}) has {n} bump lights but the pipeline has {} light slots",
+                    self.name, self.file, cfg.lights
                 ),
                 format!("set lights = {n} or more"),
             ));

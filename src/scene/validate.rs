@@ -2,6 +2,7 @@
 
 use super::{LightKind, Scene, Shape, Texture};
 use crate::error::{Error, Result};
+use crate::limits::{MAX_BUMP_SIDE, MAX_CYLINDER_SIDES, MAX_IMAGE_SIDE, MAX_SEGMENTS, MAX_SHININESS, MAX_TRIANGLES};
 
 /// Line (1-based) where `key` is assigned inside the `index`-th `[[array]]` table, if found.
 fn locate(text: &str, array: Option<(&str, usize)>, key: &str) -> Option<usize> {
@@ -69,14 +70,19 @@ impl Checker<'_> {
 
 pub fn validate(s: &Scene, text: &str) -> Result<()> {
     let c = Checker { s, text };
+    // The name becomes part of every output file's name.
+    if !crate::names::is_safe(&s.name) {
+        let at = locate(text, None, "name").map_or(String::new(), |l| format!(":{l}"));
+        return crate::names::check(&format!("{}{at}", s.file), "name", &s.name);
+    }
     for (i, v) in s.size.iter().enumerate() {
-        if *v == 0 || *v > 8192 {
+        if *v == 0 || *v > MAX_IMAGE_SIDE {
             return Err(c.fail(
                 None,
                 "size",
                 &format!("size[{i}]"),
                 format!("{v} is out of range"),
-                "use 1..=8192 pixels",
+                &format!("use 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
             ));
         }
     }
@@ -135,13 +141,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             Shape::Cylinder { radius, height, sides } => {
                 pos("radius", *radius)?;
                 pos("height", *height)?;
-                if *sides == 1 || *sides == 2 || *sides > 4096 {
+                if *sides == 1 || *sides == 2 || *sides > MAX_CYLINDER_SIDES {
                     return Err(c.fail(
                         a,
                         "sides",
                         &format!("{p}.shape.sides"),
                         format!("{sides} sides"),
-                        "use 0 (smooth) or 3..=4096",
+                        &format!("use 0 (smooth) or 3..={MAX_CYLINDER_SIDES} (MAX_CYLINDER_SIDES)"),
                     ));
                 }
             }
@@ -152,13 +158,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             Shape::Teapot => {}
         }
         for (k, v) in o.segments.iter().enumerate() {
-            if *v == 0 || *v > 1024 {
+            if *v == 0 || *v > MAX_SEGMENTS {
                 return Err(c.fail(
                     a,
                     "segments",
                     &format!("{p}.segments[{k}]"),
                     format!("{v} is out of range"),
-                    "use 1..=1024",
+                    &format!("use 1..={MAX_SEGMENTS} (MAX_SEGMENTS)"),
                 ));
             }
         }
@@ -167,13 +173,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         c.num(a, "scale", &format!("{p}.scale"), o.scale, 1e-6, 1e6)?;
         c.num(a, "uv_scale", &format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
         c.num(a, "uv_scale", &format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
-        if o.shininess > 1024 {
+        if o.shininess > MAX_SHININESS {
             return Err(c.fail(
                 a,
                 "shininess",
                 &format!("{p}.shininess"),
                 format!("{} is out of range", o.shininess),
-                "use 0..=1024",
+                &format!("use 0..={MAX_SHININESS} (MAX_SHININESS)"),
             ));
         }
         match &o.texture {
@@ -187,13 +193,13 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             }
         }
         let b = &o.bump;
-        if b.size < 2 || b.size > 4096 {
+        if b.size < 2 || b.size > MAX_BUMP_SIDE {
             return Err(c.fail(
                 a,
                 "size",
                 &format!("{p}.bump.size"),
                 format!("{} is out of range", b.size),
-                "use 2..=4096 texels",
+                &format!("use 2..={MAX_BUMP_SIDE} texels (MAX_BUMP_SIDE)"),
             ));
         }
         c.num(a, "strength", &format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
@@ -234,6 +240,16 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             }
             H::Flat | H::Png { .. } => {}
         }
+    }
+    let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
+    if tris > MAX_TRIANGLES {
+        return Err(c.fail(
+            None,
+            "segments",
+            "objects[*].segments",
+            format!("the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}"),
+            "lower `segments` (the teapot makes 64 triangles per segment pair: 32 patches)",
+        ));
     }
     Ok(())
 }

@@ -97,6 +97,10 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         )));
     }
     let files = [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)];
+    // A manifest names files beside itself, never elsewhere.
+    for f in files.into_iter().flatten() {
+        crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
+    }
     for f in files.into_iter().flatten() {
         let p = dir.join(&f.name);
         let (bytes, sha) = sha256_file(&p)?;

@@ -26,17 +26,26 @@ impl Source {
         };
         Ok(match s.split_once(':') {
             None if s == "corners" => Source::Corners(1),
-            Some(("scene", n)) if !n.is_empty() => Source::Scene(n.to_string()),
+            Some(("scene", n)) if !n.is_empty() => {
+                let src = Source::Scene(n.to_string());
+                // The scene file's stem names every file of the set.
+                crate::names::check("--source", "scene:NAME", &src.stem())?;
+                src
+            }
             Some(("random", n)) => {
                 let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
-                if v == 0 || v > 1_000_000_000 {
+                let max = crate::limits::MAX_RANDOM_VECTORS;
+                if v == 0 || v > max {
                     return Err(Error::Other(format!(
-                        "--source {s}: count out of range\n  fix: use random:N with 1 <= N <= 10^9"
+                        "--source {s}: count out of range\n  fix: use random:N with 1 <= N <= {max} (MAX_RANDOM_VECTORS)"
                     )));
                 }
                 Source::Random(v)
             }
-            Some(("exhaustive", u)) => Source::Exhaustive(u.to_string()),
+            Some(("exhaustive", u)) => {
+                crate::names::check("--source", "exhaustive:UNIT", u)?;
+                Source::Exhaustive(u.to_string())
+            }
             _ => return Err(bad()),
         })
     }
@@ -347,6 +356,18 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
 pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
     let c = cfg.colour_max() as i64;
     let nm = (1i64 << cfg.normal_bits) - 1;
+    let count = match unit {
+        "power_table" => (1u64 << cfg.dot_bits) + 1,
+        "texture_modulate" => (c as u64 + 1).pow(2),
+        "bump_fetch" => nm as u64 + 1,
+        _ => 0,
+    };
+    let max = crate::limits::MAX_EXHAUSTIVE_VECTORS;
+    if count > max {
+        return Err(Error::Other(format!(
+            "exhaustive:{unit}: {count} vectors under this configuration, more than MAX_EXHAUSTIVE_VECTORS = {max}\n  fix: use random:N for this configuration"
+        )));
+    }
     Ok(match unit {
         "power_table" => (0..=(1i64 << cfg.dot_bits)).map(|x| UnitStim { unit: "power_table", inputs: vec![vec![x]] }).collect(),
         "texture_modulate" => (0..=c)

@@ -179,3 +179,42 @@ pub fn eval_top(cfg: &PipelineConfig, table: &PowerTable, s: &TopStim) -> Shaded
 pub fn all_targets() -> Vec<&'static str> {
     std::iter::once("top").chain(UNITS.iter().map(|u| u.name)).collect()
 }
+
+/// The `--target` arguments as target names: `all` is every target `cfg` has; a named target
+/// must exist in `cfg`'s hardware and be named once, so no set is silently empty or doubled.
+pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Vec<String>> {
+    use crate::error::Error;
+    let all = all_targets();
+    let mut out: Vec<String> = Vec::new();
+    for t in args {
+        let named: Vec<&str> = if t == "all" {
+            all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
+        } else if !all.contains(&t.as_str()) {
+            return Err(Error::Other(format!(
+                "--target {t}: unknown\n  fix: one of all, {}",
+                all.join(", ")
+            )));
+        } else if !super::writer::unit_present(cfg, t) {
+            let field = if t == "diffuse_blend" { "diffuse" } else { "specular" };
+            return Err(Error::Other(format!(
+                "--target {t}: the configuration has no {t} ({field} = false)\n  fix: drop --target {t}, or set {field} = true in the configuration"
+            )));
+        } else {
+            vec![t.as_str()]
+        };
+        for n in named {
+            if out.iter().any(|o| o == n) {
+                return Err(Error::Other(format!(
+                    "--target {t}: names `{n}` a second time\n  fix: give each target once (`all` already includes every unit and top)"
+                )));
+            }
+            out.push(n.to_string());
+        }
+    }
+    if out.is_empty() {
+        return Err(Error::Other(
+            "--target: no target\n  fix: give --target all, top or a unit name".into(),
+        ));
+    }
+    Ok(out)
+}

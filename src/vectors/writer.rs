@@ -263,14 +263,38 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
     })
 }
 
-/// Dump `src` for `targets` ("top" and unit names) into `dir`.
-pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
+/// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
+pub fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
     if cfg.palette {
         return Err(Error::Other(
             "palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)"
                 .into(),
         ));
     }
+    if let Some(n) = o.shininess {
+        crate::limits::check_count("--shininess", n.into(), 0, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
+    }
+    match src {
+        Source::Exhaustive(unit) if crate::units::unit(unit).is_some() && !unit_present(cfg, unit) => {
+            let field = if unit == "diffuse_blend" { "diffuse" } else { "specular" };
+            Err(Error::Other(format!(
+                "exhaustive:{unit}: the configuration has no {unit} ({field} = false), so the set would be empty\n  fix: set {field} = true, or sweep a unit the configuration has"
+            )))
+        }
+        Source::Exhaustive(unit) => exhaustive(cfg, unit).map(|_| ()),
+        Source::Scene(name) => {
+            let s = crate::scene::Scene::load(name)?;
+            s.check_config(cfg, "pipeline config")?;
+            let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
+            crate::limits::check_render(&s.file, w, h, s.triangles())
+        }
+        Source::Corners(_) | Source::Random(_) => Ok(()),
+    }
+}
+
+/// Dump `src` for `targets` ("top" and unit names) into `dir`.
+pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
+    check(cfg, src, o)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
     let mut out = Vec::new();
@@ -359,6 +383,13 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                 let table = PowerTable::build(cfg, n);
                 let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
                 write_tops(cfg, &table, &stims, &mut ws, true)?;
+                // Every set of the group must hold vectors before any is finished.
+                if let Some(w) = ws.iter().find(|w| w.count == 0) {
+                    return Err(Error::Other(format!(
+                        "{}: no vectors for target {}\n  fix: choose a source that exercises it",
+                        w.stem, w.target
+                    )));
+                }
                 for w in ws {
                     out.push(w.finish(dir, cfg, src, o, n)?);
                 }

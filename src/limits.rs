@@ -1,0 +1,186 @@
+//! Every bound on a size or a count that gbump checks before it allocates, in one place, so
+//! that a hostile or mistyped input is refused with the limit's name instead of exhausting
+//! memory. The README's "Limits" table is generated from [`ALL`] (`gbump limits`).
+
+use crate::error::{Error, Result};
+use std::io::Read;
+use std::path::Path;
+
+/// Pixels per side of a rendered image (`--size`, a scene's `size`).
+pub const MAX_IMAGE_SIDE: u32 = 8192;
+/// Triangles of a whole scene after tessellation (about 1.2 KB each while rendering).
+pub const MAX_TRIANGLES: u64 = 4_000_000;
+/// Tessellation segments per direction of an object.
+pub const MAX_SEGMENTS: u32 = 1024;
+/// Sides of a faceted cylinder (they replace its u segments).
+pub const MAX_CYLINDER_SIDES: u32 = 4096;
+/// Texels per side of a bump map, generated or read from a PNG (checked from the PNG header).
+pub const MAX_BUMP_SIDE: u32 = 4096;
+/// Bytes of a scene, configuration or sweep-space file (read with this cap, so a device or a
+/// huge file is refused at once).
+pub const MAX_INPUT_BYTES: u64 = 1 << 20;
+/// Memory a render or an error run may plan to use; less if `/proc/meminfo` says less is available.
+pub const MAX_MEMORY_BYTES: u64 = 8 << 30;
+/// Planned bytes per rendered pixel (three images, hits, fragments, heat map, PNG buffers).
+pub const RENDER_BYTES_PER_PIXEL: u64 = 300;
+/// Planned bytes per triangle (mesh, tangent frames, fixed-point bump state).
+pub const RENDER_BYTES_PER_TRIANGLE: u64 = 1200;
+/// Configurations in a sweep grid (the product of its array lengths).
+pub const MAX_SWEEP_POINTS: u64 = 4096;
+/// Random vectors of one set (`random:N`, `--random` of regress and fuzz); they stream to disk.
+pub const MAX_RANDOM_VECTORS: u64 = 1_000_000_000;
+/// Random stimuli of `gbump error` (held in memory, about 600 bytes each).
+pub const MAX_ERROR_STIMULI: u64 = 2_000_000;
+/// Vectors of an exhaustive sweep (held in memory before writing).
+pub const MAX_EXHAUSTIVE_VECTORS: u64 = 1 << 20;
+/// Shininess n of a power table.
+pub const MAX_SHININESS: u32 = 1024;
+/// Texels per side of a normalisation cube-map face.
+pub const MAX_CUBE_SIDE: u32 = 1024;
+/// Characters of a name that becomes part of a file name (see `names.rs`).
+pub const MAX_NAME_CHARS: u64 = 64;
+
+/// (name, value, what it bounds) of every limit, for the README and `gbump limits`.
+pub const ALL: &[(&str, u64, &str)] = &[
+    (
+        "MAX_IMAGE_SIDE",
+        MAX_IMAGE_SIDE as u64,
+        "pixels per side of a rendered image (`--size`, scene `size`)",
+    ),
+    ("MAX_TRIANGLES", MAX_TRIANGLES, "triangles of a scene after tessellation"),
+    (
+        "MAX_SEGMENTS",
+        MAX_SEGMENTS as u64,
+        "tessellation segments per direction of an object",
+    ),
+    ("MAX_CYLINDER_SIDES", MAX_CYLINDER_SIDES as u64, "sides of a faceted cylinder"),
+    (
+        "MAX_BUMP_SIDE",
+        MAX_BUMP_SIDE as u64,
+        "texels per side of a bump map (generated, or a PNG's header)",
+    ),
+    (
+        "MAX_INPUT_BYTES",
+        MAX_INPUT_BYTES,
+        "bytes of a scene, configuration or sweep-space file",
+    ),
+    (
+        "MAX_MEMORY_BYTES",
+        MAX_MEMORY_BYTES,
+        "planned memory of a render or error run (or MemAvailable, if lower)",
+    ),
+    (
+        "RENDER_BYTES_PER_PIXEL",
+        RENDER_BYTES_PER_PIXEL,
+        "planned bytes per pixel of a render",
+    ),
+    (
+        "RENDER_BYTES_PER_TRIANGLE",
+        RENDER_BYTES_PER_TRIANGLE,
+        "planned bytes per triangle of a render",
+    ),
+    ("MAX_SWEEP_POINTS", MAX_SWEEP_POINTS, "configurations in a sweep grid"),
+    (
+        "MAX_RANDOM_VECTORS",
+        MAX_RANDOM_VECTORS,
+        "random vectors of one set (`random:N`, `--random`)",
+    ),
+    ("MAX_ERROR_STIMULI", MAX_ERROR_STIMULI, "random stimuli of `gbump error --random`"),
+    (
+        "MAX_EXHAUSTIVE_VECTORS",
+        MAX_EXHAUSTIVE_VECTORS,
+        "vectors of an exhaustive sweep (`exhaustive:UNIT`)",
+    ),
+    ("MAX_SHININESS", MAX_SHININESS as u64, "shininess n of a power table"),
+    (
+        "MAX_CUBE_SIDE",
+        MAX_CUBE_SIDE as u64,
+        "texels per side of a cube-map face (`--cube-size`)",
+    ),
+    (
+        "MAX_NAME_CHARS",
+        MAX_NAME_CHARS,
+        "characters of a name that becomes part of a file name",
+    ),
+];
+
+/// The README's "Limits" table.
+pub fn markdown() -> String {
+    let mut s = String::from("| limit | value | bounds |\n|---|---:|---|\n");
+    for (name, v, what) in ALL {
+        s += &format!("| `{name}` | {v} | {what} |\n");
+    }
+    s
+}
+
+/// `what` = `v` must lie in `lo..=hi`, where `hi` is the limit named `limit` (none if empty);
+/// the error names the limit and how to stay inside it.
+pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<()> {
+    if v >= lo && v <= hi {
+        return Ok(());
+    }
+    let (why, fix) = match (v < lo, limit.is_empty()) {
+        (true, true) => (format!("{v} is below {lo}"), format!("use {lo} or more")),
+        (true, false) => (format!("{v} is below {lo}"), format!("use {lo}..={hi} ({limit}, README: Limits)")),
+        (false, _) => (
+            format!("{v} exceeds {limit} = {hi}"),
+            format!("use {lo}..={hi} ({limit}, README: Limits)"),
+        ),
+    };
+    Err(Error::Other(format!("{what}: {why}\n  fix: {fix}")))
+}
+
+/// Bytes of memory a plan may use: [`MAX_MEMORY_BYTES`], or less if the machine has less free.
+pub fn memory_budget() -> u64 {
+    let avail = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
+        t.lines()
+            .find(|l| l.starts_with("MemAvailable:"))
+            .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+    });
+    avail.map_or(MAX_MEMORY_BYTES, |kb| MAX_MEMORY_BYTES.min(kb * 1024))
+}
+
+/// Refuse a plan of `bytes` that will not fit in [`memory_budget`].
+pub fn check_memory(what: &str, bytes: u64, fix: &str) -> Result<()> {
+    let budget = memory_budget();
+    if bytes > budget {
+        return Err(Error::Other(format!(
+            "{what} would need about {:.1} GiB of memory, more than the {:.1} GiB allowed (MAX_MEMORY_BYTES or MemAvailable, whichever is lower)\n  fix: {fix}",
+            bytes as f64 / (1u64 << 30) as f64,
+            budget as f64 / (1u64 << 30) as f64
+        )));
+    }
+    Ok(())
+}
+
+/// Planned memory of rendering `triangles` at `w`×`h`.
+pub fn render_bytes(w: u32, h: u32, triangles: u64) -> u64 {
+    w as u64 * h as u64 * RENDER_BYTES_PER_PIXEL + triangles * RENDER_BYTES_PER_TRIANGLE
+}
+
+/// Refuse rendering `what` (a scene file) at `w`×`h` with `triangles` before anything is allocated.
+pub fn check_render(what: &str, w: u32, h: u32, triangles: u64) -> Result<()> {
+    let side = u64::from(MAX_IMAGE_SIDE);
+    check_count(&format!("{what}: image width"), w.into(), 1, side, "MAX_IMAGE_SIDE")?;
+    check_count(&format!("{what}: image height"), h.into(), 1, side, "MAX_IMAGE_SIDE")?;
+    check_count(&format!("{what}: triangles"), triangles, 1, MAX_TRIANGLES, "MAX_TRIANGLES")?;
+    check_memory(
+        &format!("rendering {what} at {w}x{h} ({triangles} triangles)"),
+        render_bytes(w, h, triangles),
+        "render a smaller --size, or lower the scene's `segments`",
+    )
+}
+
+/// Read a text input with a byte cap, so `/dev/urandom` or a huge file fails at once.
+pub fn read_text(path: &Path) -> Result<String> {
+    let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut buf = Vec::new();
+    f.take(MAX_INPUT_BYTES + 1).read_to_end(&mut buf).map_err(|e| Error::io(path, e))?;
+    if buf.len() as u64 > MAX_INPUT_BYTES {
+        return Err(Error::Other(format!(
+            "{}: larger than MAX_INPUT_BYTES = {MAX_INPUT_BYTES} bytes; not a scene, configuration or sweep space\n  fix: give the .toml file itself",
+            path.display()
+        )));
+    }
+    String::from_utf8(buf).map_err(|_| Error::Other(format!("{}: not UTF-8 text\n  fix: give a TOML text file", path.display())))
+}

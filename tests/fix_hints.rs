@@ -1,0 +1,75 @@
+//! Every command a message or the README tells the user to run must exist: each
+//! "`gbump SUB --flag`" quoted in src/ and README.md is checked against clap's definition.
+
+use clap::CommandFactory;
+use std::path::Path;
+
+fn sources(dir: &Path, out: &mut Vec<(String, String)>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push((p.display().to_string(), std::fs::read_to_string(&p).unwrap()));
+        }
+    }
+}
+
+/// The quoted commands in `text`: what follows "`gbump " or "\"gbump " up to the closing quote.
+fn quoted_commands(text: &str) -> Vec<String> {
+    let mut v = Vec::new();
+    for open in ['`', '"'] {
+        let pat = format!("{open}gbump ");
+        for (i, _) in text.match_indices(&pat) {
+            let rest = &text[i + pat.len()..];
+            let end = rest.find([open, '\n']).unwrap_or(rest.len());
+            v.push(rest[..end].to_string());
+        }
+    }
+    v
+}
+
+/// Problems with one command line (empty when every subcommand and flag exists).
+fn problems(cli: &clap::Command, line: &str) -> Vec<String> {
+    let mut words = line.split_whitespace();
+    let Some(sub) = words.next().filter(|s| s.chars().all(|c| c.is_ascii_lowercase() || c == '-')) else {
+        return vec![];
+    };
+    let Some(cmd) = cli.find_subcommand(sub) else {
+        return vec![format!("`gbump {line}`: no subcommand `{sub}`")];
+    };
+    words
+        .filter_map(|w| w.strip_prefix("--"))
+        .map(|f| f.split(['=', '`', ')', ',']).next().unwrap())
+        .filter(|f| !f.is_empty() && f.chars().all(|c| c.is_ascii_lowercase() || c == '-'))
+        .filter(|f| !cmd.get_arguments().any(|a| a.get_long() == Some(f)))
+        .map(|f| format!("`gbump {line}`: `{sub}` has no flag --{f}"))
+        .collect()
+}
+
+#[test]
+fn every_command_named_in_a_message_or_the_readme_exists() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    sources(&root.join("src"), &mut files);
+    files.push(("README.md".into(), std::fs::read_to_string(root.join("README.md")).unwrap()));
+    let cli = gbump::cli::Cli::command();
+    let mut checked = 0;
+    let mut bad = Vec::new();
+    for (name, text) in &files {
+        for line in quoted_commands(text) {
+            checked += 1;
+            bad.extend(problems(&cli, &line).into_iter().map(|p| format!("{name}: {p}")));
+        }
+    }
+    assert!(checked > 20, "only {checked} commands found: the scan is broken");
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn the_checker_catches_a_wrong_flag() {
+    let cli = gbump::cli::Cli::command();
+    assert!(!problems(&cli, "config --show").is_empty());
+    assert!(!problems(&cli, "nosuch --x").is_empty());
+    assert!(problems(&cli, "scenes --show NAME").is_empty());
+}

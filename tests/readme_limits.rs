@@ -1,0 +1,25 @@
+//! README's "Limits" table must be what `gbump limits` prints from `src/limits.rs` today.
+
+#[test]
+fn readme_limits_table_is_current() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let table = gbump::limits::markdown();
+    assert!(
+        readme.contains("## Limits\n") && readme.contains(&table),
+        "README's Limits table is stale: paste the output of `gbump limits`"
+    );
+}
+
+#[test]
+fn every_limit_constant_is_in_the_table() {
+    let src = include_str!("../src/limits.rs");
+    let consts: Vec<&str> = src
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub const ")?.split(':').next())
+        .filter(|n| *n != "ALL")
+        .collect();
+    assert!(consts.len() > 10);
+    for c in consts {
+        assert!(gbump::limits::ALL.iter().any(|(n, ..)| *n == c), "{c} is missing from limits::ALL");
+    }
+}
