@@ -137,22 +137,22 @@ mod tests {
     fn an_entry_is_trusted_only_when_complete_and_intact() {
         let d = tempfile::tempdir().unwrap();
         let dir = d.path().join("e");
-        let mut runs = 0;
-        let mut b = |t: &Path| {
-            runs += 1;
+        let runs = std::cell::Cell::new(0);
+        let b = |t: &Path| {
+            runs.set(runs.get() + 1);
             std::fs::write(t.join("exe"), b"program").map_err(|e| Error::io(t, e))
         };
-        build_dir(&dir, &["exe"], &mut b).unwrap();
-        build_dir(&dir, &["exe"], &mut b).unwrap();
-        assert_eq!(runs, 1);
+        build_dir(&dir, &["exe"], b).unwrap();
+        build_dir(&dir, &["exe"], b).unwrap();
+        assert_eq!(runs.get(), 1);
         // A truncated output (a kill during linking) is rebuilt.
         std::fs::write(dir.join("exe"), b"").unwrap();
-        build_dir(&dir, &["exe"], &mut b).unwrap();
-        assert_eq!(runs, 2);
+        build_dir(&dir, &["exe"], b).unwrap();
+        assert_eq!(runs.get(), 2);
         // A folder without the marker (killed before it was written) is rebuilt.
         std::fs::remove_file(dir.join(COMPLETE)).unwrap();
-        build_dir(&dir, &["exe"], &mut b).unwrap();
-        assert_eq!(runs, 3);
+        build_dir(&dir, &["exe"], b).unwrap();
+        assert_eq!(runs.get(), 3);
         assert_eq!(std::fs::read(dir.join("exe")).unwrap(), b"program");
         // A build that fails leaves nothing under the entry's name or a temporary one.
         let other = d.path().join("f");

@@ -316,32 +316,15 @@ pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<
     Ok(())
 }
 
-/// The work folder a command builds and caches in, if it has one.
-fn work_folder(cmd: &Cmd) -> Option<&Path> {
-    match cmd {
-        Cmd::Regress { work, .. }
-        | Cmd::Lint { work, .. }
-        | Cmd::Fuzz { work, .. }
-        | Cmd::Area { work, .. }
-        | Cmd::Sweep { work, .. }
-        | Cmd::Bench { work, .. }
-        | Cmd::Report { work, .. } => Some(work),
-        Cmd::PowerSpace { work, area: true, .. } => Some(work),
-        Cmd::Render { rtl: true, .. } => Some(Path::new(crate::sim::rtl_image::RENDER_WORK)),
-        _ => None,
-    }
+/// Take the work folder for this run, once every input has been checked: one run per folder,
+/// in a folder every simulator and make can take.
+fn lock_work(work: &Path) -> Result<crate::work_lock::WorkLock> {
+    crate::sim::check_tool_path(work, "--work")?;
+    crate::work_lock::WorkLock::acquire(work, &invocation())
 }
 
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
-    // One run per work folder, in a folder every simulator and make can take.
-    let _lock = match work_folder(&cli.cmd) {
-        Some(w) => {
-            crate::sim::check_tool_path(w, "--work")?;
-            Some(crate::work_lock::WorkLock::acquire(w, &invocation())?)
-        }
-        None => None,
-    };
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render {
@@ -426,7 +409,11 @@ pub fn run() -> anyhow::Result<()> {
             };
             regress(&pick, &vectors, &opts, junit.as_deref())?
         }
-        Cmd::Lint { pick, work } => crate::sim::lint::lint(&pick.resolve()?, &work, &pick.args())?,
+        Cmd::Lint { pick, work } => {
+            let cfg = pick.resolve()?;
+            let _lock = lock_work(&work)?;
+            crate::sim::lint::lint(&cfg, &work, &pick.args())?
+        }
         Cmd::Fuzz {
             minutes,
             configs,
@@ -436,6 +423,7 @@ pub fn run() -> anyhow::Result<()> {
         } => fuzz(minutes, configs, seed, random, &work)?,
         Cmd::Area { pick, work, json } => {
             let cfg = pick.resolve()?;
+            let _lock = lock_work(&work)?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
@@ -484,6 +472,7 @@ pub fn run() -> anyhow::Result<()> {
             };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
+            let _lock = area.then(|| lock_work(&work)).transpose()?;
             if area {
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
                 let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs
@@ -505,6 +494,7 @@ pub fn run() -> anyhow::Result<()> {
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
             crate::names::check(&space.display().to_string(), "file name", &name)?;
             let sp = crate::measure::sweep::Space::load(&space)?;
+            let _lock = lock_work(&work)?;
             let t0 = std::time::Instant::now();
             let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, std::io::stderr().is_terminal())?;
             let files = vec![
@@ -532,9 +522,13 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
         }
-        Cmd::Bench { pick, work } => out!("{}", crate::measure::bench::bench(&pick.resolve()?, &work)?),
+        Cmd::Bench { pick, work } => {
+            let cfg = pick.resolve()?;
+            let _lock = lock_work(&work)?;
+            out!("{}", crate::measure::bench::bench(&cfg, &work)?)
+        }
         Cmd::Report { out, space, work } => {
-            let files = crate::measure::report::report(&out, &work, &space)?;
+            let files = crate::measure::report::report(&out, &work, &space, || lock_work(&work))?;
             write_files(&out, &files)?;
             outln!(
                 "wrote {} in {}",
@@ -670,7 +664,9 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
     );
     if rtl {
         let t0 = std::time::Instant::now();
-        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, Path::new(crate::sim::rtl_image::RENDER_WORK))?;
+        let work = Path::new(crate::sim::rtl_image::RENDER_WORK);
+        let _lock = lock_work(work)?;
+        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, work)?;
         write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
         let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
         outln!(
@@ -786,38 +782,37 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         crate::sim::require(*s)?;
     }
     let h = &cfg.hash()[..8];
+    // Given sets are checked (paths, completeness, sha256) before the work folder is taken.
+    let mut given = Vec::new();
+    for p in vectors {
+        crate::sim::check_tool_path(p, "--vectors")?;
+        if p.is_dir() {
+            let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| Error::io(p, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect();
+            found.sort();
+            given.extend(found.into_iter().map(|f| (f, None)));
+        } else {
+            given.push((std::path::absolute(p).map_err(|e| Error::io(p, e))?, None));
+        }
+    }
+    if !vectors.is_empty() && given.is_empty() {
+        return Err(Error::Other(
+            "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
+        ));
+    }
+    crate::sim::regress::check_sets(&cfg, &given, o)?;
+    let _lock = lock_work(&o.work)?;
     let sets: Vec<(PathBuf, Option<crate::sim::Sim>)> = if vectors.is_empty() {
         let t0 = std::time::Instant::now();
         let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
         outln!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
         s
     } else {
-        let mut v = Vec::new();
-        for p in vectors {
-            crate::sim::check_tool_path(p, "--vectors")?;
-            if p.is_dir() {
-                let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-                let mut found: Vec<PathBuf> = std::fs::read_dir(p)
-                    .map_err(|e| Error::io(p, e))?
-                    .filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                    .collect();
-                found.sort();
-                v.extend(found.into_iter().map(|f| (f, None)));
-            } else {
-                v.push((std::path::absolute(p).map_err(|e| Error::io(p, e))?, None));
-            }
-        }
-        if v.is_empty() {
-            return Err(Error::Other(
-                "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
-            ));
-        }
-        // Refuse truncated, corrupted or foreign sets before anything is generated or built.
-        for (m, _) in &v {
-            crate::vectors::verify(m)?;
-        }
-        v
+        given
     };
     let rtl = write_rtl(
         &cfg,
@@ -903,6 +898,7 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
     // A testbench over zero vectors proves nothing (and fails).
     check_count("--random", random, 1, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
     crate::sim::require(crate::sim::Sim::Verilator)?;
+    let _lock = lock_work(work)?;
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
     let mut rng = crate::vectors::rng::SplitMix64(seed);
     let t0 = std::time::Instant::now();

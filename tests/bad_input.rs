@@ -745,7 +745,7 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
     let bin = dir.path().join("bin");
     std::fs::create_dir(&bin).unwrap();
     // A fake iverilog that "compiles" and a vvp that dies of SIGSEGV.
-    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; : > \"$1\"; fi; shift; done\nexit 0\n";
+    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
     let vvp = "#!/bin/sh\nkill -SEGV $$\n";
     for (n, t) in [("iverilog", iverilog), ("vvp", vvp)] {
         let p = bin.join(n);
