@@ -238,6 +238,11 @@ pub enum Cmd {
         #[command(flatten)]
         pick: ConfigPick,
     },
+    /// Print the README's "Integrating the RTL" section (protocol, reset, table loading, lanes, vector layout) for a configuration.
+    Integration {
+        #[command(flatten)]
+        pick: ConfigPick,
+    },
     /// Print a pipeline configuration as TOML with its hash: the default, or a scene's.
     Config {
         #[arg(long)]
@@ -537,6 +542,7 @@ pub fn run() -> anyhow::Result<()> {
             );
         }
         Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
+        Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {
                 Some(s) => Scene::load(&s)?.derive_config()?,

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     V{{TOP}} top(&ctx);
     auto tick = [&]() { top.clk = 0; top.eval(); top.clk = 1; top.eval(); };
     top.rst = 1; top.in_valid = 0; top.pt_we = 0;
-    for (int i = 0; i < 3; ++i) tick();
+    for (int i = 0; i < {{RESET_CYCLES}}; ++i) tick();
     top.rst = 0;
     if (table_path)
         for (int i = 0; i < PT_N; ++i) { top.pt_we = 1; top.pt_waddr = i; top.pt_wdata = table[i]; tick(); }

@@ -8,6 +8,7 @@
 // Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
 //           it the pipeline runs on its power-up contents (INIT_FILE)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth record
+//           [+valid_during_reset] [+reset_after_load] (reset behaviour, see below)
 //           [+waves=FILE.fst] [+max_errors=N]
 `timescale 1ns / 1ps
 `default_nettype none
@@ -70,8 +71,17 @@ module tb_top;
         fin = $fopen(vec_file, "r");
         fchk = $fopen(vec_file, "r");
         if (fin == 0 || fchk == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
-        repeat (3) @(negedge clk);
+        // +valid_during_reset offers a fragment (all ones) through every reset edge: the top
+        // must not take it. +reset_after_load resets again after the table is loaded: the
+        // table must keep what was written.
+        if ($test$plusargs("valid_during_reset")) begin
+            stim = {RB{1'b1}};
+{{ASSIGN}}
+            in_valid = 1'b1;
+        end
+        repeat ({{RESET_CYCLES}}) @(negedge clk);
         rst = 1'b0;
+        in_valid = 1'b0;
         if (load_table) begin
             for (i = 0; i < PT_N; i = i + 1) begin
                 pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
@@ -79,6 +89,13 @@ module tb_top;
             end
         end
         pt_we = 1'b0;
+        if ($test$plusargs("reset_after_load")) begin
+            rst = 1'b1;
+            in_valid = $test$plusargs("valid_during_reset");
+            repeat ({{RESET_CYCLES}}) @(negedge clk);
+            rst = 1'b0;
+            in_valid = 1'b0;
+        end
         code = $fscanf(fin, "%h\n", stim);
         while (code == 1) begin
             if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin

@@ -104,3 +104,13 @@ fn readme_interface_table_is_current() {
         "README's interface table is stale: paste the output of `gbump interface`"
     );
 }
+
+#[test]
+fn readme_integration_section_is_current() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let section = gbump::rtlgen::integration_doc::markdown(&PipelineConfig::default());
+    assert!(
+        readme.contains(&section),
+        "README's integration section is stale: paste the output of `gbump integration`"
+    );
+}

@@ -192,3 +192,59 @@ fn a_set_in_a_format_the_bench_cannot_read_is_refused_or_routed_before_building(
     let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
     assert!(out.contains("corners_top") && out.contains(", 0 failing run(s)"), "{out}");
 }
+
+/// Corner vectors of the top for shininess `n`: (hex, that set's power table).
+fn corner_vectors_for(cfg: &PipelineConfig, dir: &Path, n: u32) -> (String, String) {
+    let o = DumpOptions {
+        text: true,
+        binary: false,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: Some(n),
+    };
+    let sets = dump(cfg, &Source::Corners(2), &["top".into()], dir, &o).unwrap();
+    let (m, d) = verify(&sets[0].manifest).unwrap();
+    (
+        d.join(&m.hex.as_ref().unwrap().name).display().to_string(),
+        d.join(&m.power_table.name).display().to_string(),
+    )
+}
+
+/// The documented reset behaviour: nothing is accepted while `rst` is high, and `rst` keeps
+/// the table that was written (a set for another shininess passes after a reset that follows
+/// the load, and fails without the load, so the check can tell).
+fn reset_behaviour(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let n = if cfg.shininess == 2 { 3 } else { 2 };
+    let (hex, table) = corner_vectors_for(&cfg, &w.join("vectors"), n);
+    let tb = tb_top(&cfg, &rtl);
+    let table = format!("+table={table}");
+    let ok = icarus_top(&w, &rtl, &tb, &hex, &[&table, "+reset_after_load", "+valid_during_reset"], &w).unwrap();
+    assert!(ok.failed == 0 && ok.passed > 0, "{}", ok.log);
+    let stale = icarus_top(&w, &rtl, &tb, &hex, &[], &w).unwrap();
+    assert!(
+        stale.failed > 0,
+        "the set does not depend on the table, so the check proves nothing"
+    );
+}
+
+#[test]
+fn reset_takes_no_fragment_and_keeps_the_power_table() {
+    reset_behaviour(None, "reset_serial");
+    reset_behaviour(Some("tests/configs/one_light_parallel.toml"), "reset_parallel");
+    // A top whose first valid bit ignores rst takes the fragment offered during reset.
+    let cfg = config(Some("tests/configs/one_light_parallel.toml"));
+    let w = work("reset_mutant");
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
+    let text = std::fs::read_to_string(top).unwrap();
+    let good = "v1 <= rst ? 1'b0 : in_valid;";
+    assert!(text.contains(good), "the top changed: update the mutant");
+    std::fs::write(top, text.replace(good, "v1 <= in_valid;")).unwrap();
+    let (hex, _) = corner_vectors_for(&cfg, &w.join("vectors"), cfg.shininess);
+    let bad = icarus_top(&w, &rtl, &tb_top(&cfg, &rtl), &hex, &["+valid_during_reset"], &w).unwrap();
+    assert!(bad.failed > 0, "a fragment taken during reset went unnoticed:\n{}", bad.log);
+}

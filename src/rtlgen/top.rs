@@ -13,6 +13,11 @@ use super::units_v::module_name;
 use super::writer::VWriter;
 use crate::config::{BlendOrder, LightMode, PipelineConfig};
 
+/// Rising edges with `rst` high that bring the top to a known idle state from any power-up
+/// state: every valid bit is cleared by `rst ? 0 : ...` at the first one. The testbenches hold
+/// reset for exactly this many edges, so the number is proven by every regression.
+pub const RESET_CYCLES: u32 = 1;
+
 /// Register stages of the three colour units (two blends and the texture modulation).
 const COLOUR_STAGES: u32 = 3;
 
