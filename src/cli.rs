@@ -92,17 +92,18 @@ pub enum Cmd {
         pick: ConfigPick,
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
+        /// Seed of random sources (default 1).
+        #[arg(long)]
+        seed: Option<u64>,
         /// Which files to write.
         #[arg(long, value_enum, default_value = "both")]
         format: VecFormat,
         /// Image size for scene sources (default: the scene's).
         #[arg(long, value_name = "WxH")]
         size: Option<String>,
-        /// Corner-catalogue level (with --source corners).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
-        level: u8,
+        /// Corner-catalogue level (with --source corners; default 1).
+        #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
+        level: Option<u8>,
         /// Power-table shininess for corners, random and exhaustive sources (default: the config's).
         #[arg(long)]
         shininess: Option<u32>,
@@ -739,20 +740,41 @@ fn vectors(
     target: &[String],
     pick: &ConfigPick,
     out: &Path,
-    seed: u64,
+    seed: Option<u64>,
     format: VecFormat,
     size: Option<&str>,
-    level: u8,
+    level: Option<u8>,
     shininess: Option<u32>,
 ) -> Result<()> {
     use crate::vectors::{dump, DumpOptions, Source};
     let mut src = Source::parse(source)?;
-    if let Source::Corners(l) = &mut src {
-        *l = level;
+    // A flag this source ignores would let a user believe the set is something it is not.
+    let ignored = |flag: &str, why: &str| Error::Other(format!("{flag} has no effect on --source {source}: {why}\n  fix: drop {flag}"));
+    match &mut src {
+        Source::Corners(l) => *l = level.unwrap_or(1),
+        _ if level.is_some() => return Err(ignored("--level", "only the corner catalogue has levels")),
+        _ => {}
     }
-    // A scene source renders under the scene's own configuration unless one is given.
+    if seed.is_some() && !matches!(src, Source::Random(_)) {
+        return Err(ignored("--seed", "only random sources draw from a seed"));
+    }
+    if shininess.is_some() && matches!(src, Source::Scene(_)) {
+        return Err(ignored(
+            "--shininess",
+            "a scene's objects carry their own shininess, and the scene writes one set per shininess",
+        ));
+    }
+    let seed = seed.unwrap_or(1);
+    // A scene source renders under the scene's own configuration unless one is given, and says so.
     let cfg = match (&src, &pick.config, &pick.scene) {
-        (Source::Scene(name), None, None) => Scene::load(name)?.derive_config()?,
+        (Source::Scene(name), None, None) => {
+            let c = Scene::load(name)?.derive_config()?;
+            eprintln!(
+                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
+                c.hash()
+            );
+            c
+        }
         _ => pick.resolve()?,
     };
     let targets = crate::vectors::targets::resolve(&cfg, target)?;

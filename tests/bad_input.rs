@@ -353,6 +353,24 @@ fn cases() -> Vec<Case> {
             vec!["random:N", "1 <= N"],
         ),
         (
+            "--shininess on a scene source",
+            vec![],
+            vec!["vectors", "--source", "scene:torus_caps", "--shininess", "8", "--out", "out"],
+            vec!["--shininess has no effect", "own shininess", "drop --shininess"],
+        ),
+        (
+            "--seed on a corner source",
+            vec![],
+            vec!["vectors", "--source", "corners", "--seed", "4", "--out", "out"],
+            vec!["--seed has no effect", "drop --seed"],
+        ),
+        (
+            "--level on a random source",
+            vec![],
+            vec!["vectors", "--source", "random:10", "--level", "2", "--out", "out"],
+            vec!["--level has no effect", "corner catalogue"],
+        ),
+        (
             "unknown source",
             vec![],
             vec!["vectors", "--source", "bogus", "--out", "out"],

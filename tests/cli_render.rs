@@ -184,3 +184,31 @@ fn unwritable_output_is_an_error() {
         &["/proc/gbump_cannot"],
     );
 }
+
+#[test]
+fn a_scene_source_says_which_configuration_its_vectors_target() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_cfg = gbump::scene::Scene::load("torus_caps").unwrap().derive_config().unwrap();
+    let o = assert_cmd::Command::cargo_bin("gbump")
+        .unwrap()
+        .args([
+            "vectors",
+            "--source",
+            "scene:torus_caps",
+            "--target",
+            "top",
+            "--size",
+            "32x24",
+            "--out",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+    let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert!(
+        err.contains("scene's own configuration") && err.contains(&scene_cfg.hash()) && err.contains("--config"),
+        "{err}"
+    );
+    assert!(out.contains(&scene_cfg.hash()), "{out}");
+}
