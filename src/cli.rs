@@ -645,7 +645,7 @@ pub fn rom_files(
     cube: usize,
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
-    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
+    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, rom_header, write, RomFormat, DEFAULT_PALETTE};
     let n = shininess.unwrap_or(cfg.shininess);
     if n > 1024 {
         return Err(Error::Other(format!("--shininess {n}: out of range\n  fix: use 0..=1024")));
@@ -655,7 +655,7 @@ pub fn rom_files(
             "--cube-size {cube}: out of range\n  fix: use 1..=1024 texels per face side"
         )));
     }
-    let palette = match &pick.scene {
+    let (palette, source) = match &pick.scene {
         Some(s) => {
             let scene = Scene::load(s)?;
             let pcfg = PipelineConfig {
@@ -663,9 +663,9 @@ pub fn rom_files(
                 ..cfg.clone()
             };
             let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
-            p.objects[0].stored.palette().cloned().expect("palette mode")
+            (p.objects[0].stored.palette().cloned().expect("palette mode"), scene.name.clone())
         }
-        None => default_palette(cfg),
+        None => (default_palette(cfg), DEFAULT_PALETTE.to_string()),
     };
     let cmd = format!(
         "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
@@ -675,12 +675,18 @@ pub fn rom_files(
     .replace("  ", " ");
     let hash = &cfg.hash()[..8];
     let mut files = Vec::new();
-    for (stem, rom) in [
-        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n)),
-        (format!("bump_palette_{hash}"), palette_rom(cfg, &palette)),
-        (format!("cube_map_{cube}"), cube_map_rom(cube)),
+    // A name carries what the contents depend on: the exponent, the palette's source, the
+    // cube size; the config hash stands for the widths.
+    for (stem, rom, of) in [
+        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg)),
+        (
+            format!("bump_palette_{source}_{hash}"),
+            palette_rom(cfg, &palette, &source),
+            Some(cfg),
+        ),
+        (format!("cube_map_{cube}"), cube_map_rom(cube), None),
     ] {
-        let hl = crate::rtlgen::header::header_lines(cfg, &cmd, &rom.name);
+        let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {
             files.push((format!("{stem}.{}", f.ext()), write(&rom, f, &hl)));
         }
