@@ -449,16 +449,7 @@ pub fn run() -> anyhow::Result<()> {
                     return Err(crate::sim::missing("yosys").into());
                 }
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
-                let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs
-                    .iter()
-                    .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, crate::model::power_unit::PowerDesign::Table { entries: 256, .. }))
-                    .collect();
-                pick.sort_by_key(|r| r.rom_bits);
-                for r in pick {
-                    let dir = work.join(crate::rtlgen::power_units::name(&r.design, fm));
-                    let ge = crate::measure::power_space::area_ge(&r.design, fm, 16, &dir)?;
-                    out!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
-                }
+                out!("{}", crate::measure::power_space::area_rows(fm, &rs, &work)?);
             }
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
@@ -467,7 +458,7 @@ pub fn run() -> anyhow::Result<()> {
         Cmd::Sweep { space, out, work } => {
             let sp = crate::measure::sweep::Space::load(&space)?;
             let t0 = std::time::Instant::now();
-            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, std::io::stderr().is_terminal())?;
+            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true)?;
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
             let files = vec![
                 (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),

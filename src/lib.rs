@@ -10,6 +10,7 @@ pub mod fixed;
 pub mod interrupt;
 pub mod measure;
 pub mod model;
+pub mod progress;
 pub mod raster;
 pub mod reference;
 pub mod render;

@@ -147,6 +147,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     let dir = work.join(format!("cfg_{h}"));
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     std::fs::write(dir.join("config.toml"), cfg.to_toml()).map_err(|e| Error::io(&dir, e))?;
+    let progress = crate::progress::Progress::new(&format!("fuzz config {h}"), 3);
+    progress.start("generate and lint");
     let rtl = write_rtl(cfg, &dir.join("rtl"), "gbump fuzz")?;
     let mut lint = Command::new("verilator");
     lint.args(["--lint-only", "-Wall", "--top-module", &format!("gbump_pipeline_{h}")])
@@ -160,6 +162,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             super::tail(&log, 20)
         )));
     }
+    progress.done("verilator --lint-only -Wall clean");
+    progress.start("vectors from the model");
     let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
     let o = DumpOptions {
         text: true,
@@ -175,6 +179,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             sets.push((s.manifest, None));
         }
     }
+    progress.done(&format!("{} vector sets", sets.len()));
+    progress.start("build and simulate on Verilator");
     let opts = RegressOptions {
         sims: vec![Sim::Verilator],
         random_verilator: 0,
@@ -203,6 +209,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             Err(e) => return Err(Error::Other(format!("config {h}: {}: {e}", r.set))),
         }
     }
+    progress.done(&format!("{checked} vectors match the model"));
     Ok(checked)
 }
 
