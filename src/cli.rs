@@ -481,16 +481,7 @@ pub fn run() -> anyhow::Result<()> {
             let _lock = area.then(|| lock_work(&work)).transpose()?;
             if area {
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
-                let mut pick: Vec<&crate::measure::power_space::DesignResult> = rs
-                    .iter()
-                    .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, crate::model::power_unit::PowerDesign::Table { entries: 256, .. }))
-                    .collect();
-                pick.sort_by_key(|r| r.rom_bits);
-                for r in pick {
-                    let dir = work.join(crate::rtlgen::power_units::name(&r.design, fm));
-                    let ge = crate::measure::power_space::area_ge(&r.design, fm, 16, &dir)?;
-                    out!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
-                }
+                out!("{}", crate::measure::power_space::area_rows(fm, &rs, &work)?);
             }
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
@@ -502,7 +493,7 @@ pub fn run() -> anyhow::Result<()> {
             let sp = crate::measure::sweep::Space::load(&space)?;
             let _lock = lock_work(&work)?;
             let t0 = std::time::Instant::now();
-            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, std::io::stderr().is_terminal())?;
+            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true)?;
             let files = vec![
                 (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),
                 (format!("{name}.json"), serde_json::to_string_pretty(&pts).expect("json")),
@@ -697,11 +688,11 @@ pub fn rom_files(
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
-    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, write, RomFormat};
+    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, rom_header, write, RomFormat, DEFAULT_PALETTE};
     let n = shininess.unwrap_or(cfg.shininess);
     check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
     check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
-    let palette = match &pick.scene {
+    let (palette, source) = match &pick.scene {
         Some(s) => {
             let scene = Scene::load(s)?;
             let pcfg = PipelineConfig {
@@ -709,9 +700,9 @@ pub fn rom_files(
                 ..cfg.clone()
             };
             let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
-            p.objects[0].stored.palette().cloned().expect("palette mode")
+            (p.objects[0].stored.palette().cloned().expect("palette mode"), scene.name.clone())
         }
-        None => default_palette(cfg),
+        None => (default_palette(cfg), DEFAULT_PALETTE.to_string()),
     };
     let cmd = format!(
         "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
@@ -721,12 +712,18 @@ pub fn rom_files(
     .replace("  ", " ");
     let hash = &cfg.hash()[..8];
     let mut files = Vec::new();
-    for (stem, rom) in [
-        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n)),
-        (format!("bump_palette_{hash}"), palette_rom(cfg, &palette)),
-        (format!("cube_map_{cube}"), cube_map_rom(cube)),
+    // A name carries what the contents depend on: the exponent, the palette's source, the
+    // cube size; the config hash stands for the widths.
+    for (stem, rom, of) in [
+        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg)),
+        (
+            format!("bump_palette_{source}_{hash}"),
+            palette_rom(cfg, &palette, &source),
+            Some(cfg),
+        ),
+        (format!("cube_map_{cube}"), cube_map_rom(cube), None),
     ] {
-        let hl = crate::rtlgen::header::header_lines(cfg, &cmd, &rom.name);
+        let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {
             files.push((format!("{stem}.{}", f.ext()), write(&rom, f, &hl)));
         }

@@ -144,6 +144,18 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ("lights", 1, 8, "light slots in hardware"),
 ];
 
+/// The valid range `(lo, hi)` of numeric field `name`, from [`LIMITS`].
+///
+/// # Panics
+/// If `LIMITS` has no such field.
+pub fn limit(name: &str) -> (u32, u32) {
+    LIMITS
+        .iter()
+        .find(|l| l.0 == name)
+        .map(|&(_, lo, hi, _)| (lo, hi))
+        .unwrap_or_else(|| panic!("no limit for {name}"))
+}
+
 impl PipelineConfig {
     /// Parse a TOML config; `file` names it in errors.
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {

@@ -13,6 +13,7 @@ pub mod limits;
 pub mod measure;
 pub mod model;
 pub mod names;
+pub mod progress;
 pub mod raster;
 pub mod reference;
 pub mod render;

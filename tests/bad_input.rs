@@ -86,6 +86,11 @@ fn cases() -> Vec<Case> {
         }
     };
     let bump = "source = { kind = \"bricks\", rows = 8, cols = 4, mortar = 0.08 }";
+    // Line `k` after the `[camera]` header of the base scene, where the edits below put a table.
+    let after_camera = |k: usize| -> &'static str {
+        let camera = WALL.lines().position(|l| l.trim() == "[camera]").expect("[camera]") + 1;
+        Box::leak(format!("s.toml:{}", camera + k).into_boxed_str())
+    };
     vec![
         (
             "unclosed table header",
@@ -583,13 +588,13 @@ fn cases() -> Vec<Case> {
             "wrong type in a scene's [pipeline]",
             scene(r("[camera]", "[pipeline]\nlights = \"two\"\n\n[camera]")),
             render(&[]),
-            vec!["s.toml:9", "pipeline.lights", "invalid type"],
+            vec![after_camera(1), "pipeline.lights", "invalid type"],
         ),
         (
             "out-of-range value in a scene's [pipeline]",
             scene(r("[camera]", "[pipeline]\nshininess = 8\ndot_bits = 99\n\n[camera]")),
             render(&[]),
-            vec!["s.toml:10", "pipeline.dot_bits", "2..=16"],
+            vec![after_camera(2), "pipeline.dot_bits", "2..=16"],
         ),
         (
             "[pipeline] lights below the scene's bump lights",

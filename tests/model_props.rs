@@ -65,8 +65,9 @@ proptest! {
         }
     }
 
+    // 3 colour channels, then f, k and 3 light-colour channels for each of up to 8 lights.
     #[test]
-    fn blends_never_wrap_and_stay_within_their_rounding_bound(seed in any::<u64>(), vals in proptest::collection::vec(any::<u64>(), 40)) {
+    fn blends_never_wrap_and_stay_within_their_rounding_bound(seed in any::<u64>(), vals in proptest::collection::vec(any::<u64>(), 3 + 8 + 8 + 3 * 8)) {
         let cfg = cfg_from(seed);
         let n = cfg.lights as usize;
         let max = cfg.colour_max() as u64;

@@ -290,12 +290,15 @@ fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {
 
 #[test]
 fn every_rom_read_by_a_simulator_equals_the_model() {
-    use gbump::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, parse, power_rom, RomFormat};
+    use gbump::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, parse, power_rom, RomFormat, DEFAULT_PALETTE};
     let cfg = gbump::PipelineConfig::default();
     let h = &cfg.hash()[..8];
     for (stem, rom) in [
         (format!("power_table_n16_{h}"), power_rom(&cfg, 16)),
-        (format!("bump_palette_{h}"), palette_rom(&cfg, &default_palette(&cfg))),
+        (
+            format!("bump_palette_{DEFAULT_PALETTE}_{h}"),
+            palette_rom(&cfg, &default_palette(&cfg), DEFAULT_PALETTE),
+        ),
         ("cube_map_32".to_string(), cube_map_rom(32)),
     ] {
         let dir = root().join("rtl/rom");

@@ -85,11 +85,13 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
         .map(|u| (u.to_string(), module_name(cfg, u)))
         .collect();
     units.push(("gbump_pipeline (top)".into(), module_name(cfg, "gbump_pipeline")));
+    let progress = crate::progress::Progress::new("area", units.len() as u64);
     let results: Vec<Result<UnitArea>> = {
         use rayon::prelude::*;
         units
             .par_iter()
             .map(|(unit, module)| {
+                progress.start(&format!("yosys {module}"));
                 let sub = dir.join(format!("syn_{module}"));
                 std::fs::create_dir_all(&sub).map_err(|e| Error::io(&sub, e))?;
                 let abs: Vec<String> = v
@@ -112,6 +114,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                 } else {
                     0
                 };
+                progress.done(&format!("{unit}: {:.0} GE", t as f64 / 4.0));
                 Ok(UnitArea {
                     unit: unit.clone(),
                     module: module.clone(),
@@ -124,6 +127,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
             })
             .collect()
     };
+    drop(progress);
     let units = results.into_iter().collect::<Result<Vec<_>>>()?;
     Ok(AreaReport {
         config_hash: cfg.hash(),

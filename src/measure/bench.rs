@@ -64,8 +64,11 @@ pub fn model_rate(lights: usize, side: u32) -> (f64, f64, usize) {
 pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
     let mut s = format!("Speed on this machine ({} threads), config `{}` ({:?} lights x{}) for the simulators\n\n| measurement | figure | how |\n|---|---:|---|\n", rayon::current_num_threads(), cfg.hash(), cfg.light_mode, cfg.lights);
+    let progress = crate::progress::Progress::new("bench", 5);
     for lights in [1, 4] {
+        progress.start(&format!("model and reference, {lights} light(s)"));
         let (g, r, n) = model_rate(lights, 1024);
+        progress.done(&format!("model, {lights} light(s): {g:.1} Mfragments/s"));
         s += &format!("| golden model, {lights} light(s) | {g:.1} Mfragments/s | 1024x1024 brick wall, {n} fragments, best of 3 |\n");
         s += &format!("| f64 per-pixel reference, {lights} light(s) | {r:.1} Mfragments/s | same fragments |\n");
     }
@@ -90,6 +93,8 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         bytes / secs / 1e6,
         m.record_bytes
     );
+    progress.done("vector dump");
+    progress.start("Verilator");
     let rtl = crate::sim::regress::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
     let table = dir.join(&m.power_table.name).display().to_string();
     if crate::sim::have("verilator") {
@@ -133,6 +138,8 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     } else {
         s += "| Verilator | not installed | scripts/install-tools.sh |\n";
     }
+    progress.done("Verilator");
+    progress.start("Icarus");
     if crate::sim::have("iverilog") {
         let hexdir = work.join("hex");
         let _ = std::fs::remove_dir_all(&hexdir);
@@ -158,6 +165,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     } else {
         s += "| Icarus | not installed | scripts/install-tools.sh |\n";
     }
+    progress.done("Icarus");
     let _ = std::fs::remove_dir_all(&vdir);
     Ok(s)
 }

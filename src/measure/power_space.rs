@@ -46,18 +46,25 @@ pub fn default_designs() -> Vec<PowerDesign> {
     v
 }
 
+/// Every design that fits the formats, checked over every input and every n in 1..=max_n
+/// (minutes at wide formats, so each finished design is reported as progress).
 pub fn evaluate(fm: PowerFormats, designs: &[PowerDesign], max_n: u32) -> Vec<DesignResult> {
-    designs
-        .par_iter()
+    let fits: Vec<&PowerDesign> = designs
+        .iter()
         .filter(|d| match d {
             PowerDesign::Segmented { segments, .. } => *segments < fm.f,
             _ => true,
         })
+        .collect();
+    let progress = crate::progress::Progress::new(&format!("power-space u1.{}", fm.f), fits.len() as u64);
+    fits.par_iter()
         .map(|d| {
+            progress.start(&d.label());
             let (max_lsb, worst_n, worst_x, mean_lsb) = d.worst_error(fm, 1..=max_n);
+            progress.done(&format!("{}: max {max_lsb:.3} LSB", d.label()));
             let (m, mb) = d.multipliers(fm);
             DesignResult {
-                design: *d,
+                design: **d,
                 label: d.label(),
                 rom_bits: d.rom_bits(fm),
                 multipliers: m,
@@ -198,4 +205,24 @@ pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path)
         (true, Some(t)) => Ok(t as f64 / 4.0),
         _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::sim::tail(&log, 10)))),
     }
+}
+
+/// Markdown rows (design, max error, ROM bits, datapath GE) of the designs worth building:
+/// those within 1 LSB, and the paper's 256-entry table for comparison; each synthesised in
+/// its own folder under `work`, cheapest ROM first.
+pub fn area_rows(fm: PowerFormats, rs: &[DesignResult], work: &std::path::Path) -> crate::Result<String> {
+    let mut pick: Vec<&DesignResult> = rs
+        .iter()
+        .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerDesign::Table { entries: 256, .. }))
+        .collect();
+    pick.sort_by_key(|r| r.rom_bits);
+    let progress = crate::progress::Progress::new("power-space area", pick.len() as u64);
+    let mut s = String::new();
+    for r in pick {
+        progress.start(&format!("yosys {}", r.label));
+        let ge = area_ge(&r.design, fm, 16, &work.join(crate::rtlgen::power_units::name(&r.design, fm)))?;
+        progress.done(&format!("{}: {ge:.0} GE", r.label));
+        s += &format!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
+    }
+    Ok(s)
 }

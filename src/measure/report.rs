@@ -3,29 +3,14 @@
 
 use crate::config::PipelineConfig;
 use crate::error::Result;
-use crate::model::power_unit::{PowerDesign, PowerFormats};
+use crate::model::power_unit::PowerFormats;
 use std::path::Path;
 
 fn power_section(fm: PowerFormats, work: &Path) -> Result<String> {
     let rs = super::power_space::evaluate(fm, &super::power_space::default_designs(), 255);
     let mut s = super::power_space::markdown(fm, &rs, 255);
     s += "\nYosys area of the datapath (ROM as a black box):\n\n| design | max error (LSB) | ROM bits | datapath GE |\n|---|---:|---:|---:|\n";
-    let mut pick: Vec<_> = rs
-        .iter()
-        .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerDesign::Table { entries: 256, .. }))
-        .collect();
-    pick.sort_by_key(|r| r.rom_bits);
-    for r in pick {
-        let ge = super::power_space::area_ge(
-            &r.design,
-            fm,
-            16,
-            &work
-                .join(format!("power_f{}", fm.f))
-                .join(crate::rtlgen::power_units::name(&r.design, fm)),
-        )?;
-        s += &format!("| {} | {:.3} | {} | {:.0} |\n", r.label, r.max_lsb, r.rom_bits, ge);
-    }
+    s += &super::power_space::area_rows(fm, &rs, &work.join(format!("power_f{}", fm.f)))?;
     Ok(s)
 }
 
@@ -63,7 +48,7 @@ pub fn report(
     md += "\n### 12-bit dot product\n\n";
     md += &power_section(PowerFormats { f: 12, p: cfg.power_bits }, work)?;
     md += "\n## Sweep: error against area\n\n";
-    let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), false)?;
+    let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true)?;
     md += &format!("`gbump sweep --space {}`; ![error against area](sweep.svg)\n\n| configuration | top GE | blend units GE | fragments/clock | latency | max err | mean err | PSNR vs reference | Pareto |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n", space.display());
     for p in &pts {
         md += &format!(

@@ -292,28 +292,21 @@ pub fn mark_pareto(points: &mut [Point]) {
     }
 }
 
-/// Run a sweep (parallel, with a progress bar when `progress`).
+/// Run a sweep (parallel; with `progress`, a bar on a terminal or a line per configuration).
 pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool) -> Result<Vec<Point>> {
     let configs = space.configs(file)?;
-    let bar = if progress {
-        indicatif::ProgressBar::new(configs.len() as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("sweep [{bar:40}] {pos}/{len} configurations {msg}")
-            .expect("template")
-            .progress_chars("=> "),
-    );
+    let bar = progress.then(|| crate::progress::Progress::new("sweep", configs.len() as u64));
     let mut points = configs
         .par_iter()
         .map(|(label, cfg)| {
             let p = measure(label, cfg, &space.scene, work);
-            bar.inc(1);
+            if let Some(b) = &bar {
+                b.done(&format!("{label} ({})", &cfg.hash()[..8]));
+            }
             p
         })
         .collect::<Result<Vec<_>>>()?;
-    bar.finish_and_clear();
+    drop(bar);
     mark_pareto(&mut points);
     Ok(points)
 }

@@ -46,10 +46,11 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     v("specular_blend", units_v::blend(cfg, "specular_blend"));
     v("texture_modulate", units_v::texture_modulate(cfg));
     v("gbump_pipeline", top::top(cfg));
-    let hl = header::header_lines(cfg, command, "power_table reset contents ($readmemh)");
+    let table = rom::power_rom(cfg, cfg.shininess);
+    let hl = rom::rom_header(&table, Some(cfg), command, "power_table reset contents ($readmemh)");
     files.push((
         rom_file_name(cfg, "power_table", "hex"),
-        rom::write(&rom::power_rom(cfg, cfg.shininess), rom::RomFormat::Hex, &hl),
+        rom::write(&table, rom::RomFormat::Hex, &hl),
     ));
     files.push((
         format!("{}.json", module_name(cfg, "gbump_pipeline")),

@@ -37,6 +37,11 @@ pub struct Scene {
     pub pipeline: Option<toml::Table>,
     #[serde(default)]
     pub lights: Vec<Light>,
+    /// The per-pixel reference applies the Cg Tutorial's geometric self-shadowing (§8.5.3):
+    /// no light reaches a point whose geometric normal faces away from it, whatever its bump
+    /// normal says. The pipeline has no such test, so this measures what omitting it costs.
+    #[serde(default)]
+    pub self_shadowing: bool,
     pub objects: Vec<Object>,
     /// Folder that relative paths (PNG height maps) are resolved against.
     #[serde(skip)]

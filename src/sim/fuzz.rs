@@ -4,7 +4,7 @@
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::Sim;
-use crate::config::{BlendOrder, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
+use crate::config::{limit, BlendOrder, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
@@ -12,44 +12,133 @@ use crate::vectors::{dump, DumpOptions, Source};
 use std::path::Path;
 use std::process::Command;
 
-/// A random valid configuration. Widths span their whole legal range; the light count is
-/// kept to 1–4 so a Verilator build stays within seconds.
+/// A random valid configuration, uniform over the valid space: every numeric field is drawn
+/// over its whole range in [`LIMITS`] (`power_entries` over its powers of two), every choice
+/// over all its values, and draws that break a cross-field rule are redrawn. Palette mode is
+/// left out: it has no RTL yet.
 pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
     loop {
-        let dot_bits = rng.range(2, 14) as u32;
+        let (e_lo, e_hi) = limit("power_entries");
         let cfg = PipelineConfig {
-            normal_bits: rng.range(3, 16) as u32,
-            lh_bits: rng.range(4, 24) as u32,
-            dot_bits,
-            power_entries: 1 << rng.range(1, dot_bits.min(11) as i64),
-            power_bits: rng.range(2, 16) as u32,
-            power_index: if rng.chance(0.5) {
-                PowerIndex::Nearest
-            } else {
-                PowerIndex::Truncate
-            },
-            power_unit: [PowerUnitKind::Table, PowerUnitKind::Lerp, PowerUnitKind::Segmented][rng.range(0, 2) as usize],
-            power_segments: rng.range(2, 8) as u32,
-            shininess: [0, 1, 2, 8, 32, 255, 1024][rng.range(0, 6) as usize],
-            colour_bits: rng.range(2, 12) as u32,
-            k_bits: rng.range(1, 12) as u32,
-            lights: rng.range(1, 4) as u32,
-            light_mode: if rng.chance(0.5) { LightMode::Serial } else { LightMode::Parallel },
-            blend_order: if rng.chance(0.5) {
-                BlendOrder::DiffuseTextureSpecular
-            } else {
-                BlendOrder::TextureLast
-            },
-            rounding: [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven][rng.range(0, 2) as usize],
+            normal_bits: field(rng, "normal_bits"),
+            lh_bits: field(rng, "lh_bits"),
+            dot_bits: field(rng, "dot_bits"),
+            power_entries: 1 << rng.range(e_lo.ilog2() as i64, e_hi.ilog2() as i64),
+            power_bits: field(rng, "power_bits"),
+            power_index: pick(rng, &[PowerIndex::Nearest, PowerIndex::Truncate]),
+            power_unit: pick(rng, &[PowerUnitKind::Table, PowerUnitKind::Lerp, PowerUnitKind::Segmented]),
+            power_segments: field(rng, "power_segments"),
+            shininess: field(rng, "shininess"),
+            colour_bits: field(rng, "colour_bits"),
+            k_bits: field(rng, "k_bits"),
+            lights: field(rng, "lights"),
+            light_mode: pick(rng, &[LightMode::Serial, LightMode::Parallel]),
+            blend_order: pick(rng, &[BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast]),
+            rounding: pick(rng, &[Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven]),
             palette: false,
-            diffuse: rng.chance(0.9),
-            specular: rng.chance(0.9),
-            skip_flat: rng.chance(0.3),
+            diffuse: pick(rng, &[false, true]),
+            specular: pick(rng, &[false, true]),
+            skip_flat: pick(rng, &[false, true]),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
         }
     }
+}
+
+/// Uniform over the valid range of numeric field `name`.
+fn field(rng: &mut SplitMix64, name: &str) -> u32 {
+    let (lo, hi) = limit(name);
+    rng.range(lo as i64, hi as i64) as u32
+}
+
+/// Uniform over `options`.
+fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
+    options[rng.range(0, options.len() as i64 - 1) as usize]
+}
+
+/// Fixed configurations at the edges of the space, which uniform draws reach only now and
+/// then: every light slot (serial and parallel), the widest dot product and table, the widest
+/// segmented unit, and every width at its top and at its bottom.
+pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
+    let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
+    let d = PipelineConfig::default();
+    let widest_dot = PipelineConfig {
+        dot_bits: hi("dot_bits"),
+        power_entries: hi("power_entries"),
+        power_bits: hi("power_bits"),
+        shininess: hi("shininess"),
+        ..d.clone()
+    };
+    vec![
+        (
+            "all light slots, serial",
+            PipelineConfig {
+                lights: hi("lights"),
+                light_mode: LightMode::Serial,
+                ..d.clone()
+            },
+        ),
+        (
+            "all light slots, parallel",
+            PipelineConfig {
+                lights: hi("lights"),
+                light_mode: LightMode::Parallel,
+                ..d.clone()
+            },
+        ),
+        ("widest dot product and table", widest_dot.clone()),
+        (
+            "widest segmented unit",
+            PipelineConfig {
+                power_unit: PowerUnitKind::Segmented,
+                power_segments: hi("power_segments"),
+                power_entries: 16,
+                ..widest_dot.clone()
+            },
+        ),
+        (
+            "every width at its top",
+            PipelineConfig {
+                normal_bits: hi("normal_bits"),
+                lh_bits: hi("lh_bits"),
+                colour_bits: hi("colour_bits"),
+                k_bits: hi("k_bits"),
+                lights: hi("lights"),
+                light_mode: LightMode::Parallel,
+                rounding: Rounding::NearestEven,
+                ..widest_dot
+            },
+        ),
+        (
+            "every width at its bottom",
+            PipelineConfig {
+                normal_bits: lo("normal_bits"),
+                lh_bits: lo("lh_bits"),
+                dot_bits: lo("dot_bits"),
+                power_entries: lo("power_entries"),
+                power_bits: lo("power_bits"),
+                shininess: lo("shininess"),
+                colour_bits: lo("colour_bits"),
+                k_bits: lo("k_bits"),
+                lights: lo("lights"),
+                rounding: Rounding::Truncate,
+                ..d
+            },
+        ),
+    ]
+}
+
+/// Random vectors to simulate for `cfg` when `random` are asked for: fewer for big
+/// configurations, whose table load (one word a cycle) and serial light slots (one a cycle)
+/// make every vector slower, so a huge config costs about what a default one does.
+pub fn vectors_for(cfg: &PipelineConfig, random: u64) -> u64 {
+    let table_cost = (cfg.power_entries as u64 / 1024).max(1);
+    let light_cost = match cfg.light_mode {
+        LightMode::Serial => cfg.lights.div_ceil(4) as u64,
+        LightMode::Parallel => 1,
+    };
+    (random / (table_cost * light_cost)).max(random.min(100))
 }
 
 /// Generate, lint and simulate one configuration; returns the number of vectors checked.
@@ -58,6 +147,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     let dir = work.join(format!("cfg_{h}"));
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
     std::fs::write(dir.join("config.toml"), cfg.to_toml()).map_err(|e| Error::io(&dir, e))?;
+    let progress = crate::progress::Progress::new(&format!("fuzz config {h}"), 3);
+    progress.start("generate and lint");
     let rtl = write_rtl(cfg, &dir.join("rtl"), "gbump fuzz")?;
     let mut lint = Command::new("verilator");
     lint.args(["--lint-only", "-Wall", "--top-module", &format!("gbump_pipeline_{h}")])
@@ -71,6 +162,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             super::tail(&log, 20)
         )));
     }
+    progress.done("verilator --lint-only -Wall clean");
+    progress.start("vectors from the model");
     let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
     let o = DumpOptions {
         text: true,
@@ -81,11 +174,13 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         shininess: None,
     };
     let mut sets = Vec::new();
-    for src in [Source::Corners(2), Source::Random(random)] {
+    for src in [Source::Corners(2), Source::Random(vectors_for(cfg, random))] {
         for s in dump(cfg, &src, &all, &dir.join("vectors"), &o)? {
             sets.push((s.manifest, None));
         }
     }
+    progress.done(&format!("{} vector sets", sets.len()));
+    progress.start("build and simulate on Verilator");
     let opts = RegressOptions {
         sims: vec![Sim::Verilator],
         random_verilator: 0,
@@ -116,5 +211,59 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             Err(e) => return Err(Error::Other(format!("config {h}: {}: {e}", r.set))),
         }
     }
+    progress.done(&format!("{checked} vectors match the model"));
     Ok(checked)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::LIMITS;
+
+    #[test]
+    fn corner_configs_are_valid_and_reach_every_limit() {
+        let cs = corner_configs();
+        for (name, c) in &cs {
+            c.validate(name).unwrap();
+        }
+        let toml: Vec<toml::Table> = cs.iter().map(|c| toml::Table::try_from(&c.1).unwrap()).collect();
+        for &(f, lo, hi, _) in LIMITS {
+            let seen: Vec<u32> = toml.iter().map(|t| t[f].as_integer().unwrap() as u32).collect();
+            assert!(seen.contains(&hi), "no corner config has {f} = {hi}");
+            assert!(f == "power_segments" || seen.contains(&lo), "no corner config has {f} = {lo}");
+        }
+    }
+
+    /// Uniform draws reach both ends of every range and every value of every choice.
+    #[test]
+    fn random_configs_span_every_field() {
+        let mut rng = SplitMix64(1);
+        let draws: Vec<toml::Table> = (0..4000).map(|_| toml::Table::try_from(random_config(&mut rng)).unwrap()).collect();
+        for &(f, lo, hi, _) in LIMITS {
+            let vals: Vec<u32> = draws.iter().map(|t| t[f].as_integer().unwrap() as u32).collect();
+            assert!(
+                vals.contains(&lo) && vals.contains(&hi),
+                "{f}: draws span {:?}..{:?}, limits {lo}..{hi}",
+                vals.iter().min(),
+                vals.iter().max()
+            );
+        }
+        for f in [
+            "power_index",
+            "power_unit",
+            "light_mode",
+            "blend_order",
+            "rounding",
+            "diffuse",
+            "specular",
+            "skip_flat",
+        ] {
+            let distinct: std::collections::BTreeSet<String> = draws.iter().map(|t| t[f].to_string()).collect();
+            let want = match f {
+                "power_unit" | "rounding" => 3,
+                _ => 2,
+            };
+            assert_eq!(distinct.len(), want, "{f}: {distinct:?}");
+        }
+    }
 }

@@ -32,8 +32,10 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
     let files: Vec<String> = v.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let waivers: Vec<String> = vlt.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let mut problems = Vec::new();
+    let progress = crate::progress::Progress::new("lint", files.len() as u64 + 2);
     for f in &files {
         let top = f.trim_end_matches(".v");
+        progress.start(&format!("verilator -Wall --top-module {top}"));
         let mut c = Command::new("verilator");
         c.args(["--lint-only", "-Wall", "--top-module", top])
             .args(&waivers)
@@ -43,13 +45,17 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
         if !ok || log.contains("%Warning") {
             problems.push(format!("verilator --lint-only -Wall --top-module {top}:\n{}", tail(&log, 20)));
         }
+        progress.done(&format!("verilator --top-module {top}"));
     }
+    progress.start("iverilog -Wall");
     let mut c = Command::new("iverilog");
     c.args(["-g2005", "-Wall", "-o", "/dev/null"]).args(&files).current_dir(&dir);
     let (ok, log, _) = run_cmd(&mut c, "iverilog -Wall")?;
     if !ok || !log.trim().is_empty() {
         problems.push(format!("iverilog -g2005 -Wall:\n{}", tail(&log, 20)));
     }
+    progress.done("iverilog -Wall");
+    progress.start("yosys synthesis check");
     let top = module_name(cfg, "gbump_pipeline");
     let script = yosys_check_script(&files, &top);
     let sp = dir.join("lint.ys");
@@ -60,6 +66,8 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
     if !ok {
         problems.push(format!("yosys synthesis check ({}):\n{}", sp.display(), tail(&log, 20)));
     }
+    progress.done("yosys synthesis check");
+    drop(progress);
     println!(
         "lint config {}: verilator ({} tops), iverilog, yosys: {}",
         cfg.hash(),

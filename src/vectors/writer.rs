@@ -176,7 +176,7 @@ impl SetWriter {
         let text = crate::rtlgen::rom::write(
             &rom,
             crate::rtlgen::rom::RomFormat::Hex,
-            &crate::rtlgen::header::header_lines(cfg, &o.command, "power table of this vector set"),
+            &crate::rtlgen::rom::rom_header(&rom, Some(cfg), &o.command, "power table of this vector set"),
         );
         crate::render::output::write_atomic(&tp, text.as_bytes())?;
         let (bytes, sha256) = super::manifest::sha256_file(&tp)?;

@@ -1,0 +1,121 @@
+//! A ROM init file's header must state what its contents were built from: `gbump rom
+//! --shininess 8` once wrote a table for n = 8 whose header said `shininess = 16` (the
+//! config's). Each header is read back here and checked against the file name and the words.
+
+use gbump::cli::{rom_files, ConfigPick};
+use gbump::config::PowerUnitKind;
+use gbump::rtlgen::rom::{parse, RomFormat};
+use gbump::PipelineConfig;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// `key = value` lines of a header (comment markers stripped), failing on a key stated twice
+/// with different values: a header that contradicts itself.
+fn header_params(text: &str) -> BTreeMap<String, String> {
+    let mut m = BTreeMap::new();
+    for l in text.lines().filter(|l| l.starts_with("// ")) {
+        if let Some((k, v)) = l.trim_start_matches("// ").trim().split_once(" = ") {
+            if let Some(old) = m.insert(k.to_string(), v.to_string()) {
+                assert_eq!(old, v, "header states {k} twice:\n{text}");
+            }
+        }
+    }
+    m
+}
+
+fn configs() -> Vec<PipelineConfig> {
+    let d = PipelineConfig::default();
+    vec![
+        d.clone(),
+        PipelineConfig {
+            dot_bits: 12,
+            power_entries: 1024,
+            power_bits: 12,
+            shininess: 3,
+            ..d.clone()
+        },
+        PipelineConfig {
+            dot_bits: 10,
+            power_unit: PowerUnitKind::Segmented,
+            power_entries: 16,
+            power_segments: 5,
+            ..d.clone()
+        },
+        PipelineConfig {
+            normal_bits: 11,
+            power_unit: PowerUnitKind::Lerp,
+            power_entries: 64,
+            ..d
+        },
+    ]
+}
+
+#[test]
+fn every_rom_header_states_the_parameters_of_its_contents() {
+    let pick = ConfigPick { config: None, scene: None };
+    for cfg in configs() {
+        for (n, cube) in [(0, 1), (1, 4), (8, 32), (16, 32), (255, 7), (1024, 2)] {
+            let files = rom_files(&cfg, &pick, Some(n), cube, Path::new("rom")).unwrap();
+            for (name, text) in files.iter().filter(|(f, _)| f.ends_with(".hex")) {
+                let p = header_params(text);
+                let words = parse(text, RomFormat::Hex).unwrap();
+                let ctx = format!("{name} (config {}, n = {n})", cfg.hash());
+                if name.starts_with("power_table_") {
+                    assert!(name.starts_with(&format!("power_table_n{n}_{}", &cfg.hash()[..8])), "{ctx}");
+                    assert_eq!(p["shininess"], n.to_string(), "{ctx}");
+                    assert_eq!(p["power_entries"], cfg.power_entries.to_string(), "{ctx}");
+                    assert_eq!(p["power_bits"], cfg.power_bits.to_string(), "{ctx}");
+                    let want = gbump::model::PowerTable::build(&cfg, n);
+                    assert_eq!(words, want.entries.iter().map(|&e| e as u64).collect::<Vec<_>>(), "{ctx}");
+                } else if name.starts_with("bump_palette_") {
+                    assert!(name.starts_with(&format!("bump_palette_{}_", p["palette_source"])), "{ctx}");
+                    assert_eq!(p["normal_bits"], cfg.normal_bits.to_string(), "{ctx}");
+                    assert_eq!(words.len(), 256, "{ctx}");
+                } else {
+                    assert_eq!(name, &format!("cube_map_{cube}.hex"));
+                    assert_eq!(p["cube_size"], cube.to_string(), "{ctx}");
+                    assert_eq!(words.len(), 6 * cube * cube, "{ctx}");
+                    // The cube map is the same for every configuration, so it names none.
+                    assert!(!text.contains("config hash") && !p.contains_key("shininess"), "{ctx}:\n{text}");
+                }
+            }
+        }
+    }
+}
+
+/// The pipeline's own reset table and a vector set's table, for a config whose shininess
+/// differs from the default: the header agrees with the words.
+#[test]
+fn reset_and_vector_tables_state_their_shininess() {
+    let cfg = PipelineConfig {
+        shininess: 5,
+        ..PipelineConfig::default()
+    };
+    let want: Vec<u64> = gbump::model::PowerTable::build(&cfg, 5).entries.iter().map(|&e| e as u64).collect();
+    let rtl = gbump::rtlgen::generate(&cfg, "gbump rtl --out rtl");
+    let (_, text) = rtl
+        .iter()
+        .find(|(n, _)| n.starts_with("power_table_") && n.ends_with(".hex"))
+        .unwrap();
+    assert_eq!(header_params(text)["shininess"], "5");
+    assert_eq!(parse(text, RomFormat::Hex).unwrap(), want);
+    let tmp = tempfile::tempdir().unwrap();
+    let o = gbump::vectors::DumpOptions {
+        text: true,
+        binary: false,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: Some(9),
+    };
+    gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(4), &["top".to_string()], tmp.path(), &o).unwrap();
+    let table = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().ends_with("_power_table.hex"))
+        .unwrap();
+    let text = std::fs::read_to_string(table).unwrap();
+    assert_eq!(header_params(&text)["shininess"], "9", "{text}");
+    let nine: Vec<u64> = gbump::model::PowerTable::build(&cfg, 9).entries.iter().map(|&e| e as u64).collect();
+    assert_eq!(parse(&text, RomFormat::Hex).unwrap(), nine);
+}
