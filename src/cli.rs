@@ -694,9 +694,13 @@ pub fn rom_files(
     let n = shininess.unwrap_or(cfg.shininess);
     check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
     check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    // Every ROM name carries what its bytes depend on: its parameters, the palette's source
+    // scene and the configuration hash (which every header states).
+    let mut palette_src = "default".to_string();
     let palette = match &pick.scene {
         Some(s) => {
             let scene = Scene::load(s)?;
+            palette_src = scene.name.clone();
             let pcfg = PipelineConfig {
                 palette: true,
                 ..cfg.clone()
@@ -716,8 +720,8 @@ pub fn rom_files(
     let mut files = Vec::new();
     for (stem, rom) in [
         (format!("power_table_n{n}_{hash}"), power_rom(cfg, n)),
-        (format!("bump_palette_{hash}"), palette_rom(cfg, &palette)),
-        (format!("cube_map_{cube}"), cube_map_rom(cube)),
+        (format!("bump_palette_{palette_src}_{hash}"), palette_rom(cfg, &palette)),
+        (format!("cube_map_s{cube}_{hash}"), cube_map_rom(cube)),
     ] {
         let hl = crate::rtlgen::header::header_lines(cfg, &cmd, &rom.name);
         for f in RomFormat::ALL {

@@ -295,8 +295,8 @@ fn every_rom_read_by_a_simulator_equals_the_model() {
     let h = &cfg.hash()[..8];
     for (stem, rom) in [
         (format!("power_table_n16_{h}"), power_rom(&cfg, 16)),
-        (format!("bump_palette_{h}"), palette_rom(&cfg, &default_palette(&cfg))),
-        ("cube_map_32".to_string(), cube_map_rom(32)),
+        (format!("bump_palette_default_{h}"), palette_rom(&cfg, &default_palette(&cfg))),
+        (format!("cube_map_s32_{h}"), cube_map_rom(32)),
     ] {
         let dir = root().join("rtl/rom");
         assert_eq!(
