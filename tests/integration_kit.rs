@@ -16,8 +16,7 @@ fn root() -> PathBuf {
 
 /// A tool the test needs: missing is a failure that names the fix, never a skip.
 fn need(tool: &str) {
-    let found = std::env::var_os("PATH")
-        .is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()));
+    let found = std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()));
     assert!(found, "{tool} is not installed: run scripts/install-tools.sh");
 }
 
@@ -57,7 +56,17 @@ fn rtl(config: Option<&str>, dir: &Path) {
 fn top_vectors(config: Option<&str>, source: &str, shininess: u32, dir: &Path) -> PathBuf {
     let c = config.map(|p| root().join(p).display().to_string());
     let n = shininess.to_string();
-    let mut a = vec!["vectors", "--source", source, "--target", "top", "--format", "hex", "--shininess", &n];
+    let mut a = vec![
+        "vectors",
+        "--source",
+        source,
+        "--target",
+        "top",
+        "--format",
+        "hex",
+        "--shininess",
+        &n,
+    ];
     a.extend(["--out", dir.to_str().unwrap()]);
     if let Some(c) = &c {
         a.extend(["--config", c]);
@@ -110,19 +119,39 @@ fn filelists_work_from_any_folder_with_verilator_icarus_and_yosys() {
     }
     // Verilator resolves `-F` names against the list.
     let (ok, log) = run(
-        Command::new("verilator")
-            .args(["--lint-only", "-Wall", &rel(&format!("{top}.vlt")), "-F", &rel(&f), "--top-module", &top]),
+        Command::new("verilator").args([
+            "--lint-only",
+            "-Wall",
+            &rel(&format!("{top}.vlt")),
+            "-F",
+            &rel(&f),
+            "--top-module",
+            &top,
+        ]),
         &cwd,
     );
     assert!(ok, "verilator -F from another folder:\n{log}");
     // Icarus resolves `-c` names against its working folder: the plain list fails from here
     // (why Icarus has its own list) and the Icarus list works with GBUMP_RTL set.
-    let (ok, _) = run(Command::new("iverilog").args(["-g2005", "-s", &top, "-o", "plain.vvp", "-c", &rel(&f)]), &cwd);
-    assert!(!ok, "iverilog -c resolved the plain list against the list's folder: the docs are wrong");
+    let (ok, _) = run(
+        Command::new("iverilog").args(["-g2005", "-s", &top, "-o", "plain.vvp", "-c", &rel(&f)]),
+        &cwd,
+    );
+    assert!(
+        !ok,
+        "iverilog -c resolved the plain list against the list's folder: the docs are wrong"
+    );
     let (ok, log) = run(
-        Command::new("iverilog")
-            .env(kit::ICARUS_DIR_VAR, "../../ip/rtl")
-            .args(["-g2005", "-Wall", "-s", &top, "-o", "top.vvp", "-c", &rel(&fi)]),
+        Command::new("iverilog").env(kit::ICARUS_DIR_VAR, "../../ip/rtl").args([
+            "-g2005",
+            "-Wall",
+            "-s",
+            &top,
+            "-o",
+            "top.vvp",
+            "-c",
+            &rel(&fi),
+        ]),
         &cwd,
     );
     assert!(ok && cwd.join("top.vvp").is_file(), "iverilog -c {fi}:\n{log}");
@@ -181,7 +210,13 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
     assert!(failed > 0, "n = 40 vectors passed on the n = 16 power-up table:\n{log}");
     // ... and the power-up table's own shininess passes with nothing loaded.
     top_vectors(None, "random:100", cfg.shininess, &tmp.path().join("v16"));
-    let log = fusesoc(&cwd, Path::new("../cores"), "sim_icarus", &core, &["--vectors=../v16/random100_top.hex".into()]);
+    let log = fusesoc(
+        &cwd,
+        Path::new("../cores"),
+        "sim_icarus",
+        &core,
+        &["--vectors=../v16/random100_top.hex".into()],
+    );
     assert_eq!(passed_failed(&log), (100, 0), "{log}");
 }
 
@@ -231,19 +266,34 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
             ),
         )
         .unwrap();
-        let (ok, log) = run(Command::new("verilator").args(["--lint-only", "-Wall", "-sv"]).arg(&pkg), tmp.path());
+        let (ok, log) = run(
+            Command::new("verilator").args(["--lint-only", "-Wall", "-sv"]).arg(&pkg),
+            tmp.path(),
+        );
         assert!(ok, "verilator --lint-only -Wall -sv on the package:\n{log}");
         let (ok, log) = run(
-            Command::new("verilator").args(["--lint-only", "-Wall", "-Wno-UNUSEDSIGNAL", "-sv"]).arg(&pkg).arg(&user),
+            Command::new("verilator")
+                .args(["--lint-only", "-Wall", "-Wno-UNUSEDSIGNAL", "-sv"])
+                .arg(&pkg)
+                .arg(&user),
             tmp.path(),
         );
         assert!(ok, "verilator, package and user:\n{log}");
-        let (ok, log) = run(Command::new("iverilog").args(["-g2012", "-o", "u.vvp"]).arg(&pkg).arg(&user), tmp.path());
+        let (ok, log) = run(
+            Command::new("iverilog").args(["-g2012", "-o", "u.vvp"]).arg(&pkg).arg(&user),
+            tmp.path(),
+        );
         assert!(ok, "iverilog -g2012:\n{log}");
         let (ok, log) = run(Command::new("vvp").args(["-n", "u.vvp"]), tmp.path());
         assert!(ok, "{log}");
         // The struct's fields are the manifest's columns.
-        let line = std::fs::read_to_string(&hex).unwrap().lines().filter(|l| !l.starts_with("//")).nth(1).unwrap().to_string();
+        let line = std::fs::read_to_string(&hex)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with("//"))
+            .nth(1)
+            .unwrap()
+            .to_string();
         let l = gbump::vectors::targets::top_layout(&cfg);
         let col = |n: &str| l.column(n).clone();
         let (h, lc, k) = (col("in_h"), col("in_lc"), col("in_k"));
@@ -260,7 +310,10 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
             gbump::rtlgen::top::latency(&cfg),
             cfg.initiation_interval()
         );
-        assert!(log.contains(&want), "package fields differ from the manifest's columns:\nwant {want}\n{log}");
+        assert!(
+            log.contains(&want),
+            "package fields differ from the manifest's columns:\nwant {want}\n{log}"
+        );
     }
 }
 
@@ -268,7 +321,8 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
 fn cocotb(cwd: &Path, iface: &Path, man: &Path, table: Option<&Path>) -> (bool, String) {
     let mut c = Command::new("make");
     c.arg("-f").arg(root().join("examples/cocotb/Makefile"));
-    c.arg(format!("INTERFACE={}", iface.display())).arg(format!("VECTORS={}", man.display()));
+    c.arg(format!("INTERFACE={}", iface.display()))
+        .arg(format!("VECTORS={}", man.display()));
     if let Some(t) = table {
         c.arg(format!("TABLE={}", t.display()));
     }
@@ -300,9 +354,17 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
         std::fs::create_dir_all(&cwd).unwrap();
         let (ok, log) = cocotb(&cwd, &iface, &man, Some(&table));
         assert!(ok, "cocotb example, config {config:?}:\n{log}");
-        assert!(log.contains(&format!("{count} passed, 0 failed")) && log.contains("FAIL=0"), "{log}");
+        assert!(
+            log.contains(&format!("{count} passed, 0 failed")) && log.contains("FAIL=0"),
+            "{log}"
+        );
         // The power-up table is the wrong one for these vectors: caught.
-        let (ok, log) = cocotb(&cwd, &iface, &man, Some(&dir.join(gbump::rtlgen::units_v::rom_file_name(&cfg, "power_table", "hex"))));
+        let (ok, log) = cocotb(
+            &cwd,
+            &iface,
+            &man,
+            Some(&dir.join(gbump::rtlgen::units_v::rom_file_name(&cfg, "power_table", "hex"))),
+        );
         assert!(!ok && log.contains("MISMATCH"), "n = 16 table passed n = 40 vectors:\n{log}");
         if config.is_none() {
             // A wrong rounding constant in texture_modulate: caught and reported.
@@ -311,7 +373,10 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
             assert!(text.contains("+ 17'd128;"));
             std::fs::write(&tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
             let (ok, log) = cocotb(&cwd, &iface, &man, None);
-            assert!(!ok && log.contains("MISMATCH") && log.contains("out_c expected"), "the mutant passed:\n{log}");
+            assert!(
+                !ok && log.contains("MISMATCH") && log.contains("out_c expected"),
+                "the mutant passed:\n{log}"
+            );
         }
     }
 }
@@ -321,7 +386,10 @@ fn rom_names_carry_their_parameters_and_the_config_hash() {
     use gbump::cli::{rom_files, ConfigPick};
     let none = ConfigPick { config: None, scene: None };
     let a = PipelineConfig::default();
-    let b = PipelineConfig { colour_bits: 10, ..Default::default() };
+    let b = PipelineConfig {
+        colour_bits: 10,
+        ..Default::default()
+    };
     let mut all = std::collections::BTreeSet::new();
     for (cfg, pick, n, cube) in [(&a, &none, 16, 32), (&a, &none, 40, 32), (&a, &none, 16, 16), (&b, &none, 16, 32)] {
         let h = &cfg.hash()[..8];
@@ -341,9 +409,16 @@ fn rom_names_carry_their_parameters_and_the_config_hash() {
     assert_eq!(all.iter().filter(|n| n.starts_with("power_table")).count(), 3 * 3);
     assert_eq!(all.iter().filter(|n| n.starts_with("cube_map")).count(), 3 * 3);
     // A palette from a scene carries the scene's name.
-    let scene = ConfigPick { config: None, scene: Some("torus_caps".into()) };
+    let scene = ConfigPick {
+        config: None,
+        scene: Some("torus_caps".into()),
+    };
     let cfg = scene.resolve().unwrap();
     let files = rom_files(&cfg, &scene, None, 8, Path::new("x")).unwrap();
     let h = &cfg.hash()[..8];
-    assert!(files.iter().any(|f| f.0 == format!("bump_palette_torus_caps_{h}.hex")), "{:?}", files.iter().map(|f| &f.0).collect::<Vec<_>>());
+    assert!(
+        files.iter().any(|f| f.0 == format!("bump_palette_torus_caps_{h}.hex")),
+        "{:?}",
+        files.iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
 }

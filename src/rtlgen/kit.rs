@@ -108,7 +108,10 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     s += &format!("      - {init}: {{file_type: user, copyto: {init}}}\n");
     s += "    file_type: verilogSource\n";
     s += &format!("  waivers:\n    files:\n      - {vlt}\n    file_type: vlt\n");
-    s += &format!("  package:\n    files:\n      - {}\n    file_type: systemVerilogSource\n", package_file_name(cfg));
+    s += &format!(
+        "  package:\n    files:\n      - {}\n    file_type: systemVerilogSource\n",
+        package_file_name(cfg)
+    );
     s += &format!("  tb:\n    files:\n      - {}\n    file_type: verilogSource\n\n", tb_file_name(cfg));
     s += "targets:\n";
     s += &format!("  default:\n    filesets: [rtl]\n    toplevel: {top}\n    parameters: [INIT_FILE]\n");
@@ -136,26 +139,66 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
 /// The SystemVerilog package: formats, widths, timing, record structs and lane helpers.
 pub fn package(cfg: &PipelineConfig, command: &str) -> String {
     let name = package_name(cfg);
-    let mut s = header(cfg, command, "SystemVerilog package: widths, formats, record structs, lane helpers", "// ");
+    let mut s = header(
+        cfg,
+        command,
+        "SystemVerilog package: widths, formats, record structs, lane helpers",
+        "// ",
+    );
     s += "`timescale 1ns / 1ps\n`default_nettype none\n";
     s += "// A package names every width whether or not a design reads it; the waiver covers only\n";
     s += "// this file.\n// verilator lint_off UNUSEDPARAM\n";
     s += &format!("package {name};\n");
     let p = |s: &mut String, n: &str, v: u64, doc: &str| *s += &format!("    localparam int {n} = {v}; // {doc}\n");
     s += "    // Formats: lane widths in bits (a lane is one component or one light's value).\n";
-    p(&mut s, "COLOUR_BITS", cfg.colour_bits.into(), &format!("colour code {}, max = 1.0", cfg.colour_fmt().name()));
-    p(&mut s, "NORMAL_BITS", cfg.normal_bits.into(), "stored bump texel component, offset binary");
-    p(&mut s, "LH_BITS", cfg.lh_bits.into(), &format!("L_i, H_i component {}", cfg.lh_fmt().name()));
+    p(
+        &mut s,
+        "COLOUR_BITS",
+        cfg.colour_bits.into(),
+        &format!("colour code {}, max = 1.0", cfg.colour_fmt().name()),
+    );
+    p(
+        &mut s,
+        "NORMAL_BITS",
+        cfg.normal_bits.into(),
+        "stored bump texel component, offset binary",
+    );
+    p(
+        &mut s,
+        "LH_BITS",
+        cfg.lh_bits.into(),
+        &format!("L_i, H_i component {}", cfg.lh_fmt().name()),
+    );
     p(&mut s, "K_BITS", cfg.k_fmt().width.into(), &format!("k_i {}", cfg.k_fmt().name()));
-    p(&mut s, "DOT_BITS", cfg.dot_fmt().width.into(), &format!("clamped dot product {}", cfg.dot_fmt().name()));
-    p(&mut s, "POWER_BITS", cfg.power_fmt().width.into(), &format!("power-table entry {}", cfg.power_fmt().name()));
+    p(
+        &mut s,
+        "DOT_BITS",
+        cfg.dot_fmt().width.into(),
+        &format!("clamped dot product {}", cfg.dot_fmt().name()),
+    );
+    p(
+        &mut s,
+        "POWER_BITS",
+        cfg.power_fmt().width.into(),
+        &format!("power-table entry {}", cfg.power_fmt().name()),
+    );
     p(&mut s, "PT_WORDS", cfg.power_depth().into(), "words of the power table's memory");
     p(&mut s, "PT_ADDR_BITS", cfg.power_addr_bits().into(), "pt_waddr width");
     p(&mut s, "LIGHTS", cfg.lights.into(), "light slots");
     p(&mut s, "SHININESS", cfg.shininess.into(), "shininess of the power-up table");
     s += "    // Timing (rising edges, as the interface JSON defines them).\n";
-    p(&mut s, "LATENCY", latency(cfg).into(), "accepting edge to the edge out_valid is first sampled high");
-    p(&mut s, "INITIATION_INTERVAL", cfg.initiation_interval().into(), "edges between accepts");
+    p(
+        &mut s,
+        "LATENCY",
+        latency(cfg).into(),
+        "accepting edge to the edge out_valid is first sampled high",
+    );
+    p(
+        &mut s,
+        "INITIATION_INTERVAL",
+        cfg.initiation_interval().into(),
+        "edges between accepts",
+    );
     s += &format!(
         "    localparam INIT_FILE = \"{}\"; // power-up table, relative to the simulator's working folder\n",
         rom_file_name(cfg, "power_table", "hex")
@@ -170,10 +213,13 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
     }
     for (what, l) in &layouts {
         let up = what.to_uppercase();
-        s += &format!(
-            "    // {what} vector record: a $readmemh'd word of {up}_RECORD_BITS bits assigned to a {what}_record_t.\n"
+        s += &format!("    // {what} vector record: a $readmemh'd word of {up}_RECORD_BITS bits assigned to a {what}_record_t.\n");
+        p(
+            &mut s,
+            &format!("{up}_RECORD_BITS"),
+            l.bits.into(),
+            "bits of one record (LSB-first columns)",
         );
-        p(&mut s, &format!("{up}_RECORD_BITS"), l.bits.into(), "bits of one record (LSB-first columns)");
         s += "    typedef struct packed {\n";
         for c in l.columns.iter().rev() {
             let role = if c.role == Role::Stimulus { "stimulus" } else { "expected" };

@@ -66,7 +66,10 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
         kit::tb_file_name(cfg),
         format!("{}{tb}", header(cfg, command, "tb_top: the top testbench (plusargs below)", "// ")),
     ));
-    files.push((format!("{}.core", module_name(cfg, "gbump_pipeline")), kit::core(cfg, command, &srcs)));
+    files.push((
+        format!("{}.core", module_name(cfg, "gbump_pipeline")),
+        kit::core(cfg, command, &srcs),
+    ));
     files
 }
 
@@ -74,7 +77,11 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
 /// and filelists); the generated testbench is not one of them.
 pub fn sources(files: &[GenFile]) -> Vec<String> {
     let tb = |n: &str| n.starts_with("tb_top_");
-    files.iter().filter(|f| f.0.ends_with(".v") && !tb(&f.0)).map(|f| f.0.clone()).collect()
+    files
+        .iter()
+        .filter(|f| f.0.ends_with(".v") && !tb(&f.0))
+        .map(|f| f.0.clone())
+        .collect()
 }
 
 /// Verilator waivers, each with its reason.
