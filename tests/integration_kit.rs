@@ -193,6 +193,8 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
     let hex = "../v/random400_top.hex".to_string();
     let table = "../v/random400_top_power_table.hex".to_string();
     assert!(man.is_file());
+    // The lint target: Verilator -Wall on the RTL, its waivers and the package (fails on any warning).
+    fusesoc(&cwd, Path::new("../cores"), "lint", &core, &[]);
     for target in ["sim_icarus", "sim_verilator"] {
         let log = fusesoc(
             &cwd,
@@ -334,7 +336,7 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
     need("make");
     need("iverilog");
     need("cocotb-config");
-    for (config, count) in [(None, 1500), (Some("tests/configs/one_light_parallel.toml"), 3000)] {
+    for (config, count) in [(None, 1200), (Some("tests/configs/one_light_parallel.toml"), 2500)] {
         let cfg = cfg_of(config);
         let tmp = tempfile::tempdir().unwrap();
         let dir = tmp.path().join("rtl");

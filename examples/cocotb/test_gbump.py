@@ -7,7 +7,7 @@ table through the load port (pt_we/pt_waddr/pt_wdata; $GBUMP_TABLE or the set's 
 every record with random bubbles ($GBUMP_BUBBLES: chance of a 1-3 cycle gap, seeded by
 $GBUMP_SEED), and checks every out_c, the latency of every vector (rising edges from the
 accepting edge to the edge at which its out_valid is first sampled high) and the spacing of
-accepts (the initiation interval).
+accepts (the initiation interval). Stops after $GBUMP_MAX_ERRORS (default 20) mismatches.
 
 Timing convention: inputs change at falling edges; after they settle, the values read are the
 ones the next rising edge samples (the outputs are registered and change only after a rising
@@ -82,7 +82,8 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
     last_accept = None
     edge = 0
     limit = len(records) * (ii + 4) + lat + 100
-    while (nxt < len(records) or in_flight) and edge < limit:
+    max_errors = int(os.environ.get("GBUMP_MAX_ERRORS", "20"))
+    while (nxt < len(records) or in_flight) and edge < limit and len(problems) < max_errors:
         # Drive for the next rising edge (we are just after a falling edge).
         if nxt < len(records) and gap == 0:
             dut.in_valid.value = 1
@@ -121,7 +122,9 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
         await RisingEdge(dut.clk)
         await FallingEdge(dut.clk)
         edge += 1
-    if nxt < len(records) or in_flight:
+    if len(problems) >= max_errors:
+        dut._log.error("stopping after %d mismatches", len(problems))
+    elif nxt < len(records) or in_flight:
         problems.append(f"timed out after {edge} edges: {nxt} of {len(records)} accepted, {len(in_flight)} in flight")
     dut._log.info("%d passed, %d failed", passed, len(problems))
     for p in problems[:MAX_REPORTS]:
