@@ -1,10 +1,22 @@
 #!/usr/bin/env bash
-# Install the simulators and synthesis tool gbump drives (Debian packages), if any is missing.
+# Install the simulators and synthesis tool gbump drives (Debian packages) and the Python tools
+# its integration kit is tested with (pinned, pip), each only when missing.
 set -euo pipefail
 missing=()
 for t in iverilog verilator yosys; do
     command -v "$t" >/dev/null 2>&1 || missing+=("$t")
 done
+# FuseSoC (runs the generated .core) and cocotb (examples/cocotb), pinned, from PyPI.
+PY_PKGS=(fusesoc==2.4.3 cocotb==1.9.2)
+python_tools_present() {
+    command -v fusesoc >/dev/null 2>&1 && command -v cocotb-config >/dev/null 2>&1 &&
+        python3 -c 'import cocotb, fusesoc' >/dev/null 2>&1
+}
+if ! python_tools_present; then
+    echo "installing: ${PY_PKGS[*]} (pip)" >&2
+    python3 -m pip install --quiet "${PY_PKGS[@]}"
+    python_tools_present || { echo "error: fusesoc or cocotb still missing after pip install ${PY_PKGS[*]}" >&2; exit 1; }
+fi
 if [ ${#missing[@]} -eq 0 ]; then
     exit 0
 fi

@@ -721,7 +721,7 @@ pub fn rom_files(
             palette_rom(cfg, &palette, &source),
             Some(cfg),
         ),
-        (format!("cube_map_{cube}"), cube_map_rom(cube), None),
+        (format!("cube_map_{cube}x{cube}x6_rgb8"), cube_map_rom(cube), None),
     ] {
         let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {

@@ -13,6 +13,9 @@
 `timescale 1ns / 1ps
 `default_nettype none
 module tb_top;
+    // The power table's power-up contents (a relative path resolves against the simulator's
+    // working folder); override with -P tb_top.INIT_FILE / -G INIT_FILE.
+    parameter INIT_FILE = {{INIT_FILE}};
     localparam RB = {{RECORD_BITS}};
     localparam LAT = {{LATENCY}};
     localparam PT_N = {{PT_N}};
@@ -25,7 +28,7 @@ module tb_top;
     wire in_ready;
     wire out_valid;
 {{DECLS}}
-    {{TOP}} #(.INIT_FILE({{INIT_FILE}})) dut (
+    {{TOP}} #(.INIT_FILE(INIT_FILE)) dut (
         .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
 {{CONNECT}}

@@ -72,7 +72,7 @@ fn every_rom_header_states_the_parameters_of_its_contents() {
                     assert_eq!(p["normal_bits"], cfg.normal_bits.to_string(), "{ctx}");
                     assert_eq!(words.len(), 256, "{ctx}");
                 } else {
-                    assert_eq!(name, &format!("cube_map_{cube}.hex"));
+                    assert_eq!(name, &format!("cube_map_{cube}x{cube}x6_rgb8.hex"));
                     assert_eq!(p["cube_size"], cube.to_string(), "{ctx}");
                     assert_eq!(words.len(), 6 * cube * cube, "{ctx}");
                     // The cube map is the same for every configuration, so it names none.

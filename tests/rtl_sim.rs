@@ -299,7 +299,7 @@ fn every_rom_read_by_a_simulator_equals_the_model() {
             format!("bump_palette_{DEFAULT_PALETTE}_{h}"),
             palette_rom(&cfg, &default_palette(&cfg), DEFAULT_PALETTE),
         ),
-        ("cube_map_32".to_string(), cube_map_rom(32)),
+        ("cube_map_32x32x6_rgb8".to_string(), cube_map_rom(32)),
     ] {
         let dir = root().join("rtl/rom");
         assert_eq!(

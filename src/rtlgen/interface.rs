@@ -44,6 +44,15 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": {"INIT_FILE": {"default": rom_file_name(cfg, "power_table", "hex"), "doc": "$readmemh file with the power table's power-up contents; relative paths resolve against the simulator's working folder"}},
         "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "unit": cfg.power_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
+        "files": {
+            "filelist": super::kit::filelist_names(cfg).0,
+            "filelist_icarus": super::kit::filelist_names(cfg).1,
+            "yosys_script": super::kit::filelist_names(cfg).2,
+            "waivers": format!("{}.vlt", module_name(cfg, "gbump_pipeline")),
+            "fusesoc_core": format!("{}.core", module_name(cfg, "gbump_pipeline")),
+            "sv_package": super::kit::package_file_name(cfg),
+            "testbench": super::kit::tb_file_name(cfg),
+        },
         "ports": ports,
     });
     serde_json::to_string_pretty(&v).expect("json") + "\n"

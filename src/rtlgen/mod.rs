@@ -5,6 +5,7 @@
 pub mod fixed_ops;
 pub mod integration_doc;
 pub mod interface;
+pub mod kit;
 pub mod power_units;
 pub mod rom;
 pub mod top;
@@ -57,14 +58,32 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
         interface::interface_json(cfg, command),
     ));
     files.push((format!("{}.vlt", module_name(cfg, "gbump_pipeline")), waivers(cfg, command)));
-    let list: String = files.iter().filter(|f| f.0.ends_with(".v")).map(|f| format!("{}\n", f.0)).collect();
-    files.push((format!("{}.f", module_name(cfg, "gbump_pipeline")), list));
+    let srcs = sources(&files);
+    files.extend(kit::filelists(cfg, command, &srcs));
+    files.push((kit::package_file_name(cfg), kit::package(cfg, command)));
+    // The top testbench, powering up from the init file in the simulator's working folder.
+    let init = crate::sim::rtl_files::verilog_string(&rom_file_name(cfg, "power_table", "hex"));
+    let tb = crate::sim::testbench::tb_top_init(cfg, &init);
+    files.push((
+        kit::tb_file_name(cfg),
+        format!("{}{tb}", header(cfg, command, "tb_top: the top testbench (plusargs below)", "// ")),
+    ));
+    files.push((
+        format!("{}.core", module_name(cfg, "gbump_pipeline")),
+        kit::core(cfg, command, &srcs),
+    ));
     files
 }
 
-/// Verilog source names of `files`, in order (for simulator command lines).
+/// Verilog source names of the RTL in `files`, in compile order (for simulator command lines
+/// and filelists); the generated testbench is not one of them.
 pub fn sources(files: &[GenFile]) -> Vec<String> {
-    files.iter().filter(|f| f.0.ends_with(".v")).map(|f| f.0.clone()).collect()
+    let tb = |n: &str| n.starts_with("tb_top_");
+    files
+        .iter()
+        .filter(|f| f.0.ends_with(".v") && !tb(&f.0))
+        .map(|f| f.0.clone())
+        .collect()
 }
 
 /// Verilator waivers, each with its reason.

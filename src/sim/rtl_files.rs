@@ -22,7 +22,7 @@ pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<Rtl>
     crate::cli::write_files(&dir, &files)?;
     let with = |ext: &str| files.iter().filter(|f| f.0.ends_with(ext)).map(|f| dir.join(&f.0)).collect();
     Ok(Rtl {
-        sources: with(".v"),
+        sources: crate::rtlgen::sources(&files).iter().map(|f| dir.join(f)).collect(),
         waivers: with(".vlt"),
         init_file: dir.join(crate::rtlgen::units_v::rom_file_name(cfg, "power_table", "hex")),
         dir,

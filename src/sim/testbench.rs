@@ -42,6 +42,11 @@ fn slice(rec: &str, lsb: u32, width: u32) -> String {
 /// The top testbench (Icarus and Verilator --binary); the pipeline powers up with `rtl`'s
 /// init file.
 pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
+    tb_top_init(cfg, &init_literal(rtl))
+}
+
+/// The top testbench with `init` (a Verilog string literal) as its `INIT_FILE` default.
+pub fn tb_top_init(cfg: &PipelineConfig, init: &str) -> String {
     let l = top_layout(cfg);
     let mut decls = Vec::new();
     let mut connect = Vec::new();
@@ -72,7 +77,7 @@ pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         ("RECORD_BITS", l.bits.to_string()),
         ("LATENCY", latency(cfg).to_string()),
         ("II", cfg.initiation_interval().to_string()),
-        ("INIT_FILE", init_literal(rtl)),
+        ("INIT_FILE", init.to_string()),
         ("TOP", module_name(cfg, "gbump_pipeline")),
         ("DECLS", decls.join("\n")),
         ("CONNECT", format!("        {}", connect.join(", "))),

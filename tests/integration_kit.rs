@@ -1,0 +1,426 @@
+//! The integration kit gbump writes beside the RTL, used the way a designer would, from folders
+//! other than the RTL's: the filelists with Verilator, Icarus and Yosys; the FuseSoC core on
+//! Icarus and Verilator (real `fusesoc`); the SystemVerilog package with Verilator and Icarus;
+//! the cocotb example on two configurations (and a mutant RTL it must reject); ROM file names.
+
+use assert_cmd::Command as Gbump;
+use gbump::rtlgen::kit;
+use gbump::rtlgen::units_v::module_name;
+use gbump::PipelineConfig;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A tool the test needs: missing is a failure that names the fix, never a skip.
+fn need(tool: &str) {
+    let found = std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()));
+    assert!(found, "{tool} is not installed: run scripts/install-tools.sh");
+}
+
+fn gbump(args: &[&str]) {
+    let out = Gbump::cargo_bin("gbump").unwrap().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "gbump {}:\n{}{}",
+        args.join(" "),
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Run `cmd` in `cwd`; (success, stdout + stderr).
+fn run(cmd: &mut Command, cwd: &Path) -> (bool, String) {
+    let out = cmd.current_dir(cwd).output().unwrap_or_else(|e| panic!("{cmd:?}: {e}"));
+    let log = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    (out.status.success(), log)
+}
+
+fn cfg_of(config: Option<&str>) -> PipelineConfig {
+    config.map_or_else(PipelineConfig::default, |p| PipelineConfig::load(&root().join(p)).unwrap())
+}
+
+/// `gbump rtl` (and the config flag) into `dir`.
+fn rtl(config: Option<&str>, dir: &Path) {
+    let c = config.map(|p| root().join(p).display().to_string());
+    let mut a = vec!["rtl", "--out", dir.to_str().unwrap()];
+    if let Some(c) = &c {
+        a.extend(["--config", c]);
+    }
+    gbump(&a);
+}
+
+/// `gbump vectors --target top --format hex` of `source` with `shininess`; the manifest path.
+fn top_vectors(config: Option<&str>, source: &str, shininess: u32, dir: &Path) -> PathBuf {
+    let c = config.map(|p| root().join(p).display().to_string());
+    let n = shininess.to_string();
+    let mut a = vec![
+        "vectors",
+        "--source",
+        source,
+        "--target",
+        "top",
+        "--format",
+        "hex",
+        "--shininess",
+        &n,
+    ];
+    a.extend(["--out", dir.to_str().unwrap()]);
+    if let Some(c) = &c {
+        a.extend(["--config", c]);
+    }
+    gbump(&a);
+    let stem = source.replace(':', "");
+    dir.join(format!("{stem}_top.json"))
+}
+
+/// The `N passed, N failed` line of a testbench log.
+fn passed_failed(log: &str) -> (u64, u64) {
+    let line = log
+        .lines()
+        .rev()
+        .find(|l| l.contains(" passed, ") && l.trim_end().ends_with(" failed"))
+        .unwrap_or_else(|| panic!("no `N passed, N failed` line in:\n{log}"));
+    let nums: Vec<u64> = line
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let k = nums.len();
+    (nums[k - 2], nums[k - 1])
+}
+
+#[test]
+fn filelists_work_from_any_folder_with_verilator_icarus_and_yosys() {
+    for t in ["verilator", "iverilog", "yosys"] {
+        need(t);
+    }
+    let cfg = PipelineConfig::default();
+    let top = module_name(&cfg, "gbump_pipeline");
+    let tmp = tempfile::tempdir().unwrap();
+    rtl(None, &tmp.path().join("ip/rtl"));
+    // Another folder, two levels away; the lists are named by relative paths from there.
+    let cwd = tmp.path().join("work/a");
+    std::fs::create_dir_all(&cwd).unwrap();
+    let (f, fi, fy) = kit::filelist_names(&cfg);
+    let rel = |n: &str| format!("../../ip/rtl/{n}");
+    // Every list names every RTL source and no testbench.
+    let srcs: Vec<String> = gbump::rtlgen::sources(&gbump::rtlgen::generate(&cfg, "x"));
+    assert!(srcs.len() >= 9 && srcs.contains(&format!("{top}.v")));
+    for n in [&f, &fi, &fy] {
+        let text = std::fs::read_to_string(tmp.path().join("ip/rtl").join(n)).unwrap();
+        assert!(text.contains("do not edit") && text.contains(&cfg.hash()), "{n}: header");
+        for s in &srcs {
+            assert!(text.contains(s.as_str()), "{n} lacks {s}");
+        }
+        assert!(!text.contains("tb_top_"), "{n} lists the testbench");
+    }
+    // Verilator resolves `-F` names against the list.
+    let (ok, log) = run(
+        Command::new("verilator").args([
+            "--lint-only",
+            "-Wall",
+            &rel(&format!("{top}.vlt")),
+            "-F",
+            &rel(&f),
+            "--top-module",
+            &top,
+        ]),
+        &cwd,
+    );
+    assert!(ok, "verilator -F from another folder:\n{log}");
+    // Icarus resolves `-c` names against its working folder: the plain list fails from here
+    // (why Icarus has its own list) and the Icarus list works with GBUMP_RTL set.
+    let (ok, _) = run(
+        Command::new("iverilog").args(["-g2005", "-s", &top, "-o", "plain.vvp", "-c", &rel(&f)]),
+        &cwd,
+    );
+    assert!(
+        !ok,
+        "iverilog -c resolved the plain list against the list's folder: the docs are wrong"
+    );
+    let (ok, log) = run(
+        Command::new("iverilog").env(kit::ICARUS_DIR_VAR, "../../ip/rtl").args([
+            "-g2005",
+            "-Wall",
+            "-s",
+            &top,
+            "-o",
+            "top.vvp",
+            "-c",
+            &rel(&fi),
+        ]),
+        &cwd,
+    );
+    assert!(ok && cwd.join("top.vvp").is_file(), "iverilog -c {fi}:\n{log}");
+    // Yosys reads every source through the Tcl script, run as a script or from -p.
+    let (ok, log) = run(Command::new("yosys").args(["-c", &rel(&fy)]), &cwd);
+    assert!(ok, "yosys -c:\n{log}");
+    let script = format!("tcl {}; hierarchy -check -top {top}; proc; check -assert", rel(&fy));
+    let (ok, log) = run(Command::new("yosys").args(["-p", &script]), &cwd);
+    assert!(ok, "yosys -p tcl:\n{log}");
+    for s in &srcs {
+        assert!(log.contains(&format!("ip/rtl/{s}")), "yosys did not read {s}:\n{log}");
+    }
+}
+
+/// `fusesoc run` of the generated core from another folder; the testbench's log.
+fn fusesoc(cwd: &Path, cores: &Path, target: &str, core: &str, plus: &[String]) -> String {
+    let mut c = Command::new("fusesoc");
+    c.arg("--cores-root").arg(cores).args(["run", "--target", target, core]).args(plus);
+    let (ok, log) = run(&mut c, cwd);
+    assert!(ok, "fusesoc run --target {target}:\n{log}");
+    log
+}
+
+#[test]
+fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
+    for t in ["fusesoc", "iverilog", "verilator"] {
+        need(t);
+    }
+    let cfg = PipelineConfig::default();
+    let tmp = tempfile::tempdir().unwrap();
+    let cores = tmp.path().join("cores/gbump");
+    rtl(None, &cores);
+    // A shininess other than the power-up table's: the core must load it through the port.
+    assert_ne!(cfg.shininess, 40);
+    let man = top_vectors(None, "random:400", 40, &tmp.path().join("v"));
+    let cwd = tmp.path().join("elsewhere");
+    std::fs::create_dir_all(&cwd).unwrap();
+    let core = format!("gbump:gbump:{}", module_name(&cfg, "gbump_pipeline"));
+    let hex = "../v/random400_top.hex".to_string();
+    let table = "../v/random400_top_power_table.hex".to_string();
+    assert!(man.is_file());
+    // The lint target: Verilator -Wall on the RTL, its waivers and the package (fails on any warning).
+    fusesoc(&cwd, Path::new("../cores"), "lint", &core, &[]);
+    for target in ["sim_icarus", "sim_verilator"] {
+        let log = fusesoc(
+            &cwd,
+            Path::new("../cores"),
+            target,
+            &core,
+            &[format!("--vectors={hex}"), format!("--table={table}"), "--bubbles=7".into()],
+        );
+        assert_eq!(passed_failed(&log), (400, 0), "{target}:\n{log}");
+    }
+    // Without the table the pipeline runs on its power-up contents (n = 16, INIT_FILE found
+    // in the simulator's folder): the n = 40 vectors must fail there.
+    let log = fusesoc(&cwd, Path::new("../cores"), "sim_icarus", &core, &[format!("--vectors={hex}")]);
+    let (_, failed) = passed_failed(&log);
+    assert!(failed > 0, "n = 40 vectors passed on the n = 16 power-up table:\n{log}");
+    // ... and the power-up table's own shininess passes with nothing loaded.
+    top_vectors(None, "random:100", cfg.shininess, &tmp.path().join("v16"));
+    let log = fusesoc(
+        &cwd,
+        Path::new("../cores"),
+        "sim_icarus",
+        &core,
+        &["--vectors=../v16/random100_top.hex".into()],
+    );
+    assert_eq!(passed_failed(&log), (100, 0), "{log}");
+}
+
+/// A record's field from a `$readmemh` line (hex digits, LSB last).
+fn hex_field(line: &str, lsb: u32, width: u32) -> String {
+    let bits: Vec<u8> = line
+        .trim()
+        .chars()
+        .rev()
+        .flat_map(|c| {
+            let v = c.to_digit(16).unwrap();
+            (0..4).map(move |b| ((v >> b) & 1) as u8)
+        })
+        .collect();
+    let mut digits = String::new();
+    for d in (0..width.div_ceil(4)).rev() {
+        let mut v = 0;
+        for b in 0..4 {
+            let i = (lsb + 4 * d + b) as usize;
+            if 4 * d + b < width && i < bits.len() {
+                v |= (bits[i] as u32) << b;
+            }
+        }
+        digits.push(char::from_digit(v, 16).unwrap());
+    }
+    digits
+}
+
+#[test]
+fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
+    need("verilator");
+    need("iverilog");
+    for config in [None, Some("tests/configs/one_light_parallel.toml")] {
+        let cfg = cfg_of(config);
+        let tmp = tempfile::tempdir().unwrap();
+        rtl(config, &tmp.path().join("rtl"));
+        let man = top_vectors(config, "random:3", cfg.shininess, &tmp.path().join("v"));
+        let hex = man.with_file_name("random3_top.hex");
+        let pkg = tmp.path().join("rtl").join(kit::package_file_name(&cfg));
+        let name = kit::package_name(&cfg);
+        let user = tmp.path().join("user.sv");
+        std::fs::write(
+            &user,
+            format!(
+                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_texel=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_texel, r.in_h, r.in_k, in_h_lane(r.in_h, 0, 1), in_lc_lane(r.in_lc, 0, 2), in_k_lane(r.in_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
+                hex.display()
+            ),
+        )
+        .unwrap();
+        let (ok, log) = run(
+            Command::new("verilator").args(["--lint-only", "-Wall", "-sv"]).arg(&pkg),
+            tmp.path(),
+        );
+        assert!(ok, "verilator --lint-only -Wall -sv on the package:\n{log}");
+        let (ok, log) = run(
+            Command::new("verilator")
+                .args(["--lint-only", "-Wall", "-Wno-UNUSEDSIGNAL", "-sv"])
+                .arg(&pkg)
+                .arg(&user),
+            tmp.path(),
+        );
+        assert!(ok, "verilator, package and user:\n{log}");
+        let (ok, log) = run(
+            Command::new("iverilog").args(["-g2012", "-o", "u.vvp"]).arg(&pkg).arg(&user),
+            tmp.path(),
+        );
+        assert!(ok, "iverilog -g2012:\n{log}");
+        let (ok, log) = run(Command::new("vvp").args(["-n", "u.vvp"]), tmp.path());
+        assert!(ok, "{log}");
+        // The struct's fields are the manifest's columns.
+        let line = std::fs::read_to_string(&hex)
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with("//"))
+            .nth(1)
+            .unwrap()
+            .to_string();
+        let l = gbump::vectors::targets::top_layout(&cfg);
+        let col = |n: &str| l.column(n).clone();
+        let (h, lc, k) = (col("in_h"), col("in_lc"), col("in_k"));
+        let lw = |c: &gbump::vectors::layout::Column| c.width / c.lanes;
+        let want = format!(
+            "out_c={} in_texel={} in_h={} in_k={} h01={} lc02={} k0={} lat={} ii={}",
+            hex_field(&line, col("out_c").lsb, col("out_c").width),
+            hex_field(&line, col("in_texel").lsb, col("in_texel").width),
+            hex_field(&line, h.lsb, h.width),
+            hex_field(&line, k.lsb, k.width),
+            hex_field(&line, h.lsb + lw(&h), lw(&h)),
+            hex_field(&line, lc.lsb + 2 * lw(&lc), lw(&lc)),
+            hex_field(&line, k.lsb, lw(&k)),
+            gbump::rtlgen::top::latency(&cfg),
+            cfg.initiation_interval()
+        );
+        assert!(
+            log.contains(&want),
+            "package fields differ from the manifest's columns:\nwant {want}\n{log}"
+        );
+    }
+}
+
+/// Run the cocotb example (its Makefile, from `cwd`); (success, log).
+fn cocotb(cwd: &Path, iface: &Path, man: &Path, table: Option<&Path>) -> (bool, String) {
+    let mut c = Command::new("make");
+    c.arg("-f").arg(root().join("examples/cocotb/Makefile"));
+    c.arg(format!("INTERFACE={}", iface.display()))
+        .arg(format!("VECTORS={}", man.display()));
+    if let Some(t) = table {
+        c.arg(format!("TABLE={}", t.display()));
+    }
+    run(c.arg("BUBBLES=0.25").arg("SEED=3"), cwd)
+}
+
+#[test]
+fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
+    need("make");
+    need("iverilog");
+    need("cocotb-config");
+    for (config, count) in [(None, 1200), (Some("tests/configs/one_light_parallel.toml"), 2500)] {
+        let cfg = cfg_of(config);
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("rtl");
+        rtl(config, &dir);
+        let iface = dir.join(format!("{}.json", module_name(&cfg, "gbump_pipeline")));
+        // Shininess 40 through the load port, from `gbump rom` (the set's own table is the same).
+        let man = top_vectors(config, &format!("random:{count}"), 40, &tmp.path().join("v"));
+        let c = config.map(|p| root().join(p).display().to_string());
+        let rom = tmp.path().join("rom");
+        let mut a = vec!["rom", "--shininess", "40", "--out", rom.to_str().unwrap()];
+        if let Some(c) = &c {
+            a.extend(["--config", c]);
+        }
+        gbump(&a);
+        let table = rom.join(format!("power_table_n40_{}.hex", &cfg.hash()[..8]));
+        let cwd = tmp.path().join("cocotb");
+        std::fs::create_dir_all(&cwd).unwrap();
+        let (ok, log) = cocotb(&cwd, &iface, &man, Some(&table));
+        assert!(ok, "cocotb example, config {config:?}:\n{log}");
+        assert!(
+            log.contains(&format!("{count} passed, 0 failed")) && log.contains("FAIL=0"),
+            "{log}"
+        );
+        // The power-up table is the wrong one for these vectors: caught.
+        let (ok, log) = cocotb(
+            &cwd,
+            &iface,
+            &man,
+            Some(&dir.join(gbump::rtlgen::units_v::rom_file_name(&cfg, "power_table", "hex"))),
+        );
+        assert!(!ok && log.contains("MISMATCH"), "n = 16 table passed n = 40 vectors:\n{log}");
+        if config.is_none() {
+            // A wrong rounding constant in texture_modulate: caught and reported.
+            let tm = dir.join(format!("{}.v", module_name(&cfg, "texture_modulate")));
+            let text = std::fs::read_to_string(&tm).unwrap();
+            assert!(text.contains("+ 17'd128;"));
+            std::fs::write(&tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
+            let (ok, log) = cocotb(&cwd, &iface, &man, None);
+            assert!(
+                !ok && log.contains("MISMATCH") && log.contains("out_c expected"),
+                "the mutant passed:\n{log}"
+            );
+        }
+    }
+}
+
+#[test]
+fn rom_names_carry_their_parameters_and_the_config_hash() {
+    use gbump::cli::{rom_files, ConfigPick};
+    let none = ConfigPick { config: None, scene: None };
+    let a = PipelineConfig::default();
+    let b = PipelineConfig {
+        colour_bits: 10,
+        ..Default::default()
+    };
+    let mut all = std::collections::BTreeSet::new();
+    for (cfg, pick, n, cube) in [(&a, &none, 16, 32), (&a, &none, 40, 32), (&a, &none, 16, 16), (&b, &none, 16, 32)] {
+        let h = &cfg.hash()[..8];
+        for (name, _) in rom_files(cfg, pick, Some(n), cube, Path::new("x")).unwrap() {
+            if name.starts_with("power_table") {
+                assert!(name.starts_with(&format!("power_table_n{n}_{h}.")), "{name}");
+            } else if name.starts_with("cube_map") {
+                // The same for every configuration: its name carries its size and word format.
+                assert!(name.starts_with(&format!("cube_map_{cube}x{cube}x6_rgb8.")), "{name}");
+            } else {
+                assert!(name.starts_with(&format!("bump_palette_spiral_{h}.")), "{name}");
+            }
+            all.insert(name);
+        }
+    }
+    // Distinct inputs give distinct power-table and cube-map names; the palette of one config is one file.
+    assert_eq!(all.iter().filter(|n| n.starts_with("power_table")).count(), 3 * 3);
+    assert_eq!(all.iter().filter(|n| n.starts_with("cube_map")).count(), 2 * 3);
+    // A palette from a scene carries the scene's name.
+    let scene = ConfigPick {
+        config: None,
+        scene: Some("torus_caps".into()),
+    };
+    let cfg = scene.resolve().unwrap();
+    let files = rom_files(&cfg, &scene, None, 8, Path::new("x")).unwrap();
+    let h = &cfg.hash()[..8];
+    assert!(
+        files.iter().any(|f| f.0 == format!("bump_palette_torus_caps_{h}.hex")),
+        "{:?}",
+        files.iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
+}
