@@ -536,40 +536,44 @@ pub fn markdown(r: &FpgaReport) -> String {
 mod tests {
     use super::*;
 
-    /// Captured from nextpnr-ice40 0.4 (Debian bookworm), a one-light top that routed.
+    /// Captured from nextpnr-ice40 0.4-1+b1 (Debian bookworm): the one-light parallel top in its
+    /// shell on an HX8K (lines of the log; the first Fmax is the placer's estimate).
     const ROUTED: &str = "Info: Device utilisation:
-Info: \t         ICESTORM_LC:  6005/ 7680    78%
+Info: \t         ICESTORM_LC:  6396/ 7680    83%
 Info: \t        ICESTORM_RAM:     1/   32     3%
 Info: \t               SB_IO:     7/  256     2%
-Info: \t               SB_GB:     1/    8    12%
+Info: \t               SB_GB:     3/    8    37%
 Info: \t        ICESTORM_PLL:     0/    2     0%
 Info: \t         SB_WARMBOOT:     0/    1     0%
 
-Info: Placed 6005 cells based on constraints.
-Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 27.94 MHz (FAIL at 50.00 MHz)
-Info: Routing..
-Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 31.60 MHz (FAIL at 50.00 MHz)
+Info: Placed 7 cells based on constraints.
+Info: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 34.42 MHz (FAIL at 50.00 MHz)
+Warning: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 32.81 MHz (FAIL at 50.00 MHz)
+2 warnings, 0 errors
 
-Warning: Max frequency for clock 'clk$SB_IO_IN_$glb_clk': 31.60 MHz (FAIL at 50.00 MHz)
-1 warning, 0 errors
+Info: Program finished normally.
 ";
 
-    /// Captured from nextpnr-ice40 0.4: more cells than the device has.
+    /// Captured: the same design on an HX1K.
     const TOO_BIG: &str = "Info: Device utilisation:
-Info: \t         ICESTORM_LC:  7911/ 7680   103%
-Info: \t        ICESTORM_RAM:     1/   32     3%
-Info: \t               SB_IO:     7/  256     2%
-Info: \t               SB_GB:     8/    8   100%
+Info: \t         ICESTORM_LC:  6396/ 1280   499%
+Info: \t        ICESTORM_RAM:     1/   16     6%
+Info: \t               SB_IO:     7/  112     6%
+Info: \t               SB_GB:     3/    8    37%
+Info: \t        ICESTORM_PLL:     0/    1     0%
+Info: \t         SB_WARMBOOT:     0/    1     0%
 
-ERROR: Unable to place cell 'u_core.x_SB_LUT4_O', no BELs remaining to implement cell type 'ICESTORM_LC'
+Info: Placed 0 cells based on constraints.
+ERROR: Unable to place cell 'u_core.u_diffuse_blend.fin.add2_r_SB_LUT4_O_9_LC', no BELs remaining to implement cell type 'ICESTORM_LC'
 1 warning, 1 error
 ";
 
-    /// Captured: the bare one-light top's 250 pins on a ct256 package.
+    /// Captured: the bare one-light top (250 pins, no shell) on the HX8K's ct256 package.
     const PINS: &str = "Info: Device utilisation:
 Info: \t         ICESTORM_LC:  6005/ 7680    78%
+Info: \t        ICESTORM_RAM:     1/   32     3%
 Info: \t               SB_IO:   250/  256    97%
-
+Info: \t               SB_GB:     1/    8    12%
 ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
 1 warning, 1 error
 ";
@@ -582,16 +586,17 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
             p.utilisation[0],
             Utilisation {
                 resource: "ICESTORM_LC".into(),
-                used: 6005,
+                used: 6396,
                 available: 7680,
-                percent: 78.0
+                percent: 83.0
             }
         );
-        assert_eq!(p.fmax_mhz, vec![("clk$SB_IO_IN_$glb_clk".to_string(), 31.60)]);
+        assert_eq!(p.utilisation[5].resource, "SB_WARMBOOT");
+        assert_eq!(p.fmax_mhz, vec![("clk$SB_IO_IN_$glb_clk".to_string(), 32.81)]);
         assert!(p.errors.is_empty() && !does_not_fit(&p));
         let r = place_route_result(true, ROUTED, "hx8k", "ct256", "shell", 7, 250).unwrap();
-        assert!(r.fits && r.fmax_mhz == Some(31.60));
-        assert!(markdown_of(r).contains("**Fmax 31.60 MHz**"));
+        assert!(r.fits && r.fmax_mhz == Some(32.81));
+        assert!(markdown_of(r).contains("**Fmax 32.81 MHz**"));
     }
 
     fn markdown_of(p: PlaceRoute) -> String {
@@ -607,8 +612,9 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
 
     #[test]
     fn too_many_cells_or_pins_is_a_result_and_other_failures_are_errors() {
-        for (log, why) in [(TOO_BIG, "ICESTORM_LC 7911/7680 (103 %)"), (PINS, "Unable to find a placement location")] {
+        for (log, why) in [(TOO_BIG, "ICESTORM_LC 6396/1280 (499 %)"), (PINS, "Unable to find a placement location")] {
             let r = place_route_result(false, log, "hx8k", "ct256", "shell", 7, 640).unwrap();
+            assert_eq!(parse_nextpnr(log).errors.len(), 1);
             assert!(!r.fits && r.fmax_mhz.is_none());
             assert!(r.reason.as_deref().unwrap().contains(why), "{r:?}");
             assert!(markdown_of(r).contains("**Does not fit** the hx8k"));
