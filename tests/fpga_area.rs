@@ -57,7 +57,11 @@ fn ice40_places_and_routes_the_one_light_top_and_a_too_small_device_is_a_result(
     assert!((10.0..200.0).contains(&fmax), "{fmax}");
     assert!(text.contains(&format!("**Fmax {fmax:.2} MHz**")), "{text}");
     let util = pr["utilisation"].as_array().unwrap();
-    let row = |name: &str| util.iter().find(|u| u["resource"] == name).unwrap_or_else(|| panic!("{name}: {pr}"));
+    let row = |name: &str| {
+        util.iter()
+            .find(|u| u["resource"] == name)
+            .unwrap_or_else(|| panic!("{name}: {pr}"))
+    };
     let lc = row("ICESTORM_LC");
     assert!(n(lc, "used") >= n(top, "luts") && n(lc, "used") <= n(lc, "available"), "{lc}");
     assert_eq!(n(row("ICESTORM_RAM"), "used"), 1);
@@ -81,7 +85,10 @@ fn ecp5_and_xilinx_count_luts_flip_flops_and_dsps() {
         assert!(n(top, "dsp") > 0, "{target}: the multipliers map to DSP blocks: {top}");
         for u in r["units"].as_array().unwrap() {
             assert!(n(u, "flip_flops") > 0, "{target}: every unit is registered: {u}");
-            assert!(n(u, "luts") + n(u, "carry") + n(u, "dsp") + n(u, "lut_ram") + n(u, "block_ram") > 0 || u["unit"] == "bump_fetch", "{target}: {u}");
+            assert!(
+                n(u, "luts") + n(u, "carry") + n(u, "dsp") + n(u, "lut_ram") + n(u, "block_ram") > 0 || u["unit"] == "bump_fetch",
+                "{target}: {u}"
+            );
         }
         let pt = unit(&r, "power_table");
         match target {

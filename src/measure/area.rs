@@ -45,7 +45,14 @@ fn parse_stat(stat: &str, ltp: &str) -> Option<(u64, u64, u64)> {
         .lines()
         .rev()
         .find(|l| l.contains("Longest topological path"))
-        .and_then(|l| l.split("length=").nth(1)?.trim_end_matches("):").trim_end_matches(['(', ')', ':']).parse().ok())
+        .and_then(|l| {
+            l.split("length=")
+                .nth(1)?
+                .trim_end_matches("):")
+                .trim_end_matches(['(', ')', ':'])
+                .parse()
+                .ok()
+        })
         .unwrap_or(0);
     Some((s.transistors?, ffs, depth))
 }

@@ -271,16 +271,12 @@ pub const TARGET_MHZ: f64 = 50.0;
 const SEED: u32 = 1;
 
 pub fn ice40_package(device: &str) -> Result<&'static str> {
-    ICE40_DEVICES
-        .iter()
-        .find(|(d, _)| *d == device)
-        .map(|(_, p)| *p)
-        .ok_or_else(|| {
-            Error::Other(format!(
-                "--device {device}: not an iCE40 device gbump knows\n  fix: use one of {}",
-                ICE40_DEVICES.iter().map(|d| d.0).collect::<Vec<_>>().join(", ")
-            ))
-        })
+    ICE40_DEVICES.iter().find(|(d, _)| *d == device).map(|(_, p)| *p).ok_or_else(|| {
+        Error::Other(format!(
+            "--device {device}: not an iCE40 device gbump knows\n  fix: use one of {}",
+            ICE40_DEVICES.iter().map(|d| d.0).collect::<Vec<_>>().join(", ")
+        ))
+    })
 }
 
 /// Refuse a missing tool before anything runs.
@@ -330,7 +326,9 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
         let mut c = Command::new("yosys");
         c.arg("-q").arg("-s").arg(tmp.join("synth.ys")).current_dir(&rtl.dir);
         let (ok, log, _) = run_cmd(&mut c, "yosys")?;
-        let parsed = std::fs::read_to_string(tmp.join("stat.json")).ok().and_then(|t| yosys_stat::parse(&t));
+        let parsed = std::fs::read_to_string(tmp.join("stat.json"))
+            .ok()
+            .and_then(|t| yosys_stat::parse(&t));
         if !ok || parsed.is_none() {
             return Err(Error::Other(format!(
                 "yosys could not synthesise {module} for {}:\n{}",
@@ -612,7 +610,10 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
 
     #[test]
     fn too_many_cells_or_pins_is_a_result_and_other_failures_are_errors() {
-        for (log, why) in [(TOO_BIG, "ICESTORM_LC 6396/1280 (499 %)"), (PINS, "Unable to find a placement location")] {
+        for (log, why) in [
+            (TOO_BIG, "ICESTORM_LC 6396/1280 (499 %)"),
+            (PINS, "Unable to find a placement location"),
+        ] {
             let r = place_route_result(false, log, "hx8k", "ct256", "shell", 7, 640).unwrap();
             assert_eq!(parse_nextpnr(log).errors.len(), 1);
             assert!(!r.fits && r.fmax_mhz.is_none());
@@ -627,10 +628,20 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
     #[test]
     fn cells_fall_into_their_columns() {
         let s = yosys_stat::Stat {
-            cells: [("LUT6", 10), ("LUT2", 5), ("FDRE", 7), ("CARRY4", 2), ("DSP48E1", 3), ("RAMB18E1", 1), ("RAM64M", 12), ("SRL16E", 4), ("MUXF7", 9)]
-                .into_iter()
-                .map(|(k, v)| (k.to_string(), v))
-                .collect(),
+            cells: [
+                ("LUT6", 10),
+                ("LUT2", 5),
+                ("FDRE", 7),
+                ("CARRY4", 2),
+                ("DSP48E1", 3),
+                ("RAMB18E1", 1),
+                ("RAM64M", 12),
+                ("SRL16E", 4),
+                ("MUXF7", 9),
+            ]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect(),
             ..Default::default()
         };
         let u = FpgaUnit::from_stat(Target::Xilinx, "u", "m", &s);

@@ -59,7 +59,9 @@ pub fn fpga_section(work: &Path) -> Result<String> {
                         .utilisation
                         .iter()
                         .find(|u| u.resource == "ICESTORM_LC")
-                        .map_or(String::new(), |u| format!("{}/{} logic cells ({:.0} %)", u.used, u.available, u.percent));
+                        .map_or(String::new(), |u| {
+                            format!("{}/{} logic cells ({:.0} %)", u.used, u.available, u.percent)
+                        });
                     match p.fmax_mhz {
                         Some(f) if p.fits => format!("Fmax {f:.1} MHz, {lc}"),
                         _ => format!("does not fit: {lc}"),

@@ -304,7 +304,10 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
         mean_error_lsb: pipe.mean_lsb,
         psnr_vs_reference_db: psnr,
         pareto: false,
-        fpga_luts: fpga.as_ref().and_then(|r| r.units.iter().find(|u| u.unit.starts_with("gbump_pipeline"))).map(|u| u.luts),
+        fpga_luts: fpga
+            .as_ref()
+            .and_then(|r| r.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")))
+            .map(|u| u.luts),
         fmax_mhz: fpga.as_ref().and_then(|r| r.place_route.as_ref()).and_then(|p| p.fmax_mhz),
     };
     std::fs::create_dir_all(cache.parent().expect("dir")).map_err(|e| Error::io(&cache, e))?;
