@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Install the simulators and synthesis tool gbump drives (Debian packages) and the Python tools
-# its integration kit is tested with (pinned, pip), each only when missing.
+# Install the simulators, synthesis and place-and-route tools gbump drives (Debian packages)
+# and the Python tools its integration kit is tested with (pinned, pip), each only when
+# missing. nextpnr-ice40 needs the iCE40 chip database (fpga-icestorm-chipdb, a dependency);
+# fpga-icestorm adds icepack and icetime.
 set -euo pipefail
 missing=()
-for t in iverilog verilator yosys; do
+for t in iverilog verilator yosys nextpnr-ice40; do
     command -v "$t" >/dev/null 2>&1 || missing+=("$t")
 done
 # FuseSoC (runs the generated .core) and cocotb (examples/cocotb), pinned, from PyPI.
@@ -15,20 +17,22 @@ python_tools_present() {
 if ! python_tools_present; then
     echo "installing: ${PY_PKGS[*]} (pip)" >&2
     python3 -m pip install --quiet "${PY_PKGS[@]}"
+    # pyenv finds new console scripts only after a rehash.
+    if command -v pyenv >/dev/null 2>&1; then pyenv rehash || true; fi
     python_tools_present || { echo "error: fusesoc or cocotb still missing after pip install ${PY_PKGS[*]}" >&2; exit 1; }
 fi
 if [ ${#missing[@]} -eq 0 ]; then
     exit 0
 fi
-echo "installing: iverilog verilator yosys (missing: ${missing[*]})" >&2
+echo "installing: iverilog verilator yosys nextpnr-ice40 fpga-icestorm (missing: ${missing[*]})" >&2
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then
-    command -v sudo >/dev/null 2>&1 || { echo "error: need root or sudo to apt-get install iverilog verilator yosys" >&2; exit 1; }
+    command -v sudo >/dev/null 2>&1 || { echo "error: need root or sudo to apt-get install iverilog verilator yosys nextpnr-ice40 fpga-icestorm" >&2; exit 1; }
     SUDO="sudo"
 fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
-$SUDO apt-get install -y -qq iverilog verilator yosys >/dev/null
-for t in iverilog verilator yosys; do
+$SUDO apt-get install -y -qq iverilog verilator yosys nextpnr-ice40 fpga-icestorm >/dev/null
+for t in iverilog verilator yosys nextpnr-ice40; do
     command -v "$t" >/dev/null 2>&1 || { echo "error: $t still missing after apt-get install" >&2; exit 1; }
 done

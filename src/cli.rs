@@ -166,12 +166,19 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-fuzz")]
         work: PathBuf,
     },
-    /// Yosys area per unit and in total: gate equivalents, flip-flops, logic depth, ROM bits.
+    /// Yosys area per unit and in total: gate equivalents, flip-flops, logic depth, ROM bits;
+    /// or FPGA resources (and, for iCE40, Fmax and utilisation from nextpnr).
     Area {
         #[command(flatten)]
         pick: ConfigPick,
         #[arg(long, default_value = "target/gbump-area")]
         work: PathBuf,
+        /// cmos: NAND2 gate equivalents; ice40, ecp5, xilinx: LUTs, flip-flops, carry, DSP, RAM.
+        #[arg(long, value_enum, default_value = "cmos")]
+        target: crate::measure::fpga::Target,
+        /// iCE40 device for place and route (hx1k, hx4k, hx8k, lp1k, lp8k, up5k).
+        #[arg(long, default_value = "hx8k")]
+        device: String,
         /// Also write the report as JSON.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
@@ -427,7 +434,24 @@ pub fn run() -> anyhow::Result<()> {
             random,
             work,
         } => fuzz(minutes, configs, seed, random, &work)?,
-        Cmd::Area { pick, work, json } => {
+        Cmd::Area {
+            pick,
+            work,
+            json,
+            target,
+            device,
+        } if target != crate::measure::fpga::Target::Cmos => {
+            let cfg = pick.resolve()?;
+            crate::measure::fpga::ice40_package(&device)?;
+            crate::measure::fpga::require(target)?;
+            let _lock = lock_work(&work)?;
+            let r = crate::measure::fpga::fpga_area(&cfg, target, &device, true, &work, &format!("gbump rtl {}", pick.args()))?;
+            if let Some(j) = json {
+                write_atomic(&j, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
+            }
+            out!("{}", crate::measure::fpga::markdown(&r));
+        }
+        Cmd::Area { pick, work, json, .. } => {
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;

@@ -1,5 +1,5 @@
 //! Area by Yosys: each unit (and the top) synthesised alone with
-//! `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, reported as NAND2 gate
+//! `synth -flatten; dffunmap; abc -g cmos2; stat -json -tech cmos` (read by `yosys_stat`), reported as NAND2 gate
 //! equivalents (transistors / 4), with flip-flops, logic depth (`ltp -noff`) and ROM bits.
 
 use crate::config::PipelineConfig;
@@ -32,38 +32,29 @@ pub struct AreaReport {
 /// The synthesis script for one module.
 pub fn script(files: &[String], top: &str) -> String {
     format!(
-        "read_verilog -defer {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -o area.stat stat -tech cmos\ntee -a area.stat ltp -noff\n",
+        "read_verilog -defer {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
         files.join(" ")
     )
 }
 
-fn parse_stat(text: &str) -> Option<(u64, u64, u64)> {
-    let num = |key: &str| -> Option<u64> {
-        text.lines()
-            .rev()
-            .find(|l| l.contains(key))
-            .and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches(['+', ')']).parse().ok()))
-    };
-    let transistors = num("Estimated number of transistors")?;
-    let ffs: u64 = text
-        .lines()
-        .filter(|l| l.trim_start().starts_with("$_DFF"))
-        .filter_map(|l| l.split_whitespace().last()?.parse::<u64>().ok())
-        .sum();
-    let depth = text
+/// Transistors and flip-flops from `stat -json -tech cmos`, logic depth from `ltp -noff`.
+fn parse_stat(stat: &str, ltp: &str) -> Option<(u64, u64, u64)> {
+    let s = super::yosys_stat::parse(stat)?;
+    let ffs = s.count(|c| c.starts_with("$_DFF"));
+    let depth = ltp
         .lines()
         .rev()
         .find(|l| l.contains("Longest topological path"))
         .and_then(|l| {
             l.split("length=")
                 .nth(1)?
-                .trim_end_matches(['(', ')', ':'])
                 .trim_end_matches("):")
+                .trim_end_matches(['(', ')', ':'])
                 .parse()
                 .ok()
         })
         .unwrap_or(0);
-    Some((transistors, ffs, depth))
+    Some((s.transistors?, ffs, depth))
 }
 
 /// Synthesise every unit present in `cfg` and the top.
@@ -100,12 +91,13 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                     .collect();
                 std::fs::write(sub.join("area.ys"), script(&abs, module)).map_err(|e| Error::io(&sub, e))?;
                 // A report left by an earlier run must never stand in for this one.
-                let _ = std::fs::remove_file(sub.join("area.stat"));
+                let _ = std::fs::remove_file(sub.join("area.json"));
+                let _ = std::fs::remove_file(sub.join("area.ltp"));
                 let mut c = Command::new("yosys");
                 c.args(["-q", "-s", "area.ys"]).current_dir(&sub);
                 let (ok, log, _) = run_cmd(&mut c, "yosys")?;
-                let stat = std::fs::read_to_string(sub.join("area.stat")).unwrap_or_default();
-                let (t, ffs, depth) = match (ok, parse_stat(&stat)) {
+                let read = |f: &str| std::fs::read_to_string(sub.join(f)).unwrap_or_default();
+                let (t, ffs, depth) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"))) {
                     (true, Some(x)) => x,
                     _ => return Err(Error::Other(format!("yosys could not synthesise {module}:\n{}", tail(&log, 15)))),
                 };

@@ -2,8 +2,10 @@
 
 pub mod area;
 pub mod bench;
+pub mod fpga;
 pub mod image_metrics;
 pub mod power_space;
 pub mod report;
 pub mod sweep;
 pub mod unit_error;
+pub mod yosys_stat;

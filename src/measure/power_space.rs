@@ -190,17 +190,14 @@ pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path)
     } else {
         String::new()
     };
-    let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -o area.stat stat -tech cmos\n", names.join(" "));
+    let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\n", names.join(" "));
     std::fs::write(dir.join("area.ys"), script).map_err(|e| Error::io(dir, e))?;
     let mut c = std::process::Command::new("yosys");
     c.args(["-q", "-s", "area.ys"]).current_dir(dir);
+    let _ = std::fs::remove_file(dir.join("area.json"));
     let (ok, log, _) = crate::sim::run_cmd(&mut c, "yosys")?;
-    let stat = std::fs::read_to_string(dir.join("area.stat")).unwrap_or_default();
-    let t: Option<u64> = stat
-        .lines()
-        .rev()
-        .find(|l| l.contains("Estimated number of transistors"))
-        .and_then(|l| l.split_whitespace().rev().find_map(|w| w.trim_end_matches('+').parse().ok()));
+    let stat = std::fs::read_to_string(dir.join("area.json")).unwrap_or_default();
+    let t = super::yosys_stat::parse(&stat).and_then(|s| s.transistors);
     match (ok, t) {
         (true, Some(t)) => Ok(t as f64 / 4.0),
         _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::sim::tail(&log, 10)))),

@@ -21,6 +21,10 @@ pub struct Space {
     /// Scene whose image error is measured (default torus_caps).
     #[serde(default = "default_scene")]
     pub scene: String,
+    /// An FPGA to measure each point on as well (`"ice40"`: LUTs and Fmax after place and
+    /// route on an HX8K; `"ecp5"`, `"xilinx"`: LUTs). None by default: the sweep stays cheap.
+    #[serde(default)]
+    pub target: Option<super::fpga::Target>,
 }
 
 fn default_scene() -> String {
@@ -42,6 +46,12 @@ pub struct Point {
     pub mean_error_lsb: f64,
     pub psnr_vs_reference_db: f64,
     pub pareto: bool,
+    /// LUTs of the top on the space's `target` (none without one).
+    #[serde(default)]
+    pub fpga_luts: Option<u64>,
+    /// The top's Fmax on the target (iCE40 only; none when it does not fit).
+    #[serde(default)]
+    pub fmax_mhz: Option<f64>,
 }
 
 impl Space {
@@ -109,6 +119,9 @@ impl Space {
             Ok(_) => {}
         }
         s.configs(&file)?;
+        if let Some(t) = s.target {
+            super::fpga::require(t)?;
+        }
         Ok(s)
     }
 
@@ -189,12 +202,15 @@ fn check_value(text: &str, file: &str, field: &str, key: &str, v: &toml::Value, 
     }
 }
 
+/// The iCE40 a sweep with `target = "ice40"` places and routes on.
+pub const FPGA_DEVICE: &str = "hx8k";
+
 /// Image size and random stimuli per point: part of every point's cache key.
 const IMAGE: (u32, u32) = (128, 96);
 const ERROR_SAMPLES: u64 = 20_000;
 
 /// The cache key of one point: everything its numbers depend on.
-fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene) -> Result<String> {
+fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<super::fpga::Target>) -> Result<String> {
     let mut k = crate::cache::Key::new("sweep point");
     k.add(cfg.hash().as_bytes())
         .add(cfg.to_toml().as_bytes())
@@ -204,6 +220,15 @@ fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene) -> Result<String
         .add(&ERROR_SAMPLES.to_le_bytes())
         .add(super::area::script(&[], "").as_bytes())
         .add_tool("yosys");
+    // Only a space with a target adds to the key, so plain sweeps keep their caches.
+    if let Some(t) = target {
+        k.add(t.name().as_bytes())
+            .add(FPGA_DEVICE.as_bytes())
+            .add(super::fpga::script_summary(t).as_bytes());
+        if t == super::fpga::Target::Ice40 {
+            k.add_tool("nextpnr-ice40");
+        }
+    }
     Ok(k.finish())
 }
 
@@ -229,9 +254,9 @@ fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaRep
 
 /// Measure one configuration on `scene` (cached in `work/points/<key>.json`, the key made of
 /// the configuration, the scene and its files, the sizes, gbump's and Yosys's versions).
-pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> Result<Point> {
+pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<super::fpga::Target>, work: &Path) -> Result<Point> {
     let s = crate::scene::Scene::load(scene)?;
-    let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s)?));
+    let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s, target)?));
     if let Ok(text) = std::fs::read_to_string(&cache) {
         if let Ok(p) = serde_json::from_str::<Point>(&text) {
             if p.config == *cfg {
@@ -243,6 +268,11 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> R
         }
     }
     let area = cached_area(cfg, work)?;
+    // The top alone on the FPGA (its synthesis and place and route are cached by themselves).
+    let fpga = match target {
+        Some(t) if t != super::fpga::Target::Cmos => Some(super::fpga::fpga_area(cfg, t, FPGA_DEVICE, false, work, "gbump sweep")?),
+        _ => None,
+    };
     let ge = |name: &str| {
         area.units
             .iter()
@@ -274,6 +304,11 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, work: &Path) -> R
         mean_error_lsb: pipe.mean_lsb,
         psnr_vs_reference_db: psnr,
         pareto: false,
+        fpga_luts: fpga
+            .as_ref()
+            .and_then(|r| r.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")))
+            .map(|u| u.luts),
+        fmax_mhz: fpga.as_ref().and_then(|r| r.place_route.as_ref()).and_then(|p| p.fmax_mhz),
     };
     std::fs::create_dir_all(cache.parent().expect("dir")).map_err(|e| Error::io(&cache, e))?;
     crate::render::output::write_atomic(&cache, serde_json::to_string_pretty(&p).expect("json").as_bytes())?;
@@ -299,7 +334,7 @@ pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool) -> Result<V
     let mut points = configs
         .par_iter()
         .map(|(label, cfg)| {
-            let p = measure(label, cfg, &space.scene, work);
+            let p = measure(label, cfg, &space.scene, space.target, work);
             if let Some(b) = &bar {
                 b.done(&format!("{label} ({})", &cfg.hash()[..8]));
             }
@@ -311,11 +346,18 @@ pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool) -> Result<V
     Ok(points)
 }
 
+/// Whether any point was measured on an FPGA (the CSV and the report then add its columns).
+pub fn has_fpga(points: &[Point]) -> bool {
+    points.iter().any(|p| p.fpga_luts.is_some())
+}
+
 pub fn csv(points: &[Point]) -> String {
-    let mut s = String::from("config_hash,label,top_ge,blend_ge,flip_flops,rom_bits,fragments_per_clock,latency,max_error_lsb,mean_error_lsb,psnr_vs_reference_db,pareto\n");
+    let fpga = has_fpga(points);
+    let mut s = String::from("config_hash,label,top_ge,blend_ge,flip_flops,rom_bits,fragments_per_clock,latency,max_error_lsb,mean_error_lsb,psnr_vs_reference_db,pareto");
+    s += if fpga { ",fpga_luts,fmax_mhz\n" } else { "\n" };
     for p in points {
         s += &format!(
-            "{},\"{}\",{:.0},{:.0},{},{},{:.4},{},{:.3},{:.4},{:.2},{}\n",
+            "{},\"{}\",{:.0},{:.0},{},{},{:.4},{},{:.3},{:.4},{:.2},{}",
             p.config_hash,
             p.label,
             p.top_ge,
@@ -329,6 +371,15 @@ pub fn csv(points: &[Point]) -> String {
             p.psnr_vs_reference_db,
             p.pareto
         );
+        if fpga {
+            let opt = |v: Option<String>| v.unwrap_or_default();
+            s += &format!(
+                ",{},{}",
+                opt(p.fpga_luts.map(|v| v.to_string())),
+                opt(p.fmax_mhz.map(|v| format!("{v:.2}")))
+            );
+        }
+        s += "\n";
     }
     s
 }

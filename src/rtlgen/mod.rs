@@ -3,6 +3,7 @@
 //! `PipelineConfig`. Output is deterministic: the same config gives the same bytes.
 
 pub mod fixed_ops;
+pub mod fpga_shell;
 pub mod integration_doc;
 pub mod interface;
 pub mod kit;
