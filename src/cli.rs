@@ -315,20 +315,6 @@ impl ConfigPick {
     }
 }
 
-/// Write every file into `dir` atomically; on any failure remove what this call wrote.
-pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    for (i, (name, text)) in files.iter().enumerate() {
-        if let Err(e) = write_atomic(&dir.join(name), text.as_ref()) {
-            for (n, _) in &files[..i] {
-                let _ = std::fs::remove_file(dir.join(n));
-            }
-            return Err(e);
-        }
-    }
-    Ok(())
-}
-
 /// Take the work folder for this run, once every input has been checked: one run per folder,
 /// in a folder every simulator and make can take.
 fn lock_work(work: &Path) -> Result<crate::work_lock::WorkLock> {
@@ -351,7 +337,7 @@ pub fn run() -> anyhow::Result<()> {
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
-            write_files(&out, &files)?;
+            crate::render::output::write_files(&out, &files)?;
             outln!(
                 "wrote {} files for config {} to {} (top {}, latency {} cycles)",
                 files.len(),
@@ -368,8 +354,8 @@ pub fn run() -> anyhow::Result<()> {
             cube_size,
         } => {
             let cfg = pick.resolve()?;
-            let files = rom_files(&cfg, &pick, shininess, cube_size, &out)?;
-            write_files(&out, &files)?;
+            let files = crate::rtlgen::rom_files::rom_files(&cfg, pick.scene.as_deref(), &pick.args(), shininess, cube_size, &out)?;
+            crate::render::output::write_files(&out, &files)?;
             outln!("wrote {} ROM files to {}", files.len(), out.display());
         }
         Cmd::Vectors {
@@ -404,7 +390,7 @@ pub fn run() -> anyhow::Result<()> {
             check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
             if let (Some(sz), false) = (&scene_size, no_scenes) {
                 let (w, h) = parse_size(sz)?;
-                check_builtin_renders(w, h)?;
+                crate::measure::scene_error::check_builtin_renders(w, h)?;
             }
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
@@ -470,13 +456,13 @@ pub fn run() -> anyhow::Result<()> {
             let cfg = pick.resolve()?;
             let (w, h) = parse_size(&size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
-            check_builtin_renders(w, h)?;
+            crate::measure::scene_error::check_builtin_renders(w, h)?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
-            let scenes = scene_errors(&cfg, w, h)?;
+            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h)?;
             out!(
                 "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
-                scene_error_table(&scenes)
+                crate::measure::scene_error::scene_error_table(&scenes)
             );
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
@@ -526,7 +512,7 @@ pub fn run() -> anyhow::Result<()> {
                     crate::measure::sweep::svg(&pts, &format!("{name}: error against area ({} configurations)", pts.len())),
                 ),
             ];
-            write_files(&out, &files)?;
+            crate::render::output::write_files(&out, &files)?;
             outln!(
                 "{} configurations in {:.0} s; Pareto front: {}",
                 pts.len(),
@@ -550,14 +536,14 @@ pub fn run() -> anyhow::Result<()> {
         }
         Cmd::Report { out, space, work } => {
             let files = crate::measure::report::report(&out, &work, &space, || lock_work(&work))?;
-            write_files(&out, &files)?;
+            crate::render::output::write_files(&out, &files)?;
             outln!(
                 "wrote {} in {}",
                 files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
                 out.display()
             );
         }
-        Cmd::Interface { pick } => out!("{}", interface_markdown(&pick.resolve()?)),
+        Cmd::Interface { pick } => out!("{}", crate::rtlgen::interface::interface_markdown(&pick.resolve()?)),
         Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
             let cfg = match scene {
@@ -658,7 +644,7 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
         format!("{name}_metrics.json"),
         serde_json::to_string_pretty(&report).expect("json").into_bytes(),
     ));
-    write_files(out, &blobs)?;
+    crate::render::output::write_files(out, &blobs)?;
     outln!(
         "scene {name} {w}x{h}, config {}, {} fragments, {:.2} s",
         cfg.hash(),
@@ -702,57 +688,6 @@ fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rt
         }
     }
     Ok(())
-}
-
-pub fn rom_files(
-    cfg: &PipelineConfig,
-    pick: &ConfigPick,
-    shininess: Option<u32>,
-    cube: usize,
-    out: &Path,
-) -> Result<Vec<(String, String)>> {
-    use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
-    use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, rom_header, write, RomFormat, DEFAULT_PALETTE};
-    let n = shininess.unwrap_or(cfg.shininess);
-    check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
-    check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
-    let (palette, source) = match &pick.scene {
-        Some(s) => {
-            let scene = Scene::load(s)?;
-            let pcfg = PipelineConfig {
-                palette: true,
-                ..cfg.clone()
-            };
-            let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
-            (p.objects[0].stored.palette().cloned().expect("palette mode"), scene.name.clone())
-        }
-        None => (default_palette(cfg), DEFAULT_PALETTE.to_string()),
-    };
-    let cmd = format!(
-        "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
-        pick.args(),
-        out.display()
-    )
-    .replace("  ", " ");
-    let hash = &cfg.hash()[..8];
-    let mut files = Vec::new();
-    // A name carries what the contents depend on: the exponent, the palette's source, the
-    // cube size; the config hash stands for the widths.
-    for (stem, rom, of) in [
-        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg)),
-        (
-            format!("bump_palette_{source}_{hash}"),
-            palette_rom(cfg, &palette, &source),
-            Some(cfg),
-        ),
-        (format!("cube_map_{cube}x{cube}x6_rgb8"), cube_map_rom(cube), None),
-    ] {
-        let hl = rom_header(&rom, of, &cmd, &rom.name);
-        for f in RomFormat::ALL {
-            files.push((format!("{stem}.{}", f.ext()), write(&rom, f, &hl)));
-        }
-    }
-    Ok(files)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -919,21 +854,6 @@ pub fn invocation() -> String {
         .join(" ")
 }
 
-/// The README's interface section: top ports, then every unit's ports.
-pub fn interface_markdown(cfg: &PipelineConfig) -> String {
-    let mut s = format!(
-        "Top `{}` (config `{}`): latency {} cycles, one fragment every {} cycle(s).\n\n| port | dir | bits |\n|---|---|---|\n",
-        crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
-        cfg.hash(),
-        crate::rtlgen::top::latency(cfg),
-        cfg.initiation_interval()
-    );
-    for (n, d, w) in crate::rtlgen::top::top_ports(cfg) {
-        s += &format!("| `{n}` | {d} | {w} |\n");
-    }
-    s + "\n" + &crate::units::markdown_table(cfg)
-}
-
 fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path) -> Result<()> {
     use crate::limits::{check_count, MAX_RANDOM_VECTORS};
     if !(minutes > 0.0 && minutes.is_finite()) {
@@ -983,54 +903,4 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
         ));
     }
     Ok(())
-}
-
-/// Rows of `scene_errors` as a Markdown table.
-pub fn scene_error_table(rows: &[SceneError]) -> String {
-    let mut s = String::from("| scene | vs f64 Gouraud: PSNR dB | max | >1 LSB | vs per-pixel reference: PSNR dB | max | >1 LSB |\n|---|---:|---:|---:|---:|---:|---:|\n");
-    for (name, g, r) in rows {
-        s += &format!(
-            "| {name} | {:.2} | {:.1} | {:.1}% | {:.2} | {:.1} | {:.1}% |\n",
-            g.psnr_db,
-            g.max_lsb,
-            100.0 * g.over_1lsb,
-            r.psnr_db,
-            r.max_lsb,
-            100.0 * r.over_1lsb
-        );
-    }
-    s
-}
-
-/// A scene's name and its golden image's error against the f64 Gouraud image and the reference.
-pub type SceneError = (
-    String,
-    crate::measure::image_metrics::ImageError,
-    crate::measure::image_metrics::ImageError,
-);
-
-/// Refuse a size at which some built-in scene cannot be rendered, before any is.
-fn check_builtin_renders(w: u32, h: u32) -> Result<()> {
-    for (name, _) in builtin::ALL {
-        let s = Scene::load(name)?;
-        crate::limits::check_render(&s.file, w, h, s.triangles())?;
-    }
-    Ok(())
-}
-
-/// Image error of every built-in scene that fits `cfg`'s light slots.
-pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {
-    let mut out = Vec::new();
-    for (name, _) in builtin::ALL {
-        let s = Scene::load(name)?;
-        if s.check_config(cfg, "").is_err() {
-            continue;
-        }
-        // The scene's own per-object choices stay; the hardware is `cfg`.
-        let img = crate::render::render(&s, cfg, w, h, false)?;
-        let g = compare(&img.golden, &img.gouraud, &img.covered, img.colour_max);
-        let r = compare(&img.golden, &img.reference, &img.covered, img.colour_max);
-        out.push((name.to_string(), g, r));
-    }
-    Ok(out)
 }

@@ -29,8 +29,7 @@ fn checked_in_rtl_and_roms_are_current() {
         .map(|(n, t)| (n, t.into_bytes()))
         .collect();
     let mut stale = compare(&root().join("rtl"), &rtl);
-    let pick = gbump::cli::ConfigPick { config: None, scene: None };
-    let roms = gbump::cli::rom_files(&cfg, &pick, Some(16), 32, Path::new("rtl/rom")).unwrap();
+    let roms = gbump::rtlgen::rom_files::rom_files(&cfg, None, "", Some(16), 32, Path::new("rtl/rom")).unwrap();
     stale.extend(compare(
         &root().join("rtl/rom"),
         &roms.into_iter().map(|(n, t)| (n, t.into_bytes())).collect::<Vec<_>>(),
@@ -98,7 +97,7 @@ fn regeneration_is_deterministic() {
 #[test]
 fn readme_interface_table_is_current() {
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let table = gbump::cli::interface_markdown(&PipelineConfig::default());
+    let table = gbump::rtlgen::interface::interface_markdown(&PipelineConfig::default());
     assert!(
         readme.contains(&table),
         "README's interface table is stale: paste the output of `gbump interface`"

@@ -385,7 +385,7 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
 
 #[test]
 fn rom_names_carry_their_parameters_and_the_config_hash() {
-    use gbump::cli::{rom_files, ConfigPick};
+    use gbump::cli::ConfigPick;
     let none = ConfigPick { config: None, scene: None };
     let a = PipelineConfig::default();
     let b = PipelineConfig {
@@ -423,4 +423,15 @@ fn rom_names_carry_their_parameters_and_the_config_hash() {
         "{:?}",
         files.iter().map(|f| &f.0).collect::<Vec<_>>()
     );
+}
+
+/// `gbump rom`'s files for a configuration picked as on the command line.
+fn rom_files(
+    cfg: &gbump::PipelineConfig,
+    pick: &gbump::cli::ConfigPick,
+    n: Option<u32>,
+    cube: usize,
+    out: &std::path::Path,
+) -> gbump::Result<Vec<(String, String)>> {
+    gbump::rtlgen::rom_files::rom_files(cfg, pick.scene.as_deref(), &pick.args(), n, cube, out)
 }

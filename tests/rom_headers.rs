@@ -2,7 +2,7 @@
 //! --shininess 8` once wrote a table for n = 8 whose header said `shininess = 16` (the
 //! config's). Each header is read back here and checked against the file name and the words.
 
-use gbump::cli::{rom_files, ConfigPick};
+use gbump::cli::ConfigPick;
 use gbump::config::PowerUnitKind;
 use gbump::rtlgen::rom::{parse, RomFormat};
 use gbump::PipelineConfig;
@@ -118,4 +118,15 @@ fn reset_and_vector_tables_state_their_shininess() {
     assert_eq!(header_params(&text)["shininess"], "9", "{text}");
     let nine: Vec<u64> = gbump::model::PowerTable::build(&cfg, 9).entries.iter().map(|&e| e as u64).collect();
     assert_eq!(parse(&text, RomFormat::Hex).unwrap(), nine);
+}
+
+/// `gbump rom`'s files for a configuration picked as on the command line.
+fn rom_files(
+    cfg: &gbump::PipelineConfig,
+    pick: &gbump::cli::ConfigPick,
+    n: Option<u32>,
+    cube: usize,
+    out: &std::path::Path,
+) -> gbump::Result<Vec<(String, String)>> {
+    gbump::rtlgen::rom_files::rom_files(cfg, pick.scene.as_deref(), &pick.args(), n, cube, out)
 }

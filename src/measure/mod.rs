@@ -6,6 +6,7 @@ pub mod fpga;
 pub mod image_metrics;
 pub mod power_space;
 pub mod report;
+pub mod scene_error;
 pub mod sweep;
 pub mod unit_error;
 pub mod yosys_stat;

@@ -99,7 +99,7 @@ pub fn report(
     let errs = super::unit_error::unit_errors(&cfg, 50_000, 1);
     md += &super::unit_error::markdown(&cfg, &errs);
     md += "\n### Image error per scene\n\n";
-    md += &crate::cli::scene_error_table(&crate::cli::scene_errors(&cfg, 192, 144)?);
+    md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, 192, 144)?);
     md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
     md += &power_section(

@@ -106,3 +106,17 @@ pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
         .map(|p| p.map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32))
         .collect()
 }
+
+/// Write every file into `dir` atomically; on any failure remove what this call wrote.
+pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    for (i, (name, text)) in files.iter().enumerate() {
+        if let Err(e) = write_atomic(&dir.join(name), text.as_ref()) {
+            for (n, _) in &files[..i] {
+                let _ = std::fs::remove_file(dir.join(n));
+            }
+            return Err(e);
+        }
+    }
+    Ok(())
+}

@@ -57,3 +57,18 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
     });
     serde_json::to_string_pretty(&v).expect("json") + "\n"
 }
+
+/// The README's interface section: top ports, then every unit's ports.
+pub fn interface_markdown(cfg: &PipelineConfig) -> String {
+    let mut s = format!(
+        "Top `{}` (config `{}`): latency {} cycles, one fragment every {} cycle(s).\n\n| port | dir | bits |\n|---|---|---|\n",
+        crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+        cfg.hash(),
+        crate::rtlgen::top::latency(cfg),
+        cfg.initiation_interval()
+    );
+    for (n, d, w) in crate::rtlgen::top::top_ports(cfg) {
+        s += &format!("| `{n}` | {d} | {w} |\n");
+    }
+    s + "\n" + &crate::units::markdown_table(cfg)
+}

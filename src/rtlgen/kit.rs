@@ -208,7 +208,7 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         p(&mut s, &format!("{}_BITS", n.to_uppercase()), w.into(), &format!("width of {n}"));
     }
     let mut layouts: Vec<(String, Layout)> = vec![("top".into(), top_layout(cfg))];
-    for u in crate::sim::testbench::units_of(cfg) {
+    for u in super::testbench::units_of(cfg) {
         layouts.push((u.to_string(), unit_layout(cfg, u)));
     }
     for (what, l) in &layouts {

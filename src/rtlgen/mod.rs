@@ -9,6 +9,9 @@ pub mod interface;
 pub mod kit;
 pub mod power_units;
 pub mod rom;
+pub mod rom_files;
+pub mod rtl_set;
+pub mod testbench;
 pub mod top;
 pub mod units_v;
 pub mod writer;
@@ -63,8 +66,8 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     files.extend(kit::filelists(cfg, command, &srcs));
     files.push((kit::package_file_name(cfg), kit::package(cfg, command)));
     // The top testbench, powering up from the init file in the simulator's working folder.
-    let init = crate::sim::rtl_files::verilog_string(&rom_file_name(cfg, "power_table", "hex"));
-    let tb = crate::sim::testbench::tb_top_init(cfg, &init);
+    let init = writer::verilog_string(&rom_file_name(cfg, "power_table", "hex"));
+    let tb = testbench::tb_top_init(cfg, &init);
     files.push((
         kit::tb_file_name(cfg),
         format!("{}{tb}", header(cfg, command, "tb_top: the top testbench (plusargs below)", "// ")),

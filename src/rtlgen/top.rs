@@ -10,7 +10,7 @@
 //! self-contained; a production design would hold it in per-triangle registers.
 
 use super::units_v::module_name;
-use super::writer::VWriter;
+use super::writer::{zext, VWriter};
 use crate::config::{BlendOrder, LightMode, PipelineConfig};
 
 /// Rising edges with `rst` high that bring the top to a known idle state from any power-up
@@ -36,15 +36,6 @@ pub fn latency(cfg: &PipelineConfig) -> u32 {
 /// Width of the texel input.
 pub fn texel_bits(cfg: &PipelineConfig) -> u32 {
     3 * cfg.normal_bits
-}
-
-/// Zero-extend `e` by `pad` bits (no concatenation when there is nothing to add).
-pub fn zext(e: &str, pad: u32) -> String {
-    if pad == 0 {
-        e.to_string()
-    } else {
-        format!("{{{pad}'d0, {e}}}")
-    }
 }
 
 fn lane(sig: &str, i: u32, w: u32) -> String {

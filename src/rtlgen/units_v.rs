@@ -318,7 +318,7 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.line(format!("wire [{}:0] acc;", 3 * aw - 1));
     for ch in 0..3 {
         let terms: Vec<String> = (0..n)
-            .map(|i| super::top::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw))
+            .map(|i| super::writer::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw))
             .collect();
         w.line(format!("assign acc[{}:{}] = {};", ch * aw + aw - 1, ch * aw, terms.join(" + ")));
     }

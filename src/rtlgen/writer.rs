@@ -73,3 +73,17 @@ pub fn ascii(s: &str) -> String {
         .map(|c| if c.is_ascii() { c } else { '?' })
         .collect()
 }
+
+/// `s` as a Verilog string literal.
+pub fn verilog_string(s: &str) -> String {
+    format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
+}
+
+/// Zero-extend `e` by `pad` bits (no concatenation when there is nothing to add).
+pub fn zext(e: &str, pad: u32) -> String {
+    if pad == 0 {
+        e.to_string()
+    } else {
+        format!("{{{pad}'d0, {e}}}")
+    }
+}

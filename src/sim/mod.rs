@@ -8,8 +8,10 @@ pub mod lint;
 pub mod regress;
 pub mod rtl_files;
 pub mod rtl_image;
-pub mod testbench;
 pub mod verilator;
+
+/// The testbenches are generated with the RTL; the simulators run them.
+pub use crate::rtlgen::testbench;
 
 use crate::error::{Error, Result};
 use std::path::Path;

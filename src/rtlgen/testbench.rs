@@ -2,10 +2,11 @@
 //! table load, streaming, checking, the "N passed, N failed" line); this module fills in the
 //! configuration's ports and record slices from the same layouts the vector writer uses.
 
-use super::rtl_files::{verilog_string, Rtl};
+use super::rtl_set::Rtl;
+use super::top::latency;
+use super::units_v::module_name;
+use super::writer::verilog_string;
 use crate::config::PipelineConfig;
-use crate::rtlgen::top::latency;
-use crate::rtlgen::units_v::module_name;
 use crate::vectors::layout::{Layout, Role};
 use crate::vectors::targets::{top_layout, unit_layout};
 use crate::vectors::writer::unit_present;
