@@ -747,7 +747,6 @@ fn vectors(
         command: invocation(),
         shininess,
     };
-    crate::vectors::check(&cfg, &src, &opts)?;
     let t0 = std::time::Instant::now();
     let sets = crate::render::output::undo_on_error(out, || dump(&cfg, &src, &targets, out, &opts))?;
     let secs = t0.elapsed().as_secs_f64();
@@ -760,7 +759,7 @@ fn vectors(
 }
 
 fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::RegressOptions, junit: Option<&Path>) -> Result<()> {
-    use crate::sim::regress::{run_sets, suite, write_rtl};
+    use crate::sim::regress::{check_sets, run_checked, suite, write_rtl};
     let cfg = pick.resolve()?;
     for s in &o.sims {
         crate::sim::require(*s)?;
@@ -788,13 +787,13 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
             "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
         ));
     }
-    crate::sim::regress::check_sets(&cfg, &given, o)?;
+    let given = check_sets(&cfg, &given, o)?;
     let _lock = lock_work(&o.work)?;
-    let sets: Vec<(PathBuf, Option<crate::sim::Sim>)> = if vectors.is_empty() {
+    let sets = if vectors.is_empty() {
         let t0 = std::time::Instant::now();
         let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
         outln!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
-        s
+        check_sets(&cfg, &s, o)?
     } else {
         given
     };
@@ -804,7 +803,7 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
         &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()),
     )?;
 
-    let results = run_sets(&cfg, &sets, &rtl, o)?;
+    let results = run_checked(&cfg, &sets, &rtl, o)?;
     let (mut vecs, mut bad) = (0u64, 0usize);
     outln!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");
     for r in &results {

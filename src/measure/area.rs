@@ -5,10 +5,9 @@
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
-use crate::sim::{run_cmd, tail};
+use crate::sim::tail;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use std::process::Command;
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct UnitArea {
@@ -27,6 +26,16 @@ pub struct AreaReport {
     pub yosys_version: String,
     pub script: String,
     pub units: Vec<UnitArea>,
+}
+
+impl AreaReport {
+    /// The top's row.
+    pub fn top(&self) -> &UnitArea {
+        self.units
+            .iter()
+            .find(|u| u.unit.starts_with("gbump_pipeline"))
+            .expect("area reports hold the top")
+    }
 }
 
 /// The synthesis script for one module.
@@ -68,9 +77,9 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
         .iter()
         .map(|p| p.file_name().expect("file").to_string_lossy().into_owned())
         .collect();
-    let mut ver = Command::new("yosys");
-    ver.arg("-V");
-    let (_, version, _) = run_cmd(&mut ver, "yosys -V")?;
+    let version = crate::cache::tool_version("yosys");
+    // The sources are absolute (write_rtl), so each unit's script runs from its own folder.
+    let abs: Vec<String> = v.iter().map(|p| p.display().to_string()).collect();
     let mut units: Vec<(String, String)> = crate::sim::testbench::units_of(cfg)
         .iter()
         .map(|u| (u.to_string(), module_name(cfg, u)))
@@ -84,18 +93,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
             .map(|(unit, module)| {
                 progress.start(&format!("yosys {module}"));
                 let sub = dir.join(format!("syn_{module}"));
-                std::fs::create_dir_all(&sub).map_err(|e| Error::io(&sub, e))?;
-                let abs: Vec<String> = v
-                    .iter()
-                    .map(|p| std::path::absolute(p).expect("path").display().to_string())
-                    .collect();
-                std::fs::write(sub.join("area.ys"), script(&abs, module)).map_err(|e| Error::io(&sub, e))?;
-                // A report left by an earlier run must never stand in for this one.
-                let _ = std::fs::remove_file(sub.join("area.json"));
-                let _ = std::fs::remove_file(sub.join("area.ltp"));
-                let mut c = Command::new("yosys");
-                c.args(["-q", "-s", "area.ys"]).current_dir(&sub);
-                let (ok, log, _) = run_cmd(&mut c, "yosys")?;
+                let (ok, log) = super::yosys_stat::run_script(&sub, &script(&abs, module), &["area.json", "area.ltp"])?;
                 let read = |f: &str| std::fs::read_to_string(sub.join(f)).unwrap_or_default();
                 let (t, ffs, depth) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"))) {
                     (true, Some(x)) => x,
@@ -123,7 +121,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
     let units = results.into_iter().collect::<Result<Vec<_>>>()?;
     Ok(AreaReport {
         config_hash: cfg.hash(),
-        yosys_version: version.trim().to_string(),
+        yosys_version: version,
         script: script(&files, "<module>"),
         units,
     })

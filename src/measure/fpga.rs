@@ -185,6 +185,16 @@ pub struct FpgaReport {
     pub place_route: Option<PlaceRoute>,
 }
 
+impl FpgaReport {
+    /// The top's row.
+    pub fn top(&self) -> &FpgaUnit {
+        self.units
+            .iter()
+            .find(|u| u.unit.starts_with("gbump_pipeline"))
+            .expect("FPGA reports hold the top")
+    }
+}
+
 /// What nextpnr's log says: utilisation rows, the last (post-route) Fmax of each clock, and
 /// its ERROR lines.
 #[derive(Clone, Debug, Default, PartialEq)]

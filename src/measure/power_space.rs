@@ -191,11 +191,7 @@ pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path)
         String::new()
     };
     let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\n", names.join(" "));
-    std::fs::write(dir.join("area.ys"), script).map_err(|e| Error::io(dir, e))?;
-    let mut c = std::process::Command::new("yosys");
-    c.args(["-q", "-s", "area.ys"]).current_dir(dir);
-    let _ = std::fs::remove_file(dir.join("area.json"));
-    let (ok, log, _) = crate::sim::run_cmd(&mut c, "yosys")?;
+    let (ok, log) = super::yosys_stat::run_script(dir, &script, &["area.json"])?;
     let stat = std::fs::read_to_string(dir.join("area.json")).unwrap_or_default();
     let t = super::yosys_stat::parse(&stat).and_then(|s| s.transistors);
     match (ok, t) {

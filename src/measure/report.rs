@@ -36,7 +36,7 @@ pub fn fpga_section(work: &Path) -> Result<String> {
     for (name, cfg) in &configs {
         for t in [Target::Ice40, Target::Ecp5, Target::Xilinx] {
             let r = fpga_area(cfg, t, "hx8k", false, work, "gbump report")?;
-            let top = r.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")).expect("top");
+            let top = r.top();
             let pr = match &r.place_route {
                 None => String::new(),
                 Some(p) => {
@@ -70,7 +70,6 @@ pub fn fpga_section(work: &Path) -> Result<String> {
             versions.push(r.yosys_version.clone());
         }
     }
-    versions.dedup();
     versions.sort();
     versions.dedup();
     s += &format!("\nTools: {}. The iCE40 HX parts have no DSP blocks, so multipliers become LUTs and carry chains there; `gbump area --target T` gives the same figures per unit.\n", versions.join("; "));

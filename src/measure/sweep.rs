@@ -280,7 +280,7 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
             .map(|u| u.gate_equivalents)
             .sum::<f64>()
     };
-    let top = area.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")).expect("top");
+    let top = area.top();
     let errs = super::unit_error::unit_errors(cfg, ERROR_SAMPLES, 1);
     let pipe = errs
         .iter()
@@ -304,10 +304,7 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
         mean_error_lsb: pipe.mean_lsb,
         psnr_vs_reference_db: psnr,
         pareto: false,
-        fpga_luts: fpga
-            .as_ref()
-            .and_then(|r| r.units.iter().find(|u| u.unit.starts_with("gbump_pipeline")))
-            .map(|u| u.luts),
+        fpga_luts: fpga.as_ref().map(|r| r.top().luts),
         fmax_mhz: fpga.as_ref().and_then(|r| r.place_route.as_ref()).and_then(|p| p.fmax_mhz),
     };
     std::fs::create_dir_all(cache.parent().expect("dir")).map_err(|e| Error::io(&cache, e))?;

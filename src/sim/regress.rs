@@ -148,10 +148,23 @@ fn bench_for(sim: Sim, m: &crate::vectors::manifest::Manifest, set: &str, waves:
     }
 }
 
-/// Check every set against `cfg` and the simulators before anything is built.
-pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &RegressOptions) -> Result<()> {
+/// A set whose files matched its manifest when it was checked.
+#[derive(Clone, Debug)]
+pub struct CheckedSet {
+    pub manifest: PathBuf,
+    /// The only simulator to run it on (None: every one of the regression).
+    pub only: Option<Sim>,
+    m: crate::vectors::manifest::Manifest,
+    dir: PathBuf,
+}
+
+/// Check every set against `cfg` and the simulators before anything is built: its files
+/// against the manifest (read once here; the runs use what was checked), its configuration,
+/// and a bench on every simulator that will run it.
+pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &RegressOptions) -> Result<Vec<CheckedSet>> {
+    let mut out = Vec::new();
     for (manifest, only) in sets {
-        let (m, _) = verify(manifest)?;
+        let (m, dir) = verify(manifest)?;
         if m.config_hash != cfg.hash() {
             return Err(Error::Other(format!(
                 "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or pass its config",
@@ -163,28 +176,37 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
         for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {
             bench_for(sim, &m, &manifest.display().to_string(), o.waves)?;
         }
+        out.push(CheckedSet {
+            manifest: manifest.clone(),
+            only: *only,
+            m,
+            dir,
+        });
     }
-    Ok(())
+    Ok(out)
 }
 
 /// Run the sets in `sets` on each simulator of `o`. Top sets run with the power table loaded
 /// through the load port; with `o.power_up`, the first top set made for the reset shininess
 /// runs once more on the table's power-up contents (INIT_FILE), nothing loaded.
 pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &Rtl, o: &RegressOptions) -> Result<Vec<RunResult>> {
-    check_sets(cfg, sets, o)?;
+    run_checked(cfg, &check_sets(cfg, sets, o)?, rtl, o)
+}
+
+/// `run_sets` on sets `check_sets` has already checked.
+pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &RegressOptions) -> Result<Vec<RunResult>> {
     let build_root = o.work.join("build");
     let mut results = Vec::new();
     for &sim in &o.sims {
         super::require(sim)?;
         let mut exes: Vec<(Bench, PathBuf)> = Vec::new();
         let mut power_up_done = !o.power_up;
-        for (manifest, only) in sets {
+        for CheckedSet { manifest, only, m, dir } in sets {
             if only.is_some_and(|s| s != sim) {
                 continue;
             }
-            let (m, dir) = verify(manifest)?;
             let set = manifest.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-            let bench = bench_for(sim, &m, &set, o.waves)?;
+            let bench = bench_for(sim, m, &set, o.waves)?;
             let exe = match exes.iter().find(|e| e.0 == bench) {
                 Some(e) => e.1.clone(),
                 None => {

@@ -11,10 +11,9 @@ pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<Rtl>
     let dir = std::path::absolute(dir).map_err(|e| Error::io(dir, e))?;
     let files = crate::rtlgen::generate(cfg, command);
     crate::render::output::write_files(&dir, &files)?;
-    let with = |ext: &str| files.iter().filter(|f| f.0.ends_with(ext)).map(|f| dir.join(&f.0)).collect();
     Ok(Rtl {
         sources: crate::rtlgen::sources(&files).iter().map(|f| dir.join(f)).collect(),
-        waivers: with(".vlt"),
+        waivers: files.iter().filter(|f| f.0.ends_with(".vlt")).map(|f| dir.join(&f.0)).collect(),
         init_file: dir.join(crate::rtlgen::units_v::rom_file_name(cfg, "power_table", "hex")),
         dir,
     })

@@ -13,4 +13,4 @@ pub mod writer;
 
 pub use manifest::{verify, Manifest};
 pub use sources::Source;
-pub use writer::{check, dump, DumpOptions, VectorSet};
+pub use writer::{dump, DumpOptions, VectorSet};

@@ -353,14 +353,20 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
 }
 
 /// Unit stimuli that sweep a small unit exhaustively.
-pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
-    let c = cfg.colour_max() as i64;
-    let nm = (1i64 << cfg.normal_bits) - 1;
+/// How many vectors `exhaustive:unit` holds under `cfg`, or why it cannot be swept (checked
+/// before anything is built or written).
+pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
+    let c = cfg.colour_max() as u64;
     let count = match unit {
         "power_table" => (1u64 << cfg.dot_bits) + 1,
-        "texture_modulate" => (c as u64 + 1).pow(2),
-        "bump_fetch" => nm as u64 + 1,
-        _ => 0,
+        "texture_modulate" => (c + 1).pow(2),
+        "bump_fetch" => 1u64 << cfg.normal_bits,
+        u if crate::units::unit(u).is_some() => {
+            return Err(Error::Other(format!(
+                "exhaustive:{u}: {u} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: power_table, texture_modulate, bump_fetch"
+            )))
+        }
+        u => return Err(Error::Other(format!("exhaustive:{u}: no such unit\n  fix: one of {}", crate::vectors::targets::all_targets()[1..].join(", ")))),
     };
     let max = crate::limits::MAX_EXHAUSTIVE_VECTORS;
     if count > max {
@@ -368,17 +374,34 @@ pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
             "exhaustive:{unit}: {count} vectors under this configuration, more than MAX_EXHAUSTIVE_VECTORS = {max}\n  fix: use random:N for this configuration"
         )));
     }
+    Ok(count)
+}
+
+pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
+    exhaustive_count(cfg, unit)?;
+    let c = cfg.colour_max() as i64;
+    let nm = (1i64 << cfg.normal_bits) - 1;
     Ok(match unit {
-        "power_table" => (0..=(1i64 << cfg.dot_bits)).map(|x| UnitStim { unit: "power_table", inputs: vec![vec![x]] }).collect(),
-        "texture_modulate" => (0..=c)
-            .flat_map(|a| (0..=c).map(move |b| UnitStim { unit: "texture_modulate", inputs: vec![vec![a, b, c - a], vec![b, a, c - b]] }))
+        "power_table" => (0..=(1i64 << cfg.dot_bits))
+            .map(|x| UnitStim {
+                unit: "power_table",
+                inputs: vec![vec![x]],
+            })
             .collect(),
-        "bump_fetch" => (0..=nm).map(|x| UnitStim { unit: "bump_fetch", inputs: vec![vec![x, nm - x, x ^ (nm >> 1)]] }).collect(),
-        u if crate::units::unit(u).is_some() => {
-            return Err(Error::Other(format!(
-                "exhaustive:{u}: {u} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: power_table, texture_modulate, bump_fetch"
-            )))
-        }
-        u => return Err(Error::Other(format!("exhaustive:{u}: no such unit\n  fix: one of {}", crate::vectors::targets::all_targets()[1..].join(", ")))),
+        "texture_modulate" => (0..=c)
+            .flat_map(|a| {
+                (0..=c).map(move |b| UnitStim {
+                    unit: "texture_modulate",
+                    inputs: vec![vec![a, b, c - a], vec![b, a, c - b]],
+                })
+            })
+            .collect(),
+        "bump_fetch" => (0..=nm)
+            .map(|x| UnitStim {
+                unit: "bump_fetch",
+                inputs: vec![vec![x, nm - x, x ^ (nm >> 1)]],
+            })
+            .collect(),
+        _ => unreachable!("exhaustive_count accepts only the swept units"),
     })
 }

@@ -195,7 +195,7 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
                 all.join(", ")
             )));
         } else if !super::writer::unit_present(cfg, t) {
-            let field = if t == "diffuse_blend" { "diffuse" } else { "specular" };
+            let field = super::writer::unit_switch(t);
             return Err(Error::Other(format!(
                 "--target {t}: the configuration has no {t} ({field} = false)\n  fix: drop --target {t}, or set {field} = true in the configuration"
             )));

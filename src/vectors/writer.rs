@@ -5,7 +5,7 @@
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
 use super::rng::SplitMix64;
-use super::sources::{corners, exhaustive, random_stim, Source};
+use super::sources::{corners, exhaustive, exhaustive_count, random_stim, Source};
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -224,6 +224,15 @@ pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
     }
 }
 
+/// The configuration switch that leaves `unit` out when false (for `unit_present`'s refusals).
+pub fn unit_switch(unit: &str) -> &'static str {
+    if unit == "diffuse_blend" {
+        "diffuse"
+    } else {
+        "specular"
+    }
+}
+
 /// Top stimuli of a source, grouped by power-table shininess.
 fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
     Ok(match src {
@@ -264,7 +273,7 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
 }
 
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
-pub fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
+fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
     if cfg.palette {
         return Err(Error::Other(
             "palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)"
@@ -276,12 +285,12 @@ pub fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> 
     }
     match src {
         Source::Exhaustive(unit) if crate::units::unit(unit).is_some() && !unit_present(cfg, unit) => {
-            let field = if unit == "diffuse_blend" { "diffuse" } else { "specular" };
+            let field = unit_switch(unit);
             Err(Error::Other(format!(
                 "exhaustive:{unit}: the configuration has no {unit} ({field} = false), so the set would be empty\n  fix: set {field} = true, or sweep a unit the configuration has"
             )))
         }
-        Source::Exhaustive(unit) => exhaustive(cfg, unit).map(|_| ()),
+        Source::Exhaustive(unit) => exhaustive_count(cfg, unit).map(|_| ()),
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, "pipeline config")?;
