@@ -479,8 +479,8 @@ pub fn run() -> anyhow::Result<()> {
         } => {
             let cfg = pick.resolve()?;
             crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
-            if area && !crate::sim::have("yosys") {
-                return Err(crate::sim::missing("yosys").into());
+            if area && !crate::tool::have("yosys") {
+                return Err(crate::tool::missing("yosys").into());
             }
             let fm = crate::model::power_unit::PowerFormats {
                 f: cfg.dot_bits,
@@ -812,7 +812,7 @@ fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::Regr
                 vecs += out.passed + out.failed;
                 if out.failed > 0 {
                     bad += 1;
-                    outln!("{}", crate::sim::tail(&out.log, 40));
+                    outln!("{}", crate::tool::tail(&out.log, 40));
                 }
                 outln!(
                     "{:10} {:44} {:>10} {:>8} {:>9.2}",

@@ -21,9 +21,11 @@ pub mod rtlgen;
 pub mod scene;
 pub mod sim;
 pub mod temp_files;
+pub mod tool;
 pub mod units;
 pub mod vectors;
 pub mod work_lock;
+pub mod yosys;
 
 pub use config::PipelineConfig;
 pub use error::{Error, Result};

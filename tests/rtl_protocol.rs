@@ -6,7 +6,7 @@
 use assert_cmd::Command;
 use gbump::sim::regress::{write_rtl, Rtl};
 use gbump::sim::testbench::{harness_top, tb_top};
-use gbump::sim::{icarus, verilator, Outcome};
+use gbump::sim::{Icarus, Outcome, Simulator, Testbench, Verilator};
 use gbump::vectors::{dump, verify, DumpOptions, Source};
 use gbump::PipelineConfig;
 use std::path::{Path, PathBuf};
@@ -43,18 +43,18 @@ fn config(path: Option<&str>) -> PipelineConfig {
 }
 
 fn icarus_top(w: &Path, rtl: &Rtl, tb: &str, hex: &str, extra: &[&str], cwd: &Path) -> gbump::Result<Outcome> {
-    let exe = icarus::build(&w.join("build"), "tb_top", tb, rtl)?;
+    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_top", tb), rtl)?;
     let mut plus = vec![format!("+vectors={hex}"), "+max_errors=5".to_string()];
     plus.extend(extra.iter().map(|s| s.to_string()));
-    icarus::run(&exe, &plus, None, cwd, "icarus")
+    Icarus.run(&exe, &plus, None, cwd, "icarus")
 }
 
 fn harness(w: &Path, cfg: &PipelineConfig, rtl: &Rtl, cpp: &str, bin: &str, extra: &[&str], cwd: &Path) -> gbump::Result<Outcome> {
     let top = gbump::rtlgen::units_v::module_name(cfg, "gbump_pipeline");
-    let exe = verilator::build_harness(&w.join("build"), &top, cpp, rtl)?;
+    let exe = Verilator.build_harness(&w.join("build"), &top, cpp, rtl)?;
     let mut args = vec!["--vectors".to_string(), bin.to_string(), "--max-errors".into(), "5".into()];
     args.extend(extra.iter().map(|s| s.to_string()));
-    verilator::run(&exe, &args, cwd, "verilator")
+    Verilator.run(&exe, &args, None, cwd, "verilator")
 }
 
 /// Both benches, told the documented numbers, pass (with bubbles); told a latency or an

@@ -3,6 +3,7 @@
 //! fails with the installer's name in the message.
 
 use assert_cmd::Command;
+use gbump::sim::{Icarus, Simulator, Testbench, Verilator};
 use std::path::{Path, PathBuf};
 
 fn root() -> PathBuf {
@@ -256,14 +257,20 @@ fn a_testbench_given_no_vectors_fails() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/empty")).unwrap();
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl), &rtl).unwrap();
+    let exe = Icarus
+        .build(
+            &work.join("build"),
+            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+            &rtl,
+        )
+        .unwrap();
     std::fs::write(work.join("empty.hex"), "").unwrap();
     let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
     let plus = [
         format!("+vectors={}", work.join("empty.hex").display()),
         format!("+table={}", table.display()),
     ];
-    let e = gbump::sim::icarus::run(&exe, &plus, None, &work, "empty").unwrap_err().to_string();
+    let e = Icarus.run(&exe, &plus, None, &work, "empty").unwrap_err().to_string();
     assert!(e.contains("checked no vectors"), "{e}");
 }
 
@@ -330,8 +337,14 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     ];
     // The generated pipeline: no X, every vector passes.
     let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl), &rtl).unwrap();
-    let ok = gbump::sim::icarus::run(&exe, &plus, None, &work, "x").unwrap();
+    let exe = Icarus
+        .build(
+            &work.join("build"),
+            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+            &rtl,
+        )
+        .unwrap();
+    let ok = Icarus.run(&exe, &plus, None, &work, "x").unwrap();
     assert_eq!(ok.failed, 0, "{}", ok.log);
     // The same pipeline with its output gate removed: its X before the first result is reported.
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
@@ -347,8 +360,14 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
         .find(|p| p.to_string_lossy().contains("gbump_pipeline"))
         .unwrap();
     std::fs::write(top2, text.replace(&gated, &ungated)).unwrap();
-    let exe2 = gbump::sim::icarus::build(&work.join("build"), "tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl2), &rtl2).unwrap();
-    let bad = gbump::sim::icarus::run(&exe2, &plus, None, &work, "x").unwrap();
+    let exe2 = Icarus
+        .build(
+            &work.join("build"),
+            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl2)),
+            &rtl2,
+        )
+        .unwrap();
+    let bad = Icarus.run(&exe2, &plus, None, &work, "x").unwrap();
     assert!(bad.failed > 0 && bad.log.contains("X on outputs after reset"), "{}", bad.log);
 }
 
@@ -358,15 +377,17 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/xunique")).unwrap();
     let rtl = write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = gbump::sim::verilator::build_tb(
-        &work.join("build"),
-        "tb_top",
-        &gbump::sim::testbench::tb_top(&cfg, &rtl),
-        &rtl,
-        false,
-        true,
-    )
-    .unwrap();
+    let tb = gbump::sim::testbench::tb_top(&cfg, &rtl);
+    let exe = Verilator
+        .build(
+            &work.join("build"),
+            &Testbench {
+                x_unique: true,
+                ..Testbench::new("tb_top", &tb)
+            },
+            &rtl,
+        )
+        .unwrap();
     let v = root().join("vectors");
     for set in ["corners_top", "random256_top"] {
         for seed in [1, 7, 12345] {
@@ -376,7 +397,7 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
                 format!("+verilator+seed+{seed}"),
                 "+verilator+rand+reset+2".to_string(),
             ];
-            let o = gbump::sim::verilator::run(&exe, &args, &work, "x-unique").unwrap();
+            let o = Verilator.run(&exe, &args, None, &work, "x-unique").unwrap();
             assert!(o.failed == 0 && o.passed > 0, "{set} seed {seed}:\n{}", o.log);
         }
     }

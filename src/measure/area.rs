@@ -1,11 +1,13 @@
 //! Area by Yosys: each unit (and the top) synthesised alone with
-//! `synth -flatten; dffunmap; abc -g cmos2; stat -json -tech cmos` (read by `yosys_stat`), reported as NAND2 gate
-//! equivalents (transistors / 4), with flip-flops, logic depth (`ltp -noff`) and ROM bits.
+//! `synth -flatten; dffunmap; abc -g cmos2; stat -json -tech cmos` (`yosys::scripts::cmos_area`,
+//! read by `yosys::stat`), reported as NAND2 gate equivalents (transistors / 4), with
+//! flip-flops, logic depth (`ltp -noff`, read by `yosys::ltp`) and ROM bits.
 
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
-use crate::sim::tail;
+use crate::tool::tail;
+use crate::yosys::scripts::cmos_area;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -38,46 +40,23 @@ impl AreaReport {
     }
 }
 
-/// The synthesis script for one module.
-pub fn script(files: &[String], top: &str) -> String {
-    format!(
-        "read_verilog -defer {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
-        files.join(" ")
-    )
-}
-
 /// Transistors and flip-flops from `stat -json -tech cmos`, logic depth from `ltp -noff`.
 fn parse_stat(stat: &str, ltp: &str) -> Option<(u64, u64, u64)> {
-    let s = super::yosys_stat::parse(stat)?;
+    let s = crate::yosys::stat::parse(stat)?;
     let ffs = s.count(|c| c.starts_with("$_DFF"));
-    let depth = ltp
-        .lines()
-        .rev()
-        .find(|l| l.contains("Longest topological path"))
-        .and_then(|l| {
-            l.split("length=")
-                .nth(1)?
-                .trim_end_matches("):")
-                .trim_end_matches(['(', ')', ':'])
-                .parse()
-                .ok()
-        })
-        .unwrap_or(0);
-    Some((s.transistors?, ffs, depth))
+    Some((s.transistors?, ffs, crate::yosys::ltp::depth(ltp)))
 }
 
 /// Synthesise every unit present in `cfg` and the top.
 pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaReport> {
-    if !crate::sim::have("yosys") {
-        return Err(crate::sim::missing("yosys"));
-    }
+    crate::yosys::require()?;
     let dir = work.join(format!("area_{}", &cfg.hash()[..8]));
     let v = crate::sim::regress::write_rtl(cfg, &dir, command)?.sources;
     let files: Vec<String> = v
         .iter()
         .map(|p| p.file_name().expect("file").to_string_lossy().into_owned())
         .collect();
-    let version = crate::cache::tool_version("yosys");
+    let version = crate::yosys::version();
     // The sources are absolute (write_rtl), so each unit's script runs from its own folder.
     let abs: Vec<String> = v.iter().map(|p| p.display().to_string()).collect();
     let mut units: Vec<(String, String)> = crate::sim::testbench::units_of(cfg)
@@ -93,7 +72,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
             .map(|(unit, module)| {
                 progress.start(&format!("yosys {module}"));
                 let sub = dir.join(format!("syn_{module}"));
-                let (ok, log) = super::yosys_stat::run_script(&sub, &script(&abs, module), &["area.json", "area.ltp"])?;
+                let (ok, log) = crate::yosys::run(&cmos_area(&abs, module), Path::new("area.ys"), &sub, &["area.json", "area.ltp"])?;
                 let read = |f: &str| std::fs::read_to_string(sub.join(f)).unwrap_or_default();
                 let (t, ffs, depth) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"))) {
                     (true, Some(x)) => x,
@@ -122,7 +101,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
     Ok(AreaReport {
         config_hash: cfg.hash(),
         yosys_version: version,
-        script: script(&files, "<module>"),
+        script: cmos_area(&files, "<module>"),
         units,
     })
 }

@@ -11,6 +11,7 @@ use crate::raster::Prepared;
 use crate::reference::perpixel;
 use crate::render::golden_image;
 use crate::scene::Scene;
+use crate::sim::{Icarus, Simulator, Testbench, Verilator};
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
@@ -95,19 +96,20 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     );
     progress.done("vector dump");
     progress.start("Verilator");
-    let rtl = crate::sim::regress::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
+    let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
     let table = dir.join(&m.power_table.name).display().to_string();
-    if crate::sim::have("verilator") {
-        let exe = crate::sim::verilator::build_harness(
+    if crate::tool::have("verilator") {
+        let exe = Verilator.build_harness(
             &work.join("build"),
             &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
             &crate::sim::testbench::harness_top(cfg),
             &rtl,
         )?;
         let bin = dir.join(&m.bin.as_ref().expect("bin").name).display().to_string();
-        let out = crate::sim::verilator::run(
+        let out = Verilator.run(
             &exe,
             &["--vectors".into(), bin.clone(), "--table".into(), table.clone()],
+            None,
             &work,
             "harness",
         )?;
@@ -117,7 +119,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
             out.passed,
             out.seconds
         );
-        let raw = crate::sim::verilator::run(
+        let raw = Verilator.run(
             &exe,
             &[
                 "--vectors".into(),
@@ -127,6 +129,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
                 "--raw".into(),
                 "20000000".into(),
             ],
+            None,
             &work,
             "raw",
         )?;
@@ -140,7 +143,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     }
     progress.done("Verilator");
     progress.start("Icarus");
-    if crate::sim::have("iverilog") {
+    if crate::tool::have("iverilog") {
         let hexdir = work.join("hex");
         let _ = std::fs::remove_dir_all(&hexdir);
         let ho = crate::vectors::DumpOptions {
@@ -150,12 +153,13 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         };
         let hs = crate::vectors::dump(cfg, &crate::vectors::Source::Random(20_000), &all, &hexdir, &ho)?;
         let (hm, hd) = crate::vectors::verify(&hs[0].manifest)?;
-        let exe = crate::sim::icarus::build(&work.join("build"), "tb_top", &crate::sim::testbench::tb_top(cfg, &rtl), &rtl)?;
+        let tb = crate::sim::testbench::tb_top(cfg, &rtl);
+        let exe = Icarus.build(&work.join("build"), &Testbench::new("tb_top", &tb), &rtl)?;
         let plus = [
             format!("+vectors={}", hd.join(&hm.hex.as_ref().expect("hex").name).display()),
             format!("+table={}", hd.join(&hm.power_table.name).display()),
         ];
-        let out = crate::sim::icarus::run(&exe, &plus, None, &work, "icarus")?;
+        let out = Icarus.run(&exe, &plus, None, &work, "icarus")?;
         s += &format!(
             "| Icarus, Verilog testbench | {:.0} vectors/s | {} text vectors in {:.2} s |\n",
             out.passed as f64 / out.seconds,

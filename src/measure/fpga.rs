@@ -7,111 +7,16 @@
 //! utilisation), not an error. Every synthesis and every place-and-route is cached under a
 //! key of its inputs, the script and the tool's version (`src/cache.rs`).
 
-use super::yosys_stat::{self, Stat};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
-use crate::sim::{run_cmd, tail};
+use crate::tool::{run_cmd, tail};
+use crate::yosys::stat::{self as yosys_stat, Stat};
+/// The targets and their cell libraries belong to Yosys; `gbump area --target` names them.
+pub use crate::yosys::target::{Class, Target};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-/// What `gbump area` measures against.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Target {
-    /// NAND2 gate equivalents (`abc -g cmos2; stat -tech cmos`).
-    Cmos,
-    /// Lattice iCE40 (`synth_ice40`), placed and routed with nextpnr-ice40.
-    Ice40,
-    /// Lattice ECP5 (`synth_ecp5`).
-    Ecp5,
-    /// Xilinx 7-series (`synth_xilinx`).
-    Xilinx,
-}
-
-/// What a cell is, for the columns of the report.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Class {
-    Lut,
-    FlipFlop,
-    Carry,
-    Dsp,
-    BlockRam,
-    LutRam,
-    Other,
-}
-
-impl Target {
-    pub fn name(self) -> &'static str {
-        match self {
-            Target::Cmos => "cmos",
-            Target::Ice40 => "ice40",
-            Target::Ecp5 => "ecp5",
-            Target::Xilinx => "xilinx",
-        }
-    }
-
-    /// The Yosys synthesis command for module `top` (FPGA targets only).
-    pub fn synth(self, top: &str) -> String {
-        match self {
-            Target::Cmos => unreachable!("cmos has its own script in measure::area"),
-            Target::Ice40 => format!("synth_ice40 -top {top}"),
-            Target::Ecp5 => format!("synth_ecp5 -top {top}"),
-            // synth_xilinx keeps the hierarchy unless told, and adds I/O buffers a unit
-            // synthesised alone does not have.
-            Target::Xilinx => format!("synth_xilinx -flatten -noiopad -top {top}"),
-        }
-    }
-
-    /// The cell names of each column, as the report's header states them.
-    pub fn cell_names(self) -> [&'static str; 5] {
-        // LUTs, flip-flops, carry, DSP, block RAM
-        match self {
-            Target::Ice40 => ["SB_LUT4", "SB_DFF*", "SB_CARRY", "SB_MAC16", "SB_RAM40_4K"],
-            Target::Ecp5 => ["LUT4", "TRELLIS_FF", "CCU2C", "MULT18X18D", "DP16KD"],
-            Target::Xilinx => ["LUT1-6", "FD*", "CARRY4", "DSP48E1", "RAMB18/36"],
-            Target::Cmos => ["", "$_DFF*", "", "", ""],
-        }
-    }
-
-    /// The column of a cell type of this target's library.
-    pub fn classify(self, cell: &str) -> Class {
-        let is = |names: &[&str]| names.contains(&cell);
-        match self {
-            Target::Ice40 => match cell {
-                "SB_LUT4" => Class::Lut,
-                c if c.starts_with("SB_DFF") => Class::FlipFlop,
-                "SB_CARRY" => Class::Carry,
-                "SB_MAC16" => Class::Dsp,
-                c if c.starts_with("SB_RAM40_4K") || c == "SB_SPRAM256KA" => Class::BlockRam,
-                _ => Class::Other,
-            },
-            Target::Ecp5 => match cell {
-                "LUT4" => Class::Lut,
-                "TRELLIS_FF" => Class::FlipFlop,
-                "CCU2C" => Class::Carry,
-                _ if is(&["MULT18X18D", "ALU54B"]) => Class::Dsp,
-                _ if is(&["DP16KD", "PDPW16KD"]) => Class::BlockRam,
-                "TRELLIS_DPR16X4" => Class::LutRam,
-                _ => Class::Other,
-            },
-            Target::Xilinx => match cell {
-                c if c.len() == 4 && c.starts_with("LUT") => Class::Lut,
-                _ if is(&["FDRE", "FDSE", "FDCE", "FDPE"]) => Class::FlipFlop,
-                _ if is(&["CARRY4", "CARRY8"]) => Class::Carry,
-                c if c.starts_with("DSP48") => Class::Dsp,
-                c if c.starts_with("RAMB18") || c.starts_with("RAMB36") => Class::BlockRam,
-                c if c.starts_with("RAM") || c.starts_with("SRL") => Class::LutRam,
-                _ => Class::Other,
-            },
-            Target::Cmos => match cell {
-                c if c.starts_with("$_DFF") => Class::FlipFlop,
-                _ => Class::Other,
-            },
-        }
-    }
-}
 
 /// One module's resources on one target.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -291,28 +196,11 @@ pub fn ice40_package(device: &str) -> Result<&'static str> {
 
 /// Refuse a missing tool before anything runs.
 pub fn require(target: Target) -> Result<()> {
-    if !crate::sim::have("yosys") {
-        return Err(crate::sim::missing("yosys"));
-    }
-    if target == Target::Ice40 && !crate::sim::have("nextpnr-ice40") {
-        return Err(crate::sim::missing("nextpnr-ice40"));
+    crate::yosys::require()?;
+    if target == Target::Ice40 {
+        crate::tool::require("nextpnr-ice40")?;
     }
     Ok(())
-}
-
-/// The Yosys script of one module (outputs by absolute path; run in the RTL folder so the
-/// power table's init file loads).
-fn synth_script(target: Target, sources: &[String], top: &str, out: &Path, netlist: bool) -> String {
-    let mut s = format!("read_verilog -defer {}\n{}", sources.join(" "), target.synth(top));
-    if netlist {
-        s += &format!("\nwrite_json {}", out.join("netlist.json").display());
-    }
-    s + &format!("\ntee -q -o {} stat -json\n", out.join("stat.json").display())
-}
-
-/// The script as the report shows it.
-pub fn script_summary(target: Target) -> String {
-    format!("read_verilog -defer <files>; {}; stat -json", target.synth("<module>"))
 }
 
 /// Synthesise `module` (cached): its `stat -json` and, with `netlist`, its JSON netlist path.
@@ -323,7 +211,7 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
         .map(|p| p.file_name().expect("file").to_string_lossy().into_owned())
         .collect();
     let mut k = crate::cache::Key::new("fpga synth");
-    k.add(synth_script(target, &names, module, Path::new("OUT"), netlist).as_bytes());
+    k.add(crate::yosys::scripts::fpga(target, &names, module, Path::new("OUT"), netlist).as_bytes());
     for f in rtl.sources.iter().chain([&rtl.init_file]) {
         k.add_file(f)?;
     }
@@ -332,10 +220,8 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
         .map_err(|e| Error::io(work, e))?;
     let outputs: &[&str] = if netlist { &["stat.json", "netlist.json"] } else { &["stat.json"] };
     let dir = crate::cache::build_dir(&dir, outputs, |tmp| {
-        std::fs::write(tmp.join("synth.ys"), synth_script(target, &names, module, tmp, netlist)).map_err(|e| Error::io(tmp, e))?;
-        let mut c = Command::new("yosys");
-        c.arg("-q").arg("-s").arg(tmp.join("synth.ys")).current_dir(&rtl.dir);
-        let (ok, log, _) = run_cmd(&mut c, "yosys")?;
+        let script = crate::yosys::scripts::fpga(target, &names, module, tmp, netlist);
+        let (ok, log) = crate::yosys::run(&script, &tmp.join("synth.ys"), &rtl.dir, &[])?;
         let parsed = std::fs::read_to_string(tmp.join("stat.json"))
             .ok()
             .and_then(|t| yosys_stat::parse(&t));
@@ -494,8 +380,8 @@ pub fn fpga_area(cfg: &PipelineConfig, target: Target, device: &str, per_unit: b
     Ok(FpgaReport {
         config_hash: cfg.hash(),
         target,
-        yosys_version: crate::cache::tool_version("yosys"),
-        script: script_summary(target),
+        yosys_version: crate::yosys::version(),
+        script: crate::yosys::scripts::fpga_summary(target),
         units,
         place_route,
     })
@@ -612,7 +498,7 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
             config_hash: "h".into(),
             target: Target::Ice40,
             yosys_version: "Yosys".into(),
-            script: script_summary(Target::Ice40),
+            script: crate::yosys::scripts::fpga_summary(Target::Ice40),
             units: vec![],
             place_route: Some(p),
         })

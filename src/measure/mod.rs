@@ -9,4 +9,3 @@ pub mod report;
 pub mod scene_error;
 pub mod sweep;
 pub mod unit_error;
-pub mod yosys_stat;

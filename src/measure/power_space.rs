@@ -135,23 +135,26 @@ fn write_design(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path
 /// Returns the number of inputs checked.
 pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<u64> {
     use crate::error::Error;
+    use crate::sim::Simulator;
     let (m, files) = write_design(d, fm, n, dir)?;
     let tb = format!(
         "`timescale 1ns / 1ps\nmodule tb;\nreg clk = 0;\nreg [{f}:0] x = 0;\nwire [{p}:0] fs;\n{m} dut (.clk(clk), .x(x), .fs(fs));\ninteger i;\ninitial begin\n  for (i = 0; i <= {top}; i = i + 1) begin\n    x = i; #1 clk = 1; #1 clk = 0;\n    $display(\"%0d %0d\", i, fs);\n  end\n  $finish;\nend\nendmodule\n",
         f = fm.f, p = fm.p, top = 1u64 << fm.f
     );
-    let tbp = dir.join("tb.v");
-    std::fs::write(&tbp, tb).map_err(|e| Error::io(dir, e))?;
-    let exe = dir.join("tb.vvp");
-    let mut c = std::process::Command::new("iverilog");
-    c.args(["-g2005", "-o"]).arg(&exe).arg(&tbp).args(&files);
-    let (ok, log, _) = crate::sim::run_cmd(&mut c, "iverilog")?;
-    if !ok {
-        return Err(Error::Other(format!("iverilog failed on {m}:\n{}", crate::sim::tail(&log, 10))));
-    }
-    let mut r = std::process::Command::new("vvp");
-    r.arg("-n").arg(&exe).current_dir(dir);
-    let (_, out, _) = crate::sim::run_cmd(&mut r, "vvp")?;
+    // The ROM reads its table by bare name, so the bench runs in `dir`; the init file is
+    // recorded for completeness (Icarus's build does not read it).
+    let rtl = crate::sim::rtl_files::Rtl {
+        dir: dir.to_path_buf(),
+        init_file: dir.join(format!("{m}.hex")),
+        sources: files,
+        waivers: vec![],
+    };
+    let sim = crate::sim::Icarus;
+    let exe = sim
+        .build(dir, &crate::sim::Testbench::new("tb", &tb), &rtl)
+        .map_err(|e| Error::Other(format!("{m}: {e}")))?;
+    // The bench prints one line per input, not the regression's summary, so it is read here.
+    let (_, out, _) = sim.run_log(&exe, &[], None, dir, "vvp")?;
     let table = d.table(fm, n);
     let mut checked = 0;
     for line in out.lines() {
@@ -171,7 +174,7 @@ pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Pa
     if checked != (1u64 << fm.f) + 1 {
         return Err(Error::Other(format!(
             "{m}: checked {checked} inputs\n{}",
-            crate::sim::tail(&out, 10)
+            crate::tool::tail(&out, 10)
         )));
     }
     Ok(checked)
@@ -185,18 +188,13 @@ pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path)
         .iter()
         .map(|p| p.file_name().expect("name").to_string_lossy().into_owned())
         .collect();
-    let bb = if files.len() > 1 {
-        format!("blackbox {m}_rom\n")
-    } else {
-        String::new()
-    };
-    let script = format!("read_verilog -defer {}\nhierarchy -top {m}\n{bb}synth -flatten -top {m}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\n", names.join(" "));
-    let (ok, log) = super::yosys_stat::run_script(dir, &script, &["area.json"])?;
+    let script = crate::yosys::scripts::power_datapath(&names, &m, files.len() > 1);
+    let (ok, log) = crate::yosys::run(&script, std::path::Path::new("area.ys"), dir, &["area.json"])?;
     let stat = std::fs::read_to_string(dir.join("area.json")).unwrap_or_default();
-    let t = super::yosys_stat::parse(&stat).and_then(|s| s.transistors);
+    let t = crate::yosys::stat::parse(&stat).and_then(|s| s.transistors);
     match (ok, t) {
         (true, Some(t)) => Ok(t as f64 / 4.0),
-        _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::sim::tail(&log, 10)))),
+        _ => Err(Error::Other(format!("yosys failed on {m}:\n{}", crate::tool::tail(&log, 10)))),
     }
 }
 

@@ -218,13 +218,13 @@ fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<s
         .add(&IMAGE.0.to_le_bytes())
         .add(&IMAGE.1.to_le_bytes())
         .add(&ERROR_SAMPLES.to_le_bytes())
-        .add(super::area::script(&[], "").as_bytes())
+        .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())
         .add_tool("yosys");
     // Only a space with a target adds to the key, so plain sweeps keep their caches.
     if let Some(t) = target {
         k.add(t.name().as_bytes())
             .add(FPGA_DEVICE.as_bytes())
-            .add(super::fpga::script_summary(t).as_bytes());
+            .add(crate::yosys::scripts::fpga_summary(t).as_bytes());
         if t == super::fpga::Target::Ice40 {
             k.add_tool("nextpnr-ice40");
         }
@@ -236,7 +236,7 @@ fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<s
 fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaReport> {
     let mut k = crate::cache::Key::new("area");
     k.add(cfg.to_toml().as_bytes())
-        .add(super::area::script(&[], "").as_bytes())
+        .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())
         .add_tool("yosys");
     let file = work.join("area").join(format!("{}.json", k.finish()));
     if let Some(r) = std::fs::read_to_string(&file)

@@ -3,14 +3,13 @@
 //! Verilator; any lint warning or mismatch fails the run and keeps the config for replay.
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
-use super::Sim;
+use super::{Sim, Simulator, Verilator};
 use crate::config::{limit, BlendOrder, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
 use crate::vectors::{dump, DumpOptions, Source};
 use std::path::Path;
-use std::process::Command;
 
 /// A random valid configuration, uniform over the valid space: every numeric field is drawn
 /// over its whole range in [`LIMITS`] (`power_entries` over its powers of two), every choice
@@ -150,16 +149,13 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     let progress = crate::progress::Progress::new(&format!("fuzz config {h}"), 3);
     progress.start("generate and lint");
     let rtl = write_rtl(cfg, &dir.join("rtl"), "gbump fuzz")?;
-    let mut lint = Command::new("verilator");
-    lint.args(["--lint-only", "-Wall", "--top-module", &format!("gbump_pipeline_{h}")])
-        .args(&rtl.waivers)
-        .args(&rtl.sources);
-    let (ok, log, _) = super::run_cmd(&mut lint, "verilator --lint-only")?;
-    if !ok || log.contains("%Warning") {
+    let paths = |v: &[std::path::PathBuf]| v.iter().map(|p| p.display().to_string()).collect::<Vec<_>>();
+    let top = format!("gbump_pipeline_{h}");
+    if let Some(log) = Verilator.lint(&rtl.dir, &paths(&rtl.sources), &paths(&rtl.waivers), Some(&top))? {
         return Err(Error::Other(format!(
             "config {h} ({}): lint:\n{}",
             dir.join("config.toml").display(),
-            super::tail(&log, 20)
+            crate::tool::tail(&log, 20)
         )));
     }
     progress.done("verilator --lint-only -Wall clean");
@@ -205,7 +201,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
                     dir.join("config.toml").display(),
                     r.set,
                     out.failed,
-                    super::tail(&out.log, 30)
+                    crate::tool::tail(&out.log, 30)
                 )))
             }
             Err(e) => return Err(Error::Other(format!("config {h}: {}: {e}", r.set))),

@@ -5,7 +5,7 @@
 
 pub use super::rtl_files::{write_rtl, Rtl};
 use super::testbench::{harness_top, tb_top, tb_units};
-use super::{icarus, verilator, Outcome, Sim};
+use super::{Outcome, Sim, Simulator, Testbench, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
@@ -199,6 +199,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
     let mut results = Vec::new();
     for &sim in &o.sims {
         super::require(sim)?;
+        let simulator = sim.simulator();
         let mut exes: Vec<(Bench, PathBuf)> = Vec::new();
         let mut power_up_done = !o.power_up;
         for CheckedSet { manifest, only, m, dir } in sets {
@@ -210,16 +211,19 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
             let exe = match exes.iter().find(|e| e.0 == bench) {
                 Some(e) => e.1.clone(),
                 None => {
-                    let top = module_name(cfg, "gbump_pipeline");
-                    let exe = match (bench, sim) {
-                        (Bench::Harness, _) => verilator::build_harness(&build_root, &top, &harness_top(cfg), rtl)?,
-                        (Bench::TopTb, Sim::Icarus) => icarus::build(&build_root, "tb_top", &tb_top(cfg, rtl), rtl)?,
-                        (Bench::TopTb, Sim::Verilator) => {
-                            verilator::build_tb(&build_root, "tb_top", &tb_top(cfg, rtl), rtl, o.waves, false)?
-                        }
-                        (Bench::Units, Sim::Icarus) => icarus::build(&build_root, "tb_units", &tb_units(cfg, rtl), rtl)?,
-                        (Bench::Units, Sim::Verilator) => {
-                            verilator::build_tb(&build_root, "tb_units", &tb_units(cfg, rtl), rtl, o.waves, false)?
+                    let (top, source) = match bench {
+                        Bench::Harness => (module_name(cfg, "gbump_pipeline"), harness_top(cfg)),
+                        Bench::TopTb => ("tb_top".to_string(), tb_top(cfg, rtl)),
+                        Bench::Units => ("tb_units".to_string(), tb_units(cfg, rtl)),
+                    };
+                    let exe = match bench {
+                        Bench::Harness => Verilator.build_harness(&build_root, &top, &source, rtl)?,
+                        _ => {
+                            let tb = Testbench {
+                                waves: o.waves,
+                                ..Testbench::new(&top, &source)
+                            };
+                            simulator.build(&build_root, &tb, rtl)?
                         }
                     };
                     exes.push((bench, exe.clone()));
@@ -248,7 +252,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         if o.bubbles > 0 {
                             args.extend(["--bubbles".into(), o.bubbles.to_string()]);
                         }
-                        verilator::run(&exe, &args, &o.work, &what)
+                        Verilator.run(&exe, &args, None, &o.work, &what)
                     }
                     _ => {
                         let mut plus = vec![format!("+vectors={}", file(&m.hex)), format!("+max_errors={}", o.max_errors)];
@@ -260,15 +264,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         } else if o.bubbles > 0 {
                             plus.push(format!("+bubbles={}", o.bubbles));
                         }
-                        match sim {
-                            Sim::Icarus => icarus::run(&exe, &plus, waves.as_deref(), &o.work, &what),
-                            Sim::Verilator => {
-                                if let Some(w) = &waves {
-                                    plus.push(format!("+waves={}", w.display()));
-                                }
-                                verilator::run(&exe, &plus, &o.work, &what)
-                            }
-                        }
+                        simulator.run(&exe, &plus, waves.as_deref(), &o.work, &what)
                     }
                 };
                 results.push(RunResult {
@@ -301,7 +297,7 @@ pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
         let name = format!("{}.{}", r.sim.name(), r.set);
         match &r.outcome {
             Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, esc(&name), o.seconds),
-            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, esc(&name), o.seconds, o.passed, o.failed, esc(&super::tail(&o.log, 60))),
+            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, esc(&name), o.seconds, o.passed, o.failed, esc(&crate::tool::tail(&o.log, 60))),
             Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, esc(&name), esc(e)),
         }
     }

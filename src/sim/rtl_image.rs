@@ -4,7 +4,7 @@
 
 use super::regress::write_rtl;
 use super::testbench::harness_top;
-use super::verilator;
+use super::{Simulator, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::raster::{fragment::fragments, rasterise::rasterise, Prepared};
@@ -31,7 +31,7 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
         shininess: None,
     };
     let sets = dump(cfg, &Source::Scene(scene_name.to_string()), &["top".to_string()], &vdir, &opts)?;
-    let exe = verilator::build_harness(
+    let exe = Verilator.build_harness(
         &work.join("build"),
         &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
         &harness_top(cfg),
@@ -59,7 +59,7 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
             out.display().to_string(),
             "--no-check".into(),
         ];
-        let res = verilator::run(&exe, &args, &dir, "verilator render")?;
+        let res = Verilator.run(&exe, &args, None, &dir, "verilator render")?;
         let bytes = std::fs::read(&out).map_err(|e| Error::io(&out, e))?;
         if bytes.len() != mine.len() * 8 || res.passed as usize != mine.len() {
             return Err(Error::Other(format!(

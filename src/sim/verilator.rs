@@ -1,17 +1,21 @@
 //! Verilator: `--binary` builds the Verilog testbenches; `--cc --exe --build` builds the C++
-//! harness that streams binary vectors. Both compile with two jobs (the machine has two cores).
+//! harness that streams binary vectors (Verilator only, so an inherent method); `--lint-only
+//! -Wall` lints. Builds compile with two jobs (the machine has two cores).
 
 use super::rtl_files::Rtl;
-use super::{build_key, outcome, require, run_cmd, Outcome, Sim};
+use super::simulator::{build_key, Simulator, Testbench};
 use crate::error::{Error, Result};
+use crate::tool::{run_cmd, tail};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+pub struct Verilator;
 
 /// Build `exe_name` from the generated `source` (written as `source_name`) and the RTL with
 /// `flags`, in a folder keyed by everything that goes in (the C++ compiler included), built
 /// under a temporary name and verified on reuse.
 fn cached_build(root: &Path, kind: &str, exe_name: &str, source_name: &str, source: &str, flags: &[String], rtl: &Rtl) -> Result<PathBuf> {
-    require(Sim::Verilator)?;
+    super::require(super::Sim::Verilator)?;
     let key = build_key(kind, source, flags, rtl, &["verilator", "c++"])?;
     let dir = crate::cache::build_dir(&root.join(format!("{kind}_{key}")), &[exe_name], |dir| {
         let src = dir.join(source_name);
@@ -26,10 +30,7 @@ fn cached_build(root: &Path, kind: &str, exe_name: &str, source_name: &str, sour
             .current_dir(dir);
         let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
         if !ok || !dir.join(exe_name).exists() {
-            return Err(Error::Other(format!(
-                "verilator failed to build {exe_name}:\n{}",
-                super::tail(&log, 25)
-            )));
+            return Err(Error::Other(format!("verilator failed to build {exe_name}:\n{}", tail(&log, 25))));
         }
         // The object folder is only needed while linking.
         let _ = std::fs::remove_dir_all(dir.join("obj"));
@@ -42,52 +43,80 @@ fn strings(v: &[&str]) -> Vec<String> {
     v.iter().map(|s| s.to_string()).collect()
 }
 
-/// Build a Verilog testbench with `--binary`. `vlt` holds lint waivers for the RTL.
-pub fn build_tb(root: &Path, top: &str, tb: &str, rtl: &Rtl, waves: bool, x_unique: bool) -> Result<PathBuf> {
-    let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", top]);
-    if waves {
-        flags.push("--trace-fst".into());
+impl Verilator {
+    /// Build the C++ harness `cpp` around the top module `top`; its power table powers up
+    /// with the RTL's init file. Run it with `run` (its options in place of plusargs).
+    pub fn build_harness(&self, root: &Path, top: &str, cpp: &str, rtl: &Rtl) -> Result<PathBuf> {
+        let mut flags = strings(&[
+            "--cc",
+            "--exe",
+            "--build",
+            "-O3",
+            "--x-assign",
+            "fast",
+            "--x-initial",
+            "fast",
+            "--top-module",
+            top,
+        ]);
+        flags.push(format!(
+            "-GINIT_FILE={}",
+            super::rtl_files::verilog_string(&rtl.init_file.display().to_string())
+        ));
+        cached_build(
+            root,
+            &format!("verilator_harness_{top}"),
+            "harness",
+            "harness.cpp",
+            cpp,
+            &flags,
+            rtl,
+        )
     }
-    if x_unique {
-        flags.extend(strings(&["--x-assign", "unique", "--x-initial", "unique"]));
-    }
-    cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb, &flags, rtl)
 }
 
-/// Build the C++ harness around the top module `top`; its power table powers up with the
-/// RTL's init file.
-pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &Rtl) -> Result<PathBuf> {
-    let mut flags = strings(&[
-        "--cc",
-        "--exe",
-        "--build",
-        "-O3",
-        "--x-assign",
-        "fast",
-        "--x-initial",
-        "fast",
-        "--top-module",
-        top,
-    ]);
-    flags.push(format!(
-        "-GINIT_FILE={}",
-        super::rtl_files::verilog_string(&rtl.init_file.display().to_string())
-    ));
-    cached_build(
-        root,
-        &format!("verilator_harness_{top}"),
-        "harness",
-        "harness.cpp",
-        cpp,
-        &flags,
-        rtl,
-    )
-}
+impl Simulator for Verilator {
+    fn name(&self) -> &'static str {
+        "verilator"
+    }
 
-/// Run a built executable (testbench with plusargs, or harness with options).
-pub fn run(exe: &Path, args: &[String], cwd: &Path, what: &str) -> Result<Outcome> {
-    let mut cmd = Command::new(exe);
-    cmd.args(args).current_dir(cwd);
-    let (ok, log, secs) = run_cmd(&mut cmd, what)?;
-    outcome(ok, log, secs, what)
+    fn programs(&self) -> &'static [&'static str] {
+        &["verilator"]
+    }
+
+    /// `--binary`; the RTL's `.vlt` waivers go in with it.
+    fn build(&self, root: &Path, tb: &Testbench, rtl: &Rtl) -> Result<PathBuf> {
+        let top = tb.top;
+        let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", top]);
+        if tb.waves {
+            flags.push("--trace-fst".into());
+        }
+        if tb.x_unique {
+            flags.extend(strings(&["--x-assign", "unique", "--x-initial", "unique"]));
+        }
+        cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb.source, &flags, rtl)
+    }
+
+    /// The executable takes its arguments as given; `waves` goes last as `+waves=`.
+    fn run_log(&self, exe: &Path, plusargs: &[String], waves: Option<&Path>, cwd: &Path, what: &str) -> Result<(bool, String, f64)> {
+        let mut cmd = Command::new(exe);
+        cmd.args(plusargs);
+        if let Some(w) = waves {
+            cmd.arg(format!("+waves={}", w.display()));
+        }
+        cmd.current_dir(cwd);
+        run_cmd(&mut cmd, what)
+    }
+
+    /// A `%Warning` fails it even when Verilator exits 0.
+    fn lint(&self, cwd: &Path, files: &[String], waivers: &[String], top: Option<&str>) -> Result<Option<String>> {
+        let mut c = Command::new("verilator");
+        c.args(["--lint-only", "-Wall"]);
+        if let Some(t) = top {
+            c.args(["--top-module", t]);
+        }
+        c.args(waivers).args(files).current_dir(cwd);
+        let (ok, log, _) = run_cmd(&mut c, "verilator --lint-only")?;
+        Ok((!ok || log.contains("%Warning")).then_some(log))
+    }
 }

@@ -62,22 +62,6 @@ pub fn parse(text: &str) -> Option<Stat> {
     })
 }
 
-/// Run `script` (written as `area.ys`) with Yosys in `dir`: (success, log). Every file of
-/// `outputs` is removed first, so a report an earlier run left there never stands in for
-/// this one.
-pub fn run_script(dir: &std::path::Path, script: &str, outputs: &[&str]) -> crate::Result<(bool, String)> {
-    use crate::error::Error;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    std::fs::write(dir.join("area.ys"), script).map_err(|e| Error::io(dir, e))?;
-    for o in outputs {
-        let _ = std::fs::remove_file(dir.join(o));
-    }
-    let mut c = std::process::Command::new("yosys");
-    c.args(["-q", "-s", "area.ys"]).current_dir(dir);
-    let (ok, log, _) = crate::sim::run_cmd(&mut c, "yosys")?;
-    Ok((ok, log))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,81 @@
+//! A run's verdict: the testbench's own "N passed, N failed" line, and any simulator warning
+//! (a memory file that did not load, among others) failing the run, whichever simulator ran it.
+
+use crate::error::{Error, Result};
+use crate::tool::tail;
+
+/// Verdict of one simulation run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub passed: u64,
+    pub failed: u64,
+    pub seconds: f64,
+    pub log: String,
+}
+
+/// Parse the testbench's summary line.
+pub fn parse_summary(log: &str) -> Option<(u64, u64)> {
+    log.lines().rev().find_map(|l| {
+        let l = l.trim();
+        let (p, rest) = l.split_once(" passed, ")?;
+        let f = rest.strip_suffix(" failed")?;
+        Some((p.parse().ok()?, f.parse().ok()?))
+    })
+}
+
+/// Lines of a simulation log in which the simulator warned or erred: a memory file that did
+/// not load (`$readmemh`), a file that did not open. Any of them fails the run, because the
+/// simulation went on with contents nobody meant (X, or an old table).
+pub fn simulator_warnings(log: &str) -> Vec<&str> {
+    log.lines()
+        .filter(|l| {
+            let t = l.trim_start();
+            let low = t.to_ascii_lowercase();
+            t.starts_with("WARNING")
+                || t.starts_with("ERROR")
+                || t.starts_with("%Warning")
+                || t.starts_with("%Error")
+                || low.contains("$readmem")
+                || low.contains("unable to open")
+        })
+        .collect()
+}
+
+/// Turn a finished run into an outcome, or an error when the testbench did not report, gave
+/// up (a FATAL line), or the simulator warned.
+pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> {
+    let warned = simulator_warnings(&log);
+    if !warned.is_empty() {
+        return Err(Error::Other(format!(
+            "{what}: the simulator warned, so the run does not count (a warning means it went on with contents nobody meant):\n{}\n  fix: {}",
+            warned.iter().take(10).copied().collect::<Vec<_>>().join("\n"),
+            if warned.iter().any(|l| l.to_ascii_lowercase().contains("readmem")) {
+                "a memory init file did not load: check the path given to INIT_FILE (absolute, or relative to the folder the simulator runs in)"
+            } else {
+                "read the lines above; rerun with --waves to see the signals"
+            }
+        )));
+    }
+    if parse_summary(&log) == Some((0, 0)) {
+        return Err(Error::Other(format!(
+            "{what}: the testbench checked no vectors\n{}",
+            tail(&log, 10)
+        )));
+    }
+    if let Some(fatal) = log.lines().find(|l| l.trim_start().starts_with("FATAL")) {
+        return Err(Error::Other(format!("{what}: the testbench gave up: {}", fatal.trim())));
+    }
+    match parse_summary(&log) {
+        Some((passed, failed)) => {
+            if passed + failed == 0 {
+                return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}", tail(&log, 10))));
+            }
+            Ok(Outcome { passed, failed, seconds: secs, log })
+        }
+        None => Err(Error::Other(format!(
+            "{what}: the simulation ended without a \"N passed, N failed\" line (exit {}): it crashed or was cut short\n--- last lines ---\n{}",
+            if ok { "ok" } else { "non-zero" },
+            tail(&log, 15)
+        ))),
+    }
+}

@@ -1,0 +1,63 @@
+//! External programs (simulators, Yosys, nextpnr): whether one is installed, the message that
+//! says how to install it, and running one with its log. Every spawn of a tool goes through
+//! `run_cmd`, so Ctrl-C, a missing program and a child killed by a signal read the same
+//! everywhere.
+
+use crate::error::{Error, Result};
+use std::process::Command;
+
+/// Whether `prog` runs.
+pub fn have(prog: &str) -> bool {
+    Command::new(prog).arg("--version").output().is_ok() || Command::new(prog).arg("-V").output().is_ok()
+}
+
+/// Error unless `prog` is installed.
+pub fn require(prog: &str) -> Result<()> {
+    if have(prog) {
+        Ok(())
+    } else {
+        Err(missing(prog))
+    }
+}
+
+/// The error for a program that is not installed; it says how to install it.
+pub fn missing(prog: &str) -> Error {
+    let pkg = match prog {
+        "vvp" | "iverilog" => "iverilog",
+        p => p,
+    };
+    Error::Other(format!(
+        "{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"
+    ))
+}
+
+/// Run a command, capturing stdout and stderr together; `what` names it in errors.
+pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
+    crate::interrupt::check()?;
+    let t0 = std::time::Instant::now();
+    let out = cmd.output().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            missing(&cmd.get_program().to_string_lossy())
+        } else {
+            Error::Other(format!("{what}: cannot start {}: {e}", cmd.get_program().to_string_lossy()))
+        }
+    })?;
+    let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
+    log += &String::from_utf8_lossy(&out.stderr);
+    // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = out.status.signal() {
+            log += &format!("\n{what}: killed by signal {sig}");
+        }
+    }
+    crate::interrupt::check()?;
+    Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
+}
+
+/// The last `n` lines of a log, for error messages.
+pub fn tail(log: &str, n: usize) -> String {
+    let lines: Vec<&str> = log.lines().collect();
+    lines[lines.len().saturating_sub(n)..].join("\n")
+}
