@@ -2,8 +2,7 @@
 
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::measure::image_metrics::{compare, error_map};
-use crate::render::output::{codes_to_u8, f64_to_u8, heat_map, write_atomic, write_png};
+use crate::render::output::write_atomic;
 use crate::scene::{builtin, Scene};
 use clap::{Parser, Subcommand};
 
@@ -22,7 +21,6 @@ macro_rules! out {
         write!(std::io::stdout(), $($t)*).and_then(|_| std::io::stdout().flush()).map_err(|e| Error::io("<standard output>", e))?
     }};
 }
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser)]
@@ -298,11 +296,7 @@ pub struct ConfigPick {
 
 impl ConfigPick {
     pub fn resolve(&self) -> Result<PipelineConfig> {
-        match (&self.config, &self.scene) {
-            (Some(p), _) => PipelineConfig::load(p),
-            (None, Some(s)) => Scene::load(s)?.derive_config(),
-            (None, None) => Ok(PipelineConfig::default()),
-        }
+        crate::scene::pick_config(self.config.as_deref(), self.scene.as_deref())
     }
 
     /// The arguments that select this configuration, for regeneration commands in headers.
@@ -322,6 +316,13 @@ fn lock_work(work: &Path) -> Result<crate::work_lock::WorkLock> {
     crate::work_lock::WorkLock::acquire(work, &invocation())
 }
 
+/// Where a library command's lines go: standard output, an error (not a panic) when it is
+/// closed or full.
+fn say(line: &str) -> Result<()> {
+    outln!("{line}");
+    Ok(())
+}
+
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match cli.cmd {
@@ -332,7 +333,16 @@ pub fn run() -> anyhow::Result<()> {
             size,
             config,
             rtl,
-        } => render(&scene, &out, size.as_deref(), config.as_deref(), rtl)?,
+        } => {
+            let r = crate::render::report::RenderRequest {
+                scene: &scene,
+                out: &out,
+                size: size.as_deref(),
+                config: config.as_deref(),
+                rtl,
+            };
+            crate::render::report::render(&r, || lock_work(Path::new(crate::sim::rtl_image::RENDER_WORK)), &mut say)?
+        }
         Cmd::Rtl { pick, out } => {
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
@@ -368,7 +378,23 @@ pub fn run() -> anyhow::Result<()> {
             size,
             level,
             shininess,
-        } => vectors(&source, &target, &pick, &out, seed, format, size.as_deref(), level, shininess)?,
+        } => {
+            let r = crate::vectors_command::VectorsRequest {
+                source: &source,
+                targets: &target,
+                config: pick.config.as_deref(),
+                scene: pick.scene.as_deref(),
+                out: &out,
+                seed,
+                text: !matches!(format, VecFormat::Bin),
+                binary: !matches!(format, VecFormat::Hex),
+                size: size.as_deref(),
+                level,
+                shininess,
+                command: invocation(),
+            };
+            crate::vectors_command::vectors(&r, &mut say)?
+        }
         Cmd::Regress {
             sim,
             pick,
@@ -389,7 +415,7 @@ pub fn run() -> anyhow::Result<()> {
             // Stopping after zero mismatches would report nothing about a failing run.
             check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
             if let (Some(sz), false) = (&scene_size, no_scenes) {
-                let (w, h) = parse_size(sz)?;
+                let (w, h) = crate::limits::parse_size(sz)?;
                 crate::measure::scene_error::check_builtin_renders(w, h)?;
             }
             let opts = crate::sim::regress::RegressOptions {
@@ -398,7 +424,7 @@ pub fn run() -> anyhow::Result<()> {
                 random_icarus,
                 seed,
                 scenes: !no_scenes,
-                scene_size: scene_size.as_deref().map(parse_size).transpose()?,
+                scene_size: scene_size.as_deref().map(crate::limits::parse_size).transpose()?,
                 work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
                 waves,
                 max_errors,
@@ -406,12 +432,21 @@ pub fn run() -> anyhow::Result<()> {
                 bubbles: 29,
                 power_up: true,
             };
-            regress(&pick, &vectors, &opts, junit.as_deref())?
+            let cfg = pick.resolve()?;
+            crate::sim::regress_cmd::regress(
+                &cfg,
+                &pick.args(),
+                &vectors,
+                &opts,
+                junit.as_deref(),
+                || lock_work(&opts.work),
+                &mut say,
+            )?
         }
         Cmd::Lint { pick, work } => {
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;
-            crate::sim::lint::lint(&cfg, &work, &pick.args())?
+            crate::sim::lint::lint(&cfg, &work, &pick.args(), &mut say)?
         }
         Cmd::Fuzz {
             minutes,
@@ -419,7 +454,7 @@ pub fn run() -> anyhow::Result<()> {
             seed,
             random,
             work,
-        } => fuzz(minutes, configs, seed, random, &work)?,
+        } => crate::sim::fuzz::run_for(minutes, configs, seed, random, &work, || lock_work(&work), &mut say)?,
         Cmd::Area {
             pick,
             work,
@@ -454,7 +489,7 @@ pub fn run() -> anyhow::Result<()> {
             json,
         } => {
             let cfg = pick.resolve()?;
-            let (w, h) = parse_size(&size)?;
+            let (w, h) = crate::limits::parse_size(&size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
             crate::measure::scene_error::check_builtin_renders(w, h)?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
@@ -570,280 +605,6 @@ fn scenes(show: Option<String>) -> Result<()> {
     Ok(())
 }
 
-/// Parse `WxH`.
-pub fn parse_size(s: &str) -> Result<(u32, u32)> {
-    let max = crate::limits::MAX_IMAGE_SIDE;
-    let bad = || {
-        Error::Other(format!(
-            "--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"
-        ))
-    };
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
-    if w == 0 || h == 0 || w > max || h > max {
-        return Err(bad());
-    }
-    Ok((w, h))
-}
-
-/// Scene plus the configuration to render it with (a given file, or derived).
-pub fn scene_and_config(scene: &str, config: Option<&Path>) -> Result<(Scene, PipelineConfig)> {
-    let s = Scene::load(scene)?;
-    let cfg = match config {
-        Some(p) => {
-            let c = PipelineConfig::load(p)?;
-            s.check_config(&c, &p.display().to_string())?;
-            c
-        }
-        None => s.derive_config()?,
-    };
-    Ok((s, cfg))
-}
-
-fn render(scene: &str, out: &Path, size: Option<&str>, config: Option<&Path>, rtl: bool) -> Result<()> {
-    let (s, cfg) = scene_and_config(scene, config)?;
-    let (w, h) = match size {
-        Some(sz) => parse_size(sz)?,
-        None => (s.size[0], s.size[1]),
-    };
-    crate::names::check(&s.file, "name", &s.name)?;
-    crate::limits::check_render(&s.file, w, h, s.triangles())?;
-    if rtl {
-        crate::sim::require(crate::sim::Sim::Verilator)?;
-    }
-    let t0 = std::time::Instant::now();
-    let img = crate::render::render(&s, &cfg, w, h, std::io::stderr().is_terminal())?;
-    let secs = t0.elapsed().as_secs_f64();
-    let max = img.colour_max;
-    let vs_ref = compare(&img.golden, &img.reference, &img.covered, max);
-    let vs_gou = compare(&img.golden, &img.gouraud, &img.covered, max);
-    let alg = compare(
-        &crate::render::output::quantise(&img.gouraud, max),
-        &img.reference,
-        &img.covered,
-        max,
-    );
-    let emap = error_map(&img.golden, &img.reference, &img.covered, max);
-    let name = &s.name;
-    let files = [
-        (format!("{name}_golden.png"), codes_to_u8(&img.golden, max)),
-        (format!("{name}_gouraud_f64.png"), f64_to_u8(&img.gouraud)),
-        (format!("{name}_reference.png"), f64_to_u8(&img.reference)),
-        (format!("{name}_diff.png"), heat_map(&emap, vs_ref.max_lsb.max(4.0))),
-    ];
-    let mut blobs: Vec<(String, Vec<u8>)> = Vec::new();
-    for (f, px) in &files {
-        blobs.push((f.clone(), crate::render::output::encode_png(w, h, px)?));
-    }
-    let report = serde_json::json!({
-        "scene": name, "size": [w, h], "config_hash": cfg.hash(), "fragments": vs_ref.pixels,
-        "golden_vs_reference": vs_ref, "golden_vs_gouraud_f64": vs_gou, "gouraud_f64_vs_reference": alg,
-        "seconds": secs,
-    });
-    blobs.push((
-        format!("{name}_metrics.json"),
-        serde_json::to_string_pretty(&report).expect("json").into_bytes(),
-    ));
-    crate::render::output::write_files(out, &blobs)?;
-    outln!(
-        "scene {name} {w}x{h}, config {}, {} fragments, {:.2} s",
-        cfg.hash(),
-        vs_ref.pixels,
-        secs
-    );
-    outln!(
-        "  golden vs per-pixel reference: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
-        vs_ref.psnr_db,
-        vs_ref.max_lsb,
-        vs_ref.mean_lsb,
-        100.0 * vs_ref.over_1lsb
-    );
-    outln!(
-        "  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
-        vs_gou.psnr_db,
-        vs_gou.max_lsb,
-        vs_gou.mean_lsb,
-        100.0 * vs_gou.over_1lsb
-    );
-    outln!(
-        "  wrote {} and {name}_metrics.json in {}",
-        files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
-        out.display()
-    );
-    if rtl {
-        let t0 = std::time::Instant::now();
-        let work = Path::new(crate::sim::rtl_image::RENDER_WORK);
-        let _lock = lock_work(work)?;
-        let img_rtl = crate::sim::rtl_image::rtl_image(scene, &cfg, w, h, work)?;
-        write_png(&out.join(format!("{name}_rtl.png")), w, h, &codes_to_u8(&img_rtl, max))?;
-        let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
-        outln!(
-            "  RTL (Verilator) image: {name}_rtl.png, {:.1} s, {differ} pixel(s) differ from the golden image",
-            t0.elapsed().as_secs_f64()
-        );
-        if differ > 0 {
-            return Err(Error::Other(format!(
-                "the RTL image differs from the golden image in {differ} pixels"
-            )));
-        }
-    }
-    Ok(())
-}
-
-#[allow(clippy::too_many_arguments)]
-fn vectors(
-    source: &str,
-    target: &[String],
-    pick: &ConfigPick,
-    out: &Path,
-    seed: Option<u64>,
-    format: VecFormat,
-    size: Option<&str>,
-    level: Option<u8>,
-    shininess: Option<u32>,
-) -> Result<()> {
-    use crate::vectors::{dump, DumpOptions, Source};
-    let mut src = Source::parse(source)?;
-    // A flag this source ignores would let a user believe the set is something it is not.
-    let ignored = |flag: &str, why: &str| Error::Other(format!("{flag} has no effect on --source {source}: {why}\n  fix: drop {flag}"));
-    match &mut src {
-        Source::Corners(l) => *l = level.unwrap_or(1),
-        _ if level.is_some() => return Err(ignored("--level", "only the corner catalogue has levels")),
-        _ => {}
-    }
-    if seed.is_some() && !matches!(src, Source::Random(_)) {
-        return Err(ignored("--seed", "only random sources draw from a seed"));
-    }
-    if shininess.is_some() && matches!(src, Source::Scene(_)) {
-        return Err(ignored(
-            "--shininess",
-            "a scene's objects carry their own shininess, and the scene writes one set per shininess",
-        ));
-    }
-    let seed = seed.unwrap_or(1);
-    // A scene source renders under the scene's own configuration unless one is given, and says so.
-    let cfg = match (&src, &pick.config, &pick.scene) {
-        (Source::Scene(name), None, None) => {
-            let c = Scene::load(name)?.derive_config()?;
-            eprintln!(
-                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
-                c.hash()
-            );
-            c
-        }
-        _ => pick.resolve()?,
-    };
-    let targets = crate::vectors::targets::resolve(&cfg, target)?;
-    if size.is_some() && !matches!(src, Source::Scene(_)) {
-        return Err(Error::Other(format!(
-            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
-        )));
-    }
-    let opts = DumpOptions {
-        text: !matches!(format, VecFormat::Bin),
-        binary: !matches!(format, VecFormat::Hex),
-        seed,
-        size: size.map(parse_size).transpose()?,
-        command: invocation(),
-        shininess,
-    };
-    let t0 = std::time::Instant::now();
-    let sets = crate::render::output::undo_on_error(out, || dump(&cfg, &src, &targets, out, &opts))?;
-    let secs = t0.elapsed().as_secs_f64();
-    for s in &sets {
-        outln!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display());
-    }
-    let total: u64 = sets.iter().map(|s| s.count).sum();
-    outln!("{total} vectors for config {} in {secs:.2} s", cfg.hash());
-    Ok(())
-}
-
-fn regress(pick: &ConfigPick, vectors: &[PathBuf], o: &crate::sim::regress::RegressOptions, junit: Option<&Path>) -> Result<()> {
-    use crate::sim::regress::{check_sets, run_checked, suite, write_rtl};
-    let cfg = pick.resolve()?;
-    for s in &o.sims {
-        crate::sim::require(*s)?;
-    }
-    let h = &cfg.hash()[..8];
-    // Given sets are checked (paths, completeness, sha256) before the work folder is taken.
-    let mut given = Vec::new();
-    for p in vectors {
-        crate::sim::check_tool_path(p, "--vectors")?;
-        if p.is_dir() {
-            let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
-                .map_err(|e| Error::io(p, e))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                .collect();
-            found.sort();
-            given.extend(found.into_iter().map(|f| (f, None)));
-        } else {
-            given.push((std::path::absolute(p).map_err(|e| Error::io(p, e))?, None));
-        }
-    }
-    if !vectors.is_empty() && given.is_empty() {
-        return Err(Error::Other(
-            "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
-        ));
-    }
-    let given = check_sets(&cfg, &given, o)?;
-    let _lock = lock_work(&o.work)?;
-    let sets = if vectors.is_empty() {
-        let t0 = std::time::Instant::now();
-        let s = suite(&cfg, o, &o.work.join(format!("vectors_{h}")))?;
-        outln!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64());
-        check_sets(&cfg, &s, o)?
-    } else {
-        given
-    };
-    let rtl = write_rtl(
-        &cfg,
-        &o.work.join(format!("rtl_{h}")),
-        &format!("gbump rtl {} --out {}", pick.args(), o.work.join(format!("rtl_{h}")).display()),
-    )?;
-
-    let results = run_checked(&cfg, &sets, &rtl, o)?;
-    let (mut vecs, mut bad) = (0u64, 0usize);
-    outln!("{:10} {:44} {:>10} {:>8} {:>9}", "sim", "set", "passed", "failed", "seconds");
-    for r in &results {
-        match &r.outcome {
-            Ok(out) => {
-                vecs += out.passed + out.failed;
-                if out.failed > 0 {
-                    bad += 1;
-                    outln!("{}", crate::tool::tail(&out.log, 40));
-                }
-                outln!(
-                    "{:10} {:44} {:>10} {:>8} {:>9.2}",
-                    r.sim.name(),
-                    r.set,
-                    out.passed,
-                    out.failed,
-                    out.seconds
-                );
-            }
-            Err(e) => {
-                bad += 1;
-                outln!("{:10} {:44} ERROR: {e}", r.sim.name(), r.set);
-            }
-        }
-    }
-    if let Some(j) = junit {
-        write_atomic(j, crate::sim::regress::junit(&cfg, &results).as_bytes())?;
-    }
-    outln!(
-        "regress config {}: {} runs, {vecs} vectors, {} failing run(s)",
-        cfg.hash(),
-        results.len(),
-        bad
-    );
-    if bad > 0 {
-        return Err(Error::Other(format!("{bad} regression run(s) failed")));
-    }
-    Ok(())
-}
-
 /// The command line as a user would type it (program name `gbump`, whatever the path), so
 /// that generated files do not depend on where the binary lives.
 pub fn invocation() -> String {
@@ -851,55 +612,4 @@ pub fn invocation() -> String {
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path) -> Result<()> {
-    use crate::limits::{check_count, MAX_RANDOM_VECTORS};
-    if !(minutes > 0.0 && minutes.is_finite()) {
-        return Err(Error::Other(format!(
-            "--minutes {minutes}: must be a positive number\n  fix: e.g. --minutes 10"
-        )));
-    }
-    if let Some(c) = configs {
-        check_count("--configs", c, 1, u64::MAX, "")?;
-    }
-    // A testbench over zero vectors proves nothing (and fails).
-    check_count("--random", random, 1, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
-    crate::sim::require(crate::sim::Sim::Verilator)?;
-    let _lock = lock_work(work)?;
-    let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
-    let mut rng = crate::vectors::rng::SplitMix64(seed);
-    let t0 = std::time::Instant::now();
-    let (mut n, mut vectors) = (0u64, 0u64);
-    while t0.elapsed().as_secs_f64() < minutes * 60.0 && configs.is_none_or(|c| n < c) {
-        let cfg = crate::sim::fuzz::random_config(&mut rng);
-        let v = crate::sim::fuzz::check_config(&cfg, &work, random, seed.wrapping_add(n))?;
-        n += 1;
-        vectors += v;
-        outln!(
-            "config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {}, power {} of {}-bit words, colour {} k {}, {:?}, {:?})",
-            cfg.hash(),
-            cfg.light_mode,
-            cfg.lights,
-            cfg.normal_bits,
-            cfg.lh_bits,
-            cfg.dot_bits,
-            cfg.power_design().label(),
-            cfg.power_bits + 1,
-            cfg.colour_bits,
-            cfg.k_bits,
-            cfg.rounding,
-            cfg.blend_order
-        );
-    }
-    outln!(
-        "fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s",
-        t0.elapsed().as_secs_f64()
-    );
-    if n == 0 {
-        return Err(Error::Other(
-            "fuzz: no configuration was checked\n  fix: give more --minutes".into(),
-        ));
-    }
-    Ok(())
 }

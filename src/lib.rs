@@ -24,6 +24,7 @@ pub mod temp_files;
 pub mod tool;
 pub mod units;
 pub mod vectors;
+pub mod vectors_command;
 pub mod work_lock;
 pub mod yosys;
 

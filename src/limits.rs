@@ -130,6 +130,22 @@ pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<
     Err(Error::Other(format!("{what}: {why}\n  fix: {fix}")))
 }
 
+/// Parse an image size `WxH` (`--size`, `--scene-size`), each side in 1..=[`MAX_IMAGE_SIDE`].
+pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+    let max = MAX_IMAGE_SIDE;
+    let bad = || {
+        Error::Other(format!(
+            "--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"
+        ))
+    };
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?);
+    if w == 0 || h == 0 || w > max || h > max {
+        return Err(bad());
+    }
+    Ok((w, h))
+}
+
 /// Bytes of memory a plan may use: [`MAX_MEMORY_BYTES`], or less if the machine has less free.
 pub fn memory_budget() -> u64 {
     let avail = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {

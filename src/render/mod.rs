@@ -2,6 +2,7 @@
 //! Gouraud bump equations, and through the per-pixel f64 reference.
 
 pub mod output;
+pub mod report;
 
 use crate::config::PipelineConfig;
 use crate::error::Result;

@@ -224,6 +224,16 @@ fn default_strength() -> f64 {
     4.0
 }
 
+/// The configuration a command works on: a TOML file, a scene's derived one, or the default
+/// (`--config` / `--scene`, which the command line makes exclusive).
+pub fn pick_config(config: Option<&Path>, scene: Option<&str>) -> Result<PipelineConfig> {
+    match (config, scene) {
+        (Some(p), _) => PipelineConfig::load(p),
+        (None, Some(s)) => Scene::load(s)?.derive_config(),
+        (None, None) => Ok(PipelineConfig::default()),
+    }
+}
+
 impl Scene {
     /// Parse scene TOML; `file` names it in errors and `base` resolves relative paths.
     pub fn from_toml(file: &str, text: &str, base: &Path) -> Result<Scene> {

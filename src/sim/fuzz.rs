@@ -1,6 +1,7 @@
 //! Random configurations: draw a valid `PipelineConfig`, generate its RTL, lint it with
 //! Verilator, and simulate the level-2 corners and random vectors (top and units) on
 //! Verilator; any lint warning or mismatch fails the run and keeps the config for replay.
+//! `run_for` is `gbump fuzz`: that, for a time or a number of configurations.
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::{Sim, Simulator, Verilator};
@@ -209,6 +210,68 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     }
     progress.done(&format!("{checked} vectors match the model"));
     Ok(checked)
+}
+
+/// `gbump fuzz`: check random configurations (`check_config`) until `minutes` have passed or
+/// `configs` are done, one line per configuration to `say`; the first failure stops it (its
+/// config is kept under `work` for replay). `lock` takes `work` once the arguments are checked.
+pub fn run_for(
+    minutes: f64,
+    configs: Option<u64>,
+    seed: u64,
+    random: u64,
+    work: &Path,
+    lock: impl FnOnce() -> Result<crate::work_lock::WorkLock>,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+) -> Result<()> {
+    use crate::limits::{check_count, MAX_RANDOM_VECTORS};
+    if !(minutes > 0.0 && minutes.is_finite()) {
+        return Err(Error::Other(format!(
+            "--minutes {minutes}: must be a positive number\n  fix: e.g. --minutes 10"
+        )));
+    }
+    if let Some(c) = configs {
+        check_count("--configs", c, 1, u64::MAX, "")?;
+    }
+    // A testbench over zero vectors proves nothing (and fails).
+    check_count("--random", random, 1, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
+    super::require(Sim::Verilator)?;
+    let _lock = lock()?;
+    let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
+    let mut rng = SplitMix64(seed);
+    let t0 = std::time::Instant::now();
+    let (mut n, mut vectors) = (0u64, 0u64);
+    while t0.elapsed().as_secs_f64() < minutes * 60.0 && configs.is_none_or(|c| n < c) {
+        let cfg = random_config(&mut rng);
+        let v = check_config(&cfg, &work, random, seed.wrapping_add(n))?;
+        n += 1;
+        vectors += v;
+        say(&format!(
+            "config {} ok: {v} vectors ({:?} lights x{}, normal {} lh {} dot {}, power {} of {}-bit words, colour {} k {}, {:?}, {:?})",
+            cfg.hash(),
+            cfg.light_mode,
+            cfg.lights,
+            cfg.normal_bits,
+            cfg.lh_bits,
+            cfg.dot_bits,
+            cfg.power_design().label(),
+            cfg.power_bits + 1,
+            cfg.colour_bits,
+            cfg.k_bits,
+            cfg.rounding,
+            cfg.blend_order
+        ))?;
+    }
+    say(&format!(
+        "fuzz: {n} configurations, {vectors} vectors, 0 failures in {:.0} s",
+        t0.elapsed().as_secs_f64()
+    ))?;
+    if n == 0 {
+        return Err(Error::Other(
+            "fuzz: no configuration was checked\n  fix: give more --minutes".into(),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -10,7 +10,9 @@ use crate::rtlgen::units_v::module_name;
 use crate::tool::tail;
 use std::path::Path;
 
-pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
+/// Lint `cfg`'s RTL (written under `work`; `pick_args` selects it in the files' headers); the
+/// verdict line goes to `say`, the problems into the error.
+pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
     for p in ["verilator", "iverilog", "yosys"] {
         crate::tool::require(p)?;
     }
@@ -44,12 +46,12 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str) -> Result<()> {
     }
     progress.done("yosys synthesis check");
     drop(progress);
-    println!(
+    say(&format!(
         "lint config {}: verilator ({} tops), iverilog, yosys: {}",
         cfg.hash(),
         files.len(),
         if problems.is_empty() { "clean" } else { "PROBLEMS" }
-    );
+    ))?;
     if problems.is_empty() {
         Ok(())
     } else {

@@ -7,9 +7,11 @@ pub mod fuzz;
 pub mod icarus;
 pub mod lint;
 pub mod regress;
+pub mod regress_cmd;
 pub mod rtl_files;
 pub mod rtl_image;
 pub mod simulator;
+pub mod summary;
 pub mod verdict;
 pub mod verilator;
 

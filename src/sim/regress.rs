@@ -278,28 +278,3 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
     }
     Ok(results)
 }
-
-/// JUnit XML of a regression.
-pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
-    let esc = |s: &str| {
-        s.replace('&', "&amp;")
-            .replace('<', "&lt;")
-            .replace('>', "&gt;")
-            .replace('"', "&quot;")
-    };
-    let failures = results.iter().filter(|r| !matches!(&r.outcome, Ok(o) if o.failed == 0)).count();
-    let mut s = format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n",
-        cfg.hash(),
-        results.len()
-    );
-    for r in results {
-        let name = format!("{}.{}", r.sim.name(), r.set);
-        match &r.outcome {
-            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, esc(&name), o.seconds),
-            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, esc(&name), o.seconds, o.passed, o.failed, esc(&crate::tool::tail(&o.log, 60))),
-            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, esc(&name), esc(e)),
-        }
-    }
-    s + "</testsuite>\n"
-}

@@ -1,0 +1,84 @@
+//! `gbump regress` end to end: the given vector sets (manifests or folders of them) checked
+//! before the work folder is taken, or the default suite generated in it; the RTL written;
+//! every set run; the summary and the JUnit XML; an error when any run failed.
+
+use super::regress::{check_sets, run_checked, suite, write_rtl, RegressOptions};
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::work_lock::WorkLock;
+use std::path::{Path, PathBuf};
+
+/// The manifests `--vectors` names: JSON files, and every JSON file of a folder (sorted), by
+/// absolute path.
+pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let mut given = Vec::new();
+    for p in vectors {
+        super::check_tool_path(p, "--vectors")?;
+        if p.is_dir() {
+            let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| Error::io(p, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect();
+            found.sort();
+            given.extend(found);
+        } else {
+            given.push(std::path::absolute(p).map_err(|e| Error::io(p, e))?);
+        }
+    }
+    if !vectors.is_empty() && given.is_empty() {
+        return Err(Error::Other(
+            "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
+        ));
+    }
+    Ok(given)
+}
+
+/// Regress `cfg` (selected by `pick_args`, for the RTL's header) on `vectors`, or on the
+/// default suite when there are none. `lock` takes `o.work` once every given set is checked;
+/// the table and totals go to `say`, the XML to `junit`.
+pub fn regress(
+    cfg: &PipelineConfig,
+    pick_args: &str,
+    vectors: &[PathBuf],
+    o: &RegressOptions,
+    junit: Option<&Path>,
+    lock: impl FnOnce() -> Result<WorkLock>,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+) -> Result<()> {
+    for s in &o.sims {
+        super::require(*s)?;
+    }
+    let h = &cfg.hash()[..8];
+    // Given sets are checked (paths, completeness, sha256) before the work folder is taken.
+    let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
+    let given = check_sets(cfg, &given, o)?;
+    let _lock = lock()?;
+    let sets = if vectors.is_empty() {
+        let t0 = std::time::Instant::now();
+        let s = suite(cfg, o, &o.work.join(format!("vectors_{h}")))?;
+        say(&format!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64()))?;
+        check_sets(cfg, &s, o)?
+    } else {
+        given
+    };
+    let rtl_dir = o.work.join(format!("rtl_{h}"));
+    let rtl = write_rtl(cfg, &rtl_dir, &format!("gbump rtl {pick_args} --out {}", rtl_dir.display()))?;
+    let results = run_checked(cfg, &sets, &rtl, o)?;
+    let t = super::summary::table(&results, say)?;
+    if let Some(j) = junit {
+        crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
+    }
+    say(&format!(
+        "regress config {}: {} runs, {} vectors, {} failing run(s)",
+        cfg.hash(),
+        t.runs,
+        t.vectors,
+        t.failing
+    ))?;
+    if t.failing > 0 {
+        return Err(Error::Other(format!("{} regression run(s) failed", t.failing)));
+    }
+    Ok(())
+}

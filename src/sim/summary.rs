@@ -1,0 +1,77 @@
+//! What a regression reports: the table of runs (the user's), its totals, and JUnit XML
+//! (a CI's).
+
+use super::regress::RunResult;
+use crate::config::PipelineConfig;
+use crate::error::Result;
+use crate::tool::tail;
+
+/// Runs, vectors simulated and failing runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Totals {
+    pub runs: usize,
+    pub vectors: u64,
+    pub failing: usize,
+}
+
+/// One line per run to `say` (a failing run's log tail before its line), under a header.
+pub fn table(results: &[RunResult], say: &mut dyn FnMut(&str) -> Result<()>) -> Result<Totals> {
+    let mut t = Totals {
+        runs: results.len(),
+        vectors: 0,
+        failing: 0,
+    };
+    say(&format!(
+        "{:10} {:44} {:>10} {:>8} {:>9}",
+        "sim", "set", "passed", "failed", "seconds"
+    ))?;
+    for r in results {
+        match &r.outcome {
+            Ok(out) => {
+                t.vectors += out.passed + out.failed;
+                if out.failed > 0 {
+                    t.failing += 1;
+                    say(&tail(&out.log, 40))?;
+                }
+                say(&format!(
+                    "{:10} {:44} {:>10} {:>8} {:>9.2}",
+                    r.sim.name(),
+                    r.set,
+                    out.passed,
+                    out.failed,
+                    out.seconds
+                ))?;
+            }
+            Err(e) => {
+                t.failing += 1;
+                say(&format!("{:10} {:44} ERROR: {e}", r.sim.name(), r.set))?;
+            }
+        }
+    }
+    Ok(t)
+}
+
+/// JUnit XML of a regression.
+pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
+    let esc = |s: &str| {
+        s.replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;")
+            .replace('"', "&quot;")
+    };
+    let failures = results.iter().filter(|r| !matches!(&r.outcome, Ok(o) if o.failed == 0)).count();
+    let mut s = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n",
+        cfg.hash(),
+        results.len()
+    );
+    for r in results {
+        let name = format!("{}.{}", r.sim.name(), r.set);
+        match &r.outcome {
+            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, esc(&name), o.seconds),
+            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, esc(&name), o.seconds, o.passed, o.failed, esc(&tail(&o.log, 60))),
+            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, esc(&name), esc(e)),
+        }
+    }
+    s + "</testsuite>\n"
+}

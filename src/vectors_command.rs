@@ -1,0 +1,88 @@
+//! `gbump vectors`: one dump from the command's choices. A flag the source ignores is
+//! refused (it would let a user believe the set is something it is not), a scene source
+//! targets the scene's own configuration unless one is given, and a failed dump leaves no
+//! partial set behind. (Its place is `vectors/`, which is being rewritten; see ARCHITECTURE.)
+
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+use crate::vectors::{dump, DumpOptions, Source};
+use std::path::Path;
+
+/// What `gbump vectors` was asked for.
+pub struct VectorsRequest<'a> {
+    /// `scene:NAME | corners | random:N | exhaustive:UNIT`.
+    pub source: &'a str,
+    /// `all`, `top`, or unit names.
+    pub targets: &'a [String],
+    /// `--config` and `--scene`.
+    pub config: Option<&'a Path>,
+    pub scene: Option<&'a str>,
+    pub out: &'a Path,
+    pub seed: Option<u64>,
+    /// Which files to write.
+    pub text: bool,
+    pub binary: bool,
+    /// `WxH`, scene sources only.
+    pub size: Option<&'a str>,
+    /// Corner-catalogue level, corner sources only.
+    pub level: Option<u8>,
+    pub shininess: Option<u32>,
+    /// The command line, for the files' headers.
+    pub command: String,
+}
+
+/// Dump the vectors; one line per set and a total to `say`.
+pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
+    let source = r.source;
+    let mut src = Source::parse(source)?;
+    let ignored = |flag: &str, why: &str| Error::Other(format!("{flag} has no effect on --source {source}: {why}\n  fix: drop {flag}"));
+    match &mut src {
+        Source::Corners(l) => *l = r.level.unwrap_or(1),
+        _ if r.level.is_some() => return Err(ignored("--level", "only the corner catalogue has levels")),
+        _ => {}
+    }
+    if r.seed.is_some() && !matches!(src, Source::Random(_)) {
+        return Err(ignored("--seed", "only random sources draw from a seed"));
+    }
+    if r.shininess.is_some() && matches!(src, Source::Scene(_)) {
+        return Err(ignored(
+            "--shininess",
+            "a scene's objects carry their own shininess, and the scene writes one set per shininess",
+        ));
+    }
+    let seed = r.seed.unwrap_or(1);
+    // A scene source renders under the scene's own configuration unless one is given, and says so.
+    let cfg = match (&src, r.config, r.scene) {
+        (Source::Scene(name), None, None) => {
+            let c = Scene::load(name)?.derive_config()?;
+            eprintln!(
+                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
+                c.hash()
+            );
+            c
+        }
+        _ => crate::scene::pick_config(r.config, r.scene)?,
+    };
+    let targets = crate::vectors::targets::resolve(&cfg, r.targets)?;
+    if r.size.is_some() && !matches!(src, Source::Scene(_)) {
+        return Err(Error::Other(format!(
+            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
+        )));
+    }
+    let opts = DumpOptions {
+        text: r.text,
+        binary: r.binary,
+        seed,
+        size: r.size.map(crate::limits::parse_size).transpose()?,
+        command: r.command.clone(),
+        shininess: r.shininess,
+    };
+    let t0 = std::time::Instant::now();
+    let sets = crate::render::output::undo_on_error(r.out, || dump(&cfg, &src, &targets, r.out, &opts))?;
+    let secs = t0.elapsed().as_secs_f64();
+    for s in &sets {
+        say(&format!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display()))?;
+    }
+    let total: u64 = sets.iter().map(|s| s.count).sum();
+    say(&format!("{total} vectors for config {} in {secs:.2} s", cfg.hash()))
+}
