@@ -514,8 +514,8 @@ pub fn run() -> anyhow::Result<()> {
         } => {
             let cfg = pick.resolve()?;
             crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
-            if area && !crate::tool::have("yosys") {
-                return Err(crate::tool::missing("yosys").into());
+            if area {
+                crate::yosys::require()?;
             }
             let fm = crate::model::power_unit::PowerFormats {
                 f: cfg.dot_bits,

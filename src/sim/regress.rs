@@ -1,5 +1,6 @@
-//! The regression: generate the RTL and a vector suite for a configuration, build each
-//! simulator once (cached), run every set, summarise, and fail on any mismatch.
+//! The regression's sets and runs: the default vector suite of a configuration, every set
+//! checked before anything is built, each bench built once per simulator (cached) and every
+//! set run. `regress_cmd.rs` is the command around it, `summary.rs` its report.
 //! Top sets run through the C++ harness on Verilator (binary records) and through the
 //! Verilog testbench on Icarus (text); unit sets through the all-units testbench on both.
 
