@@ -370,9 +370,8 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         s.m.inst(cfg, acc, &format!("u_{name}"), &[("acc_in", name.to_string()), ("first", first), ("f", ff), ("k", k), ("lc", lc), ("acc", name.to_string())], &[]);
         s.source(name, st + acc.latency(cfg));
         // The sum is complete after the last slot: from here on a fragment is valid once.
-        let last = s.fill("{last}", st);
-        let v = s.fill("{busy}", st);
         if !s.m.has("done") {
+            let (last, v) = (s.fill("{last}", st), s.fill("{busy}", st));
             s.m.reg("done", 1, &format!("{v} && {last}"), true);
             s.source("done", st + 1);
             s.valid_bit("done");

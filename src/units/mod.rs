@@ -256,7 +256,7 @@ mod tests {
                 }
                 assert!(!ins.is_empty(), "{} has no corners", u.name());
                 for i in &ins {
-                    for (port, lanes) in inputs(*u, &cfg).iter().zip(i) {
+                    for (port, lanes) in inputs(u, &cfg).iter().zip(i) {
                         assert_eq!(port.lanes as usize, lanes.len(), "{}.{}", u.name(), port.name);
                         for &v in lanes {
                             assert!(v >= port.fmt.min_raw() && v <= port.fmt.max_raw(), "{} input {v}", u.name());
@@ -264,7 +264,7 @@ mod tests {
                     }
                     let out = u.eval(&cfg, &mem, i);
                     let ex = u.exact(&cfg, &mem, i);
-                    for ((port, lanes), exl) in outputs(*u, &cfg).iter().zip(&out).zip(&ex) {
+                    for ((port, lanes), exl) in outputs(u, &cfg).iter().zip(&out).zip(&ex) {
                         assert_eq!(port.lanes as usize, lanes.len());
                         for (&v, &e) in lanes.iter().zip(exl) {
                             assert!(v >= port.fmt.min_raw() && v <= port.fmt.max_raw(), "{} output {v}", u.name());

@@ -215,9 +215,9 @@ impl SetWriter {
     }
 }
 
-/// Whether `unit` exists in the hardware of `cfg`.
+/// Whether target `unit` (the top, or a unit) exists in the hardware of `cfg`.
 pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
-    crate::units::unit(unit).is_some_and(|u| u.included(cfg))
+    unit == "top" || crate::units::unit(unit).is_some_and(|u| u.included(cfg))
 }
 
 /// Top stimuli of a source, grouped by power-table shininess.
