@@ -176,20 +176,36 @@ pub fn included(cfg: &PipelineConfig) -> Vec<&'static dyn Unit> {
     UNITS.iter().copied().filter(|u| u.included(cfg)).collect()
 }
 
-/// Why `cfg` has no `u`, and the fix, for refusals that name a unit.
+/// Why `cfg` has no `u`, and the fix, for refusals that name a unit: each unmet setting with
+/// the configuration's value and the one the unit needs.
 pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
-    let toml = crate::config::PipelineConfig::to_toml(cfg);
-    let unmet: Vec<String> = u
+    let toml = cfg.to_toml();
+    let current = |field: &str| {
+        toml.lines()
+            .find_map(|l| l.split_once('=').filter(|(k, _)| k.trim() == field).map(|(_, v)| v.trim().to_string()))
+            .unwrap_or_default()
+    };
+    let unmet: Vec<(String, &str)> = u
         .requires(cfg)
         .into_iter()
-        .filter(|(field, want)| !toml.lines().any(|l| l.replace(' ', "") == format!("{field}={want}")))
-        .map(|(field, want)| format!("{field} = {want}"))
+        .filter(|(field, want)| current(field) != *want)
+        .map(|(field, want)| (format!("{field} = {}", current(field)), want))
+        .collect();
+    if unmet.is_empty() {
+        return format!("the configuration has no {}\n  fix: enable diffuse or specular", u.name());
+    }
+    let has: Vec<String> = unmet.iter().map(|x| x.0.clone()).collect();
+    let want: Vec<String> = u
+        .requires(cfg)
+        .into_iter()
+        .filter(|(f, w)| current(f) != *w)
+        .map(|(f, w)| format!("{f} = {w}"))
         .collect();
     format!(
-        "the configuration has no {} (it needs {})\n  fix: drop it, or set {} in the configuration",
+        "the configuration has no {} ({})\n  fix: drop it, or set {} in the configuration",
         u.name(),
-        unmet.join(" and "),
-        unmet.join(" and ")
+        has.join(", "),
+        want.join(" and ")
     )
 }
 
