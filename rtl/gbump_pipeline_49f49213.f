@@ -28,9 +28,8 @@ bump_fetch_49f49213.v
 bump_fetch_comb_49f49213.v
 dot_clamp_49f49213.v
 power_table_49f49213.v
+light_accumulate_49f49213.v
 light_term_49f49213.v
 blend_finish_49f49213.v
-diffuse_blend_49f49213.v
-specular_blend_49f49213.v
 texture_modulate_49f49213.v
 gbump_pipeline_49f49213.v

@@ -25,7 +25,7 @@
 `timescale 1ns / 1ps
 `default_nettype none
 
-// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 10 cycles, one fragment every 4 cycle(s).
+// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 9 cycles, one fragment every 4 cycle(s).
 // INIT_FILE: the power table's contents at power-up (rst does not restore them); a path
 // relative to the simulator's working folder, so pass an absolute one from elsewhere.
 module gbump_pipeline_49f49213 #(
@@ -53,8 +53,9 @@ module gbump_pipeline_49f49213 #(
 // Light sequencer: a fragment is held for n cycles, light slot j in cycle j.
 reg busy;
 reg [1:0] j;
-wire last_j = (j == 2'd3);
-assign in_ready = !busy || last_j;
+wire last = (j == 2'd3);
+wire first = (j == 2'd0);
+assign in_ready = !busy || last;
 wire accept = in_valid && in_ready;
 always @(posedge clk) begin
     if (rst) begin
@@ -66,141 +67,98 @@ always @(posedge clk) begin
         j <= 2'd0;
     end
     else if (busy) begin
-        busy <= !last_j;
-        j <= last_j ? 2'd0 : j + 2'd1;
+        busy <= !last;
+        j <= last ? 2'd0 : j + 2'd1;
     end
 end
 reg [23:0] fr_texel;
-reg [23:0] fr_c;
+always @(posedge clk) if (accept) fr_texel <= in_texel;
+reg [23:0] fr_c_src;
+always @(posedge clk) if (accept) fr_c_src <= in_c_src;
 reg [23:0] fr_t;
-reg fr_de;
-reg fr_se;
+always @(posedge clk) if (accept) fr_t <= in_t;
+reg fr_diffuse_en;
+always @(posedge clk) if (accept) fr_diffuse_en <= in_diffuse_en;
+reg fr_specular_en;
+always @(posedge clk) if (accept) fr_specular_en <= in_specular_en;
 reg [191:0] fr_l;
+always @(posedge clk) if (accept) fr_l <= in_l;
 reg [191:0] fr_h;
+always @(posedge clk) if (accept) fr_h <= in_h;
 reg [95:0] fr_lc;
+always @(posedge clk) if (accept) fr_lc <= in_lc;
 reg [35:0] fr_k;
-always @(posedge clk) begin
-    if (accept) begin
-        fr_texel <= in_texel;
-        fr_c <= in_c_src;
-        fr_t <= in_t;
-        fr_de <= in_diffuse_en;
-        fr_se <= in_specular_en;
-        fr_l <= in_l;
-        fr_h <= in_h;
-        fr_lc <= in_lc;
-        fr_k <= in_k;
-    end
-end
-wire [23:0] b0;
-bump_fetch_comb_49f49213 u_bump_fetch (.texel(fr_texel), .b(b0));
+always @(posedge clk) if (accept) fr_k <= in_k;
+wire [23:0] b;
+bump_fetch_comb_49f49213 u_bump_fetch (.texel(fr_texel), .b(b));
+wire [23:0] lc_sel = fr_lc[j*24 +: 24];
+wire [8:0] k_sel = fr_k[j*9 +: 9];
+wire de = fr_diffuse_en;
 wire [47:0] l_sel = fr_l[j*48 +: 48];
+wire [8:0] fd;
+dot_clamp_49f49213 u_dot_l (.clk(clk), .b(b), .v(l_sel), .f(fd));
+reg de_d1;
+always @(posedge clk) de_d1 <= de;
+wire [8:0] dfac = (de_d1 ? fd : 9'd0);
+reg [8:0] k_sel_d1;
+always @(posedge clk) k_sel_d1 <= k_sel;
+reg [23:0] lc_sel_d1;
+always @(posedge clk) lc_sel_d1 <= lc_sel;
+reg first_d1;
+always @(posedge clk) first_d1 <= first;
+wire [83:0] dacc;
+light_accumulate_49f49213 u_dacc (.clk(clk), .acc_in(dacc), .first(first_d1), .f(dfac), .k(k_sel_d1), .lc(lc_sel_d1), .acc(dacc));
+reg last_d1;
+always @(posedge clk) last_d1 <= last;
+reg busy_d1;
+always @(posedge clk) busy_d1 <= rst ? 1'd0 : busy;
+reg done;
+always @(posedge clk) done <= rst ? 1'd0 : busy_d1 && last_d1;
+wire se = fr_specular_en;
 wire [47:0] h_sel = fr_h[j*48 +: 48];
-wire [8:0] fd1;
-wire [8:0] xh1;
-dot_clamp_49f49213 u_dot_l (.clk(clk), .b(b0), .v(l_sel), .f(fd1));
-dot_clamp_49f49213 u_dot_h (.clk(clk), .b(b0), .v(h_sel), .f(xh1));
-reg v1;
-reg first1;
-reg last1;
-reg [23:0] lc1;
-reg [8:0] k1;
-reg de1;
-reg se1;
-reg [23:0] c1;
-reg [23:0] t1;
-always @(posedge clk) begin
-    v1 <= rst ? 1'b0 : busy;
-    first1 <= j == 2'd0;
-    last1 <= last_j;
-    lc1 <= fr_lc[j*24 +: 24];
-    k1 <= fr_k[j*9 +: 9];
-    de1 <= fr_de;
-    se1 <= fr_se;
-    c1 <= fr_c;
-    t1 <= fr_t;
-end
-wire [8:0] fs2;
-power_table_49f49213 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh1), .fs(fs2));
-reg v2;
-reg first2;
-reg last2;
-reg [23:0] lc2;
-reg [8:0] k2;
-reg de2;
-reg se2;
-reg [23:0] c2;
-reg [23:0] t2;
-reg [8:0] fd2;
-always @(posedge clk) begin
-    v2 <= rst ? 1'b0 : v1;
-    first2 <= first1;
-    last2 <= last1;
-    lc2 <= lc1;
-    k2 <= k1;
-    de2 <= de1;
-    se2 <= se1;
-    c2 <= c1;
-    t2 <= t1;
-    fd2 <= fd1;
-end
-// Accumulate one light's terms per cycle; the sum is exact, as in the parallel form.
-wire [77:0] dterm;
-wire [77:0] sterm;
-light_term_49f49213 u_dterm (.f((de2 ? fd2 : 9'd0)), .k(k2), .lc(lc2), .term(dterm));
-light_term_49f49213 u_sterm (.f((se2 ? fs2 : 9'd0)), .k(k2), .lc(lc2), .term(sterm));
-reg [83:0] dacc;
-reg [83:0] sacc;
-wire [83:0] dacc_next;
-wire [83:0] sacc_next;
-assign dacc_next[27:0] = (first2 ? 28'd0 : dacc[27:0]) + {2'd0, dterm[25:0]};
-assign sacc_next[27:0] = (first2 ? 28'd0 : sacc[27:0]) + {2'd0, sterm[25:0]};
-assign dacc_next[55:28] = (first2 ? 28'd0 : dacc[55:28]) + {2'd0, dterm[51:26]};
-assign sacc_next[55:28] = (first2 ? 28'd0 : sacc[55:28]) + {2'd0, sterm[51:26]};
-assign dacc_next[83:56] = (first2 ? 28'd0 : dacc[83:56]) + {2'd0, dterm[77:52]};
-assign sacc_next[83:56] = (first2 ? 28'd0 : sacc[83:56]) + {2'd0, sterm[77:52]};
-always @(posedge clk) begin
-    if (v2) dacc <= dacc_next;
-    if (v2) sacc <= sacc_next;
-end
-reg v3;
-reg [23:0] c3;
-reg [23:0] t3;
-reg [83:0] da3;
-reg [83:0] sa3;
-always @(posedge clk) begin
-    v3 <= rst ? 1'b0 : (v2 && last2);
-    c3 <= c2;
-    t3 <= t2;
-    da3 <= dacc_next;
-    sa3 <= sacc_next;
-end
-wire [23:0] c4;
-blend_finish_49f49213 u_diffuse_finish (.clk(clk), .c_in(c3), .acc(da3), .c_out(c4));
-reg v4;
-reg [23:0] t4;
-reg [83:0] sa4;
-always @(posedge clk) begin
-    v4 <= rst ? 1'b0 : v3;
-    t4 <= t3;
-    sa4 <= sa3;
-end
-wire [23:0] c5;
-texture_modulate_49f49213 u_texture_modulate (.clk(clk), .c_in(c4), .t(t4), .c_out(c5));
-reg v5;
-reg [83:0] sa5;
-always @(posedge clk) begin
-    v5 <= rst ? 1'b0 : v4;
-    sa5 <= sa4;
-end
-wire [23:0] c6;
-blend_finish_49f49213 u_specular_finish (.clk(clk), .c_in(c5), .acc(sa5), .c_out(c6));
-reg v6;
-always @(posedge clk) begin
-    v6 <= rst ? 1'b0 : v5;
-end
-assign out_valid = v6;
+wire [8:0] xh;
+dot_clamp_49f49213 u_dot_h (.clk(clk), .b(b), .v(h_sel), .f(xh));
+wire [8:0] fs;
+power_table_49f49213 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh), .fs(fs));
+reg se_d1;
+always @(posedge clk) se_d1 <= se;
+reg se_d2;
+always @(posedge clk) se_d2 <= se_d1;
+wire [8:0] sfac = (se_d2 ? fs : 9'd0);
+reg [8:0] k_sel_d2;
+always @(posedge clk) k_sel_d2 <= k_sel_d1;
+reg [23:0] lc_sel_d2;
+always @(posedge clk) lc_sel_d2 <= lc_sel_d1;
+reg first_d2;
+always @(posedge clk) first_d2 <= first_d1;
+wire [83:0] sacc;
+light_accumulate_49f49213 u_sacc (.clk(clk), .acc_in(sacc), .first(first_d2), .f(sfac), .k(k_sel_d2), .lc(lc_sel_d2), .acc(sacc));
+reg [23:0] fr_c_src_d1;
+always @(posedge clk) fr_c_src_d1 <= fr_c_src;
+reg [23:0] fr_c_src_d2;
+always @(posedge clk) fr_c_src_d2 <= fr_c_src_d1;
+wire [23:0] c_dif;
+blend_finish_49f49213 u_diffuse_finish (.clk(clk), .c_in(fr_c_src_d2), .acc(dacc), .c_out(c_dif));
+reg [23:0] fr_t_d1;
+always @(posedge clk) fr_t_d1 <= fr_t;
+reg [23:0] fr_t_d2;
+always @(posedge clk) fr_t_d2 <= fr_t_d1;
+reg [23:0] fr_t_d3;
+always @(posedge clk) fr_t_d3 <= fr_t_d2;
+wire [23:0] c_tex;
+texture_modulate_49f49213 u_texture_modulate (.clk(clk), .c_in(c_dif), .t(fr_t_d3), .c_out(c_tex));
+reg [83:0] sacc_d4;
+always @(posedge clk) sacc_d4 <= sacc;
+wire [23:0] c_spe;
+blend_finish_49f49213 u_specular_finish (.clk(clk), .c_in(c_tex), .acc(sacc_d4), .c_out(c_spe));
+reg done_d3;
+always @(posedge clk) done_d3 <= rst ? 1'd0 : done;
+reg done_d4;
+always @(posedge clk) done_d4 <= rst ? 1'd0 : done_d3;
+reg done_d5;
+always @(posedge clk) done_d5 <= rst ? 1'd0 : done_d4;
 // The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.
-assign out_c = v6 ? c6 : 24'd0;
+assign out_valid = done_d5;
+assign out_c = done_d5 ? c_spe : 24'd0;
 endmodule
 `default_nettype wire

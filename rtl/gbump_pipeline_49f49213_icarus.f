@@ -27,9 +27,8 @@ $(GBUMP_RTL)/bump_fetch_49f49213.v
 $(GBUMP_RTL)/bump_fetch_comb_49f49213.v
 $(GBUMP_RTL)/dot_clamp_49f49213.v
 $(GBUMP_RTL)/power_table_49f49213.v
+$(GBUMP_RTL)/light_accumulate_49f49213.v
 $(GBUMP_RTL)/light_term_49f49213.v
 $(GBUMP_RTL)/blend_finish_49f49213.v
-$(GBUMP_RTL)/diffuse_blend_49f49213.v
-$(GBUMP_RTL)/specular_blend_49f49213.v
 $(GBUMP_RTL)/texture_modulate_49f49213.v
 $(GBUMP_RTL)/gbump_pipeline_49f49213.v

@@ -24,6 +24,6 @@
 #   # formats: normal s0.7 lh s1.14 dot u1.8 power u1.8 k u1.8 colour u8.0 term u10.16 acc u12.16
 # yosys -c DIR/gbump_pipeline_49f49213_yosys.tcl    or    yosys -p "tcl DIR/gbump_pipeline_49f49213_yosys.tcl; synth -top gbump_pipeline_49f49213"
 set gbump_dir [file dirname [file normalize [info script]]]
-foreach gbump_src {bump_fetch_49f49213.v bump_fetch_comb_49f49213.v dot_clamp_49f49213.v power_table_49f49213.v light_term_49f49213.v blend_finish_49f49213.v diffuse_blend_49f49213.v specular_blend_49f49213.v texture_modulate_49f49213.v gbump_pipeline_49f49213.v} {
+foreach gbump_src {bump_fetch_49f49213.v bump_fetch_comb_49f49213.v dot_clamp_49f49213.v power_table_49f49213.v light_accumulate_49f49213.v light_term_49f49213.v blend_finish_49f49213.v texture_modulate_49f49213.v gbump_pipeline_49f49213.v} {
     yosys read_verilog -defer [file join $gbump_dir $gbump_src]
 }

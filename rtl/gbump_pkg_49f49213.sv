@@ -40,7 +40,7 @@ package gbump_pkg_49f49213;
     localparam int LIGHTS = 4; // light slots
     localparam int SHININESS = 16; // shininess of the power-up table
     // Timing (rising edges, as the interface JSON defines them).
-    localparam int LATENCY = 10; // accepting edge to the edge out_valid is first sampled high
+    localparam int LATENCY = 9; // accepting edge to the edge out_valid is first sampled high
     localparam int INITIATION_INTERVAL = 4; // edges between accepts
     localparam INIT_FILE = "power_table_49f49213.hex"; // power-up table, relative to the simulator's working folder
     // Top ports.
@@ -70,11 +70,11 @@ package gbump_pkg_49f49213;
         logic [95:0] in_lc; // bits [553:458], 12 x u8.0 (stimulus)
         logic [191:0] in_h; // bits [457:266], 12 x s1.14 (stimulus)
         logic [191:0] in_l; // bits [265:74], 12 x s1.14 (stimulus)
-        logic [0:0] in_specular_en; // bits [73:73], 1 x bit (stimulus)
-        logic [0:0] in_diffuse_en; // bits [72:72], 1 x bit (stimulus)
+        logic [0:0] in_specular_en; // bits [73:73], 1 x u1.0 (stimulus)
+        logic [0:0] in_diffuse_en; // bits [72:72], 1 x u1.0 (stimulus)
         logic [23:0] in_t; // bits [71:48], 3 x u8.0 (stimulus)
         logic [23:0] in_c_src; // bits [47:24], 3 x u8.0 (stimulus)
-        logic [23:0] in_texel; // bits [23:0], 3 x u8.0 offset binary (stimulus)
+        logic [23:0] in_texel; // bits [23:0], 3 x u8.0 (stimulus)
     } top_record_t;
     // bump_fetch vector record: a $readmemh'd word of BUMP_FETCH_RECORD_BITS bits assigned to a bump_fetch_record_t.
     localparam int BUMP_FETCH_RECORD_BITS = 48; // bits of one record (LSB-first columns)
@@ -95,15 +95,23 @@ package gbump_pkg_49f49213;
         logic [8:0] fs; // bits [17:9], 1 x u1.8 (expected)
         logic [8:0] x; // bits [8:0], 1 x u1.8 (stimulus)
     } power_table_record_t;
-    // diffuse_blend vector record: a $readmemh'd word of DIFFUSE_BLEND_RECORD_BITS bits assigned to a diffuse_blend_record_t.
-    localparam int DIFFUSE_BLEND_RECORD_BITS = 216; // bits of one record (LSB-first columns)
+    // light_accumulate vector record: a $readmemh'd word of LIGHT_ACCUMULATE_RECORD_BITS bits assigned to a light_accumulate_record_t.
+    localparam int LIGHT_ACCUMULATE_RECORD_BITS = 211; // bits of one record (LSB-first columns)
     typedef struct packed {
-        logic [23:0] c_out; // bits [215:192], 3 x u8.0 (expected)
-        logic [95:0] lc; // bits [191:96], 12 x u8.0 (stimulus)
-        logic [35:0] k; // bits [95:60], 4 x u1.8 (stimulus)
-        logic [35:0] f; // bits [59:24], 4 x u1.8 (stimulus)
+        logic [83:0] acc; // bits [210:127], 3 x u12.16 (expected)
+        logic [23:0] lc; // bits [126:103], 3 x u8.0 (stimulus)
+        logic [8:0] k; // bits [102:94], 1 x u1.8 (stimulus)
+        logic [8:0] f; // bits [93:85], 1 x u1.8 (stimulus)
+        logic [0:0] first; // bits [84:84], 1 x u1.0 (stimulus)
+        logic [83:0] acc_in; // bits [83:0], 3 x u12.16 (stimulus)
+    } light_accumulate_record_t;
+    // blend_finish vector record: a $readmemh'd word of BLEND_FINISH_RECORD_BITS bits assigned to a blend_finish_record_t.
+    localparam int BLEND_FINISH_RECORD_BITS = 132; // bits of one record (LSB-first columns)
+    typedef struct packed {
+        logic [23:0] c_out; // bits [131:108], 3 x u8.0 (expected)
+        logic [83:0] acc; // bits [107:24], 3 x u12.16 (stimulus)
         logic [23:0] c_in; // bits [23:0], 3 x u8.0 (stimulus)
-    } diffuse_blend_record_t;
+    } blend_finish_record_t;
     // texture_modulate vector record: a $readmemh'd word of TEXTURE_MODULATE_RECORD_BITS bits assigned to a texture_modulate_record_t.
     localparam int TEXTURE_MODULATE_RECORD_BITS = 72; // bits of one record (LSB-first columns)
     typedef struct packed {
@@ -111,15 +119,6 @@ package gbump_pkg_49f49213;
         logic [23:0] t; // bits [47:24], 3 x u8.0 (stimulus)
         logic [23:0] c_in; // bits [23:0], 3 x u8.0 (stimulus)
     } texture_modulate_record_t;
-    // specular_blend vector record: a $readmemh'd word of SPECULAR_BLEND_RECORD_BITS bits assigned to a specular_blend_record_t.
-    localparam int SPECULAR_BLEND_RECORD_BITS = 216; // bits of one record (LSB-first columns)
-    typedef struct packed {
-        logic [23:0] c_out; // bits [215:192], 3 x u8.0 (expected)
-        logic [95:0] lc; // bits [191:96], 12 x u8.0 (stimulus)
-        logic [35:0] k; // bits [95:60], 4 x u1.8 (stimulus)
-        logic [35:0] f; // bits [59:24], 4 x u1.8 (stimulus)
-        logic [23:0] c_in; // bits [23:0], 3 x u8.0 (stimulus)
-    } specular_blend_record_t;
     // Lane helpers for the top ports: lane 0 in the low bits; per light x, y, z (or R, G, B).
     function automatic logic [NORMAL_BITS-1:0] in_texel_lane(input logic [IN_TEXEL_BITS-1:0] v, input int i);
         return v[(i) * NORMAL_BITS +: NORMAL_BITS];

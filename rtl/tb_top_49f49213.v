@@ -41,7 +41,7 @@ module tb_top;
     // working folder); override with -P tb_top.INIT_FILE / -G INIT_FILE.
     parameter INIT_FILE = "power_table_49f49213.hex";
     localparam RB = 614;
-    localparam LAT = 10;
+    localparam LAT = 9;
     localparam PT_N = 256;
     reg clk = 1'b0;
     reg rst = 1'b1;

@@ -28,7 +28,7 @@ module tb_top;
     wire in_ready;
     wire out_valid;
 {{DECLS}}
-    {{TOP}} #(.INIT_FILE(INIT_FILE)) dut (
+    {{TOP}} #({{DUT_PARAMS}}) dut (
         .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
 {{CONNECT}}

@@ -406,9 +406,9 @@ fn cases() -> Vec<Case> {
             vec!["--cube-size", "1..=1024"],
         ),
         (
-            "palette configuration has no RTL vectors",
+            "scene vectors of a palette configuration",
             cfg("palette = true\n"),
-            vec!["vectors", "--source", "corners", "--config", "c.toml", "--out", "out"],
+            vec!["vectors", "--source", "scene:torus_caps", "--config", "c.toml", "--out", "out"],
             vec!["palette", "palette = false"],
         ),
         (

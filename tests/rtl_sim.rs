@@ -107,6 +107,8 @@ fn lint_is_clean_for_three_configurations() {
         Some("tests/configs/fuzz_found_wide_dot.toml"),
         Some("tests/configs/fuzz_found_equal_frac.toml"),
         Some("tests/configs/segmented_power.toml"),
+        Some("tests/configs/palette_serial.toml"),
+        Some("tests/configs/palette_parallel.toml"),
     ] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
@@ -419,6 +421,24 @@ fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
         ],
         "segmented",
     );
+}
+
+#[test]
+fn the_palette_unit_matches_the_model_on_both_tops() {
+    for (cfg, work) in [
+        ("tests/configs/palette_serial.toml", "palette_serial"),
+        ("tests/configs/palette_parallel.toml", "palette_parallel"),
+    ] {
+        let t = regress(
+            &["--sim", "both", "--config", cfg, "--random", "100000", "--random-icarus", "5000", "--no-scenes"],
+            work,
+        );
+        let r = runs(&t);
+        // Palette indices 0 and 255 are among the corners, and the palette is swept whole.
+        for set in ["corners_level2_palette_fetch", "exhaustive_palette_fetch_palette_fetch"] {
+            assert!(r.iter().filter(|x| x.1 == set && x.3 == 0 && x.2 > 0).count() == 2, "{set} on both simulators:\n{t}");
+        }
+    }
 }
 
 #[test]

@@ -148,6 +148,7 @@ pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Pa
         init_file: dir.join(format!("{m}.hex")),
         sources: files,
         waivers: vec![],
+        memory_inits: vec![],
     };
     let sim = crate::sim::Icarus;
     let exe = sim

@@ -16,4 +16,5 @@ pub mod power_unit;
 pub mod texture_modulate;
 
 pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};
+pub use bump_fetch::Palette;
 pub use power_table::PowerTable;

@@ -2,35 +2,24 @@
 //! the testbenches and the vector writer use (ports, latency, reset length, record layout), so
 //! it cannot drift from the RTL; `tests/generated_current.rs` checks the README holds it.
 
-use super::top::{latency, top_ports, RESET_CYCLES};
+use super::top::{latency, RESET_CYCLES};
 use super::units_v::{module_name, rom_file_name};
 use crate::config::{LightMode, PipelineConfig};
 use crate::vectors::layout::Role;
 use crate::vectors::targets::{eval_top, top_layout, top_record};
 
 /// What each lane of a multi-lane port holds.
-fn lanes(cfg: &PipelineConfig, port: &str) -> Option<String> {
-    let n = cfg.lights;
-    let (w, what) = match port {
-        "in_texel" => (cfg.normal_bits, "x, y, z of the stored bump normal (lane 0 = x)"),
-        "in_c_src" => (cfg.colour_bits, "R, G, B of the Gouraud colour C_src (lane 0 = R)"),
-        "in_t" => (cfg.colour_bits, "R, G, B of the texture colour T"),
-        "out_c" => (cfg.colour_bits, "R, G, B of C_new"),
-        "in_l" => (cfg.lh_bits, "light j, component c (x, y, z) at lane 3j + c: L_j in bump space"),
-        "in_h" => (cfg.lh_bits, "light j, component c (x, y, z) at lane 3j + c: H_j in bump space"),
-        "in_lc" => (cfg.colour_bits, "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j"),
-        "in_k" => (cfg.k_bits + 1, "light j at lane j: the light's weight k_j"),
-        _ => return None,
-    };
-    let count = match port {
-        "in_l" | "in_h" | "in_lc" => 3 * n,
-        "in_k" => n,
-        _ => 3,
-    };
-    Some(format!(
-        "`{port}`: {count} lanes of {w} bits, lane i in bits [{w}i+{}:{w}i]; {what}",
-        w - 1
-    ))
+fn lanes(p: &super::top::TopPort) -> Option<String> {
+    let w = p.fmt.width;
+    (p.lanes > 1 || p.name == "in_texel").then(|| {
+        format!(
+            "`{}`: {} lane(s) of {w} bits, lane i in bits [{w}i+{}:{w}i]; {}",
+            p.name,
+            p.lanes,
+            w - 1,
+            p.doc
+        )
+    })
 }
 
 /// The section, for `cfg` (the README shows the default configuration).
@@ -76,8 +65,8 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         "\n\n"
     };
     s += "**Lane order** (every multi-lane port packs lane 0 in its low bits):\n\n";
-    for (p, _, _) in top_ports(cfg) {
-        if let Some(l) = lanes(cfg, p) {
+    for p in super::top::port_list(cfg) {
+        if let Some(l) = lanes(&p) {
             s += &format!("- {l}\n");
         }
     }
@@ -102,8 +91,8 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         l.bytes()
     );
     let (name, stim) = crate::vectors::sources::corners(cfg, 1).into_iter().next().expect("a corner");
-    let table = crate::model::PowerTable::build(cfg, cfg.shininess);
-    let rec = top_record(cfg, &l, &stim, &eval_top(cfg, &table, &stim));
+    let mem = crate::units::MemoryContents::new(cfg, cfg.shininess);
+    let rec = top_record(cfg, &l, &stim, &eval_top(cfg, &mem.view(), &stim));
     let mut bytes = Vec::new();
     rec.to_bytes(l.bytes(), &mut bytes);
     s += &format!(

@@ -7,10 +7,12 @@ pub mod fpga_shell;
 pub mod integration_doc;
 pub mod interface;
 pub mod kit;
+pub mod module;
 pub mod power_units;
 pub mod rom;
 pub mod rom_files;
 pub mod rtl_set;
+pub mod schedule;
 pub mod testbench;
 pub mod top;
 pub mod units_v;
@@ -35,22 +37,24 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
             format!("{}{body}", header(cfg, command, &format!("{unit}: Verilog-2005"), "// ")),
         ));
     };
-    v("bump_fetch", units_v::bump_fetch(cfg, true));
-    v("bump_fetch_comb", units_v::bump_fetch(cfg, false));
-    v("dot_clamp", units_v::dot_clamp(cfg));
-    v("power_table", units_v::power_table(cfg));
-    if cfg.power_unit != crate::config::PowerUnitKind::Table {
-        v(
-            "power_core",
-            power_units::core(&cfg.power_design(), cfg.power_formats(), &module_name(cfg, "power_core")),
-        );
+    // Every included unit's modules; a helper two units share is written once.
+    let mut seen = std::collections::BTreeSet::new();
+    for u in crate::units::included(cfg) {
+        for (name, body) in u.verilog(cfg) {
+            if seen.insert(name) {
+                v(name, body);
+            }
+        }
     }
-    v("light_term", units_v::light_term(cfg));
-    v("blend_finish", units_v::blend_finish(cfg));
-    v("diffuse_blend", units_v::blend(cfg, "diffuse_blend"));
-    v("specular_blend", units_v::blend(cfg, "specular_blend"));
-    v("texture_modulate", units_v::texture_modulate(cfg));
     v("gbump_pipeline", top::top(cfg));
+    if cfg.palette {
+        let pal = rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE);
+        let hl = rom::rom_header(&pal, Some(cfg), command, "palette_fetch reset contents ($readmemh)");
+        files.push((
+            rom_file_name(cfg, "bump_palette_spiral", "hex"),
+            rom::write(&pal, rom::RomFormat::Hex, &hl),
+        ));
+    }
     let table = rom::power_rom(cfg, cfg.shininess);
     let hl = rom::rom_header(&table, Some(cfg), command, "power_table reset contents ($readmemh)");
     files.push((
@@ -67,7 +71,11 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
     files.push((kit::package_file_name(cfg), kit::package(cfg, command)));
     // The top testbench, powering up from the init file in the simulator's working folder.
     let init = writer::verilog_string(&rom_file_name(cfg, "power_table", "hex"));
-    let tb = testbench::tb_top_init(cfg, &init);
+    let extra: Vec<(String, String)> = top::memory_inits(cfg)
+        .into_iter()
+        .map(|(p, _, f)| (p, writer::verilog_string(&f)))
+        .collect();
+    let tb = testbench::tb_top_init(cfg, &init, &extra);
     files.push((
         kit::tb_file_name(cfg),
         format!("{}{tb}", header(cfg, command, "tb_top: the top testbench (plusargs below)", "// ")),
@@ -119,9 +127,9 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             s += if en == "de" { "diffuse blend" } else { "specular path" };
             s += ": its enable, light vectors (and power-table port) stay on the interface, unused.\n";
             let sigs: &[&str] = if en == "de" {
-                &["in_diffuse_en", "in_l", "fr_de"]
+                &["in_diffuse_en", "in_l", "fr_diffuse_en", "fr_l"]
             } else {
-                &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_se"]
+                &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_specular_en", "fr_h"]
             };
             for sig in sigs {
                 s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");

@@ -11,4 +11,6 @@ pub struct Rtl {
     pub waivers: Vec<PathBuf>,
     /// The power table's power-up contents, for the top's `INIT_FILE` parameter.
     pub init_file: PathBuf,
+    /// The other memories' power-up contents: (the top's parameter, the unit, the file).
+    pub memory_inits: Vec<(String, String, PathBuf)>,
 }

@@ -9,7 +9,6 @@ use super::writer::verilog_string;
 use crate::config::PipelineConfig;
 use crate::vectors::layout::{Layout, Role};
 use crate::vectors::targets::{top_layout, unit_layout};
-use crate::vectors::writer::unit_present;
 
 const TB_TOP: &str = include_str!("../../testbench/tb_top.v.tpl");
 const TB_UNITS: &str = include_str!("../../testbench/tb_units.v.tpl");
@@ -43,11 +42,17 @@ fn slice(rec: &str, lsb: u32, width: u32) -> String {
 /// The top testbench (Icarus and Verilator --binary); the pipeline powers up with `rtl`'s
 /// init file.
 pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
-    tb_top_init(cfg, &init_literal(rtl))
+    let extra: Vec<(String, String)> = rtl
+        .memory_inits
+        .iter()
+        .map(|(p, _, f)| (p.clone(), verilog_string(&f.display().to_string())))
+        .collect();
+    tb_top_init(cfg, &init_literal(rtl), &extra)
 }
 
-/// The top testbench with `init` (a Verilog string literal) as its `INIT_FILE` default.
-pub fn tb_top_init(cfg: &PipelineConfig, init: &str) -> String {
+/// The top testbench with `init` (a Verilog string literal) as its `INIT_FILE` default and
+/// `extra` (parameter, literal) for the top's other memories.
+pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)]) -> String {
     let l = top_layout(cfg);
     let mut decls = Vec::new();
     let mut connect = Vec::new();
@@ -72,6 +77,14 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str) -> String {
         }
         connect.push(format!(".{0}({0})", c.name));
     }
+    // The other memories' load ports idle: the vectors assume their power-up contents.
+    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+        for (sig, w) in [("we", 1), ("waddr", m.addr_bits), ("wdata", m.data_bits)] {
+            let r = if w > 1 { format!("[{}:0] ", w - 1) } else { String::new() };
+            decls.push(format!("    reg {r}{}_{sig} = 0;", m.prefix));
+            connect.push(format!(".{0}_{sig}({0}_{sig})", m.prefix));
+        }
+    }
     let out = l.column("out_c");
     let mut s = pt(cfg);
     s.extend([
@@ -79,6 +92,13 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str) -> String {
         ("LATENCY", latency(cfg).to_string()),
         ("II", cfg.initiation_interval().to_string()),
         ("INIT_FILE", init.to_string()),
+        (
+            "DUT_PARAMS",
+            std::iter::once(".INIT_FILE(INIT_FILE)".to_string())
+                .chain(extra.iter().map(|(p, v)| format!(".{p}({v})")))
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
         ("TOP", module_name(cfg, "gbump_pipeline")),
         ("DECLS", decls.join("\n")),
         ("CONNECT", format!("        {}", connect.join(", "))),
@@ -92,11 +112,7 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str) -> String {
 
 /// Units present in this configuration, in `UNITS` order.
 pub fn units_of(cfg: &PipelineConfig) -> Vec<&'static str> {
-    crate::units::UNITS
-        .iter()
-        .map(|u| u.name)
-        .filter(|u| unit_present(cfg, u))
-        .collect()
+    crate::units::included(cfg).iter().map(|u| u.name()).collect()
 }
 
 /// The all-units testbench.
@@ -111,6 +127,9 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         let mut conns = vec![".clk(clk)".to_string()];
         if *u == "power_table" {
             conns.extend([".we(pt_we)".into(), ".waddr(pt_waddr)".into(), ".wdata(pt_wdata)".into()]);
+        } else if crate::units::unit(u).and_then(|x| x.memory(cfg)).is_some() {
+            // Other memories run on their power-up contents, which the unit vectors assume.
+            conns.extend([".we(1'b0)".into(), ".waddr(0)".into(), ".wdata(0)".into()]);
         }
         let kw = if i == 0 { "if" } else { "else if" };
         let mut d = vec![format!("            {kw} (unit == \"{u}\") begin")];
@@ -154,6 +173,8 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         check.extend(k);
         let params = if *u == "power_table" {
             format!(" #(.R(1), .INIT_FILE({}))", init_literal(rtl))
+        } else if let Some((_, _, f)) = rtl.memory_inits.iter().find(|m| m.1 == *u) {
+            format!(" #(.INIT_FILE({}))", verilog_string(&f.display().to_string()))
         } else {
             String::new()
         };
@@ -197,6 +218,9 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         );
         p += " printf(\"\\n\");";
         print.push(p);
+    }
+    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+        assign.push(format!("            top.{}_we = 0;", m.prefix));
     }
     let out = l.column("out_c");
     let mut s = pt(cfg);

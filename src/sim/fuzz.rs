@@ -14,8 +14,8 @@ use std::path::Path;
 
 /// A random valid configuration, uniform over the valid space: every numeric field is drawn
 /// over its whole range in [`LIMITS`] (`power_entries` over its powers of two), every choice
-/// over all its values, and draws that break a cross-field rule are redrawn. Palette mode is
-/// left out: it has no RTL yet.
+/// over all its values (palette mode among them), and draws that break a cross-field rule are
+/// redrawn.
 pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
     loop {
         let (e_lo, e_hi) = limit("power_entries");
@@ -35,7 +35,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             light_mode: pick(rng, &[LightMode::Serial, LightMode::Parallel]),
             blend_order: pick(rng, &[BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast]),
             rounding: pick(rng, &[Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven]),
-            palette: false,
+            palette: pick(rng, &[false, true]),
             diffuse: pick(rng, &[false, true]),
             specular: pick(rng, &[false, true]),
             skip_flat: pick(rng, &[false, true]),
@@ -58,8 +58,8 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 }
 
 /// Fixed configurations at the edges of the space, which uniform draws reach only now and
-/// then: every light slot (serial and parallel), the widest dot product and table, the widest
-/// segmented unit, and every width at its top and at its bottom.
+/// then: every light slot (serial, and parallel on a palettised map), the widest dot product
+/// and table, the widest segmented unit, and every width at its top and at its bottom.
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
@@ -80,10 +80,11 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             },
         ),
         (
-            "all light slots, parallel",
+            "all light slots, parallel, palette",
             PipelineConfig {
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,
+                palette: true,
                 ..d.clone()
             },
         ),

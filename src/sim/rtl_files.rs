@@ -15,6 +15,10 @@ pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<Rtl>
         sources: crate::rtlgen::sources(&files).iter().map(|f| dir.join(f)).collect(),
         waivers: files.iter().filter(|f| f.0.ends_with(".vlt")).map(|f| dir.join(&f.0)).collect(),
         init_file: dir.join(crate::rtlgen::units_v::rom_file_name(cfg, "power_table", "hex")),
+        memory_inits: crate::rtlgen::top::memory_inits(cfg)
+            .into_iter()
+            .map(|(param, unit, file)| (param, unit, dir.join(file)))
+            .collect(),
         dir,
     })
 }

@@ -102,9 +102,14 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
         };
     }
     let texel = [0; 3].map(|_| rng.range(0, nmax) as u32);
+    let bump = if cfg.palette {
+        BumpTexel::Index(rng.range(0, 255) as u8)
+    } else {
+        BumpTexel::Rgb(texel)
+    };
     TopStim {
         frag: FragmentIn {
-            bump: BumpTexel::Rgb(texel),
+            bump,
             c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
             texel: [0; 3].map(|_| rng.range(0, cmax) as u32),
             diffuse_en: rng.chance(0.85),
@@ -130,13 +135,25 @@ fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], 
         };
     }
     let frag = FragmentIn {
-        bump: BumpTexel::Rgb(texel),
+        bump: bump_texel(cfg, texel),
         c_src: [c; 3],
         texel: [t; 3],
         diffuse_en: true,
         specular_en: true,
     };
     TopStim { frag, state }
+}
+
+/// The bump texel a fragment of `cfg` carries for stored codes `rgb`: the codes, or in a
+/// palette configuration the index of the power-up palette's entry nearest to them.
+fn bump_texel(cfg: &PipelineConfig, rgb: [u32; 3]) -> BumpTexel {
+    if !cfg.palette {
+        return BumpTexel::Rgb(rgb);
+    }
+    let pal = crate::rtlgen::rom::default_palette(cfg);
+    let d = |e: &[u32; 3]| (0..3).map(|i| (e[i] as i64 - rgb[i] as i64).pow(2)).sum::<i64>();
+    let best = (0..pal.0.len()).min_by_key(|&i| d(&pal.0[i])).expect("a palette entry");
+    BumpTexel::Index(best as u8)
 }
 
 /// An 8-bit colour value scaled to a channel whose full scale is `cmax`.
@@ -147,6 +164,16 @@ fn scale8(x: u32, cmax: u32) -> u32 {
 /// The corner-case catalogue at `level`. Each entry says why it is there.
 pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
     let mut v: Vec<(String, TopStim)> = corners_level1(cfg).into_iter().map(|(w, s)| (w.to_string(), s)).collect();
+    if cfg.palette {
+        // The palette's first and last entries, under a light straight above.
+        let o = one(cfg);
+        let m = cfg.colour_max();
+        for ix in [0u8, 255] {
+            let mut s = corner_stim(cfg, [0; 3], [0, 0, o], [0, 0, o], m, 1 << cfg.k_bits, m / 4, m);
+            s.frag.bump = BumpTexel::Index(ix);
+            v.push((format!("palette index {ix}"), s));
+        }
+    }
     if level >= 2 {
         v.extend(corners_level2(cfg));
     }
@@ -352,21 +379,21 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     v
 }
 
-/// Unit stimuli that sweep a small unit exhaustively.
 /// How many vectors `exhaustive:unit` holds under `cfg`, or why it cannot be swept (checked
 /// before anything is built or written).
 pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
-    let c = cfg.colour_max() as u64;
-    let count = match unit {
-        "power_table" => (1u64 << cfg.dot_bits) + 1,
-        "texture_modulate" => (c + 1).pow(2),
-        "bump_fetch" => 1u64 << cfg.normal_bits,
-        u if crate::units::unit(u).is_some() => {
-            return Err(Error::Other(format!(
-                "exhaustive:{u}: {u} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: power_table, texture_modulate, bump_fetch"
-            )))
-        }
-        u => return Err(Error::Other(format!("exhaustive:{u}: no such unit\n  fix: one of {}", crate::vectors::targets::all_targets()[1..].join(", ")))),
+    let Some(u) = crate::units::unit(unit) else {
+        return Err(Error::Other(format!(
+            "exhaustive:{unit}: no such unit\n  fix: one of {}",
+            crate::vectors::targets::all_targets()[1..].join(", ")
+        )));
+    };
+    let Some(count) = u.exhaustive_count(cfg) else {
+        let swept: Vec<&str> = crate::units::UNITS.iter().filter(|u| u.exhaustive_count(cfg).is_some()).map(|u| u.name()).collect();
+        return Err(Error::Other(format!(
+            "exhaustive:{unit}: {unit} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: {}",
+            swept.join(", ")
+        )));
     };
     let max = crate::limits::MAX_EXHAUSTIVE_VECTORS;
     if count > max {
@@ -377,31 +404,14 @@ pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
     Ok(count)
 }
 
+/// Unit stimuli that sweep a small unit exhaustively.
 pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
-    exhaustive_count(cfg, unit)?;
-    let c = cfg.colour_max() as i64;
-    let nm = (1i64 << cfg.normal_bits) - 1;
-    Ok(match unit {
-        "power_table" => (0..=(1i64 << cfg.dot_bits))
-            .map(|x| UnitStim {
-                unit: "power_table",
-                inputs: vec![vec![x]],
-            })
-            .collect(),
-        "texture_modulate" => (0..=c)
-            .flat_map(|a| {
-                (0..=c).map(move |b| UnitStim {
-                    unit: "texture_modulate",
-                    inputs: vec![vec![a, b, c - a], vec![b, a, c - b]],
-                })
-            })
-            .collect(),
-        "bump_fetch" => (0..=nm)
-            .map(|x| UnitStim {
-                unit: "bump_fetch",
-                inputs: vec![vec![x, nm - x, x ^ (nm >> 1)]],
-            })
-            .collect(),
-        _ => unreachable!("exhaustive_count accepts only the swept units"),
-    })
+    let count = exhaustive_count(cfg, unit)?;
+    let u = crate::units::unit(unit).expect("checked");
+    Ok((0..count)
+        .map(|i| UnitStim {
+            unit: u.name(),
+            inputs: u.exhaustive_input(cfg, i),
+        })
+        .collect())
 }

@@ -4,12 +4,8 @@
 
 use super::layout::{Layout, Record, Role};
 use crate::config::PipelineConfig;
-use crate::model::blend::blend;
-use crate::model::bump_fetch::bump_fetch_rgb;
-use crate::model::dot_clamp::dot_clamp;
-use crate::model::texture_modulate::texture_modulate;
-use crate::model::{shade, BumpState, BumpTexel, FragmentIn, PowerTable, Shaded};
-use crate::units::{Dir, UNITS};
+use crate::model::{shade, BumpState, BumpTexel, FragmentIn, Shaded};
+use crate::units::{Dir, Memories, UNITS};
 
 /// A top-level stimulus: one fragment with its triangle's bump state.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,26 +21,16 @@ pub struct UnitStim {
     pub inputs: Vec<Vec<i64>>,
 }
 
-/// Layout of the top's vectors: its input ports, then the expected colour.
+/// Layout of the top's vectors: its fragment ports, then its result, from the top's port list.
 pub fn top_layout(cfg: &PipelineConfig) -> Layout {
-    let (n, c, lh, k) = (cfg.lights, cfg.colour_bits, cfg.lh_bits, cfg.k_bits);
+    use crate::rtlgen::top::{port_list, PortKind};
     let mut l = Layout::default();
-    l.push(
-        "in_texel",
-        Role::Stimulus,
-        cfg.normal_bits,
-        3,
-        format!("u{}.0 offset binary", cfg.normal_bits),
-    );
-    l.push("in_c_src", Role::Stimulus, c, 3, cfg.colour_fmt().name());
-    l.push("in_t", Role::Stimulus, c, 3, cfg.colour_fmt().name());
-    l.push("in_diffuse_en", Role::Stimulus, 1, 1, "bit".into());
-    l.push("in_specular_en", Role::Stimulus, 1, 1, "bit".into());
-    l.push("in_l", Role::Stimulus, lh, 3 * n, cfg.lh_fmt().name());
-    l.push("in_h", Role::Stimulus, lh, 3 * n, cfg.lh_fmt().name());
-    l.push("in_lc", Role::Stimulus, c, 3 * n, cfg.colour_fmt().name());
-    l.push("in_k", Role::Stimulus, k + 1, n, cfg.k_fmt().name());
-    l.push("out_c", Role::Expected, c, 3, cfg.colour_fmt().name());
+    for kind in [PortKind::Fragment, PortKind::Result] {
+        for p in port_list(cfg).into_iter().filter(|p| p.kind == kind) {
+            let role = if kind == PortKind::Fragment { Role::Stimulus } else { Role::Expected };
+            l.push(&p.name, role, p.fmt.width, p.lanes, p.fmt.name());
+        }
+    }
     l
 }
 
@@ -53,7 +39,7 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
     let u = crate::units::unit(unit).unwrap_or_else(|| panic!("unknown unit {unit}"));
     let mut l = Layout::default();
     for dir in [Dir::In, Dir::Out] {
-        for p in (u.ports)(cfg).into_iter().filter(|p| p.dir == dir) {
+        for p in u.ports(cfg).into_iter().filter(|p| p.dir == dir) {
             let role = if dir == Dir::In { Role::Stimulus } else { Role::Expected };
             l.push(p.name, role, p.fmt.width, p.lanes, p.fmt.name());
         }
@@ -65,13 +51,17 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
 pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -> Record {
     let mut r = Record::new(l);
     let n = cfg.lights as usize;
-    let BumpTexel::Rgb(texel) = s.frag.bump else {
-        panic!("palette tops have no vectors yet")
-    };
     // Columns in `top_layout` order.
     let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, c_out] = std::array::from_fn(|i| &l.columns[i]);
-    for (i, &tx) in texel.iter().enumerate() {
-        r.set_lane(c_texel, i as u32, tx as i64);
+    match s.frag.bump {
+        BumpTexel::Rgb(texel) => {
+            for (i, &tx) in texel.iter().enumerate() {
+                r.set_lane(c_texel, i as u32, tx as i64);
+            }
+        }
+        BumpTexel::Index(ix) => r.set_lane(c_texel, 0, ix as i64),
+    }
+    for i in 0..3 {
         r.set_lane(c_src, i as u32, s.frag.c_src[i] as i64);
         r.set_lane(c_t, i as u32, s.frag.texel[i] as i64);
         r.set_lane(c_out, i as u32, out.colour()[i] as i64);
@@ -91,28 +81,11 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
     r
 }
 
-/// Evaluate a unit on its inputs with the model's own unit function.
-pub fn eval_unit(cfg: &PipelineConfig, table: &PowerTable, s: &UnitStim) -> Vec<Vec<i64>> {
-    let arr3 = |v: &Vec<i64>| [v[0], v[1], v[2]];
-    let col3 = |v: &Vec<i64>| [v[0] as u32, v[1] as u32, v[2] as u32];
-    let n = cfg.lights as usize;
-    match s.unit {
-        "bump_fetch" => vec![bump_fetch_rgb(cfg, col3(&s.inputs[0])).to_vec()],
-        "dot_clamp" => vec![vec![dot_clamp(cfg, arr3(&s.inputs[0]), arr3(&s.inputs[1]))]],
-        "power_table" => vec![vec![table.lookup(cfg, s.inputs[0][0])]],
-        "texture_modulate" => vec![texture_modulate(cfg, col3(&s.inputs[0]), col3(&s.inputs[1]))
-            .iter()
-            .map(|&x| x as i64)
-            .collect()],
-        "diffuse_blend" | "specular_blend" => {
-            let lc: Vec<[u32; 3]> = (0..n).map(|j| [0, 1, 2].map(|i| s.inputs[3][3 * j + i] as u32)).collect();
-            vec![blend(cfg, col3(&s.inputs[0]), &s.inputs[1], &s.inputs[2], &lc)
-                .iter()
-                .map(|&x| x as i64)
-                .collect()]
-        }
-        u => panic!("no model for unit {u}"),
-    }
+/// Evaluate a unit on its inputs with the unit's own model.
+pub fn eval_unit(cfg: &PipelineConfig, mem: &Memories, s: &UnitStim) -> Vec<Vec<i64>> {
+    crate::units::unit(s.unit)
+        .unwrap_or_else(|| panic!("no unit {}", s.unit))
+        .eval(cfg, mem, &s.inputs)
 }
 
 /// Fill a unit record from its stimulus and outputs.
@@ -127,57 +100,93 @@ pub fn unit_record(l: &Layout, s: &UnitStim, outs: &[Vec<i64>]) -> Record {
     r
 }
 
-/// The unit stimuli a top stimulus exercises, from the model's trace of it.
+/// The unit stimuli a top stimulus exercises, from the model's trace of it: every instance
+/// of every unit the top of `cfg` holds, with the inputs it sees.
 pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim> {
     let n = cfg.lights as usize;
     let mut v = Vec::new();
-    if let BumpTexel::Rgb(texel) = s.frag.bump {
-        v.push(UnitStim {
+    match s.frag.bump {
+        BumpTexel::Rgb(texel) => v.push(UnitStim {
             unit: "bump_fetch",
             inputs: vec![texel.iter().map(|&x| x as i64).collect()],
-        });
+        }),
+        BumpTexel::Index(i) => v.push(UnitStim {
+            unit: "palette_fetch",
+            inputs: vec![vec![i as i64]],
+        }),
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
     let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].colour.map(|x| x as i64)).collect();
     for j in 0..n {
         let ls = &s.state.lights[j];
-        v.push(UnitStim {
-            unit: "dot_clamp",
-            inputs: vec![t.b.to_vec(), ls.l.to_vec()],
-        });
-        v.push(UnitStim {
-            unit: "dot_clamp",
-            inputs: vec![t.b.to_vec(), ls.h.to_vec()],
-        });
-        v.push(UnitStim {
-            unit: "power_table",
-            inputs: vec![vec![t.xh[j]]],
-        });
+        if cfg.diffuse {
+            v.push(UnitStim {
+                unit: "dot_clamp",
+                inputs: vec![t.b.to_vec(), ls.l.to_vec()],
+            });
+        }
+        if cfg.specular {
+            v.push(UnitStim {
+                unit: "dot_clamp",
+                inputs: vec![t.b.to_vec(), ls.h.to_vec()],
+            });
+            v.push(UnitStim {
+                unit: "power_table",
+                inputs: vec![vec![t.xh[j]]],
+            });
+        }
     }
-    let c = |x: [u32; 3]| x.iter().map(|&y| y as i64).collect::<Vec<_>>();
-    let blend_in = |c_in: [u32; 3], f: &[i64]| vec![c(c_in), f[..n].to_vec(), k.clone(), lc.clone()];
-    let order = crate::units::stage_order(cfg);
+    let serial = cfg.light_mode == crate::config::LightMode::Serial;
+    // The serial form: one accumulate per slot, then the finish; the parallel form: one blend.
+    let blend_in = |c_in: [u32; 3], f: &[i64], v: &mut Vec<UnitStim>, unit: &'static str| {
+        let c = c_in.iter().map(|&y| y as i64).collect::<Vec<_>>();
+        if !serial {
+            v.push(UnitStim {
+                unit,
+                inputs: vec![c, f[..n].to_vec(), k.clone(), lc.clone()],
+            });
+            return;
+        }
+        let mut acc = vec![0i64; 3];
+        for j in 0..n {
+            let lcj = lc[3 * j..3 * j + 3].to_vec();
+            let inputs = vec![acc.clone(), vec![(j == 0) as i64], vec![f[j]], vec![k[j]], lcj.clone()];
+            acc = crate::units::accumulate(cfg, &acc, j == 0, f[j], k[j], &lcj).to_vec();
+            v.push(UnitStim {
+                unit: "light_accumulate",
+                inputs,
+            });
+        }
+        v.push(UnitStim {
+            unit: "blend_finish",
+            inputs: vec![c, acc],
+        });
+    };
+    let order = crate::rtlgen::top::stage_order(cfg);
     let mut c_in = s.frag.c_src;
     for (i, unit) in order.iter().enumerate() {
-        let inputs = match *unit {
-            "diffuse_blend" => blend_in(c_in, &t.dfac),
-            "specular_blend" => blend_in(c_in, &t.sfac),
-            _ => vec![c(c_in), c(s.frag.texel)],
-        };
-        v.push(UnitStim { unit, inputs });
+        match *unit {
+            "diffuse_blend" if cfg.diffuse => blend_in(c_in, &t.dfac, &mut v, "diffuse_blend"),
+            "specular_blend" if cfg.specular => blend_in(c_in, &t.sfac, &mut v, "specular_blend"),
+            "texture_modulate" => v.push(UnitStim {
+                unit: "texture_modulate",
+                inputs: vec![c_in.iter().map(|&y| y as i64).collect(), s.frag.texel.iter().map(|&y| y as i64).collect()],
+            }),
+            _ => {}
+        }
         c_in = t.stages[i];
     }
     v
 }
 
 /// Model evaluation of a top stimulus.
-pub fn eval_top(cfg: &PipelineConfig, table: &PowerTable, s: &TopStim) -> Shaded {
-    shade(cfg, table, None, &s.state, &s.frag)
+pub fn eval_top(cfg: &PipelineConfig, mem: &Memories, s: &TopStim) -> Shaded {
+    shade(cfg, mem.table, Some(mem.palette), &s.state, &s.frag)
 }
 
 /// Names of every target.
 pub fn all_targets() -> Vec<&'static str> {
-    std::iter::once("top").chain(UNITS.iter().map(|u| u.name)).collect()
+    std::iter::once("top").chain(UNITS.iter().map(|u| u.name())).collect()
 }
 
 /// The `--target` arguments as target names: `all` is every target `cfg` has; a named target
@@ -195,10 +204,8 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
                 all.join(", ")
             )));
         } else if !super::writer::unit_present(cfg, t) {
-            let field = super::writer::unit_switch(t);
-            return Err(Error::Other(format!(
-                "--target {t}: the configuration has no {t} ({field} = false)\n  fix: drop --target {t}, or set {field} = true in the configuration"
-            )));
+            let u = crate::units::unit(t).expect("unit");
+            return Err(Error::Other(format!("--target {t}: {}", crate::units::absence(u, cfg))));
         } else {
             vec![t.as_str()]
         };

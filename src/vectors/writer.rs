@@ -9,7 +9,7 @@ use super::sources::{corners, exhaustive, exhaustive_count, random_stim, Source}
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::model::PowerTable;
+use crate::units::{Memories, MemoryContents};
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 use std::io::{BufWriter, Write};
@@ -215,22 +215,9 @@ impl SetWriter {
     }
 }
 
-/// Whether `unit` exists in the hardware of `cfg`.
+/// Whether target `unit` (the top, or a unit) exists in the hardware of `cfg`.
 pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
-    match unit {
-        "diffuse_blend" => cfg.diffuse,
-        "specular_blend" | "power_table" => cfg.specular,
-        _ => true,
-    }
-}
-
-/// The configuration switch that leaves `unit` out when false (for `unit_present`'s refusals).
-pub fn unit_switch(unit: &str) -> &'static str {
-    if unit == "diffuse_blend" {
-        "diffuse"
-    } else {
-        "specular"
-    }
+    unit == "top" || crate::units::unit(unit).is_some_and(|u| u.included(cfg))
 }
 
 /// Top stimuli of a source, grouped by power-table shininess.
@@ -274,9 +261,9 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
 
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
 fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
-    if cfg.palette {
+    if cfg.palette && matches!(src, Source::Scene(_)) {
         return Err(Error::Other(
-            "palette configurations have no RTL vectors yet\n  fix: set palette = false for RTL work (the model renders palettised maps)"
+            "scene vectors of a palette configuration are not written yet: each palettised map has its own palette, loaded per object\n  fix: use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false"
                 .into(),
         ));
     }
@@ -284,12 +271,10 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
         crate::limits::check_count("--shininess", n.into(), 0, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
     }
     match src {
-        Source::Exhaustive(unit) if crate::units::unit(unit).is_some() && !unit_present(cfg, unit) => {
-            let field = unit_switch(unit);
-            Err(Error::Other(format!(
-                "exhaustive:{unit}: the configuration has no {unit} ({field} = false), so the set would be empty\n  fix: set {field} = true, or sweep a unit the configuration has"
-            )))
-        }
+        Source::Exhaustive(unit) if crate::units::unit(unit).is_some() && !unit_present(cfg, unit) => Err(Error::Other(format!(
+            "exhaustive:{unit}: {}",
+            crate::units::absence(crate::units::unit(unit).expect("unit"), cfg)
+        ))),
         Source::Exhaustive(unit) => exhaustive_count(cfg, unit).map(|_| ()),
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
@@ -311,21 +296,21 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
         Source::Exhaustive(unit) => {
             let stims = exhaustive(cfg, unit)?;
             let n = o.shininess.unwrap_or(cfg.shininess);
-            let table = PowerTable::build(cfg, n);
+            let mem = MemoryContents::new(cfg, n);
             let stem = if o.shininess.is_some() {
                 format!("{}_n{n}", src.stem())
             } else {
                 src.stem()
             };
             let mut w = SetWriter::new(dir, &stem, unit, unit_layout(cfg, unit), o, u64::MAX)?;
-            write_units(cfg, &table, &stims, &mut [&mut w])?;
+            write_units(cfg, &mem.view(), &stims, &mut [&mut w])?;
             out.push(w.finish(dir, cfg, src, o, n)?);
         }
         Source::Random(n) => {
             let shin = o.shininess.unwrap_or(cfg.shininess);
-            let table = PowerTable::build(cfg, shin);
+            let contents = MemoryContents::new(cfg, shin);
             let mut ws = open(dir, &src.stem(), &targets, cfg, o, *n)?;
-            let table = &table;
+            let mem = &contents.view();
             const CHUNK: u64 = 1 << 14;
             let chunks = n.div_ceil(CHUNK);
             let tl = top_layout(cfg);
@@ -342,7 +327,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                                 w.put_encoded(&hex, &bin, len)?;
                             }
                             if want_units && ws.iter().any(|w| w.target != "top" && !w.full()) {
-                                write_tops(cfg, table, &stims, &mut ws, false)?;
+                                write_tops(cfg, mem, &stims, &mut ws, false)?;
                             }
                         }
                     }
@@ -363,7 +348,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                             let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
                             let (mut hex, mut bin) = (String::new(), Vec::new());
                             for s in &stims {
-                                let r = top_record(cfg, &tl, s, &eval_top(cfg, table, s));
+                                let r = top_record(cfg, &tl, s, &eval_top(cfg, mem, s));
                                 if o.text {
                                     hex.push_str(&r.hex(tl.hex_digits()));
                                     hex.push('\n');
@@ -389,9 +374,19 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
         }
         _ => {
             for (n, stem, stims) in top_groups(cfg, src, o, dir)? {
-                let table = PowerTable::build(cfg, n);
+                let mem = MemoryContents::new(cfg, n);
                 let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
-                write_tops(cfg, &table, &stims, &mut ws, true)?;
+                write_tops(cfg, &mem.view(), &stims, &mut ws, true)?;
+                if matches!(src, Source::Corners(_)) {
+                    // Each unit's own edges follow the ones the top corners reach.
+                    let own: Vec<UnitStim> = ws
+                        .iter()
+                        .filter_map(|w| crate::units::unit(&w.target))
+                        .flat_map(|u| u.corners(cfg).into_iter().map(move |(_, inputs)| UnitStim { unit: u.name(), inputs }))
+                        .collect();
+                    let mut refs: Vec<&mut SetWriter> = ws.iter_mut().collect();
+                    write_units(cfg, &mem.view(), &own, &mut refs)?;
+                }
                 // Every set of the group must hold vectors before any is finished.
                 if let Some(w) = ws.iter().find(|w| w.count == 0) {
                     return Err(Error::Other(format!(
@@ -422,19 +417,19 @@ fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &Du
 type UnitEval = (UnitStim, Vec<Vec<i64>>);
 
 /// Write the records of `stims` for every writer (the top's only when `with_top`).
-fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &mut [SetWriter], with_top: bool) -> Result<()> {
+fn write_tops(cfg: &PipelineConfig, mem: &Memories, stims: &[TopStim], ws: &mut [SetWriter], with_top: bool) -> Result<()> {
     let want_units = ws.iter().any(|w| w.target != "top" && !w.full());
     let tl = top_layout(cfg);
     let evals: Vec<(Record, Vec<UnitEval>)> = stims
         .par_iter()
         .map(|s| {
-            let t = eval_top(cfg, table, s);
+            let t = eval_top(cfg, mem, s);
             let units = if want_units {
                 unit_stims(cfg, s, &t)
                     .into_iter()
                     .filter(|u| unit_present(cfg, u.unit))
                     .map(|u| {
-                        let out = eval_unit(cfg, table, &u);
+                        let out = eval_unit(cfg, mem, &u);
                         (u, out)
                     })
                     .collect()
@@ -461,10 +456,10 @@ fn write_tops(cfg: &PipelineConfig, table: &PowerTable, stims: &[TopStim], ws: &
     Ok(())
 }
 
-fn write_units(cfg: &PipelineConfig, table: &PowerTable, stims: &[UnitStim], ws: &mut [&mut SetWriter]) -> Result<()> {
+fn write_units(cfg: &PipelineConfig, mem: &Memories, stims: &[UnitStim], ws: &mut [&mut SetWriter]) -> Result<()> {
     let (mut line, mut bytes) = (String::new(), Vec::new());
     for s in stims {
-        let outs = eval_unit(cfg, table, s);
+        let outs = eval_unit(cfg, mem, s);
         for w in ws.iter_mut().filter(|w| w.target == s.unit) {
             let r = unit_record(&w.layout, s, &outs);
             w.put(&r, &mut line, &mut bytes)?;

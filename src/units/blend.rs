@@ -1,0 +1,91 @@
+//! diffuse_blend and specular_blend: C_out = sat(C_in + Σ_i f_i k_i Lc_i) (paper §4.2, §5.1),
+//! one value of one type for both, with f = fd_i or fs_i: the parallel form, all light terms
+//! summed in one cycle. The serial top uses the serial form (`serial_blend.rs`).
+
+use super::{p, Dir, Lanes, Memories, Port, Unit};
+use crate::config::PipelineConfig;
+use crate::model::blend::blend;
+
+pub struct Blend {
+    name: &'static str,
+    source: &'static str,
+    specular: bool,
+}
+
+pub static DIFFUSE_BLEND: Blend = Blend {
+    name: "diffuse_blend",
+    source: "paper §4.2, §5.1: C' = sat(C_src + sum fd_i k_i Lc_i)",
+    specular: false,
+};
+
+pub static SPECULAR_BLEND: Blend = Blend {
+    name: "specular_blend",
+    source: "paper §4.2, §5.1: C_new = sat(C'' + sum fs_i k_i Lc_i)",
+    specular: true,
+};
+
+fn rgb(v: &[i64]) -> [u32; 3] {
+    [v[0] as u32, v[1] as u32, v[2] as u32]
+}
+
+impl Unit for Blend {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+    fn source(&self) -> &'static str {
+        self.source
+    }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![(if self.specular { "specular" } else { "diffuse" }, "true"), ("light_mode", "\"parallel\"")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        cfg.light_mode == crate::config::LightMode::Parallel && if self.specular { cfg.specular } else { cfg.diffuse }
+    }
+    fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
+        vec![
+            p("c_in", Dir::In, c.colour_fmt(), 3, "colour in (R, G, B)"),
+            p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
+            p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
+            p("lc", Dir::In, c.colour_fmt(), 3 * c.lights, "light colours Lc_i (R, G, B per light)"),
+            p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(sum f_i k_i Lc_i))"),
+        ]
+    }
+    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
+        let n = cfg.lights as usize;
+        let lc: Vec<[u32; 3]> = (0..n).map(|j| rgb(&i[3][3 * j..])).collect();
+        vec![blend(cfg, rgb(&i[0]), &i[1], &i[2], &lc).iter().map(|&x| x as i64).collect()]
+    }
+    fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        let (ff, kf) = (cfg.factor_fmt(), cfg.k_fmt());
+        let max = cfg.colour_max() as f64;
+        let out = (0..3)
+            .map(|ch| {
+                let add: f64 = (0..cfg.lights as usize)
+                    .map(|j| ff.to_f64(i[1][j]) * kf.to_f64(i[2][j]) * i[3][3 * j + ch] as f64)
+                    .sum();
+                (i[0][ch] as f64 + add).min(max)
+            })
+            .collect();
+        vec![out]
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        use crate::rtlgen::units_v as v;
+        vec![
+            (self.name, v::blend(cfg, self.name)),
+            ("light_term", v::light_term(cfg)),
+            ("blend_finish", v::blend_finish(cfg)),
+        ]
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        let n = cfg.lights as usize;
+        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
+        let all = |c: i64, f: i64, k: i64, lc: i64| vec![vec![c; 3], vec![f; n], vec![k; n], vec![lc; 3 * n]];
+        vec![
+            ("every light at full strength on white: the sum saturates".into(), all(m, one_f, one_k, m)),
+            ("every term zero: c_in passes through".into(), all(m / 2, 0, one_k, m)),
+            ("k = 0 kills every light".into(), all(7, one_f, 0, m)),
+            ("one LSB terms: the rounding of the smallest sum".into(), all(0, 1, 1, 1)),
+            ("half-way sums round by the configured rule".into(), all(0, one_f / 2, one_k, 1)),
+        ]
+    }
+}

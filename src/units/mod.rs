@@ -1,0 +1,295 @@
+//! The hardware units. A unit is one value (a [`Unit`]) that carries everything about it:
+//! its ports and their formats under a configuration, latency and initiation interval,
+//! whether the configuration includes it, its memory (if it has one), the bit-accurate model,
+//! the exact f64 version of the same equation, its Verilog, its exhaustive input domain and
+//! its corner cases with their reasons. The model pipeline's per-unit checks, the top
+//! emitter, the interface JSON, the vector layouts, the testbenches, the error meter and the
+//! README tables all read it; nothing else restates a port, a width or a latency.
+//!
+//! A new unit is one file here and one line in [`UNITS`]; the pipeline description
+//! (`rtlgen::pipeline`) says where it sits.
+
+mod blend;
+mod bump_fetch;
+mod dot_clamp;
+mod palette_fetch;
+mod power_table;
+mod serial_blend;
+mod texture_modulate;
+
+use crate::config::PipelineConfig;
+use crate::fixed::Format;
+use crate::model::{Palette, PowerTable};
+
+pub use blend::{DIFFUSE_BLEND, SPECULAR_BLEND};
+pub use palette_fetch::PALETTE_ENTRIES;
+pub use serial_blend::{accumulate, finish};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dir {
+    In,
+    Out,
+}
+
+/// One port of a unit: `lanes` values of format `fmt` (e.g. 3 for a vector, 3·n for colours of n lights).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Port {
+    pub name: &'static str,
+    pub dir: Dir,
+    pub fmt: Format,
+    pub lanes: u32,
+    pub doc: &'static str,
+}
+
+impl Port {
+    pub fn bits(&self) -> u32 {
+        self.fmt.width * self.lanes
+    }
+}
+
+pub(crate) fn p(name: &'static str, dir: Dir, fmt: Format, lanes: u32, doc: &'static str) -> Port {
+    Port {
+        name,
+        dir,
+        fmt,
+        lanes,
+        doc,
+    }
+}
+
+/// A loadable memory inside a unit: written through `<prefix>_we/_waddr/_wdata` on the top
+/// (`we/waddr/wdata` on the unit), powered up from the `$readmemh` file its `init` parameter
+/// names.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Memory {
+    /// Prefix of the top's load ports (`pt`, `pal`).
+    pub prefix: &'static str,
+    /// Name of the top's parameter holding the init file.
+    pub init_param: &'static str,
+    /// Stem of the init file's name (`rom_file_name(cfg, stem, "hex")`).
+    pub init_stem: &'static str,
+    pub depth: u32,
+    pub addr_bits: u32,
+    pub data_bits: u32,
+    pub doc: &'static str,
+}
+
+/// The contents of every memory a unit may read, for the model.
+#[derive(Clone, Copy)]
+pub struct Memories<'a> {
+    pub table: &'a PowerTable,
+    pub palette: &'a Palette,
+}
+
+/// Owned memory contents: the power table for one shininess and the palette the top powers
+/// up with (the default spiral).
+pub struct MemoryContents {
+    pub table: PowerTable,
+    pub palette: Palette,
+}
+
+impl MemoryContents {
+    pub fn new(cfg: &PipelineConfig, shininess: u32) -> MemoryContents {
+        MemoryContents {
+            table: PowerTable::build(cfg, shininess),
+            palette: crate::rtlgen::rom::default_palette(cfg),
+        }
+    }
+
+    pub fn view(&self) -> Memories<'_> {
+        Memories {
+            table: &self.table,
+            palette: &self.palette,
+        }
+    }
+}
+
+/// Every input port's lanes (raw codes), in port order.
+pub type Lanes = Vec<Vec<i64>>;
+
+/// A hardware unit.
+pub trait Unit: Sync {
+    fn name(&self) -> &'static str;
+    /// Where the paper (or the Cg tutorial) defines it.
+    fn source(&self) -> &'static str;
+    /// The configuration settings (field, value) that include the unit; all must hold.
+    fn requires(&self, _cfg: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        Vec::new()
+    }
+    fn included(&self, _cfg: &PipelineConfig) -> bool {
+        true
+    }
+    /// Data ports (the clock and a memory's load port are implied).
+    fn ports(&self, cfg: &PipelineConfig) -> Vec<Port>;
+    /// Rising edges from the input to the registered output.
+    fn latency(&self, _cfg: &PipelineConfig) -> u32 {
+        1
+    }
+    /// Clock cycles between two inputs.
+    fn interval(&self, _cfg: &PipelineConfig) -> u32 {
+        1
+    }
+    fn memory(&self, _cfg: &PipelineConfig) -> Option<Memory> {
+        None
+    }
+    /// Bit-accurate model: output lanes (raw codes) for input lanes, in port order.
+    fn eval(&self, cfg: &PipelineConfig, mem: &Memories, inputs: &[Vec<i64>]) -> Lanes;
+    /// The same equation in f64, without the unit's roundings, in the output formats' LSBs.
+    fn exact(&self, cfg: &PipelineConfig, mem: &Memories, inputs: &[Vec<i64>]) -> Vec<Vec<f64>>;
+    /// The Verilog modules (base name, text without the generated-file header): the unit's
+    /// own module first, then the helpers it instantiates (two units may share a helper).
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)>;
+    /// How many inputs `exhaustive:<unit>` sweeps, or None when the domain is too large.
+    fn exhaustive_count(&self, _cfg: &PipelineConfig) -> Option<u64> {
+        None
+    }
+    /// The `i`-th input of the exhaustive sweep (`i < exhaustive_count`).
+    fn exhaustive_input(&self, _cfg: &PipelineConfig, _i: u64) -> Lanes {
+        unreachable!("{} has no exhaustive domain", self.name())
+    }
+    /// Inputs at the unit's own edges, each with the reason it is there.
+    fn corners(&self, _cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        Vec::new()
+    }
+}
+
+/// Every unit, in data-flow order.
+pub static UNITS: &[&dyn Unit] = &[
+    &bump_fetch::BumpFetch,
+    &palette_fetch::PaletteFetch,
+    &dot_clamp::DotClamp,
+    &power_table::PowerTableUnit,
+    &DIFFUSE_BLEND,
+    &serial_blend::LightAccumulate,
+    &serial_blend::BlendFinish,
+    &texture_modulate::TextureModulate,
+    &SPECULAR_BLEND,
+];
+
+/// Look a unit up by name.
+pub fn unit(name: &str) -> Option<&'static dyn Unit> {
+    UNITS.iter().copied().find(|u| u.name() == name)
+}
+
+/// Units `cfg` includes, in data-flow order.
+pub fn included(cfg: &PipelineConfig) -> Vec<&'static dyn Unit> {
+    UNITS.iter().copied().filter(|u| u.included(cfg)).collect()
+}
+
+/// Why `cfg` has no `u`, and the fix, for refusals that name a unit: each unmet setting with
+/// the configuration's value and the one the unit needs.
+pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
+    let toml = cfg.to_toml();
+    let current = |field: &str| {
+        toml.lines()
+            .find_map(|l| l.split_once('=').filter(|(k, _)| k.trim() == field).map(|(_, v)| v.trim().to_string()))
+            .unwrap_or_default()
+    };
+    let unmet: Vec<(String, &str)> = u
+        .requires(cfg)
+        .into_iter()
+        .filter(|(field, want)| current(field) != *want)
+        .map(|(field, want)| (format!("{field} = {}", current(field)), want))
+        .collect();
+    if unmet.is_empty() {
+        return format!("the configuration has no {}\n  fix: enable diffuse or specular", u.name());
+    }
+    let has: Vec<String> = unmet.iter().map(|x| x.0.clone()).collect();
+    let want: Vec<String> = u
+        .requires(cfg)
+        .into_iter()
+        .filter(|(f, w)| current(f) != *w)
+        .map(|(f, w)| format!("{f} = {w}"))
+        .collect();
+    format!(
+        "the configuration has no {} ({})\n  fix: drop it, or set {} in the configuration",
+        u.name(),
+        has.join(", "),
+        want.join(" and ")
+    )
+}
+
+/// Input ports of a unit, in order.
+pub fn inputs(u: &dyn Unit, cfg: &PipelineConfig) -> Vec<Port> {
+    u.ports(cfg).into_iter().filter(|p| p.dir == Dir::In).collect()
+}
+
+/// Output ports of a unit, in order.
+pub fn outputs(u: &dyn Unit, cfg: &PipelineConfig) -> Vec<Port> {
+    u.ports(cfg).into_iter().filter(|p| p.dir == Dir::Out).collect()
+}
+
+/// Markdown table of every unit's ports under `cfg` (the README's interface table).
+pub fn markdown_table(cfg: &PipelineConfig) -> String {
+    let mut s = String::from("| unit | port | dir | format | lanes | bits | meaning |\n|---|---|---|---|---|---|---|\n");
+    for u in included(cfg) {
+        for (i, port) in u.ports(cfg).iter().enumerate() {
+            let name = if i == 0 {
+                format!("`{}` (latency {})", u.name(), u.latency(cfg))
+            } else {
+                String::new()
+            };
+            let dir = if port.dir == Dir::In { "in" } else { "out" };
+            s += &format!(
+                "| {name} | `{}` | {dir} | {} | {} | {} | {} |\n",
+                port.name,
+                port.fmt.name(),
+                port.lanes,
+                port.bits(),
+                port.doc
+            );
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every unit's model output fits its output ports, over its corners and, where it has
+    /// one, its exhaustive domain; and the exact version is never more than a few LSBs away.
+    #[test]
+    fn models_fit_their_ports_and_track_the_exact_equation() {
+        for cfg in [
+            PipelineConfig::default(),
+            PipelineConfig {
+                palette: true,
+                lights: 2,
+                ..Default::default()
+            },
+        ] {
+            let table = PowerTable::build(&cfg, cfg.shininess);
+            let palette = crate::rtlgen::rom::default_palette(&cfg);
+            let mem = Memories {
+                table: &table,
+                palette: &palette,
+            };
+            for u in included(&cfg) {
+                let mut ins: Vec<Lanes> = u.corners(&cfg).into_iter().map(|c| c.1).collect();
+                if let Some(n) = u.exhaustive_count(&cfg) {
+                    ins.extend((0..n.min(5000)).map(|i| u.exhaustive_input(&cfg, i)));
+                }
+                assert!(!ins.is_empty(), "{} has no corners", u.name());
+                for i in &ins {
+                    for (port, lanes) in inputs(u, &cfg).iter().zip(i) {
+                        assert_eq!(port.lanes as usize, lanes.len(), "{}.{}", u.name(), port.name);
+                        for &v in lanes {
+                            assert!(v >= port.fmt.min_raw() && v <= port.fmt.max_raw(), "{} input {v}", u.name());
+                        }
+                    }
+                    let out = u.eval(&cfg, &mem, i);
+                    let ex = u.exact(&cfg, &mem, i);
+                    for ((port, lanes), exl) in outputs(u, &cfg).iter().zip(&out).zip(&ex) {
+                        assert_eq!(port.lanes as usize, lanes.len());
+                        for (&v, &e) in lanes.iter().zip(exl) {
+                            assert!(v >= port.fmt.min_raw() && v <= port.fmt.max_raw(), "{} output {v}", u.name());
+                            // Loose on purpose: a sanity bound; `gbump error` measures the real figure.
+                            assert!((v as f64 - e).abs() <= 64.0, "{} exact {e} vs model {v} at {i:?}", u.name());
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,73 @@
+//! power_table: fs = (B·H)^n from a table loaded like a colour LUT (paper §4.2), or one of
+//! the interpolated power units of `model::power_unit` reading the same loadable memory.
+
+use super::{p, Dir, Lanes, Memories, Memory, Port, Unit};
+use crate::config::{PipelineConfig, PowerUnitKind};
+use crate::model::power_table::powi_exact;
+
+pub struct PowerTableUnit;
+
+impl Unit for PowerTableUnit {
+    fn name(&self) -> &'static str {
+        "power_table"
+    }
+    fn source(&self) -> &'static str {
+        "paper §4.2: fs_i = (B·H_i)^n, a reloadable table for one shininess"
+    }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![("specular", "true")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        cfg.specular
+    }
+    fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
+        vec![
+            p("x", Dir::In, cfg.dot_fmt(), 1, "clamped B·H"),
+            p("fs", Dir::Out, cfg.power_fmt(), 1, "table[round(x (N-1))]"),
+        ]
+    }
+    fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
+        Some(Memory {
+            prefix: "pt",
+            init_param: "INIT_FILE",
+            init_stem: "power_table",
+            depth: cfg.power_depth(),
+            addr_bits: cfg.power_addr_bits(),
+            data_bits: cfg.power_bits + 1,
+            doc: "power table entries, u1.P (the shininess is whatever was loaded)",
+        })
+    }
+    fn eval(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Lanes {
+        vec![vec![m.table.lookup(cfg, i[0][0])]]
+    }
+    fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        let x = i[0][0] as f64 / (1u64 << cfg.dot_bits) as f64;
+        vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_bits) as f64]]
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        let mut v = vec![("power_table", crate::rtlgen::units_v::power_table(cfg))];
+        if cfg.power_unit != PowerUnitKind::Table {
+            let name = crate::rtlgen::units_v::module_name(cfg, "power_core");
+            v.push((
+                "power_core",
+                crate::rtlgen::power_units::core(&cfg.power_design(), cfg.power_formats(), &name),
+            ));
+        }
+        v
+    }
+    fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
+        Some((1u64 << cfg.dot_bits) + 1)
+    }
+    fn exhaustive_input(&self, _: &PipelineConfig, i: u64) -> Lanes {
+        vec![vec![i as i64]]
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        let one = 1i64 << cfg.dot_bits;
+        vec![
+            ("x = 0: entry 0 (0^n)".into(), vec![vec![0]]),
+            ("x = 1 LSB: the first index step".into(), vec![vec![1]]),
+            ("x one LSB below 1: the steepest part of x^n".into(), vec![vec![one - 1]]),
+            ("x = 1: the last entry, exactly 1.0".into(), vec![vec![one]]),
+        ]
+    }
+}

@@ -1,0 +1,161 @@
+//! The blend units in their serial form (paper §4.2: "one light per clock"): the serial top
+//! runs each fragment's light slots through one `light_accumulate` per blend, which adds one
+//! exact term f·k·Lc per clock, then closes each sum with `blend_finish`, the same rounding
+//! and saturating add the parallel `diffuse_blend`/`specular_blend` end with. Sums are exact,
+//! so both forms give the same bits.
+
+use super::{p, Dir, Lanes, Memories, Port, Unit};
+use crate::config::{LightMode, PipelineConfig};
+use crate::fixed::{shift_round, Format};
+use crate::rtlgen::units_v::module_name;
+use crate::rtlgen::writer::{zext, VWriter};
+
+pub struct LightAccumulate;
+pub struct BlendFinish;
+
+fn serial_blend(cfg: &PipelineConfig) -> bool {
+    cfg.light_mode == LightMode::Serial && (cfg.diffuse || cfg.specular)
+}
+
+/// `(first ? 0 : acc_in) + f k lc` per channel, modulo the accumulator width (the hardware's
+/// adder; an exact sum of at most `lights` terms never reaches it).
+pub fn accumulate(cfg: &PipelineConfig, acc_in: &[i64], first: bool, f: i64, k: i64, lc: &[i64]) -> [i64; 3] {
+    let aw = cfg.acc_fmt().width;
+    let mask = (1i128 << aw) - 1;
+    [0, 1, 2].map(|ch| {
+        let base = if first { 0 } else { acc_in[ch] as i128 };
+        ((base + (f * k * lc[ch]) as i128) & mask) as i64
+    })
+}
+
+/// `sat(c_in + round(acc))` per channel.
+pub fn finish(cfg: &PipelineConfig, c_in: &[i64], acc: &[i64]) -> [i64; 3] {
+    let shift = cfg.factor_frac() + cfg.k_bits;
+    let max = cfg.colour_max() as i64;
+    [0, 1, 2].map(|ch| (c_in[ch] + shift_round(acc[ch] as i128, shift, cfg.rounding) as i64).min(max))
+}
+
+impl Unit for LightAccumulate {
+    fn name(&self) -> &'static str {
+        "light_accumulate"
+    }
+    fn source(&self) -> &'static str {
+        "paper §4.2: one light per clock; the exact running sum of f_i k_i Lc_i"
+    }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![("light_mode", "\"serial\"")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        serial_blend(cfg)
+    }
+    fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
+        vec![
+            p("acc_in", Dir::In, c.acc_fmt(), 3, "the running sum (the top feeds acc back)"),
+            p("first", Dir::In, Format::u(1, 0), 1, "first light slot: start from 0"),
+            p("f", Dir::In, c.factor_fmt(), 1, "fd_j or fs_j of this slot, aligned"),
+            p("k", Dir::In, c.k_fmt(), 1, "k_j of this slot"),
+            p("lc", Dir::In, c.colour_fmt(), 3, "Lc_j of this slot"),
+            p("acc", Dir::Out, c.acc_fmt(), 3, "(first ? 0 : acc_in) + f k Lc"),
+        ]
+    }
+    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
+        vec![accumulate(cfg, &i[0], i[1][0] == 1, i[2][0], i[3][0], &i[4]).to_vec()]
+    }
+    fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        // The sum is exact: the model is the equation.
+        vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        let (ff, k, c) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits);
+        let (tw, aw) = (cfg.term_fmt().width, cfg.acc_fmt().width);
+        let mut w = VWriter::new();
+        w.line("`timescale 1ns / 1ps");
+        w.line("`default_nettype none");
+        w.line("");
+        w.line("// light_accumulate (paper sec. 4.2, one light per clock): acc = (first ? 0 : acc_in) + f k Lc,");
+        w.line(format!("// exact in {} ({aw} bits per channel), registered.", cfg.acc_fmt().name()));
+        w.line(format!(
+            "module {} (\n    input  wire clk,\n    input  wire [{}:0] acc_in,\n    input  wire first,\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output reg  [{}:0] acc\n);",
+            module_name(cfg, "light_accumulate"),
+            3 * aw - 1,
+            3 * c - 1,
+            3 * aw - 1
+        ));
+        w.line(format!("wire [{}:0] term;", 3 * tw - 1));
+        w.line(format!(
+            "{} lt (.f(f), .k(k), .lc(lc), .term(term));",
+            module_name(cfg, "light_term")
+        ));
+        w.block("always @(posedge clk) begin", "end", |w| {
+            for ch in 0..3 {
+                let (hi, lo) = (ch * aw + aw - 1, ch * aw);
+                w.line(format!(
+                    "acc[{hi}:{lo}] <= (first ? {aw}'d0 : acc_in[{hi}:{lo}]) + {};",
+                    zext(&format!("term[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw)
+                ));
+            }
+        });
+        w.line("endmodule");
+        w.line("`default_nettype wire");
+        vec![
+            ("light_accumulate", w.finish()),
+            ("light_term", crate::rtlgen::units_v::light_term(cfg)),
+        ]
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
+        let big = ((cfg.lights as i64 - 1).max(0)) * one_f * one_k * m;
+        vec![
+            ("first slot ignores acc_in".into(), vec![vec![12345; 3], vec![1], vec![one_f], vec![one_k], vec![m; 3]]),
+            (
+                "last slot of all-full lights: the largest sum".into(),
+                vec![vec![big; 3], vec![0], vec![one_f], vec![one_k], vec![m; 3]],
+            ),
+            ("zero term keeps the sum".into(), vec![vec![777; 3], vec![0], vec![0], vec![one_k], vec![m; 3]]),
+            ("one LSB term".into(), vec![vec![0; 3], vec![1], vec![1], vec![1], vec![1; 3]]),
+        ]
+    }
+}
+
+impl Unit for BlendFinish {
+    fn name(&self) -> &'static str {
+        "blend_finish"
+    }
+    fn source(&self) -> &'static str {
+        "paper §4.2, §5.1: C_out = sat(C_in + round(sum)), closing a serial blend"
+    }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![("light_mode", "\"serial\"")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        serial_blend(cfg)
+    }
+    fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
+        vec![
+            p("c_in", Dir::In, c.colour_fmt(), 3, "colour in"),
+            p("acc", Dir::In, c.acc_fmt(), 3, "exact sum of f_i k_i Lc_i"),
+            p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(acc))"),
+        ]
+    }
+    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
+        vec![finish(cfg, &i[0], &i[1]).to_vec()]
+    }
+    fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        let af = cfg.acc_fmt();
+        let max = cfg.colour_max() as f64;
+        vec![(0..3).map(|ch| (i[0][ch] as f64 + af.to_f64(i[1][ch])).min(max)).collect()]
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        vec![("blend_finish", crate::rtlgen::units_v::blend_finish(cfg))]
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        let m = cfg.colour_max() as i64;
+        let af = cfg.acc_fmt();
+        let half = 1i64 << (cfg.factor_frac() + cfg.k_bits - 1);
+        vec![
+            ("largest sum on white: saturates".into(), vec![vec![m; 3], vec![af.max_raw(); 3]]),
+            ("zero sum passes c_in".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
+            ("half an LSB: the rounding rule".into(), vec![vec![0; 3], vec![half, half - 1, half + 1]]),
+        ]
+    }
+}

@@ -1,0 +1,55 @@
+//! texture_modulate: round(C·T / (2^w - 1)) per channel (paper §5.1: the texture stage between
+//! or after the blends).
+
+use super::{p, Dir, Lanes, Memories, Port, Unit};
+use crate::config::PipelineConfig;
+use crate::model::texture_modulate::texture_modulate;
+
+pub struct TextureModulate;
+
+fn rgb(v: &[i64]) -> [u32; 3] {
+    [v[0] as u32, v[1] as u32, v[2] as u32]
+}
+
+impl Unit for TextureModulate {
+    fn name(&self) -> &'static str {
+        "texture_modulate"
+    }
+    fn source(&self) -> &'static str {
+        "paper §5.1: the texture stage between the blends"
+    }
+    fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
+        vec![
+            p("c_in", Dir::In, cfg.colour_fmt(), 3, "colour in"),
+            p("t", Dir::In, cfg.colour_fmt(), 3, "texel T"),
+            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c t / max)"),
+        ]
+    }
+    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
+        vec![texture_modulate(cfg, rgb(&i[0]), rgb(&i[1])).iter().map(|&x| x as i64).collect()]
+    }
+    fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        let max = cfg.colour_max() as f64;
+        vec![(0..3).map(|k| i[0][k] as f64 * i[1][k] as f64 / max).collect()]
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        vec![("texture_modulate", crate::rtlgen::units_v::texture_modulate(cfg))]
+    }
+    fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
+        Some((cfg.colour_max() as u64 + 1).pow(2))
+    }
+    fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
+        // Every (c, t) pair on lane 0; lanes 1 and 2 see the pair mirrored and swapped.
+        let c = cfg.colour_max() as i64;
+        let (a, b) = ((i / (c as u64 + 1)) as i64, (i % (c as u64 + 1)) as i64);
+        vec![vec![a, b, c - a], vec![b, a, c - b]]
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        let m = cfg.colour_max() as i64;
+        vec![
+            ("white texel passes the colour through".into(), vec![vec![0, m / 2, m], vec![m; 3]]),
+            ("black texel gives black".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
+            ("half-way products round to nearest".into(), vec![vec![m / 2, m / 2 + 1, 1], vec![m / 2 + 1, m / 2, m]]),
+        ]
+    }
+}
