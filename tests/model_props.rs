@@ -109,8 +109,9 @@ proptest! {
         let mut rng = SplitMix64(stim_seed);
         for _ in 0..32 {
             let s = gbump::vectors::sources::random_stim(&cfg, &mut rng);
-            let a = gbump::model::shade(&cfg, &t, None, &s.state, &s.frag);
-            let b = gbump::model::shade(&other, &t, None, &s.state, &s.frag);
+            let pal = gbump::rtlgen::rom::default_palette(&cfg);
+            let a = gbump::model::shade(&cfg, &t, Some(&pal), &s.state, &s.frag);
+            let b = gbump::model::shade(&other, &t, Some(&pal), &s.state, &s.frag);
             prop_assert_eq!(a, b);
             prop_assert!(a.colour().iter().all(|&c| c <= cfg.colour_max()));
         }

@@ -54,13 +54,22 @@ impl ErrorStats {
     }
 }
 
+/// The stored normal codes of a bump texel: its own, or the power-up palette's entry (the
+/// palette the stimuli of `sources` assume).
+fn stored_codes(cfg: &PipelineConfig, bump: BumpTexel) -> [u32; 3] {
+    match bump {
+        BumpTexel::Rgb(t) => t,
+        BumpTexel::Index(i) => crate::rtlgen::rom::default_palette(cfg).0[i as usize],
+    }
+}
+
 /// Exact evaluation of the pipeline's equations on a stimulus's quantised inputs: real dot
 /// products clamped to [0,1], exact powers, unrounded blends with saturation, exact c·t/max.
 pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, s: &TopStim) -> [f64; 3] {
     let nf = cfg.normal_fmt();
     let lf = cfg.lh_fmt();
     let max = cfg.colour_max() as f64;
-    let BumpTexel::Rgb(t) = s.frag.bump else { return [0.0; 3] };
+    let t = stored_codes(cfg, s.frag.bump);
     let b: Vec<f64> = t.iter().map(|&c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c))).collect();
     let flat = t.iter().map(|&c| crate::model::bump_fetch::expand(cfg, c)).collect::<Vec<_>>() == cfg.flat_normal().to_vec();
     let bypass = cfg.skip_flat && flat;
@@ -97,6 +106,7 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, s: &TopStim) -> [f64; 3] {
 pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorStats> {
     let n = cfg.shininess;
     let table = PowerTable::build(cfg, n);
+    let palette = crate::rtlgen::rom::default_palette(cfg);
     let mut rng = SplitMix64(seed);
     let mut stims: Vec<(String, TopStim)> = corners(cfg, 2).into_iter().map(|(_, s)| ("corners".to_string(), s)).collect();
     stims.extend((0..random).map(|_| ("random".to_string(), random_stim(cfg, &mut rng))));
@@ -107,7 +117,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let lf = cfg.lh_fmt();
     let one = (1u64 << cfg.dot_bits) as f64;
     for (_, s) in &stims {
-        let BumpTexel::Rgb(t) = s.frag.bump else { continue };
+        let t = stored_codes(cfg, s.frag.bump);
         let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             for v in [ls.l, ls.h] {
@@ -162,7 +172,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     for src in ["corners", "random"] {
         let mut st = ErrorStats::new("gbump_pipeline", src);
         for (_, s) in stims.iter().filter(|(k, _)| k == src) {
-            let got = shade(cfg, &table, None, &s.state, &s.frag).colour();
+            let got = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
             let exact = exact_pipeline(cfg, n, s);
             for ch in 0..3 {
                 st.add(got[ch] as f64 - exact[ch], || format!("{:?}", s.frag));

@@ -251,14 +251,15 @@ mod tests {
     /// one, its exhaustive domain; and the exact version is never more than a few LSBs away.
     #[test]
     fn models_fit_their_ports_and_track_the_exact_equation() {
-        for cfg in [
-            PipelineConfig::default(),
-            PipelineConfig {
-                palette: true,
-                lights: 2,
-                ..Default::default()
-            },
-        ] {
+        // The fuzzer's corner configurations reach every width at its top and its bottom.
+        let mut cfgs: Vec<PipelineConfig> = crate::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
+        cfgs.push(PipelineConfig::default());
+        cfgs.push(PipelineConfig {
+            palette: true,
+            lights: 2,
+            ..Default::default()
+        });
+        for cfg in cfgs {
             let table = PowerTable::build(&cfg, cfg.shininess);
             let palette = crate::rtlgen::rom::default_palette(&cfg);
             let mem = Memories {

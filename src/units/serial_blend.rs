@@ -105,13 +105,14 @@ impl Unit for LightAccumulate {
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
         let big = ((cfg.lights as i64 - 1).max(0)) * one_f * one_k * m;
+        let some = cfg.acc_fmt().max_raw() / 3;
         vec![
-            ("first slot ignores acc_in".into(), vec![vec![12345; 3], vec![1], vec![one_f], vec![one_k], vec![m; 3]]),
+            ("first slot ignores acc_in".into(), vec![vec![some; 3], vec![1], vec![one_f], vec![one_k], vec![m; 3]]),
             (
                 "last slot of all-full lights: the largest sum".into(),
                 vec![vec![big; 3], vec![0], vec![one_f], vec![one_k], vec![m; 3]],
             ),
-            ("zero term keeps the sum".into(), vec![vec![777; 3], vec![0], vec![0], vec![one_k], vec![m; 3]]),
+            ("zero term keeps the sum".into(), vec![vec![some; 3], vec![0], vec![0], vec![one_k], vec![m; 3]]),
             ("one LSB term".into(), vec![vec![0; 3], vec![1], vec![1], vec![1], vec![1; 3]]),
         ]
     }
