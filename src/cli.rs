@@ -241,6 +241,31 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-report")]
         work: PathBuf,
     },
+    /// Lockstep co-simulation on Verilator: the generated top against the golden model through
+    /// DPI-C (libgbump), random fragments from the model's own stream, no vector file.
+    Cosim {
+        #[command(flatten)]
+        pick: ConfigPick,
+        /// Check this RTL folder (`gbump rtl --out DIR`) instead of generating the configuration's.
+        #[arg(long, value_name = "DIR")]
+        rtl: Option<PathBuf>,
+        /// Random fragments (record k is record k of `gbump vectors --source random:N --seed S`).
+        #[arg(long, default_value_t = 10_000)]
+        random: u64,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Idle in_valid for 1-3 cycles before every Nth fragment (0: never).
+        #[arg(long, default_value_t = 29)]
+        bubbles: u32,
+        #[arg(long, default_value_t = 20)]
+        max_errors: u32,
+        /// The gbump C library (default: libgbump.so beside this executable).
+        #[arg(long, value_name = "FILE")]
+        lib: Option<PathBuf>,
+        /// Work folder: generated RTL and the cached Verilator build.
+        #[arg(long, default_value = "target/gbump-cosim")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -543,6 +568,16 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
         }
+        Cmd::Cosim {
+            pick,
+            rtl,
+            random,
+            seed,
+            bubbles,
+            max_errors,
+            lib,
+            work,
+        } => cosim(&pick, rtl, random, seed, bubbles, max_errors, lib, &work)?,
         Cmd::Interface { pick } => out!("{}", crate::rtlgen::interface::interface_markdown(&pick.resolve()?)),
         Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
@@ -900,6 +935,37 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
         return Err(Error::Other(
             "fuzz: no configuration was checked\n  fix: give more --minutes".into(),
         ));
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cosim(pick: &ConfigPick, rtl: Option<PathBuf>, random: u64, seed: u64, bubbles: u32, max_errors: u32, lib: Option<PathBuf>, work: &Path) -> Result<()> {
+    let cfg = pick.resolve()?;
+    crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
+    crate::limits::check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
+    let _lock = lock_work(work)?;
+    let o = crate::cosim::CosimOptions {
+        work: std::path::absolute(work).map_err(|e| Error::io(work, e))?,
+        rtl,
+        lib,
+        count: random,
+        seed,
+        bubbles,
+        max_errors,
+        command: format!("gbump rtl {}", pick.args()),
+    };
+    let r = crate::cosim::cosim(&cfg, &o)?;
+    for l in r.log.lines().filter(|l| l.starts_with("MISMATCH") || l.starts_with("  ") || l.starts_with("stopping")) {
+        outln!("{l}");
+    }
+    outln!("{} passed, {} failed ({:.1} s)", r.passed, r.failed, r.seconds);
+    if r.failed > 0 {
+        return Err(Error::Other(format!(
+            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: gbump vectors --source random:{random} --seed {seed} --target top {} --out DIR, then gbump regress --vectors DIR",
+            r.failed,
+            pick.args()
+        )));
     }
     Ok(())
 }

@@ -84,6 +84,15 @@ pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &Rtl) -> Result<Pat
     )
 }
 
+/// Build the lockstep co-simulation testbench (`tb_cosim`): `source` holds the DPI-C package
+/// and the testbench; the executable links libgbump at `lib` (absolute, so it needs no
+/// library path at run time).
+pub fn build_cosim(root: &Path, source: &str, rtl: &Rtl, lib: &Path) -> Result<PathBuf> {
+    let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", "tb_cosim", "-LDFLAGS"]);
+    flags.push(lib.display().to_string());
+    cached_build(root, "verilator_cosim", "tb_cosim", "tb_cosim.sv", source, &flags, rtl)
+}
+
 /// Run a built executable (testbench with plusargs, or harness with options).
 pub fn run(exe: &Path, args: &[String], cwd: &Path, what: &str) -> Result<Outcome> {
     let mut cmd = Command::new(exe);
