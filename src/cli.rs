@@ -940,7 +940,16 @@ fn fuzz(minutes: f64, configs: Option<u64>, seed: u64, random: u64, work: &Path)
 }
 
 #[allow(clippy::too_many_arguments)]
-fn cosim(pick: &ConfigPick, rtl: Option<PathBuf>, random: u64, seed: u64, bubbles: u32, max_errors: u32, lib: Option<PathBuf>, work: &Path) -> Result<()> {
+fn cosim(
+    pick: &ConfigPick,
+    rtl: Option<PathBuf>,
+    random: u64,
+    seed: u64,
+    bubbles: u32,
+    max_errors: u32,
+    lib: Option<PathBuf>,
+    work: &Path,
+) -> Result<()> {
     let cfg = pick.resolve()?;
     crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
     crate::limits::check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
@@ -956,15 +965,20 @@ fn cosim(pick: &ConfigPick, rtl: Option<PathBuf>, random: u64, seed: u64, bubble
         command: format!("gbump rtl {}", pick.args()),
     };
     let r = crate::cosim::cosim(&cfg, &o)?;
-    for l in r.log.lines().filter(|l| l.starts_with("MISMATCH") || l.starts_with("  ") || l.starts_with("stopping")) {
+    // The flags that pick the configuration, for the replay hint.
+    let a = if pick.args().is_empty() { String::new() } else { pick.args() + " " };
+    for l in r
+        .log
+        .lines()
+        .filter(|l| l.starts_with("MISMATCH") || l.starts_with("  ") || l.starts_with("stopping"))
+    {
         outln!("{l}");
     }
     outln!("{} passed, {} failed ({:.1} s)", r.passed, r.failed, r.seconds);
     if r.failed > 0 {
         return Err(Error::Other(format!(
-            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: gbump vectors --source random:{random} --seed {seed} --target top {} --out DIR, then gbump regress --vectors DIR",
+            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: gbump vectors --source random:{random} --seed {seed} --target top {a}--out DIR, then gbump regress --sim verilator {a}--vectors DIR",
             r.failed,
-            pick.args()
         )));
     }
     Ok(())

@@ -179,7 +179,10 @@ pub unsafe extern "C" fn gbump_port_count(h: *const GbumpConfig) -> i32 {
 
 fn port(h: &GbumpConfig, i: i32) -> Result<&(std::ffi::CString, u32, bool)> {
     h.ports.get(usize::try_from(i).unwrap_or(usize::MAX)).ok_or_else(|| {
-        Error::Other(format!("port {i}: out of range\n  fix: use 0..{} (gbump_port_count)", h.ports.len()))
+        Error::Other(format!(
+            "port {i}: out of range\n  fix: use 0..{} (gbump_port_count)",
+            h.ports.len()
+        ))
     })
 }
 
@@ -216,7 +219,9 @@ pub unsafe extern "C" fn gbump_port_is_output(h: *const GbumpConfig, i: i32) -> 
 /// `h` is a live handle, `target` a NUL-terminated string.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_record_bits(h: *const GbumpConfig, target: *const c_char) -> i32 {
-    with("gbump_record_bits", h, -1, |h| Ok(h.target(str_arg(target, "target")?)?.layout.bits as i32))
+    with("gbump_record_bits", h, -1, |h| {
+        Ok(h.target(str_arg(target, "target")?)?.layout.bits as i32)
+    })
 }
 
 /// 32-bit words of one record of `target`: the size of every record buffer.
@@ -225,7 +230,9 @@ pub unsafe extern "C" fn gbump_record_bits(h: *const GbumpConfig, target: *const
 /// `h` is a live handle, `target` a NUL-terminated string.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_record_words(h: *const GbumpConfig, target: *const c_char) -> i32 {
-    with("gbump_record_words", h, -1, |h| Ok(h.target(str_arg(target, "target")?)?.layout.words32() as i32))
+    with("gbump_record_words", h, -1, |h| {
+        Ok(h.target(str_arg(target, "target")?)?.layout.words32() as i32)
+    })
 }
 
 /// Columns of a record of `target` (stimulus first, then expected).
@@ -234,7 +241,9 @@ pub unsafe extern "C" fn gbump_record_words(h: *const GbumpConfig, target: *cons
 /// `h` is a live handle, `target` a NUL-terminated string.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_column_count(h: *const GbumpConfig, target: *const c_char) -> i32 {
-    with("gbump_column_count", h, -1, |h| Ok(h.target(str_arg(target, "target")?)?.layout.columns.len() as i32))
+    with("gbump_column_count", h, -1, |h| {
+        Ok(h.target(str_arg(target, "target")?)?.layout.columns.len() as i32)
+    })
 }
 
 /// Name of column `i` of `target`.
@@ -249,7 +258,12 @@ pub unsafe extern "C" fn gbump_column_name(h: *const GbumpConfig, target: *const
         t.column_names
             .get(usize::try_from(i).unwrap_or(usize::MAX))
             .map(|c| c.as_ptr())
-            .ok_or_else(|| Error::Other(format!("column {i} of {}: out of range\n  fix: use 0..{n} (gbump_column_count)", t.name)))
+            .ok_or_else(|| {
+                Error::Other(format!(
+                    "column {i} of {}: out of range\n  fix: use 0..{n} (gbump_column_count)",
+                    t.name
+                ))
+            })
     })
 }
 
@@ -274,7 +288,11 @@ pub unsafe extern "C" fn gbump_column(
         let name = str_arg(column, "column")?;
         let c = t.layout.columns.iter().find(|c| c.name == name).ok_or_else(|| {
             let names: Vec<&str> = t.layout.columns.iter().map(|c| c.name.as_str()).collect();
-            Error::Other(format!("column `{name}` of {}: no such column\n  fix: one of {}", t.name, names.join(", ")))
+            Error::Other(format!(
+                "column `{name}` of {}: no such column\n  fix: one of {}",
+                t.name,
+                names.join(", ")
+            ))
         })?;
         for (p, v, arg) in [
             (lsb, c.lsb as i32, "lsb"),
@@ -282,7 +300,8 @@ pub unsafe extern "C" fn gbump_column(
             (lanes, c.lanes as i32, "lanes"),
             (expected, (c.role == Role::Expected) as i32, "expected"),
         ] {
-            *p.as_mut().ok_or_else(|| Error::Other(format!("{arg} is NULL\n  fix: pass a writable int")))? = v;
+            *p.as_mut()
+                .ok_or_else(|| Error::Other(format!("{arg} is NULL\n  fix: pass a writable int")))? = v;
         }
         Ok(0)
     })
@@ -317,9 +336,11 @@ pub unsafe extern "C" fn gbump_eval_batch(
     with("gbump_eval", h, -1, |h| {
         let t = h.target(str_arg(target, "target")?)?;
         let n = t.layout.words32();
-        let count = usize::try_from(count)
-            .map_err(|_| Error::Other(format!("count {count}: negative\n  fix: pass the number of records")))?;
-        let total = n.checked_mul(count).ok_or_else(|| Error::Other(format!("count {count}: too large")))?;
+        let count =
+            usize::try_from(count).map_err(|_| Error::Other(format!("count {count}: negative\n  fix: pass the number of records")))?;
+        let total = n
+            .checked_mul(count)
+            .ok_or_else(|| Error::Other(format!("count {count}: too large")))?;
         // Copied first, so `rec_out` may alias `rec_in`.
         let input = words(rec_in, total, "rec_in")?.to_vec();
         let out = words_mut(rec_out, total, "rec_out")?;
@@ -396,7 +417,9 @@ pub unsafe extern "C" fn gbump_power_word(h: *const GbumpConfig, i: i32) -> i64 
 /// `h` is a live handle.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_stim_new(h: *const GbumpConfig, seed: u64) -> *mut GbumpStim {
-    with("gbump_stim_new", h, std::ptr::null_mut(), |h| Ok(Box::into_raw(Box::new(GbumpStim::new(h, seed)))))
+    with("gbump_stim_new", h, std::ptr::null_mut(), |h| {
+        Ok(Box::into_raw(Box::new(GbumpStim::new(h, seed))))
+    })
 }
 
 /// Release a stream (NULL is ignored).

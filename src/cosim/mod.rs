@@ -28,10 +28,28 @@ pub struct CosimOptions {
     pub command: String,
 }
 
-/// The C library cargo builds beside the gbump executable.
+/// The C library cargo builds with the gbump executable `exe`: `libgbump.so` beside it
+/// (`cargo build`), or in `deps/` beside it (`cargo test` builds it there without copying it
+/// up); the newer of the two when both exist, so a stale copy never wins.
+pub fn library_beside(exe: &Path) -> Option<PathBuf> {
+    let name = format!("{}gbump{}", std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
+    let dir = exe.parent()?;
+    [dir.join(&name), dir.join("deps").join(&name)]
+        .into_iter()
+        .filter_map(|p| Some((std::fs::metadata(&p).ok()?.modified().ok()?, p)))
+        .max()
+        .map(|(_, p)| p)
+}
+
+/// The C library of the running gbump (see [`library_beside`]).
 pub fn default_library() -> Result<PathBuf> {
     let exe = std::env::current_exe().map_err(|e| Error::Other(format!("cannot find the running executable: {e}")))?;
-    Ok(exe.with_file_name(format!("{}gbump{}", std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX)))
+    library_beside(&exe).ok_or_else(|| {
+        Error::Other(format!(
+            "no libgbump beside {}\n  fix: cargo build --release -j 1 (it builds target/release/libgbump.so with the gbump executable), or pass --lib FILE",
+            exe.display()
+        ))
+    })
 }
 
 fn library(o: &CosimOptions) -> Result<PathBuf> {
@@ -119,8 +137,12 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     crate::sim::check_tool_path(&rtl_dir, "--rtl")?;
     let jf = interface_file(&rtl_dir)?;
     let jtext = std::fs::read_to_string(&jf).map_err(|e| Error::io(&jf, e))?;
-    let j: serde_json::Value = serde_json::from_str(&jtext)
-        .map_err(|e| Error::Other(format!("{}: not JSON ({e})\n  fix: regenerate the folder with `gbump rtl --out DIR`", jf.display())))?;
+    let j: serde_json::Value = serde_json::from_str(&jtext).map_err(|e| {
+        Error::Other(format!(
+            "{}: not JSON ({e})\n  fix: regenerate the folder with `gbump rtl --out DIR`",
+            jf.display()
+        ))
+    })?;
     let rtl = rtl_of(&rtl_dir, &j, &jf)?;
     let source = format!("{}\n{}", crate::capi::DPI_PACKAGE, tb::fill(&j, &jf, &rtl_dir)?);
     // The model reads the configuration from a file beside the build, whatever picked it.

@@ -31,11 +31,23 @@ fn field<'a>(j: &'a Value, path: &[&str], file: &Path) -> Result<&'a Value> {
 }
 
 fn num(j: &Value, path: &[&str], file: &Path) -> Result<u64> {
-    field(j, path, file)?.as_u64().ok_or_else(|| Error::Other(format!("{}: `{}` is not a count\n  fix: regenerate the folder with `gbump rtl --out DIR`", file.display(), path.join("."))))
+    field(j, path, file)?.as_u64().ok_or_else(|| {
+        Error::Other(format!(
+            "{}: `{}` is not a count\n  fix: regenerate the folder with `gbump rtl --out DIR`",
+            file.display(),
+            path.join(".")
+        ))
+    })
 }
 
 pub fn text<'a>(j: &'a Value, path: &[&str], file: &Path) -> Result<&'a str> {
-    field(j, path, file)?.as_str().ok_or_else(|| Error::Other(format!("{}: `{}` is not a string\n  fix: regenerate the folder with `gbump rtl --out DIR`", file.display(), path.join("."))))
+    field(j, path, file)?.as_str().ok_or_else(|| {
+        Error::Other(format!(
+            "{}: `{}` is not a string\n  fix: regenerate the folder with `gbump rtl --out DIR`",
+            file.display(),
+            path.join(".")
+        ))
+    })
 }
 
 fn ports(j: &Value, file: &Path) -> Result<Vec<Port>> {
@@ -79,7 +91,10 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
             push("DECLS", format!("    wire [{}:0] {n};", w - 1));
             push("OUT_XCHECK", format!(", {n}"));
             push("OUT_EQUAL", format!("{n} === {slice}"));
-            push("PRINT_OUT", format!("                        $display(\"  {n} expected %h got %h\", {slice}, {n});"));
+            push(
+                "PRINT_OUT",
+                format!("                        $display(\"  {n} expected %h got %h\", {slice}, {n});"),
+            );
         } else {
             push("DECLS", format!("    logic [{}:0] {n} = '0;", w - 1));
             push("ASSIGN", format!("            {n} = stim[lsb_{n} +: {w}];"));

@@ -150,7 +150,9 @@ impl Record {
     /// The record as 32-bit words, LSB first (the C ABI's and SystemVerilog DPI's
     /// `svBitVecVal` layout): `n` words.
     pub fn to_words32(&self, n: usize) -> Vec<u32> {
-        (0..n).map(|i| (self.words.get(i / 2).copied().unwrap_or(0) >> (32 * (i % 2))) as u32).collect()
+        (0..n)
+            .map(|i| (self.words.get(i / 2).copied().unwrap_or(0) >> (32 * (i % 2))) as u32)
+            .collect()
     }
 
     /// A record from 32-bit words, LSB first.
