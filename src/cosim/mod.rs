@@ -70,7 +70,12 @@ fn library(o: &CosimOptions) -> Result<PathBuf> {
 
 /// The interface JSON of the RTL folder `dir`: the one `gbump_pipeline_*.json` in it.
 pub fn interface_file(dir: &Path) -> Result<PathBuf> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::io(dir, e))?;
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        Error::Other(format!(
+            "--rtl {}: cannot read the folder ({e})\n  fix: give a folder written by `gbump rtl --out DIR`",
+            dir.display()
+        ))
+    })?;
     let mut found: Vec<PathBuf> = entries
         .flatten()
         .map(|e| e.path())
