@@ -48,6 +48,16 @@ impl GbumpConfig {
         for u in crate::units::UNITS.iter().filter(|u| unit_present(&cfg, u.name)) {
             targets.push(target(u.name, unit_layout(&cfg, u.name)));
         }
+        // The DPI-C package's record vectors are MAX_RECORD_BITS wide: a wider record would
+        // overrun a SystemVerilog caller's buffer.
+        if let Some(t) = targets.iter().find(|t| t.layout.bits > super::MAX_RECORD_BITS) {
+            return Err(Error::Other(format!(
+                "the {} record is {} bits, wider than the DPI-C package's {} (MAX_RECORD_BITS)\n  fix: raise MAX_RECORD_BITS in src/capi/mod.rs and regenerate the package",
+                t.name,
+                t.layout.bits,
+                super::MAX_RECORD_BITS
+            )));
+        }
         Ok(GbumpConfig {
             table: PowerTable::build(&cfg, cfg.shininess),
             targets,
@@ -138,5 +148,35 @@ impl GbumpStim {
         let s = random_stim(&self.cfg, &mut self.rng);
         // A default trace has colour 0: the expected column stays zero.
         top_record(&self.cfg, &self.layout, &s, &Default::default())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{LightMode, PowerUnitKind};
+
+    /// The widest configurations the limits allow fit the DPI-C package's records.
+    #[test]
+    fn every_valid_configuration_fits_the_package_records() {
+        let (_, lights) = crate::config::limit("lights");
+        for mode in [LightMode::Serial, LightMode::Parallel] {
+            let cfg = PipelineConfig {
+                normal_bits: crate::config::limit("normal_bits").1,
+                lh_bits: crate::config::limit("lh_bits").1,
+                dot_bits: crate::config::limit("dot_bits").1,
+                power_bits: crate::config::limit("power_bits").1,
+                colour_bits: crate::config::limit("colour_bits").1,
+                k_bits: crate::config::limit("k_bits").1,
+                power_unit: PowerUnitKind::Table,
+                lights,
+                light_mode: mode,
+                ..Default::default()
+            };
+            cfg.validate("widest").unwrap();
+            let h = GbumpConfig::new(cfg).unwrap();
+            let widest = h.targets.iter().map(|t| t.layout.bits).max().unwrap();
+            assert!(widest > super::super::MAX_RECORD_BITS / 2, "{widest}: MAX_RECORD_BITS could halve");
+        }
     }
 }
