@@ -88,7 +88,7 @@ pub fn build_harness(root: &Path, top: &str, cpp: &str, rtl: &Rtl) -> Result<Pat
 /// and the testbench; the executable links libgbump at `lib` (absolute, so it needs no
 /// library path at run time).
 pub fn build_cosim(root: &Path, source: &str, rtl: &Rtl, lib: &Path) -> Result<PathBuf> {
-    // Unoptimised C++ halves the build (8 s instead of 16 s for the default top) and still
+    // Unoptimised C++ halves the build (8 s instead of 16 s for the one-light top) and still
     // checks 25 000 fragments a second on the default top: a lockstep run is dominated by its build.
     let mut flags = strings(&[
         "--binary",
