@@ -970,7 +970,7 @@ fn cosim(
     for l in r
         .log
         .lines()
-        .filter(|l| l.starts_with("MISMATCH") || l.starts_with("  ") || l.starts_with("stopping"))
+        .filter(|l| ["cosim:", "MISMATCH", "  ", "stopping"].iter().any(|p| l.starts_with(p)))
     {
         outln!("{l}");
     }

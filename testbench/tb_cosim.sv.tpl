@@ -4,7 +4,8 @@
 // exactly what the top accepted at the accepting edge, and each out_valid is checked against
 // it, with the latency and the initiation interval the interface JSON states.
 // Plusargs: [+config=FILE] the model's configuration TOML (default: the built-in default)
-//           [+seed=S] (default 1)  [+count=N] fragments (default 1000)
+//           [+seed=HEX] (hexadecimal, so every 64-bit seed passes whole; default 1)
+//           [+count=N] fragments (default 1000)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth fragment
 //           [+max_errors=N] (default 20)
 // Stream record k is record k of `gbump vectors --source random:N --seed S`, so a failing
@@ -75,7 +76,7 @@ module tb_cosim;
     endtask
 
     initial begin
-        if (!$value$plusargs("seed=%d", seed)) seed = 1;
+        if (!$value$plusargs("seed=%h", seed)) seed = 1;
         if (!$value$plusargs("count=%d", count)) count = 1000;
         if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
         if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
@@ -88,6 +89,7 @@ module tb_cosim;
         if (gbump_initiation_interval(model) != II) fatal($sformatf("the model's initiation interval is %0d, the interface JSON's %0d", gbump_initiation_interval(model), II));
         if (gbump_power_words(model) != PT_N) fatal($sformatf("the model's power table has %0d words, the RTL's %0d", gbump_power_words(model), PT_N));
 {{COLUMNS}}
+        $display("cosim: model %0s (config %0s), seed %0d, %0d fragments", gbump_module_name(model), gbump_config_hash(model), $unsigned(seed), count);
         stream = gbump_stim_new(model, seed);
         if (stream == null) fatal(gbump_last_error());
         // Reset for exactly the documented edges.
@@ -166,7 +168,7 @@ module tb_cosim;
                 else begin
                     failed = failed + 1;
                     if (failed <= max_errors) begin
-                        $display("MISMATCH fragment %0d (stream record %0d, seed %0d):", n_out, n_out, seed);
+                        $display("MISMATCH fragment %0d (stream record %0d, seed %0d):", n_out, n_out, $unsigned(seed));
 {{PRINT}}
                     end
                     mismatch_stop();

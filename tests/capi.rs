@@ -69,17 +69,19 @@ fn hex_of(words: &[u32], digits: usize) -> String {
 
 #[test]
 fn stream_and_eval_replay_vector_files() {
+    // Above 2^63, where a signed 64-bit path would break.
+    const SEED: u64 = 18_446_744_073_709_551_557;
     // 16 400 records cross the first 16 384-record chunk of the random stream.
     let d = tempfile::tempdir().unwrap();
     let toml = c("lights = 2\nlight_mode = \"parallel\"\nshininess = 40\n");
     let h = unsafe { gbump_config_from_toml(toml.as_ptr(), c("two.toml").as_ptr()) };
     assert!(!h.is_null(), "{}", s(gbump_last_error()));
     let cfg = PipelineConfig::from_toml("two.toml", "lights = 2\nlight_mode = \"parallel\"\nshininess = 40\n").unwrap();
-    let sets = dumped(&cfg, "random:16400", 77, d.path());
+    let sets = dumped(&cfg, "random:16400", SEED, d.path());
     let top = c("top");
     let n = unsafe { gbump_record_words(h, top.as_ptr()) } as usize;
     let digits = (unsafe { gbump_record_bits(h, top.as_ptr()) } as usize).div_ceil(4);
-    let g = unsafe { gbump_stim_new(h, 77) };
+    let g = unsafe { gbump_stim_new(h, SEED) };
     let (mut stims, mut rec) = (Vec::new(), vec![0u32; n]);
     for want in &sets.iter().find(|(t, _)| t == "top").unwrap().1 {
         assert_eq!(unsafe { gbump_stim_next(g, rec.as_mut_ptr()) }, 0);

@@ -133,6 +133,9 @@ fn rtl_of(dir: &Path, j: &serde_json::Value, file: &Path) -> Result<Rtl> {
 /// `o.rtl`) against the model of `cfg`.
 pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     crate::sim::require(crate::sim::Sim::Verilator)?;
+    // What the library would refuse at the testbench's start (palette mode, a record wider
+    // than the DPI-C package's vectors) is refused before anything is built.
+    crate::capi::GbumpConfig::new(cfg.clone())?;
     let lib = library(o)?;
     let hash = cfg.hash();
     let rtl_dir = match &o.rtl {
@@ -156,7 +159,7 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib)?;
     let args = vec![
         format!("+config={}", cfg_file.display()),
-        format!("+seed={}", o.seed),
+        format!("+seed={:x}", o.seed),
         format!("+count={}", o.count),
         format!("+bubbles={}", o.bubbles),
         format!("+max_errors={}", o.max_errors),
