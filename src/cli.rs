@@ -239,6 +239,31 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-report")]
         work: PathBuf,
     },
+    /// Lockstep co-simulation on Verilator: the generated top against the golden model through
+    /// DPI-C (libgbump), random fragments from the model's own stream, no vector file.
+    Cosim {
+        #[command(flatten)]
+        pick: ConfigPick,
+        /// Check this RTL folder (`gbump rtl --out DIR`) instead of generating the configuration's.
+        #[arg(long, value_name = "DIR")]
+        rtl: Option<PathBuf>,
+        /// Random fragments (record k is record k of `gbump vectors --source random:N --seed S`).
+        #[arg(long, default_value_t = 10_000)]
+        random: u64,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Idle in_valid for 1-3 cycles before every Nth fragment (0: never).
+        #[arg(long, default_value_t = 29)]
+        bubbles: u32,
+        #[arg(long, default_value_t = 20)]
+        max_errors: u32,
+        /// The gbump C library (default: libgbump.so beside this executable).
+        #[arg(long, value_name = "FILE")]
+        lib: Option<PathBuf>,
+        /// Work folder: generated RTL and the cached Verilator build.
+        #[arg(long, default_value = "target/gbump-cosim")]
+        work: PathBuf,
+    },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
     Interface {
         #[command(flatten)]
@@ -578,6 +603,16 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
         }
+        Cmd::Cosim {
+            pick,
+            rtl,
+            random,
+            seed,
+            bubbles,
+            max_errors,
+            lib,
+            work,
+        } => cosim(&pick, rtl, random, seed, bubbles, max_errors, lib, &work)?,
         Cmd::Interface { pick } => out!("{}", crate::rtlgen::interface::interface_markdown(&pick.resolve()?)),
         Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
         Cmd::Config { scene } => {
@@ -612,4 +647,49 @@ pub fn invocation() -> String {
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cosim(
+    pick: &ConfigPick,
+    rtl: Option<PathBuf>,
+    random: u64,
+    seed: u64,
+    bubbles: u32,
+    max_errors: u32,
+    lib: Option<PathBuf>,
+    work: &Path,
+) -> Result<()> {
+    let cfg = pick.resolve()?;
+    crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
+    crate::limits::check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
+    let _lock = lock_work(work)?;
+    let o = crate::cosim::CosimOptions {
+        work: std::path::absolute(work).map_err(|e| Error::io(work, e))?,
+        rtl,
+        lib,
+        count: random,
+        seed,
+        bubbles,
+        max_errors,
+        command: format!("gbump rtl {}", pick.args()),
+    };
+    let r = crate::cosim::cosim(&cfg, &o)?;
+    // The flags that pick the configuration, for the replay hint.
+    let a = if pick.args().is_empty() { String::new() } else { pick.args() + " " };
+    for l in r
+        .log
+        .lines()
+        .filter(|l| ["cosim:", "MISMATCH", "  ", "stopping"].iter().any(|p| l.starts_with(p)))
+    {
+        outln!("{l}");
+    }
+    outln!("{} passed, {} failed ({:.1} s)", r.passed, r.failed, r.seconds);
+    if r.failed > 0 {
+        return Err(Error::Other(format!(
+            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: gbump vectors --source random:{random} --seed {seed} --target top {a}--out DIR, then gbump regress --sim verilator {a}--vectors DIR",
+            r.failed,
+        )));
+    }
+    Ok(())
 }

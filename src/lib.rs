@@ -4,8 +4,10 @@
 
 pub mod bumpmap;
 pub mod cache;
+pub mod capi;
 pub mod cli;
 pub mod config;
+pub mod cosim;
 pub mod error;
 pub mod fixed;
 pub mod interrupt;

@@ -23,6 +23,13 @@ pub struct Column {
     pub format: String,
 }
 
+impl Column {
+    /// Whether lanes hold two's-complement values (format `sW.F`), to sign-extend on reading.
+    pub fn signed(&self) -> bool {
+        self.format.starts_with('s')
+    }
+}
+
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Layout {
     pub columns: Vec<Column>,
@@ -45,6 +52,11 @@ impl Layout {
 
     pub fn bytes(&self) -> usize {
         self.bits.div_ceil(8) as usize
+    }
+
+    /// 32-bit words of a record (the C ABI's unit).
+    pub fn words32(&self) -> usize {
+        self.bits.div_ceil(32) as usize
     }
 
     pub fn hex_digits(&self) -> usize {
@@ -122,6 +134,34 @@ impl Record {
     pub fn get_lane(&self, c: &Column, i: u32) -> u64 {
         let lw = c.width / c.lanes;
         self.get(c.lsb + i * lw, lw)
+    }
+
+    /// Lane `i` of column `c` as a value: sign-extended when the column is signed.
+    pub fn lane_value(&self, c: &Column, i: u32) -> i64 {
+        let lw = c.width / c.lanes;
+        let v = self.get_lane(c, i);
+        if c.signed() && lw < 64 {
+            ((v << (64 - lw)) as i64) >> (64 - lw)
+        } else {
+            v as i64
+        }
+    }
+
+    /// The record as 32-bit words, LSB first (the C ABI's and SystemVerilog DPI's
+    /// `svBitVecVal` layout): `n` words.
+    pub fn to_words32(&self, n: usize) -> Vec<u32> {
+        (0..n)
+            .map(|i| (self.words.get(i / 2).copied().unwrap_or(0) >> (32 * (i % 2))) as u32)
+            .collect()
+    }
+
+    /// A record from 32-bit words, LSB first.
+    pub fn from_words32(w: &[u32]) -> Record {
+        let mut words = vec![0u64; w.len().div_ceil(2).max(1)];
+        for (i, &x) in w.iter().enumerate() {
+            words[i / 2] |= (x as u64) << (32 * (i % 2));
+        }
+        Record { words }
     }
 
     pub fn hex(&self, digits: usize) -> String {

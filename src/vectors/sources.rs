@@ -77,6 +77,16 @@ fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
         .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
 }
 
+/// Random stimuli per independently seeded chunk: `random:N` record `i` is draw `i % RANDOM_CHUNK`
+/// of chunk `i / RANDOM_CHUNK`'s stream, so chunks generate in parallel and the bytes depend on
+/// the seed alone (the C ABI's stimulus stream replays the same records one by one).
+pub const RANDOM_CHUNK: u64 = 1 << 14;
+
+/// The generator of chunk `chunk` of the random stream `seed`.
+pub fn chunk_rng(seed: u64, chunk: u64) -> SplitMix64 {
+    SplitMix64(seed ^ chunk.wrapping_mul(0xA076_1D64_78BD_642F))
+}
+
 /// A random stimulus: half realistic (unit vectors, mild colours), half raw codes over the
 /// whole of every format.
 pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {

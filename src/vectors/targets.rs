@@ -81,6 +81,47 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
     r
 }
 
+/// Read a top record's stimulus back (the inverse of [`top_record`]; the expected columns are
+/// ignored), so a record from any source can be evaluated by the model.
+pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
+    let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, _] = std::array::from_fn(|i| &l.columns[i]);
+    let lane3 = |c, base: u32| [0, 1, 2].map(|i| r.lane_value(c, base + i));
+    let code3 = |c| lane3(c, 0).map(|v| v as u32);
+    let mut state = BumpState::default();
+    for (j, s) in state.lights.iter_mut().enumerate().take(cfg.lights as usize) {
+        let b = 3 * j as u32;
+        s.l = lane3(c_l, b);
+        s.h = lane3(c_h, b);
+        s.colour = lane3(c_lc, b).map(|v| v as u32);
+        s.k = r.lane_value(c_k, j as u32);
+    }
+    TopStim {
+        frag: FragmentIn {
+            bump: if cfg.palette {
+                BumpTexel::Index(r.lane_value(c_texel, 0) as u8)
+            } else {
+                BumpTexel::Rgb(code3(c_texel))
+            },
+            c_src: code3(c_src),
+            texel: code3(c_t),
+            diffuse_en: r.lane_value(c_de, 0) != 0,
+            specular_en: r.lane_value(c_se, 0) != 0,
+        },
+        state,
+    }
+}
+
+/// Read a unit record's stimulus back (the inverse of [`unit_record`]'s input columns).
+pub fn unit_stim(l: &Layout, unit: &'static str, r: &Record) -> UnitStim {
+    let inputs = l
+        .columns
+        .iter()
+        .filter(|c| c.role == Role::Stimulus)
+        .map(|c| (0..c.lanes).map(|i| r.lane_value(c, i)).collect())
+        .collect();
+    UnitStim { unit, inputs }
+}
+
 /// Evaluate a unit on its inputs with the unit's own model.
 pub fn eval_unit(cfg: &PipelineConfig, mem: &Memories, s: &UnitStim) -> Vec<Vec<i64>> {
     crate::units::unit(s.unit)

@@ -4,8 +4,7 @@
 
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
-use super::rng::SplitMix64;
-use super::sources::{corners, exhaustive, exhaustive_count, random_stim, Source};
+use super::sources::{chunk_rng, corners, exhaustive, exhaustive_count, random_stim, Source, RANDOM_CHUNK};
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -311,7 +310,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             let contents = MemoryContents::new(cfg, shin);
             let mut ws = open(dir, &src.stem(), &targets, cfg, o, *n)?;
             let mem = &contents.view();
-            const CHUNK: u64 = 1 << 14;
+            const CHUNK: u64 = RANDOM_CHUNK;
             let chunks = n.div_ceil(CHUNK);
             let tl = top_layout(cfg);
             let batch = 4 * rayon::current_num_threads() as u64;
@@ -344,7 +343,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                         .into_par_iter()
                         .map(|c| {
                             let len = CHUNK.min(n - c * CHUNK);
-                            let mut rng = SplitMix64(o.seed ^ c.wrapping_mul(0xA076_1D64_78BD_642F));
+                            let mut rng = chunk_rng(o.seed, c);
                             let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
                             let (mut hex, mut bin) = (String::new(), Vec::new());
                             for s in &stims {

@@ -1,0 +1,103 @@
+//! The FFI boundary: the thread's last error, and a guard that turns both an `Err` and a
+//! panic into a status the caller can test, since unwinding into C is undefined behaviour.
+
+use crate::error::{Error, Result};
+use std::cell::RefCell;
+use std::ffi::{c_char, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+thread_local! {
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+/// Record `msg` as this thread's last error.
+pub fn set_error(msg: &str) {
+    let c = CString::new(msg.replace('\0', " ")).expect("no NUL left");
+    LAST_ERROR.with(|e| *e.borrow_mut() = c);
+}
+
+/// This thread's last error; valid until the next failing call on this thread.
+pub fn last_error() -> *const c_char {
+    LAST_ERROR.with(|e| e.borrow().as_ptr())
+}
+
+/// Run `f`; on an error or a panic record the message and return `fail`.
+pub fn guard<T>(what: &str, fail: T, f: impl FnOnce() -> Result<T>) -> T {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            set_error(&format!("{what}: {e}"));
+            fail
+        }
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| p.downcast_ref::<&str>().copied())
+                .unwrap_or("unknown panic");
+            set_error(&format!(
+                "{what}: internal error (panic: {msg})\n  fix: report it with the inputs of this call"
+            ));
+            fail
+        }
+    }
+}
+
+/// A C string argument as UTF-8; `arg` names it in errors.
+///
+/// # Safety
+/// `p` is null or points to a NUL-terminated string that outlives the call.
+pub unsafe fn str_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
+    if p.is_null() {
+        return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a NUL-terminated string")));
+    }
+    CStr::from_ptr(p)
+        .to_str()
+        .map_err(|_| Error::Other(format!("{arg} is not UTF-8\n  fix: pass UTF-8 text")))
+}
+
+/// A handle argument; `arg` names it in errors.
+///
+/// # Safety
+/// `p` is null or a live handle of type `T` from this library.
+pub unsafe fn handle<'a, T>(p: *const T, arg: &str) -> Result<&'a T> {
+    p.as_ref().ok_or_else(|| {
+        Error::Other(format!(
+            "{arg} is NULL\n  fix: check the result of the call that created it (gbump_last_error says why it failed)"
+        ))
+    })
+}
+
+/// A mutable handle argument.
+///
+/// # Safety
+/// As [`handle`], and no other reference to it is live.
+pub unsafe fn handle_mut<'a, T>(p: *mut T, arg: &str) -> Result<&'a mut T> {
+    p.as_mut().ok_or_else(|| {
+        Error::Other(format!(
+            "{arg} is NULL\n  fix: check the result of the call that created it (gbump_last_error says why it failed)"
+        ))
+    })
+}
+
+/// A record buffer argument of `n` 32-bit words.
+///
+/// # Safety
+/// `p` is null or points to at least `n` readable words.
+pub unsafe fn words<'a>(p: *const u32, n: usize, arg: &str) -> Result<&'a [u32]> {
+    if p.is_null() {
+        return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a buffer of {n} 32-bit words")));
+    }
+    Ok(std::slice::from_raw_parts(p, n))
+}
+
+/// A writable record buffer argument of `n` 32-bit words.
+///
+/// # Safety
+/// `p` is null or points to at least `n` writable words not otherwise borrowed.
+pub unsafe fn words_mut<'a>(p: *mut u32, n: usize, arg: &str) -> Result<&'a mut [u32]> {
+    if p.is_null() {
+        return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a buffer of {n} 32-bit words")));
+    }
+    Ok(std::slice::from_raw_parts_mut(p, n))
+}

@@ -1,0 +1,183 @@
+//! The two objects behind the C handles: a configuration with its power table and record
+//! layouts, and a random stimulus stream. Their methods are plain Rust (tested as such); the
+//! `extern "C"` wrappers in `ffi.rs` only check pointers and catch panics.
+
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::model::PowerTable;
+use crate::vectors::layout::{Layout, Record};
+use crate::vectors::rng::SplitMix64;
+use crate::vectors::sources::{chunk_rng, random_stim, RANDOM_CHUNK};
+use crate::vectors::targets::{eval_top, eval_unit, top_layout, top_record, top_stim, unit_layout, unit_record, unit_stim};
+use crate::vectors::writer::unit_present;
+use std::ffi::CString;
+
+/// One evaluation target: `top` or a unit the configuration has.
+pub struct Target {
+    pub name: &'static str,
+    pub layout: Layout,
+    /// Column names, kept alive for `gbump_column_name`.
+    pub column_names: Vec<CString>,
+}
+
+/// A configuration handle (`GbumpConfig *` in C, `chandle` in SystemVerilog).
+pub struct GbumpConfig {
+    pub cfg: PipelineConfig,
+    /// The power table (for the current shininess) and the palette the top powers up with.
+    pub mem: crate::units::MemoryContents,
+    pub targets: Vec<Target>,
+    pub hash: CString,
+    pub module: CString,
+    pub toml: CString,
+    /// The top's ports: name, width, whether an output.
+    pub ports: Vec<(CString, u32, bool)>,
+}
+
+fn cstring(s: String) -> CString {
+    CString::new(s).expect("generated names hold no NUL")
+}
+
+impl GbumpConfig {
+    /// A handle for `cfg` (already validated), its power table at the configured shininess.
+    pub fn new(cfg: PipelineConfig) -> Result<GbumpConfig> {
+        if cfg.palette {
+            return Err(Error::Other(
+                "the C library does not take palette configurations yet (its records and stimulus stream assume stored normals)\n  fix: run palette configurations with `gbump regress`, or set palette = false".into(),
+            ));
+        }
+        let mut targets = vec![target("top", top_layout(&cfg))];
+        for u in crate::units::UNITS.iter().filter(|u| unit_present(&cfg, u.name())) {
+            targets.push(target(u.name(), unit_layout(&cfg, u.name())));
+        }
+        // The DPI-C package's record vectors are MAX_RECORD_BITS wide: a wider record would
+        // overrun a SystemVerilog caller's buffer.
+        if let Some(t) = targets.iter().find(|t| t.layout.bits > super::MAX_RECORD_BITS) {
+            return Err(Error::Other(format!(
+                "the {} record is {} bits, wider than the DPI-C package's {} (MAX_RECORD_BITS)\n  fix: raise MAX_RECORD_BITS in src/capi/mod.rs and regenerate the package",
+                t.name,
+                t.layout.bits,
+                super::MAX_RECORD_BITS
+            )));
+        }
+        Ok(GbumpConfig {
+            mem: crate::units::MemoryContents::new(&cfg, cfg.shininess),
+            targets,
+            hash: cstring(cfg.hash()),
+            module: cstring(crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline")),
+            toml: cstring(cfg.to_toml()),
+            ports: crate::rtlgen::top::top_ports(&cfg)
+                .into_iter()
+                .map(|(n, d, w)| (cstring(n), w, d == "output"))
+                .collect(),
+            cfg,
+        })
+    }
+
+    /// The target called `name`, or an error listing the ones there are.
+    pub fn target(&self, name: &str) -> Result<&Target> {
+        self.targets.iter().find(|t| t.name == name).ok_or_else(|| {
+            let names: Vec<&str> = self.targets.iter().map(|t| t.name).collect();
+            Error::Other(format!(
+                "target `{name}`: not in this configuration\n  fix: one of {}",
+                names.join(", ")
+            ))
+        })
+    }
+
+    /// Reload the power table for shininess `n` (what the top's load port is given).
+    pub fn set_shininess(&mut self, n: i64) -> Result<()> {
+        let max = crate::limits::MAX_SHININESS as i64;
+        if !(0..=max).contains(&n) {
+            return Err(Error::Other(format!(
+                "shininess {n}: out of range\n  fix: use 0..={max} (MAX_SHININESS)"
+            )));
+        }
+        self.mem.table = PowerTable::build(&self.cfg, n as u32);
+        Ok(())
+    }
+
+    /// Evaluate one record of `t`: the stimulus columns of `input` are read, and the whole
+    /// record (stimulus and the model's expected columns) is returned, exactly as the vector
+    /// files hold it.
+    pub fn eval(&self, t: &Target, input: &Record) -> Record {
+        if t.name == "top" {
+            let s = top_stim(&self.cfg, &t.layout, input);
+            top_record(&self.cfg, &t.layout, &s, &eval_top(&self.cfg, &self.mem.view(), &s))
+        } else {
+            let s = unit_stim(&t.layout, t.name, input);
+            unit_record(&t.layout, &s, &eval_unit(&self.cfg, &self.mem.view(), &s))
+        }
+    }
+}
+
+fn target(name: &'static str, layout: Layout) -> Target {
+    Target {
+        name,
+        column_names: layout.columns.iter().map(|c| cstring(c.name.clone())).collect(),
+        layout,
+    }
+}
+
+/// The random stimulus stream of `gbump vectors --source random:N --seed S`, record by record
+/// (`GbumpStim *` in C, `chandle` in SystemVerilog).
+pub struct GbumpStim {
+    pub cfg: PipelineConfig,
+    pub layout: Layout,
+    pub seed: u64,
+    /// Index of the next record.
+    pub index: u64,
+    rng: SplitMix64,
+}
+
+impl GbumpStim {
+    pub fn new(h: &GbumpConfig, seed: u64) -> GbumpStim {
+        GbumpStim {
+            cfg: h.cfg.clone(),
+            layout: top_layout(&h.cfg),
+            seed,
+            index: 0,
+            rng: chunk_rng(seed, 0),
+        }
+    }
+
+    /// The next record's stimulus (expected columns zero): record `index` of `random:N`.
+    pub fn next_record(&mut self) -> Record {
+        if self.index > 0 && self.index.is_multiple_of(RANDOM_CHUNK) {
+            self.rng = chunk_rng(self.seed, self.index / RANDOM_CHUNK);
+        }
+        self.index += 1;
+        let s = random_stim(&self.cfg, &mut self.rng);
+        // A default trace has colour 0: the expected column stays zero.
+        top_record(&self.cfg, &self.layout, &s, &Default::default())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{LightMode, PowerUnitKind};
+
+    /// The widest configurations the limits allow fit the DPI-C package's records.
+    #[test]
+    fn every_valid_configuration_fits_the_package_records() {
+        let (_, lights) = crate::config::limit("lights");
+        for mode in [LightMode::Serial, LightMode::Parallel] {
+            let cfg = PipelineConfig {
+                normal_bits: crate::config::limit("normal_bits").1,
+                lh_bits: crate::config::limit("lh_bits").1,
+                dot_bits: crate::config::limit("dot_bits").1,
+                power_bits: crate::config::limit("power_bits").1,
+                colour_bits: crate::config::limit("colour_bits").1,
+                k_bits: crate::config::limit("k_bits").1,
+                power_unit: PowerUnitKind::Table,
+                lights,
+                light_mode: mode,
+                ..Default::default()
+            };
+            cfg.validate("widest").unwrap();
+            let h = GbumpConfig::new(cfg).unwrap();
+            let widest = h.targets.iter().map(|t| t.layout.bits).max().unwrap();
+            assert!(widest > super::super::MAX_RECORD_BITS / 2, "{widest}: MAX_RECORD_BITS could halve");
+        }
+    }
+}

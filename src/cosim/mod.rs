@@ -1,0 +1,172 @@
+//! Lockstep co-simulation: the generated top under Verilator against the golden model
+//! itself, called through DPI-C (libgbump, `src/capi`), with no vector file. The testbench
+//! draws fragments from the model's random stream, the model evaluates each one as the top
+//! accepts it, and every output is compared when its `out_valid` arrives.
+
+pub mod tb;
+
+use crate::config::PipelineConfig;
+use crate::error::{Error, Result};
+use crate::sim::rtl_files::Rtl;
+use crate::sim::Outcome;
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug)]
+pub struct CosimOptions {
+    /// Work folder (absolute): generated RTL, the configuration file, the cached build.
+    pub work: PathBuf,
+    /// An existing RTL folder (`gbump rtl --out DIR`) to check instead of generating one.
+    pub rtl: Option<PathBuf>,
+    /// libgbump (default: `libgbump.so` beside the running gbump executable).
+    pub lib: Option<PathBuf>,
+    pub count: u64,
+    pub seed: u64,
+    /// Idle `in_valid` for 1-3 cycles before every Nth fragment (0: never).
+    pub bubbles: u32,
+    pub max_errors: u32,
+    /// The command line, for the generated RTL's headers.
+    pub command: String,
+}
+
+/// The C library cargo builds with the gbump executable `exe`: `libgbump.so` beside it
+/// (`cargo build`), or in `deps/` beside it (`cargo test` builds it there without copying it
+/// up); the newer of the two when both exist, so a stale copy never wins.
+pub fn library_beside(exe: &Path) -> Option<PathBuf> {
+    let name = format!("{}gbump{}", std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
+    let dir = exe.parent()?;
+    [dir.join(&name), dir.join("deps").join(&name)]
+        .into_iter()
+        .filter_map(|p| Some((std::fs::metadata(&p).ok()?.modified().ok()?, p)))
+        .max()
+        .map(|(_, p)| p)
+}
+
+/// The C library of the running gbump (see [`library_beside`]).
+pub fn default_library() -> Result<PathBuf> {
+    let exe = std::env::current_exe().map_err(|e| Error::Other(format!("cannot find the running executable: {e}")))?;
+    library_beside(&exe).ok_or_else(|| {
+        Error::Other(format!(
+            "no libgbump beside {}\n  fix: cargo build --release -j 1 (it builds target/release/libgbump.so with the gbump executable), or pass --lib FILE",
+            exe.display()
+        ))
+    })
+}
+
+fn library(o: &CosimOptions) -> Result<PathBuf> {
+    let lib = match &o.lib {
+        Some(l) => l.clone(),
+        None => default_library()?,
+    };
+    let lib = std::path::absolute(&lib).map_err(|e| Error::io(&lib, e))?;
+    if !lib.is_file() {
+        return Err(Error::Other(format!(
+            "{}: the gbump C library is not there\n  fix: cargo build --release -j 1 (it builds libgbump.so beside the gbump executable), or pass --lib FILE",
+            lib.display()
+        )));
+    }
+    crate::sim::check_tool_path(&lib, "--lib")?;
+    Ok(lib)
+}
+
+/// The interface JSON of the RTL folder `dir`: the one `gbump_pipeline_*.json` in it.
+pub fn interface_file(dir: &Path) -> Result<PathBuf> {
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        Error::Other(format!(
+            "--rtl {}: cannot read the folder ({e})\n  fix: give a folder written by `gbump rtl --out DIR`",
+            dir.display()
+        ))
+    })?;
+    let mut found: Vec<PathBuf> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            let n = p.file_name().map_or(String::new(), |n| n.to_string_lossy().into_owned());
+            n.starts_with("gbump_pipeline_") && n.ends_with(".json")
+        })
+        .collect();
+    found.sort();
+    match found.len() {
+        1 => Ok(found.remove(0)),
+        0 => Err(Error::Other(format!(
+            "--rtl {}: no interface JSON (gbump_pipeline_*.json)\n  fix: give a folder written by `gbump rtl --out DIR`",
+            dir.display()
+        ))),
+        _ => Err(Error::Other(format!(
+            "--rtl {}: {} interface JSON files ({}), so which top to check is unclear\n  fix: give a folder holding one configuration's RTL",
+            dir.display(),
+            found.len(),
+            found.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+        ))),
+    }
+}
+
+/// The RTL a simulator reads, from the interface JSON's file names (the filelist and the
+/// waivers), all by absolute path.
+fn rtl_of(dir: &Path, j: &serde_json::Value, file: &Path) -> Result<Rtl> {
+    let list = dir.join(tb::text(j, &["files", "filelist"], file)?);
+    let text = std::fs::read_to_string(&list).map_err(|e| Error::io(&list, e))?;
+    let sources: Vec<PathBuf> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("//"))
+        .map(|l| dir.join(l))
+        .collect();
+    let waivers = vec![dir.join(tb::text(j, &["files", "waivers"], file)?)];
+    for f in sources.iter().chain(&waivers) {
+        if !f.is_file() {
+            return Err(Error::Other(format!(
+                "{}: listed in {} but missing\n  fix: regenerate the folder with `gbump rtl --out DIR`",
+                f.display(),
+                list.display()
+            )));
+        }
+    }
+    Ok(Rtl {
+        init_file: dir.join(tb::text(j, &["power_table", "init_file"], file)?),
+        dir: dir.to_path_buf(),
+        sources,
+        waivers,
+        // The lockstep bench instantiates the top with INIT_FILE only: palette tops are not
+        // co-simulated yet (their palette would not load from the work folder).
+        memory_inits: Vec::new(),
+    })
+}
+
+/// Run `o.count` fragments of seed `o.seed` through the RTL (generated for `cfg`, or
+/// `o.rtl`) against the model of `cfg`.
+pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
+    crate::sim::require(crate::sim::Sim::Verilator)?;
+    // What the library would refuse at the testbench's start (palette mode, a record wider
+    // than the DPI-C package's vectors) is refused before anything is built.
+    crate::capi::GbumpConfig::new(cfg.clone())?;
+    let lib = library(o)?;
+    let hash = cfg.hash();
+    let rtl_dir = match &o.rtl {
+        Some(d) => std::path::absolute(d).map_err(|e| Error::io(d, e))?,
+        None => crate::sim::rtl_files::write_rtl(cfg, &o.work.join(format!("cosim_rtl_{hash}")), &o.command)?.dir,
+    };
+    crate::sim::check_tool_path(&rtl_dir, "--rtl")?;
+    let jf = interface_file(&rtl_dir)?;
+    let jtext = std::fs::read_to_string(&jf).map_err(|e| Error::io(&jf, e))?;
+    let j: serde_json::Value = serde_json::from_str(&jtext).map_err(|e| {
+        Error::Other(format!(
+            "{}: not JSON ({e})\n  fix: regenerate the folder with `gbump rtl --out DIR`",
+            jf.display()
+        ))
+    })?;
+    let rtl = rtl_of(&rtl_dir, &j, &jf)?;
+    let source = format!("{}\n{}", crate::capi::DPI_PACKAGE, tb::fill(&j, &jf, &rtl_dir)?);
+    // The model reads the configuration from a file beside the build, whatever picked it.
+    let cfg_file = o.work.join(format!("cosim_config_{hash}.toml"));
+    crate::render::output::write_atomic(&cfg_file, cfg.to_toml().as_bytes())?;
+    let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib)?;
+    let args = vec![
+        format!("+config={}", cfg_file.display()),
+        format!("+seed={:x}", o.seed),
+        format!("+count={}", o.count),
+        format!("+bubbles={}", o.bubbles),
+        format!("+max_errors={}", o.max_errors),
+    ];
+    use crate::sim::Simulator;
+    crate::sim::Verilator.run(&exe, &args, None, &o.work, "cosim (verilator)")
+}

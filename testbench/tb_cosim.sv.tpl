@@ -1,0 +1,182 @@
+// Lockstep co-simulation testbench template (gbump fills the double-braced fields from the
+// RTL folder's interface JSON). No vector file: every fragment comes from the golden model's
+// own random stream (libgbump through DPI-C, package gbump_dpi_pkg), the model evaluates
+// exactly what the top accepted at the accepting edge, and each out_valid is checked against
+// it, with the latency and the initiation interval the interface JSON states.
+// Plusargs: [+config=FILE] the model's configuration TOML (default: the built-in default)
+//           [+seed=HEX] (hexadecimal, so every 64-bit seed passes whole; default 1)
+//           [+count=N] fragments (default 1000)
+//           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth fragment
+//           [+max_errors=N] (default 20)
+// Stream record k is record k of `gbump vectors --source random:N --seed S`, so a failing
+// fragment replays from a vector file. Ends with "N passed, N failed".
+`timescale 1ns / 1ps
+`default_nettype none
+module tb_cosim;
+    import gbump_dpi_pkg::*;
+    parameter INIT_FILE = {{INIT_FILE}};
+    localparam int LAT = {{LATENCY}};
+    localparam int II = {{II}};
+    localparam int PT_N = {{PT_N}};
+    localparam int FLIGHT = 64;
+    logic clk = 1'b0;
+    logic rst = 1'b1;
+    logic pt_we = 1'b0;
+    logic [{{PT_AW}}-1:0] pt_waddr = '0;
+    logic [{{PT_W}}-1:0] pt_wdata = '0;
+    logic in_valid = 1'b0;
+    wire in_ready;
+    wire out_valid;
+{{DECLS}}
+    {{TOP}} #(.INIT_FILE(INIT_FILE)) dut (
+        .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
+        .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
+{{CONNECT}}
+    );
+    always #5 clk = ~clk;
+
+    chandle model, stream;
+    string cfg_file;
+    longint seed;
+    int count, bubbles, max_errors, gap, i, cycles;
+    int lsb, width, lanes, expected;
+    longint pw;
+    gbump_record_t stim, acc;
+    // Per fragment in flight: the record the top accepted (the model's expected columns
+    // filled at the accepting edge) and the edge of its accept.
+    gbump_record_t flight [0:FLIGHT-1];
+    int acc_cyc [0:FLIGHT-1];
+    int cyc = 0, last_acc = -1, n_in = 0, n_out = 0, passed = 0, failed = 0, timing_errors = 0;
+{{LSB_DECLS}}
+
+    task automatic finish_run;
+        $display("%0d passed, %0d failed", passed, failed);
+        if (passed + failed == 0) $display("FATAL: no fragments were checked");
+        $finish;
+    endtask
+
+    task automatic fatal(input string msg);
+        $display("FATAL: %0s", msg);
+        $finish;
+    endtask
+
+    // The model's column `name` of the top record must have the port's width.
+    task automatic column(input string name, input int port_width, output int at);
+        if (gbump_column(model, "top", name, lsb, width, lanes, expected) != 0) fatal(gbump_last_error());
+        if (width != port_width)
+            fatal($sformatf("column %0s: the model's record has %0d bits, the RTL's port %0d: the RTL is of another configuration (interface JSON hash {{HASH}}, model %0s)", name, width, port_width, gbump_config_hash(model)));
+        at = lsb;
+    endtask
+
+    task automatic mismatch_stop;
+        if (failed >= max_errors) begin
+            $display("stopping after %0d mismatches", failed);
+            finish_run();
+        end
+    endtask
+
+    initial begin
+        if (!$value$plusargs("seed=%h", seed)) seed = 1;
+        if (!$value$plusargs("count=%d", count)) count = 1000;
+        if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
+        if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
+        if (gbump_abi_version() != GBUMP_ABI_VERSION)
+            fatal($sformatf("libgbump ABI %0d, package %0d: rebuild the testbench against this library", gbump_abi_version(), GBUMP_ABI_VERSION));
+        if ($value$plusargs("config=%s", cfg_file)) model = gbump_config_from_file(cfg_file);
+        else model = gbump_config_default();
+        if (model == null) fatal(gbump_last_error());
+        if (gbump_latency(model) != LAT) fatal($sformatf("the model's latency is %0d, the interface JSON's %0d: the RTL is of another configuration", gbump_latency(model), LAT));
+        if (gbump_initiation_interval(model) != II) fatal($sformatf("the model's initiation interval is %0d, the interface JSON's %0d", gbump_initiation_interval(model), II));
+        if (gbump_power_words(model) != PT_N) fatal($sformatf("the model's power table has %0d words, the RTL's %0d", gbump_power_words(model), PT_N));
+{{COLUMNS}}
+        $display("cosim: model %0s (config %0s), seed %0d, %0d fragments", gbump_module_name(model), gbump_config_hash(model), $unsigned(seed), count);
+        stream = gbump_stim_new(model, seed);
+        if (stream == null) fatal(gbump_last_error());
+        // Reset for exactly the documented edges.
+        repeat (gbump_reset_cycles(model)) @(negedge clk);
+        rst = 1'b0;
+        // The model's table through the load port, word by word.
+        for (i = 0; i < PT_N; i = i + 1) begin
+            pt_we = 1'b1;
+            pt_waddr = i[{{PT_AW}}-1:0];
+            pw = gbump_power_word(model, i);
+            pt_wdata = pw[{{PT_W}}-1:0];
+            @(negedge clk);
+        end
+        pt_we = 1'b0;
+        while (n_in < count) begin
+            if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin
+                in_valid = 1'b0;
+                for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
+            end
+            if (gbump_stim_next(stream, stim) != 0) fatal(gbump_last_error());
+            in_valid = 1'b1;
+{{ASSIGN}}
+            while (!in_ready) @(negedge clk);
+            @(negedge clk);
+        end
+        in_valid = 1'b0;
+        cycles = 0;
+        while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
+        if (n_out != n_in) begin
+            $display("MISMATCH: %0d fragments went in but %0d came out", n_in, n_out);
+            failed = failed + (n_in - n_out);
+        end
+        gbump_stim_free(stream);
+        gbump_config_free(model);
+        finish_run();
+    end
+
+    task automatic timing_error(input int got, input int want, input string what);
+        failed = failed + 1;
+        timing_errors = timing_errors + 1;
+        if (timing_errors <= max_errors)
+            $display("MISMATCH timing: %0s: %0d rising edges, the interface states %0d (fragment %0d, edge %0d)", what, got, want, n_out, cyc);
+        mismatch_stop();
+    endtask
+
+    // No output may be X or Z after reset.
+    always @(negedge clk) begin
+        if (!rst && ((^{out_valid, in_ready{{OUT_XCHECK}}}) === 1'bx)) begin
+            failed = failed + 1;
+            if (failed <= max_errors) $display("MISMATCH: X on outputs after reset at %0t", $time);
+            mismatch_stop();
+        end
+    end
+
+    // Sampled at the rising edge, before the design's registers take their new values: the
+    // model evaluates the ports as the top takes them.
+    always @(posedge clk) begin
+        if (!rst && in_valid && in_ready) begin
+            if (last_acc >= 0 && cyc - last_acc < II) timing_error(cyc - last_acc, II, "accepts closer than the initiation interval");
+            if (n_in - n_out >= FLIGHT) fatal($sformatf("more than %0d fragments in flight", FLIGHT));
+            acc = '0;
+{{PACK}}
+            if (gbump_eval(model, "top", acc, flight[n_in % FLIGHT]) != 0) fatal(gbump_last_error());
+            acc_cyc[n_in % FLIGHT] = cyc;
+            last_acc = cyc;
+            n_in = n_in + 1;
+        end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II)) begin
+            timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
+        end
+        if (!rst && out_valid) begin
+            if (n_out >= n_in) timing_error(0, LAT, "out_valid with no fragment in flight");
+            else begin
+                if (cyc - acc_cyc[n_out % FLIGHT] != LAT) timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency");
+                acc = flight[n_out % FLIGHT];
+                if ({{OUT_EQUAL}}) passed = passed + 1;
+                else begin
+                    failed = failed + 1;
+                    if (failed <= max_errors) begin
+                        $display("MISMATCH fragment %0d (stream record %0d, seed %0d):", n_out, n_out, $unsigned(seed));
+{{PRINT}}
+                    end
+                    mismatch_stop();
+                end
+                n_out = n_out + 1;
+            end
+        end
+        cyc = cyc + 1;
+    end
+endmodule
+`default_nettype wire

@@ -1,0 +1,271 @@
+//! The C library (src/capi): the checked-in header and DPI-C package are what cbindgen and
+//! the generator make of the current source; the functions, called as C would call them,
+//! replay `gbump vectors` bit for bit (random stream, top and unit records); errors and
+//! panics come back as a status and a message, never an unwind; a C program built against
+//! `include/gbump.h` and `libgbump.so` runs.
+
+#[path = "../examples/capi_header.rs"]
+#[allow(dead_code)]
+mod capi_header;
+
+use gbump::capi::ffi::*;
+use gbump::vectors::layout::Record;
+use gbump::vectors::{dump, DumpOptions, Source};
+use gbump::PipelineConfig;
+use std::ffi::{CStr, CString};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn s(p: *const std::ffi::c_char) -> String {
+    assert!(!p.is_null());
+    unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
+}
+
+fn c(t: &str) -> CString {
+    CString::new(t).unwrap()
+}
+
+#[test]
+fn header_and_dpi_package_are_current() {
+    for (name, text) in capi_header::generate(&root()) {
+        let have = std::fs::read_to_string(root().join("include").join(&name)).unwrap_or_default();
+        assert!(
+            have == text,
+            "include/{name} is stale: src/capi changed since it was generated\n  fix: {}",
+            capi_header::REGENERATE
+        );
+    }
+}
+
+/// Every set of a dump: its target and its records (hex lines).
+fn dumped(cfg: &PipelineConfig, source: &str, seed: u64, dir: &Path) -> Vec<(String, Vec<String>)> {
+    let o = DumpOptions {
+        text: true,
+        binary: false,
+        seed,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let targets = gbump::vectors::targets::resolve(cfg, &["all".to_string()]).unwrap();
+    let sets = dump(cfg, &Source::parse(source).unwrap(), &targets, dir, &o).unwrap();
+    sets.iter()
+        .map(|set| {
+            let hex = set.manifest.with_extension("hex");
+            (
+                set.target.clone(),
+                std::fs::read_to_string(hex).unwrap().lines().map(str::to_string).collect(),
+            )
+        })
+        .collect()
+}
+
+fn hex_of(words: &[u32], digits: usize) -> String {
+    Record::from_words32(words).hex(digits)
+}
+
+#[test]
+fn stream_and_eval_replay_vector_files() {
+    // Above 2^63, where a signed 64-bit path would break.
+    const SEED: u64 = 18_446_744_073_709_551_557;
+    // 16 400 records cross the first 16 384-record chunk of the random stream.
+    let d = tempfile::tempdir().unwrap();
+    let toml = c("lights = 2\nlight_mode = \"parallel\"\nshininess = 40\n");
+    let h = unsafe { gbump_config_from_toml(toml.as_ptr(), c("two.toml").as_ptr()) };
+    assert!(!h.is_null(), "{}", s(gbump_last_error()));
+    let cfg = PipelineConfig::from_toml("two.toml", "lights = 2\nlight_mode = \"parallel\"\nshininess = 40\n").unwrap();
+    let sets = dumped(&cfg, "random:16400", SEED, d.path());
+    let top = c("top");
+    let n = unsafe { gbump_record_words(h, top.as_ptr()) } as usize;
+    let digits = (unsafe { gbump_record_bits(h, top.as_ptr()) } as usize).div_ceil(4);
+    let g = unsafe { gbump_stim_new(h, SEED) };
+    let (mut stims, mut rec) = (Vec::new(), vec![0u32; n]);
+    for want in &sets.iter().find(|(t, _)| t == "top").unwrap().1 {
+        assert_eq!(unsafe { gbump_stim_next(g, rec.as_mut_ptr()) }, 0);
+        stims.extend_from_slice(&rec);
+        let mut out = vec![0u32; n];
+        assert_eq!(unsafe { gbump_eval(h, top.as_ptr(), rec.as_ptr(), out.as_mut_ptr()) }, 0);
+        assert_eq!(&hex_of(&out, digits), want, "record {}", unsafe { gbump_stim_index(g) } - 1);
+    }
+    // A batch (in place) equals the single calls.
+    let mut batch = stims.clone();
+    assert_eq!(
+        unsafe { gbump_eval_batch(h, top.as_ptr(), batch.as_ptr(), batch.as_mut_ptr(), (stims.len() / n) as i64) },
+        0
+    );
+    let top_lines = &sets.iter().find(|(t, _)| t == "top").unwrap().1;
+    for (i, w) in batch.chunks(n).enumerate() {
+        assert_eq!(&hex_of(w, digits), &top_lines[i]);
+    }
+    // Every unit record of the dump evaluates to itself from its stimulus columns.
+    for (target, lines) in sets.iter().filter(|(t, _)| t != "top") {
+        let t = c(target);
+        let n = unsafe { gbump_record_words(h, t.as_ptr()) } as usize;
+        let digits = (unsafe { gbump_record_bits(h, t.as_ptr()) } as usize).div_ceil(4);
+        for line in lines.iter().take(500) {
+            let r = Record::from_hex(line).unwrap().to_words32(n);
+            let mut out = vec![0u32; n];
+            assert_eq!(
+                unsafe { gbump_eval(h, t.as_ptr(), r.as_ptr(), out.as_mut_ptr()) },
+                0,
+                "{}",
+                s(gbump_last_error())
+            );
+            assert_eq!(&hex_of(&out, digits), line, "{target}");
+        }
+    }
+    // The power table is the set's table file, word for word.
+    let table = std::fs::read_to_string(d.path().join("random16400_top_power_table.hex")).unwrap();
+    let words: Vec<i64> = table
+        .lines()
+        .filter(|l| !l.starts_with("//") && !l.trim().is_empty())
+        .map(|l| i64::from_str_radix(l.trim(), 16).unwrap())
+        .collect();
+    assert_eq!(unsafe { gbump_power_words(h) } as usize, words.len());
+    for (i, w) in words.iter().enumerate() {
+        assert_eq!(unsafe { gbump_power_word(h, i as i32) }, *w);
+    }
+    unsafe {
+        gbump_stim_free(g);
+        gbump_config_free(h);
+    }
+}
+
+#[test]
+fn queries_agree_with_the_interface() {
+    let h = gbump_config_default();
+    let cfg = PipelineConfig::default();
+    unsafe {
+        assert_eq!(s(gbump_config_hash(h)), cfg.hash());
+        assert_eq!(s(gbump_module_name(h)), gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"));
+        assert_eq!(gbump_latency(h), 10);
+        assert_eq!(gbump_initiation_interval(h), 4);
+        assert_eq!(gbump_lights(h), 4);
+        assert_eq!(gbump_abi_version(), gbump::capi::ABI_VERSION);
+        assert!(s(gbump_version()).starts_with("gbump "));
+        let j: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(&cfg, "x")).unwrap();
+        let ports = j["ports"].as_array().unwrap();
+        assert_eq!(gbump_port_count(h) as usize, ports.len());
+        for (i, p) in ports.iter().enumerate() {
+            assert_eq!(s(gbump_port_name(h, i as i32)), p["name"].as_str().unwrap());
+            assert_eq!(gbump_port_width(h, i as i32) as u64, p["width"].as_u64().unwrap());
+            assert_eq!(gbump_port_is_output(h, i as i32) == 1, p["dir"] == "output");
+        }
+        let (mut lsb, mut w, mut lanes, mut exp) = (0, 0, 0, 0);
+        assert_eq!(
+            gbump_column(h, c("top").as_ptr(), c("out_c").as_ptr(), &mut lsb, &mut w, &mut lanes, &mut exp),
+            0
+        );
+        assert_eq!((lsb, w, lanes, exp), (590, 24, 3, 1));
+        assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_texel");
+        assert_eq!(gbump_unit_latency(h, c("dot_clamp").as_ptr()), 1);
+        assert_eq!(gbump_set_shininess(h, 3), 0);
+        assert_eq!(gbump_shininess(h), 3);
+        gbump_config_free(h);
+    }
+}
+
+#[test]
+fn errors_come_back_as_status_and_message() {
+    unsafe {
+        let bad = c("lights = 9\n");
+        assert!(gbump_config_from_toml(bad.as_ptr(), c("mine.toml").as_ptr()).is_null());
+        let e = s(gbump_last_error());
+        assert!(e.contains("mine.toml") && e.contains("lights") && e.contains("fix:"), "{e}");
+        let syntax = c("lights = = 2\n");
+        assert!(gbump_config_from_toml(syntax.as_ptr(), c("syn.toml").as_ptr()).is_null());
+        assert!(s(gbump_last_error()).contains("syn.toml:1:"), "{}", s(gbump_last_error()));
+        assert!(gbump_config_from_file(c("/no/such/gbump.toml").as_ptr()).is_null());
+        assert!(s(gbump_last_error()).contains("/no/such/gbump.toml"));
+        assert!(gbump_config_from_toml(c("palette = true\n").as_ptr(), c("p.toml").as_ptr()).is_null());
+        assert!(s(gbump_last_error()).contains("palette"));
+        assert_eq!(gbump_latency(std::ptr::null()), -1);
+        assert!(s(gbump_last_error()).contains("NULL"));
+        let h = gbump_config_default();
+        let mut r = vec![0u32; 64];
+        assert_eq!(gbump_eval(h, c("nonsense").as_ptr(), r.as_ptr(), r.as_mut_ptr()), -1);
+        assert!(s(gbump_last_error()).contains("fix: one of top"), "{}", s(gbump_last_error()));
+        assert_eq!(gbump_eval(h, c("top").as_ptr(), std::ptr::null(), r.as_mut_ptr()), -1);
+        assert_eq!(gbump_power_word(h, 256), -1);
+        assert_eq!(gbump_set_shininess(h, 5000), -1);
+        assert!(s(gbump_last_error()).contains("MAX_SHININESS"));
+        // A power-table index beyond the table panics inside the model: caught, reported.
+        let pt = c("power_table");
+        let mut w = vec![0u32; gbump_record_words(h, pt.as_ptr()) as usize];
+        w[0] = 0x1ff;
+        assert_eq!(gbump_eval(h, pt.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr()), -1);
+        assert!(s(gbump_last_error()).contains("internal error"), "{}", s(gbump_last_error()));
+        gbump_config_free(h);
+        gbump_config_free(std::ptr::null_mut());
+    }
+}
+
+/// A C program compiled against the header and linked with the library, as a user would.
+#[test]
+fn c_program_links_and_runs() {
+    let lib = gbump::cosim::library_beside(Path::new(env!("CARGO_BIN_EXE_gbump"))).expect("cargo builds libgbump.so with the gbump binary");
+    let d = tempfile::tempdir().unwrap();
+    let src = d.path().join("main.c");
+    std::fs::write(
+        &src,
+        r#"#include <stdio.h>
+#include <string.h>
+#include "gbump.h"
+int main(void) {
+    if (gbump_abi_version() != GBUMP_ABI_VERSION) return 2;
+    GbumpConfig *h = gbump_config_default();
+    if (!h) { fprintf(stderr, "%s\n", gbump_last_error()); return 3; }
+    int n = gbump_record_words(h, "top"), lsb, w, lanes, exp;
+    if (gbump_column(h, "top", "out_c", &lsb, &w, &lanes, &exp) != 0) return 4;
+    GbumpStim *g = gbump_stim_new(h, 1);
+    uint32_t rec[64];
+    unsigned long sum = 0;
+    for (int i = 0; i < 1000; i++) {
+        if (gbump_stim_next(g, rec) || gbump_eval(h, "top", rec, rec)) return 5;
+        uint64_t lo = rec[lsb / 32] | ((uint64_t)rec[lsb / 32 + 1] << 32);
+        sum += (lo >> (lsb % 32)) & ((1u << w) - 1);
+    }
+    printf("%d words, out_c at %d+%d, checksum %lu\n", n, lsb, w, sum);
+    gbump_stim_free(g);
+    gbump_config_free(h);
+    return 0;
+}
+"#,
+    )
+    .unwrap();
+    let exe = d.path().join("main");
+    let out = std::process::Command::new("cc")
+        .args(["-std=c99", "-Wall", "-Werror", "-I"])
+        .arg(root().join("include"))
+        .arg(&src)
+        .arg(&lib)
+        .arg("-o")
+        .arg(&exe)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    let run = std::process::Command::new(&exe).output().unwrap();
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{text}{}", String::from_utf8_lossy(&run.stderr));
+    // The same checksum from the Rust side of the same stream.
+    let h = gbump_config_default();
+    let g = unsafe { gbump_stim_new(h, 1) };
+    let mut sum = 0u64;
+    let mut rec = [0u32; 64];
+    for _ in 0..1000 {
+        unsafe {
+            gbump_stim_next(g, rec.as_mut_ptr());
+            gbump_eval(h, c("top").as_ptr(), rec.as_ptr(), rec.as_mut_ptr());
+        }
+        let r = Record::from_words32(&rec);
+        sum += r.get(590, 24);
+    }
+    unsafe {
+        gbump_stim_free(g);
+        gbump_config_free(h);
+    }
+    assert_eq!(text.trim(), format!("20 words, out_c at 590+24, checksum {sum}"));
+}
