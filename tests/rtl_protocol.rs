@@ -241,9 +241,9 @@ fn reset_takes_no_fragment_and_keeps_the_power_table() {
     let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
-    let good = "v1 <= rst ? 1'b0 : in_valid;";
+    let good = "in_valid_d1 <= rst ? 1'd0 : in_valid;";
     assert!(text.contains(good), "the top changed: update the mutant");
-    std::fs::write(top, text.replace(good, "v1 <= in_valid;")).unwrap();
+    std::fs::write(top, text.replace(good, "in_valid_d1 <= in_valid;")).unwrap();
     let (hex, _) = corner_vectors_for(&cfg, &w.join("vectors"), cfg.shininess);
     let bad = icarus_top(&w, &rtl, &tb_top(&cfg, &rtl), &hex, &["+valid_during_reset"], &w).unwrap();
     assert!(bad.failed > 0, "a fragment taken during reset went unnoticed:\n{}", bad.log);
