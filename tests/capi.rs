@@ -141,8 +141,8 @@ fn queries_agree_with_the_interface() {
     unsafe {
         assert_eq!(s(gbump_config_hash(h)), cfg.hash());
         assert_eq!(s(gbump_module_name(h)), gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"));
-        assert_eq!(gbump_latency(h), 10);
-        assert_eq!(gbump_initiation_interval(h), 4);
+        assert_eq!(gbump_latency(h) as u32, gbump::rtlgen::top::latency(&cfg));
+        assert_eq!(gbump_initiation_interval(h) as u32, cfg.initiation_interval());
         assert_eq!(gbump_lights(h), 4);
         assert_eq!(gbump_abi_version(), gbump::capi::ABI_VERSION);
         assert!(s(gbump_version()).starts_with("gbump "));
