@@ -430,13 +430,26 @@ fn the_palette_unit_matches_the_model_on_both_tops() {
         ("tests/configs/palette_parallel.toml", "palette_parallel"),
     ] {
         let t = regress(
-            &["--sim", "both", "--config", cfg, "--random", "100000", "--random-icarus", "5000", "--no-scenes"],
+            &[
+                "--sim",
+                "both",
+                "--config",
+                cfg,
+                "--random",
+                "100000",
+                "--random-icarus",
+                "5000",
+                "--no-scenes",
+            ],
             work,
         );
         let r = runs(&t);
         // Palette indices 0 and 255 are among the corners, and the palette is swept whole.
         for set in ["corners_level2_palette_fetch", "exhaustive_palette_fetch_palette_fetch"] {
-            assert!(r.iter().filter(|x| x.1 == set && x.3 == 0 && x.2 > 0).count() == 2, "{set} on both simulators:\n{t}");
+            assert!(
+                r.iter().filter(|x| x.1 == set && x.3 == 0 && x.2 > 0).count() == 2,
+                "{set} on both simulators:\n{t}"
+            );
         }
     }
 }

@@ -401,7 +401,8 @@ pub unsafe extern "C" fn gbump_power_word_bits(h: *const GbumpConfig) -> i32 {
 pub unsafe extern "C" fn gbump_power_word(h: *const GbumpConfig, i: i32) -> i64 {
     with("gbump_power_word", h, -1, |h| {
         let n = h.mem.table.entries.len();
-        h.mem.table
+        h.mem
+            .table
             .entries
             .get(usize::try_from(i).unwrap_or(usize::MAX))
             .copied()

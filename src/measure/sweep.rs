@@ -295,7 +295,11 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
         label: label.to_string(),
         config: cfg.clone(),
         top_ge: top.gate_equivalents,
-        blend_ge: ge("diffuse_blend") + ge("specular_blend"),
+        // The blend hardware as instantiated: one parallel blend per enabled blend, or in the
+        // serial form one accumulator and one finish per enabled blend.
+        blend_ge: ge("diffuse_blend")
+            + ge("specular_blend")
+            + (cfg.diffuse as u32 + cfg.specular as u32) as f64 * (ge("light_accumulate") + ge("blend_finish")),
         flip_flops: top.flip_flops,
         rom_bits: top.rom_bits,
         fragments_per_clock: 1.0 / cfg.initiation_interval() as f64,

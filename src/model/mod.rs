@@ -15,6 +15,6 @@ pub mod power_table;
 pub mod power_unit;
 pub mod texture_modulate;
 
-pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};
 pub use bump_fetch::Palette;
+pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};
 pub use power_table::PowerTable;

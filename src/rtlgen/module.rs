@@ -36,7 +36,10 @@ impl ModuleBuilder {
 
     /// Width of a declared signal.
     pub fn width(&self, name: &str) -> u32 {
-        *self.widths.get(name).unwrap_or_else(|| panic!("{name} is not declared in {}", self.name))
+        *self
+            .widths
+            .get(name)
+            .unwrap_or_else(|| panic!("{name} is not declared in {}", self.name))
     }
 
     pub fn has(&self, name: &str) -> bool {
@@ -118,7 +121,14 @@ impl ModuleBuilder {
         }
         for port in &ports {
             let matches: Vec<&String> = conns.iter().filter(|c| c.0 == port.name).map(|c| &c.1).collect();
-            assert_eq!(matches.len(), 1, "{inst}: port {} of {} connected {} times", port.name, unit.name(), matches.len());
+            assert_eq!(
+                matches.len(),
+                1,
+                "{inst}: port {} of {} connected {} times",
+                port.name,
+                unit.name(),
+                matches.len()
+            );
             if port.dir == Dir::Out {
                 assert_eq!(self.width(matches[0]), port.bits(), "{inst}: output {} width", port.name);
             }
@@ -130,7 +140,8 @@ impl ModuleBuilder {
             let ps: Vec<String> = params.iter().map(|(k, v)| format!(".{k}({v})")).collect();
             format!(" #({})", ps.join(", "))
         };
-        self.body.line(format!("{}{p} {inst} ({});", module_name(cfg, unit.name()), list.join(", ")));
+        self.body
+            .line(format!("{}{p} {inst} ({});", module_name(cfg, unit.name()), list.join(", ")));
     }
 
     /// Instantiate a helper module that is not a unit (its ports are checked by the unit

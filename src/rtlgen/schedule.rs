@@ -28,7 +28,10 @@ fn names(tpl: &str) -> Vec<String> {
         let Some(b) = rest[a..].find('}') else { break };
         let inner = &rest[a + 1..a + b];
         // Verilog concatenations also use braces; a signal name is a bare identifier.
-        if !inner.is_empty() && inner.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') && !inner.starts_with(|c: char| c.is_ascii_digit()) {
+        if !inner.is_empty()
+            && inner.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !inner.starts_with(|c: char| c.is_ascii_digit())
+        {
             v.push(inner.to_string());
         }
         rest = &rest[a + 1..];
@@ -102,13 +105,24 @@ impl<'m> Scheduler<'m> {
 
     /// Instantiate `unit` once all of its inputs are ready; each output port is the wire
     /// named in `outs`, ready `unit.latency()` stages later. Returns the start stage.
-    pub fn unit(&mut self, cfg: &PipelineConfig, unit: &dyn Unit, inst: &str, ins: &[(&str, &str)], outs: &[(&str, &str)], params: &[(&str, String)]) -> u32 {
+    pub fn unit(
+        &mut self,
+        cfg: &PipelineConfig,
+        unit: &dyn Unit,
+        inst: &str,
+        ins: &[(&str, &str)],
+        outs: &[(&str, &str)],
+        params: &[(&str, String)],
+    ) -> u32 {
         let tpls: Vec<&str> = ins.iter().map(|i| i.1).collect();
         let st = self.stage_of(&tpls);
         let mut conns: Vec<(&str, String)> = ins.iter().map(|(p, t)| (*p, self.fill(t, st))).collect();
         let ports = outputs(unit, cfg);
         for (p, wire) in outs {
-            let port = ports.iter().find(|x| x.name == *p).unwrap_or_else(|| panic!("{inst}: no output {p}"));
+            let port = ports
+                .iter()
+                .find(|x| x.name == *p)
+                .unwrap_or_else(|| panic!("{inst}: no output {p}"));
             self.m.wire(wire, port.bits(), None);
             self.ready.insert(wire.to_string(), st + unit.latency(cfg));
             conns.push((p, wire.to_string()));

@@ -80,7 +80,15 @@ pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
     units::included(cfg)
         .iter()
         .filter(|u| u.name() != "power_table")
-        .filter_map(|u| u.memory(cfg).map(|m| (m.init_param.to_string(), u.name().to_string(), rom_file_name(cfg, m.init_stem, "hex"))))
+        .filter_map(|u| {
+            u.memory(cfg).map(|m| {
+                (
+                    m.init_param.to_string(),
+                    u.name().to_string(),
+                    rom_file_name(cfg, m.init_stem, "hex"),
+                )
+            })
+        })
         .collect()
 }
 
@@ -98,12 +106,40 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     };
     let mut v = vec![
         tp("clk", Dir::In, PortKind::Control, bit, 1, "clock, rising edge"),
-        tp("rst", Dir::In, PortKind::Control, bit, 1, "synchronous reset, active high: clears the valid bits"),
+        tp(
+            "rst",
+            Dir::In,
+            PortKind::Control,
+            bit,
+            1,
+            "synchronous reset, active high: clears the valid bits",
+        ),
     ];
     for m in memories(cfg) {
-        v.push(tp(&format!("{}_we", m.prefix), Dir::In, PortKind::Load, bit, 1, "write enable of the load port"));
-        v.push(tp(&format!("{}_waddr", m.prefix), Dir::In, PortKind::Load, Format::u(m.addr_bits, 0), 1, "write address"));
-        v.push(tp(&format!("{}_wdata", m.prefix), Dir::In, PortKind::Load, Format::u(m.data_bits, 0), 1, m.doc));
+        v.push(tp(
+            &format!("{}_we", m.prefix),
+            Dir::In,
+            PortKind::Load,
+            bit,
+            1,
+            "write enable of the load port",
+        ));
+        v.push(tp(
+            &format!("{}_waddr", m.prefix),
+            Dir::In,
+            PortKind::Load,
+            Format::u(m.addr_bits, 0),
+            1,
+            "write address",
+        ));
+        v.push(tp(
+            &format!("{}_wdata", m.prefix),
+            Dir::In,
+            PortKind::Load,
+            Format::u(m.data_bits, 0),
+            1,
+            m.doc,
+        ));
     }
     let fetch_in = units::inputs(fetch_unit(cfg), cfg).remove(0);
     let texel_doc = if cfg.palette {
@@ -114,16 +150,58 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     let col = cfg.colour_fmt();
     v.extend([
         tp("in_valid", Dir::In, PortKind::Control, bit, 1, "a fragment is offered"),
-        tp("in_ready", Dir::Out, PortKind::Control, bit, 1, "the fragment is accepted at this edge if in_valid"),
+        tp(
+            "in_ready",
+            Dir::Out,
+            PortKind::Control,
+            bit,
+            1,
+            "the fragment is accepted at this edge if in_valid",
+        ),
         tp("in_texel", Dir::In, PortKind::Fragment, fetch_in.fmt, fetch_in.lanes, texel_doc),
-        tp("in_c_src", Dir::In, PortKind::Fragment, col, 3, "R, G, B of the Gouraud colour C_src (lane 0 = R)"),
+        tp(
+            "in_c_src",
+            Dir::In,
+            PortKind::Fragment,
+            col,
+            3,
+            "R, G, B of the Gouraud colour C_src (lane 0 = R)",
+        ),
         tp("in_t", Dir::In, PortKind::Fragment, col, 3, "R, G, B of the texture colour T"),
         tp("in_diffuse_en", Dir::In, PortKind::Fragment, bit, 1, "diffuse blend enable"),
         tp("in_specular_en", Dir::In, PortKind::Fragment, bit, 1, "specular blend enable"),
-        tp("in_l", Dir::In, PortKind::Fragment, cfg.lh_fmt(), 3 * n, "light j, component c (x, y, z) at lane 3j + c: L_j in bump space"),
-        tp("in_h", Dir::In, PortKind::Fragment, cfg.lh_fmt(), 3 * n, "light j, component c (x, y, z) at lane 3j + c: H_j in bump space"),
-        tp("in_lc", Dir::In, PortKind::Fragment, col, 3 * n, "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j"),
-        tp("in_k", Dir::In, PortKind::Fragment, cfg.k_fmt(), n, "light j at lane j: the light's weight k_j"),
+        tp(
+            "in_l",
+            Dir::In,
+            PortKind::Fragment,
+            cfg.lh_fmt(),
+            3 * n,
+            "light j, component c (x, y, z) at lane 3j + c: L_j in bump space",
+        ),
+        tp(
+            "in_h",
+            Dir::In,
+            PortKind::Fragment,
+            cfg.lh_fmt(),
+            3 * n,
+            "light j, component c (x, y, z) at lane 3j + c: H_j in bump space",
+        ),
+        tp(
+            "in_lc",
+            Dir::In,
+            PortKind::Fragment,
+            col,
+            3 * n,
+            "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j",
+        ),
+        tp(
+            "in_k",
+            Dir::In,
+            PortKind::Fragment,
+            cfg.k_fmt(),
+            n,
+            "light j at lane j: the light's weight k_j",
+        ),
         tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result"),
         tp("out_c", Dir::Out, PortKind::Result, col, 3, "R, G, B of C_new"),
     ]);
@@ -226,11 +304,22 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, texel: &str, combinational: bo
         let st = s.stage_of(&[texel]);
         let t = s.fill(texel, st);
         s.m.wire("b", nb3, None);
-        s.m.inst_helper(&module_name(cfg, "bump_fetch_comb"), "u_bump_fetch", &[("texel", t), ("b", "b".into())]);
+        s.m.inst_helper(
+            &module_name(cfg, "bump_fetch_comb"),
+            "u_bump_fetch",
+            &[("texel", t), ("b", "b".into())],
+        );
         s.source("b", st);
     } else {
         let port = units::inputs(u, cfg).remove(0).name;
-        s.unit(cfg, u, &format!("u_{}", u.name()), &[(port, texel)], &[("b", "b")], &mem_params(cfg, u, &[]));
+        s.unit(
+            cfg,
+            u,
+            &format!("u_{}", u.name()),
+            &[(port, texel)],
+            &[("b", "b")],
+            &mem_params(cfg, u, &[]),
+        );
     }
 }
 
@@ -260,12 +349,25 @@ pub fn stage_order(cfg: &PipelineConfig) -> [&'static str; 3] {
 
 /// The three colour stages from `c_in` in the configured order; `blend(stage, c)` emits a
 /// blend stage and returns its output signal. Returns the final colour signal.
-fn colour_stages(s: &mut Scheduler, cfg: &PipelineConfig, c_in: &str, t: &str, mut blend: impl FnMut(&mut Scheduler, Stage, &str) -> Option<String>) -> String {
+fn colour_stages(
+    s: &mut Scheduler,
+    cfg: &PipelineConfig,
+    c_in: &str,
+    t: &str,
+    mut blend: impl FnMut(&mut Scheduler, Stage, &str) -> Option<String>,
+) -> String {
     let mut c = c_in.to_string();
     for st in order(cfg) {
         if st == Stage::Texture {
             let u = units::unit("texture_modulate").expect("unit");
-            s.unit(cfg, u, "u_texture_modulate", &[("c_in", &format!("{{{c}}}")), ("t", t)], &[("c_out", "c_tex")], &[]);
+            s.unit(
+                cfg,
+                u,
+                "u_texture_modulate",
+                &[("c_in", &format!("{{{c}}}")), ("t", t)],
+                &[("c_out", "c_tex")],
+                &[],
+            );
             c = "c_tex".into();
         } else if let Some(out) = blend(s, st, &c) {
             c = out;
@@ -289,15 +391,32 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     if cfg.diffuse {
         s.comb("de", 1, &enable(cfg, true, "in_diffuse_en"));
         for i in 0..n {
-            s.unit(cfg, dot, &format!("u_dot_l{i}"), &[("b", "{b}"), ("v", &format!("{{in_l}}{}", lane(i, lh3)))], &[("f", &format!("fd{i}"))], &[]);
+            s.unit(
+                cfg,
+                dot,
+                &format!("u_dot_l{i}"),
+                &[("b", "{b}"), ("v", &format!("{{in_l}}{}", lane(i, lh3)))],
+                &[("f", &format!("fd{i}"))],
+                &[],
+            );
         }
-        let parts: Vec<String> = (0..n).rev().map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_bits, "{de}")).collect();
+        let parts: Vec<String> = (0..n)
+            .rev()
+            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_bits, "{de}"))
+            .collect();
         s.comb("dfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "in_specular_en"));
         for i in 0..n {
-            s.unit(cfg, dot, &format!("u_dot_h{i}"), &[("b", "{b}"), ("v", &format!("{{in_h}}{}", lane(i, lh3)))], &[("f", &format!("xh{i}"))], &[]);
+            s.unit(
+                cfg,
+                dot,
+                &format!("u_dot_h{i}"),
+                &[("b", "{b}"), ("v", &format!("{{in_h}}{}", lane(i, lh3)))],
+                &[("f", &format!("xh{i}"))],
+                &[],
+            );
         }
         let xs: Vec<String> = (0..n).rev().map(|i| format!("{{xh{i}}}")).collect();
         s.comb("xh", n * f1, &format!("{{{}}}", xs.join(", ")));
@@ -309,10 +428,20 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         s.m.inst_helper(
             &module_name(cfg, "power_table"),
             &format!("#(.R({n}), .INIT_FILE(INIT_FILE)) u_power_table"),
-            &[("clk", "clk".into()), ("we", "pt_we".into()), ("waddr", "pt_waddr".into()), ("wdata", "pt_wdata".into()), ("x", x), ("fs", "fs".into())],
+            &[
+                ("clk", "clk".into()),
+                ("we", "pt_we".into()),
+                ("waddr", "pt_waddr".into()),
+                ("wdata", "pt_wdata".into()),
+                ("x", x),
+                ("fs", "fs".into()),
+            ],
         );
         s.source("fs", st + pt.latency(cfg));
-        let parts: Vec<String> = (0..n).rev().map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_bits, "{se}")).collect();
+        let parts: Vec<String> = (0..n)
+            .rev()
+            .map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_bits, "{se}"))
+            .collect();
         s.comb("sfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
     s.m.comment("The colour stages in the configured order.");
@@ -322,7 +451,14 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
             Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe"),
             _ => return None,
         };
-        s.unit(cfg, u, &format!("u_{}", u.name()), &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", "{in_k}"), ("lc", "{in_lc}")], &[("c_out", name)], &[]);
+        s.unit(
+            cfg,
+            u,
+            &format!("u_{}", u.name()),
+            &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", "{in_k}"), ("lc", "{in_lc}")],
+            &[("c_out", name)],
+            &[],
+        );
         Some(name.to_string())
     });
     let lat = s.ready(&out);
@@ -367,7 +503,20 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         let st = s.stage_of(&[f, "{k_sel}", "{lc_sel}", "{first}"]);
         let (ff, k, lc, first) = (s.fill(f, st), s.fill("{k_sel}", st), s.fill("{lc_sel}", st), s.fill("{first}", st));
         s.m.wire(name, aw3, None);
-        s.m.inst(cfg, acc, &format!("u_{name}"), &[("acc_in", name.to_string()), ("first", first), ("f", ff), ("k", k), ("lc", lc), ("acc", name.to_string())], &[]);
+        s.m.inst(
+            cfg,
+            acc,
+            &format!("u_{name}"),
+            &[
+                ("acc_in", name.to_string()),
+                ("first", first),
+                ("f", ff),
+                ("k", k),
+                ("lc", lc),
+                ("acc", name.to_string()),
+            ],
+            &[],
+        );
         s.source(name, st + acc.latency(cfg));
         // The sum is complete after the last slot: from here on a fragment is valid once.
         if !s.m.has("done") {
@@ -395,7 +544,14 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         s.m.inst_helper(
             &module_name(cfg, "power_table"),
             "#(.R(1), .INIT_FILE(INIT_FILE)) u_power_table",
-            &[("clk", "clk".into()), ("we", "pt_we".into()), ("waddr", "pt_waddr".into()), ("wdata", "pt_wdata".into()), ("x", x), ("fs", "fs".into())],
+            &[
+                ("clk", "clk".into()),
+                ("we", "pt_we".into()),
+                ("waddr", "pt_waddr".into()),
+                ("wdata", "pt_wdata".into()),
+                ("x", x),
+                ("fs", "fs".into()),
+            ],
         );
         s.source("fs", st + pt.latency(cfg));
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_bits, "{se}"));

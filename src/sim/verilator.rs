@@ -64,7 +64,10 @@ impl Verilator {
             super::rtl_files::verilog_string(&rtl.init_file.display().to_string())
         ));
         for (param, _, file) in &rtl.memory_inits {
-            flags.push(format!("-G{param}={}", super::rtl_files::verilog_string(&file.display().to_string())));
+            flags.push(format!(
+                "-G{param}={}",
+                super::rtl_files::verilog_string(&file.display().to_string())
+            ));
         }
         cached_build(
             root,

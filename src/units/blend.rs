@@ -36,7 +36,10 @@ impl Unit for Blend {
         self.source
     }
     fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        vec![(if self.specular { "specular" } else { "diffuse" }, "true"), ("light_mode", "\"parallel\"")]
+        vec![
+            (if self.specular { "specular" } else { "diffuse" }, "true"),
+            ("light_mode", "\"parallel\""),
+        ]
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
         cfg.light_mode == crate::config::LightMode::Parallel && if self.specular { cfg.specular } else { cfg.diffuse }
@@ -46,7 +49,13 @@ impl Unit for Blend {
             p("c_in", Dir::In, c.colour_fmt(), 3, "colour in (R, G, B)"),
             p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
             p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
-            p("lc", Dir::In, c.colour_fmt(), 3 * c.lights, "light colours Lc_i (R, G, B per light)"),
+            p(
+                "lc",
+                Dir::In,
+                c.colour_fmt(),
+                3 * c.lights,
+                "light colours Lc_i (R, G, B per light)",
+            ),
             p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(sum f_i k_i Lc_i))"),
         ]
     }
@@ -81,7 +90,10 @@ impl Unit for Blend {
         let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
         let all = |c: i64, f: i64, k: i64, lc: i64| vec![vec![c; 3], vec![f; n], vec![k; n], vec![lc; 3 * n]];
         vec![
-            ("every light at full strength on white: the sum saturates".into(), all(m, one_f, one_k, m)),
+            (
+                "every light at full strength on white: the sum saturates".into(),
+                all(m, one_f, one_k, m),
+            ),
             ("every term zero: c_in passes through".into(), all(m / 2, 0, one_k, m)),
             ("k = 0 kills every light".into(), all(7, one_f, 0, m)),
             ("one LSB terms: the rounding of the smallest sum".into(), all(0, 1, 1, 1)),

@@ -41,7 +41,10 @@ impl Unit for DotClamp {
         let one = 1i64 << (cfg.lh_bits - 2);
         let flat = cfg.flat_normal().to_vec();
         vec![
-            ("flat normal, V straight up: the largest dot of a unit normal".into(), vec![flat.clone(), vec![0, 0, one]]),
+            (
+                "flat normal, V straight up: the largest dot of a unit normal".into(),
+                vec![flat.clone(), vec![0, 0, one]],
+            ),
             ("V in the surface plane: exactly 0".into(), vec![flat.clone(), vec![one, 0, 0]]),
             ("V below the horizon: negative, clamps to 0".into(), vec![flat, vec![0, 0, -one]]),
             (

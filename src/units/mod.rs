@@ -182,7 +182,11 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
     let toml = cfg.to_toml();
     let current = |field: &str| {
         toml.lines()
-            .find_map(|l| l.split_once('=').filter(|(k, _)| k.trim() == field).map(|(_, v)| v.trim().to_string()))
+            .find_map(|l| {
+                l.split_once('=')
+                    .filter(|(k, _)| k.trim() == field)
+                    .map(|(_, v)| v.trim().to_string())
+            })
             .unwrap_or_default()
     };
     let unmet: Vec<(String, &str)> = u

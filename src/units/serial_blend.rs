@@ -107,12 +107,18 @@ impl Unit for LightAccumulate {
         let big = ((cfg.lights as i64 - 1).max(0)) * one_f * one_k * m;
         let some = cfg.acc_fmt().max_raw() / 3;
         vec![
-            ("first slot ignores acc_in".into(), vec![vec![some; 3], vec![1], vec![one_f], vec![one_k], vec![m; 3]]),
+            (
+                "first slot ignores acc_in".into(),
+                vec![vec![some; 3], vec![1], vec![one_f], vec![one_k], vec![m; 3]],
+            ),
             (
                 "last slot of all-full lights: the largest sum".into(),
                 vec![vec![big; 3], vec![0], vec![one_f], vec![one_k], vec![m; 3]],
             ),
-            ("zero term keeps the sum".into(), vec![vec![some; 3], vec![0], vec![0], vec![one_k], vec![m; 3]]),
+            (
+                "zero term keeps the sum".into(),
+                vec![vec![some; 3], vec![0], vec![0], vec![one_k], vec![m; 3]],
+            ),
             ("one LSB term".into(), vec![vec![0; 3], vec![1], vec![1], vec![1], vec![1; 3]]),
         ]
     }
@@ -156,7 +162,10 @@ impl Unit for BlendFinish {
         vec![
             ("largest sum on white: saturates".into(), vec![vec![m; 3], vec![af.max_raw(); 3]]),
             ("zero sum passes c_in".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
-            ("half an LSB: the rounding rule".into(), vec![vec![0; 3], vec![half, half - 1, half + 1]]),
+            (
+                "half an LSB: the rounding rule".into(),
+                vec![vec![0; 3], vec![half, half - 1, half + 1]],
+            ),
         ]
     }
 }

@@ -49,7 +49,10 @@ impl Unit for TextureModulate {
         vec![
             ("white texel passes the colour through".into(), vec![vec![0, m / 2, m], vec![m; 3]]),
             ("black texel gives black".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
-            ("half-way products round to nearest".into(), vec![vec![m / 2, m / 2 + 1, 1], vec![m / 2 + 1, m / 2, m]]),
+            (
+                "half-way products round to nearest".into(),
+                vec![vec![m / 2, m / 2 + 1, 1], vec![m / 2 + 1, m / 2, m]],
+            ),
         ]
     }
 }

@@ -399,7 +399,11 @@ pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
         )));
     };
     let Some(count) = u.exhaustive_count(cfg) else {
-        let swept: Vec<&str> = crate::units::UNITS.iter().filter(|u| u.exhaustive_count(cfg).is_some()).map(|u| u.name()).collect();
+        let swept: Vec<&str> = crate::units::UNITS
+            .iter()
+            .filter(|u| u.exhaustive_count(cfg).is_some())
+            .map(|u| u.name())
+            .collect();
         return Err(Error::Other(format!(
             "exhaustive:{unit}: {unit} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: {}",
             swept.join(", ")

@@ -27,7 +27,11 @@ pub fn top_layout(cfg: &PipelineConfig) -> Layout {
     let mut l = Layout::default();
     for kind in [PortKind::Fragment, PortKind::Result] {
         for p in port_list(cfg).into_iter().filter(|p| p.kind == kind) {
-            let role = if kind == PortKind::Fragment { Role::Stimulus } else { Role::Expected };
+            let role = if kind == PortKind::Fragment {
+                Role::Stimulus
+            } else {
+                Role::Expected
+            };
             l.push(&p.name, role, p.fmt.width, p.lanes, p.fmt.name());
         }
     }
@@ -211,7 +215,10 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             "specular_blend" if cfg.specular => blend_in(c_in, &t.sfac, &mut v, "specular_blend"),
             "texture_modulate" => v.push(UnitStim {
                 unit: "texture_modulate",
-                inputs: vec![c_in.iter().map(|&y| y as i64).collect(), s.frag.texel.iter().map(|&y| y as i64).collect()],
+                inputs: vec![
+                    c_in.iter().map(|&y| y as i64).collect(),
+                    s.frag.texel.iter().map(|&y| y as i64).collect(),
+                ],
             }),
             _ => {}
         }

@@ -381,7 +381,11 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     let own: Vec<UnitStim> = ws
                         .iter()
                         .filter_map(|w| crate::units::unit(&w.target))
-                        .flat_map(|u| u.corners(cfg).into_iter().map(move |(_, inputs)| UnitStim { unit: u.name(), inputs }))
+                        .flat_map(|u| {
+                            u.corners(cfg)
+                                .into_iter()
+                                .map(move |(_, inputs)| UnitStim { unit: u.name(), inputs })
+                        })
                         .collect();
                     let mut refs: Vec<&mut SetWriter> = ws.iter_mut().collect();
                     write_units(cfg, &mem.view(), &own, &mut refs)?;
