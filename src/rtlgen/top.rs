@@ -388,18 +388,23 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_texel}", false);
     let dot = units::unit("dot_clamp").expect("unit");
-    if cfg.diffuse {
-        s.comb("de", 1, &enable(cfg, true, "in_diffuse_en"));
+    // One dot_clamp per light slot: B·L_i into fd<i>, or B·H_i into xh<i>.
+    let dots = |s: &mut Scheduler, v: &str, out: &str| {
         for i in 0..n {
+            let lanes = format!("{{in_{v}}}{}", lane(i, lh3));
             s.unit(
                 cfg,
                 dot,
-                &format!("u_dot_l{i}"),
-                &[("b", "{b}"), ("v", &format!("{{in_l}}{}", lane(i, lh3)))],
-                &[("f", &format!("fd{i}"))],
+                &format!("u_dot_{v}{i}"),
+                &[("b", "{b}"), ("v", &lanes)],
+                &[("f", &format!("{out}{i}"))],
                 &[],
             );
         }
+    };
+    if cfg.diffuse {
+        s.comb("de", 1, &enable(cfg, true, "in_diffuse_en"));
+        dots(s, "l", "fd");
         let parts: Vec<String> = (0..n)
             .rev()
             .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_bits, "{de}"))
@@ -408,16 +413,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "in_specular_en"));
-        for i in 0..n {
-            s.unit(
-                cfg,
-                dot,
-                &format!("u_dot_h{i}"),
-                &[("b", "{b}"), ("v", &format!("{{in_h}}{}", lane(i, lh3)))],
-                &[("f", &format!("xh{i}"))],
-                &[],
-            );
-        }
+        dots(s, "h", "xh");
         let xs: Vec<String> = (0..n).rev().map(|i| format!("{{xh{i}}}")).collect();
         s.comb("xh", n * f1, &format!("{{{}}}", xs.join(", ")));
         let pt = units::unit("power_table").expect("unit");
