@@ -8,7 +8,7 @@ use crate::model::blend::blend;
 use crate::model::dot_clamp::dot_clamp;
 use crate::model::power_table::powi_exact;
 use crate::model::texture_modulate::texture_modulate;
-use crate::model::{shade, BumpTexel, PowerTable};
+use crate::model::{shade, BumpTexel, Palette, PowerTable};
 use crate::vectors::rng::SplitMix64;
 use crate::vectors::sources::{corners, random_stim};
 use crate::vectors::targets::TopStim;
@@ -56,20 +56,20 @@ impl ErrorStats {
 
 /// The stored normal codes of a bump texel: its own, or the power-up palette's entry (the
 /// palette the stimuli of `sources` assume).
-fn stored_codes(cfg: &PipelineConfig, bump: BumpTexel) -> [u32; 3] {
+fn stored_codes(palette: &Palette, bump: BumpTexel) -> [u32; 3] {
     match bump {
         BumpTexel::Rgb(t) => t,
-        BumpTexel::Index(i) => crate::rtlgen::rom::default_palette(cfg).0[i as usize],
+        BumpTexel::Index(i) => palette.0[i as usize],
     }
 }
 
 /// Exact evaluation of the pipeline's equations on a stimulus's quantised inputs: real dot
 /// products clamped to [0,1], exact powers, unrounded blends with saturation, exact c·t/max.
-pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, s: &TopStim) -> [f64; 3] {
+pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopStim) -> [f64; 3] {
     let nf = cfg.normal_fmt();
     let lf = cfg.lh_fmt();
     let max = cfg.colour_max() as f64;
-    let t = stored_codes(cfg, s.frag.bump);
+    let t = stored_codes(palette, s.frag.bump);
     let b: Vec<f64> = t.iter().map(|&c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c))).collect();
     let flat = t.iter().map(|&c| crate::model::bump_fetch::expand(cfg, c)).collect::<Vec<_>>() == cfg.flat_normal().to_vec();
     let bypass = cfg.skip_flat && flat;
@@ -117,7 +117,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let lf = cfg.lh_fmt();
     let one = (1u64 << cfg.dot_bits) as f64;
     for (_, s) in &stims {
-        let t = stored_codes(cfg, s.frag.bump);
+        let t = stored_codes(&palette, s.frag.bump);
         let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             for v in [ls.l, ls.h] {
@@ -173,7 +173,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         let mut st = ErrorStats::new("gbump_pipeline", src);
         for (_, s) in stims.iter().filter(|(k, _)| k == src) {
             let got = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
-            let exact = exact_pipeline(cfg, n, s);
+            let exact = exact_pipeline(cfg, n, &palette, s);
             for ch in 0..3 {
                 st.add(got[ch] as f64 - exact[ch], || format!("{:?}", s.frag));
             }

@@ -22,7 +22,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
     let mut params = serde_json::Map::new();
     let mut memories = serde_json::Map::new();
     for m in super::top::memories(cfg) {
-        let init = rom_file_name(cfg, if m.prefix == "pt" { "power_table" } else { m.init_stem }, "hex");
+        let init = rom_file_name(cfg, m.init_stem, "hex");
         params.insert(m.init_param.into(), json!({"default": init, "doc": format!("$readmemh file with the power-up contents of the {} memory; relative paths resolve against the simulator's working folder", m.prefix)}));
         memories.insert(m.prefix.into(), json!({"init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": m.doc, "load_port": format!("{0}_we, {0}_waddr, {0}_wdata; write when idle", m.prefix)}));
     }

@@ -255,12 +255,7 @@ fn enable(cfg: &PipelineConfig, present: bool, en: &str) -> String {
 fn build(cfg: &PipelineConfig) -> (String, u32) {
     let mut m = ModuleBuilder::new(module_name(cfg, "gbump_pipeline"));
     for mem in memories(cfg) {
-        let init = if mem.prefix == "pt" {
-            rom_file_name(cfg, "power_table", "hex")
-        } else {
-            rom_file_name(cfg, mem.init_stem, "hex")
-        };
-        m.param(mem.init_param, format!("\"{init}\""));
+        m.param(mem.init_param, format!("\"{}\"", rom_file_name(cfg, mem.init_stem, "hex")));
     }
     for p in port_list(cfg) {
         m.port(&p.name, p.dir, p.width());
@@ -287,13 +282,34 @@ fn build(cfg: &PipelineConfig) -> (String, u32) {
     (text, lat)
 }
 
-/// The memory parameters of an instance of `unit`.
-fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit, extra: &[(&'static str, String)]) -> Vec<(&'static str, String)> {
-    let mut v = extra.to_vec();
-    if let Some(mem) = unit.memory(cfg) {
-        v.push(("INIT_FILE", mem.init_param.to_string()));
-    }
-    v
+/// The memory parameter of an instance of `unit`: its INIT_FILE is the top's parameter.
+fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, String)> {
+    unit.memory(cfg)
+        .map(|m| ("INIT_FILE", m.init_param.to_string()))
+        .into_iter()
+        .collect()
+}
+
+/// The power unit with `r` read ports on `{xh}`, its output `fs` (the unit's ports describe one
+/// read port, so the instance is written as a helper with its `R` parameter).
+fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
+    let pt = units::unit("power_table").expect("unit");
+    s.m.wire("fs", r * (cfg.power_bits + 1), None);
+    let st = s.stage_of(&["{xh}"]);
+    let x = s.fill("{xh}", st);
+    s.m.inst_helper(
+        &module_name(cfg, "power_table"),
+        &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_table"),
+        &[
+            ("clk", "clk".into()),
+            ("we", "pt_we".into()),
+            ("waddr", "pt_waddr".into()),
+            ("wdata", "pt_wdata".into()),
+            ("x", x),
+            ("fs", "fs".into()),
+        ],
+    );
+    s.source("fs", st + pt.latency(cfg));
 }
 
 /// The fetch: `b` from `texel` (a template).
@@ -318,7 +334,7 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, texel: &str, combinational: bo
             &format!("u_{}", u.name()),
             &[(port, texel)],
             &[("b", "b")],
-            &mem_params(cfg, u, &[]),
+            &mem_params(cfg, u),
         );
     }
 }
@@ -416,24 +432,8 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         dots(s, "h", "xh");
         let xs: Vec<String> = (0..n).rev().map(|i| format!("{{xh{i}}}")).collect();
         s.comb("xh", n * f1, &format!("{{{}}}", xs.join(", ")));
-        let pt = units::unit("power_table").expect("unit");
         s.m.comment(format!("The power unit with {n} read port(s)."));
-        s.m.wire("fs", n * p1, None);
-        let st = s.stage_of(&["{xh}"]);
-        let x = s.fill("{xh}", st);
-        s.m.inst_helper(
-            &module_name(cfg, "power_table"),
-            &format!("#(.R({n}), .INIT_FILE(INIT_FILE)) u_power_table"),
-            &[
-                ("clk", "clk".into()),
-                ("we", "pt_we".into()),
-                ("waddr", "pt_waddr".into()),
-                ("wdata", "pt_wdata".into()),
-                ("x", x),
-                ("fs", "fs".into()),
-            ],
-        );
-        s.source("fs", st + pt.latency(cfg));
+        power_unit(s, cfg, n);
         let parts: Vec<String> = (0..n)
             .rev()
             .map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_bits, "{se}"))
@@ -533,23 +533,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         s.comb("se", 1, &enable(cfg, true, "fr_specular_en"));
         s.comb("h_sel", lh3, &format!("{{fr_h}}[{{j}}*{lh3} +: {lh3}]"));
         s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
-        let pt = units::unit("power_table").expect("unit");
-        s.m.wire("fs", cfg.power_bits + 1, None);
-        let st = s.stage_of(&["{xh}"]);
-        let x = s.fill("{xh}", st);
-        s.m.inst_helper(
-            &module_name(cfg, "power_table"),
-            "#(.R(1), .INIT_FILE(INIT_FILE)) u_power_table",
-            &[
-                ("clk", "clk".into()),
-                ("we", "pt_we".into()),
-                ("waddr", "pt_waddr".into()),
-                ("wdata", "pt_wdata".into()),
-                ("x", x),
-                ("fs", "fs".into()),
-            ],
-        );
-        s.source("fs", st + pt.latency(cfg));
+        power_unit(s, cfg, 1);
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_bits, "{se}"));
         accumulate(s, "sacc", "{sfac}");
     }

@@ -189,22 +189,18 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
             })
             .unwrap_or_default()
     };
-    let unmet: Vec<(String, &str)> = u
+    // (what the configuration has, what the unit needs) for every unmet setting.
+    let (has, want): (Vec<String>, Vec<String>) = u
         .requires(cfg)
         .into_iter()
-        .filter(|(field, want)| current(field) != *want)
-        .map(|(field, want)| (format!("{field} = {}", current(field)), want))
-        .collect();
-    if unmet.is_empty() {
+        .filter_map(|(field, want)| {
+            let now = current(field);
+            (now != want).then(|| (format!("{field} = {now}"), format!("{field} = {want}")))
+        })
+        .unzip();
+    if has.is_empty() {
         return format!("the configuration has no {}\n  fix: enable diffuse or specular", u.name());
     }
-    let has: Vec<String> = unmet.iter().map(|x| x.0.clone()).collect();
-    let want: Vec<String> = u
-        .requires(cfg)
-        .into_iter()
-        .filter(|(f, w)| current(f) != *w)
-        .map(|(f, w)| format!("{f} = {w}"))
-        .collect();
     format!(
         "the configuration has no {} ({})\n  fix: drop it, or set {} in the configuration",
         u.name(),
