@@ -44,6 +44,17 @@ pub enum LightMode {
     Parallel,
 }
 
+/// Where the top holds a triangle's bump state (L_i, H_i, Lc_i, k_i).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BumpStateAt {
+    /// Loaded once per triangle through the triangle-setup port into `triangle_banks`
+    /// register banks; fragments carry a bank tag only (the paper's per-triangle setup).
+    Triangle,
+    /// Enters with every fragment and travels with it through the stage registers.
+    Fragment,
+}
+
 /// The order of the blend units around texture modulation (paper §5.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -92,6 +103,12 @@ pub struct PipelineConfig {
     pub specular: bool,
     /// Leave fragments whose bump normal is unperturbed (0,0,1) untouched (paper §5.4.2).
     pub skip_flat: bool,
+    /// Where the top holds the bump state: per triangle (setup port, register banks) or per
+    /// fragment (on the fragment port).
+    pub bump_state: BumpStateAt,
+    /// Register banks of a per-triangle top: how many triangles may have fragments in flight
+    /// at once (a setup waits while its bank is still read by an earlier triangle's fragment).
+    pub triangle_banks: u32,
 }
 
 impl Default for PipelineConfig {
@@ -116,6 +133,8 @@ impl Default for PipelineConfig {
             diffuse: true,
             specular: true,
             skip_flat: false,
+            bump_state: BumpStateAt::Triangle,
+            triangle_banks: 2,
         }
     }
 }
@@ -142,6 +161,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ("colour_bits", 2, 12, "frame-buffer channel width"),
     ("k_bits", 1, 12, "modulation fraction bits"),
     ("lights", 1, 8, "light slots in hardware"),
+    (
+        "triangle_banks",
+        2,
+        16,
+        "two let a setup load while the previous triangle drains; a bank tag wider than 4 bits buys nothing at these latencies",
+    ),
 ];
 
 /// The valid range `(lo, hi)` of numeric field `name`, from [`LIMITS`].
@@ -254,6 +279,7 @@ impl PipelineConfig {
             "colour_bits" => self.colour_bits,
             "k_bits" => self.k_bits,
             "lights" => self.lights,
+            "triangle_banks" => self.triangle_banks,
             _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
         }
     }
@@ -348,6 +374,14 @@ impl PipelineConfig {
     /// Overflow behaviour of every narrowing in the blends: saturate, as the paper's `sat`.
     pub fn overflow(&self) -> Overflow {
         Overflow::Saturate
+    }
+    /// Whether the top has a triangle-setup port (the bump state per triangle).
+    pub fn per_triangle(&self) -> bool {
+        self.bump_state == BumpStateAt::Triangle
+    }
+    /// Bits of a fragment's bank tag in a per-triangle top.
+    pub fn bank_bits(&self) -> u32 {
+        (32 - (self.triangle_banks - 1).leading_zeros()).max(1)
     }
     /// Clock cycles between accepted fragments.
     pub fn initiation_interval(&self) -> u32 {

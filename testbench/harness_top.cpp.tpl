@@ -5,7 +5,8 @@
 // apart while a fragment is on offer), stops after --max-errors mismatches (default 20)
 // printing every field, and ends with "N passed, N failed". Without --table the pipeline runs
 // on its power-up table (INIT_FILE); --bubbles N idles in_valid 1-3 cycles before every Nth
-// record. --dump FILE writes each out_c as 8 little-endian bytes
+// record. A record that starts a triangle (per-triangle tops: its tri_start bit) is preceded
+// by a setup beat on tri_valid/tri_ready with in_valid low. --dump FILE writes each out_c as 8 little-endian bytes
 // (for rendering an image through the RTL); --no-check skips comparison (raw speed runs).
 // --raw CYCLES clocks the model that many cycles on the first record with no file I/O and
 // prints its evaluation rate (the upper bound of any regression).
@@ -92,6 +93,7 @@ int main(int argc, char** argv) {
     V{{TOP}} top(&ctx);
     auto tick = [&]() { top.clk = 0; top.eval(); top.clk = 1; top.eval(); };
     top.rst = 1; top.in_valid = 0; top.pt_we = 0;
+    {{TRI_VALID_0}}
     for (int i = 0; i < {{RESET_CYCLES}}; ++i) tick();
     top.rst = 0;
     if (table_path)
@@ -100,8 +102,10 @@ int main(int argc, char** argv) {
 
     if (raw_cycles > 0) {
         const uint8_t* rin = data.data();
-        top.in_valid = 1;
 {{ASSIGN}}
+        // A per-triangle top loads the first record's triangle before the fragments.
+        {{RAW_SETUP}}
+        top.in_valid = 1;
         auto r0 = std::chrono::steady_clock::now();
         for (long long c = 0; c < raw_cycles; ++c) tick();
         double rs = std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
@@ -118,6 +122,9 @@ int main(int argc, char** argv) {
     long long last_acc = -1;
     long gap = 0;
     size_t gapped_for = (size_t)-1;
+    // The record whose triangle setup was accepted last; setups and their waits.
+    size_t setup_for = (size_t)-1;
+    unsigned long long setups = 0, setup_waits = 0;
     auto timing = [&](const char* what, long long got, long long want) {
         ++failed;
         if (++timing_errors <= max_errors)
@@ -130,16 +137,23 @@ int main(int argc, char** argv) {
             gap = 1 + (long)((next_in / bubbles) % 3);
             gapped_for = next_in;
         }
+        bool setup = false;
         if (next_in < n && gap == 0) {
-            top.in_valid = 1;
 {{ASSIGN}}
+            setup = {{TRI_START}} && setup_for != next_in;
+            top.in_valid = !setup;
         } else {
             top.in_valid = 0;
         }
+        if (setup) { {{TRI_VALID_1}} } else { {{TRI_VALID_0}} }
         top.clk = 0;
         top.eval();
         // Sampled before the rising edge, as the design's registers see them.
         bool accept = top.in_valid && top.in_ready;
+        if (setup) {
+            if ({{TRI_ACCEPT}}) { setup_for = next_in; ++setups; }
+            else ++setup_waits;
+        }
         const long long cyc = (long long)cycles;
         if (accept) {
             if (last_acc >= 0 && cyc - last_acc < II) timing("accepts closer than the initiation interval", cyc - last_acc, II);
@@ -187,6 +201,7 @@ int main(int argc, char** argv) {
         if (!df || fwrite(dump.data(), 8, dump.size(), df) != dump.size()) { fprintf(stderr, "FATAL: cannot write %s\n", dump_path); return 2; }
         fclose(df);
     }
+    if (setups) printf("%llu triangle setups, %llu edges waited for tri_ready, %llu edges in all\n", setups, setup_waits, (unsigned long long)cycles);
     fprintf(stderr, "%zu vectors, %llu cycles, %.3f s, %.0f vectors/s\n", n, (unsigned long long)cycles, secs, n / (secs > 0 ? secs : 1e-9));
     printf("%ld passed, %ld failed\n", passed, failed);
     top.final();

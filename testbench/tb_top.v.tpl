@@ -3,7 +3,9 @@
 // valid/ready, checks every out_c in order against the record's expected colour, and checks
 // the timing the interface file states for every vector: out_valid is sampled high exactly
 // LAT rising edges after the edge that accepted the fragment, and accepts are exactly II
-// edges apart whenever a fragment was on offer. Stops after +max_errors mismatches (default
+// edges apart whenever a fragment was on offer. A record that starts a triangle (per-triangle
+// tops: its tri_start bit) is preceded by a setup beat on tri_valid/tri_ready carrying the
+// record's tri_* columns, with in_valid low. Stops after +max_errors mismatches (default
 // 20) and ends with "N passed, N failed".
 // Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
 //           it the pipeline runs on its power-up contents (INIT_FILE)
@@ -51,6 +53,8 @@ module tb_top;
     integer timing_errors = 0;
     reg load_table;
     integer n_in = 0;
+    integer n_tri = 0;
+    integer tri_waits = 0;
     integer n_out = 0;
     integer passed = 0;
     integer failed = 0;
@@ -58,6 +62,7 @@ module tb_top;
 
     task finish_run;
         begin
+            if (n_tri > 0) $display("%0d triangle setups, %0d edges waited for tri_ready, %0d edges in all", n_tri, tri_waits, cyc);
             $display("%0d passed, %0d failed", passed, failed);
             if (passed + failed == 0) $display("FATAL: no vectors were checked");
             $finish;
@@ -81,10 +86,12 @@ module tb_top;
             stim = {RB{1'b1}};
 {{ASSIGN}}
             in_valid = 1'b1;
+            tri_valid = 1'b1;
         end
         repeat ({{RESET_CYCLES}}) @(negedge clk);
         rst = 1'b0;
         in_valid = 1'b0;
+        tri_valid = 1'b0;
         if (load_table) begin
             for (i = 0; i < PT_N; i = i + 1) begin
                 pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
@@ -95,9 +102,11 @@ module tb_top;
         if ($test$plusargs("reset_after_load")) begin
             rst = 1'b1;
             in_valid = $test$plusargs("valid_during_reset");
+            tri_valid = in_valid;
             repeat ({{RESET_CYCLES}}) @(negedge clk);
             rst = 1'b0;
             in_valid = 1'b0;
+            tri_valid = 1'b0;
         end
         code = $fscanf(fin, "%h\n", stim);
         while (code == 1) begin
@@ -105,8 +114,17 @@ module tb_top;
                 in_valid = 1'b0;
                 for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
             end
-            in_valid = 1'b1;
 {{ASSIGN}}
+            if ({{TRI_START}}) begin
+                // The setup beat: the fragment waits until its triangle is loaded.
+                in_valid = 1'b0;
+                tri_valid = 1'b1;
+                while (!tri_ready) begin @(negedge clk); tri_waits = tri_waits + 1; end
+                @(negedge clk);
+                tri_valid = 1'b0;
+                n_tri = n_tri + 1;
+            end
+            in_valid = 1'b1;
             while (!in_ready) @(negedge clk);
             @(negedge clk);
             n_in = n_in + 1;

@@ -6,8 +6,7 @@ use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::model::PowerTable;
 use crate::vectors::layout::{Layout, Record};
-use crate::vectors::rng::SplitMix64;
-use crate::vectors::sources::{chunk_rng, random_stim, RANDOM_CHUNK};
+use crate::vectors::sources::{chunk_rng, RandomTriangles, RANDOM_CHUNK};
 use crate::vectors::targets::{eval_top, eval_unit, top_layout, top_record, top_stim, unit_layout, unit_record, unit_stim};
 use crate::vectors::writer::unit_present;
 use std::ffi::CString;
@@ -126,7 +125,7 @@ pub struct GbumpStim {
     pub seed: u64,
     /// Index of the next record.
     pub index: u64,
-    rng: SplitMix64,
+    tris: RandomTriangles,
 }
 
 impl GbumpStim {
@@ -136,17 +135,17 @@ impl GbumpStim {
             layout: top_layout(&h.cfg),
             seed,
             index: 0,
-            rng: chunk_rng(seed, 0),
+            tris: RandomTriangles::new(chunk_rng(seed, 0)),
         }
     }
 
     /// The next record's stimulus (expected columns zero): record `index` of `random:N`.
     pub fn next_record(&mut self) -> Record {
         if self.index > 0 && self.index.is_multiple_of(RANDOM_CHUNK) {
-            self.rng = chunk_rng(self.seed, self.index / RANDOM_CHUNK);
+            self.tris = RandomTriangles::new(chunk_rng(self.seed, self.index / RANDOM_CHUNK));
         }
         self.index += 1;
-        let s = random_stim(&self.cfg, &mut self.rng);
+        let s = self.tris.next(&self.cfg);
         // A default trace has colour 0: the expected column stays zero.
         top_record(&self.cfg, &self.layout, &s, &Default::default())
     }

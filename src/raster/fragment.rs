@@ -70,10 +70,11 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
     }
 }
 
-/// Every covered pixel's fragment record, in raster order.
+/// Every covered pixel's fragment record, triangle by triangle (pixel order within one).
 pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
     use rayon::prelude::*;
-    gb.hits
+    let mut v: Vec<FragmentRecord> = gb
+        .hits
         .par_iter()
         .enumerate()
         .filter_map(|(i, h)| {
@@ -87,5 +88,9 @@ pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
                 frag: fragment_in(p, hit, &g),
             })
         })
-        .collect()
+        .collect();
+    // A rasteriser walks one triangle at a time: each triangle's visible fragments together,
+    // in pixel order, so a per-triangle top sees one setup per triangle.
+    v.sort_by_key(|f| (f.obj, f.tri));
+    v
 }

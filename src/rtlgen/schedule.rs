@@ -18,6 +18,11 @@ pub struct Scheduler<'m> {
     ready: BTreeMap<String, u32>,
     /// Signals whose delay registers are cleared by reset (valid bits).
     reset: BTreeSet<String>,
+    /// Late signals: recomputed from their template at every stage that uses them (width,
+    /// template), instead of being carried by delay registers.
+    late: BTreeMap<String, (u32, String)>,
+    /// The latest stage at which a late signal is read.
+    late_max: Option<u32>,
 }
 
 /// Names `{x}` in a template.
@@ -45,7 +50,24 @@ impl<'m> Scheduler<'m> {
             m,
             ready: BTreeMap::new(),
             reset: BTreeSet::new(),
+            late: BTreeMap::new(),
+            late_max: None,
         }
+    }
+
+    /// A late signal `name = tpl`: at every stage that uses it, it is recomputed from its
+    /// inputs' copies at that stage (`name_s<stage>`), so only its inputs are delayed. This is
+    /// how a narrow index (a triangle's bank tag) reads a wide register that holds still (the
+    /// bank) where the value is needed, instead of the value travelling with the fragment.
+    pub fn late(&mut self, name: &str, width: u32, tpl: &str) {
+        let st = self.stage_of(&[tpl]);
+        self.ready.insert(name.to_string(), st);
+        self.late.insert(name.to_string(), (width, tpl.to_string()));
+    }
+
+    /// The latest stage at which any late signal is read (None: none is).
+    pub fn late_max(&self) -> Option<u32> {
+        self.late_max
     }
 
     /// A signal of the module (a port, or hand-written logic) valid at `stage`.
@@ -67,6 +89,15 @@ impl<'m> Scheduler<'m> {
     pub fn at(&mut self, name: &str, stage: u32) -> String {
         let r = self.ready(name);
         assert!(stage >= r, "{name} is needed at stage {stage} but ready only at {r}");
+        if let Some((w, tpl)) = self.late.get(name).cloned() {
+            let wire = format!("{name}_s{stage}");
+            if !self.m.has(&wire) {
+                let e = self.fill(&tpl, stage);
+                self.m.wire(&wire, w, Some(&e));
+            }
+            self.late_max = Some(self.late_max.map_or(stage, |m| m.max(stage)));
+            return wire;
+        }
         let w = self.m.width(name);
         let mut prev = name.to_string();
         for s in r + 1..=stage {
@@ -158,5 +189,23 @@ mod tests {
         assert!(text.contains("a_d2 <= a_d1;"), "{text}");
         assert!(text.contains("v_d1 <= rst ? 1'd0 : v;"), "{text}");
         assert!(!text.contains("a_d3"));
+    }
+
+    #[test]
+    fn a_late_signal_delays_its_index_not_its_value() {
+        let mut m = ModuleBuilder::new("t");
+        m.port("clk", Dir::In, 1);
+        m.port("rst", Dir::In, 1);
+        m.port("tag", Dir::In, 1);
+        m.raw("reg [31:0] bank [0:1];");
+        let mut s = Scheduler::new(&mut m);
+        s.source("tag", 0);
+        s.late("val", 32, "bank[{tag}]");
+        assert_eq!(s.fill("{val}[3:0]", 2), "val_s2[3:0]");
+        assert_eq!(s.late_max(), Some(2));
+        let text = m.finish();
+        assert!(text.contains("tag_d2 <= tag_d1;"), "{text}");
+        assert!(text.contains("bank[tag_d2]"), "{text}");
+        assert!(!text.contains("val_d"), "{text}");
     }
 }

@@ -54,10 +54,18 @@ pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
 /// `extra` (parameter, literal) for the top's other memories.
 pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)]) -> String {
     let l = top_layout(cfg);
+    let ports: Vec<String> = crate::rtlgen::top::port_list(cfg).into_iter().map(|p| p.name).collect();
     let mut decls = Vec::new();
     let mut connect = Vec::new();
     let mut assign = Vec::new();
     let mut print = Vec::new();
+    // The setup handshake: a fragment-state top has none, so its ready is tied high here.
+    if cfg.per_triangle() {
+        decls.push("    reg tri_valid = 1'b0;\n    wire tri_ready;".to_string());
+        connect.push(".tri_valid(tri_valid), .tri_ready(tri_ready)".to_string());
+    } else {
+        decls.push("    reg tri_valid = 1'b0;\n    wire tri_ready = 1'b1;".to_string());
+    }
     for c in &l.columns {
         let r = if c.width > 1 {
             format!("[{}:0] ", c.width - 1)
@@ -75,7 +83,9 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         } else {
             decls.push(format!("    wire {r}{};", c.name));
         }
-        connect.push(format!(".{0}({0})", c.name));
+        if ports.contains(&c.name) {
+            connect.push(format!(".{0}({0})", c.name));
+        }
     }
     // The other memories' load ports idle: the vectors assume their power-up contents.
     for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
@@ -106,8 +116,14 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         ("PRINT", print.join("\n")),
         ("OUT_HI", (out.lsb + out.width - 1).to_string()),
         ("OUT_LO", out.lsb.to_string()),
+        ("TRI_START", tri_start_bit(&l).map_or("1'b0".into(), |b| format!("stim[{b}]"))),
     ]);
     fill(TB_TOP.to_string(), &s)
+}
+
+/// The bit of a top record that marks a triangle's first fragment, when the top has setups.
+fn tri_start_bit(l: &Layout) -> Option<u32> {
+    l.columns.iter().find(|c| c.name == crate::vectors::targets::TRI_START).map(|c| c.lsb)
 }
 
 /// Units present in this configuration, in `UNITS` order.
@@ -194,10 +210,13 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
 /// The Verilator C++ harness for binary top vectors.
 pub fn harness_top(cfg: &PipelineConfig) -> String {
     let l = top_layout(cfg);
+    let ports: Vec<String> = crate::rtlgen::top::port_list(cfg).into_iter().map(|p| p.name).collect();
     let mut assign = Vec::new();
     let mut print = Vec::new();
     for c in l.columns.iter().filter(|c| c.role == Role::Stimulus) {
-        if c.width <= 64 {
+        if !ports.contains(&c.name) {
+            // tri_start is read by the harness, not driven.
+        } else if c.width <= 64 {
             assign.push(format!("            top.{} = get_bits(rin, {}, {});", c.name, c.lsb, c.width));
         } else {
             let words = c.width.div_ceil(32);
@@ -233,6 +252,18 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
         ("II", cfg.initiation_interval().to_string()),
+        ("TRI_START", tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)"))),
+    ]);
+    let tri = cfg.per_triangle();
+    s.extend([
+        ("TRI_VALID_0", if tri { "top.tri_valid = 0;" } else { "" }.to_string()),
+        ("TRI_VALID_1", if tri { "top.tri_valid = 1;" } else { "" }.to_string()),
+        ("TRI_ACCEPT", if tri { "top.tri_valid && top.tri_ready" } else { "false" }.to_string()),
+        (
+            "RAW_SETUP",
+            if tri { "top.tri_valid = 1; top.clk = 0; top.eval(); while (!top.tri_ready) tick(); tick(); top.tri_valid = 0;" } else { "" }
+                .to_string(),
+        ),
     ]);
     fill(HARNESS_TOP.to_string(), &s)
 }

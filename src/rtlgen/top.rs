@@ -8,8 +8,10 @@
 //! Serial lights (paper §4.2, n clocks per fragment): the fragment is held while a counter
 //! walks the light slots through one dot_clamp pair, one power-table port and one
 //! `light_accumulate` per blend; `blend_finish` closes each sum; `in_ready` is low meanwhile.
-//! The bump state (L_i, H_i, Lc_i, k_i) enters with each fragment, so vectors are
-//! self-contained.
+//! The bump state (L_i, H_i, Lc_i, k_i) is loaded once per triangle through the setup port
+//! (`tri_valid/tri_ready`, `tri_*`) into `triangle_banks` register banks, and fragments carry a
+//! bank tag (`bump_state = "triangle"`, the default); or it enters with every fragment on the
+//! `in_*` ports (`bump_state = "fragment"`).
 
 use super::module::ModuleBuilder;
 use super::schedule::Scheduler;
@@ -32,6 +34,9 @@ pub enum PortKind {
     Load,
     /// A fragment field: a stimulus column of the vectors.
     Fragment,
+    /// A triangle-setup field (per-triangle tops): a stimulus column of the vectors, driven
+    /// through the setup port when the record starts a triangle.
+    Triangle,
     /// The result: an expected column of the vectors.
     Result,
 }
@@ -170,38 +175,49 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         tp("in_t", Dir::In, PortKind::Fragment, col, 3, "R, G, B of the texture colour T"),
         tp("in_diffuse_en", Dir::In, PortKind::Fragment, bit, 1, "diffuse blend enable"),
         tp("in_specular_en", Dir::In, PortKind::Fragment, bit, 1, "specular blend enable"),
+    ]);
+    if cfg.per_triangle() {
+        v.extend([
+            tp("tri_valid", Dir::In, PortKind::Control, bit, 1, "a triangle's bump state is offered on tri_*"),
+            tp(
+                "tri_ready",
+                Dir::Out,
+                PortKind::Control,
+                bit,
+                1,
+                "the setup is accepted at this edge if tri_valid: low while the bank it would load is still read by an earlier triangle's fragment, and during reset",
+            ),
+        ]);
+    }
+    let (pre, kind) = if cfg.per_triangle() { ("tri", PortKind::Triangle) } else { ("in", PortKind::Fragment) };
+    v.extend([
         tp(
-            "in_l",
+            &format!("{pre}_l"),
             Dir::In,
-            PortKind::Fragment,
+            kind,
             cfg.lh_fmt(),
             3 * n,
             "light j, component c (x, y, z) at lane 3j + c: L_j in bump space",
         ),
         tp(
-            "in_h",
+            &format!("{pre}_h"),
             Dir::In,
-            PortKind::Fragment,
+            kind,
             cfg.lh_fmt(),
             3 * n,
             "light j, component c (x, y, z) at lane 3j + c: H_j in bump space",
         ),
         tp(
-            "in_lc",
+            &format!("{pre}_lc"),
             Dir::In,
-            PortKind::Fragment,
+            kind,
             col,
             3 * n,
             "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j",
         ),
-        tp(
-            "in_k",
-            Dir::In,
-            PortKind::Fragment,
-            cfg.k_fmt(),
-            n,
-            "light j at lane j: the light's weight k_j",
-        ),
+        tp(&format!("{pre}_k"), Dir::In, kind, cfg.k_fmt(), n, "light j at lane j: the light's weight k_j"),
+    ]);
+    v.extend([
         tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result"),
         tp("out_c", Dir::Out, PortKind::Result, col, 3, "R, G, B of C_new"),
     ]);
@@ -392,6 +408,66 @@ fn colour_stages(
     c
 }
 
+/// The bump state's signal names: `{pre}_l`, `{pre}_h`, `{pre}_lc`, `{pre}_k` templates.
+/// A per-triangle top reads them from its banks (late signals `st_*`, see [`banks`]); a
+/// per-fragment top from the fragment (`held`: the serial top's captured `fr_*`, else `in_*`).
+fn state_pre(cfg: &PipelineConfig, held: bool) -> &'static str {
+    match (cfg.per_triangle(), held) {
+        (true, _) => "st",
+        (false, true) => "fr",
+        (false, false) => "in",
+    }
+}
+
+/// The triangle-setup port's register banks (per-triangle tops). A setup is written into the
+/// bank after the current one and makes it current; a fragment is tagged with the current
+/// bank when it is accepted (`tag` at stage 0) and reads its state there through late
+/// signals `st_*`, at the stage that uses each field. Returns nothing: [`bank_ready`] closes
+/// the handshake once every read is placed.
+fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
+    let (k, bb) = (cfg.triangle_banks, cfg.bank_bits());
+    s.m.comment(format!(
+        "Triangle setup: {k} register banks. A setup loads the bank after the current one and makes it current; fragments carry the bank's tag."
+    ));
+    s.m.reg_decl("tri_cur", bb);
+    s.m.wire(
+        "tri_next",
+        bb,
+        Some(&format!("(tri_cur == {bb}'d{}) ? {bb}'d0 : tri_cur + {bb}'d1", k - 1)),
+    );
+    s.m.wire("tri_accept", 1, Some("tri_valid && tri_ready"));
+    let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
+    for p in &tri {
+        let f = &p.name[4..];
+        s.m.raw(format!("reg [{}:0] bank_{f} [0:{}];", p.width() - 1, k - 1));
+    }
+    let writes: Vec<String> = tri.iter().map(|p| format!("        bank_{0}[tri_next] <= {1};", &p.name[4..], p.name)).collect();
+    s.m.raw(format!("always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend", writes.join("\n")));
+    s.m.raw(format!(
+        "always @(posedge clk) begin\n    if (rst) tri_cur <= {bb}'d0;\n    else if (tri_accept) tri_cur <= tri_next;\nend"
+    ));
+    s.source(tag, 0);
+    for p in &tri {
+        let f = &p.name[4..];
+        s.late(&format!("st_{f}"), p.width(), &format!("bank_{f}[{{{tag}}}]"));
+    }
+}
+
+/// `tri_ready`: low during reset and while a fragment tagged with the next bank can still read
+/// it, at stages `first..` below the last stage that reads a bank (a read at that stage
+/// happens before the edge that would write, so it is not waited for).
+fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) {
+    let last = s.late_max().expect("a per-triangle top reads its banks");
+    let mut busy = Vec::new();
+    for st in first..last {
+        let (v, t) = (s.at(valid, st), s.at(tag, st));
+        busy.push(format!("({v} && {t} == tri_next)"));
+    }
+    s.m.comment(format!("A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."));
+    let busy = if busy.is_empty() { "1'b0".to_string() } else { busy.join(" || ") };
+    s.m.raw(format!("assign tri_ready = !rst && !({busy});"));
+}
+
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     let n = cfg.lights;
     let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_bits + 1, cfg.power_bits + 1, cfg.factor_frac() + 1);
@@ -401,13 +477,17 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     }
     s.source("in_valid", 0);
     s.valid_bit("in_valid");
+    if cfg.per_triangle() {
+        banks(s, cfg, "tri_cur");
+    }
+    let pre = state_pre(cfg, false);
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_texel}", false);
     let dot = units::unit("dot_clamp").expect("unit");
     // One dot_clamp per light slot: B·L_i into fd<i>, or B·H_i into xh<i>.
     let dots = |s: &mut Scheduler, v: &str, out: &str| {
         for i in 0..n {
-            let lanes = format!("{{in_{v}}}{}", lane(i, lh3));
+            let lanes = format!("{{{pre}_{v}}}{}", lane(i, lh3));
             s.unit(
                 cfg,
                 dot,
@@ -451,7 +531,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
             cfg,
             u,
             &format!("u_{}", u.name()),
-            &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", "{in_k}"), ("lc", "{in_lc}")],
+            &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", &format!("{{{pre}_k}}")), ("lc", &format!("{{{pre}_lc}}"))],
             &[("c_out", name)],
             &[],
         );
@@ -459,6 +539,11 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     });
     let lat = s.ready(&out);
     let v = s.at("in_valid", lat);
+    if cfg.per_triangle() {
+        // Stage 0 is the accepting cycle: that fragment is tagged with the current bank,
+        // which a setup never writes.
+        bank_ready(s, "tri_cur", "in_valid", 1);
+    }
     (lat, out, v)
 }
 
@@ -487,10 +572,23 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
         s.source(sig, 0);
     }
     s.valid_bit("busy");
+    if cfg.per_triangle() {
+        s.m.reg_decl("fr_tag", cfg.bank_bits());
+        s.m.raw("always @(posedge clk) if (accept) fr_tag <= tri_cur;");
+        banks(s, cfg, "fr_tag");
+    }
+    let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_texel}", true);
-    s.comb("lc_sel", c3, &format!("{{fr_lc}}[{{j}}*{c3} +: {c3}]"));
     let k1 = cfg.k_bits + 1;
-    s.comb("k_sel", k1, &format!("{{fr_k}}[{{j}}*{k1} +: {k1}]"));
+    let (lc_tpl, k_tpl) = (format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"), format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"));
+    if cfg.per_triangle() {
+        // Read where the accumulators use them: only the slot index and the tag travel.
+        s.late("lc_sel", c3, &lc_tpl);
+        s.late("k_sel", k1, &k_tpl);
+    } else {
+        s.comb("lc_sel", c3, &lc_tpl);
+        s.comb("k_sel", k1, &k_tpl);
+    }
     let dot = units::unit("dot_clamp").expect("unit");
     let acc = units::unit("light_accumulate").expect("unit");
     let aw3 = 3 * cfg.acc_fmt().width;
@@ -524,14 +622,14 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     };
     if cfg.diffuse {
         s.comb("de", 1, &enable(cfg, true, "fr_diffuse_en"));
-        s.comb("l_sel", lh3, &format!("{{fr_l}}[{{j}}*{lh3} +: {lh3}]"));
+        s.comb("l_sel", lh3, &format!("{{{pre}_l}}[{{j}}*{lh3} +: {lh3}]"));
         s.unit(cfg, dot, "u_dot_l", &[("b", "{b}"), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_bits, "{de}"));
         accumulate(s, "dacc", "{dfac}");
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "fr_specular_en"));
-        s.comb("h_sel", lh3, &format!("{{fr_h}}[{{j}}*{lh3} +: {lh3}]"));
+        s.comb("h_sel", lh3, &format!("{{{pre}_h}}[{{j}}*{lh3} +: {lh3}]"));
         s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_bits, "{se}"));
@@ -561,6 +659,10 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     let lat_out = s.stage_of(&[&format!("{{{out}}}"), "{done}"]);
     let c = s.fill(&format!("{{{out}}}"), lat_out);
     let v = s.fill("{done}", lat_out);
+    if cfg.per_triangle() {
+        // Stage 0 holds the fragment (in fr_*) for its n slot cycles, reading its bank.
+        bank_ready(s, "fr_tag", "busy", 0);
+    }
     // Stages count from the cycle of a fragment's slot; its last slot runs n - 1 cycles after
     // the cycle following the accepting edge.
     (cfg.lights + lat_out, c, v)

@@ -5,7 +5,7 @@
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::{Sim, Simulator, Verilator};
-use crate::config::{limit, BlendOrder, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
+use crate::config::{limit, BlendOrder, BumpStateAt, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
@@ -39,6 +39,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             diffuse: pick(rng, &[false, true]),
             specular: pick(rng, &[false, true]),
             skip_flat: pick(rng, &[false, true]),
+            bump_state: pick(rng, &[BumpStateAt::Triangle, BumpStateAt::Fragment]),
+            triangle_banks: field(rng, "triangle_banks"),
         };
         if cfg.validate("random").is_ok() {
             return cfg;

@@ -87,11 +87,10 @@ pub fn chunk_rng(seed: u64, chunk: u64) -> SplitMix64 {
     SplitMix64(seed ^ chunk.wrapping_mul(0xA076_1D64_78BD_642F))
 }
 
-/// A random stimulus: half realistic (unit vectors, mild colours), half raw codes over the
+/// A random triangle's bump state: half realistic (unit vectors), half raw codes over the
 /// whole of every format.
-pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
+pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     let cmax = cfg.colour_max() as i64;
-    let nmax = (1i64 << cfg.normal_bits) - 1;
     let kone = 1i64 << cfg.k_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
@@ -111,21 +110,73 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
             k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
         };
     }
+    state
+}
+
+/// A random fragment: raw codes over the whole of every format, blends mostly enabled.
+pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn {
+    let cmax = cfg.colour_max() as i64;
+    let nmax = (1i64 << cfg.normal_bits) - 1;
     let texel = [0; 3].map(|_| rng.range(0, nmax) as u32);
     let bump = if cfg.palette {
         BumpTexel::Index(rng.range(0, 255) as u8)
     } else {
         BumpTexel::Rgb(texel)
     };
+    FragmentIn {
+        bump,
+        c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
+        texel: [0; 3].map(|_| rng.range(0, cmax) as u32),
+        diffuse_en: rng.chance(0.85),
+        specular_en: rng.chance(0.85),
+    }
+}
+
+/// A random stimulus that is a triangle of its own.
+pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
+    let state = random_state(cfg, rng);
     TopStim {
-        frag: FragmentIn {
-            bump,
-            c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
-            texel: [0; 3].map(|_| rng.range(0, cmax) as u32),
-            diffuse_en: rng.chance(0.85),
-            specular_en: rng.chance(0.85),
-        },
+        frag: random_fragment(cfg, rng),
         state,
+        tri_start: true,
+    }
+}
+
+/// The random stream: triangles of random fragment counts (a quarter of them one fragment, so
+/// one-fragment triangles come back to back; the rest up to 64), each fragment random. Every
+/// chunk of `RANDOM_CHUNK` records starts a new triangle, so chunks stay independent.
+pub struct RandomTriangles {
+    rng: SplitMix64,
+    state: BumpState,
+    left: u64,
+}
+
+impl RandomTriangles {
+    pub fn new(rng: SplitMix64) -> RandomTriangles {
+        RandomTriangles {
+            rng,
+            state: BumpState::default(),
+            left: 0,
+        }
+    }
+
+    pub fn next(&mut self, cfg: &PipelineConfig) -> TopStim {
+        let tri_start = self.left == 0;
+        if tri_start {
+            self.left = if self.rng.chance(0.25) {
+                1
+            } else {
+                let span = 1i64 << self.rng.range(0, 6);
+                1 + self.rng.range(0, span - 1) as u64
+            };
+            self.state = random_state(cfg, &mut self.rng);
+        }
+        self.left -= 1;
+        TopStim {
+            frag: random_fragment(cfg, &mut self.rng),
+            state: self.state,
+            tri_start,
+        }
     }
 }
 
@@ -151,7 +202,8 @@ fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], 
         diffuse_en: true,
         specular_en: true,
     };
-    TopStim { frag, state }
+    // Every corner is a triangle of its own: one-fragment triangles back to back.
+    TopStim { frag, state, tri_start: true }
 }
 
 /// The bump texel a fragment of `cfg` carries for stored codes `rgb`: the codes, or in a

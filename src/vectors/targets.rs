@@ -2,17 +2,24 @@
 //! a layout (its ports as columns, from the same table the RTL is generated from) and a way
 //! to fill a record from a stimulus evaluated by the model.
 
-use super::layout::{Layout, Record, Role};
+use super::layout::{Column, Layout, Record, Role};
 use crate::config::PipelineConfig;
 use crate::model::{shade, BumpState, BumpTexel, FragmentIn, Shaded};
 use crate::units::{Dir, Memories, UNITS};
 
-/// A top-level stimulus: one fragment with its triangle's bump state.
+/// A top-level stimulus: one fragment with its triangle's bump state, and whether it is the
+/// first fragment of its triangle (a per-triangle top loads the state through its setup port
+/// before this fragment; the model, which reads the state from every record, ignores it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TopStim {
     pub frag: FragmentIn,
     pub state: BumpState,
+    pub tri_start: bool,
 }
+
+/// The vector column that marks a triangle's first fragment (per-triangle tops only; not a
+/// port: the testbench drives a setup beat from the record's `tri_*` columns first).
+pub const TRI_START: &str = "tri_start";
 
 /// A unit-level stimulus: the unit's input lanes, by port, in UNITS order.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,21 +28,65 @@ pub struct UnitStim {
     pub inputs: Vec<Vec<i64>>,
 }
 
-/// Layout of the top's vectors: its fragment ports, then its result, from the top's port list.
+/// Layout of the top's vectors, from the top's port list: its fragment ports, then (per-triangle
+/// tops) `tri_start` and the triangle-setup ports, then its result. Every record is a whole
+/// fragment with its triangle's state, so any record can be evaluated on its own.
 pub fn top_layout(cfg: &PipelineConfig) -> Layout {
     use crate::rtlgen::top::{port_list, PortKind};
     let mut l = Layout::default();
-    for kind in [PortKind::Fragment, PortKind::Result] {
+    for kind in [PortKind::Fragment, PortKind::Triangle, PortKind::Result] {
+        if kind == PortKind::Triangle && cfg.per_triangle() {
+            l.push(TRI_START, Role::Stimulus, 1, 1, "u1.0".into());
+        }
         for p in port_list(cfg).into_iter().filter(|p| p.kind == kind) {
-            let role = if kind == PortKind::Fragment {
-                Role::Stimulus
-            } else {
+            let role = if kind == PortKind::Result {
                 Role::Expected
+            } else {
+                Role::Stimulus
             };
             l.push(&p.name, role, p.fmt.width, p.lanes, p.fmt.name());
         }
     }
     l
+}
+
+/// The name of bump-state field `f` (`l`, `h`, `lc`, `k`) on the top's ports and in its vectors.
+pub fn state_column(cfg: &PipelineConfig, f: &str) -> String {
+    format!("{}_{f}", if cfg.per_triangle() { "tri" } else { "in" })
+}
+
+/// The top's columns by name, looked up once per layout.
+struct TopColumns<'a> {
+    texel: &'a Column,
+    c_src: &'a Column,
+    t: &'a Column,
+    de: &'a Column,
+    se: &'a Column,
+    start: Option<&'a Column>,
+    l: &'a Column,
+    h: &'a Column,
+    lc: &'a Column,
+    k: &'a Column,
+    out: &'a Column,
+}
+
+impl<'a> TopColumns<'a> {
+    fn of(cfg: &PipelineConfig, l: &'a Layout) -> TopColumns<'a> {
+        let st = |f: &str| l.column(&state_column(cfg, f));
+        TopColumns {
+            texel: l.column("in_texel"),
+            c_src: l.column("in_c_src"),
+            t: l.column("in_t"),
+            de: l.column("in_diffuse_en"),
+            se: l.column("in_specular_en"),
+            start: l.columns.iter().find(|c| c.name == TRI_START),
+            l: st("l"),
+            h: st("h"),
+            lc: st("lc"),
+            k: st("k"),
+            out: l.column("out_c"),
+        }
+    }
 }
 
 /// Layout of a unit's vectors: its ports from `UNITS`, inputs then outputs.
@@ -55,8 +106,11 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
 pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -> Record {
     let mut r = Record::new(l);
     let n = cfg.lights as usize;
-    // Columns in `top_layout` order.
-    let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, c_out] = std::array::from_fn(|i| &l.columns[i]);
+    let TopColumns { texel: c_texel, c_src, t: c_t, de: c_de, se: c_se, start, l: c_l, h: c_h, lc: c_lc, k: c_k, out: c_out } =
+        TopColumns::of(cfg, l);
+    if let Some(c) = start {
+        r.set_lane(c, 0, s.tri_start as i64);
+    }
     match s.frag.bump {
         BumpTexel::Rgb(texel) => {
             for (i, &tx) in texel.iter().enumerate() {
@@ -88,7 +142,8 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
 /// Read a top record's stimulus back (the inverse of [`top_record`]; the expected columns are
 /// ignored), so a record from any source can be evaluated by the model.
 pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
-    let [c_texel, c_src, c_t, c_de, c_se, c_l, c_h, c_lc, c_k, _] = std::array::from_fn(|i| &l.columns[i]);
+    let TopColumns { texel: c_texel, c_src, t: c_t, de: c_de, se: c_se, start, l: c_l, h: c_h, lc: c_lc, k: c_k, .. } =
+        TopColumns::of(cfg, l);
     let lane3 = |c, base: u32| [0, 1, 2].map(|i| r.lane_value(c, base + i));
     let code3 = |c| lane3(c, 0).map(|v| v as u32);
     let mut state = BumpState::default();
@@ -112,6 +167,8 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
             specular_en: r.lane_value(c_se, 0) != 0,
         },
         state,
+        // A per-fragment top has no setup: every record stands alone.
+        tri_start: start.is_none_or(|c| r.lane_value(c, 0) != 0),
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
-use super::sources::{chunk_rng, corners, exhaustive, exhaustive_count, random_stim, Source, RANDOM_CHUNK};
+use super::sources::{chunk_rng, corners, exhaustive, exhaustive_count, RandomTriangles, Source, RANDOM_CHUNK};
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -241,11 +241,15 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
             let gb = crate::raster::rasterise::rasterise(&p);
             let frags = crate::raster::fragment::fragments(&p, &gb);
             let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
+            // `fragments` gives each triangle's fragments together: a setup starts each run.
+            let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
             for f in frags {
                 let n = s.objects[f.obj as usize].shininess;
+                let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
                 groups.entry(n).or_default().push(TopStim {
                     frag: f.frag,
                     state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
+                    tri_start,
                 });
             }
             let multi = groups.len() > 1;
@@ -343,8 +347,8 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                         .into_par_iter()
                         .map(|c| {
                             let len = CHUNK.min(n - c * CHUNK);
-                            let mut rng = chunk_rng(o.seed, c);
-                            let stims: Vec<TopStim> = (0..len).map(|_| random_stim(cfg, &mut rng)).collect();
+                            let mut tris = RandomTriangles::new(chunk_rng(o.seed, c));
+                            let stims: Vec<TopStim> = (0..len).map(|_| tris.next(cfg)).collect();
                             let (mut hex, mut bin) = (String::new(), Vec::new());
                             for s in &stims {
                                 let r = top_record(cfg, &tl, s, &eval_top(cfg, mem, s));
