@@ -11,3 +11,17 @@ $g rom --shininess 16 --cube-size 32 --out rtl/rom
 $g vectors --source corners --out vectors
 $g vectors --source random:256 --seed 1 --out vectors
 GBUMP_BLESS=1 cargo test --release --quiet --test golden_images every_builtin_scene_matches_its_golden_png
+# The README's generated sections: everything between a section's heading and the next one.
+paste_section() { # heading, command
+    local out
+    out=$(mktemp)
+    "${@:2}" > "$out.body"
+    awk -v h="$1" -v body="$out.body" '
+        $0 == h { print; print ""; while ((getline l < body) > 0) print l; print ""; skip = 1; next }
+        skip && /^## / { skip = 0 }
+        !skip { print }' README.md > "$out"
+    mv "$out" README.md
+    rm -f "$out.body"
+}
+paste_section "## Interface (default configuration)" $g interface
+paste_section "## Integrating the RTL: protocol and records" $g integration

@@ -28,6 +28,10 @@ static const int PT_N = {{PT_N}};
 static const long long LATENCY = {{LATENCY}};
 static const long long II = {{II}};
 static const size_t FLIGHT = 64;
+// Per-triangle tops: a setup loads bank (setups so far + 1) % TRI_BANKS, and may do so from
+// BANK_HOLD edges after the accept of that bank's last fragment on, not before.
+static const unsigned TRI_BANKS = {{TRI_BANKS}};
+static const long long BANK_HOLD = {{BANK_HOLD}};
 
 // Bits [lsb, lsb+width) of a little-endian record (width <= 64): one unaligned 8-byte load
 // and a shift. The record buffer is padded so the load never leaves it.
@@ -125,6 +129,7 @@ int main(int argc, char** argv) {
     // The record whose triangle setup was accepted last; setups and their waits.
     size_t setup_for = (size_t)-1;
     unsigned long long setups = 0, setup_waits = 0;
+    std::vector<long long> frag_edge(TRI_BANKS, -1000000);
     auto timing = [&](const char* what, long long got, long long want) {
         ++failed;
         if (++timing_errors <= max_errors)
@@ -151,7 +156,11 @@ int main(int argc, char** argv) {
         // Sampled before the rising edge, as the design's registers see them.
         bool accept = top.in_valid && top.in_ready;
         if (setup) {
-            if ({{TRI_ACCEPT}}) { setup_for = next_in; ++setups; }
+            const long long since = (long long)cycles - frag_edge[(setups + 1) % TRI_BANKS];
+            const bool taken = {{TRI_ACCEPT}};
+            if (taken && since < BANK_HOLD) timing("setup accepted while its bank is still read", since, BANK_HOLD);
+            else if (!taken && since >= BANK_HOLD) timing("tri_ready low beyond the bank hold", since, BANK_HOLD);
+            if (taken) { setup_for = next_in; ++setups; }
             else ++setup_waits;
         }
         const long long cyc = (long long)cycles;
@@ -160,6 +169,7 @@ int main(int argc, char** argv) {
             if (next_in - next_out >= FLIGHT) { printf("FATAL: more than %zu fragments in flight\n", FLIGHT); break; }
             acc_cyc[next_in % FLIGHT] = cyc;
             last_acc = cyc;
+            frag_edge[setups % TRI_BANKS] = cyc;
         } else if (top.in_valid && (last_acc < 0 || cyc - last_acc >= II)) {
             timing("in_ready low beyond the initiation interval", last_acc < 0 ? cyc : cyc - last_acc, II);
         }

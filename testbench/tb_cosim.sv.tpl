@@ -8,7 +8,9 @@
 //           [+count=N] fragments (default 1000)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth fragment
 //           [+max_errors=N] (default 20)
-// Stream record k is record k of `gbump vectors --source random:N --seed S`, so a failing
+// A stream record that starts a triangle (per-triangle tops: its tri_start column) is preceded
+// by a setup beat on tri_valid/tri_ready with in_valid low; the model is given the state the
+// top took at that edge. Stream record k is record k of `gbump vectors --source random:N --seed S`, so a failing
 // fragment replays from a vector file. Ends with "N passed, N failed".
 `timescale 1ns / 1ps
 `default_nettype none
@@ -27,6 +29,7 @@ module tb_cosim;
     logic in_valid = 1'b0;
     wire in_ready;
     wire out_valid;
+{{TRI_DECLS}}
 {{DECLS}}
     {{TOP}} #(.INIT_FILE(INIT_FILE)) dut (
         .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
@@ -41,7 +44,7 @@ module tb_cosim;
     int count, bubbles, max_errors, gap, i, cycles;
     int lsb, width, lanes, expected;
     longint pw;
-    gbump_record_t stim, acc;
+    gbump_record_t stim, acc, tri_state;
     // Per fragment in flight: the record the top accepted (the model's expected columns
     // filled at the accepting edge) and the edge of its accept.
     gbump_record_t flight [0:FLIGHT-1];
@@ -110,8 +113,15 @@ module tb_cosim;
                 for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
             end
             if (gbump_stim_next(stream, stim) != 0) fatal(gbump_last_error());
-            in_valid = 1'b1;
 {{ASSIGN}}
+            if ({{TRI_START}}) begin
+                in_valid = 1'b0;
+                tri_valid = 1'b1;
+                while (!tri_ready) @(negedge clk);
+                @(negedge clk);
+                tri_valid = 1'b0;
+            end
+            in_valid = 1'b1;
             while (!in_ready) @(negedge clk);
             @(negedge clk);
         end
@@ -158,6 +168,12 @@ module tb_cosim;
             n_in = n_in + 1;
         end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II)) begin
             timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
+        end
+        // After the fragment's packing: a fragment taken at the same edge belongs to the
+        // previous triangle.
+        if (!rst && tri_valid && tri_ready) begin
+            tri_state = '0;
+{{TRI_CAPTURE}}
         end
         if (!rst && out_valid) begin
             if (n_out >= n_in) timing_error(0, LAT, "out_valid with no fragment in flight");

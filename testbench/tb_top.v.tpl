@@ -46,6 +46,13 @@ module tb_top;
     integer fin, fchk, code, i, cycles, max_errors, bubbles, gap;
     // Timing: the edge count, the edge of every accept still in flight, the last accept.
     localparam II = {{II}};
+    // Per-triangle tops: a setup loads bank (setups so far + 1) % TRI_BANKS, and may do so
+    // from BANK_HOLD edges after the accept of that bank's last fragment on, not before.
+    localparam TRI_BANKS = {{TRI_BANKS}};
+    localparam BANK_HOLD = {{BANK_HOLD}};
+    integer frag_edge [0:TRI_BANKS-1];
+    integer n_setup = 0;
+    integer bank_at;
     localparam FLIGHT = 64;
     integer cyc = 0;
     integer acc_cyc [0:FLIGHT-1];
@@ -70,6 +77,7 @@ module tb_top;
     endtask
 
     initial begin
+        for (i = 0; i < TRI_BANKS; i = i + 1) frag_edge[i] = -1000000;
         if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
         if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
         load_table = $value$plusargs("table=%s", table_file);
@@ -170,8 +178,16 @@ module tb_top;
             if (n_in - n_out >= FLIGHT) begin $display("FATAL: more than %0d fragments in flight", FLIGHT); finish_run; end
             acc_cyc[n_in % FLIGHT] = cyc;
             last_acc = cyc;
+            // A fragment taken at a setup's edge belongs to the previous triangle.
+            frag_edge[n_setup % TRI_BANKS] = cyc;
         end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II)) begin
             timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
+        end
+        if (!rst && tri_valid) begin
+            bank_at = frag_edge[(n_setup + 1) % TRI_BANKS];
+            if (tri_ready && cyc - bank_at < BANK_HOLD) timing_error(cyc - bank_at, BANK_HOLD, "setup accepted while its bank is still read");
+            else if (!tri_ready && cyc - bank_at >= BANK_HOLD) timing_error(cyc - bank_at, BANK_HOLD, "tri_ready low beyond the bank hold");
+            if (tri_ready) n_setup = n_setup + 1;
         end
         if (!rst && out_valid) begin
             code = $fscanf(fchk, "%h\n", chk);

@@ -159,7 +159,8 @@ fn queries_agree_with_the_interface() {
             gbump_column(h, c("top").as_ptr(), c("out_c").as_ptr(), &mut lsb, &mut w, &mut lanes, &mut exp),
             0
         );
-        assert_eq!((lsb, w, lanes, exp), (590, 24, 3, 1));
+        let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").clone();
+        assert_eq!((lsb as u32, w as u32, lanes as u32, exp), (out.lsb, out.width, out.lanes, 1));
         assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_texel");
         assert_eq!(gbump_unit_latency(h, c("dot_clamp").as_ptr()), 1);
         assert_eq!(gbump_set_shininess(h, 3), 0);
@@ -251,6 +252,8 @@ int main(void) {
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{text}{}", String::from_utf8_lossy(&run.stderr));
     // The same checksum from the Rust side of the same stream.
+    let layout = gbump::vectors::targets::top_layout(&PipelineConfig::default());
+    let out = layout.column("out_c").clone();
     let h = gbump_config_default();
     let g = unsafe { gbump_stim_new(h, 1) };
     let mut sum = 0u64;
@@ -261,11 +264,14 @@ int main(void) {
             gbump_eval(h, c("top").as_ptr(), rec.as_ptr(), rec.as_mut_ptr());
         }
         let r = Record::from_words32(&rec);
-        sum += r.get(590, 24);
+        sum += r.get(out.lsb, out.width);
     }
     unsafe {
         gbump_stim_free(g);
         gbump_config_free(h);
     }
-    assert_eq!(text.trim(), format!("20 words, out_c at 590+24, checksum {sum}"));
+    assert_eq!(
+        text.trim(),
+        format!("{} words, out_c at {}+{}, checksum {sum}", layout.words32(), out.lsb, out.width)
+    );
 }

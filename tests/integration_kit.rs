@@ -263,8 +263,9 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
         std::fs::write(
             &user,
             format!(
-                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_texel=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_texel, r.in_h, r.in_k, in_h_lane(r.in_h, 0, 1), in_lc_lane(r.in_lc, 0, 2), in_k_lane(r.in_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
-                hex.display()
+                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_texel=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_texel, r.{p}_h, r.{p}_k, {p}_h_lane(r.{p}_h, 0, 1), {p}_lc_lane(r.{p}_lc, 0, 2), {p}_k_lane(r.{p}_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
+                hex.display(),
+                p = if cfg.per_triangle() { "tri" } else { "in" }
             ),
         )
         .unwrap();
@@ -298,7 +299,8 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
             .to_string();
         let l = gbump::vectors::targets::top_layout(&cfg);
         let col = |n: &str| l.column(n).clone();
-        let (h, lc, k) = (col("in_h"), col("in_lc"), col("in_k"));
+        let st = |f: &str| gbump::vectors::targets::state_column(&cfg, f);
+        let (h, lc, k) = (col(&st("h")), col(&st("lc")), col(&st("k")));
         let lw = |c: &gbump::vectors::layout::Column| c.width / c.lanes;
         let want = format!(
             "out_c={} in_texel={} in_h={} in_k={} h01={} lc02={} k0={} lat={} ii={}",

@@ -24,6 +24,11 @@ fn work(name: &str) -> PathBuf {
 
 /// Corner vectors of the top (text and binary): (hex, bin) paths.
 fn corner_vectors(cfg: &PipelineConfig, dir: &Path) -> (String, String) {
+    top_vectors(cfg, dir, Source::Corners(2))
+}
+
+/// Vectors of the top from `src` (text and binary): (hex, bin) paths.
+fn top_vectors(cfg: &PipelineConfig, dir: &Path, src: Source) -> (String, String) {
     let o = DumpOptions {
         text: true,
         binary: true,
@@ -32,7 +37,7 @@ fn corner_vectors(cfg: &PipelineConfig, dir: &Path) -> (String, String) {
         command: "test".into(),
         shininess: None,
     };
-    let sets = dump(cfg, &Source::Corners(2), &["top".into()], dir, &o).unwrap();
+    let sets = dump(cfg, &src, &["top".into()], dir, &o).unwrap();
     let (m, d) = verify(&sets[0].manifest).unwrap();
     let f = |e: &Option<gbump::vectors::manifest::FileEntry>| d.join(&e.as_ref().unwrap().name).display().to_string();
     (f(&m.hex), f(&m.bin))
@@ -63,7 +68,9 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
     let cfg = config(cfg_path);
     let w = work(name);
     let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
-    let (hex, bin) = corner_vectors(&cfg, &w.join("vectors"));
+    // Random triangles: fragments back to back within one (the interval binds), and
+    // one-fragment triangles back to back (the bank hold binds).
+    let (hex, bin) = top_vectors(&cfg, &w.join("vectors"), Source::Random(300));
     let (lat, ii) = (gbump::rtlgen::top::latency(&cfg), cfg.initiation_interval());
     // The interface file states the numbers the benches check.
     let top = gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline");
@@ -98,6 +105,28 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
             "icarus, latency {l}, II {i}:\n{}",
             bad.log
         );
+    }
+    // The bank hold.
+    if let Some(hold) = gbump::rtlgen::top::bank_hold(&cfg) {
+        assert_eq!(json["bump_state"]["bank_hold_cycles"], hold);
+        let tb_hold = format!("localparam BANK_HOLD = {hold};");
+        assert!(tb.contains(&tb_hold) && cpp.contains(&format!("static const long long BANK_HOLD = {hold};")));
+        // A hold longer than the RTL's is caught whenever a setup is offered at the bound;
+        // a shorter one only when setups really wait (serial tops: n slots of reads).
+        let base = icarus_top(&w, &rtl, &tb, &hex, &[&table], &w).unwrap();
+        assert!(base.failed == 0 && base.log.contains("triangle setups"), "{}", base.log);
+        let waits = !base.log.contains(" 0 edges waited");
+        let mut holds = vec![hold + 1];
+        if waits {
+            holds.push(hold - 1);
+        }
+        for h in holds {
+            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_hold, &format!("localparam BANK_HOLD = {h};")), &hex, &[&table], &w).unwrap();
+            assert!(bad.failed > 0 && bad.log.contains("bank"), "icarus, bank hold {h}:\n{}", bad.log);
+        }
+        if cfg.light_mode == gbump::config::LightMode::Serial {
+            assert!(waits, "one-fragment triangles back to back make serial setups wait:\n{}", base.log);
+        }
     }
     // Verilator builds are slower: one latency and one interval mutant.
     for (l, i) in [(lat + 1, ii), (lat, ii + 1)] {

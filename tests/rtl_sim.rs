@@ -99,7 +99,7 @@ fn regress_four_lights_serial_dot10() {
 }
 
 #[test]
-fn lint_is_clean_for_three_configurations() {
+fn lint_is_clean_for_every_test_configuration() {
     for cfg in [
         None,
         Some("tests/configs/one_light_parallel.toml"),
@@ -109,6 +109,8 @@ fn lint_is_clean_for_three_configurations() {
         Some("tests/configs/segmented_power.toml"),
         Some("tests/configs/palette_serial.toml"),
         Some("tests/configs/palette_parallel.toml"),
+        Some("tests/configs/fragment_state.toml"),
+        Some("tests/configs/three_banks_serial.toml"),
     ] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);
@@ -451,6 +453,24 @@ fn the_palette_unit_matches_the_model_on_both_tops() {
                 "{set} on both simulators:\n{t}"
             );
         }
+    }
+}
+
+#[test]
+fn the_per_fragment_top_and_a_three_bank_top_match_the_model() {
+    for (cfg, work) in [
+        ("tests/configs/fragment_state.toml", "fragment_state"),
+        ("tests/configs/three_banks_serial.toml", "three_banks"),
+    ] {
+        let t = regress(
+            &["--sim", "both", "--config", cfg, "--random", "50000", "--random-icarus", "3000", "--no-scenes"],
+            work,
+        );
+        let r = runs(&t);
+        assert!(
+            r.iter().filter(|x| x.1.starts_with("random") && x.1.ends_with("_top") && x.3 == 0 && x.2 > 0).count() == 2,
+            "the random top set on both simulators:\n{t}"
+        );
     }
 }
 

@@ -7,7 +7,9 @@ table through the load port (pt_we/pt_waddr/pt_wdata; $GBUMP_TABLE or the set's 
 every record with random bubbles ($GBUMP_BUBBLES: chance of a 1-3 cycle gap, seeded by
 $GBUMP_SEED), and checks every out_c, the latency of every vector (rising edges from the
 accepting edge to the edge at which its out_valid is first sampled high) and the spacing of
-accepts (the initiation interval). Stops after $GBUMP_MAX_ERRORS (default 20) mismatches.
+accepts (the initiation interval). A per-triangle top (its interface has `bump_state.at` =
+"triangle") gets a setup beat on tri_valid/tri_ready, in_valid low, before every record whose
+`tri_start` column is 1. Stops after $GBUMP_MAX_ERRORS (default 20) mismatches.
 
 Timing convention: inputs change at falling edges; after they settle, the values read are the
 ones the next rising edge samples (the outputs are registered and change only after a rising
@@ -45,7 +47,11 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
     cols = man["columns"]
     stim = [c for c in cols if c["role"] == "stimulus"]
     (out,) = [c for c in cols if c["role"] == "expected"]
-    for c in cols:
+    per_triangle = iface["bump_state"]["at"] == "triangle"
+    tri_start = next((c for c in cols if c["name"] == "tri_start"), None)
+    assert per_triangle == (tri_start is not None), "vectors and RTL disagree on where the bump state lives"
+    stim = [c for c in stim if c is not tri_start]
+    for c in stim + [out]:
         assert c["name"] in ports, f"column {c['name']} is not a port of {iface['top']}"
         assert ports[c["name"]]["width"] == c["width"], f"column {c['name']}: width differs from the port's"
     records = hex_words(os.path.join(man_dir, man["hex"]["name"]))
@@ -59,6 +65,8 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
     cocotb.start_soon(Clock(dut.clk, 10, units="ns").start())
     dut.rst.value = 1
     dut.in_valid.value = 0
+    if per_triangle:
+        dut.tri_valid.value = 0
     dut.pt_we.value = 0
     dut.pt_waddr.value = 0
     dut.pt_wdata.value = 0
@@ -78,6 +86,7 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
     passed = 0
     in_flight = deque()  # (accepting edge, record index)
     nxt = 0
+    set_up = -1  # the record whose triangle setup was taken last
     gap = 0
     last_accept = None
     edge = 0
@@ -85,16 +94,22 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
     max_errors = int(os.environ.get("GBUMP_MAX_ERRORS", "20"))
     while (nxt < len(records) or in_flight) and edge < limit and len(problems) < max_errors:
         # Drive for the next rising edge (we are just after a falling edge).
+        setup = False
         if nxt < len(records) and gap == 0:
-            dut.in_valid.value = 1
+            setup = per_triangle and field(records[nxt], tri_start) == 1 and set_up != nxt
+            dut.in_valid.value = 0 if setup else 1
             for c in stim:
                 getattr(dut, c["name"]).value = field(records[nxt], c)
         else:
             dut.in_valid.value = 0
             gap = max(0, gap - 1)
+        if per_triangle:
+            dut.tri_valid.value = 1 if setup else 0
         await ReadOnly()
         valid = dut.in_valid.value == 1
         ready = dut.in_ready.value == 1
+        if setup and dut.tri_ready.value == 1:
+            set_up = nxt
         if valid and ready:
             if last_accept is not None and edge - last_accept < ii:
                 problems.append(f"accepts {edge - last_accept} edges apart, the interface states {ii} (edge {edge})")

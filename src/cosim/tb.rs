@@ -13,11 +13,16 @@ const TB_COSIM: &str = include_str!("../../testbench/tb_cosim.sv.tpl");
 /// Ports the template drives or reads by name.
 const PROTOCOL: [&str; 8] = ["clk", "rst", "pt_we", "pt_waddr", "pt_wdata", "in_valid", "in_ready", "out_valid"];
 
+/// The setup handshake of a per-triangle top, driven by name when the top has it.
+const SETUP: [&str; 2] = ["tri_valid", "tri_ready"];
+
 /// One port of the interface JSON.
 struct Port {
     name: String,
     output: bool,
     width: u64,
+    /// A triangle-setup field: packed from what the top took at the setup's edge.
+    triangle: bool,
 }
 
 fn field<'a>(j: &'a Value, path: &[&str], file: &Path) -> Result<&'a Value> {
@@ -59,6 +64,7 @@ fn ports(j: &Value, file: &Path) -> Result<Vec<Port>> {
                 name: text(p, &["name"], file)?.to_string(),
                 output: text(p, &["dir"], file)? == "output",
                 width: num(p, &["width"], file)?,
+                triangle: text(p, &["kind"], file)? == "triangle",
             })
         })
         .collect::<Result<Vec<_>>>()?;
@@ -78,7 +84,11 @@ fn ports(j: &Value, file: &Path) -> Result<Vec<Port>> {
 pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
     let ps = ports(j, file)?;
     let width = |n: &str| ps.iter().find(|p| p.name == n).map_or(1, |p| p.width);
-    let data: Vec<&Port> = ps.iter().filter(|p| !PROTOCOL.contains(&p.name.as_str())).collect();
+    let data: Vec<&Port> = ps
+        .iter()
+        .filter(|p| !PROTOCOL.contains(&p.name.as_str()) && !SETUP.contains(&p.name.as_str()))
+        .collect();
+    let setup = ps.iter().any(|p| p.name == SETUP[0]);
     let mut lines: std::collections::BTreeMap<&str, Vec<String>> = Default::default();
     let mut push = |k: &'static str, s: String| lines.entry(k).or_default().push(s);
     for p in &data {
@@ -98,9 +108,20 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         } else {
             push("DECLS", format!("    logic [{}:0] {n} = '0;", w - 1));
             push("ASSIGN", format!("            {n} = stim[lsb_{n} +: {w}];"));
-            push("PACK", format!("            {slice} = {n};"));
+            if p.triangle {
+                // The state the top loaded at the setup's edge, not what the port shows now.
+                push("TRI_CAPTURE", format!("            tri_state[lsb_{n} +: {w}] = {n};"));
+                push("PACK", format!("            {slice} = tri_state[lsb_{n} +: {w}];"));
+            } else {
+                push("PACK", format!("            {slice} = {n};"));
+            }
             push("PRINT", format!("                        $display(\"  {n:15} %h\", {slice});"));
         }
+    }
+    if setup {
+        push("LSB_DECLS", "    int lsb_tri_start;".into());
+        push("COLUMNS", "        column(\"tri_start\", 1, lsb_tri_start);".into());
+        push("CONNECT", ".tri_valid(tri_valid), .tri_ready(tri_ready)".into());
     }
     if !lines.contains_key("OUT_EQUAL") || !lines.contains_key("PACK") {
         return Err(Error::Other(format!(
@@ -126,6 +147,9 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         ("COLUMNS", get("COLUMNS", "\n")),
         ("ASSIGN", get("ASSIGN", "\n")),
         ("PACK", get("PACK", "\n")),
+        ("TRI_CAPTURE", get("TRI_CAPTURE", "\n")),
+        ("TRI_DECLS", if setup { "    logic tri_valid = 1'b0;\n    wire tri_ready;" } else { "    logic tri_valid = 1'b0;\n    wire tri_ready = 1'b1;" }.into()),
+        ("TRI_START", if setup { "stim[lsb_tri_start]" } else { "1'b0" }.into()),
         ("OUT_XCHECK", get("OUT_XCHECK", "")),
         ("OUT_EQUAL", get("OUT_EQUAL", " && ")),
         ("PRINT", print),

@@ -139,7 +139,8 @@ mod tests {
         let (win, wout) = widths(&cfg);
         let v = shell(&cfg);
         assert!(win > 600, "the default top has about 640 pins");
-        assert_eq!(wout, 3 * cfg.colour_bits + 2);
+        // out_c, out_valid, in_ready and the setup port's tri_ready.
+        assert_eq!(wout, 3 * cfg.colour_bits + 3);
         for (p, dir, _) in top_ports(&cfg) {
             assert_eq!(v.matches(&format!(".{p}(")).count(), 1, "{p} ({dir})\n{v}");
         }

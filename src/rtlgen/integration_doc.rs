@@ -53,6 +53,12 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             ii - 1
         ),
     };
+    if let Some(hold) = super::top::bank_hold(cfg) {
+        let k = cfg.triangle_banks;
+        s += &format!(
+            "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} register banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight.\n\n"
+        );
+    }
     s += &format!(
         "**Loading the power table.** Drive `pt_we` high with `pt_waddr` and `pt_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
         cfg.power_fmt().name(),
@@ -90,6 +96,12 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         l.hex_digits(),
         l.bytes()
     );
+    if cfg.per_triangle() {
+        s += &format!(
+            "Every record is a whole fragment with its triangle's state, so any record can be evaluated alone. A record whose `{0}` is 1 starts a triangle: drive a setup beat from its `tri_*` columns (with `in_valid` low), then its fragment. A record whose `{0}` is 0 repeats its triangle's state, which the top already holds. Scene vectors keep the scene's triangles (each triangle's visible fragments together); random vectors draw triangles of 1 to 64 fragments, a quarter of them one fragment; every corner record is a triangle of its own.\n",
+            crate::vectors::targets::TRI_START
+        );
+    }
     let (name, stim) = crate::vectors::sources::corners(cfg, 1).into_iter().next().expect("a corner");
     let mem = crate::units::MemoryContents::new(cfg, cfg.shininess);
     let rec = top_record(cfg, &l, &stim, &eval_top(cfg, &mem.view(), &stim));
@@ -104,10 +116,13 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         let raw: Vec<u64> = (0..c.lanes).map(|i| rec.get_lane(c, i)).collect();
         let digits = (c.width / c.lanes).div_ceil(4) as usize;
         let hex = raw.iter().map(|v| format!("{v:0digits$x}")).collect::<Vec<_>>().join(" ");
-        let fmt = match c.name.as_str() {
-            "in_l" | "in_h" => Some(cfg.lh_fmt()),
-            "in_k" => Some(cfg.k_fmt()),
-            _ => None,
+        let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
+        let fmt = if c.name == st("l") || c.name == st("h") {
+            Some(cfg.lh_fmt())
+        } else if c.name == st("k") {
+            Some(cfg.k_fmt())
+        } else {
+            None
         };
         let value = match fmt {
             Some(f) => {

@@ -16,7 +16,14 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
             } else {
                 json!({"format": p.fmt.name(), "lane_bits": p.fmt.width, "lanes": p.lanes, "doc": p.doc})
             };
-            json!({"name": p.name, "dir": dir, "width": p.width(), "field": field})
+            let kind = match p.kind {
+                super::top::PortKind::Control => "control",
+                super::top::PortKind::Load => "load",
+                super::top::PortKind::Fragment => "fragment",
+                super::top::PortKind::Triangle => "triangle",
+                super::top::PortKind::Result => "result",
+            };
+            json!({"name": p.name, "dir": dir, "kind": kind, "width": p.width(), "field": field})
         })
         .collect();
     let mut params = serde_json::Map::new();
@@ -36,6 +43,11 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "latency_cycles": latency(cfg),
         "initiation_interval": cfg.initiation_interval(),
         "handshake": "a fragment is accepted at a rising edge at which in_valid && in_ready are high; its C_new is on out_c, with out_valid high, when sampled at the rising edge exactly latency_cycles later; results leave in order",
+        "bump_state": if cfg.per_triangle() {
+            json!({"at": "triangle", "banks": cfg.triangle_banks, "bank_hold_cycles": super::top::bank_hold(cfg), "bank_hold_definition": "rising edges from the edge that accepts the last fragment using a bank to the first edge at which a setup may load that bank again; setup m after reset loads bank m mod banks", "setup": "a triangle's bump state (ports of kind `triangle`) is accepted at a rising edge at which tri_valid && tri_ready are high; every fragment accepted after that edge, up to the next setup, uses it; a fragment accepted at the same edge belongs to the previous triangle; no fragment may come before the first setup after reset", "vectors": "a record whose tri_start column is 1 starts a triangle: drive a setup beat from its tri_* columns (in_valid low) before its fragment"})
+        } else {
+            json!({"at": "fragment", "setup": "none: the bump state enters with every fragment on the in_l, in_h, in_lc, in_k ports"})
+        },
         "latency_definition": "rising edges from the edge that accepts a fragment to the edge at which its out_valid is first sampled high",
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,

@@ -249,10 +249,11 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
     lane(&mut s, "in_texel", "NORMAL_BITS", 1);
     lane(&mut s, "in_c_src", "COLOUR_BITS", 1);
     lane(&mut s, "in_t", "COLOUR_BITS", 1);
-    lane(&mut s, "in_l", "LH_BITS", 3);
-    lane(&mut s, "in_h", "LH_BITS", 3);
-    lane(&mut s, "in_lc", "COLOUR_BITS", 3);
-    lane(&mut s, "in_k", "K_BITS", 1);
+    let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
+    lane(&mut s, &st("l"), "LH_BITS", 3);
+    lane(&mut s, &st("h"), "LH_BITS", 3);
+    lane(&mut s, &st("lc"), "COLOUR_BITS", 3);
+    lane(&mut s, &st("k"), "K_BITS", 1);
     lane(&mut s, "out_c", "COLOUR_BITS", 1);
     s += "endpackage\n// verilator lint_on UNUSEDPARAM\n`default_nettype wire\n";
     s

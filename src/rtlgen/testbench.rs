@@ -118,7 +118,18 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         ("OUT_LO", out.lsb.to_string()),
         ("TRI_START", tri_start_bit(&l).map_or("1'b0".into(), |b| format!("stim[{b}]"))),
     ]);
+    s.extend(banks(cfg));
     fill(TB_TOP.to_string(), &s)
+}
+
+/// The banks and the bank hold a testbench checks every setup against (one bank that is never
+/// loaded when the top has no setup port).
+fn banks(cfg: &PipelineConfig) -> [(&'static str, String); 2] {
+    let hold = crate::rtlgen::top::bank_hold(cfg);
+    [
+        ("TRI_BANKS", if hold.is_some() { cfg.triangle_banks } else { 1 }.to_string()),
+        ("BANK_HOLD", hold.unwrap_or(0).to_string()),
+    ]
 }
 
 /// The bit of a top record that marks a triangle's first fragment, when the top has setups.
@@ -254,6 +265,7 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("II", cfg.initiation_interval().to_string()),
         ("TRI_START", tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)"))),
     ]);
+    s.extend(banks(cfg));
     let tri = cfg.per_triangle();
     s.extend([
         ("TRI_VALID_0", if tri { "top.tri_valid = 0;" } else { "" }.to_string()),

@@ -236,13 +236,31 @@ pub fn top_ports(cfg: &PipelineConfig) -> Vec<(String, &'static str, u32)> {
 /// one at which its `out_valid` is first sampled high: the schedule's result. Every
 /// testbench checks it per vector.
 pub fn latency(cfg: &PipelineConfig) -> u32 {
-    build(cfg).1
+    build(cfg).latency
+}
+
+/// Per-triangle tops: rising edges from the edge that accepts a bank's last fragment to the
+/// first edge at which a setup may load that bank again (before it, `tri_ready` is low while a
+/// setup for that bank is offered; from it on, high). The schedule's result: the last stage
+/// that reads a bank, plus the serial top's n slot cycles. Every testbench checks it per setup.
+pub fn bank_hold(cfg: &PipelineConfig) -> Option<u32> {
+    build(cfg).bank_hold
 }
 
 /// The whole top module.
 pub fn top(cfg: &PipelineConfig) -> String {
-    build(cfg).0
+    build(cfg).text
 }
+
+/// A generated top and the figures its schedule gives.
+struct Built {
+    text: String,
+    latency: u32,
+    bank_hold: Option<u32>,
+}
+
+/// What a light-mode body returns: latency, output colour and valid signals, bank hold.
+type Body = (u32, String, String, Option<u32>);
 
 fn lane(i: u32, w: u32) -> String {
     format!("[{}:{}]", i * w + w - 1, i * w)
@@ -268,7 +286,7 @@ fn enable(cfg: &PipelineConfig, present: bool, en: &str) -> String {
     }
 }
 
-fn build(cfg: &PipelineConfig) -> (String, u32) {
+fn build(cfg: &PipelineConfig) -> Built {
     let mut m = ModuleBuilder::new(module_name(cfg, "gbump_pipeline"));
     for mem in memories(cfg) {
         m.param(mem.init_param, format!("\"{}\"", rom_file_name(cfg, mem.init_stem, "hex")));
@@ -276,7 +294,7 @@ fn build(cfg: &PipelineConfig) -> (String, u32) {
     for p in port_list(cfg) {
         m.port(&p.name, p.dir, p.width());
     }
-    let (lat, out_c, out_v) = {
+    let (lat, out_c, out_v, bank_hold) = {
         let mut s = Scheduler::new(&mut m);
         match cfg.light_mode {
             LightMode::Parallel => parallel(&mut s, cfg),
@@ -295,7 +313,11 @@ fn build(cfg: &PipelineConfig) -> (String, u32) {
     );
     text += &m.finish();
     text += "`default_nettype wire\n";
-    (text, lat)
+    Built {
+        text,
+        latency: lat,
+        bank_hold,
+    }
 }
 
 /// The memory parameter of an instance of `unit`: its INIT_FILE is the top's parameter.
@@ -456,7 +478,8 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
 /// `tri_ready`: low during reset and while a fragment tagged with the next bank can still read
 /// it, at stages `first..` below the last stage that reads a bank (a read at that stage
 /// happens before the edge that would write, so it is not waited for).
-fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) {
+/// Returns the last stage that reads a bank.
+fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
     let last = s.late_max().expect("a per-triangle top reads its banks");
     let mut busy = Vec::new();
     for st in first..last {
@@ -466,9 +489,10 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) {
     s.m.comment(format!("A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."));
     let busy = if busy.is_empty() { "1'b0".to_string() } else { busy.join(" || ") };
     s.m.raw(format!("assign tri_ready = !rst && !({busy});"));
+    last
 }
 
-fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
+fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
     let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_bits + 1, cfg.power_bits + 1, cfg.factor_frac() + 1);
     s.m.raw("assign in_ready = 1'b1;");
@@ -539,15 +563,13 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     });
     let lat = s.ready(&out);
     let v = s.at("in_valid", lat);
-    if cfg.per_triangle() {
-        // Stage 0 is the accepting cycle: that fragment is tagged with the current bank,
-        // which a setup never writes.
-        bank_ready(s, "tri_cur", "in_valid", 1);
-    }
-    (lat, out, v)
+    // Stage 0 is the accepting cycle: that fragment is tagged with the current bank, which a
+    // setup never writes; stage s ends s edges after the accept.
+    let hold = cfg.per_triangle().then(|| bank_ready(s, "tri_cur", "in_valid", 1));
+    (lat, out, v, hold)
 }
 
-fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
+fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
     let (c3, lh3) = (3 * cfg.colour_bits, 3 * cfg.lh_bits);
     let jb = (32 - (n.max(2) - 1).leading_zeros()).max(1);
@@ -659,11 +681,10 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> (u32, String, String) {
     let lat_out = s.stage_of(&[&format!("{{{out}}}"), "{done}"]);
     let c = s.fill(&format!("{{{out}}}"), lat_out);
     let v = s.fill("{done}", lat_out);
-    if cfg.per_triangle() {
-        // Stage 0 holds the fragment (in fr_*) for its n slot cycles, reading its bank.
-        bank_ready(s, "fr_tag", "busy", 0);
-    }
+    // Stage 0 holds the fragment (in fr_*) for its n slot cycles, reading its bank; the last
+    // slot's stage s ends n + s edges after the accept.
+    let hold = cfg.per_triangle().then(|| cfg.lights + bank_ready(s, "fr_tag", "busy", 0));
     // Stages count from the cycle of a fragment's slot; its last slot runs n - 1 cycles after
     // the cycle following the accepting edge.
-    (cfg.lights + lat_out, c, v)
+    (cfg.lights + lat_out, c, v, hold)
 }

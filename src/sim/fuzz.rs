@@ -97,6 +97,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 power_unit: PowerUnitKind::Segmented,
                 power_segments: hi("power_segments"),
                 power_entries: 16,
+                bump_state: BumpStateAt::Fragment,
                 ..widest_dot.clone()
             },
         ),
@@ -110,6 +111,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,
                 rounding: Rounding::NearestEven,
+                triangle_banks: hi("triangle_banks"),
                 ..widest_dot
             },
         ),
@@ -126,6 +128,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 k_bits: lo("k_bits"),
                 lights: lo("lights"),
                 rounding: Rounding::Truncate,
+                triangle_banks: lo("triangle_banks"),
                 ..d
             },
         ),

@@ -142,9 +142,15 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
     }
 }
 
-/// The random stream: triangles of random fragment counts (a quarter of them one fragment, so
-/// one-fragment triangles come back to back; the rest up to 64), each fragment random. Every
+/// The random stream: triangles of random fragment counts (`ONE_FRAGMENT_SHARE` of them one
+/// fragment, so one-fragment triangles come back to back; at most `TRIANGLE_MAX_FRAGMENTS`),
+/// each fragment random. Every
 /// chunk of `RANDOM_CHUNK` records starts a new triangle, so chunks stay independent.
+/// Most fragments of one random triangle (a power of two).
+pub const TRIANGLE_MAX_FRAGMENTS: u64 = 64;
+/// Share of random triangles with one fragment.
+pub const ONE_FRAGMENT_SHARE: f64 = 0.25;
+
 pub struct RandomTriangles {
     rng: SplitMix64,
     state: BumpState,
@@ -163,10 +169,11 @@ impl RandomTriangles {
     pub fn next(&mut self, cfg: &PipelineConfig) -> TopStim {
         let tri_start = self.left == 0;
         if tri_start {
-            self.left = if self.rng.chance(0.25) {
+            self.left = if self.rng.chance(ONE_FRAGMENT_SHARE) {
                 1
             } else {
-                let span = 1i64 << self.rng.range(0, 6);
+                // Lengths spread over every scale: a power-of-two span, then uniform in it.
+                let span = 1i64 << self.rng.range(0, TRIANGLE_MAX_FRAGMENTS.ilog2() as i64);
                 1 + self.rng.range(0, span - 1) as u64
             };
             self.state = random_state(cfg, &mut self.rng);
@@ -480,4 +487,36 @@ pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
             inputs: u.exhaustive_input(cfg, i),
         })
         .collect())
+}
+
+#[cfg(test)]
+mod triangle_tests {
+    use super::*;
+
+    /// The documented triangle lengths: 1 to TRIANGLE_MAX_FRAGMENTS, ONE_FRAGMENT_SHARE of one,
+    /// and one-fragment triangles back to back.
+    #[test]
+    fn random_triangles_have_the_documented_lengths() {
+        let cfg = PipelineConfig::default();
+        let mut t = RandomTriangles::new(chunk_rng(7, 0));
+        let mut lens: Vec<u64> = Vec::new();
+        let mut prev: Option<TopStim> = None;
+        for _ in 0..200_000 {
+            let s = t.next(&cfg);
+            if s.tri_start {
+                lens.push(0);
+            } else {
+                assert_eq!(s.state, prev.expect("a triangle before").state, "a triangle's fragments share its state");
+            }
+            *lens.last_mut().expect("the stream starts a triangle") += 1;
+            prev = Some(s);
+        }
+        lens.pop();
+        assert!(lens.iter().all(|&n| (1..=TRIANGLE_MAX_FRAGMENTS).contains(&n)));
+        assert!(lens.contains(&TRIANGLE_MAX_FRAGMENTS));
+        let ones = lens.iter().filter(|&&n| n == 1).count() as f64 / lens.len() as f64;
+        // Drawn as one: the share, plus the draws of the other lengths that land on 1.
+        assert!(ones >= ONE_FRAGMENT_SHARE && ones < 0.6, "{ones}");
+        assert!(lens.windows(2).any(|w| w == [1, 1]));
+    }
 }
