@@ -16,7 +16,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
             } else {
                 json!({"format": p.fmt.name(), "lane_bits": p.fmt.width, "lanes": p.lanes, "doc": p.doc})
             };
-            json!({"name": p.name, "dir": dir, "width": p.width(), "field": field})
+            json!({"name": p.name, "dir": dir, "kind": p.kind, "width": p.width(), "field": field})
         })
         .collect();
     let mut params = serde_json::Map::new();

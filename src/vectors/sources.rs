@@ -129,6 +129,32 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
     }
 }
 
+/// The fragments of scene `name` rendered at `size` (default: the scene's own), grouped by
+/// their object's shininess: (shininess, set stem, stimuli), one group per power table.
+pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+    let s = crate::scene::Scene::load(name)?;
+    s.check_config(cfg, "pipeline config")?;
+    let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
+    crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
+    let gb = crate::raster::rasterise::rasterise(&p);
+    let frags = crate::raster::fragment::fragments(&p, &gb);
+    let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
+    for f in frags {
+        let n = s.objects[f.obj as usize].shininess;
+        groups.entry(n).or_default().push(TopStim {
+            frag: f.frag,
+            state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
+        });
+    }
+    let stem = Source::Scene(name.to_string()).stem();
+    let multi = groups.len() > 1;
+    Ok(groups
+        .into_iter()
+        .map(|(n, v)| (n, if multi { format!("{stem}_n{n}") } else { stem.clone() }, v))
+        .collect())
+}
+
 /// A corner stimulus: every light slot the same, grey colours given in the configuration's
 /// codes, L and H clamped into their format, both blend enables on.
 #[allow(clippy::too_many_arguments)]
