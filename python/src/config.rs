@@ -53,6 +53,37 @@ impl Config {
         })
     }
 
+    /// The configuration of the RTL whose interface JSON (`<top>.json`, written by `gbump
+    /// rtl`) is at `path`; refused when its stated hash is not this library's hash of its
+    /// fields (RTL of another gbump version).
+    #[staticmethod]
+    fn from_interface(path: PathBuf) -> PyResult<Self> {
+        let p = path.display();
+        let text = std::fs::read_to_string(&path).map_err(|e| crate::err(gbump::Error::io(&path, e)))?;
+        let v: serde_json::Value = serde_json::from_str(&text)
+            .map_err(|e| crate::fail(format!("{p}: not JSON ({e})\n  fix: pass the <top>.json that gbump rtl writes")))?;
+        let (Some(c), Some(hash)) = (v.get("config"), v.get("config_hash").and_then(|h| h.as_str())) else {
+            return Err(crate::fail(format!(
+                "{p}: no `config` and `config_hash`\n  fix: pass the <top>.json that gbump rtl writes"
+            )));
+        };
+        let cfg: PipelineConfig = serde_json::from_value(c.clone()).map_err(|e| {
+            crate::fail(format!(
+                "{p}: field `config`: {e}\n  fix: regenerate it with this gbump (gbump rtl)"
+            ))
+        })?;
+        cfg.validate(&p.to_string()).map_err(crate::err)?;
+        if cfg.hash() != hash {
+            return Err(crate::fail(format!(
+                "{p}: config_hash {hash}, but this module hashes its config to {}\n  fix: regenerate the RTL with the gbump this module was built from (gbump rtl)",
+                cfg.hash()
+            )));
+        }
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
     /// The 16-hex-digit configuration hash every generated file states.
     #[getter]
     fn hash(&self) -> String {
