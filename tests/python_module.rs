@@ -114,8 +114,8 @@ fn the_cocotb_scoreboard_passes_on_the_default_and_rejects_a_mutant() {
     module();
     let tmp = tempfile::tempdir().unwrap();
     let iface = rtl(None, &tmp.path().join("rtl"));
-    let (ok, log) = scoreboard(&tmp.path().join("run"), &iface, 300);
-    assert!(ok && log.contains("300 passed, 0 failed") && log.contains("FAIL=0"), "{log}");
+    let (ok, log) = scoreboard(&tmp.path().join("run"), &iface, 200);
+    assert!(ok && log.contains("200 passed, 0 failed") && log.contains("FAIL=0"), "{log}");
 
     // One operator flipped in texture_modulate (round(c·t/255) by add-and-shift): caught.
     let rtl_dir = iface.parent().unwrap();
@@ -129,7 +129,7 @@ fn the_cocotb_scoreboard_passes_on_the_default_and_rejects_a_mutant() {
     let flipped = v.replacen("p1 + (p1 >>", "p1 - (p1 >>", 1);
     assert_ne!(v, flipped, "{}: the operator to flip is gone; pick another", f.display());
     std::fs::write(&f, flipped).unwrap();
-    let (ok, log) = scoreboard(&tmp.path().join("run"), &iface, 300);
+    let (ok, log) = scoreboard(&tmp.path().join("run"), &iface, 200);
     assert!(
         !ok && log.contains("MISMATCH fragment") && log.contains("out_c expected"),
         "the mutant passed:\n{log}"

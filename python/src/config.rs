@@ -53,6 +53,15 @@ impl Config {
         })
     }
 
+    /// The configuration scene `name` (built-in or a path) derives, as `--scene` picks it.
+    #[staticmethod]
+    fn from_scene(name: &str) -> PyResult<Self> {
+        let cfg = gbump::scene::pick_config(None, Some(name)).map_err(crate::err)?;
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
     /// The configuration of the RTL whose interface JSON (`<top>.json`, written by `gbump
     /// rtl`) is at `path`; refused when its stated hash is not this library's hash of its
     /// fields (RTL of another gbump version).

@@ -119,6 +119,14 @@ run("vectors", "--source", "exhaustive:power_table", "--format", "hex", "--out",
 (e,) = model.vectors("exhaustive:power_table")
 check(np.array_equal(e["records"], rows_from_hex(os.path.join(vec, "exhaustive_power_table_power_table.hex"), model.record_words("power_table"))), "exhaustive:power_table equals the file")
 
+# A scene's fragments, in the scene's own configuration (as `--scene` picks it), 32x32.
+if not config:
+    subprocess.run([exe, "vectors", "--source", "scene:blend_split", "--size", "32x32", "--target", "top", "--format", "hex", "--out", vec], check=True, stdout=subprocess.DEVNULL)
+    sc = gbump.Config.from_scene("blend_split")
+    (g,) = sc.vectors("scene:blend_split", size=(32, 32))
+    ref = rows_from_hex(os.path.join(vec, g["name"] + "_top.hex"), sc.record_words("top"))
+    check(len(ref) > 0 and np.array_equal(g["records"], ref), "scene:blend_split equals the file")
+
 # Bad input: the library's message, with its fix.
 check(raises(lambda: gbump.Config("lights = 9\n", "bad.toml"), "bad.toml", "lights", "fix:"), "an out-of-range field")
 check(raises(lambda: model.eval("top", np.zeros((2, w + 1), dtype=np.uint32)), "fix:"), "a record of the wrong width")
