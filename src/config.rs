@@ -398,18 +398,23 @@ impl PipelineConfig {
             .filter(|l| !l.trim().is_empty())
             .map(str::to_string)
             .collect();
-        v.push(format!(
-            "# formats: normal {} lh {} dot {} power {} k {} colour {} term {} acc {}",
-            self.normal_fmt().name(),
-            self.lh_fmt().name(),
-            self.dot_fmt().name(),
-            self.power_fmt().name(),
-            self.k_fmt().name(),
-            self.colour_fmt().name(),
-            self.term_fmt().name(),
-            self.acc_fmt().name()
-        ));
+        let formats: Vec<String> = self.formats().iter().map(|(n, f)| format!("{n} {}", f.name())).collect();
+        v.push(format!("# formats: {}", formats.join(" ")));
         v
+    }
+
+    /// The derived formats every header states, by name (also the Python module's `formats`).
+    pub fn formats(&self) -> [(&'static str, Format); 8] {
+        [
+            ("normal", self.normal_fmt()),
+            ("lh", self.lh_fmt()),
+            ("dot", self.dot_fmt()),
+            ("power", self.power_fmt()),
+            ("k", self.k_fmt()),
+            ("colour", self.colour_fmt()),
+            ("term", self.term_fmt()),
+            ("acc", self.acc_fmt()),
+        ]
     }
 }
 

@@ -33,6 +33,8 @@ pub const MAX_RANDOM_VECTORS: u64 = 1_000_000_000;
 pub const MAX_ERROR_STIMULI: u64 = 2_000_000;
 /// Vectors of an exhaustive sweep (held in memory before writing).
 pub const MAX_EXHAUSTIVE_VECTORS: u64 = 1 << 20;
+/// Records the Python module builds in one array (`Config.vectors`, `Stimulus.next`, `pack`).
+pub const MAX_BATCH_RECORDS: u64 = 1 << 24;
 /// Shininess n of a power table.
 pub const MAX_SHININESS: u32 = 1024;
 /// Texels per side of a normalisation cube-map face.
@@ -90,6 +92,11 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "MAX_EXHAUSTIVE_VECTORS",
         MAX_EXHAUSTIVE_VECTORS,
         "vectors of an exhaustive sweep (`exhaustive:UNIT`)",
+    ),
+    (
+        "MAX_BATCH_RECORDS",
+        MAX_BATCH_RECORDS,
+        "records of one array the Python module builds (`vectors`, `Stimulus.next`, `pack`)",
     ),
     ("MAX_SHININESS", MAX_SHININESS as u64, "shininess n of a power table"),
     (

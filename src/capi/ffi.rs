@@ -16,7 +16,7 @@ use super::guard::{guard, handle, handle_mut, last_error, str_arg, words, words_
 use super::handle::{GbumpConfig, GbumpStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::vectors::layout::{Record, Role};
+use crate::vectors::layout::Role;
 use std::ffi::c_char;
 
 /// The ABI version (`ABI_VERSION`): compare with the header's `GBUMP_ABI_VERSION`.
@@ -332,7 +332,6 @@ pub unsafe extern "C" fn gbump_eval_batch(
     rec_out: *mut u32,
     count: i64,
 ) -> i32 {
-    use rayon::prelude::*;
     with("gbump_eval", h, -1, |h| {
         let t = h.target(str_arg(target, "target")?)?;
         let n = t.layout.words32();
@@ -343,13 +342,7 @@ pub unsafe extern "C" fn gbump_eval_batch(
             .ok_or_else(|| Error::Other(format!("count {count}: too large")))?;
         // Copied first, so `rec_out` may alias `rec_in`.
         let input = words(rec_in, total, "rec_in")?.to_vec();
-        let out = words_mut(rec_out, total, "rec_out")?;
-        let eval = |(i, o): (&[u32], &mut [u32])| o.copy_from_slice(&h.eval(t, &Record::from_words32(i)).to_words32(n));
-        if count >= 1024 {
-            input.par_chunks(n).zip(out.par_chunks_mut(n)).for_each(eval);
-        } else {
-            input.chunks(n).zip(out.chunks_mut(n)).for_each(eval);
-        }
+        h.eval_words(t, &input, words_mut(rec_out, total, "rec_out")?)?;
         Ok(0)
     })
 }

@@ -109,6 +109,30 @@ impl GbumpConfig {
     }
 }
 
+impl GbumpConfig {
+    /// Evaluate back-to-back records of `t` (`t.layout.words32()` words each) from `input`
+    /// into `out` (the same length), on the library's thread pool when there are many.
+    pub fn eval_words(&self, t: &Target, input: &[u32], out: &mut [u32]) -> Result<()> {
+        use rayon::prelude::*;
+        let n = t.layout.words32();
+        if input.len() != out.len() || !input.len().is_multiple_of(n) {
+            return Err(Error::Other(format!(
+                "{} and {} words given for {} records of {n} words\n  fix: pass whole records, as many out as in",
+                input.len(),
+                out.len(),
+                t.name
+            )));
+        }
+        let eval = |(i, o): (&[u32], &mut [u32])| o.copy_from_slice(&self.eval(t, &Record::from_words32(i)).to_words32(n));
+        if input.len() / n >= 1024 {
+            input.par_chunks(n).zip(out.par_chunks_mut(n)).for_each(eval);
+        } else {
+            input.chunks(n).zip(out.chunks_mut(n)).for_each(eval);
+        }
+        Ok(())
+    }
+}
+
 fn target(name: &'static str, layout: Layout) -> Target {
     Target {
         name,

@@ -14,7 +14,7 @@ pub mod ffi;
 mod guard;
 mod handle;
 
-pub use handle::{GbumpConfig, GbumpStim};
+pub use handle::{GbumpConfig, GbumpStim, Target};
 
 /// Bumped whenever a function's signature or a record's meaning changes.
 pub const ABI_VERSION: i32 = 1;

@@ -16,14 +16,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
             } else {
                 json!({"format": p.fmt.name(), "lane_bits": p.fmt.width, "lanes": p.lanes, "doc": p.doc})
             };
-            let kind = match p.kind {
-                super::top::PortKind::Control => "control",
-                super::top::PortKind::Load => "load",
-                super::top::PortKind::Fragment => "fragment",
-                super::top::PortKind::Triangle => "triangle",
-                super::top::PortKind::Result => "result",
-            };
-            json!({"name": p.name, "dir": dir, "kind": kind, "width": p.width(), "field": field})
+            json!({"name": p.name, "dir": dir, "kind": p.kind, "width": p.width(), "field": field})
         })
         .collect();
     let mut params = serde_json::Map::new();

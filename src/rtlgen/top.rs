@@ -25,8 +25,9 @@ use crate::units::{self, Dir, Unit};
 /// reset for exactly this many edges, so the number is proven by every regression.
 pub const RESET_CYCLES: u32 = 1;
 
-/// What a top port carries.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a top port carries (the interface JSON's `kind`, in snake case).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum PortKind {
     /// clk, rst, valid/ready.
     Control,

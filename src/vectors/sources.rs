@@ -187,6 +187,36 @@ impl RandomTriangles {
     }
 }
 
+/// The fragments of scene `name` rendered at `size` (default: the scene's own), grouped by
+/// their object's shininess: (shininess, set stem, stimuli), one group per power table.
+pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+    let s = crate::scene::Scene::load(name)?;
+    s.check_config(cfg, "pipeline config")?;
+    let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
+    crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
+    let gb = crate::raster::rasterise::rasterise(&p);
+    let frags = crate::raster::fragment::fragments(&p, &gb);
+    let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
+    // `fragments` gives each triangle's fragments together: a setup starts each run.
+    let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
+    for f in frags {
+        let n = s.objects[f.obj as usize].shininess;
+        let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
+        groups.entry(n).or_default().push(TopStim {
+            frag: f.frag,
+            state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
+            tri_start,
+        });
+    }
+    let stem = Source::Scene(name.to_string()).stem();
+    let multi = groups.len() > 1;
+    Ok(groups
+        .into_iter()
+        .map(|(n, v)| (n, if multi { format!("{stem}_n{n}") } else { stem.clone() }, v))
+        .collect())
+}
+
 /// A corner stimulus: every light slot the same, grey colours given in the configuration's
 /// codes, L and H clamped into their format, both blend enables on.
 #[allow(clippy::too_many_arguments)]

@@ -233,31 +233,7 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
                 cat.into_iter().map(|c| c.1).collect(),
             )]
         }
-        Source::Scene(name) => {
-            let s = crate::scene::Scene::load(name)?;
-            s.check_config(cfg, "pipeline config")?;
-            let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
-            let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
-            let gb = crate::raster::rasterise::rasterise(&p);
-            let frags = crate::raster::fragment::fragments(&p, &gb);
-            let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
-            // `fragments` gives each triangle's fragments together: a setup starts each run.
-            let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
-            for f in frags {
-                let n = s.objects[f.obj as usize].shininess;
-                let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
-                groups.entry(n).or_default().push(TopStim {
-                    frag: f.frag,
-                    state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
-                    tri_start,
-                });
-            }
-            let multi = groups.len() > 1;
-            groups
-                .into_iter()
-                .map(|(n, v)| (n, if multi { format!("{}_n{n}", src.stem()) } else { src.stem() }, v))
-                .collect()
-        }
+        Source::Scene(name) => super::sources::scene_groups(cfg, name, o.size)?,
         _ => unreachable!(),
     })
 }

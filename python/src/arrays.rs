@@ -1,0 +1,55 @@
+//! Records between NumPy and the library. A record array is `uint32`, shape `(N, words)`, or
+//! `(words,)` for one record; each row is one record of the vector files, 32-bit words LSB
+//! first. Other dtypes are refused rather than cast, since a cast can drop bits silently.
+
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+/// Records read from Python: the words back to back, how many records, and whether the caller
+/// gave one record as a 1-D array (so the answer is 1-D too).
+pub struct Records {
+    pub words: Vec<u32>,
+    pub count: usize,
+    pub single: bool,
+}
+
+/// The records of `a`, each `words` words of a `target` record.
+pub fn records_in(a: &Bound<'_, PyAny>, words: usize, target: &str) -> PyResult<Records> {
+    let arr: PyReadonlyArrayDyn<'_, u32> = a.extract().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "records: not a numpy uint32 array\n  fix: pass numpy.asarray(records, dtype=numpy.uint32), shape (N, {words}) for `{target}` records"
+        ))
+    })?;
+    let shape = arr.shape().to_vec();
+    let (count, single) = match shape.as_slice() {
+        [w] if *w == words => (1, true),
+        [n, w] if *w == words => (*n, false),
+        _ => {
+            return Err(crate::fail(format!(
+                "records: shape {shape:?}, but a `{target}` record of this configuration is {words} words\n  fix: pass shape (N, {words}) or ({words},) (Config.record_words(\"{target}\"))"
+            )))
+        }
+    };
+    Ok(Records {
+        words: arr.as_array().iter().copied().collect(),
+        count,
+        single,
+    })
+}
+
+/// Records as a NumPy array: 1-D for a single record the caller gave as 1-D, else `(N, words)`.
+pub fn records_out(py: Python<'_>, words: Vec<u32>, per: usize, single: bool) -> PyResult<Bound<'_, PyAny>> {
+    if single {
+        return Ok(Array1::from_vec(words).into_pyarray(py).into_any());
+    }
+    let n = words.len() / per;
+    let a = Array2::from_shape_vec((n, per), words).map_err(|e| crate::fail(format!("records: {e}")))?;
+    Ok(a.into_pyarray(py).into_any())
+}
+
+/// Refuse to build more than `MAX_BATCH_RECORDS` records in one array.
+pub fn check_batch(what: &str, n: u64) -> PyResult<()> {
+    use gbump::limits::{check_count, MAX_BATCH_RECORDS};
+    check_count(what, n, 0, MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS").map_err(crate::err)
+}

@@ -1,0 +1,342 @@
+//! `gbump.Config`: one pipeline configuration with its model (the C ABI's handle, so Python,
+//! C and DPI-C evaluate through the same object): queries, record layouts, evaluation of
+//! packed and per-field records, ROM contents and the interface description.
+
+use crate::arrays::{records_in, records_out};
+use gbump::capi::GbumpConfig;
+use gbump::PipelineConfig;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::PathBuf;
+
+/// A pipeline configuration and its bit-accurate model.
+///
+/// `Config()` is the built-in default; `Config(toml_text, name)` parses TOML text (`name`
+/// labels it in errors); `Config.load(path)` reads a TOML file. Palette configurations are
+/// refused, as by the C library.
+#[pyclass(module = "gbump", name = "Config")]
+pub struct Config {
+    pub h: GbumpConfig,
+}
+
+impl Config {
+    pub fn cfg(&self) -> &PipelineConfig {
+        &self.h.cfg
+    }
+}
+
+/// A JSON text as Python objects (dicts, lists, numbers, strings).
+fn json_to_py<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+#[pymethods]
+impl Config {
+    #[new]
+    #[pyo3(signature = (toml = None, name = "<toml text>"))]
+    fn new(toml: Option<&str>, name: &str) -> PyResult<Self> {
+        let cfg = match toml {
+            None => PipelineConfig::default(),
+            Some(t) => PipelineConfig::from_toml(name, t).map_err(crate::err)?,
+        };
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
+    /// The configuration in TOML file `path`.
+    #[staticmethod]
+    fn load(path: PathBuf) -> PyResult<Self> {
+        let cfg = PipelineConfig::load(&path).map_err(crate::err)?;
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
+    /// The configuration scene `name` (built-in or a path) derives, as `--scene` picks it.
+    #[staticmethod]
+    fn from_scene(name: &str) -> PyResult<Self> {
+        let cfg = gbump::scene::pick_config(None, Some(name)).map_err(crate::err)?;
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
+    /// The configuration of the RTL whose interface JSON (`<top>.json`, written by `gbump
+    /// rtl`) is at `path`; refused when its stated hash is not this library's hash of its
+    /// fields (RTL of another gbump version).
+    #[staticmethod]
+    fn from_interface(path: PathBuf) -> PyResult<Self> {
+        let p = path.display();
+        let text = std::fs::read_to_string(&path).map_err(|e| crate::err(gbump::Error::io(&path, e)))?;
+        let v: serde_json::Value = serde_json::from_str(&text)
+            .map_err(|e| crate::fail(format!("{p}: not JSON ({e})\n  fix: pass the <top>.json that gbump rtl writes")))?;
+        let (Some(c), Some(hash)) = (v.get("config"), v.get("config_hash").and_then(|h| h.as_str())) else {
+            return Err(crate::fail(format!(
+                "{p}: no `config` and `config_hash`\n  fix: pass the <top>.json that gbump rtl writes"
+            )));
+        };
+        let cfg: PipelineConfig = serde_json::from_value(c.clone()).map_err(|e| {
+            crate::fail(format!(
+                "{p}: field `config`: {e}\n  fix: regenerate it with this gbump (gbump rtl)"
+            ))
+        })?;
+        cfg.validate(&p.to_string()).map_err(crate::err)?;
+        if cfg.hash() != hash {
+            return Err(crate::fail(format!(
+                "{p}: config_hash {hash}, but this module hashes its config to {}\n  fix: regenerate the RTL with the gbump this module was built from (gbump rtl)",
+                cfg.hash()
+            )));
+        }
+        Ok(Config {
+            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+        })
+    }
+
+    /// The 16-hex-digit configuration hash every generated file states.
+    #[getter]
+    fn hash(&self) -> String {
+        self.cfg().hash()
+    }
+
+    /// Canonical TOML of every field (the input of the hash).
+    #[getter]
+    fn toml(&self) -> String {
+        self.cfg().to_toml()
+    }
+
+    /// Every field, as a dict.
+    fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(py, &serde_json::to_string(self.cfg()).expect("config serialises"))
+    }
+
+    /// The generated top module's name (`gbump_pipeline_<hash8>`).
+    #[getter]
+    fn top(&self) -> String {
+        self.h.module.to_string_lossy().into_owned()
+    }
+
+    #[getter]
+    fn lights(&self) -> u32 {
+        self.cfg().lights
+    }
+
+    /// Rising edges from a fragment's accepting edge to the edge its out_valid is sampled high.
+    #[getter]
+    fn latency(&self) -> u32 {
+        gbump::rtlgen::top::latency(self.cfg())
+    }
+
+    /// Rising edges between two accepts of fragments offered back to back.
+    #[getter]
+    fn initiation_interval(&self) -> u32 {
+        self.cfg().initiation_interval()
+    }
+
+    /// Rising edges with rst high that bring the top to idle.
+    #[getter]
+    fn reset_cycles(&self) -> u32 {
+        gbump::rtlgen::top::RESET_CYCLES
+    }
+
+    /// Clock cycles from input to output of unit `unit`.
+    fn unit_latency(&self, unit: &str) -> PyResult<u32> {
+        let t = self.h.target(unit).map_err(crate::err)?;
+        let u = gbump::units::unit(t.name).ok_or_else(|| crate::fail("`top`: use Config.latency\n  fix: pass a unit name".into()))?;
+        Ok(u.latency(self.cfg()))
+    }
+
+    /// The derived fixed-point formats: name -> {format, width, frac, signed}.
+    #[getter]
+    fn formats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, f) in self.cfg().formats() {
+            let e = PyDict::new(py);
+            e.set_item("format", f.name())?;
+            e.set_item("width", f.width)?;
+            e.set_item("frac", f.frac)?;
+            e.set_item("signed", f.signed)?;
+            d.set_item(name, e)?;
+        }
+        Ok(d)
+    }
+
+    /// Shininess of the model's power table; setting it reloads the table, as the top's load
+    /// port would.
+    #[getter]
+    fn shininess(&self) -> u32 {
+        self.h.mem.table.n
+    }
+
+    #[setter]
+    fn set_shininess(&mut self, n: i64) -> PyResult<()> {
+        self.h.set_shininess(n).map_err(crate::err)
+    }
+
+    /// Words of the power-table memory (what its load port addresses).
+    #[getter]
+    fn power_words(&self) -> usize {
+        self.h.mem.table.entries.len()
+    }
+
+    /// The model's power table now (words of the ROM file for the current shininess).
+    fn power_table<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        let v: Vec<u64> = self.h.mem.table.entries.iter().map(|&e| e as u64).collect();
+        numpy::PyArray1::from_vec(py, v).into_any()
+    }
+
+    /// ROM `name` ("power_table", "bump_palette" or "cube_map") as {name, width, words,
+    /// layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
+    /// configuration's, `cube_size` to gbump rom's.
+    #[pyo3(signature = (name, shininess = None, cube_size = 32))]
+    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<u32>, cube_size: u32) -> PyResult<Bound<'py, PyDict>> {
+        use gbump::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
+        use gbump::rtlgen::rom;
+        let cfg = self.cfg();
+        let r = match name {
+            "power_table" => {
+                let n = shininess.unwrap_or(cfg.shininess);
+                check_count("shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS").map_err(crate::err)?;
+                rom::power_rom(cfg, n)
+            }
+            "bump_palette" => rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE),
+            "cube_map" => {
+                check_count("cube_size", cube_size.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE").map_err(crate::err)?;
+                rom::cube_map_rom(cube_size as usize)
+            }
+            _ => {
+                return Err(crate::fail(format!(
+                    "rom `{name}`: unknown\n  fix: one of power_table, bump_palette, cube_map"
+                )))
+            }
+        };
+        let d = PyDict::new(py);
+        d.set_item("name", &r.name)?;
+        d.set_item("width", r.width)?;
+        d.set_item("layout", &r.layout)?;
+        d.set_item("params", r.params.clone())?;
+        d.set_item("words", numpy::PyArray1::from_vec(py, r.words))?;
+        Ok(d)
+    }
+
+    /// The interface JSON `gbump rtl` writes beside the top (`<top>.json`), as text;
+    /// `regenerate` is its command field.
+    #[pyo3(signature = (regenerate = "gbump rtl --out rtl"))]
+    fn interface_json(&self, regenerate: &str) -> String {
+        gbump::rtlgen::interface::interface_json(self.cfg(), regenerate)
+    }
+
+    /// The interface JSON as Python objects.
+    #[pyo3(signature = (regenerate = "gbump rtl --out rtl"))]
+    fn interface<'py>(&self, py: Python<'py>, regenerate: &str) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(py, &self.interface_json(regenerate))
+    }
+
+    /// Targets this configuration has: "top", then its units.
+    #[getter]
+    fn targets(&self) -> Vec<&'static str> {
+        self.h.targets.iter().map(|t| t.name).collect()
+    }
+
+    /// The columns of a `target` record: [{name, role, lsb, width, lanes, lane_bits, format,
+    /// signed}], stimulus first, as the vector manifests list them.
+    fn columns<'py>(&self, py: Python<'py>, target: &str) -> PyResult<Bound<'py, PyList>> {
+        let t = self.h.target(target).map_err(crate::err)?;
+        let l = PyList::empty(py);
+        for c in &t.layout.columns {
+            let d = PyDict::new(py);
+            d.set_item("name", &c.name)?;
+            d.set_item(
+                "role",
+                if c.role == gbump::vectors::layout::Role::Stimulus {
+                    "stimulus"
+                } else {
+                    "expected"
+                },
+            )?;
+            d.set_item("lsb", c.lsb)?;
+            d.set_item("width", c.width)?;
+            d.set_item("lanes", c.lanes)?;
+            d.set_item("lane_bits", c.width / c.lanes)?;
+            d.set_item("format", &c.format)?;
+            d.set_item("signed", c.signed())?;
+            l.append(d)?;
+        }
+        Ok(l)
+    }
+
+    /// Bits of one `target` record.
+    fn record_bits(&self, target: &str) -> PyResult<u32> {
+        Ok(self.h.target(target).map_err(crate::err)?.layout.bits)
+    }
+
+    /// 32-bit words of one `target` record (the row length of record arrays).
+    fn record_words(&self, target: &str) -> PyResult<usize> {
+        Ok(self.h.target(target).map_err(crate::err)?.layout.words32())
+    }
+
+    /// Evaluate `target` records (uint32, shape (N, words) or (words,)): the stimulus columns
+    /// are read and whole records returned, the model's expected columns filled in, exactly
+    /// as a vector file holds them. Runs without the GIL, on all cores for large batches.
+    fn eval<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let t = self.h.target(target).map_err(crate::err)?;
+        let n = t.layout.words32();
+        let r = records_in(records, n, target)?;
+        let mut out = vec![0u32; r.words.len()];
+        py.detach(|| self.h.eval_words(t, &r.words, &mut out)).map_err(crate::err)?;
+        records_out(py, out, n, r.single)
+    }
+
+    /// Per-field records -> packed records (uint32, shape (N, words)). `fields` maps every
+    /// stimulus column (and optionally expected ones) to integer codes of shape (N, lanes),
+    /// or (N,) for a one-lane column; each value is checked against its column's format.
+    fn pack<'py>(&self, py: Python<'py>, target: &str, fields: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyAny>> {
+        let t = self.h.target(target).map_err(crate::err)?;
+        let (_, words) = crate::fields::pack(t, fields)?;
+        records_out(py, words, t.layout.words32(), false)
+    }
+
+    /// Packed records -> {column: int64 array (N, lanes)} for every column, signed columns
+    /// sign-extended.
+    fn unpack<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+        let t = self.h.target(target).map_err(crate::err)?;
+        let r = records_in(records, t.layout.words32(), target)?;
+        crate::fields::unpack(py, t, &r.words, r.count)
+    }
+
+    /// `eval` in the per-field form: stimulus fields in, every column out (`unpack` of the
+    /// evaluated records).
+    fn eval_fields<'py>(&self, py: Python<'py>, target: &str, fields: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+        let t = self.h.target(target).map_err(crate::err)?;
+        let (count, words) = crate::fields::pack(t, fields)?;
+        let mut out = vec![0u32; words.len()];
+        py.detach(|| self.h.eval_words(t, &words, &mut out)).map_err(crate::err)?;
+        crate::fields::unpack(py, t, &out, count)
+    }
+
+    /// The seeded random stimulus stream of `gbump vectors --source random:N --seed SEED`.
+    #[pyo3(signature = (seed = 0))]
+    fn stimulus(&self, seed: u64) -> crate::vectors::Stimulus {
+        crate::vectors::Stimulus::new(&self.h, seed)
+    }
+
+    /// Vector sets of `source` ("random:N", "corners", "scene:NAME", "exhaustive:UNIT"), as
+    /// `gbump vectors` writes them: a list of {name, target, shininess, records, reasons} (one
+    /// per power table; `reasons` lists why each corner is there, else None). Random and
+    /// corner sets use `shininess` (default the configuration's), scenes their objects'.
+    #[pyo3(signature = (source, seed = 0, shininess = None, size = None))]
+    fn vectors<'py>(
+        &self,
+        py: Python<'py>,
+        source: &str,
+        seed: u64,
+        shininess: Option<u32>,
+        size: Option<(u32, u32)>,
+    ) -> PyResult<Bound<'py, PyList>> {
+        crate::vectors::vectors(py, &self.h, source, seed, shininess, size)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("gbump.Config(hash={}, top={})", self.hash(), self.top())
+    }
+}

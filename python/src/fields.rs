@@ -1,0 +1,129 @@
+//! The per-field form of records: a dict from column name to an `int64` array of shape
+//! `(N, lanes)`, values as numbers (signed columns sign-extended), lane order the vector
+//! files' (lane 0 in the low bits). Packing checks every value against its column's format, so
+//! a value out of range is an error naming the column, record and lane, never masked.
+
+use gbump::capi::Target;
+use gbump::vectors::layout::{Column, Record};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The range of a lane value of `c`: two's complement for signed formats, else unsigned.
+fn lane_range(c: &Column) -> (i64, i64) {
+    let lw = c.width / c.lanes;
+    if c.signed() {
+        (-(1i64 << (lw - 1)), (1i64 << (lw - 1)) - 1)
+    } else {
+        (0, ((1u64 << lw) - 1) as i64)
+    }
+}
+
+/// `v` as an `int64` array of `(n, lanes)` values (a 1-D array of n values for a one-lane
+/// column): integers only, so a float is never truncated into a code.
+fn column_values(v: &Bound<'_, PyAny>, c: &Column) -> PyResult<(usize, Vec<i64>)> {
+    let np = v.py().import("numpy")?;
+    let a = np.call_method1("asarray", (v,))?;
+    let kind: String = a.getattr("dtype")?.getattr("kind")?.extract()?;
+    if !"iub".contains(kind.as_str()) || kind.is_empty() {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "column `{}`: dtype kind `{kind}`, not integers\n  fix: pass integer codes (format {})",
+            c.name, c.format
+        )));
+    }
+    let a = a.call_method1("astype", ("int64",))?;
+    let arr: PyReadonlyArrayDyn<'_, i64> = a.extract()?;
+    let shape = arr.shape().to_vec();
+    let n = match shape.as_slice() {
+        [n] if c.lanes == 1 => *n,
+        [n, l] if *l == c.lanes as usize => *n,
+        _ => {
+            return Err(crate::fail(format!(
+                "column `{}`: shape {shape:?}, but it has {} lane(s)\n  fix: pass shape (N, {}){}",
+                c.name,
+                c.lanes,
+                c.lanes,
+                if c.lanes == 1 { " or (N,)" } else { "" }
+            )))
+        }
+    };
+    Ok((n, arr.as_array().iter().copied().collect()))
+}
+
+/// Pack `fields` into `t`'s records: every stimulus column must be given, expected columns
+/// may be (zero otherwise), and no other name is accepted.
+pub fn pack(t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>)> {
+    let cols = &t.layout.columns;
+    for k in fields.keys() {
+        let k: String = k.extract()?;
+        if !cols.iter().any(|c| c.name == k) {
+            let names: Vec<&str> = cols.iter().map(|c| c.name.as_str()).collect();
+            return Err(crate::fail(format!(
+                "field `{k}`: not a column of `{}` records\n  fix: use the columns {}",
+                t.name,
+                names.join(", ")
+            )));
+        }
+    }
+    let mut given = Vec::new();
+    let mut count: Option<usize> = None;
+    for c in cols {
+        let Some(v) = fields.get_item(&c.name)? else {
+            if c.role == gbump::vectors::layout::Role::Stimulus {
+                return Err(crate::fail(format!(
+                    "field `{}` of `{}` records: missing\n  fix: give every stimulus column ({} lane(s), format {})",
+                    c.name, t.name, c.lanes, c.format
+                )));
+            }
+            continue;
+        };
+        let (n, vals) = column_values(&v, c)?;
+        match count {
+            Some(m) if m != n => {
+                return Err(crate::fail(format!(
+                    "field `{}`: {n} records, but the fields before it have {m}\n  fix: give every column the same number of records",
+                    c.name
+                )))
+            }
+            _ => count = Some(n),
+        }
+        given.push((c, vals));
+    }
+    let n = count.unwrap_or(0);
+    crate::arrays::check_batch("pack: records", n as u64)?;
+    let w = t.layout.words32();
+    let mut out = vec![0u32; n * w];
+    for (i, rec) in out.chunks_mut(w).enumerate() {
+        let mut r = Record::new(&t.layout);
+        for (c, vals) in &given {
+            let (lo, hi) = lane_range(c);
+            for lane in 0..c.lanes {
+                let v = vals[i * c.lanes as usize + lane as usize];
+                if v < lo || v > hi {
+                    return Err(crate::fail(format!(
+                        "field `{}`, record {i}, lane {lane}: {v} is outside format {} ({lo}..={hi})\n  fix: give codes of the column's format",
+                        c.name, c.format
+                    )));
+                }
+                r.set_lane(c, lane, v);
+            }
+        }
+        rec.copy_from_slice(&r.to_words32(w));
+    }
+    Ok((n, out))
+}
+
+/// Every column of `count` records of `t` as `int64` arrays `(N, lanes)`.
+pub fn unpack<'py>(py: Python<'py>, t: &Target, words: &[u32], count: usize) -> PyResult<Bound<'py, PyDict>> {
+    let w = t.layout.words32();
+    let recs: Vec<Record> = words.chunks(w).map(Record::from_words32).collect();
+    let d = PyDict::new(py);
+    for c in &t.layout.columns {
+        let lanes = c.lanes as usize;
+        let vals: Vec<i64> = recs.iter().flat_map(|r| (0..c.lanes).map(|l| r.lane_value(c, l))).collect();
+        let a = Array2::from_shape_vec((count, lanes), vals).map_err(|e| crate::fail(format!("column `{}`: {e}", c.name)))?;
+        d.set_item(&c.name, a.into_pyarray(py))?;
+    }
+    Ok(d)
+}

@@ -1,0 +1,40 @@
+//! gbump's golden model as a Python module (`import gbump`), built by maturin from this crate.
+//! Everything is the library's: the configuration handle of the C ABI (`capi::GbumpConfig`,
+//! with its record layouts and power table), the vector sources, the ROM builders and the
+//! interface JSON. Nothing here states a width or a layout; records are the vector files'
+//! records as rows of 32-bit words, LSB first (the C ABI's and DPI-C's layout).
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod config;
+mod fields;
+mod vectors;
+
+pyo3::create_exception!(
+    gbump,
+    GbumpError,
+    pyo3::exceptions::PyValueError,
+    "A gbump error: the library's message, naming the input, the place and the fix."
+);
+
+/// The library's error as a Python exception, with its message unchanged.
+pub(crate) fn err(e: gbump::Error) -> PyErr {
+    GbumpError::new_err(e.to_string())
+}
+
+/// A message of this module's own as a `GbumpError`.
+pub(crate) fn fail(msg: String) -> PyErr {
+    GbumpError::new_err(msg)
+}
+
+#[pymodule]
+#[pyo3(name = "gbump")]
+fn gbump_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", gbump::TOOL.trim_start_matches("gbump "))?;
+    m.add("TOOL", gbump::TOOL)?;
+    m.add("GbumpError", m.py().get_type::<GbumpError>())?;
+    m.add_class::<config::Config>()?;
+    m.add_class::<vectors::Stimulus>()?;
+    Ok(())
+}

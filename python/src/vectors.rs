@@ -1,0 +1,158 @@
+//! Stimulus and vector sets from the library's sources: the seeded random stream (record `k`
+//! is record `k` of `gbump vectors --source random:N --seed SEED`), and whole sets of
+//! `random:N`, `corners`, `scene:NAME` and `exhaustive:UNIT` with the model's responses, the
+//! records `gbump vectors` writes.
+
+use crate::arrays::{check_batch, records_out};
+use gbump::capi::{GbumpConfig, GbumpStim};
+use gbump::units::MemoryContents;
+use gbump::vectors::sources::{chunk_rng, corners, exhaustive, exhaustive_count, random_stim, scene_groups, RANDOM_CHUNK};
+use gbump::vectors::targets::{eval_top, eval_unit, top_record, unit_layout, unit_record, TopStim};
+use gbump::vectors::Source;
+use gbump::PipelineConfig;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
+
+/// A seeded random stimulus stream of top records (expected columns zero: `Config.eval`
+/// fills them). Made by `Config.stimulus(seed)`.
+#[pyclass(module = "gbump", name = "Stimulus")]
+pub struct Stimulus {
+    s: GbumpStim,
+}
+
+impl Stimulus {
+    pub fn new(h: &GbumpConfig, seed: u64) -> Stimulus {
+        Stimulus {
+            s: GbumpStim::new(h, seed),
+        }
+    }
+}
+
+#[pymethods]
+impl Stimulus {
+    /// The next `n` records, uint32 shape (n, words).
+    #[pyo3(signature = (n = 1))]
+    fn next<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyAny>> {
+        check_batch("Stimulus.next: n", n)?;
+        let w = self.s.layout.words32();
+        let mut out = Vec::with_capacity(n as usize * w);
+        for _ in 0..n {
+            out.extend(self.s.next_record().to_words32(w));
+        }
+        records_out(py, out, w, false)
+    }
+
+    /// Index of the record `next` gives next.
+    #[getter]
+    fn index(&self) -> u64 {
+        self.s.index
+    }
+
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.s.seed
+    }
+}
+
+/// Top records of `stims` evaluated with the power table of shininess `n`, as words.
+fn top_words(cfg: &PipelineConfig, stims: &[TopStim], n: u32) -> Vec<u32> {
+    let mem = MemoryContents::new(cfg, n);
+    let l = gbump::vectors::targets::top_layout(cfg);
+    let w = l.words32();
+    stims
+        .par_iter()
+        .flat_map_iter(|s| top_record(cfg, &l, s, &eval_top(cfg, &mem.view(), s)).to_words32(w))
+        .collect()
+}
+
+/// One set: {name, target, shininess, records, reasons}.
+fn set<'py>(
+    py: Python<'py>,
+    name: &str,
+    target: &str,
+    n: u32,
+    words: Vec<u32>,
+    per: usize,
+    reasons: Option<Vec<String>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("name", name)?;
+    d.set_item("target", target)?;
+    d.set_item("shininess", n)?;
+    d.set_item("records", records_out(py, words, per, false)?)?;
+    d.set_item("reasons", reasons)?;
+    Ok(d)
+}
+
+pub fn vectors<'py>(
+    py: Python<'py>,
+    h: &GbumpConfig,
+    source: &str,
+    seed: u64,
+    shininess: Option<u32>,
+    size: Option<(u32, u32)>,
+) -> PyResult<Bound<'py, PyList>> {
+    use gbump::limits::{check_count, MAX_SHININESS};
+    let cfg = &h.cfg;
+    let src = Source::parse(source).map_err(crate::err)?;
+    if let Some(n) = shininess {
+        check_count("shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS").map_err(crate::err)?;
+    }
+    let n = shininess.unwrap_or(cfg.shininess);
+    let top_w = gbump::vectors::targets::top_layout(cfg).words32();
+    let out = PyList::empty(py);
+    match &src {
+        Source::Random(count) => {
+            check_batch("random:N", *count)?;
+            let count = *count;
+            let words = py.detach(|| {
+                let chunks: Vec<Vec<TopStim>> = (0..count.div_ceil(RANDOM_CHUNK))
+                    .into_par_iter()
+                    .map(|c| {
+                        let mut rng = chunk_rng(seed, c);
+                        (0..RANDOM_CHUNK.min(count - c * RANDOM_CHUNK))
+                            .map(|_| random_stim(cfg, &mut rng))
+                            .collect()
+                    })
+                    .collect();
+                top_words(cfg, &chunks.concat(), n)
+            });
+            out.append(set(py, &src.stem(), "top", n, words, top_w, None)?)?;
+        }
+        Source::Corners(level) => {
+            let (reasons, stims): (Vec<String>, Vec<TopStim>) = corners(cfg, *level).into_iter().unzip();
+            let words = py.detach(|| top_words(cfg, &stims, n));
+            out.append(set(py, &src.stem(), "top", n, words, top_w, Some(reasons))?)?;
+        }
+        Source::Scene(name) => {
+            let groups = py.detach(|| scene_groups(cfg, name, size)).map_err(crate::err)?;
+            for (gn, stem, stims) in groups {
+                check_batch("scene fragments", stims.len() as u64)?;
+                let words = py.detach(|| top_words(cfg, &stims, gn));
+                out.append(set(py, &stem, "top", gn, words, top_w, None)?)?;
+            }
+        }
+        Source::Exhaustive(unit) => {
+            // The target must exist in this configuration (the handle's error lists those that do).
+            let t = h.target(unit).map_err(crate::err)?;
+            exhaustive_count(cfg, unit).map_err(crate::err)?;
+            let l = unit_layout(cfg, t.name);
+            let w = l.words32();
+            let words = py.detach(|| -> gbump::Result<Vec<u32>> {
+                let mem = MemoryContents::new(cfg, n);
+                Ok(exhaustive(cfg, unit)?
+                    .iter()
+                    .flat_map(|s| unit_record(&l, s, &eval_unit(cfg, &mem.view(), s)).to_words32(w))
+                    .collect())
+            });
+            let name = if shininess.is_some() {
+                format!("{}_n{n}", src.stem())
+            } else {
+                src.stem()
+            };
+            out.append(set(py, &name, t.name, n, words.map_err(crate::err)?, w, None)?)?;
+        }
+    }
+    Ok(out)
+}

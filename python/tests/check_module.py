@@ -1,0 +1,147 @@
+"""The Python module against the files gbump writes: the same records, ROM words and interface.
+
+    python3 check_module.py GBUMP_EXE WORK_DIR [CONFIG.toml]
+
+runs `gbump rtl`, `gbump vectors` and `gbump rom` into WORK_DIR and checks that the module
+gives the same bytes: vector sets (random, corners, exhaustive), evaluation of every record
+of a top and a unit set with its expected columns cleared, the stimulus stream, the per-field
+form, the power table and the interface JSON; and that bad input raises GbumpError with the
+library's message. Prints `N passed, 0 failed` and exits 0 when all hold.
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+import gbump
+
+exe, work = sys.argv[1], sys.argv[2]
+config = sys.argv[3] if len(sys.argv) > 3 else None
+cfg_args = ["--config", config] if config else []
+passed = 0
+
+
+def check(cond, what):
+    global passed
+    if not cond:
+        sys.exit(f"FAILED: {what}")
+    passed += 1
+
+
+def run(*args):
+    subprocess.run([exe, *args, *cfg_args], check=True, stdout=subprocess.DEVNULL)
+
+
+def hex_words(path):
+    with open(path) as f:
+        return [int(w, 16) for w in (line.split("//", 1)[0].strip() for line in f) if w]
+
+
+def rows_from_hex(path, words):
+    """A vector file's records as uint32 rows, words LSB first."""
+    recs = hex_words(path)
+    return np.array([[(r >> (32 * i)) & 0xFFFFFFFF for i in range(words)] for r in recs], dtype=np.uint32).reshape(len(recs), words)
+
+
+def cleared(model, target, rows):
+    """`rows` with every expected column zeroed: what a testbench knows before the model."""
+    out = rows.copy()
+    ints = [int.from_bytes(r.astype("<u4").tobytes(), "little") for r in rows]
+    for c in model.columns(target):
+        if c["role"] == "expected":
+            mask = ((1 << c["width"]) - 1) << c["lsb"]
+            ints = [v & ~mask for v in ints]
+    w = rows.shape[1]
+    for k, v in enumerate(ints):
+        out[k] = [(v >> (32 * i)) & 0xFFFFFFFF for i in range(w)]
+    return out
+
+
+def raises(f, *needles):
+    try:
+        f()
+    except gbump.GbumpError as e:
+        return all(n in str(e) for n in needles)
+    return False
+
+
+model = gbump.Config.load(config) if config else gbump.Config()
+
+# The interface JSON, byte for byte, and the configuration it carries.
+rtl = os.path.join(work, "rtl")
+run("rtl", "--out", rtl)
+ipath = os.path.join(rtl, model.top + ".json")
+with open(ipath) as f:
+    text = f.read()
+iface = json.loads(text)
+check(model.interface_json(iface["regenerate"]) == text, "interface_json equals gbump rtl's file")
+check(gbump.Config.from_interface(ipath).hash == model.hash, "from_interface gives the same configuration")
+check((model.latency, model.initiation_interval) == (iface["latency_cycles"], iface["initiation_interval"]), "latency and interval")
+check(all(p["kind"] in ("control", "load", "fragment", "triangle", "result") for p in iface["ports"]), "every port has a kind")
+fmts = model.formats
+check(fmts["lh"]["width"] == model.as_dict()["lh_bits"], "the lh format is lh_bits wide")
+
+# Random vectors at shininess 40, the stimulus stream and evaluation of the file's stimulus.
+vec = os.path.join(work, "v")
+run("vectors", "--source", "random:700", "--seed", "7", "--target", "top", "--target", "dot_clamp", "--format", "hex", "--shininess", "40", "--out", vec)
+w = model.record_words("top")
+ref = rows_from_hex(os.path.join(vec, "random700_top.hex"), w)
+(s,) = model.vectors("random:700", seed=7, shininess=40)
+check(s["name"] == "random700" and s["shininess"] == 40 and np.array_equal(s["records"], ref), "vectors('random:700') equals the file")
+stim = model.stimulus(7).next(700)
+check(np.array_equal(stim, cleared(model, "top", ref)), "the stimulus stream is the file's stimulus")
+model.shininess = 40
+check(np.array_equal(model.eval("top", stim), ref), "eval of the stimulus equals the file")
+check(np.array_equal(model.eval("top", stim[3]), ref[3]), "eval of one 1-D record")
+fields = model.unpack("top", ref)
+check(np.array_equal(model.pack("top", fields), ref), "pack(unpack(records)) is the identity")
+stim_fields = {c["name"]: fields[c["name"]] for c in model.columns("top") if c["role"] == "stimulus"}
+out = model.eval_fields("top", stim_fields)
+check(all(np.array_equal(out[k], fields[k]) for k in fields), "eval_fields equals the file's fields")
+pt = hex_words(os.path.join(vec, "random700_top_power_table.hex"))
+check(model.power_table().tolist() == pt and model.rom("power_table", 40)["words"].tolist() == pt, "the power table equals the set's")
+
+# A unit set from the same run, evaluated from its stimulus.
+uw = model.record_words("dot_clamp")
+uref = rows_from_hex(os.path.join(vec, "random700_dot_clamp.hex"), uw)
+check(np.array_equal(model.eval("dot_clamp", cleared(model, "dot_clamp", uref)), uref), "dot_clamp eval equals the file")
+
+# Corners (with their reasons) and an exhaustive unit sweep.
+run("vectors", "--source", "corners", "--target", "top", "--format", "hex", "--out", vec)
+(c,) = model.vectors("corners")
+check(np.array_equal(c["records"], rows_from_hex(os.path.join(vec, "corners_top.hex"), w)), "corners equal the file")
+with open(os.path.join(vec, "corners_catalogue.txt")) as f:
+    check(c["reasons"] == [line.rstrip("\n").split("\t", 1)[1] for line in f], "corner reasons equal the catalogue")
+run("vectors", "--source", "exhaustive:power_table", "--format", "hex", "--out", vec)
+(e,) = model.vectors("exhaustive:power_table")
+check(np.array_equal(e["records"], rows_from_hex(os.path.join(vec, "exhaustive_power_table_power_table.hex"), model.record_words("power_table"))), "exhaustive:power_table equals the file")
+
+# A scene's fragments, in the scene's own configuration (as `--scene` picks it), 32x32.
+if not config:
+    subprocess.run([exe, "vectors", "--source", "scene:blend_split", "--size", "32x32", "--target", "top", "--format", "hex", "--out", vec], check=True, stdout=subprocess.DEVNULL)
+    sc = gbump.Config.from_scene("blend_split")
+    (g,) = sc.vectors("scene:blend_split", size=(32, 32))
+    ref = rows_from_hex(os.path.join(vec, g["name"] + "_top.hex"), sc.record_words("top"))
+    check(len(ref) > 0 and np.array_equal(g["records"], ref), "scene:blend_split equals the file")
+
+# Bad input: the library's message, with its fix.
+check(raises(lambda: gbump.Config("lights = 9\n", "bad.toml"), "bad.toml", "lights", "fix:"), "an out-of-range field")
+check(raises(lambda: model.eval("top", np.zeros((2, w + 1), dtype=np.uint32)), "fix:"), "a record of the wrong width")
+check(raises(lambda: model.eval("nonesuch", stim), "nonesuch", "fix:"), "an unknown target")
+bad = dict(stim_fields, in_k=stim_fields["in_k"] + 10000)
+check(raises(lambda: model.pack("top", bad), "in_k", "fix:"), "a value outside its format")
+check(raises(lambda: model.vectors("random:0"), "fix:"), "an empty random set")
+check(raises(lambda: model.rom("nonesuch"), "fix:"), "an unknown ROM")
+forged = os.path.join(work, "forged.json")
+with open(forged, "w") as f:
+    json.dump(dict(iface, config_hash="0" * 16), f)
+check(raises(lambda: gbump.Config.from_interface(forged), "config_hash", "fix:"), "an interface of another gbump")
+try:
+    model.eval("top", stim.astype(np.int64))
+    check(False, "int64 records are refused")
+except TypeError:
+    check(True, "int64 records are refused")
+print(f"module check: {passed} passed, 0 failed")
