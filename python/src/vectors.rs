@@ -6,7 +6,7 @@
 use crate::arrays::{check_batch, records_out};
 use gbump::capi::{GbumpConfig, GbumpStim};
 use gbump::units::MemoryContents;
-use gbump::vectors::sources::{chunk_rng, corners, exhaustive, exhaustive_count, random_stim, scene_groups, RANDOM_CHUNK};
+use gbump::vectors::sources::{corners, exhaustive, exhaustive_count, random_chunk, scene_groups, RANDOM_CHUNK};
 use gbump::vectors::targets::{eval_top, eval_unit, top_record, unit_layout, unit_record, TopStim};
 use gbump::vectors::Source;
 use gbump::PipelineConfig;
@@ -109,12 +109,7 @@ pub fn vectors<'py>(
             let words = py.detach(|| {
                 let chunks: Vec<Vec<TopStim>> = (0..count.div_ceil(RANDOM_CHUNK))
                     .into_par_iter()
-                    .map(|c| {
-                        let mut rng = chunk_rng(seed, c);
-                        (0..RANDOM_CHUNK.min(count - c * RANDOM_CHUNK))
-                            .map(|_| random_stim(cfg, &mut rng))
-                            .collect()
-                    })
+                    .map(|c| random_chunk(cfg, seed, c, count))
                     .collect();
                 top_words(cfg, &chunks.concat(), n)
             });

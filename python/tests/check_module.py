@@ -131,8 +131,9 @@ if not config:
 check(raises(lambda: gbump.Config("lights = 9\n", "bad.toml"), "bad.toml", "lights", "fix:"), "an out-of-range field")
 check(raises(lambda: model.eval("top", np.zeros((2, w + 1), dtype=np.uint32)), "fix:"), "a record of the wrong width")
 check(raises(lambda: model.eval("nonesuch", stim), "nonesuch", "fix:"), "an unknown target")
-bad = dict(stim_fields, in_k=stim_fields["in_k"] + 10000)
-check(raises(lambda: model.pack("top", bad), "in_k", "fix:"), "a value outside its format")
+k_col = "tri_k" if "tri_k" in stim_fields else "in_k"
+bad = dict(stim_fields, **{k_col: stim_fields[k_col] + 10000})
+check(raises(lambda: model.pack("top", bad), k_col, "fix:"), "a value outside its format")
 check(raises(lambda: model.vectors("random:0"), "fix:"), "an empty random set")
 check(raises(lambda: model.rom("nonesuch"), "fix:"), "an unknown ROM")
 forged = os.path.join(work, "forged.json")

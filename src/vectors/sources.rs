@@ -146,6 +146,12 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
 /// fragment, so one-fragment triangles come back to back; at most `TRIANGLE_MAX_FRAGMENTS`),
 /// each fragment random. Every
 /// chunk of `RANDOM_CHUNK` records starts a new triangle, so chunks stay independent.
+/// Records `c * RANDOM_CHUNK ..` of `random:count` with `seed`: chunk `c` of the stream.
+pub fn random_chunk(cfg: &PipelineConfig, seed: u64, c: u64, count: u64) -> Vec<TopStim> {
+    let mut tris = RandomTriangles::new(chunk_rng(seed, c));
+    (0..RANDOM_CHUNK.min(count - c * RANDOM_CHUNK)).map(|_| tris.next(cfg)).collect()
+}
+
 /// Most fragments of one random triangle (a power of two).
 pub const TRIANGLE_MAX_FRAGMENTS: u64 = 64;
 /// Share of random triangles with one fragment.

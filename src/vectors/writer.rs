@@ -4,7 +4,7 @@
 
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
-use super::sources::{chunk_rng, corners, exhaustive, exhaustive_count, RandomTriangles, Source, RANDOM_CHUNK};
+use super::sources::{corners, exhaustive, exhaustive_count, random_chunk, Source, RANDOM_CHUNK};
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -322,9 +322,8 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     let done: Vec<(u64, Vec<TopStim>, String, Vec<u8>)> = (c0..c1)
                         .into_par_iter()
                         .map(|c| {
-                            let len = CHUNK.min(n - c * CHUNK);
-                            let mut tris = RandomTriangles::new(chunk_rng(o.seed, c));
-                            let stims: Vec<TopStim> = (0..len).map(|_| tris.next(cfg)).collect();
+                            let stims = random_chunk(cfg, o.seed, c, *n);
+                            let len = stims.len() as u64;
                             let (mut hex, mut bin) = (String::new(), Vec::new());
                             for s in &stims {
                                 let r = top_record(cfg, &tl, s, &eval_top(cfg, mem, s));
