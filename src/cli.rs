@@ -455,6 +455,7 @@ pub fn run() -> anyhow::Result<()> {
                 max_errors,
                 command: invocation(),
                 bubbles: 29,
+                stall: 13,
                 power_up: true,
             };
             let cfg = pick.resolve()?;

@@ -106,6 +106,10 @@ pub struct PipelineConfig {
     /// Where the top holds the bump state: per triangle (setup port, register banks) or per
     /// fragment (on the fragment port).
     pub bump_state: BumpStateAt,
+    /// The top has `out_ready` and an output buffer that holds every result in flight, so a
+    /// downstream stage may stall it (credit-based: `in_ready` is low while the buffer could
+    /// fill; no pipeline register stalls).
+    pub backpressure: bool,
     /// Register banks of a per-triangle top: how many triangles may have fragments in flight
     /// at once (a setup waits while its bank is still read by an earlier triangle's fragment).
     pub triangle_banks: u32,
@@ -134,6 +138,7 @@ impl Default for PipelineConfig {
             specular: true,
             skip_flat: false,
             bump_state: BumpStateAt::Triangle,
+            backpressure: true,
             triangle_banks: 2,
         }
     }

@@ -10,7 +10,7 @@
 // (for rendering an image through the RTL); --no-check skips comparison (raw speed runs).
 // --raw CYCLES clocks the model that many cycles on the first record with no file I/O and
 // prints its evaluation rate (the upper bound of any regression).
-// Usage: harness --vectors FILE.bin [--table FILE.hex] [--bubbles N] [--dump FILE] [--max-errors N] [--raw CYCLES]
+// Usage: harness --vectors FILE.bin [--table FILE.hex] [--bubbles N] [--stall N] [--dump FILE] [--max-errors N] [--raw CYCLES]
 #include "V{{TOP}}.h"
 #include "verilated.h"
 #include <chrono>
@@ -32,6 +32,10 @@ static const size_t FLIGHT = 64;
 // BANK_HOLD edges after the accept of that bank's last fragment on, not before.
 static const unsigned TRI_BANKS = {{TRI_BANKS}};
 static const long long BANK_HOLD = {{BANK_HOLD}};
+// Tops with out_ready: the output buffer's depth (0: no out_ready). A result is offered
+// (out_valid) from LATENCY edges after its accept on, never before, and stays offered until
+// taken; --stall N holds out_ready low for 1-3 edges every N edges.
+static const size_t OUT_DEPTH = {{OUT_DEPTH}};
 
 // Bits [lsb, lsb+width) of a little-endian record (width <= 64): one unaligned 8-byte load
 // and a shift. The record buffer is padded so the load never leaves it.
@@ -66,6 +70,7 @@ int main(int argc, char** argv) {
     bool check = true;
     long long raw_cycles = 0;
     long bubbles = 0;
+    long stall = 0;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--vectors") && i + 1 < argc) vec_path = argv[++i];
         else if (!strcmp(argv[i], "--table") && i + 1 < argc) table_path = argv[++i];
@@ -74,6 +79,7 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--no-check")) check = false;
         else if (!strcmp(argv[i], "--raw") && i + 1 < argc) raw_cycles = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--bubbles") && i + 1 < argc) bubbles = atol(argv[++i]);
+        else if (!strcmp(argv[i], "--stall") && i + 1 < argc) stall = atol(argv[++i]);
         else { fprintf(stderr, "FATAL: unknown argument %s\n", argv[i]); return 2; }
     }
     if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
@@ -98,6 +104,7 @@ int main(int argc, char** argv) {
     auto tick = [&]() { top.clk = 0; top.eval(); top.clk = 1; top.eval(); };
     top.rst = 1; top.in_valid = 0; top.pt_we = 0;
     {{TRI_VALID_0}}
+    {{OUT_READY_1}}
     for (int i = 0; i < {{RESET_CYCLES}}; ++i) tick();
     top.rst = 0;
     if (table_path)
@@ -151,6 +158,8 @@ int main(int argc, char** argv) {
             top.in_valid = 0;
         }
         if (setup) { {{TRI_VALID_1}} } else { {{TRI_VALID_0}} }
+        bool out_ready = !(stall > 0 && (long)(cycles % stall) <= (long)((cycles / stall) % 3));
+        {{OUT_READY_SET}}
         top.clk = 0;
         top.eval();
         // Sampled before the rising edge, as the design's registers see them.
@@ -167,16 +176,19 @@ int main(int argc, char** argv) {
         if (accept) {
             if (last_acc >= 0 && cyc - last_acc < II) timing("accepts closer than the initiation interval", cyc - last_acc, II);
             if (next_in - next_out >= FLIGHT) { printf("FATAL: more than %zu fragments in flight\n", FLIGHT); break; }
+            if (OUT_DEPTH > 0 && next_in - next_out >= OUT_DEPTH) timing("accepted while the output buffer's untaken results fill it", (long long)(next_in - next_out), (long long)OUT_DEPTH);
             acc_cyc[next_in % FLIGHT] = cyc;
             last_acc = cyc;
             frag_edge[setups % TRI_BANKS] = cyc;
-        } else if (top.in_valid && (last_acc < 0 || cyc - last_acc >= II)) {
+        } else if (top.in_valid && (last_acc < 0 || cyc - last_acc >= II) && (OUT_DEPTH == 0 || next_in - next_out < OUT_DEPTH)) {
             timing("in_ready low beyond the initiation interval", last_acc < 0 ? cyc : cyc - last_acc, II);
         }
-        if (top.out_valid) {
+        if (!top.out_valid && next_out < next_in && cyc - acc_cyc[next_out % FLIGHT] >= LATENCY)
+            timing("latency: the result is not offered", cyc - acc_cyc[next_out % FLIGHT], LATENCY);
+        if (top.out_valid && next_out >= next_in + (accept ? 1 : 0)) { timing("out_valid with no fragment in flight", 0, LATENCY); break; }
+        if (top.out_valid && cyc - acc_cyc[next_out % FLIGHT] < LATENCY) timing("latency: the result is offered early", cyc - acc_cyc[next_out % FLIGHT], LATENCY);
+        else if (top.out_valid && out_ready) {
             idle = 0;
-            if (next_out >= next_in + (accept ? 1 : 0)) { timing("out_valid with no fragment in flight", 0, LATENCY); break; }
-            if (cyc - acc_cyc[next_out % FLIGHT] != LATENCY) timing("latency", cyc - acc_cyc[next_out % FLIGHT], LATENCY);
             const uint8_t* rec = data.data() + next_out * RECORD_BYTES;
             uint64_t want = get_bits(rec, {{OUT_LSB}}, {{OUT_W}});
             uint64_t got = (uint64_t)top.out_c;

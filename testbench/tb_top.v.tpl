@@ -10,6 +10,9 @@
 // Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
 //           it the pipeline runs on its power-up contents (INIT_FILE)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth record
+//           [+stall=N] (tops with out_ready) holds out_ready low for 1-3 edges every N edges:
+//           a result is then taken later than its latency, and in_ready may be low while
+//           OUT_DEPTH accepted results are untaken, never otherwise
 //           [+valid_during_reset] [+reset_after_load] (reset behaviour, see below)
 //           [+waves=FILE.fst] [+max_errors=N]
 `timescale 1ns / 1ps
@@ -46,6 +49,11 @@ module tb_top;
     integer fin, fchk, code, i, cycles, max_errors, bubbles, gap;
     // Timing: the edge count, the edge of every accept still in flight, the last accept.
     localparam II = {{II}};
+    // Tops with out_ready: the output buffer's depth (0: no out_ready, results are taken when
+    // offered). A result is offered (out_valid) from LAT edges after its accept on, never
+    // before, and stays offered until taken.
+    localparam OUT_DEPTH = {{OUT_DEPTH}};
+    integer stall = 0;
     // Per-triangle tops: a setup loads bank (setups so far + 1) % TRI_BANKS, and may do so
     // from BANK_HOLD edges after the accept of that bank's last fragment on, not before.
     localparam TRI_BANKS = {{TRI_BANKS}};
@@ -82,6 +90,7 @@ module tb_top;
         if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
         load_table = $value$plusargs("table=%s", table_file);
         if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
+        if (!$value$plusargs("stall=%d", stall)) stall = 0;
         if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_top); end
         if (load_table) $readmemh(table_file, table_mem);
         fin = $fopen(vec_file, "r");
@@ -148,6 +157,8 @@ module tb_top;
         finish_run;
     end
 
+    always @(negedge clk) if (OUT_DEPTH > 0 && stall > 0) out_ready_r = (cyc % stall) > (cyc / stall) % 3;
+
     // After reset no output may be X or Z, valid or not.
     integer x_reports = 0;
     always @(negedge clk) begin
@@ -176,11 +187,12 @@ module tb_top;
         if (!rst && in_valid && in_ready) begin
             if (last_acc >= 0 && cyc - last_acc < II) timing_error(cyc - last_acc, II, "accepts closer than the initiation interval");
             if (n_in - n_out >= FLIGHT) begin $display("FATAL: more than %0d fragments in flight", FLIGHT); finish_run; end
+            if (OUT_DEPTH > 0 && n_in - n_out >= OUT_DEPTH) timing_error(n_in - n_out, OUT_DEPTH, "accepted while the output buffer's untaken results fill it");
             acc_cyc[n_in % FLIGHT] = cyc;
             last_acc = cyc;
             // A fragment taken at a setup's edge belongs to the previous triangle.
             frag_edge[n_setup % TRI_BANKS] = cyc;
-        end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II)) begin
+        end else if (!rst && in_valid && !in_ready && (last_acc < 0 || cyc - last_acc >= II) && (OUT_DEPTH == 0 || n_in - n_out < OUT_DEPTH)) begin
             timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
         end
         if (!rst && tri_valid) begin
@@ -189,10 +201,12 @@ module tb_top;
             else if (!tri_ready && cyc - bank_at >= BANK_HOLD) timing_error(cyc - bank_at, BANK_HOLD, "tri_ready low beyond the bank hold");
             if (tri_ready) n_setup = n_setup + 1;
         end
-        if (!rst && out_valid) begin
+        if (!rst && !out_valid && n_out < n_in && cyc - acc_cyc[n_out % FLIGHT] >= LAT)
+            timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency: the result is not offered");
+        if (!rst && out_valid && n_out >= n_in + (in_valid && in_ready ? 1 : 0)) timing_error(0, LAT, "out_valid with no fragment in flight");
+        else if (!rst && out_valid && cyc - acc_cyc[n_out % FLIGHT] < LAT) timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency: the result is offered early");
+        else if (!rst && out_valid && out_ready) begin
             code = $fscanf(fchk, "%h\n", chk);
-            if (n_out >= n_in + (in_valid && in_ready ? 1 : 0)) timing_error(0, LAT, "out_valid with no fragment in flight");
-            else if (cyc - acc_cyc[n_out % FLIGHT] != LAT) timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency");
             n_out = n_out + 1;
             if (out_c === chk[{{OUT_HI}}:{{OUT_LO}}]) passed = passed + 1;
             else begin

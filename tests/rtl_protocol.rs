@@ -128,6 +128,21 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
             assert!(waits, "one-fragment triangles back to back make serial setups wait:\n{}", base.log);
         }
     }
+    // The output buffer: with out_ready stalled, in_ready must fall exactly when the untaken
+    // results fill it, and results wait; a bench told another depth fails.
+    if let Some(d) = gbump::rtlgen::top::output_depth(&cfg) {
+        assert_eq!(json["output_buffer_results"], d);
+        let tb_d = format!("localparam OUT_DEPTH = {d};");
+        assert!(tb.contains(&tb_d) && cpp.contains(&format!("static const size_t OUT_DEPTH = {d};")));
+        let ok = icarus_top(&w, &rtl, &tb, &hex, &[&table, "+stall=5"], &w).unwrap();
+        assert!(ok.failed == 0 && ok.passed > 0, "stalled:\n{}", ok.log);
+        let ok = harness(&w, &cfg, &rtl, &cpp, &bin, &["--stall", "5", "--table", &t], &w).unwrap();
+        assert!(ok.failed == 0 && ok.passed > 0, "stalled harness:\n{}", ok.log);
+        for dd in [d - 1, d + 1] {
+            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_d, &format!("localparam OUT_DEPTH = {dd};")), &hex, &[&table, "+stall=5"], &w).unwrap();
+            assert!(bad.failed > 0 && (bad.log.contains("output buffer") || bad.log.contains("in_ready low")), "icarus, output depth {dd}:\n{}", bad.log);
+        }
+    }
     // Verilator builds are slower: one latency and one interval mutant.
     for (l, i) in [(lat + 1, ii), (lat, ii + 1)] {
         let m = cpp

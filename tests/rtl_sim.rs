@@ -184,6 +184,7 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
         max_errors: 5,
         command: "test".into(),
         bubbles: 7,
+        stall: 13,
         power_up: false,
     };
     // The unit set runs through the all-units testbench; the random top set through the top

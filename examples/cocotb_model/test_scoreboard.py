@@ -80,19 +80,23 @@ class Control:
     """The handshake and clock ports, driven by the test body by their documented names."""
 
     NAMES = ("clk", "rst", "in_valid", "in_ready", "out_valid")
-    # The setup handshake, on per-triangle tops (driven by the triangle handler).
-    SETUP = ("tri_valid", "tri_ready")
+    # The setup handshake, on per-triangle tops (driven by the triangle handler), and
+    # back-pressure, held high so every result is taken at its latency.
+    SETUP = ("tri_valid", "tri_ready", "out_ready")
 
     def __init__(self, tb, ports):
         names = {p["name"] for p in ports}
         missing = [n for n in self.NAMES if n not in names]
         unknown = sorted(names - set(self.NAMES) - set(self.SETUP))
+        self.out_ready = "out_ready" in names
         assert not missing, f"control ports {missing} are missing"
         assert not unknown, f"control ports {unknown}: this testbench does not know their protocol"
 
     def idle(self, dut):
         dut.rst.value = 1
         dut.in_valid.value = 0
+        if self.out_ready:
+            dut.out_ready.value = 1
 
     async def setup(self, tb):
         pass

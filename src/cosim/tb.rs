@@ -16,6 +16,9 @@ const PROTOCOL: [&str; 8] = ["clk", "rst", "pt_we", "pt_waddr", "pt_wdata", "in_
 /// The setup handshake of a per-triangle top, driven by name when the top has it.
 const SETUP: [&str; 2] = ["tri_valid", "tri_ready"];
 
+/// Back-pressure, when the top has it: held high, so every result comes at its latency.
+const OUT_READY: &str = "out_ready";
+
 /// One port of the interface JSON.
 struct Port {
     name: String,
@@ -86,7 +89,7 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
     let width = |n: &str| ps.iter().find(|p| p.name == n).map_or(1, |p| p.width);
     let data: Vec<&Port> = ps
         .iter()
-        .filter(|p| !PROTOCOL.contains(&p.name.as_str()) && !SETUP.contains(&p.name.as_str()))
+        .filter(|p| !PROTOCOL.contains(&p.name.as_str()) && !SETUP.contains(&p.name.as_str()) && p.name != OUT_READY)
         .collect();
     let setup = ps.iter().any(|p| p.name == SETUP[0]);
     let mut lines: std::collections::BTreeMap<&str, Vec<String>> = Default::default();
@@ -117,6 +120,10 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
             }
             push("PRINT", format!("                        $display(\"  {n:15} %h\", {slice});"));
         }
+    }
+    if ps.iter().any(|p| p.name == OUT_READY) {
+        push("DECLS", "    logic out_ready = 1'b1;".into());
+        push("CONNECT", ".out_ready(out_ready)".into());
     }
     if setup {
         push("LSB_DECLS", "    int lsb_tri_start;".into());

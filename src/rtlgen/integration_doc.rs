@@ -44,8 +44,14 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         rom_file_name(cfg, "power_table", "hex")
     );
     s += &format!(
-        "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}); results leave in the order fragments entered, one per `out_valid` cycle, and there is no output back-pressure. "
+        "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}); results leave in the order fragments entered. "
     );
+    s += &match super::top::output_depth(cfg) {
+        Some(d) => format!(
+            "**Back-pressure.** A result is taken at a rising edge at which `out_valid` and `out_ready` are both high; with `out_ready` held high every result is taken exactly {lat} edges after its accept. With `out_ready` low a result stays offered (`out_ready` may change at any edge, `out_valid` stays high until taken) and waits in an output buffer of **{d}** results; `in_ready` is low while {d} accepted results are untaken, and only then, so no result is ever lost and no pipeline register stalls (`out_ready` reaches the buffer alone). "
+        ),
+        None => "There is no output back-pressure (`backpressure = false`): every result is taken when offered, one per `out_valid` cycle. ".to_string(),
+    };
     s += &match cfg.light_mode {
         LightMode::Parallel => "Initiation interval **1**: `in_ready` is always high, so a fragment can enter at every edge.\n\n".to_string(),
         LightMode::Serial => format!(

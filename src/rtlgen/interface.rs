@@ -41,6 +41,8 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         } else {
             json!({"at": "fragment", "setup": "none: the bump state enters with every fragment on the in_l, in_h, in_lc, in_k ports"})
         },
+        "output_buffer_results": super::top::output_depth(cfg),
+        "backpressure": if cfg.backpressure { "out_ready: a result on out_c is taken at a rising edge at which out_valid && out_ready are high; it is offered from latency_cycles edges after its accept on and stays offered until taken; in_ready is low while output_buffer_results accepted results are untaken (and as the interval says); no pipeline register stalls" } else { "none: every result is taken when offered; the top has no out_ready" },
         "latency_definition": "rising edges from the edge that accepts a fragment to the edge at which its out_valid is first sampled high",
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,

@@ -66,6 +66,14 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
     } else {
         decls.push("    reg tri_valid = 1'b0;\n    wire tri_ready = 1'b1;".to_string());
     }
+    // out_ready follows the +stall pattern; a top without it takes every result offered.
+    decls.push("    reg out_ready_r = 1'b1;".to_string());
+    if cfg.backpressure {
+        decls.push("    wire out_ready = out_ready_r;".to_string());
+        connect.push(".out_ready(out_ready)".to_string());
+    } else {
+        decls.push("    wire out_ready = 1'b1;".to_string());
+    }
     for c in &l.columns {
         let r = if c.width > 1 {
             format!("[{}:0] ", c.width - 1)
@@ -119,6 +127,7 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         ("TRI_START", tri_start_bit(&l).map_or("1'b0".into(), |b| format!("stim[{b}]"))),
     ]);
     s.extend(banks(cfg));
+    s.push(("OUT_DEPTH", crate::rtlgen::top::output_depth(cfg).unwrap_or(0).to_string()));
     fill(TB_TOP.to_string(), &s)
 }
 
@@ -266,6 +275,10 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("TRI_START", tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)"))),
     ]);
     s.extend(banks(cfg));
+    s.push(("OUT_DEPTH", crate::rtlgen::top::output_depth(cfg).unwrap_or(0).to_string()));
+    let bp = cfg.backpressure;
+    s.push(("OUT_READY_1", if bp { "top.out_ready = 1;" } else { "" }.to_string()));
+    s.push(("OUT_READY_SET", if bp { "top.out_ready = out_ready;" } else { "out_ready = true;" }.to_string()));
     let tri = cfg.per_triangle();
     s.extend([
         ("TRI_VALID_0", if tri { "top.tri_valid = 0;" } else { "" }.to_string()),

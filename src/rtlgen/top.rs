@@ -220,6 +220,18 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     ]);
     v.extend([
         tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result"),
+    ]);
+    if cfg.backpressure {
+        v.push(tp(
+            "out_ready",
+            Dir::In,
+            PortKind::Control,
+            bit,
+            1,
+            "the result on out_c is taken at this edge if out_valid; low holds it (and the ones behind it) in the output buffer",
+        ));
+    }
+    v.extend([
         tp("out_c", Dir::Out, PortKind::Result, col, 3, "R, G, B of C_new"),
     ]);
     v
@@ -246,6 +258,15 @@ pub fn latency(cfg: &PipelineConfig) -> u32 {
 /// that reads a bank, plus the serial top's n slot cycles. Every testbench checks it per setup.
 pub fn bank_hold(cfg: &PipelineConfig) -> Option<u32> {
     build(cfg).bank_hold
+}
+
+/// Tops with `out_ready`: results the output buffer holds, enough for every fragment that can
+/// be in flight when `in_ready` allows an accept (`ceil(latency / interval) + 1`), so an accept
+/// never waits for `out_ready` while it stays high. `in_ready` is low while this many accepted
+/// results have not been taken.
+pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
+    cfg.backpressure
+        .then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
 }
 
 /// The whole top module.
@@ -302,6 +323,11 @@ fn build(cfg: &PipelineConfig) -> Built {
             LightMode::Serial => serial(&mut s, cfg),
         }
     };
+    let (out_c, out_v) = if cfg.backpressure {
+        output_buffer(&mut m, cfg, lat, &out_c, &out_v)
+    } else {
+        (out_c, out_v)
+    };
     m.comment("The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.");
     m.assign("out_valid", &out_v);
     m.assign("out_c", &format!("{out_v} ? {out_c} : {}'d0", 3 * cfg.colour_bits));
@@ -319,6 +345,42 @@ fn build(cfg: &PipelineConfig) -> Built {
         latency: lat,
         bank_hold,
     }
+}
+
+/// The output buffer of a top with `out_ready`: a fall-through FIFO of `output_depth` results
+/// (a result the pipeline delivers while the buffer is empty and `out_ready` is high passes
+/// straight through, so the latency is unchanged) and the credit that gates `in_ready`: the
+/// count of accepted results not yet taken. No pipeline register stalls, so `out_ready` fans
+/// out to the buffer alone. Returns the colour and valid the top's outputs show.
+fn output_buffer(m: &mut ModuleBuilder, cfg: &PipelineConfig, lat: u32, pipe_c: &str, pipe_v: &str) -> (String, String) {
+    let d = lat.div_ceil(cfg.initiation_interval()) + 1;
+    let cw = 3 * cfg.colour_bits;
+    let bits = |n: u32| (32 - n.leading_zeros()).max(1);
+    let (ab, cb) = (bits(d - 1), bits(d));
+    m.comment(format!(
+        "Output buffer: {d} results (every fragment that can be in flight), fall-through when empty; in_ready is low while {d} accepted results are untaken."
+    ));
+    m.raw(format!("reg [{}:0] obuf [0:{}];", cw - 1, d - 1));
+    m.reg_decl("obuf_rd", ab);
+    m.reg_decl("obuf_wr", ab);
+    m.reg_decl("obuf_n", cb);
+    m.reg_decl("occupancy", cb);
+    m.wire("obuf_empty", 1, Some(&format!("obuf_n == {cb}'d0")));
+    m.wire("obuf_push", 1, Some(&format!("{pipe_v} && !(obuf_empty && out_ready)")));
+    m.wire("obuf_pop", 1, Some("!obuf_empty && out_ready"));
+    m.wire("taken", 1, Some(&format!("(!obuf_empty || {pipe_v}) && out_ready")));
+    let wrap = |r: &str| format!("({r} == {ab}'d{}) ? {ab}'d0 : {r} + {ab}'d1", d - 1);
+    m.raw(format!("always @(posedge clk) if (obuf_push) obuf[obuf_wr] <= {pipe_c};"));
+    m.raw(format!(
+        "always @(posedge clk) begin\n    if (rst) begin\n        obuf_rd <= {ab}'d0;\n        obuf_wr <= {ab}'d0;\n        obuf_n <= {cb}'d0;\n        occupancy <= {cb}'d0;\n    end\n    else begin\n        if (obuf_push) obuf_wr <= {};\n        if (obuf_pop) obuf_rd <= {};\n        obuf_n <= obuf_n + {{{{({cb}-1){{1'b0}}}}, obuf_push}} - {{{{({cb}-1){{1'b0}}}}, obuf_pop}};\n        occupancy <= occupancy + {{{{({cb}-1){{1'b0}}}}, accept}} - {{{{({cb}-1){{1'b0}}}}, taken}};\n    end\nend",
+        wrap("obuf_wr"),
+        wrap("obuf_rd")
+    ));
+    m.raw(format!("assign credit = occupancy < {cb}'d{d};"));
+    (
+        format!("(obuf_empty ? {pipe_c} : obuf[obuf_rd])"),
+        format!("(!obuf_empty || {pipe_v})"),
+    )
 }
 
 /// The memory parameter of an instance of `unit`: its INIT_FILE is the top's parameter.
@@ -496,12 +558,18 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
     let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_bits + 1, cfg.power_bits + 1, cfg.factor_frac() + 1);
-    s.m.raw("assign in_ready = 1'b1;");
+    if cfg.backpressure {
+        s.m.wire("credit", 1, None);
+        s.m.raw("assign in_ready = credit;");
+    } else {
+        s.m.raw("assign in_ready = 1'b1;");
+    }
+    s.m.wire("accept", 1, Some("in_valid && in_ready"));
     for p in port_list(cfg).iter().filter(|p| p.kind == PortKind::Fragment) {
         s.source(&p.name, 0);
     }
-    s.source("in_valid", 0);
-    s.valid_bit("in_valid");
+    s.source("accept", 0);
+    s.valid_bit("accept");
     if cfg.per_triangle() {
         banks(s, cfg, "tri_cur");
     }
@@ -563,10 +631,10 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         Some(name.to_string())
     });
     let lat = s.ready(&out);
-    let v = s.at("in_valid", lat);
+    let v = s.at("accept", lat);
     // Stage 0 is the accepting cycle: that fragment is tagged with the current bank, which a
     // setup never writes; stage s ends s edges after the accept.
-    let hold = cfg.per_triangle().then(|| bank_ready(s, "tri_cur", "in_valid", 1));
+    let hold = cfg.per_triangle().then(|| bank_ready(s, "tri_cur", "accept", 1));
     (lat, out, v, hold)
 }
 
@@ -579,7 +647,12 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     s.m.reg_decl("j", jb);
     s.m.wire("last", 1, Some(&format!("(j == {jb}'d{})", n - 1)));
     s.m.wire("first", 1, Some(&format!("(j == {jb}'d0)")));
-    s.m.raw("assign in_ready = !busy || last;");
+    if cfg.backpressure {
+        s.m.wire("credit", 1, None);
+        s.m.raw("assign in_ready = (!busy || last) && credit;");
+    } else {
+        s.m.raw("assign in_ready = !busy || last;");
+    }
     s.m.wire("accept", 1, Some("in_valid && in_ready"));
     s.m.raw(format!(
         "always @(posedge clk) begin\n    if (rst) begin\n        busy <= 1'b0;\n        j <= {jb}'d0;\n    end\n    else if (accept) begin\n        busy <= 1'b1;\n        j <= {jb}'d0;\n    end\n    else if (busy) begin\n        busy <= !last;\n        j <= last ? {jb}'d0 : j + {jb}'d1;\n    end\nend"

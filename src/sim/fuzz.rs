@@ -40,6 +40,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             specular: pick(rng, &[false, true]),
             skip_flat: pick(rng, &[false, true]),
             bump_state: pick(rng, &[BumpStateAt::Triangle, BumpStateAt::Fragment]),
+            backpressure: pick(rng, &[false, true]),
             triangle_banks: field(rng, "triangle_banks"),
         };
         if cfg.validate("random").is_ok() {
@@ -196,6 +197,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         max_errors: 10,
         command: "gbump fuzz".into(),
         bubbles: 29,
+        stall: 13,
         power_up: true,
     };
     let mut checked = 0;

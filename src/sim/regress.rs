@@ -40,6 +40,8 @@ pub struct RegressOptions {
     pub command: String,
     /// Idle in_valid for 1-3 cycles before every Nth top record (0: never).
     pub bubbles: u32,
+    /// Tops with out_ready: hold it low for 1-3 edges every Nth edge (0: never).
+    pub stall: u32,
     /// Also run one top set on the power table's power-up contents.
     pub power_up: bool,
 }
@@ -256,6 +258,9 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         if o.bubbles > 0 {
                             args.extend(["--bubbles".into(), o.bubbles.to_string()]);
                         }
+                        if o.stall > 0 {
+                            args.extend(["--stall".into(), o.stall.to_string()]);
+                        }
                         Verilator.run(&exe, &args, None, &o.work, &what)
                     }
                     _ => {
@@ -265,8 +270,13 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         }
                         if bench == Bench::Units {
                             plus.push(format!("+unit={}", m.target));
-                        } else if o.bubbles > 0 {
-                            plus.push(format!("+bubbles={}", o.bubbles));
+                        } else {
+                            if o.bubbles > 0 {
+                                plus.push(format!("+bubbles={}", o.bubbles));
+                            }
+                            if o.stall > 0 {
+                                plus.push(format!("+stall={}", o.stall));
+                            }
                         }
                         simulator.run(&exe, &plus, waves.as_deref(), &o.work, &what)
                     }
