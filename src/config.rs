@@ -92,6 +92,10 @@ pub struct PipelineConfig {
     pub specular: bool,
     /// Leave fragments whose bump normal is unperturbed (0,0,1) untouched (paper §5.4.2).
     pub skip_flat: bool,
+    /// Register stages of each arithmetic unit (1 = every unit computes in one cycle). Each
+    /// step adds the next register cut of `units::timing`; from 3 on no register-to-register
+    /// path holds more than one multiplier. Latencies grow with it; results do not change.
+    pub pipeline_depth: u32,
 }
 
 impl Default for PipelineConfig {
@@ -116,9 +120,13 @@ impl Default for PipelineConfig {
             diffuse: true,
             specular: true,
             skip_flat: false,
+            pipeline_depth: DEFAULT_PIPELINE_DEPTH,
         }
     }
 }
+
+/// The default `pipeline_depth` (see ARCHITECTURE.md, "Timing as a parameter").
+pub const DEFAULT_PIPELINE_DEPTH: u32 = 3;
 
 /// Valid range of each numeric field, with the reason for its bounds.
 pub const LIMITS: &[(&str, u32, u32, &str)] = &[
@@ -142,6 +150,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ("colour_bits", 2, 12, "frame-buffer channel width"),
     ("k_bits", 1, 12, "modulation fraction bits"),
     ("lights", 1, 8, "light slots in hardware"),
+    (
+        "pipeline_depth",
+        1,
+        crate::limits::MAX_PIPELINE_DEPTH,
+        "register stages per unit; beyond the last cut of every unit a stage adds nothing",
+    ),
 ];
 
 /// The valid range `(lo, hi)` of numeric field `name`, from [`LIMITS`].
@@ -254,6 +268,7 @@ impl PipelineConfig {
             "colour_bits" => self.colour_bits,
             "k_bits" => self.k_bits,
             "lights" => self.lights,
+            "pipeline_depth" => self.pipeline_depth,
             _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
         }
     }

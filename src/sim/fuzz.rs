@@ -39,6 +39,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             diffuse: pick(rng, &[false, true]),
             specular: pick(rng, &[false, true]),
             skip_flat: pick(rng, &[false, true]),
+            pipeline_depth: field(rng, "pipeline_depth"),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
@@ -108,6 +109,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,
                 rounding: Rounding::NearestEven,
+                pipeline_depth: hi("pipeline_depth"),
                 ..widest_dot
             },
         ),
@@ -124,6 +126,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 k_bits: lo("k_bits"),
                 lights: lo("lights"),
                 rounding: Rounding::Truncate,
+                pipeline_depth: lo("pipeline_depth"),
                 ..d
             },
         ),
