@@ -93,8 +93,9 @@ pub struct PipelineConfig {
     /// Leave fragments whose bump normal is unperturbed (0,0,1) untouched (paper §5.4.2).
     pub skip_flat: bool,
     /// Register stages of each arithmetic unit (1 = every unit computes in one cycle). Each
-    /// step adds the next register cut of `units::timing`; from 3 on no register-to-register
-    /// path holds more than one multiplier. Latencies grow with it; results do not change.
+    /// step adds the next register cut of `units::timing`; from 2 on no register-to-register
+    /// path holds more than one multiplier, from 3 on none holds a multiplier and the adders
+    /// after it. Latencies grow with it; results do not change.
     pub pipeline_depth: u32,
 }
 
