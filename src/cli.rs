@@ -281,6 +281,9 @@ pub enum Cmd {
     },
     /// Print the bounds on every size and count (the README's Limits table) as Markdown.
     Limits,
+    /// Print every unit's latency at each pipeline_depth and where its register cuts sit (the
+    /// README's timing table) as Markdown.
+    Timing,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -624,6 +627,7 @@ pub fn run() -> anyhow::Result<()> {
             out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
         }
         Cmd::Limits => out!("{}", crate::limits::markdown()),
+        Cmd::Timing => out!("{}", crate::units::timing::markdown()),
     }
     Ok(())
 }

@@ -113,6 +113,11 @@ pub struct PipelineConfig {
     /// Register banks of a per-triangle top: how many triangles may have fragments in flight
     /// at once (a setup waits while its bank is still read by an earlier triangle's fragment).
     pub triangle_banks: u32,
+    /// Register stages of each arithmetic unit (1 = every unit computes in one cycle). Each
+    /// step adds the next register cut of `units::timing`; from 2 on no register-to-register
+    /// path holds more than one multiplier, from 3 on none holds a multiplier and the adders
+    /// after it. Latencies grow with it; results do not change.
+    pub pipeline_depth: u32,
 }
 
 impl Default for PipelineConfig {
@@ -140,9 +145,13 @@ impl Default for PipelineConfig {
             bump_state: BumpStateAt::Triangle,
             backpressure: true,
             triangle_banks: 2,
+            pipeline_depth: DEFAULT_PIPELINE_DEPTH,
         }
     }
 }
+
+/// The default `pipeline_depth` (see ARCHITECTURE.md, "Timing as a parameter").
+pub const DEFAULT_PIPELINE_DEPTH: u32 = 3;
 
 /// Valid range of each numeric field, with the reason for its bounds.
 pub const LIMITS: &[(&str, u32, u32, &str)] = &[
@@ -171,6 +180,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
         2,
         16,
         "two let a setup load while the previous triangle drains; a bank tag wider than 4 bits buys nothing at these latencies",
+    ),
+    (
+        "pipeline_depth",
+        1,
+        crate::limits::MAX_PIPELINE_DEPTH,
+        "register stages per unit; beyond the last cut of every unit a stage adds nothing",
     ),
 ];
 
@@ -285,6 +300,7 @@ impl PipelineConfig {
             "k_bits" => self.k_bits,
             "lights" => self.lights,
             "triangle_banks" => self.triangle_banks,
+            "pipeline_depth" => self.pipeline_depth,
             _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
         }
     }

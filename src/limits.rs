@@ -39,6 +39,9 @@ pub const MAX_BATCH_RECORDS: u64 = 1 << 24;
 pub const MAX_SHININESS: u32 = 1024;
 /// Texels per side of a normalisation cube-map face.
 pub const MAX_CUBE_SIDE: u32 = 1024;
+/// Register stages per unit (`pipeline_depth`): the deepest unit, the parallel blend, has
+/// three cuts (`units::timing`), so a fifth stage would cut nothing.
+pub const MAX_PIPELINE_DEPTH: u32 = 4;
 /// Characters of a name that becomes part of a file name (see `names.rs`).
 pub const MAX_NAME_CHARS: u64 = 64;
 
@@ -103,6 +106,11 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "MAX_CUBE_SIDE",
         MAX_CUBE_SIDE as u64,
         "texels per side of a cube-map face (`--cube-size`)",
+    ),
+    (
+        "MAX_PIPELINE_DEPTH",
+        MAX_PIPELINE_DEPTH as u64,
+        "register stages per unit (`pipeline_depth` of a configuration)",
     ),
     (
         "MAX_NAME_CHARS",

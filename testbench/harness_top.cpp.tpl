@@ -34,7 +34,7 @@ static const unsigned TRI_BANKS = {{TRI_BANKS}};
 static const long long BANK_HOLD = {{BANK_HOLD}};
 // Tops with out_ready: the output buffer's depth (0: no out_ready). A result is offered
 // (out_valid) from LATENCY edges after its accept on, never before, and stays offered until
-// taken; --stall N holds out_ready low for 1-3 edges every N edges.
+// taken; --stall N holds out_ready low for the first 1-3 edges (at most N) of every N edges.
 static const size_t OUT_DEPTH = {{OUT_DEPTH}};
 
 // Bits [lsb, lsb+width) of a little-endian record (width <= 64): one unaligned 8-byte load

@@ -10,7 +10,7 @@
 // Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
 //           it the pipeline runs on its power-up contents (INIT_FILE)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth record
-//           [+stall=N] (tops with out_ready) holds out_ready low for 1-3 edges every N edges:
+//           [+stall=N] (tops with out_ready) holds out_ready low for the first 1-3 edges (at most N) of every N edges:
 //           a result is then taken later than its latency, and in_ready may be low while
 //           OUT_DEPTH accepted results are untaken, never otherwise
 //           [+valid_during_reset] [+reset_after_load] (reset behaviour, see below)

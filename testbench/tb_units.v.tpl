@@ -1,6 +1,7 @@
 // Unit testbench template: every unit of the configuration instantiated once; +unit=NAME
-// selects which one the text vectors drive. Each unit has a registered output, so a record
-// is applied on one falling edge and its outputs checked on the next.
+// selects which one the text vectors drive. A record is applied on one falling edge and held
+// while it passes the unit's registers; its outputs are checked `lat` falling edges later
+// (the unit's latency, which the generator fills in per unit).
 // Plusargs: +unit=NAME +vectors=FILE +table=FILE [+waves=FILE.fst] [+max_errors=N]
 `timescale 1ns / 1ps
 `default_nettype none
@@ -18,7 +19,7 @@ module tb_units;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
     reg [8*32-1:0] unit;
-    integer fin, code, i, n, max_errors;
+    integer fin, code, i, n, max_errors, lat;
     integer passed = 0;
     integer failed = 0;
     reg ok;
@@ -50,8 +51,9 @@ module tb_units;
         code = $fscanf(fin, "%h\n", rec);
         while (code == 1) begin
             ok = 1'b1;
+            lat = 1;
 {{DRIVE}}
-            @(negedge clk);
+            repeat (lat) @(negedge clk);
 {{CHECK}}
             if (ok) passed = passed + 1;
             else begin

@@ -47,6 +47,7 @@ fn ice40_places_and_routes_the_one_light_top_and_a_too_small_device_is_a_result(
     let top = unit(&r, "gbump_pipeline");
     assert!(n(top, "luts") > 1000 && n(top, "flip_flops") > 100 && n(top, "carry") > 0, "{top}");
     assert_eq!(n(unit(&r, "power_table"), "block_ram"), 1, "the power table is one SB_RAM40_4K");
+    assert_eq!(n(top, "memory_bits"), 256 * 9, "one RAM copy for one read port: {top}");
     let pr = &r["place_route"];
     assert_eq!(pr["fits"], true, "{pr}");
     assert_eq!(pr["device"], "hx8k");
@@ -84,18 +85,22 @@ fn ecp5_and_xilinx_count_luts_flip_flops_and_dsps() {
         assert!(n(top, "luts") > 50 && n(top, "flip_flops") > 100, "{target}: {top}");
         assert!(n(top, "dsp") > 0, "{target}: the multipliers map to DSP blocks: {top}");
         for u in r["units"].as_array().unwrap() {
-            assert!(n(u, "flip_flops") > 0, "{target}: every unit is registered: {u}");
+            // A table's register is its block RAM's read register.
+            assert!(
+                n(u, "flip_flops") > 0 || n(u, "block_ram") > 0,
+                "{target}: every unit is registered: {u}"
+            );
             assert!(
                 n(u, "luts") + n(u, "carry") + n(u, "dsp") + n(u, "lut_ram") + n(u, "block_ram") > 0 || u["unit"] == "bump_fetch",
                 "{target}: {u}"
             );
         }
         let pt = unit(&r, "power_table");
-        match target {
-            "ecp5" => assert_eq!(n(pt, "block_ram"), 1, "one DP16KD: {pt}"),
-            // The table is read through an asynchronous index path, so Yosys maps it to LUT RAM.
-            _ => assert!(n(pt, "block_ram") == 0 && n(pt, "lut_ram") > 0, "{pt}"),
-        }
+        assert!(
+            n(pt, "block_ram") == 1 && n(pt, "lut_ram") == 0,
+            "{target}: one DP16KD or RAMB18E1: {pt}"
+        );
+        assert_eq!(n(pt, "memory_bits"), 256 * 9, "{target}: {pt}");
     }
 }
 
@@ -130,4 +135,28 @@ fn a_missing_place_and_route_tool_or_an_unknown_device_is_refused_with_the_fix()
         .failure();
     let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
     assert!(err.contains("--device xc7a35t") && err.contains("hx8k"), "{err}");
+}
+
+/// The memories are block RAMs on iCE40 (cheap: a 64-entry table and the palette, each unit
+/// synthesised alone, no place and route): no flip-flops for the words or the read register,
+/// and their bits counted apart from the logic. ECP5 and Xilinx: the test above.
+#[test]
+fn the_power_table_and_the_palette_map_to_block_ram_on_ice40() {
+    use gbump::measure::fpga::{unit_resources, Target};
+    let cfg = gbump::config::PipelineConfig {
+        lights: 1,
+        palette: true,
+        power_entries: 64,
+        ..Default::default()
+    };
+    let work = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(WORK).join("bram");
+    for target in [Target::Ice40] {
+        let pt = unit_resources(&cfg, target, "power_table", &work, "test").unwrap();
+        assert!(pt.block_ram >= 1 && pt.lut_ram == 0, "{target:?}: {pt:?}");
+        assert_eq!(pt.flip_flops, 0, "{target:?}: the read register is the block RAM's: {pt:?}");
+        assert_eq!(pt.memory_bits, 64 * 9, "{target:?}");
+        let pal = unit_resources(&cfg, target, "palette_fetch", &work, "test").unwrap();
+        assert!(pal.block_ram >= 1 && pal.lut_ram == 0 && pal.flip_flops == 0, "{target:?}: {pal:?}");
+        assert_eq!(pal.memory_bits, 256 * 3 * 8, "{target:?}");
+    }
 }

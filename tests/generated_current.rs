@@ -113,3 +113,21 @@ fn readme_integration_section_is_current() {
         "README's integration section is stale: paste the output of `gbump integration`"
     );
 }
+
+/// The latency of every unit and top at every `pipeline_depth`, as the README states it, is
+/// what the units and the scheduler return today (the benches check the top's per vector).
+#[test]
+fn readme_timing_table_is_current() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let table = gbump::units::timing::markdown();
+    assert!(
+        readme.contains(&table),
+        "README's timing table is stale: paste the output of `gbump timing`"
+    );
+    // The default depth the README names is the configuration's default.
+    let d = gbump::config::PipelineConfig::default().pipeline_depth;
+    assert!(
+        readme.contains(&format!("default `pipeline_depth = {d}`")),
+        "README names another default depth"
+    );
+}

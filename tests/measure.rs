@@ -31,7 +31,7 @@ fn area_reports_every_unit_with_yosys_figures() {
         assert_eq!(u["gate_equivalents"].as_f64().unwrap() * 4.0, u["transistors"].as_f64().unwrap());
     }
     let get = |name: &str| units.iter().find(|u| u["unit"].as_str().unwrap().starts_with(name)).unwrap();
-    assert_eq!(get("power_table")["rom_bits"], 256 * 9);
+    assert_eq!(get("power_table")["memory_bits"], 256 * 9);
     assert!(
         get("power_table")["flip_flops"].as_u64().unwrap() >= 256 * 9,
         "a loadable table is a register file"

@@ -134,12 +134,15 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
         assert_eq!(json["output_buffer_results"], d);
         let tb_d = format!("localparam OUT_DEPTH = {d};");
         assert!(tb.contains(&tb_d) && cpp.contains(&format!("static const size_t OUT_DEPTH = {d};")));
-        let ok = icarus_top(&w, &rtl, &tb, &hex, &[&table, "+stall=5"], &w).unwrap();
-        assert!(ok.failed == 0 && ok.passed > 0, "stalled:\n{}", ok.log);
+        for stall in ["+stall=5", "+stall=2"] {
+            let ok = icarus_top(&w, &rtl, &tb, &hex, &[&table, stall], &w).unwrap();
+            assert!(ok.failed == 0 && ok.passed > 0, "{stall}:\n{}", ok.log);
+        }
         let ok = harness(&w, &cfg, &rtl, &cpp, &bin, &["--stall", "5", "--table", &t], &w).unwrap();
         assert!(ok.failed == 0 && ok.passed > 0, "stalled harness:\n{}", ok.log);
+        // out_ready high one edge in six: the buffer fills even behind a serial top.
         for dd in [d - 1, d + 1] {
-            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_d, &format!("localparam OUT_DEPTH = {dd};")), &hex, &[&table, "+stall=5"], &w).unwrap();
+            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_d, &format!("localparam OUT_DEPTH = {dd};")), &hex, &[&table, "+stall=2"], &w).unwrap();
             assert!(bad.failed > 0 && (bad.log.contains("output buffer") || bad.log.contains("in_ready low")), "icarus, output depth {dd}:\n{}", bad.log);
         }
     }
@@ -285,9 +288,9 @@ fn reset_takes_no_fragment_and_keeps_the_power_table() {
     let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
-    let good = "in_valid_d1 <= rst ? 1'd0 : in_valid;";
+    let good = "accept_d1 <= rst ? 1'd0 : accept;";
     assert!(text.contains(good), "the top changed: update the mutant");
-    std::fs::write(top, text.replace(good, "in_valid_d1 <= in_valid;")).unwrap();
+    std::fs::write(top, text.replace(good, "accept_d1 <= accept;")).unwrap();
     let (hex, _) = corner_vectors_for(&cfg, &w.join("vectors"), cfg.shininess);
     let bad = icarus_top(&w, &rtl, &tb_top(&cfg, &rtl), &hex, &["+valid_during_reset"], &w).unwrap();
     assert!(bad.failed > 0, "a fragment taken during reset went unnoticed:\n{}", bad.log);

@@ -1,7 +1,9 @@
 //! Area by Yosys: each unit (and the top) synthesised alone with
 //! `synth -flatten; dffunmap; abc -g cmos2; stat -json -tech cmos` (`yosys::scripts::cmos_area`,
 //! read by `yosys::stat`), reported as NAND2 gate equivalents (transistors / 4), with
-//! flip-flops, logic depth (`ltp -noff`, read by `yosys::ltp`) and ROM bits.
+//! flip-flops, logic depth (`ltp -noff`, read by `yosys::ltp`) and memory bits. The RAMs are
+//! black boxes there, so the GE are logic only and the memory's bits stand apart, as the
+//! paper counts a table "equal in size to a colour LUT".
 
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -19,7 +21,9 @@ pub struct UnitArea {
     pub gate_equivalents: f64,
     pub flip_flops: u64,
     pub logic_depth: u64,
-    pub rom_bits: u64,
+    /// Bits of the unit's RAMs (every copy), measured by Yosys; not in the GE.
+    #[serde(alias = "rom_bits")]
+    pub memory_bits: u64,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -40,11 +44,13 @@ impl AreaReport {
     }
 }
 
-/// Transistors and flip-flops from `stat -json -tech cmos`, logic depth from `ltp -noff`.
-fn parse_stat(stat: &str, ltp: &str) -> Option<(u64, u64, u64)> {
+/// Transistors and flip-flops from `stat -json -tech cmos`, logic depth from `ltp -noff`,
+/// memory bits from the `stat -json` taken before the RAMs became black boxes.
+fn parse_stat(stat: &str, ltp: &str, memory: &str) -> Option<(u64, u64, u64, u64)> {
     let s = crate::yosys::stat::parse(stat)?;
+    let m = crate::yosys::stat::parse(memory)?;
     let ffs = s.count(|c| c.starts_with("$_DFF"));
-    Some((s.transistors?, ffs, crate::yosys::ltp::depth(ltp)))
+    Some((s.transistors?, ffs, crate::yosys::ltp::depth(ltp), m.memory_bits))
 }
 
 /// Synthesise every unit present in `cfg` and the top.
@@ -72,16 +78,16 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
             .map(|(unit, module)| {
                 progress.start(&format!("yosys {module}"));
                 let sub = dir.join(format!("syn_{module}"));
-                let (ok, log) = crate::yosys::run(&cmos_area(&abs, module), Path::new("area.ys"), &sub, &["area.json", "area.ltp"])?;
+                let (ok, log) = crate::yosys::run(
+                    &cmos_area(&abs, module),
+                    Path::new("area.ys"),
+                    &sub,
+                    &["area.json", "area.ltp", "memory.json"],
+                )?;
                 let read = |f: &str| std::fs::read_to_string(sub.join(f)).unwrap_or_default();
-                let (t, ffs, depth) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"))) {
+                let (t, ffs, depth, memory_bits) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"), &read("memory.json"))) {
                     (true, Some(x)) => x,
                     _ => return Err(Error::Other(format!("yosys could not synthesise {module}:\n{}", tail(&log, 15)))),
-                };
-                let rom_bits = if unit == "power_table" || unit.starts_with("gbump_pipeline") && cfg.specular {
-                    cfg.power_depth() as u64 * (cfg.power_bits + 1) as u64
-                } else {
-                    0
                 };
                 progress.done(&format!("{unit}: {:.0} GE", t as f64 / 4.0));
                 Ok(UnitArea {
@@ -91,7 +97,7 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                     gate_equivalents: t as f64 / 4.0,
                     flip_flops: ffs,
                     logic_depth: depth,
-                    rom_bits,
+                    memory_bits,
                 })
             })
             .collect()
@@ -108,11 +114,11 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
 
 /// Markdown table of a report.
 pub fn markdown(r: &AreaReport) -> String {
-    let mut s = format!("Area of config `{}` ({}; script per module: `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| unit | GE | transistors | flip-flops | logic depth | ROM bits |\n|---|---:|---:|---:|---:|---:|\n", r.config_hash, r.yosys_version);
+    let mut s = format!("Area of config `{}` ({}; script per module: RAMs as black boxes, `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4: logic only, the RAMs' bits apart)\n\n| unit | logic GE | transistors | flip-flops | logic depth | RAM bits |\n|---|---:|---:|---:|---:|---:|\n", r.config_hash, r.yosys_version);
     for u in &r.units {
         s += &format!(
             "| {} | {:.0} | {} | {} | {} | {} |\n",
-            u.unit, u.gate_equivalents, u.transistors, u.flip_flops, u.logic_depth, u.rom_bits
+            u.unit, u.gate_equivalents, u.transistors, u.flip_flops, u.logic_depth, u.memory_bits
         );
     }
     s

@@ -30,12 +30,17 @@ pub struct FpgaUnit {
     pub block_ram: u64,
     /// LUTs used as RAM or shift registers (ECP5 TRELLIS_DPR16X4, Xilinx RAM*/SRL*).
     pub lut_ram: u64,
+    /// Bits of the module's memories (every copy), counted before synthesis maps them: the
+    /// storage the block RAMs hold, apart from the logic.
+    #[serde(default)]
+    pub memory_bits: u64,
     /// Every cell type and its count, as Yosys named them.
     pub cells: std::collections::BTreeMap<String, u64>,
 }
 
 impl FpgaUnit {
-    pub fn from_stat(target: Target, unit: &str, module: &str, s: &Stat) -> FpgaUnit {
+    /// `s` is the mapped design's statistics, `memory_bits` what the elaborated one held.
+    pub fn from_stat(target: Target, unit: &str, module: &str, s: &Stat, memory_bits: u64) -> FpgaUnit {
         let n = |c: Class| s.count(|cell| target.classify(cell) == c);
         FpgaUnit {
             unit: unit.to_string(),
@@ -46,6 +51,7 @@ impl FpgaUnit {
             dsp: n(Class::Dsp),
             block_ram: n(Class::BlockRam),
             lut_ram: n(Class::LutRam),
+            memory_bits,
             cells: s.cells.clone(),
         }
     }
@@ -203,8 +209,9 @@ pub fn require(target: Target) -> Result<()> {
     Ok(())
 }
 
-/// Synthesise `module` (cached): its `stat -json` and, with `netlist`, its JSON netlist path.
-fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &Path, netlist: bool) -> Result<(Stat, PathBuf)> {
+/// Synthesise `module` (cached): its `stat -json`, its memory bits and, with `netlist`, its
+/// JSON netlist path.
+fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &Path, netlist: bool) -> Result<(Stat, u64, PathBuf)> {
     let names: Vec<String> = rtl
         .sources
         .iter()
@@ -218,14 +225,16 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
     k.add_tool("yosys");
     let dir = std::path::absolute(work.join("synth").join(format!("{module}_{}_{}", target.name(), k.finish())))
         .map_err(|e| Error::io(work, e))?;
-    let outputs: &[&str] = if netlist { &["stat.json", "netlist.json"] } else { &["stat.json"] };
+    let outputs: &[&str] = if netlist {
+        &["stat.json", "memory.json", "netlist.json"]
+    } else {
+        &["stat.json", "memory.json"]
+    };
     let dir = crate::cache::build_dir(&dir, outputs, |tmp| {
         let script = crate::yosys::scripts::fpga(target, &names, module, tmp, netlist);
         let (ok, log) = crate::yosys::run(&script, &tmp.join("synth.ys"), &rtl.dir, &[])?;
-        let parsed = std::fs::read_to_string(tmp.join("stat.json"))
-            .ok()
-            .and_then(|t| yosys_stat::parse(&t));
-        if !ok || parsed.is_none() {
+        let parsed = |f: &str| std::fs::read_to_string(tmp.join(f)).ok().and_then(|t| yosys_stat::parse(&t));
+        if !ok || parsed("stat.json").is_none() || parsed("memory.json").is_none() {
             return Err(Error::Other(format!(
                 "yosys could not synthesise {module} for {}:\n{}",
                 target.name(),
@@ -236,7 +245,9 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
     })?;
     let text = std::fs::read_to_string(dir.join("stat.json")).map_err(|e| Error::io(&dir, e))?;
     let stat = yosys_stat::parse(&text).ok_or_else(|| Error::Other(format!("{}: not Yosys stat -json output", dir.display())))?;
-    Ok((stat, dir.join("netlist.json")))
+    let mem = std::fs::read_to_string(dir.join("memory.json")).map_err(|e| Error::io(&dir, e))?;
+    let mem = yosys_stat::parse(&mem).ok_or_else(|| Error::Other(format!("{}: not Yosys stat -json output", dir.display())))?;
+    Ok((stat, mem.memory_bits, dir.join("netlist.json")))
 }
 
 /// Place and route a netlist on an iCE40 (cached): nextpnr's log and whether it succeeded.
@@ -319,6 +330,23 @@ pub fn place_route_result(ok: bool, log: &str, device: &str, package: &str, plac
     )))
 }
 
+/// One unit of `cfg` synthesised alone for `target` (cached; no place and route): how its
+/// memory maps (block RAM, LUT RAM or flip-flops) without the cost of the whole top.
+pub fn unit_resources(cfg: &PipelineConfig, target: Target, unit: &str, work: &Path, command: &str) -> Result<FpgaUnit> {
+    crate::yosys::require()?;
+    let u = crate::units::unit(unit).filter(|u| u.included(cfg)).ok_or_else(|| {
+        Error::Other(format!(
+            "{unit}: not a unit of this configuration\n  fix: use one of {}",
+            crate::sim::testbench::units_of(cfg).join(", ")
+        ))
+    })?;
+    let dir = work.join(format!("fpga_{}", &cfg.hash()[..8]));
+    let rtl = crate::sim::rtl_files::write_rtl(cfg, &dir.join("rtl"), command)?;
+    let module = module_name(cfg, u.name());
+    let (s, bits, _) = synth(target, &rtl, &module, &dir, false)?;
+    Ok(FpgaUnit::from_stat(target, unit, &module, &s, bits))
+}
+
 /// Synthesise every unit of `cfg` (with `per_unit`) and the top for `target`; for iCE40 also
 /// place and route the top in its register shell on `device`.
 pub fn fpga_area(cfg: &PipelineConfig, target: Target, device: &str, per_unit: bool, work: &Path, command: &str) -> Result<FpgaReport> {
@@ -346,8 +374,8 @@ pub fn fpga_area(cfg: &PipelineConfig, target: Target, device: &str, per_unit: b
         use rayon::prelude::*;
         jobs.par_iter()
             .map(|(unit, module, netlist)| {
-                let (s, path) = synth(target, &rtl, module, &dir, *netlist)?;
-                Ok((FpgaUnit::from_stat(target, unit, module, &s), path))
+                let (s, bits, path) = synth(target, &rtl, module, &dir, *netlist)?;
+                Ok((FpgaUnit::from_stat(target, unit, module, &s, bits), path))
             })
             .collect()
     };
@@ -391,7 +419,7 @@ pub fn fpga_area(cfg: &PipelineConfig, target: Target, device: &str, per_unit: b
 pub fn markdown(r: &FpgaReport) -> String {
     let [l, f, c, d, b] = r.target.cell_names();
     let mut s = format!(
-        "FPGA resources of config `{}` on {} ({}; script per module: `{}`)\n\n| unit | LUTs ({l}) | flip-flops ({f}) | carry ({c}) | DSP ({d}) | block RAM ({b}) | LUT RAM/SRL |\n|---|---:|---:|---:|---:|---:|---:|\n",
+        "FPGA resources of config `{}` on {} ({}; script per module: `{}`)\n\n| unit | LUTs ({l}) | flip-flops ({f}) | carry ({c}) | DSP ({d}) | block RAM ({b}) | RAM bits | LUT RAM/SRL |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
         r.config_hash,
         r.target.name(),
         r.yosys_version,
@@ -399,8 +427,8 @@ pub fn markdown(r: &FpgaReport) -> String {
     );
     for u in &r.units {
         s += &format!(
-            "| {} | {} | {} | {} | {} | {} | {} |\n",
-            u.unit, u.luts, u.flip_flops, u.carry, u.dsp, u.block_ram, u.lut_ram
+            "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            u.unit, u.luts, u.flip_flops, u.carry, u.dsp, u.block_ram, u.memory_bits, u.lut_ram
         );
     }
     if let Some(p) = &r.place_route {
@@ -540,7 +568,7 @@ ERROR: Unable to find a placement location for cell 'in_l[43]$sb_io'
             .collect(),
             ..Default::default()
         };
-        let u = FpgaUnit::from_stat(Target::Xilinx, "u", "m", &s);
+        let u = FpgaUnit::from_stat(Target::Xilinx, "u", "m", &s, 0);
         assert_eq!((u.luts, u.flip_flops, u.carry, u.dsp, u.block_ram, u.lut_ram), (15, 7, 2, 3, 1, 16));
         assert_eq!(Target::Ice40.classify("SB_DFFSR"), Class::FlipFlop);
         assert_eq!(Target::Ecp5.classify("MULT18X18D"), Class::Dsp);

@@ -8,4 +8,5 @@ pub mod power_space;
 pub mod report;
 pub mod scene_error;
 pub mod sweep;
+pub mod timing_report;
 pub mod unit_error;

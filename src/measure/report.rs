@@ -31,7 +31,7 @@ pub fn fpga_section(work: &Path) -> Result<String> {
     ];
     let mut s = String::from("`gbump area --target ice40|ecp5|xilinx` (with `--config tests/configs/one_light_parallel.toml` for the second configuration); each top synthesised alone (`synth_ice40`, `synth_ecp5`, `synth_xilinx -flatten -noiopad`), iCE40 placed and routed by nextpnr-ice40 on an HX8K (ct256). ");
     s += &format!("The tops have more ports than any iCE40 package has pins, so the iCE40 figures are of the top inside `gbump_fpga_shell_<hash>`, a register shell that shifts the inputs in serially and the outputs out of a parallel-load register, a register on each of its 7 pins; Fmax is the core's clock (target {} MHz).\n\n", super::fpga::TARGET_MHZ);
-    s += "| configuration | target | LUTs | flip-flops | carry | DSP | block RAM | LUT RAM/SRL | iCE40 HX8K place and route |\n|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+    s += "| configuration | target | LUTs | flip-flops | carry | DSP | block RAM | RAM bits | LUT RAM/SRL | iCE40 HX8K place and route |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     let mut versions = Vec::new();
     for (name, cfg) in &configs {
         for t in [Target::Ice40, Target::Ecp5, Target::Xilinx] {
@@ -55,13 +55,14 @@ pub fn fpga_section(work: &Path) -> Result<String> {
             };
             let [l, f, c, d, b] = t.cell_names();
             s += &format!(
-                "| {name} | {} | {} ({l}) | {} ({f}) | {} ({c}) | {} ({d}) | {} ({b}) | {} | {pr} |\n",
+                "| {name} | {} | {} ({l}) | {} ({f}) | {} ({c}) | {} ({d}) | {} ({b}) | {} | {} | {pr} |\n",
                 t.name(),
                 top.luts,
                 top.flip_flops,
                 top.carry,
                 top.dsp,
                 top.block_ram,
+                top.memory_bits,
                 top.lut_ram
             );
             if let Some(p) = &r.place_route {
@@ -93,7 +94,7 @@ pub fn report(
     md += "## Area per unit (default configuration)\n\n`gbump area`\n\n";
     let area = super::area::area(&cfg, &work.join("area"), "gbump report")?;
     md += &super::area::markdown(&area);
-    md += "\nThe power table is a loadable register file in this RTL, so its flip-flops dominate its area; a RAM macro would hold the same ROM bits for far less. The blend units are reported in their parallel (all lights at once) form.\n\n";
+    md += "\nThe power table and the palette are synchronous-read RAMs (`src/rtlgen/ram.rs`, one copy per read port), black boxes in this synthesis: the GE are logic, the RAM bits stand apart. The blend units are reported in their parallel (all lights at once) form.\n\n";
     md += "## Error against exact arithmetic (default configuration)\n\n`gbump error`\n\n";
     let errs = super::unit_error::unit_errors(&cfg, 50_000, 1);
     md += &super::unit_error::markdown(&cfg, &errs);
@@ -112,6 +113,8 @@ pub fn report(
     md += &power_section(PowerFormats { f: 12, p: cfg.power_bits }, work)?;
     md += "\n## FPGA resources and Fmax\n\n";
     md += &fpga_section(&work.join("fpga"))?;
+    md += "\n## Timing as a parameter: area and Fmax per pipeline_depth\n\n";
+    md += &super::timing_report::section(work)?;
     md += "\n## Sweep: error against area\n\n";
     let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true)?;
     let fpga = super::sweep::has_fpga(&pts);
@@ -144,7 +147,7 @@ pub fn report(
             if p.pareto { "yes" } else { "" }
         );
     }
-    md += "\n### Against the paper\n\nErnst et al. put the blending units at 10,000-25,000 gate equivalents. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's register file and the pipeline registers that carry the bump state with each fragment.\n\n";
+    md += "\n### Against the paper\n\nErnst et al. put the blending units at 10,000-25,000 gate equivalents. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's logic (its RAM bits apart), the pipeline registers of `pipeline_depth` and those that carry the bump state with each fragment.\n\n";
     md += "## Speed\n\n`gbump bench`\n\n";
     md += &super::bench::bench(&cfg, &work.join("bench"))?;
     Ok(vec![

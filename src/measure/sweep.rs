@@ -39,7 +39,9 @@ pub struct Point {
     pub top_ge: f64,
     pub blend_ge: f64,
     pub flip_flops: u64,
-    pub rom_bits: u64,
+    /// Bits of the top's RAMs (apart from `top_ge`).
+    #[serde(alias = "rom_bits")]
+    pub memory_bits: u64,
     pub fragments_per_clock: f64,
     pub latency: u32,
     pub max_error_lsb: f64,
@@ -301,7 +303,7 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
             + ge("specular_blend")
             + (cfg.diffuse as u32 + cfg.specular as u32) as f64 * (ge("light_accumulate") + ge("blend_finish")),
         flip_flops: top.flip_flops,
-        rom_bits: top.rom_bits,
+        memory_bits: top.memory_bits,
         fragments_per_clock: 1.0 / cfg.initiation_interval() as f64,
         latency: crate::rtlgen::top::latency(cfg),
         max_error_lsb: pipe.max_lsb,
@@ -354,7 +356,7 @@ pub fn has_fpga(points: &[Point]) -> bool {
 
 pub fn csv(points: &[Point]) -> String {
     let fpga = has_fpga(points);
-    let mut s = String::from("config_hash,label,top_ge,blend_ge,flip_flops,rom_bits,fragments_per_clock,latency,max_error_lsb,mean_error_lsb,psnr_vs_reference_db,pareto");
+    let mut s = String::from("config_hash,label,top_ge,blend_ge,flip_flops,memory_bits,fragments_per_clock,latency,max_error_lsb,mean_error_lsb,psnr_vs_reference_db,pareto");
     s += if fpga { ",fpga_luts,fmax_mhz\n" } else { "\n" };
     for p in points {
         s += &format!(
@@ -364,7 +366,7 @@ pub fn csv(points: &[Point]) -> String {
             p.top_ge,
             p.blend_ge,
             p.flip_flops,
-            p.rom_bits,
+            p.memory_bits,
             p.fragments_per_clock,
             p.latency,
             p.max_error_lsb,

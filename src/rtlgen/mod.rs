@@ -9,6 +9,7 @@ pub mod interface;
 pub mod kit;
 pub mod module;
 pub mod power_units;
+pub mod ram;
 pub mod rom;
 pub mod rom_files;
 pub mod rtl_set;

@@ -169,6 +169,8 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         }
         let kw = if i == 0 { "if" } else { "else if" };
         let mut d = vec![format!("            {kw} (unit == \"{u}\") begin")];
+        let unit = crate::units::unit(u).expect("unit");
+        d.push(format!("                lat = {};", unit.latency(cfg)));
         let mut k = vec![format!("            {kw} (unit == \"{u}\") begin")];
         for c in &l.columns {
             let sig = format!("{u}_{}", c.name);

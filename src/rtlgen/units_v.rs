@@ -1,5 +1,6 @@
 //! One Verilog module per unit of `units::UNITS`, each emitted from the same formats the
-//! model uses. Every unit has a registered output (latency 1); `bump_fetch` can also be
+//! model uses. Every unit has a registered output, and the register cuts of `units::timing`
+//! that the configuration's `pipeline_depth` puts in place; `bump_fetch` can also be
 //! emitted combinationally for the serial top, where the fetched normal must be ready in the
 //! same cycle as the first light.
 
@@ -57,8 +58,10 @@ pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     w.finish()
 }
 
-/// dot_clamp: f = clamp(round(B·V), 0, 1) in u1.F, registered.
+/// dot_clamp: f = clamp(round(B·V), 0, 1) in u1.F, registered; the cuts of
+/// `timing::DOT_CLAMP` in place at the configuration's depth.
 pub fn dot_clamp(cfg: &PipelineConfig) -> String {
+    use crate::units::timing::{cut, DOT_CLAMP};
     let (nb, lh, f) = (cfg.normal_bits, cfg.lh_bits, cfg.dot_bits);
     let ex = cfg.dot_exact_fmt();
     let mut w = VWriter::new();
@@ -71,23 +74,34 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
         cfg.dot_fmt().name()
     ));
     w.line(format!(
+        "// Latency {}: pipeline_depth {} puts {} of its register cuts in place.",
+        crate::units::timing::latency(cfg, DOT_CLAMP),
+        cfg.pipeline_depth,
+        crate::units::timing::cuts_in_place(cfg, DOT_CLAMP)
+    ));
+    w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] b,\n    input  wire [{}:0] v,\n    output reg  [{}:0] f\n);",
         module_name(cfg, "dot_clamp"),
         3 * nb - 1,
         3 * lh - 1,
         f
     ));
+    let decl = format!("signed [{}:0]", ex.width - 1);
     for i in 0..3 {
-        w.line(format!(
-            "wire signed [{}:0] p{i} = $signed(b[{}:{}]) * $signed(v[{}:{}]);",
-            ex.width - 1,
-            i * nb + nb - 1,
-            i * nb,
-            i * lh + lh - 1,
-            i * lh
-        ));
+        w.stage(
+            cut(cfg, DOT_CLAMP, 0),
+            &decl,
+            &format!("p{i}"),
+            &format!(
+                "$signed(b[{}:{}]) * $signed(v[{}:{}])",
+                i * nb + nb - 1,
+                i * nb,
+                i * lh + lh - 1,
+                i * lh
+            ),
+        );
     }
-    w.line(format!("wire signed [{}:0] dot = p0 + p1 + p2;", ex.width - 1));
+    w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", "p0 + p1 + p2");
     requant_clamp(&mut w, "fq", "dot", ex, f, cfg.rounding, 0, 1 << f, f + 1);
     w.block("always @(posedge clk) begin", "end", |w| {
         w.line("f <= fq;");
@@ -97,8 +111,10 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// power_table: `R` read ports into one reloadable table; index = round(x (N-1) / 2^F) for
-/// the paper's table, or the `power_core` datapath of an interpolated/segmented unit.
+/// power_table: `R` read ports into one reloadable table, one RAM copy per read port (all
+/// written by the load port); index = round(x (N-1) / 2^F) for the paper's table, whose RAM
+/// read register is the output register (latency 1), or the `power_core` datapath of an
+/// interpolated/segmented unit around its two knot reads (latency 2).
 pub fn power_table(cfg: &PipelineConfig) -> String {
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
         return power_unit_with_core(cfg);
@@ -111,7 +127,8 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
         "// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded",
         p + 1
     ));
-    w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents.");
+    w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents. One RAM");
+    w.line("// copy per read port; its read register is the unit's output register.");
     w.line(format!(
         "// Index = {:?}(x * {}) >> {f}: a subtract instead of a multiplier.",
         cfg.power_index,
@@ -133,61 +150,80 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
         };
         w.line(format!("wire [{}:0] rounded = scaled + {sw}'d{half};", sw - 1));
         w.line(format!("wire [{}:0] idx = rounded[{}:{f}];", ib.max(1) - 1, f + ib.max(1) - 1));
-        w.block("always @(posedge clk) begin", "end", |w| {
-            w.line(format!("fs[r*{} +: {}] <= mem[idx];", p + 1, p + 1));
-        });
+        w.line(super::ram::instance(
+            cfg,
+            "u_ram",
+            p + 1,
+            cfg.power_depth(),
+            cfg.power_addr_bits(),
+            "idx",
+            &format!("fs[r*{} +: {}]", p + 1, p + 1),
+        ));
     });
     w.line("endmodule");
     postamble(&mut w);
     w.finish()
 }
 
-/// The power table's module header, loadable memory (reset contents from INIT_FILE) and
-/// write port: the same for every kind of power unit.
+/// The power table's module header: the same for every kind of power unit.
 fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
     let (f, p) = (cfg.dot_bits, cfg.power_bits);
+    let out = if cfg.power_unit == crate::config::PowerUnitKind::Table {
+        "wire"
+    } else {
+        "reg "
+    };
     w.line(format!(
-        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output reg  [R*{}-1:0] fs\n);",
+        "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output {out} [R*{}-1:0] fs\n);",
         module_name(cfg, "power_table"),
         rom_file_name(cfg, "power_table", "hex"),
         cfg.power_addr_bits() - 1,
         f + 1,
         p + 1
     ));
-    w.line(format!("reg [{p}:0] mem [0:{}];", cfg.power_depth() - 1));
-    w.line("initial $readmemh(INIT_FILE, mem);");
-    w.block("always @(posedge clk) begin", "end", |w| {
-        w.line("if (we) mem[waddr] <= wdata;");
-    });
     w.line("genvar r;");
 }
 
-/// A loadable table of `power_depth()` words read through two ports per lookup by the
-/// `power_core` datapath (interpolation needs the knots on both sides).
+/// A loadable table of `power_depth()` words read through two RAM copies per lookup (the
+/// knots on both sides) by the `power_core` datapath: one core instance computes the
+/// addresses from x, the RAMs register the knots, and a second instance interpolates from
+/// x one cycle later (synthesis keeps only the half of each that is used).
 fn power_unit_with_core(cfg: &PipelineConfig) -> String {
     let (f, p) = (cfg.dot_bits, cfg.power_bits);
     let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
+    let core = module_name(cfg, "power_core");
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
         "// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
         cfg.power_design().label()
     ));
-    w.line("// INIT_FILE holds the reset contents. Each read port runs one power_core.");
+    w.line("// INIT_FILE holds the reset contents. Each read port reads two knots from two RAM copies");
+    w.line("// (their read registers are the first stage), then interpolates (the output register).");
     power_table_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
+        w.line(format!("wire [{f}:0] xr = x[r*{} +: {}];", f + 1, f + 1));
         w.line(format!("wire [{}:0] a0;", ab - 1));
         w.line(format!("wire [{}:0] a1;", ab - 1));
+        w.line(format!("wire [{p}:0] unused_y;"));
+        w.line(format!(
+            "{core} u_addr (.x(xr), .a0(a0), .a1(a1), .k0({}'d0), .k1({}'d0), .fs_out(unused_y));",
+            p + 1,
+            p + 1
+        ));
+        w.line(format!("wire [{p}:0] k0;"));
+        w.line(format!("wire [{p}:0] k1;"));
+        w.line(super::ram::instance(cfg, "u_ram0", p + 1, depth, ab, "a0", "k0"));
+        w.line(super::ram::instance(cfg, "u_ram1", p + 1, depth, ab, "a1", "k1"));
+        w.line(format!("reg [{f}:0] xd;"));
+        w.line("always @(posedge clk) xd <= xr;");
+        w.line(format!("wire [{}:0] unused_a0;", ab - 1));
+        w.line(format!("wire [{}:0] unused_a1;", ab - 1));
         w.line(format!("wire [{p}:0] y;"));
         w.line(format!(
-            "{} u_core (.x(x[r*{} +: {}]), .a0(a0), .a1(a1), .k0(mem[a0]), .k1(mem[a1]), .fs_out(y));",
-            module_name(cfg, "power_core"),
-            f + 1,
-            f + 1
+            "{core} u_core (.x(xd), .a0(unused_a0), .a1(unused_a1), .k0(k0), .k1(k1), .fs_out(y));"
         ));
-        w.block("always @(posedge clk) begin", "end", |w| {
-            w.line(format!("fs[r*{} +: {}] <= y;", p + 1, p + 1));
-        });
+        w.line(format!("always @(posedge clk) fs[r*{} +: {}] <= y;", p + 1, p + 1));
     });
     w.line("endmodule");
     postamble(&mut w);
@@ -199,35 +235,54 @@ pub fn rom_file_name(cfg: &PipelineConfig, what: &str, ext: &str) -> String {
     format!("{what}_{}.{ext}", &cfg.hash()[..8])
 }
 
-/// light_term: one light's exact f·k·Lc per channel (combinational).
+/// Register cuts inside `light_term`: the first two cuts of the blends, which are also the
+/// cuts of `light_accumulate` (the same f k, then Lc).
+pub fn light_term_cuts(cfg: &PipelineConfig) -> u32 {
+    crate::units::timing::cuts_in_place(cfg, crate::units::timing::ACCUMULATE)
+}
+
+/// light_term: one light's exact f·k·Lc per channel: combinational at depth 1, with a
+/// register after f·k and then after ·Lc as the depth adds them (a clock port only then).
 pub fn light_term(cfg: &PipelineConfig) -> String {
     let (ff, k, c) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits);
     let tw = cfg.term_fmt().width;
+    let cuts = light_term_cuts(cfg);
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// light_term: exact f·k·Lc per channel, {} ({tw} bits); no rounding before the sum.",
+        "// light_term: exact f·k·Lc per channel, {} ({tw} bits); no rounding before the sum. {cuts} register stage(s).",
         cfg.term_fmt().name()
     ));
+    let clk = if cuts > 0 { "input  wire clk,\n    " } else { "" };
     w.line(format!(
-        "module {} (\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] term\n);",
+        "module {} (\n    {clk}input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] term\n);",
         module_name(cfg, "light_term"),
         3 * c - 1,
         3 * tw - 1
     ));
-    w.line(format!("wire [{}:0] fk = f * k;", ff + k + 1));
+    w.stage(cuts >= 1, &format!("[{}:0]", ff + k + 1), "fk", "f * k");
+    w.stage(cuts >= 1, &format!("[{}:0]", 3 * c - 1), "lc1", "lc");
     for ch in 0..3 {
-        w.line(format!(
-            "assign term[{}:{}] = fk * lc[{}:{}];",
-            ch * tw + tw - 1,
-            ch * tw,
-            ch * c + c - 1,
-            ch * c
-        ));
+        w.stage(
+            cuts >= 2,
+            &format!("[{}:0]", tw - 1),
+            &format!("t{ch}"),
+            &format!("fk * lc1[{}:{}]", ch * c + c - 1, ch * c),
+        );
     }
+    w.line("assign term = {t2, t1, t0};");
     w.line("endmodule");
     postamble(&mut w);
     w.finish()
+}
+
+/// The clock connection of a `light_term` instance (none at depth 1).
+pub fn light_term_clk(cfg: &PipelineConfig) -> &'static str {
+    if light_term_cuts(cfg) > 0 {
+        ".clk(clk), "
+    } else {
+        ""
+    }
 }
 
 /// blend_finish: c_out = sat(c_in + round(acc)) per channel, registered.
@@ -283,15 +338,22 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
 }
 
 /// diffuse_blend / specular_blend (parallel form): light terms of every slot, their exact
-/// sum, and the finish, registered (latency 1).
+/// sum, and the finish, with the cuts of `timing::BLEND` in place at the depth.
 pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
+    use crate::units::timing::{cut, BLEND};
     let (ff, k, c, n) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits, cfg.lights);
     let tw = cfg.term_fmt().width;
     let aw = cfg.acc_fmt().width;
+    let lt = light_term_cuts(cfg);
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
         "// {unit} (paper §4.2): c_out = sat(c_in + sum_i f_i k_i Lc_i) over {n} light slot(s), exact sum."
+    ));
+    w.line(format!(
+        "// Latency {}: the light terms take {lt} stage(s), the sum {}, the finish 1.",
+        crate::units::timing::latency(cfg, BLEND),
+        u32::from(cut(cfg, BLEND, 2))
     ));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] c_out\n);",
@@ -305,8 +367,9 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     for i in 0..n {
         w.line(format!("wire [{}:0] t{i};", 3 * tw - 1));
         w.line(format!(
-            "{} lt{i} (.f(f[{}:{}]), .k(k[{}:{}]), .lc(lc[{}:{}]), .term(t{i}));",
+            "{} lt{i} ({}.f(f[{}:{}]), .k(k[{}:{}]), .lc(lc[{}:{}]), .term(t{i}));",
             module_name(cfg, "light_term"),
+            light_term_clk(cfg),
             i * (ff + 1) + ff,
             i * (ff + 1),
             i * (k + 1) + k,
@@ -315,15 +378,31 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
             3 * c * i
         ));
     }
-    w.line(format!("wire [{}:0] acc;", 3 * aw - 1));
-    for ch in 0..3 {
-        let terms: Vec<String> = (0..n)
-            .map(|i| super::writer::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw))
-            .collect();
-        w.line(format!("assign acc[{}:{}] = {};", ch * aw + aw - 1, ch * aw, terms.join(" + ")));
+    // c_in waits beside the light terms.
+    let cw = format!("[{}:0]", 3 * c - 1);
+    let mut cin = "c_in".to_string();
+    for s in 1..=lt {
+        w.stage(true, &cw, &format!("c_in_d{s}"), &cin);
+        cin = format!("c_in_d{s}");
     }
+    let sums: Vec<String> = (0..3)
+        .rev()
+        .map(|ch| {
+            (0..n)
+                .map(|i| super::writer::zext(&format!("t{i}[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw))
+                .collect::<Vec<_>>()
+                .join(" + ")
+        })
+        .collect();
+    // A concatenation of sums would be sized by its operands, so each channel is its own wire.
+    for (ch, e) in (0..3).rev().zip(&sums) {
+        w.line(format!("wire [{}:0] sum{ch} = {e};", aw - 1));
+    }
+    let summed = cut(cfg, BLEND, 2);
+    w.stage(summed, &format!("[{}:0]", 3 * aw - 1), "acc", "{sum2, sum1, sum0}");
+    w.stage(summed, &cw, "c_fin", &cin);
     w.line(format!(
-        "{} fin (.clk(clk), .c_in(c_in), .acc(acc), .c_out(c_out));",
+        "{} fin (.clk(clk), .c_in(c_fin), .acc(acc), .c_out(c_out));",
         module_name(cfg, "blend_finish")
     ));
     w.line("endmodule");
@@ -331,12 +410,15 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.finish()
 }
 
-/// texture_modulate: round(c t / (2^w - 1)) by the add-and-shift identity, registered.
+/// texture_modulate: round(c t / (2^w - 1)) by the add-and-shift identity, registered; a
+/// register after the product when the depth puts `timing::TEXTURE`'s cut in place.
 pub fn texture_modulate(cfg: &PipelineConfig) -> String {
+    use crate::units::timing::{cut, TEXTURE};
     let c = cfg.colour_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line("// texture_modulate (paper §5.1): exact round(c·t / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    w.line(format!("// Latency {}.", crate::units::timing::latency(cfg, TEXTURE)));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] t,\n    output reg  [{}:0] c_out\n);",
         module_name(cfg, "texture_modulate"),
@@ -345,16 +427,20 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
         3 * c - 1
     ));
     for ch in 0..3 {
-        w.line(format!(
-            "wire [{}:0] p{ch} = c_in[{}:{}] * t[{}:{}] + {}'d{};",
-            2 * c,
-            ch * c + c - 1,
-            ch * c,
-            ch * c + c - 1,
-            ch * c,
-            2 * c + 1,
-            1u64 << (c - 1)
-        ));
+        w.stage(
+            cut(cfg, TEXTURE, 0),
+            &format!("[{}:0]", 2 * c),
+            &format!("p{ch}"),
+            &format!(
+                "c_in[{}:{}] * t[{}:{}] + {}'d{}",
+                ch * c + c - 1,
+                ch * c,
+                ch * c + c - 1,
+                ch * c,
+                2 * c + 1,
+                1u64 << (c - 1)
+            ),
+        );
         w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
     }
     w.block("always @(posedge clk) begin", "end", |w| {

@@ -44,6 +44,18 @@ impl VWriter {
         self.line(close)
     }
 
+    /// `name = expr`, declared `decl` (`signed [7:0]`, or empty): a register loaded at the
+    /// rising edge of `clk` when `registered` (a pipeline cut), a wire otherwise.
+    pub fn stage(&mut self, registered: bool, decl: &str, name: &str, expr: &str) -> &mut Self {
+        let sp = if decl.is_empty() { "" } else { " " };
+        if registered {
+            self.line(format!("reg {decl}{sp}{name};"));
+            self.line(format!("always @(posedge clk) {name} <= {expr};"))
+        } else {
+            self.line(format!("wire {decl}{sp}{name} = {expr};"))
+        }
+    }
+
     /// The text, in ASCII: every tool in the flow (Verilator's config parser among them)
     /// reads ASCII, so the paper's symbols in comments are spelled out.
     pub fn finish(self) -> String {

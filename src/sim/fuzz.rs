@@ -42,6 +42,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             bump_state: pick(rng, &[BumpStateAt::Triangle, BumpStateAt::Fragment]),
             backpressure: pick(rng, &[false, true]),
             triangle_banks: field(rng, "triangle_banks"),
+            pipeline_depth: field(rng, "pipeline_depth"),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
@@ -113,6 +114,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 light_mode: LightMode::Parallel,
                 rounding: Rounding::NearestEven,
                 triangle_banks: hi("triangle_banks"),
+                pipeline_depth: hi("pipeline_depth"),
                 ..widest_dot
             },
         ),
@@ -130,6 +132,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 lights: lo("lights"),
                 rounding: Rounding::Truncate,
                 triangle_banks: lo("triangle_banks"),
+                pipeline_depth: lo("pipeline_depth"),
                 ..d
             },
         ),

@@ -59,6 +59,9 @@ impl Unit for Blend {
             p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(sum f_i k_i Lc_i))"),
         ]
     }
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        super::timing::latency(cfg, super::timing::BLEND)
+    }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
         let n = cfg.lights as usize;
         let lc: Vec<[u32; 3]> = (0..n).map(|j| rgb(&i[3][3 * j..])).collect();

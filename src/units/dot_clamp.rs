@@ -25,6 +25,9 @@ impl Unit for DotClamp {
             p("f", Dir::Out, cfg.dot_fmt(), 1, "max(0, B·V) rounded, clamped to 1"),
         ]
     }
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        super::timing::latency(cfg, super::timing::DOT_CLAMP)
+    }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
         vec![vec![dot_clamp(cfg, v3(&i[0]), v3(&i[1]))]]
     }

@@ -16,6 +16,7 @@ mod palette_fetch;
 mod power_table;
 mod serial_blend;
 mod texture_modulate;
+pub mod timing;
 
 use crate::config::PipelineConfig;
 use crate::fixed::Format;

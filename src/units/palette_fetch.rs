@@ -68,18 +68,16 @@ impl Unit for PaletteFetch {
             w - 1,
             w - 1
         ));
-        v.line(format!("reg [{}:0] mem [0:{}];", w - 1, PALETTE_ENTRIES - 1));
-        v.line(format!("reg [{}:0] rd;", w - 1));
-        v.line("initial $readmemh(INIT_FILE, mem);");
-        v.block("always @(posedge clk) begin", "end", |v| {
-            v.line("if (we) mem[waddr] <= wdata;");
-            v.line("rd <= mem[index];");
-        });
+        v.line(format!("wire [{}:0] rd;", w - 1));
+        v.line(crate::rtlgen::ram::instance(cfg, "u_ram", w, PALETTE_ENTRIES, 8, "index", "rd"));
         let flip = |i: u32| format!("~rd[{}], rd[{}:{}]", i * nb + nb - 1, i * nb + nb - 2, i * nb);
         v.line(format!("assign b = {{{}, {}, {}}};", flip(2), flip(1), flip(0)));
         v.line("endmodule");
         v.line("`default_nettype wire");
-        vec![("palette_fetch", v.finish())]
+        vec![
+            ("palette_fetch", v.finish()),
+            (crate::rtlgen::ram::RAM, crate::rtlgen::ram::ram(cfg)),
+        ]
     }
     fn exhaustive_count(&self, _: &PipelineConfig) -> Option<u64> {
         Some(PALETTE_ENTRIES as u64)

@@ -26,6 +26,15 @@ impl Unit for PowerTableUnit {
             p("fs", Dir::Out, cfg.power_fmt(), 1, "table[round(x (N-1))]"),
         ]
     }
+    /// The table's read register is its output register; an interpolating unit adds the
+    /// interpolation after it.
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        if cfg.power_unit == PowerUnitKind::Table {
+            1
+        } else {
+            2
+        }
+    }
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
         Some(Memory {
             prefix: "pt",
@@ -45,7 +54,10 @@ impl Unit for PowerTableUnit {
         vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_bits) as f64]]
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
-        let mut v = vec![("power_table", crate::rtlgen::units_v::power_table(cfg))];
+        let mut v = vec![
+            ("power_table", crate::rtlgen::units_v::power_table(cfg)),
+            (crate::rtlgen::ram::RAM, crate::rtlgen::ram::ram(cfg)),
+        ];
         if cfg.power_unit != PowerUnitKind::Table {
             let name = crate::rtlgen::units_v::module_name(cfg, "power_core");
             v.push((

@@ -48,9 +48,18 @@ impl Unit for LightAccumulate {
     fn included(&self, cfg: &PipelineConfig) -> bool {
         serial_blend(cfg)
     }
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        super::timing::latency(cfg, super::timing::ACCUMULATE)
+    }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("acc_in", Dir::In, c.acc_fmt(), 3, "the running sum (the top feeds acc back)"),
+            p(
+                "acc_in",
+                Dir::In,
+                c.acc_fmt(),
+                3,
+                "the running sum (the top feeds acc back); added at the last stage",
+            ),
             p("first", Dir::In, Format::u(1, 0), 1, "first light slot: start from 0"),
             p("f", Dir::In, c.factor_fmt(), 1, "fd_j or fs_j of this slot, aligned"),
             p("k", Dir::In, c.k_fmt(), 1, "k_j of this slot"),
@@ -73,7 +82,11 @@ impl Unit for LightAccumulate {
         w.line("`default_nettype none");
         w.line("");
         w.line("// light_accumulate (paper sec. 4.2, one light per clock): acc = (first ? 0 : acc_in) + f k Lc,");
-        w.line(format!("// exact in {} ({aw} bits per channel), registered.", cfg.acc_fmt().name()));
+        w.line(format!(
+            "// exact in {} ({aw} bits per channel), registered; latency {} (acc_in is added at the last stage).",
+            cfg.acc_fmt().name(),
+            self.latency(cfg)
+        ));
         w.line(format!(
             "module {} (\n    input  wire clk,\n    input  wire [{}:0] acc_in,\n    input  wire first,\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output reg  [{}:0] acc\n);",
             module_name(cfg, "light_accumulate"),
@@ -83,14 +96,22 @@ impl Unit for LightAccumulate {
         ));
         w.line(format!("wire [{}:0] term;", 3 * tw - 1));
         w.line(format!(
-            "{} lt (.f(f), .k(k), .lc(lc), .term(term));",
-            module_name(cfg, "light_term")
+            "{} lt ({}.f(f), .k(k), .lc(lc), .term(term));",
+            module_name(cfg, "light_term"),
+            crate::rtlgen::units_v::light_term_clk(cfg)
         ));
+        // `first` waits beside the term; acc_in is added at the last stage, so the running
+        // sum feeds back in one cycle at any depth.
+        let mut first = "first".to_string();
+        for s in 1..=crate::rtlgen::units_v::light_term_cuts(cfg) {
+            w.stage(true, "", &format!("first_d{s}"), &first);
+            first = format!("first_d{s}");
+        }
         w.block("always @(posedge clk) begin", "end", |w| {
             for ch in 0..3 {
                 let (hi, lo) = (ch * aw + aw - 1, ch * aw);
                 w.line(format!(
-                    "acc[{hi}:{lo}] <= (first ? {aw}'d0 : acc_in[{hi}:{lo}]) + {};",
+                    "acc[{hi}:{lo}] <= ({first} ? {aw}'d0 : acc_in[{hi}:{lo}]) + {};",
                     zext(&format!("term[{}:{}]", ch * tw + tw - 1, ch * tw), aw - tw)
                 ));
             }

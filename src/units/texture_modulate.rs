@@ -25,6 +25,9 @@ impl Unit for TextureModulate {
             p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c t / max)"),
         ]
     }
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        super::timing::latency(cfg, super::timing::TEXTURE)
+    }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
         vec![texture_modulate(cfg, rgb(&i[0]), rgb(&i[1])).iter().map(|&x| x as i64).collect()]
     }

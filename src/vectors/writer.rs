@@ -201,7 +201,11 @@ impl SetWriter {
                 bytes,
                 sha256,
             },
-            latency: if top { crate::rtlgen::top::latency(cfg) } else { 1 },
+            latency: if top {
+                crate::rtlgen::top::latency(cfg)
+            } else {
+                crate::units::unit(&self.target).map_or(1, |u| u.latency(cfg))
+            },
             initiation_interval: if top { cfg.initiation_interval() } else { 1 },
         };
         let mp = dir.join(format!("{}.json", self.stem));

@@ -15,13 +15,29 @@ pub fn check(files: &[String], top: &str) -> String {
     s
 }
 
-/// Gate-level area of one module: NAND/NOR/NOT cells (`abc -g cmos2`), flip-flops unmapped,
+/// Gate-level area of one module: its memories' bits counted first (`stat -json` of the
+/// elaborated hierarchy into `memory.json`), then every RAM (`rtlgen::ram`) made a black box,
+/// so the logic's NAND/NOR/NOT cells (`abc -g cmos2`, flip-flops unmapped) hold no storage:
 /// `stat -json -tech cmos` into `area.json` and `ltp -noff` into `area.ltp`.
 pub fn cmos_area(files: &[String], top: &str) -> String {
     format!(
-        "read_verilog -defer {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
-        files.join(" ")
+        "read_verilog -defer {}\nhierarchy -top {top}\n{}blackbox {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
+        files.join(" "),
+        memory_stat(top, "memory.json"),
+        ram_modules()
     )
+}
+
+/// `stat -json` of the elaborated hierarchy below `top`, flattened, into `file`: its
+/// `num_memory_bits` is the storage of every memory, copies included. The hierarchy is saved
+/// and restored around it (`stat -top` would mix its text listing into the JSON).
+fn memory_stat(_top: &str, file: &str) -> String {
+    format!("design -save elaborated\nflatten\ntee -q -o {file} stat -json\ndesign -load elaborated\n")
+}
+
+/// A selection of every RAM module of the generated RTL, as elaborated with its parameters.
+fn ram_modules() -> String {
+    format!("=*{}_*", crate::rtlgen::ram::RAM)
 }
 
 /// A power unit's datapath, its ROM module (`<top>_rom`, when `rom`) a black box: the same
@@ -34,11 +50,17 @@ pub fn power_datapath(files: &[String], top: &str, rom: bool) -> String {
     )
 }
 
-/// One module for an FPGA target, `stat -json` into `out/stat.json` and, with `netlist`, the
-/// JSON netlist into `out/netlist.json` (outputs by absolute path, so it can run in the RTL
-/// folder, where the power table's init file loads).
+/// One module for an FPGA target: its memories' bits into `out/memory.json`, then `stat
+/// -json` of the mapped design into `out/stat.json` and, with `netlist`, the JSON netlist into
+/// `out/netlist.json` (outputs by absolute path, so it can run in the RTL folder, where the
+/// power table's init file loads).
 pub fn fpga(target: Target, sources: &[String], top: &str, out: &Path, netlist: bool) -> String {
-    let mut s = format!("read_verilog -defer {}\n{}", sources.join(" "), target.synth(top));
+    let mut s = format!(
+        "read_verilog -defer {}\nhierarchy -top {top}\n{}{}",
+        sources.join(" "),
+        memory_stat(top, &out.join("memory.json").display().to_string()),
+        target.synth(top)
+    );
     if netlist {
         s += &format!("\nwrite_json {}", out.join("netlist.json").display());
     }
@@ -47,5 +69,8 @@ pub fn fpga(target: Target, sources: &[String], top: &str, out: &Path, netlist: 
 
 /// `fpga` as the report shows it.
 pub fn fpga_summary(target: Target) -> String {
-    format!("read_verilog -defer <files>; {}; stat -json", target.synth("<module>"))
+    format!(
+        "read_verilog -defer <files>; hierarchy -top <module>; stat -json -top <module> (memory bits); {}; stat -json",
+        target.synth("<module>")
+    )
 }

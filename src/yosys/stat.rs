@@ -14,6 +14,8 @@ pub struct Stat {
     pub transistors: Option<u64>,
     /// Yosys marks the estimate with a trailing `+` when some cells had no transistor count.
     pub transistors_lower_bound: bool,
+    /// Bits of every memory (`num_memory_bits`), counted before synthesis maps them.
+    pub memory_bits: u64,
 }
 
 impl Stat {
@@ -55,10 +57,12 @@ pub fn parse(text: &str) -> Option<Stat> {
             (Some(s.trim_end_matches('+').trim().parse().ok()?), plus)
         }
     };
+    let memory_bits = section.get("num_memory_bits").and_then(Value::as_u64).unwrap_or(0);
     Some(Stat {
         cells,
         transistors,
         transistors_lower_bound,
+        memory_bits,
     })
 }
 

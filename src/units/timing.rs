@@ -1,0 +1,136 @@
+//! Timing as a parameter: where each arithmetic unit may hold a register inside, and how many
+//! of those cuts `pipeline_depth` puts in place. A unit's latency is one (its output
+//! register) plus its cuts in place, and its Verilog emitter asks the same function, so the
+//! latency the scheduler and the benches read is the register count the RTL has.
+//!
+//! Cuts are listed in the order depth adds them: the first one always splits the longest
+//! path (two chained multipliers in a blend), later ones peel off adders and rounding.
+
+use crate::config::PipelineConfig;
+
+/// dot_clamp: three products, their sum, one rounding and the clamp.
+pub const DOT_CLAMP: &[&str] = &["after the three products B_c V_c", "after their sum"];
+/// diffuse_blend / specular_blend (parallel): f·k, then ·Lc, the sum over lights, the finish.
+pub const BLEND: &[&str] = &["after f k", "after f k Lc", "after the sum over the lights"];
+/// light_accumulate: f·k, then ·Lc; the running sum stays the last stage, so its feedback
+/// (`acc_in`) is one cycle at any depth.
+pub const ACCUMULATE: &[&str] = &["after f k", "after f k Lc"];
+/// texture_modulate: c·t, then the exact division by 2^w - 1 (two adds).
+pub const TEXTURE: &[&str] = &["after c t"];
+
+/// How many of `cuts` are in place at the configuration's depth.
+pub fn cuts_in_place(cfg: &PipelineConfig, cuts: &[&str]) -> u32 {
+    (cfg.pipeline_depth.saturating_sub(1)).min(cuts.len() as u32)
+}
+
+/// Latency of a unit with `cuts`: its output register plus the cuts in place.
+pub fn latency(cfg: &PipelineConfig, cuts: &[&str]) -> u32 {
+    1 + cuts_in_place(cfg, cuts)
+}
+
+/// Whether cut `i` (0-based, in the list's order) is in place.
+pub fn cut(cfg: &PipelineConfig, cuts: &[&str], i: usize) -> bool {
+    (i as u32) < cuts_in_place(cfg, cuts)
+}
+
+/// The README table: every unit's latency at every depth, where its cuts sit, and the
+/// latency of the default and the one-light parallel top.
+pub fn markdown() -> String {
+    let hi = crate::limits::MAX_PIPELINE_DEPTH;
+    let mut s = String::from("| unit |");
+    for d in 1..=hi {
+        s += &format!(" depth {d} |");
+    }
+    s += " register cuts, in the order depth adds them |\n|---|";
+    for _ in 1..=hi {
+        s += "---:|";
+    }
+    s += "---|\n";
+    // Every unit under a configuration that includes it, at each depth.
+    let base = |depth: u32, serial: bool, kind: crate::config::PowerUnitKind, palette: bool| PipelineConfig {
+        pipeline_depth: depth,
+        light_mode: if serial {
+            crate::config::LightMode::Serial
+        } else {
+            crate::config::LightMode::Parallel
+        },
+        power_unit: kind,
+        palette,
+        ..PipelineConfig::default()
+    };
+    use crate::config::PowerUnitKind::{Lerp, Table};
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 10] = [
+        ("bump_fetch", true, Table, false, "none (an inversion)"),
+        ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
+        ("dot_clamp", true, Table, false, ""),
+        (
+            "power_table",
+            true,
+            Table,
+            false,
+            "table: none (the RAM's read register is the output)",
+        ),
+        (
+            "power_table",
+            true,
+            Lerp,
+            false,
+            "lerp, segmented: the RAM's read register, then the interpolation",
+        ),
+        ("diffuse_blend", false, Table, false, ""),
+        ("light_accumulate", true, Table, false, ""),
+        ("blend_finish", true, Table, false, "none"),
+        ("texture_modulate", true, Table, false, ""),
+        ("specular_blend", false, Table, false, ""),
+    ];
+    for (name, serial, kind, palette, note) in rows {
+        let u = super::unit(name).expect("unit");
+        s += &format!("| `{name}` |");
+        for d in 1..=hi {
+            s += &format!(" {} |", u.latency(&base(d, serial, kind, palette)));
+        }
+        let cuts = match name {
+            "dot_clamp" => DOT_CLAMP,
+            "diffuse_blend" | "specular_blend" => BLEND,
+            "light_accumulate" => ACCUMULATE,
+            "texture_modulate" => TEXTURE,
+            _ => &[],
+        };
+        let text = if cuts.is_empty() { note.to_string() } else { cuts.join("; ") };
+        s += &format!(" {text} |\n");
+    }
+    // The tops: the scheduler's latency (what every bench checks per vector).
+    for (name, serial) in [("top, default (4 lights, serial)", true), ("top, 1 light, parallel", false)] {
+        s += &format!("| {name} |");
+        for d in 1..=hi {
+            let mut cfg = base(d, serial, Table, false);
+            if !serial {
+                cfg.lights = 1;
+            }
+            s += &format!(" {} |", crate::rtlgen::top::latency(&cfg));
+        }
+        s += " the scheduler's result (`rtlgen::top::latency`) |\n";
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_adds_cuts_in_order_up_to_the_unit_s_last() {
+        let at = |d| PipelineConfig {
+            pipeline_depth: d,
+            ..Default::default()
+        };
+        assert_eq!(latency(&at(1), BLEND), 1);
+        assert_eq!(latency(&at(2), BLEND), 2);
+        assert!(cut(&at(2), BLEND, 0) && !cut(&at(2), BLEND, 1));
+        assert_eq!(latency(&at(4), BLEND), 4);
+        assert_eq!(latency(&at(4), TEXTURE), 2);
+        // The deepest unit's cuts end at the limit: one more stage would cut nothing.
+        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE].iter().map(|c| c.len()).max().unwrap() as u32;
+        assert_eq!(deepest + 1, crate::limits::MAX_PIPELINE_DEPTH);
+    }
+}
