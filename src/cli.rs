@@ -547,8 +547,8 @@ pub fn run() -> anyhow::Result<()> {
                 crate::yosys::require()?;
             }
             let fm = crate::model::power_unit::PowerFormats {
-                f: cfg.dot_bits,
-                p: cfg.power_bits,
+                f: cfg.dot_frac_bits,
+                p: cfg.power_frac_bits,
             };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));

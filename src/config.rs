@@ -74,11 +74,11 @@ pub struct PipelineConfig {
     /// Bits per L or H component word (paper: 16).
     pub lh_bits: u32,
     /// Fraction bits of the clamped dot products fd and of the power-table index.
-    pub dot_bits: u32,
+    pub dot_frac_bits: u32,
     /// Power-table entries (a power of two; paper: 256, the size of a colour LUT).
     pub power_entries: u32,
     /// Fraction bits of a power-table entry (u1.P, so x^n = 1 is exact).
-    pub power_bits: u32,
+    pub power_frac_bits: u32,
     pub power_index: PowerIndex,
     pub power_unit: PowerUnitKind,
     /// Segments of a segmented power unit.
@@ -88,7 +88,7 @@ pub struct PipelineConfig {
     /// Colour channel bits (paper: 8).
     pub colour_bits: u32,
     /// Fraction bits of the per-light modulation k_i (u1.K).
-    pub k_bits: u32,
+    pub k_frac_bits: u32,
     /// Light slots in hardware (1–8; paper: "usually two to four").
     pub lights: u32,
     pub light_mode: LightMode,
@@ -125,15 +125,15 @@ impl Default for PipelineConfig {
         PipelineConfig {
             normal_bits: 8,
             lh_bits: 16,
-            dot_bits: 8,
+            dot_frac_bits: 8,
             power_entries: 256,
-            power_bits: 8,
+            power_frac_bits: 8,
             power_index: PowerIndex::Nearest,
             power_unit: PowerUnitKind::Table,
             power_segments: 6,
             shininess: 16,
             colour_bits: 8,
-            k_bits: 8,
+            k_frac_bits: 8,
             lights: 4,
             light_mode: LightMode::Serial,
             blend_order: BlendOrder::DiffuseTextureSpecular,
@@ -167,13 +167,13 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
         24,
         "s1.(w-2): at least 2 fraction bits; 24 keeps dot sums within 62 bits",
     ),
-    ("dot_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
-    ("power_entries", 2, 65536, "a power of two; at most 2^dot_bits + 1 useful"),
-    ("power_bits", 2, 16, "entry fraction bits"),
-    ("power_segments", 2, 15, "segments of a segmented power unit; fewer than dot_bits"),
+    ("dot_frac_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
+    ("power_entries", 2, 65536, "a power of two; at most 2^dot_frac_bits + 1 useful"),
+    ("power_frac_bits", 2, 16, "entry fraction bits"),
+    ("power_segments", 2, 15, "segments of a segmented power unit; fewer than dot_frac_bits"),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
-    ("k_bits", 1, 12, "modulation fraction bits"),
+    ("k_frac_bits", 1, 12, "modulation fraction bits"),
     ("lights", 1, 8, "light slots in hardware"),
     (
         "triangle_banks",
@@ -201,9 +201,40 @@ pub fn limit(name: &str) -> (u32, u32) {
         .unwrap_or_else(|| panic!("no limit for {name}"))
 }
 
+/// Fields renamed so that a name says what it counts (`_bits`: a width; `_frac_bits`: fraction
+/// bits), as (old, new). The old names are still read, with a warning.
+pub const RENAMED_FIELDS: &[(&str, &str)] = &[
+    ("dot_bits", "dot_frac_bits"),
+    ("power_bits", "power_frac_bits"),
+    ("k_bits", "k_frac_bits"),
+];
+
+/// `text` with every renamed key (`old = ...` at the start of a line) under its new name,
+/// line for line, so errors still point at the user's lines; each one is warned about.
+fn upgrade_names(file: &str, text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for (i, line) in text.split_inclusive('\n').enumerate() {
+        let t = line.trim_start();
+        let renamed = RENAMED_FIELDS.iter().find_map(|&(old, new)| {
+            let rest = t.strip_prefix(old)?;
+            rest.trim_start().starts_with('=').then(|| {
+                eprintln!(
+                    "warning: {file}:{}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)",
+                    i + 1
+                );
+                line.replacen(old, new, 1)
+            })
+        });
+        out += renamed.as_deref().unwrap_or(line);
+    }
+    out
+}
+
 impl PipelineConfig {
-    /// Parse a TOML config; `file` names it in errors.
+    /// Parse a TOML config; `file` names it in errors. Renamed fields are read under their
+    /// old names too, with a warning ([`RENAMED_FIELDS`]).
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
+        let text = &upgrade_names(file, text);
         let cfg: PipelineConfig =
             toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))?;
         cfg.validate(file)?;
@@ -248,24 +279,24 @@ impl PipelineConfig {
                 "use 2, 4, …, 256, … (the table is addressed by whole index bits)",
             ));
         }
-        if self.power_entries > (1 << self.dot_bits) + 1 {
+        if self.power_entries > (1 << self.dot_frac_bits) + 1 {
             return Err(Error::field(
                 file,
                 "power_entries",
                 format!(
                     "{} entries exceed the {} distinct dot-product codes",
                     self.power_entries,
-                    (1u32 << self.dot_bits) + 1
+                    (1u32 << self.dot_frac_bits) + 1
                 ),
-                "raise dot_bits or lower power_entries",
+                "raise dot_frac_bits or lower power_entries",
             ));
         }
-        if self.power_unit == PowerUnitKind::Segmented && self.power_segments >= self.dot_bits {
+        if self.power_unit == PowerUnitKind::Segmented && self.power_segments >= self.dot_frac_bits {
             return Err(Error::field(
                 file,
                 "power_segments",
-                format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_bits),
-                "use fewer segments or a wider dot_bits",
+                format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_frac_bits),
+                "use fewer segments or a wider dot_frac_bits",
             ));
         }
         if !self.diffuse && !self.specular {
@@ -281,7 +312,7 @@ impl PipelineConfig {
                 file,
                 "colour_bits",
                 "blend accumulator too wide",
-                "lower colour_bits, dot_bits or k_bits",
+                "lower colour_bits, dot_frac_bits or k_frac_bits",
             ));
         }
         Ok(())
@@ -291,13 +322,13 @@ impl PipelineConfig {
         match name {
             "normal_bits" => self.normal_bits,
             "lh_bits" => self.lh_bits,
-            "dot_bits" => self.dot_bits,
+            "dot_frac_bits" => self.dot_frac_bits,
             "power_entries" => self.power_entries,
-            "power_bits" => self.power_bits,
+            "power_frac_bits" => self.power_frac_bits,
             "power_segments" => self.power_segments,
             "shininess" => self.shininess,
             "colour_bits" => self.colour_bits,
-            "k_bits" => self.k_bits,
+            "k_frac_bits" => self.k_frac_bits,
             "lights" => self.lights,
             "triangle_banks" => self.triangle_banks,
             "pipeline_depth" => self.pipeline_depth,
@@ -319,15 +350,15 @@ impl PipelineConfig {
     }
     /// Clamped dot product fd / power index: `u1.F`.
     pub fn dot_fmt(&self) -> Format {
-        Format::u(self.dot_bits + 1, self.dot_bits)
+        Format::u(self.dot_frac_bits + 1, self.dot_frac_bits)
     }
     /// Power-table entry fs: `u1.P`.
     pub fn power_fmt(&self) -> Format {
-        Format::u(self.power_bits + 1, self.power_bits)
+        Format::u(self.power_frac_bits + 1, self.power_frac_bits)
     }
     /// Per-light modulation k: `u1.K`.
     pub fn k_fmt(&self) -> Format {
-        Format::u(self.k_bits + 1, self.k_bits)
+        Format::u(self.k_frac_bits + 1, self.k_frac_bits)
     }
     /// Colour channel code.
     pub fn colour_fmt(&self) -> Format {
@@ -339,7 +370,7 @@ impl PipelineConfig {
     }
     /// Fraction bits of the blend factor (fd or fs) feeding the blend units.
     pub fn factor_frac(&self) -> u32 {
-        self.dot_bits.max(self.power_bits)
+        self.dot_frac_bits.max(self.power_frac_bits)
     }
     /// Blend factor (fd or fs aligned to a common format) so that one blend unit serves both.
     pub fn factor_fmt(&self) -> Format {
@@ -376,13 +407,13 @@ impl PipelineConfig {
     /// Input and output fraction bits of the power unit.
     pub fn power_formats(&self) -> crate::model::power_unit::PowerFormats {
         crate::model::power_unit::PowerFormats {
-            f: self.dot_bits,
-            p: self.power_bits,
+            f: self.dot_frac_bits,
+            p: self.power_frac_bits,
         }
     }
     /// Words of the power unit's loadable memory.
     pub fn power_depth(&self) -> u32 {
-        (self.power_design().rom_bits(self.power_formats()) / (self.power_bits as u64 + 1)) as u32
+        (self.power_design().rom_bits(self.power_formats()) / (self.power_frac_bits as u64 + 1)) as u32
     }
     /// Address bits of the power unit's memory (its load port).
     pub fn power_addr_bits(&self) -> u32 {
@@ -452,6 +483,17 @@ mod tests {
         let mut d = c.clone();
         d.lights = 2;
         assert_ne!(d.hash(), c.hash());
+    }
+
+    #[test]
+    fn old_field_names_read_as_the_new_ones() {
+        let old = PipelineConfig::from_toml("o.toml", "lights = 2\ndot_bits = 10\n  power_bits=9\nk_bits = 7\n").unwrap();
+        let new = PipelineConfig::from_toml("n.toml", "lights = 2\ndot_frac_bits = 10\npower_frac_bits = 9\nk_frac_bits = 7\n").unwrap();
+        assert_eq!(old, new);
+        assert_eq!((new.dot_frac_bits, new.power_frac_bits, new.k_frac_bits), (10, 9, 7));
+        // Lines are kept, so an error after a renamed key still names its own line.
+        let e = PipelineConfig::from_toml("o.toml", "dot_bits = 10\nlights = \"x\"\n").unwrap_err().to_string();
+        assert!(e.starts_with("o.toml:2:"), "{e}");
     }
 
     #[test]

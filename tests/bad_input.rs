@@ -300,7 +300,7 @@ fn cases() -> Vec<Case> {
             vec!["normal_bits", "3..=16"],
         ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
-        ("dot_bits 64", cfg("dot_bits = 64\n"), render_cfg(), vec!["dot_bits", "2..=16"]),
+        ("dot_frac_bits 64", cfg("dot_frac_bits = 64\n"), render_cfg(), vec!["dot_frac_bits", "2..=16"]),
         (
             "negative width",
             cfg("colour_bits = -8\n"),
@@ -315,9 +315,9 @@ fn cases() -> Vec<Case> {
         ),
         (
             "table larger than the index",
-            cfg("dot_bits = 4\npower_entries = 256\n"),
+            cfg("dot_frac_bits = 4\npower_entries = 256\n"),
             render_cfg(),
-            vec!["power_entries", "dot_bits"],
+            vec!["power_entries", "dot_frac_bits"],
         ),
         ("zero light slots", cfg("lights = 0\n"), render_cfg(), vec!["lights", "1..=8"]),
         ("nine light slots", cfg("lights = 9\n"), render_cfg(), vec!["lights", "1..=8"]),
@@ -594,7 +594,7 @@ fn cases() -> Vec<Case> {
             "out-of-range value in a scene's [pipeline]",
             scene(r("[camera]", "[pipeline]\nshininess = 8\ndot_bits = 99\n\n[camera]")),
             render(&[]),
-            vec![after_camera(2), "pipeline.dot_bits", "2..=16"],
+            vec![after_camera(2), "pipeline.dot_frac_bits", "2..=16"],
         ),
         (
             "[pipeline] lights below the scene's bump lights",

@@ -74,7 +74,7 @@ fn wide_formats_converge_on_f64_equations() {
     cfg.specular = false;
     let narrow = render(&s, &cfg, 128, 64, false).unwrap();
     cfg.normal_bits = 14;
-    cfg.dot_bits = 14;
+    cfg.dot_frac_bits = 14;
     let wide = render(&s, &cfg, 128, 64, false).unwrap();
     let en = gbump::measure::image_metrics::compare(&narrow.golden, &narrow.gouraud, &narrow.covered, 255);
     let ew = gbump::measure::image_metrics::compare(&wide.golden, &wide.gouraud, &wide.covered, 255);

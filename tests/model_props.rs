@@ -36,9 +36,9 @@ proptest! {
         let b = b.map(|x| pick(x, nf));
         let v = v.map(|x| pick(x, lf));
         let fd = dot_clamp(&cfg, b, v);
-        prop_assert!(fd >= 0 && fd <= 1 << cfg.dot_bits);
+        prop_assert!(fd >= 0 && fd <= 1 << cfg.dot_frac_bits);
         let exact: f64 = (0..3).map(|i| nf.to_f64(b[i]) * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0);
-        let err = (fd as f64 - exact * (1u64 << cfg.dot_bits) as f64).abs();
+        let err = (fd as f64 - exact * (1u64 << cfg.dot_frac_bits) as f64).abs();
         prop_assert!(err <= bound(cfg.rounding), "error {err} LSB, config {}", cfg.hash());
     }
 
@@ -47,10 +47,10 @@ proptest! {
         let cfg = cfg_from(seed);
         let t = PowerTable::build(&cfg, n);
         let mut prev = -1;
-        for fd in 0..=(1i64 << cfg.dot_bits) {
+        for fd in 0..=(1i64 << cfg.dot_frac_bits) {
             let fs = t.lookup(&cfg, fd);
             prop_assert!(fs >= prev, "not monotonic at {fd} (n = {n}, config {})", cfg.hash());
-            prop_assert!(fs >= 0 && fs <= 1 << cfg.power_bits);
+            prop_assert!(fs >= 0 && fs <= 1 << cfg.power_frac_bits);
             prev = fs;
         }
         // The paper's table holds x_i^n at x_i = i/(N-1); interpolating units hold knots
@@ -60,7 +60,7 @@ proptest! {
         }
         let last = (cfg.power_entries - 1) as f64;
         for (i, e) in t.entries.iter().enumerate() {
-            let exact = (i as f64 / last).powi(n as i32) * (1u64 << cfg.power_bits) as f64;
+            let exact = (i as f64 / last).powi(n as i32) * (1u64 << cfg.power_frac_bits) as f64;
             prop_assert!((*e as f64 - exact).abs() <= bound(cfg.rounding) + 1e-9, "entry {i}: {e} vs {exact}");
         }
     }
@@ -74,12 +74,12 @@ proptest! {
         let ff = cfg.factor_frac();
         let c_in = [vals[0] % (max + 1), vals[1] % (max + 1), vals[2] % (max + 1)].map(|x| x as u32);
         let f: Vec<i64> = (0..n).map(|i| (vals[3 + i] % ((1u64 << ff) + 1)) as i64).collect();
-        let k: Vec<i64> = (0..n).map(|i| (vals[11 + i] % ((1u64 << cfg.k_bits) + 1)) as i64).collect();
+        let k: Vec<i64> = (0..n).map(|i| (vals[11 + i] % ((1u64 << cfg.k_frac_bits) + 1)) as i64).collect();
         let lc: Vec<[u32; 3]> = (0..n).map(|i| [0, 1, 2].map(|c| (vals[19 + 3 * i + c] % (max + 1)) as u32)).collect();
         let out = blend(&cfg, c_in, &f, &k, &lc);
         for ch in 0..3 {
             prop_assert!(out[ch] >= c_in[ch] && out[ch] as u64 <= max, "wrapped: {c_in:?} -> {out:?}");
-            let add: f64 = (0..n).map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_bits) as f64 * lc[i][ch] as f64).sum();
+            let add: f64 = (0..n).map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_frac_bits) as f64 * lc[i][ch] as f64).sum();
             let exact = (c_in[ch] as f64 + add).min(max as f64);
             prop_assert!((out[ch] as f64 - exact).abs() <= bound(cfg.rounding), "channel {ch}: {} vs {exact}", out[ch]);
         }
@@ -133,7 +133,7 @@ fn the_segmented_power_unit_is_within_one_lsb_for_every_exponent() {
     let (mut worst, mut worst_plain) = (0.0f64, 0.0f64);
     for n in 1..=255 {
         let (t, tp) = (PowerTable::build(&cfg, n), PowerTable::build(&plain, n));
-        for fd in 0..=(1i64 << cfg.dot_bits) {
+        for fd in 0..=(1i64 << cfg.dot_frac_bits) {
             let exact = (fd as f64 / 4096.0).powi(n as i32) * 256.0;
             worst = worst.max((t.lookup(&cfg, fd) as f64 - exact).abs());
             worst_plain = worst_plain.max((tp.lookup(&plain, fd) as f64 - exact).abs());

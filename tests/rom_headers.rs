@@ -28,14 +28,14 @@ fn configs() -> Vec<PipelineConfig> {
     vec![
         d.clone(),
         PipelineConfig {
-            dot_bits: 12,
+            dot_frac_bits: 12,
             power_entries: 1024,
-            power_bits: 12,
+            power_frac_bits: 12,
             shininess: 3,
             ..d.clone()
         },
         PipelineConfig {
-            dot_bits: 10,
+            dot_frac_bits: 10,
             power_unit: PowerUnitKind::Segmented,
             power_entries: 16,
             power_segments: 5,
@@ -64,7 +64,7 @@ fn every_rom_header_states_the_parameters_of_its_contents() {
                     assert!(name.starts_with(&format!("power_table_n{n}_{}", &cfg.hash()[..8])), "{ctx}");
                     assert_eq!(p["shininess"], n.to_string(), "{ctx}");
                     assert_eq!(p["power_entries"], cfg.power_entries.to_string(), "{ctx}");
-                    assert_eq!(p["power_bits"], cfg.power_bits.to_string(), "{ctx}");
+                    assert_eq!(p["power_frac_bits"], cfg.power_frac_bits.to_string(), "{ctx}");
                     let want = gbump::model::PowerTable::build(&cfg, n);
                     assert_eq!(words, want.entries.iter().map(|&e| e as u64).collect::<Vec<_>>(), "{ctx}");
                 } else if name.starts_with("bump_palette_") {

@@ -188,10 +188,10 @@ mod tests {
             let cfg = PipelineConfig {
                 normal_bits: crate::config::limit("normal_bits").1,
                 lh_bits: crate::config::limit("lh_bits").1,
-                dot_bits: crate::config::limit("dot_bits").1,
-                power_bits: crate::config::limit("power_bits").1,
+                dot_frac_bits: crate::config::limit("dot_frac_bits").1,
+                power_frac_bits: crate::config::limit("power_frac_bits").1,
                 colour_bits: crate::config::limit("colour_bits").1,
-                k_bits: crate::config::limit("k_bits").1,
+                k_frac_bits: crate::config::limit("k_frac_bits").1,
                 power_unit: PowerUnitKind::Table,
                 lights,
                 light_mode: mode,

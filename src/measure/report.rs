@@ -100,17 +100,17 @@ pub fn report(
     md += &super::unit_error::markdown(&cfg, &errs);
     md += "\n### Image error per scene\n\n";
     md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, 192, 144)?);
-    md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_bits = 12`\n\n";
+    md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_frac_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
     md += &power_section(
         PowerFormats {
-            f: cfg.dot_bits,
-            p: cfg.power_bits,
+            f: cfg.dot_frac_bits,
+            p: cfg.power_frac_bits,
         },
         work,
     )?;
     md += "\n### 12-bit dot product\n\n";
-    md += &power_section(PowerFormats { f: 12, p: cfg.power_bits }, work)?;
+    md += &power_section(PowerFormats { f: 12, p: cfg.power_frac_bits }, work)?;
     md += "\n## FPGA resources and Fmax\n\n";
     md += &fpga_section(&work.join("fpga"))?;
     md += "\n## Timing as a parameter: area and Fmax per pipeline_depth\n\n";

@@ -115,7 +115,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let mut dot = ErrorStats::new("dot_clamp", "corners + random");
     let nf = cfg.normal_fmt();
     let lf = cfg.lh_fmt();
-    let one = (1u64 << cfg.dot_bits) as f64;
+    let one = (1u64 << cfg.dot_frac_bits) as f64;
     for (_, s) in &stims {
         let t = stored_codes(&palette, s.frag.bump);
         let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
@@ -129,10 +129,10 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     out.push(dot);
     // power_table exhaustively over its input.
     let mut pw = ErrorStats::new("power_table", &format!("exhaustive, n = {n}"));
-    let ps = (1u64 << cfg.power_bits) as f64;
-    for fd in 0..=(1i64 << cfg.dot_bits) {
+    let ps = (1u64 << cfg.power_frac_bits) as f64;
+    for fd in 0..=(1i64 << cfg.dot_frac_bits) {
         let exact = powi_exact(fd as f64 / one, n) * ps;
-        pw.add(table.lookup(cfg, fd) as f64 - exact, || format!("x = {fd}/2^{}", cfg.dot_bits));
+        pw.add(table.lookup(cfg, fd) as f64 - exact, || format!("x = {fd}/2^{}", cfg.dot_frac_bits));
     }
     out.push(pw);
     // Blends over random inputs in their own formats.
@@ -144,12 +144,12 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
             let l = cfg.lights as usize;
             let c_in = [0; 3].map(|_| rng.range(0, max as i64) as u32);
             let f: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << ff)).collect();
-            let k: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << cfg.k_bits)).collect();
+            let k: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << cfg.k_frac_bits)).collect();
             let lc: Vec<[u32; 3]> = (0..l).map(|_| [0; 3].map(|_| rng.range(0, max as i64) as u32)).collect();
             let o = blend(cfg, c_in, &f, &k, &lc);
             for ch in 0..3 {
                 let add: f64 = (0..l)
-                    .map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_bits) as f64 * lc[i][ch] as f64)
+                    .map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_frac_bits) as f64 * lc[i][ch] as f64)
                     .sum();
                 st.add(o[ch] as f64 - (c_in[ch] as f64 + add).min(max as f64), || {
                     format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}")

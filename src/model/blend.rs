@@ -22,7 +22,7 @@ pub fn term(f: i64, k: i64, lc: u32) -> i64 {
 /// The blend: `factors` already aligned ([`align_factor`]), one per light slot.
 #[inline]
 pub fn blend(cfg: &PipelineConfig, c_in: [u32; 3], factors: &[i64], k: &[i64], lc: &[[u32; 3]]) -> [u32; 3] {
-    let shift = cfg.factor_frac() + cfg.k_bits;
+    let shift = cfg.factor_frac() + cfg.k_frac_bits;
     let max = cfg.colour_max() as i64;
     let mut out = [0u32; 3];
     for ch in 0..3 {

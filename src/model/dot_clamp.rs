@@ -19,7 +19,7 @@ pub fn dot_clamp(cfg: &PipelineConfig, b: [i64; 3], v: [i64; 3]) -> i64 {
     let exact = dot_exact(b, v);
     let from = cfg.dot_exact_fmt();
     let q = requant(exact, from, cfg.dot_fmt(), cfg.rounding, Overflow::Saturate);
-    q.min(1 << cfg.dot_bits)
+    q.min(1 << cfg.dot_frac_bits)
 }
 
 #[cfg(test)]

@@ -101,14 +101,14 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         if cfg.diffuse {
             out.fd[i] = dot_clamp(cfg, b, s.l);
             if diffuse_on {
-                dfac[i] = align_factor(cfg, out.fd[i], cfg.dot_bits);
+                dfac[i] = align_factor(cfg, out.fd[i], cfg.dot_frac_bits);
             }
         }
         if cfg.specular {
             out.xh[i] = dot_clamp(cfg, b, s.h);
             out.fs[i] = table.lookup(cfg, out.xh[i]);
             if specular_on {
-                sfac[i] = align_factor(cfg, out.fs[i], cfg.power_bits);
+                sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);
             }
         }
     }
@@ -163,7 +163,7 @@ mod tests {
                 l: [0, 0, one(&cfg)],
                 h: [0, 0, one(&cfg)],
                 colour: [255; 3],
-                k: 1 << cfg.k_bits,
+                k: 1 << cfg.k_frac_bits,
             };
         }
         let r = shade(&cfg, &t, None, &st, &frag(255, 255));

@@ -46,7 +46,7 @@ impl PowerTable {
             PowerIndex::Nearest => Rounding::HalfUp,
             PowerIndex::Truncate => Rounding::Truncate,
         };
-        shift_round(scaled, cfg.dot_bits, rnd) as usize
+        shift_round(scaled, cfg.dot_frac_bits, rnd) as usize
     }
 
     /// fs for clamped dot product `fd`.
@@ -66,13 +66,13 @@ mod tests {
     #[test]
     fn ends_and_exponents() {
         let cfg = PipelineConfig::default();
-        let one = 1i64 << cfg.power_bits;
+        let one = 1i64 << cfg.power_frac_bits;
         for n in [0u32, 1, 2, 16, 254, 255, 1024] {
             let t = PowerTable::build(&cfg, n);
             assert_eq!(t.entries.len(), 256);
             assert_eq!(*t.entries.last().unwrap(), one, "1^n = 1 for n={n}");
             assert_eq!(t.entries[0], if n == 0 { one } else { 0 }, "0^n for n={n}");
-            assert_eq!(t.lookup(&cfg, 1 << cfg.dot_bits), one);
+            assert_eq!(t.lookup(&cfg, 1 << cfg.dot_frac_bits), one);
             assert_eq!(t.lookup(&cfg, 0), t.entries[0]);
         }
         // n = 1 is the identity up to the index and entry quantisation.

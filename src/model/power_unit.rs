@@ -221,8 +221,8 @@ mod tests {
     fn the_plain_table_matches_the_pipeline_unit() {
         let cfg = crate::config::PipelineConfig::default();
         let fm = PowerFormats {
-            f: cfg.dot_bits,
-            p: cfg.power_bits,
+            f: cfg.dot_frac_bits,
+            p: cfg.power_frac_bits,
         };
         let d = PowerDesign::Table {
             entries: 256,

@@ -150,19 +150,19 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
     let t = PowerTable::build(cfg, n);
     Rom {
         name: format!("power_table n={n}"),
-        width: cfg.power_bits + 1,
+        width: cfg.power_frac_bits + 1,
         words: t.entries.iter().map(|&e| e as u64).collect(),
         layout: match cfg.power_unit {
             crate::config::PowerUnitKind::Table => format!(
                 "entry i = round((i/{})^{n} * 2^{}), u1.{}",
                 cfg.power_entries - 1,
-                cfg.power_bits,
-                cfg.power_bits
+                cfg.power_frac_bits,
+                cfg.power_frac_bits
             ),
             _ => format!(
                 "{} knots for n = {n}, u1.{} (layout: model::power_unit)",
                 cfg.power_design().label(),
-                cfg.power_bits
+                cfg.power_frac_bits
             ),
         },
         params: power_params(cfg, n),
@@ -177,7 +177,7 @@ fn power_params(cfg: &PipelineConfig, n: u32) -> Vec<(String, String)> {
         param("shininess", n),
         param("power_unit", unit),
         param("power_entries", cfg.power_entries),
-        param("power_bits", cfg.power_bits),
+        param("power_frac_bits", cfg.power_frac_bits),
     ];
     if cfg.power_unit == crate::config::PowerUnitKind::Segmented {
         v.push(param("power_segments", cfg.power_segments));

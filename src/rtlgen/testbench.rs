@@ -27,7 +27,7 @@ fn pt(cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         ("RESET_CYCLES", crate::rtlgen::top::RESET_CYCLES.to_string()),
         ("PT_N", cfg.power_depth().to_string()),
         ("PT_AW", cfg.power_addr_bits().to_string()),
-        ("PT_W", (cfg.power_bits + 1).to_string()),
+        ("PT_W", (cfg.power_frac_bits + 1).to_string()),
     ]
 }
 

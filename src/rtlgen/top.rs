@@ -395,7 +395,7 @@ fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, Strin
 /// read port, so the instance is written as a helper with its `R` parameter).
 fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
     let pt = units::unit("power_table").expect("unit");
-    s.m.wire("fs", r * (cfg.power_bits + 1), None);
+    s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
     s.m.inst_helper(
@@ -557,7 +557,7 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
 
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
-    let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_bits + 1, cfg.power_bits + 1, cfg.factor_frac() + 1);
+    let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_frac_bits + 1, cfg.power_frac_bits + 1, cfg.factor_frac() + 1);
     if cfg.backpressure {
         s.m.wire("credit", 1, None);
         s.m.raw("assign in_ready = credit;");
@@ -596,7 +596,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         dots(s, "l", "fd");
         let parts: Vec<String> = (0..n)
             .rev()
-            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_bits, "{de}"))
+            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_frac_bits, "{de}"))
             .collect();
         s.comb("dfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
@@ -609,7 +609,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         power_unit(s, cfg, n);
         let parts: Vec<String> = (0..n)
             .rev()
-            .map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_bits, "{se}"))
+            .map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_frac_bits, "{se}"))
             .collect();
         s.comb("sfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
@@ -675,7 +675,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     }
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_texel}", true);
-    let k1 = cfg.k_bits + 1;
+    let k1 = cfg.k_frac_bits + 1;
     let (lc_tpl, k_tpl) = (format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"), format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"));
     if cfg.per_triangle() {
         // Read where the accumulators use them: only the slot index and the tag travel.
@@ -720,7 +720,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("de", 1, &enable(cfg, true, "fr_diffuse_en"));
         s.comb("l_sel", lh3, &format!("{{{pre}_l}}[{{j}}*{lh3} +: {lh3}]"));
         s.unit(cfg, dot, "u_dot_l", &[("b", "{b}"), ("v", "{l_sel}")], &[("f", "fd")], &[]);
-        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_bits, "{de}"));
+        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, "{de}"));
         accumulate(s, "dacc", "{dfac}");
     }
     if cfg.specular {
@@ -728,7 +728,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("h_sel", lh3, &format!("{{{pre}_h}}[{{j}}*{lh3} +: {lh3}]"));
         s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
-        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_bits, "{se}"));
+        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, "{se}"));
         accumulate(s, "sacc", "{sfac}");
     }
     if !s.m.has("done") {

@@ -62,7 +62,7 @@ pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
 /// `timing::DOT_CLAMP` in place at the configuration's depth.
 pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     use crate::units::timing::{cut, DOT_CLAMP};
-    let (nb, lh, f) = (cfg.normal_bits, cfg.lh_bits, cfg.dot_bits);
+    let (nb, lh, f) = (cfg.normal_bits, cfg.lh_bits, cfg.dot_frac_bits);
     let ex = cfg.dot_exact_fmt();
     let mut w = VWriter::new();
     preamble(&mut w);
@@ -119,7 +119,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
         return power_unit_with_core(cfg);
     }
-    let (f, p, n) = (cfg.dot_bits, cfg.power_bits, cfg.power_entries);
+    let (f, p, n) = (cfg.dot_frac_bits, cfg.power_frac_bits, cfg.power_entries);
     let ib = cfg.power_index_bits();
     let mut w = VWriter::new();
     preamble(&mut w);
@@ -167,7 +167,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
 
 /// The power table's module header: the same for every kind of power unit.
 fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
-    let (f, p) = (cfg.dot_bits, cfg.power_bits);
+    let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let out = if cfg.power_unit == crate::config::PowerUnitKind::Table {
         "wire"
     } else {
@@ -189,7 +189,7 @@ fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
 /// addresses from x, the RAMs register the knots, and a second instance interpolates from
 /// x one cycle later (synthesis keeps only the half of each that is used).
 fn power_unit_with_core(cfg: &PipelineConfig) -> String {
-    let (f, p) = (cfg.dot_bits, cfg.power_bits);
+    let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
     let core = module_name(cfg, "power_core");
     let mut w = VWriter::new();
@@ -244,7 +244,7 @@ pub fn light_term_cuts(cfg: &PipelineConfig) -> u32 {
 /// light_term: one light's exact f·k·Lc per channel: combinational at depth 1, with a
 /// register after f·k and then after ·Lc as the depth adds them (a clock port only then).
 pub fn light_term(cfg: &PipelineConfig) -> String {
-    let (ff, k, c) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits);
+    let (ff, k, c) = (cfg.factor_frac(), cfg.k_frac_bits, cfg.colour_bits);
     let tw = cfg.term_fmt().width;
     let cuts = light_term_cuts(cfg);
     let mut w = VWriter::new();
@@ -289,7 +289,7 @@ pub fn light_term_clk(cfg: &PipelineConfig) -> &'static str {
 pub fn blend_finish(cfg: &PipelineConfig) -> String {
     let c = cfg.colour_bits;
     let acc = cfg.acc_fmt();
-    let shift = cfg.factor_frac() + cfg.k_bits;
+    let shift = cfg.factor_frac() + cfg.k_frac_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
@@ -341,7 +341,7 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
 /// sum, and the finish, with the cuts of `timing::BLEND` in place at the depth.
 pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     use crate::units::timing::{cut, BLEND};
-    let (ff, k, c, n) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits, cfg.lights);
+    let (ff, k, c, n) = (cfg.factor_frac(), cfg.k_frac_bits, cfg.colour_bits, cfg.lights);
     let tw = cfg.term_fmt().width;
     let aw = cfg.acc_fmt().width;
     let lt = light_term_cuts(cfg);

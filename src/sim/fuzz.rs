@@ -22,15 +22,15 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         let cfg = PipelineConfig {
             normal_bits: field(rng, "normal_bits"),
             lh_bits: field(rng, "lh_bits"),
-            dot_bits: field(rng, "dot_bits"),
+            dot_frac_bits: field(rng, "dot_frac_bits"),
             power_entries: 1 << rng.range(e_lo.ilog2() as i64, e_hi.ilog2() as i64),
-            power_bits: field(rng, "power_bits"),
+            power_frac_bits: field(rng, "power_frac_bits"),
             power_index: pick(rng, &[PowerIndex::Nearest, PowerIndex::Truncate]),
             power_unit: pick(rng, &[PowerUnitKind::Table, PowerUnitKind::Lerp, PowerUnitKind::Segmented]),
             power_segments: field(rng, "power_segments"),
             shininess: field(rng, "shininess"),
             colour_bits: field(rng, "colour_bits"),
-            k_bits: field(rng, "k_bits"),
+            k_frac_bits: field(rng, "k_frac_bits"),
             lights: field(rng, "lights"),
             light_mode: pick(rng, &[LightMode::Serial, LightMode::Parallel]),
             blend_order: pick(rng, &[BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast]),
@@ -68,9 +68,9 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
     let widest_dot = PipelineConfig {
-        dot_bits: hi("dot_bits"),
+        dot_frac_bits: hi("dot_frac_bits"),
         power_entries: hi("power_entries"),
-        power_bits: hi("power_bits"),
+        power_frac_bits: hi("power_frac_bits"),
         shininess: hi("shininess"),
         ..d.clone()
     };
@@ -109,7 +109,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 normal_bits: hi("normal_bits"),
                 lh_bits: hi("lh_bits"),
                 colour_bits: hi("colour_bits"),
-                k_bits: hi("k_bits"),
+                k_frac_bits: hi("k_frac_bits"),
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,
                 rounding: Rounding::NearestEven,
@@ -123,12 +123,12 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             PipelineConfig {
                 normal_bits: lo("normal_bits"),
                 lh_bits: lo("lh_bits"),
-                dot_bits: lo("dot_bits"),
+                dot_frac_bits: lo("dot_frac_bits"),
                 power_entries: lo("power_entries"),
-                power_bits: lo("power_bits"),
+                power_frac_bits: lo("power_frac_bits"),
                 shininess: lo("shininess"),
                 colour_bits: lo("colour_bits"),
-                k_bits: lo("k_bits"),
+                k_frac_bits: lo("k_frac_bits"),
                 lights: lo("lights"),
                 rounding: Rounding::Truncate,
                 triangle_banks: lo("triangle_banks"),
@@ -264,11 +264,11 @@ pub fn run_for(
             cfg.lights,
             cfg.normal_bits,
             cfg.lh_bits,
-            cfg.dot_bits,
+            cfg.dot_frac_bits,
             cfg.power_design().label(),
-            cfg.power_bits + 1,
+            cfg.power_frac_bits + 1,
             cfg.colour_bits,
-            cfg.k_bits,
+            cfg.k_frac_bits,
             cfg.rounding,
             cfg.blend_order
         ))?;

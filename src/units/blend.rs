@@ -90,7 +90,7 @@ impl Unit for Blend {
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let n = cfg.lights as usize;
-        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
+        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
         let all = |c: i64, f: i64, k: i64, lc: i64| vec![vec![c; 3], vec![f; n], vec![k; n], vec![lc; 3 * n]];
         vec![
             (

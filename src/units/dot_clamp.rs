@@ -34,7 +34,7 @@ impl Unit for DotClamp {
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());
         let dot: f64 = (0..3).map(|k| nf.to_f64(i[0][k]) * lf.to_f64(i[1][k])).sum();
-        vec![vec![dot.clamp(0.0, 1.0) * (1u64 << cfg.dot_bits) as f64]]
+        vec![vec![dot.clamp(0.0, 1.0) * (1u64 << cfg.dot_frac_bits) as f64]]
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         vec![("dot_clamp", crate::rtlgen::units_v::dot_clamp(cfg))]

@@ -42,7 +42,7 @@ impl Unit for PowerTableUnit {
             init_stem: "power_table",
             depth: cfg.power_depth(),
             addr_bits: cfg.power_addr_bits(),
-            data_bits: cfg.power_bits + 1,
+            data_bits: cfg.power_frac_bits + 1,
             doc: "power table entries, u1.P (the shininess is whatever was loaded)",
         })
     }
@@ -50,8 +50,8 @@ impl Unit for PowerTableUnit {
         vec![vec![m.table.lookup(cfg, i[0][0])]]
     }
     fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        let x = i[0][0] as f64 / (1u64 << cfg.dot_bits) as f64;
-        vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_bits) as f64]]
+        let x = i[0][0] as f64 / (1u64 << cfg.dot_frac_bits) as f64;
+        vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_frac_bits) as f64]]
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         let mut v = vec![
@@ -68,13 +68,13 @@ impl Unit for PowerTableUnit {
         v
     }
     fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
-        Some((1u64 << cfg.dot_bits) + 1)
+        Some((1u64 << cfg.dot_frac_bits) + 1)
     }
     fn exhaustive_input(&self, _: &PipelineConfig, i: u64) -> Lanes {
         vec![vec![i as i64]]
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        let one = 1i64 << cfg.dot_bits;
+        let one = 1i64 << cfg.dot_frac_bits;
         vec![
             ("x = 0: entry 0 (0^n)".into(), vec![vec![0]]),
             ("x = 1 LSB: the first index step".into(), vec![vec![1]]),

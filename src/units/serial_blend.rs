@@ -30,7 +30,7 @@ pub fn accumulate(cfg: &PipelineConfig, acc_in: &[i64], first: bool, f: i64, k: 
 
 /// `sat(c_in + round(acc))` per channel.
 pub fn finish(cfg: &PipelineConfig, c_in: &[i64], acc: &[i64]) -> [i64; 3] {
-    let shift = cfg.factor_frac() + cfg.k_bits;
+    let shift = cfg.factor_frac() + cfg.k_frac_bits;
     let max = cfg.colour_max() as i64;
     [0, 1, 2].map(|ch| (c_in[ch] + shift_round(acc[ch] as i128, shift, cfg.rounding) as i64).min(max))
 }
@@ -75,7 +75,7 @@ impl Unit for LightAccumulate {
         vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
-        let (ff, k, c) = (cfg.factor_frac(), cfg.k_bits, cfg.colour_bits);
+        let (ff, k, c) = (cfg.factor_frac(), cfg.k_frac_bits, cfg.colour_bits);
         let (tw, aw) = (cfg.term_fmt().width, cfg.acc_fmt().width);
         let mut w = VWriter::new();
         w.line("`timescale 1ns / 1ps");
@@ -124,7 +124,7 @@ impl Unit for LightAccumulate {
         ]
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_bits);
+        let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
         let big = ((cfg.lights as i64 - 1).max(0)) * one_f * one_k * m;
         let some = cfg.acc_fmt().max_raw() / 3;
         vec![
@@ -179,7 +179,7 @@ impl Unit for BlendFinish {
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let m = cfg.colour_max() as i64;
         let af = cfg.acc_fmt();
-        let half = 1i64 << (cfg.factor_frac() + cfg.k_bits - 1);
+        let half = 1i64 << (cfg.factor_frac() + cfg.k_frac_bits - 1);
         vec![
             ("largest sum on white: saturates".into(), vec![vec![m; 3], vec![af.max_raw(); 3]]),
             ("zero sum passes c_in".into(), vec![vec![0, m / 2, m], vec![0; 3]]),

@@ -91,7 +91,7 @@ pub fn chunk_rng(seed: u64, chunk: u64) -> SplitMix64 {
 /// whole of every format.
 pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     let cmax = cfg.colour_max() as i64;
-    let kone = 1i64 << cfg.k_bits;
+    let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
     let mut state = BumpState::default();
@@ -274,7 +274,7 @@ pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
         let o = one(cfg);
         let m = cfg.colour_max();
         for ix in [0u8, 255] {
-            let mut s = corner_stim(cfg, [0; 3], [0, 0, o], [0, 0, o], m, 1 << cfg.k_bits, m / 4, m);
+            let mut s = corner_stim(cfg, [0; 3], [0, 0, o], [0, 0, o], m, 1 << cfg.k_frac_bits, m / 4, m);
             s.frag.bump = BumpTexel::Index(ix);
             v.push((format!("palette index {ix}"), s));
         }
@@ -291,7 +291,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let cmax = cfg.colour_max();
     let half = 1u32 << (cfg.normal_bits - 1);
     let nmax = (1u32 << cfg.normal_bits) - 1;
-    let kone = 1i64 << cfg.k_bits;
+    let kone = 1i64 << cfg.k_frac_bits;
     let flat = [half, half, nmax];
     let lh = cfg.lh_fmt();
     // Colours below are written for 8-bit channels and scaled to the configured width.
@@ -393,7 +393,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let cmax = cfg.colour_max();
     let half = 1u32 << (cfg.normal_bits - 1);
     let nmax = (1u32 << cfg.normal_bits) - 1;
-    let kone = 1i64 << cfg.k_bits;
+    let kone = 1i64 << cfg.k_frac_bits;
     let lh = cfg.lh_fmt();
     let flat = [half, half, nmax];
     let sc = |x: u32| scale8(x, cmax);
