@@ -24,6 +24,8 @@ fn gbump(args: &[&str], work: &Path) -> (bool, String) {
 }
 
 fn rtl(config: Option<&str>, dir: &Path) {
+    // Another configuration's files left from an earlier run would make the folder ambiguous.
+    let _ = std::fs::remove_dir_all(dir);
     let mut cmd = Gbump::cargo_bin("gbump").unwrap();
     cmd.args(["rtl", "--out", dir.to_str().unwrap()]);
     if let Some(c) = config {
@@ -83,8 +85,6 @@ fn cosim_catches_mutants() {
     // Fixed folders, rewritten each run: the same bytes at the same path reuse the cached build.
     let d = w.clone();
     let mutant = d.join("mutant");
-    // Another configuration's files left from an earlier run would make the folder ambiguous.
-    let _ = std::fs::remove_dir_all(&mutant);
     rtl(None, &mutant);
     let f = std::fs::read_dir(&mutant)
         .unwrap()

@@ -248,6 +248,19 @@ impl Scene {
                 s.pipeline_lines.insert(k.clone(), line(v.span().start));
             }
         }
+        // A renamed configuration field under its old name: read as the new one, with a warning.
+        if let Some(over) = s.pipeline.as_mut() {
+            for &(old, new) in crate::config::RENAMED_FIELDS {
+                if let Some(v) = over.remove(old) {
+                    let at = s.pipeline_lines.remove(old).unwrap_or(0);
+                    eprintln!(
+                        "warning: {file}:{at}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)"
+                    );
+                    over.insert(new.to_string(), v);
+                    s.pipeline_lines.insert(new.to_string(), at);
+                }
+            }
+        }
         validate::validate(&s, text)?;
         Ok(s)
     }
