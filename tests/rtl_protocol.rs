@@ -121,15 +121,7 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
             holds.push(hold - 1);
         }
         for h in holds {
-            let bad = icarus_top(
-                &w,
-                &rtl,
-                &tb.replace(&tb_hold, &format!("localparam BANK_HOLD = {h};")),
-                &hex,
-                &[&table],
-                &w,
-            )
-            .unwrap();
+            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_hold, &format!("localparam BANK_HOLD = {h};")), &hex, &[&table], &w).unwrap();
             assert!(bad.failed > 0 && bad.log.contains("bank"), "icarus, bank hold {h}:\n{}", bad.log);
         }
         if cfg.light_mode == gbump::config::LightMode::Serial {

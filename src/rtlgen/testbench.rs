@@ -134,10 +134,7 @@ fn banks(cfg: &PipelineConfig) -> [(&'static str, String); 2] {
 
 /// The bit of a top record that marks a triangle's first fragment, when the top has setups.
 fn tri_start_bit(l: &Layout) -> Option<u32> {
-    l.columns
-        .iter()
-        .find(|c| c.name == crate::vectors::targets::TRI_START)
-        .map(|c| c.lsb)
+    l.columns.iter().find(|c| c.name == crate::vectors::targets::TRI_START).map(|c| c.lsb)
 }
 
 /// Units present in this configuration, in `UNITS` order.
@@ -266,28 +263,18 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
         ("II", cfg.initiation_interval().to_string()),
-        (
-            "TRI_START",
-            tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)")),
-        ),
+        ("TRI_START", tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)"))),
     ]);
     s.extend(banks(cfg));
     let tri = cfg.per_triangle();
     s.extend([
         ("TRI_VALID_0", if tri { "top.tri_valid = 0;" } else { "" }.to_string()),
         ("TRI_VALID_1", if tri { "top.tri_valid = 1;" } else { "" }.to_string()),
-        (
-            "TRI_ACCEPT",
-            if tri { "top.tri_valid && top.tri_ready" } else { "false" }.to_string(),
-        ),
+        ("TRI_ACCEPT", if tri { "top.tri_valid && top.tri_ready" } else { "false" }.to_string()),
         (
             "RAW_SETUP",
-            if tri {
-                "top.tri_valid = 1; top.clk = 0; top.eval(); while (!top.tri_ready) tick(); tick(); top.tri_valid = 0;"
-            } else {
-                ""
-            }
-            .to_string(),
+            if tri { "top.tri_valid = 1; top.clk = 0; top.eval(); while (!top.tri_ready) tick(); tick(); top.tri_valid = 0;" } else { "" }
+                .to_string(),
         ),
     ]);
     fill(HARNESS_TOP.to_string(), &s)

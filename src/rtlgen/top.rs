@@ -190,11 +190,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             ),
         ]);
     }
-    let (pre, kind) = if cfg.per_triangle() {
-        ("tri", PortKind::Triangle)
-    } else {
-        ("in", PortKind::Fragment)
-    };
+    let (pre, kind) = if cfg.per_triangle() { ("tri", PortKind::Triangle) } else { ("in", PortKind::Fragment) };
     v.extend([
         tp(
             &format!("{pre}_l"),
@@ -220,14 +216,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             3 * n,
             "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j",
         ),
-        tp(
-            &format!("{pre}_k"),
-            Dir::In,
-            kind,
-            cfg.k_fmt(),
-            n,
-            "light j at lane j: the light's weight k_j",
-        ),
+        tp(&format!("{pre}_k"), Dir::In, kind, cfg.k_fmt(), n, "light j at lane j: the light's weight k_j"),
     ]);
     v.extend([
         tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result"),
@@ -475,14 +464,8 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
         let f = &p.name[4..];
         s.m.raw(format!("reg [{}:0] bank_{f} [0:{}];", p.width() - 1, k - 1));
     }
-    let writes: Vec<String> = tri
-        .iter()
-        .map(|p| format!("        bank_{0}[tri_next] <= {1};", &p.name[4..], p.name))
-        .collect();
-    s.m.raw(format!(
-        "always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend",
-        writes.join("\n")
-    ));
+    let writes: Vec<String> = tri.iter().map(|p| format!("        bank_{0}[tri_next] <= {1};", &p.name[4..], p.name)).collect();
+    s.m.raw(format!("always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend", writes.join("\n")));
     s.m.raw(format!(
         "always @(posedge clk) begin\n    if (rst) tri_cur <= {bb}'d0;\n    else if (tri_accept) tri_cur <= tri_next;\nend"
     ));
@@ -504,9 +487,7 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
         let (v, t) = (s.at(valid, st), s.at(tag, st));
         busy.push(format!("({v} && {t} == tri_next)"));
     }
-    s.m.comment(format!(
-        "A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."
-    ));
+    s.m.comment(format!("A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."));
     let busy = if busy.is_empty() { "1'b0".to_string() } else { busy.join(" || ") };
     s.m.raw(format!("assign tri_ready = !rst && !({busy});"));
     last
@@ -575,12 +556,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             cfg,
             u,
             &format!("u_{}", u.name()),
-            &[
-                ("c_in", &format!("{{{c}}}")),
-                ("f", f),
-                ("k", &format!("{{{pre}_k}}")),
-                ("lc", &format!("{{{pre}_lc}}")),
-            ],
+            &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", &format!("{{{pre}_k}}")), ("lc", &format!("{{{pre}_lc}}"))],
             &[("c_out", name)],
             &[],
         );
@@ -627,10 +603,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_texel}", true);
     let k1 = cfg.k_bits + 1;
-    let (lc_tpl, k_tpl) = (
-        format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"),
-        format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"),
-    );
+    let (lc_tpl, k_tpl) = (format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"), format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"));
     if cfg.per_triangle() {
         // Read where the accumulators use them: only the slot index and the tag travel.
         s.late("lc_sel", c3, &lc_tpl);
