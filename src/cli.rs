@@ -115,6 +115,10 @@ pub enum Cmd {
         /// Run these vector manifests (JSON files or folders of them) instead of the default suite.
         #[arg(long, value_name = "PATH")]
         vectors: Vec<PathBuf>,
+        /// Stream random:N, scene:NAME or corners through the Verilator harness instead: made in
+        /// this process and piped, no vector file (N up to MAX_STREAM_VECTORS).
+        #[arg(long, value_name = "SOURCE", conflicts_with = "vectors")]
+        stream: Option<String>,
         /// Random top vectors on Verilator (0 skips the random sets).
         #[arg(long, default_value_t = 1_000_000)]
         random: u64,
@@ -427,6 +431,7 @@ pub fn run() -> anyhow::Result<()> {
             sim,
             pick,
             vectors,
+            stream,
             random,
             random_icarus,
             seed,
@@ -462,6 +467,25 @@ pub fn run() -> anyhow::Result<()> {
                 power_up: true,
             };
             let cfg = pick.resolve()?;
+            if let Some(src) = stream {
+                let src = crate::sim::stream::StreamSource::parse(&src)?;
+                if matches!(sim, SimChoice::Icarus) {
+                    return Err(Error::Other(
+                        "--stream runs on Verilator (its C++ harness reads the pipe)\n  fix: drop --sim icarus, or write the vectors with `gbump vectors` and run them with --vectors".into(),
+                    )
+                    .into());
+                }
+                crate::sim::stream::regress_stream(
+                    &cfg,
+                    &pick.args(),
+                    &src,
+                    &opts,
+                    junit.as_deref(),
+                    || lock_work(&opts.work),
+                    &mut say,
+                )?;
+                return Ok(());
+            }
             crate::sim::regress_cmd::regress(
                 &cfg,
                 &pick.args(),

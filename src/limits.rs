@@ -29,6 +29,9 @@ pub const RENDER_BYTES_PER_TRIANGLE: u64 = 1200;
 pub const MAX_SWEEP_POINTS: u64 = 4096;
 /// Random vectors of one set (`random:N`, `--random` of regress and fuzz); they stream to disk.
 pub const MAX_RANDOM_VECTORS: u64 = 1_000_000_000;
+/// Records of one streamed regression (`gbump regress --stream random:N`): nothing is held or
+/// written per record, so the bound is time (about a day at 10^5 records a second per core).
+pub const MAX_STREAM_VECTORS: u64 = 10_000_000_000;
 /// Random stimuli of `gbump error` (held in memory, about 600 bytes each).
 pub const MAX_ERROR_STIMULI: u64 = 2_000_000;
 /// Vectors of an exhaustive sweep (held in memory before writing).
@@ -89,6 +92,11 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "MAX_RANDOM_VECTORS",
         MAX_RANDOM_VECTORS,
         "random vectors of one set (`random:N`, `--random`)",
+    ),
+    (
+        "MAX_STREAM_VECTORS",
+        MAX_STREAM_VECTORS,
+        "records of one streamed regression (`regress --stream random:N`)",
     ),
     ("MAX_ERROR_STIMULI", MAX_ERROR_STIMULI, "random stimuli of `gbump error --random`"),
     (

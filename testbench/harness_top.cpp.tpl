@@ -10,7 +10,9 @@
 // (for rendering an image through the RTL); --no-check skips comparison (raw speed runs).
 // --raw CYCLES clocks the model that many cycles on the first record with no file I/O and
 // prints its evaluation rate (the upper bound of any regression).
-// Usage: harness --vectors FILE.bin [--table FILE.hex] [--bubbles N] [--stall N] [--dump FILE] [--max-errors N] [--raw CYCLES]
+// --vectors - --count N reads N records from standard input (a pipe from `gbump regress
+// --stream`): records are read in blocks into a ring, so memory stays constant for any N.
+// Usage: harness --vectors FILE.bin|- [--count N] [--table FILE.hex] [--bubbles N] [--stall N] [--dump FILE] [--max-errors N] [--raw CYCLES]
 #include "V{{TOP}}.h"
 #include "verilated.h"
 #include <chrono>
@@ -18,7 +20,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <algorithm>
+#include <cerrno>
+#include <fcntl.h>
 #include <fstream>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -48,6 +56,69 @@ static inline uint64_t get_bits(const uint8_t* rec, unsigned lsb, unsigned width
     return width >= 64 ? v : (v & ((1ull << width) - 1));
 }
 
+// The records of a file or a pipe, read in blocks into a ring as the loop asks for them. Why
+// not the whole file in memory: a stream has no end to load, and a file of millions of records
+// cost page faults and zeroing that the ring (a quarter of a megabyte, in cache) does not.
+struct Records {
+    int fd = -1;
+    const char* name = "";
+    size_t n = 0;       // records the run holds
+    size_t cap = 0;     // ring slots (a power of two)
+    size_t bytes = 0;   // bytes read so far
+    size_t loaded = 0;  // whole records read so far
+    std::vector<uint8_t> ring;
+
+    // Open `path` ("-": standard input, `count` records; a file: its size says how many).
+    bool open(const char* path, long long count) {
+        name = path;
+        if (!strcmp(path, "-")) {
+            fd = 0;
+            name = "standard input";
+            if (count <= 0) { fprintf(stderr, "FATAL: --vectors - needs --count N (N >= 1)\n"); return false; }
+            n = (size_t)count;
+        } else {
+            fd = ::open(path, O_RDONLY);
+            struct stat st;
+            if (fd < 0 || fstat(fd, &st) != 0) { fprintf(stderr, "FATAL: cannot open %s\n", path); return false; }
+            if (st.st_size <= 0 || st.st_size % (off_t)RECORD_BYTES != 0) { fprintf(stderr, "FATAL: %s: %lld bytes is not a whole number of %zu-byte records\n", path, (long long)st.st_size, RECORD_BYTES); return false; }
+            n = (size_t)st.st_size / RECORD_BYTES;
+            if (count > 0 && (size_t)count != n) { fprintf(stderr, "FATAL: %s holds %zu records, --count says %lld\n", path, n, count); return false; }
+        }
+        cap = 256;
+        while (cap * 2 * RECORD_BYTES <= (256u << 10)) cap *= 2;
+        // Padded so get_bits' 8-byte load never leaves the ring.
+        ring.assign(cap * RECORD_BYTES + 16, 0);
+        return true;
+    }
+    // Record i, read earlier (at most cap records behind the newest).
+    const uint8_t* at(size_t i) const { return ring.data() + (i & (cap - 1)) * RECORD_BYTES; }
+    // Record i (< n), reading ahead as far as the ring holds without overwriting record `oldest`,
+    // the oldest one still needed.
+    const uint8_t* next(size_t i, size_t oldest) {
+        while (loaded <= i) {
+            const size_t ring_bytes = cap * RECORD_BYTES, pos = bytes % ring_bytes;
+            const size_t end = std::min(n, oldest + cap) * RECORD_BYTES;
+            const size_t room = std::min(ring_bytes - pos, end - bytes);
+            const ssize_t got = read(fd, ring.data() + pos, room);
+            if (got < 0 && errno == EINTR) continue;
+            if (got <= 0) {
+                fprintf(stderr, "FATAL: %s ended after %zu of %zu records\n", name, loaded, n);
+                exit(2);
+            }
+            bytes += (size_t)got;
+            loaded = bytes / RECORD_BYTES;
+        }
+        return at(i);
+    }
+};
+
+// CPU seconds of this process: a speed figure that other programs on the machine do not skew.
+static double cpu_seconds() {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
 static bool read_table(const char* path, std::vector<uint32_t>& out) {
     std::ifstream f(path);
     if (!f) return false;
@@ -69,6 +140,7 @@ int main(int argc, char** argv) {
     long max_errors = 20;
     bool check = true;
     long long raw_cycles = 0;
+    long long count = 0;
     long bubbles = 0;
     long stall = 0;
     for (int i = 1; i < argc; ++i) {
@@ -80,21 +152,15 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--raw") && i + 1 < argc) raw_cycles = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--bubbles") && i + 1 < argc) bubbles = atol(argv[++i]);
         else if (!strcmp(argv[i], "--stall") && i + 1 < argc) stall = atol(argv[++i]);
+        else if (!strcmp(argv[i], "--count") && i + 1 < argc) count = atoll(argv[++i]);
         else { fprintf(stderr, "FATAL: unknown argument %s\n", argv[i]); return 2; }
     }
     if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
     std::vector<uint32_t> table;
     if (table_path && !read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, PT_N); return 2; }
-    FILE* vf = fopen(vec_path, "rb");
-    if (!vf) { fprintf(stderr, "FATAL: cannot open %s\n", vec_path); return 2; }
-    fseek(vf, 0, SEEK_END);
-    long size = ftell(vf);
-    fseek(vf, 0, SEEK_SET);
-    if (size <= 0 || size % (long)RECORD_BYTES != 0) { fprintf(stderr, "FATAL: %s: %ld bytes is not a whole number of %zu-byte records\n", vec_path, size, RECORD_BYTES); return 2; }
-    std::vector<uint8_t> data((size_t)size + 16, 0);
-    if (fread(data.data(), 1, (size_t)size, vf) != (size_t)size) { fprintf(stderr, "FATAL: short read of %s\n", vec_path); return 2; }
-    fclose(vf);
-    const size_t n = (size_t)size / RECORD_BYTES;
+    Records recs;
+    if (!recs.open(vec_path, count)) return 2;
+    const size_t n = recs.n;
     std::vector<uint64_t> dump;
     if (dump_path) dump.reserve(n);
 
@@ -112,15 +178,16 @@ int main(int argc, char** argv) {
     top.pt_we = 0;
 
     if (raw_cycles > 0) {
-        const uint8_t* rin = data.data();
+        const uint8_t* rin = recs.next(0, 0);
 {{ASSIGN}}
         // A per-triangle top loads the first record's triangle before the fragments.
         {{RAW_SETUP}}
         top.in_valid = 1;
         auto r0 = std::chrono::steady_clock::now();
+        const double c0 = cpu_seconds();
         for (long long c = 0; c < raw_cycles; ++c) tick();
         double rs = std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
-        printf("raw: %lld cycles in %.3f s, %.0f cycles/s, %.0f fragments/s\n", raw_cycles, rs, raw_cycles / rs, raw_cycles / rs / (double)II);
+        printf("raw: %lld cycles in %.3f s, %.0f cycles/s, %.0f fragments/s, %.3f s of CPU\n", raw_cycles, rs, raw_cycles / rs, raw_cycles / rs / (double)II, cpu_seconds() - c0);
         printf("1 passed, 0 failed\n");
         top.final();
         return 0;
@@ -143,15 +210,22 @@ int main(int argc, char** argv) {
             printf("MISMATCH unit gbump_pipeline timing: %s: %lld rising edges, the interface states %lld (vector %zu, edge %llu)\n", what, got, want, next_out, (unsigned long long)cycles);
     };
     auto t0 = std::chrono::steady_clock::now();
+    const double c0 = cpu_seconds();
+    // The record whose fields are on the inputs: a record offered for several edges (waiting
+    // for in_ready or tri_ready) is unpacked once.
+    size_t assigned = (size_t)-1;
     while (next_out < n && idle < LATENCY * 4 + 100 && failed < max_errors) {
-        const uint8_t* rin = data.data() + next_in * RECORD_BYTES;
+        const uint8_t* rin = next_in < n ? recs.next(next_in, next_out) : nullptr;
         if (bubbles > 0 && next_in < n && next_in % bubbles == (size_t)bubbles - 1 && gapped_for != next_in) {
             gap = 1 + (long)((next_in / bubbles) % 3);
             gapped_for = next_in;
         }
         bool setup = false;
         if (next_in < n && gap == 0) {
+          if (assigned != next_in) {
+            assigned = next_in;
 {{ASSIGN}}
+          }
             setup = {{TRI_START}} && setup_for != next_in;
             top.in_valid = !setup;
         } else {
@@ -189,7 +263,7 @@ int main(int argc, char** argv) {
         if (top.out_valid && cyc - acc_cyc[next_out % FLIGHT] < LATENCY) timing("latency: the result is offered early", cyc - acc_cyc[next_out % FLIGHT], LATENCY);
         else if (top.out_valid && out_ready) {
             idle = 0;
-            const uint8_t* rec = data.data() + next_out * RECORD_BYTES;
+            const uint8_t* rec = recs.at(next_out);
             uint64_t want = get_bits(rec, {{OUT_LSB}}, {{OUT_W}});
             uint64_t got = (uint64_t)top.out_c;
             if (dump_path) dump.push_back(got);
@@ -224,7 +298,7 @@ int main(int argc, char** argv) {
         fclose(df);
     }
     if (setups) printf("%llu triangle setups, %llu edges waited for tri_ready, %llu edges in all\n", setups, setup_waits, (unsigned long long)cycles);
-    fprintf(stderr, "%zu vectors, %llu cycles, %.3f s, %.0f vectors/s\n", n, (unsigned long long)cycles, secs, n / (secs > 0 ? secs : 1e-9));
+    fprintf(stderr, "%zu vectors, %llu cycles, %.3f s, %.0f vectors/s, %.3f s of CPU\n", n, (unsigned long long)cycles, secs, n / (secs > 0 ? secs : 1e-9), cpu_seconds() - c0);
     printf("%ld passed, %ld failed\n", passed, failed);
     top.final();
     return failed ? 1 : (passed ? 0 : 1);

@@ -1,7 +1,8 @@
 //! `gbump bench`: the speed side of the trade, measured in one run — golden-model fragments
 //! per second (1 and 4 lights, beside the f64 reference), vector-dump bandwidth, vectors per
 //! second under Icarus and under the Verilator C++ harness, and the raw evaluation rate of
-//! the same Verilated model with no I/O (the ceiling of any regression).
+//! the same Verilated model with no I/O (the ceiling of any regression), beside the C++
+//! harness reading a vector file and the streamed regression, as ratios measured in one run.
 
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -11,7 +12,7 @@ use crate::raster::Prepared;
 use crate::reference::perpixel;
 use crate::render::golden_image;
 use crate::scene::Scene;
-use crate::sim::{Icarus, Simulator, Testbench, Verilator};
+use crate::sim::{Icarus, Simulator, Testbench};
 use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
@@ -66,6 +67,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
     let mut s = format!("Speed on this machine ({} threads), config `{}` ({:?} lights x{}) for the simulators\n\n| measurement | figure | how |\n|---|---:|---|\n", rayon::current_num_threads(), cfg.hash(), cfg.light_mode, cfg.lights);
     let progress = crate::progress::Progress::new("bench", 5);
+    let mut harness_table = String::new();
     for lights in [1, 4] {
         progress.start(&format!("model and reference, {lights} light(s)"));
         let (g, r, n) = model_rate(lights, 1024);
@@ -87,7 +89,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let t = Instant::now();
     let sets = crate::vectors::dump(cfg, &crate::vectors::Source::Random(2_000_000), &all, &vdir, &o)?;
     let secs = t.elapsed().as_secs_f64();
-    let (m, dir) = crate::vectors::verify(&sets[0].manifest)?;
+    let (m, _) = crate::vectors::verify(&sets[0].manifest)?;
     let bytes = m.bin.as_ref().expect("bin").bytes as f64;
     s += &format!(
         "| vector dump (binary, top) | {:.0} MB/s | 2,000,000 records of {} bytes in {secs:.2} s |\n",
@@ -97,47 +99,18 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     progress.done("vector dump");
     progress.start("Verilator");
     let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
-    let table = dir.join(&m.power_table.name).display().to_string();
     if crate::tool::have("verilator") {
-        let exe = Verilator.build_harness(
-            &work.join("build"),
-            &crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
-            &crate::sim::testbench::harness_top(cfg),
-            &rtl,
-        )?;
-        let bin = dir.join(&m.bin.as_ref().expect("bin").name).display().to_string();
-        let out = Verilator.run(
-            &exe,
-            &["--vectors".into(), bin.clone(), "--table".into(), table.clone()],
-            None,
-            &work,
-            "harness",
-        )?;
-        s += &format!(
-            "| Verilator C++ harness | {:.2} M vectors/s | {} vectors checked in {:.2} s (file load included) |\n",
-            out.passed as f64 / out.seconds / 1e6,
-            out.passed,
-            out.seconds
-        );
-        let raw = Verilator.run(
-            &exe,
-            &[
-                "--vectors".into(),
-                bin,
-                "--table".into(),
-                table.clone(),
-                "--raw".into(),
-                "20000000".into(),
-            ],
-            None,
-            &work,
-            "raw",
-        )?;
-        let line = raw.log.lines().find(|l| l.starts_with("raw:")).unwrap_or("").to_string();
-        s += &format!(
-            "| Verilated model, no I/O | {} | `harness --raw 20000000` |\n",
-            line.trim_start_matches("raw: ")
-        );
+        let mut configs = vec![PipelineConfig::from_toml("one_light_parallel", super::report::ONE_LIGHT_PARALLEL)?];
+        if cfg.hash() != configs[0].hash() {
+            configs.push(cfg.clone());
+        }
+        s += &format!("| Verilator C++ harness and raw Verilated model | see below | {HARNESS_RECORDS} random records of each configuration below, best of {HARNESS_TRIES} |\n");
+        let mut t = String::from("\n| config | raw Verilated, M fragments/s | file harness, M vectors/s | streamed, M vectors/s | records made alone, M/s | edges per vector | file / raw | streamed / raw | file / raw per CPU second |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for c in &configs {
+            let h = harness_speed(c, &work.join(format!("harness_{}", &c.hash()[..8])))?;
+            t += &h.row(c);
+        }
+        harness_table = t + HARNESS_NOTE;
     } else {
         s += "| Verilator | not installed | scripts/install-tools.sh |\n";
     }
@@ -171,5 +144,183 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     }
     progress.done("Icarus");
     let _ = std::fs::remove_dir_all(&vdir);
-    Ok(s)
+    Ok(s + &harness_table)
+}
+
+/// Records of each harness measurement (random, seed 1).
+pub const HARNESS_RECORDS: u64 = 2_000_000;
+/// Runs of each harness measurement; the fastest counts (other programs share the machine).
+pub const HARNESS_TRIES: usize = 3;
+
+const HARNESS_NOTE: &str = "\nRaw: `harness --raw CYCLES` clocks the model on one record with no I/O and no checks (as many edges as the file run took). File: `harness --vectors FILE.bin --table T`, wall time of the whole process (start-up and reading included). Streamed: `gbump regress --stream random:N` without bubbles, wall time from starting the harness to its exit, the records made by the model on the other core as they are consumed; records made alone: the model evaluating and encoding the same records on every core into memory, nothing consuming them (the streamed rate's ceiling). A vector costs more than one edge where a triangle setup or a wait for `tri_ready` (the bank hold) comes first, so vectors per second fall short of raw fragments per second even with no harness at all; the last column compares edges per CPU second of the file harness and of the raw model, the harness's own overhead whatever else runs on the machine.\n";
+
+/// One configuration's harness figures.
+pub struct HarnessSpeed {
+    /// Raw: edges per second (wall) and per CPU second.
+    pub raw_edges: f64,
+    pub raw_edges_cpu: f64,
+    /// The file run: vectors per second (wall), edges it took, edges per CPU second.
+    pub file_vectors: f64,
+    pub file_edges: u64,
+    pub file_edges_cpu: f64,
+    /// The streamed run: vectors per second (wall).
+    pub stream_vectors: f64,
+    /// Records the model makes and encodes per second on every core with nothing consuming
+    /// them: the ceiling of a streamed run.
+    pub made: f64,
+}
+
+impl HarnessSpeed {
+    /// Raw fragments per second: one every initiation interval.
+    pub fn raw_fragments(&self, cfg: &PipelineConfig) -> f64 {
+        self.raw_edges / cfg.initiation_interval() as f64
+    }
+    pub fn file_ratio(&self, cfg: &PipelineConfig) -> f64 {
+        self.file_vectors / self.raw_fragments(cfg)
+    }
+    pub fn stream_ratio(&self, cfg: &PipelineConfig) -> f64 {
+        self.stream_vectors / self.raw_fragments(cfg)
+    }
+    pub fn file_cpu_ratio(&self) -> f64 {
+        self.file_edges_cpu / self.raw_edges_cpu
+    }
+
+    fn row(&self, cfg: &PipelineConfig) -> String {
+        format!(
+            "| `{}` ({:?} x{}) | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.0} % | {:.0} % | {:.0} % |\n",
+            &cfg.hash()[..8],
+            cfg.light_mode,
+            cfg.lights,
+            self.raw_fragments(cfg) / 1e6,
+            self.file_vectors / 1e6,
+            self.stream_vectors / 1e6,
+            self.made / 1e6,
+            self.file_edges as f64 / HARNESS_RECORDS as f64,
+            100.0 * self.file_ratio(cfg),
+            100.0 * self.stream_ratio(cfg),
+            100.0 * self.file_cpu_ratio()
+        )
+    }
+}
+
+/// The number after `before` and before `after` in the line of `log` that holds both.
+fn figure(log: &str, before: &str, after: &str) -> Result<f64> {
+    log.lines()
+        .find_map(|l| {
+            let i = l.find(after)?;
+            let head = l[..i].trim_end();
+            let num = head.rsplit(before).next()?.trim();
+            num.parse().ok()
+        })
+        .ok_or_else(|| Error::Other(format!("harness log without `{before}N{after}`:\n{}", crate::tool::tail(log, 10))))
+}
+
+/// Raw, file and streamed rates of `cfg`'s harness on the same `HARNESS_RECORDS` random
+/// records, each the best of `HARNESS_TRIES`, in `work` (vectors written, measured, removed).
+pub fn harness_speed(cfg: &PipelineConfig, work: &Path) -> Result<HarnessSpeed> {
+    use crate::sim::stream::{build, power_table, run_stream, streams, StreamRun, StreamSource};
+    use crate::sim::Verilator;
+    let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
+    let exe = build(cfg, work, &rtl)?;
+    let table = power_table(cfg, &work.join("table"), cfg.shininess, "gbump bench")?;
+    let vdir = work.join("vectors");
+    let _ = std::fs::remove_dir_all(&vdir);
+    let o = crate::vectors::DumpOptions {
+        text: false,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "gbump bench".into(),
+        shininess: None,
+    };
+    let sets = crate::vectors::dump(
+        cfg,
+        &crate::vectors::Source::Random(HARNESS_RECORDS),
+        &["top".to_string()],
+        &vdir,
+        &o,
+    )?;
+    let (m, dir) = crate::vectors::verify(&sets[0].manifest)?;
+    let bin = dir.join(&m.bin.as_ref().expect("bin").name).display().to_string();
+    let best = |v: Vec<f64>| v.into_iter().fold(0.0, f64::max);
+    let (mut file_v, mut file_cpu, mut file_edges) = (Vec::new(), Vec::new(), 0u64);
+    for _ in 0..HARNESS_TRIES {
+        let args = ["--vectors".into(), bin.clone(), "--table".into(), table.display().to_string()];
+        let out = Verilator.run(&exe, &args, None, work, "harness")?;
+        if out.passed != HARNESS_RECORDS {
+            return Err(Error::Other(format!(
+                "bench: the harness passed {} of {HARNESS_RECORDS} vectors:\n{}",
+                out.passed,
+                crate::tool::tail(&out.log, 20)
+            )));
+        }
+        file_edges = figure(&out.log, "vectors,", " cycles")? as u64;
+        file_v.push(out.passed as f64 / out.seconds);
+        file_cpu.push(file_edges as f64 / figure(&out.log, ",", " s of CPU")?);
+    }
+    let (mut raw, mut raw_cpu) = (Vec::new(), Vec::new());
+    for _ in 0..HARNESS_TRIES {
+        let args = ["--vectors".into(), bin.clone(), "--raw".into(), file_edges.to_string()];
+        let out = Verilator.run(&exe, &args, None, work, "raw")?;
+        raw.push(figure(&out.log, "s,", " cycles/s")?);
+        raw_cpu.push(file_edges as f64 / figure(&out.log, "fragments/s,", " s of CPU")?);
+    }
+    let _ = std::fs::remove_dir_all(&vdir);
+    let s = &streams(cfg, &StreamSource::Random(HARNESS_RECORDS), 1, None)?[0];
+    let run = StreamRun {
+        exe: &exe,
+        table: &table,
+        cwd: work,
+        max_errors: 20,
+        bubbles: 0,
+        stall: 0,
+        progress: false,
+    };
+    let mut made = Vec::new();
+    for _ in 0..HARNESS_TRIES {
+        let contents = crate::units::MemoryContents::new(cfg, cfg.shininess);
+        let mem = &contents.view();
+        let t = Instant::now();
+        let bytes: usize = (0..HARNESS_RECORDS.div_ceil(crate::vectors::sources::RANDOM_CHUNK))
+            .into_par_iter()
+            .map(|c| s.chunk_bytes(cfg, mem, c).len())
+            .sum();
+        std::hint::black_box(bytes);
+        made.push(HARNESS_RECORDS as f64 / t.elapsed().as_secs_f64());
+    }
+    let mut stream_v = Vec::new();
+    for _ in 0..HARNESS_TRIES {
+        let out = run_stream(cfg, s, &run)?;
+        if out.passed != HARNESS_RECORDS {
+            return Err(Error::Other(format!(
+                "bench: the streamed run passed {} of {HARNESS_RECORDS} vectors:\n{}",
+                out.passed,
+                crate::tool::tail(&out.log, 20)
+            )));
+        }
+        stream_v.push(out.passed as f64 / out.seconds);
+    }
+    Ok(HarnessSpeed {
+        raw_edges: best(raw),
+        raw_edges_cpu: best(raw_cpu),
+        file_vectors: best(file_v),
+        file_edges,
+        file_edges_cpu: best(file_cpu),
+        stream_vectors: best(stream_v),
+        made: best(made),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn harness_figures_are_read_from_its_lines() {
+        let raw = "raw: 2355129 cycles in 0.420 s, 5610909 cycles/s, 5610909 fragments/s, 0.130 s of CPU\n1 passed, 0 failed\n";
+        assert_eq!(super::figure(raw, "s,", " cycles/s").unwrap(), 5610909.0);
+        assert_eq!(super::figure(raw, "fragments/s,", " s of CPU").unwrap(), 0.130);
+        let file = "2000000 passed, 0 failed\n2000000 vectors, 2355129 cycles, 0.5 s, 4000000 vectors/s, 0.210 s of CPU\n";
+        assert_eq!(super::figure(file, "vectors,", " cycles").unwrap(), 2355129.0);
+        assert_eq!(super::figure(file, ",", " s of CPU").unwrap(), 0.210);
+        assert!(super::figure("nothing", ",", " s of CPU").is_err());
+    }
 }

@@ -11,6 +11,7 @@ pub mod regress_cmd;
 pub mod rtl_files;
 pub mod rtl_image;
 pub mod simulator;
+pub mod stream;
 pub mod summary;
 pub mod verdict;
 pub mod verilator;

@@ -58,6 +58,10 @@ impl Verilator {
             "fast",
             "--top-module",
             top,
+            // Verilator's makefile compiles at -Os; -O2 made the Verilated one-light top 1.8x
+            // faster (raw cycles per CPU second) for 12 % more build time.
+            "-MAKEFLAGS",
+            "OPT_FAST=-O2 OPT_GLOBAL=-O2",
         ]);
         flags.push(format!(
             "-GINIT_FILE={}",

@@ -39,11 +39,7 @@ pub fn top_layout(cfg: &PipelineConfig) -> Layout {
             l.push(TRI_START, Role::Stimulus, 1, 1, "u1.0".into());
         }
         for p in port_list(cfg).into_iter().filter(|p| p.kind == kind) {
-            let role = if kind == PortKind::Result {
-                Role::Expected
-            } else {
-                Role::Stimulus
-            };
+            let role = if kind == PortKind::Result { Role::Expected } else { Role::Stimulus };
             l.push(&p.name, role, p.fmt.width, p.lanes, p.fmt.name());
         }
     }
@@ -104,46 +100,146 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
 
 /// Fill a top record.
 pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -> Record {
-    let mut r = Record::new(l);
-    let n = cfg.lights as usize;
-    let TopColumns { texel: c_texel, c_src, t: c_t, de: c_de, se: c_se, start, l: c_l, h: c_h, lc: c_lc, k: c_k, out: c_out } =
-        TopColumns::of(cfg, l);
-    if let Some(c) = start {
-        r.set_lane(c, 0, s.tri_start as i64);
+    TopEncoder::new(cfg, l).record(s, out)
+}
+
+/// Fills the top records of one layout with its columns looked up once: looking them up by
+/// name, and dividing out each lane's width, for every record cost more than the model's
+/// evaluation of it.
+pub struct TopEncoder<'a> {
+    cfg: &'a PipelineConfig,
+    layout: &'a Layout,
+    texel: Lanes<'a>,
+    c_src: Lanes<'a>,
+    t: Lanes<'a>,
+    de: Lanes<'a>,
+    se: Lanes<'a>,
+    start: Option<Lanes<'a>>,
+    l: Lanes<'a>,
+    h: Lanes<'a>,
+    lc: Lanes<'a>,
+    k: Lanes<'a>,
+    out: Lanes<'a>,
+}
+
+/// A column's lanes: where lane 0 starts, their width and the values that fit them.
+#[derive(Clone, Copy)]
+struct Lanes<'a> {
+    col: &'a Column,
+    lsb: u32,
+    width: u32,
+    lo: i64,
+    hi: i64,
+}
+
+impl<'a> Lanes<'a> {
+    fn of(col: &'a Column) -> Lanes<'a> {
+        let width = col.width / col.lanes;
+        let (lo, hi) = if width >= 63 {
+            (i64::MIN, i64::MAX)
+        } else {
+            (-(1i64 << (width - 1)), (1i64 << width) - 1)
+        };
+        Lanes {
+            col,
+            lsb: col.lsb,
+            width,
+            lo,
+            hi,
+        }
     }
-    match s.frag.bump {
-        BumpTexel::Rgb(texel) => {
-            for (i, &tx) in texel.iter().enumerate() {
-                r.set_lane(c_texel, i as u32, tx as i64);
+
+    /// `Record::set_lane`, with the same refusal of a value that does not fit.
+    #[inline]
+    fn set(&self, r: &mut Record, i: u32, v: i64) {
+        assert!(
+            v >= self.lo && v <= self.hi,
+            "value {v} does not fit {}-bit lane {i} of column {}",
+            self.width,
+            self.col.name
+        );
+        r.set(self.lsb + i * self.width, self.width, v as u64);
+    }
+}
+
+impl<'a> TopEncoder<'a> {
+    pub fn new(cfg: &'a PipelineConfig, layout: &'a Layout) -> TopEncoder<'a> {
+        let c = TopColumns::of(cfg, layout);
+        TopEncoder {
+            cfg,
+            layout,
+            texel: Lanes::of(c.texel),
+            c_src: Lanes::of(c.c_src),
+            t: Lanes::of(c.t),
+            de: Lanes::of(c.de),
+            se: Lanes::of(c.se),
+            start: c.start.map(Lanes::of),
+            l: Lanes::of(c.l),
+            h: Lanes::of(c.h),
+            lc: Lanes::of(c.lc),
+            k: Lanes::of(c.k),
+            out: Lanes::of(c.out),
+        }
+    }
+
+    /// The record of stimulus `s` with the model's result `out`.
+    pub fn record(&self, s: &TopStim, out: &Shaded) -> Record {
+        let mut r = Record::new(self.layout);
+        self.fill(s, out, &mut r);
+        r
+    }
+
+    /// [`record`](Self::record) into `r`, a record of this layout, which it clears first.
+    pub fn fill(&self, s: &TopStim, out: &Shaded, r: &mut Record) {
+        r.words.fill(0);
+        if let Some(c) = &self.start {
+            c.set(r, 0, s.tri_start as i64);
+        }
+        match s.frag.bump {
+            BumpTexel::Rgb(texel) => {
+                for (i, &tx) in texel.iter().enumerate() {
+                    self.texel.set(r, i as u32, tx as i64);
+                }
             }
+            BumpTexel::Index(ix) => self.texel.set(r, 0, ix as i64),
         }
-        BumpTexel::Index(ix) => r.set_lane(c_texel, 0, ix as i64),
-    }
-    for i in 0..3 {
-        r.set_lane(c_src, i as u32, s.frag.c_src[i] as i64);
-        r.set_lane(c_t, i as u32, s.frag.texel[i] as i64);
-        r.set_lane(c_out, i as u32, out.colour()[i] as i64);
-    }
-    r.set_lane(c_de, 0, s.frag.diffuse_en as i64);
-    r.set_lane(c_se, 0, s.frag.specular_en as i64);
-    for j in 0..n {
-        let ls = &s.state.lights[j];
+        let colour = out.colour();
         for i in 0..3 {
-            let lane = (3 * j + i) as u32;
-            r.set_lane(c_l, lane, ls.l[i]);
-            r.set_lane(c_h, lane, ls.h[i]);
-            r.set_lane(c_lc, lane, ls.colour[i] as i64);
+            self.c_src.set(r, i as u32, s.frag.c_src[i] as i64);
+            self.t.set(r, i as u32, s.frag.texel[i] as i64);
+            self.out.set(r, i as u32, colour[i] as i64);
         }
-        r.set_lane(c_k, j as u32, ls.k);
+        self.de.set(r, 0, s.frag.diffuse_en as i64);
+        self.se.set(r, 0, s.frag.specular_en as i64);
+        for j in 0..self.cfg.lights as usize {
+            let ls = &s.state.lights[j];
+            for i in 0..3 {
+                let lane = (3 * j + i) as u32;
+                self.l.set(r, lane, ls.l[i]);
+                self.h.set(r, lane, ls.h[i]);
+                self.lc.set(r, lane, ls.colour[i] as i64);
+            }
+            self.k.set(r, j as u32, ls.k);
+        }
     }
-    r
 }
 
 /// Read a top record's stimulus back (the inverse of [`top_record`]; the expected columns are
 /// ignored), so a record from any source can be evaluated by the model.
 pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
-    let TopColumns { texel: c_texel, c_src, t: c_t, de: c_de, se: c_se, start, l: c_l, h: c_h, lc: c_lc, k: c_k, .. } =
-        TopColumns::of(cfg, l);
+    let TopColumns {
+        texel: c_texel,
+        c_src,
+        t: c_t,
+        de: c_de,
+        se: c_se,
+        start,
+        l: c_l,
+        h: c_h,
+        lc: c_lc,
+        k: c_k,
+        ..
+    } = TopColumns::of(cfg, l);
     let lane3 = |c, base: u32| [0, 1, 2].map(|i| r.lane_value(c, base + i));
     let code3 = |c| lane3(c, 0).map(|v| v as u32);
     let mut state = BumpState::default();

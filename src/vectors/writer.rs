@@ -5,7 +5,7 @@
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
 use super::sources::{corners, exhaustive, exhaustive_count, random_chunk, Source, RANDOM_CHUNK};
-use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
+use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopEncoder, TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::units::{Memories, MemoryContents};
@@ -329,8 +329,9 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                             let stims = random_chunk(cfg, o.seed, c, *n);
                             let len = stims.len() as u64;
                             let (mut hex, mut bin) = (String::new(), Vec::new());
+                            let enc = TopEncoder::new(cfg, &tl);
                             for s in &stims {
-                                let r = top_record(cfg, &tl, s, &eval_top(cfg, mem, s));
+                                let r = enc.record(s, &eval_top(cfg, mem, s));
                                 if o.text {
                                     hex.push_str(&r.hex(tl.hex_digits()));
                                     hex.push('\n');

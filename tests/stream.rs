@@ -1,0 +1,163 @@
+//! Streamed regressions (`gbump regress --stream`): records made in-process and piped into the
+//! Verilator C++ harness pass on the default configuration, are byte for byte the records
+//! `gbump vectors` writes, give a mutant RTL the same verdict and mismatch lines as the file
+//! run of the same seed with the seed and record to replay, and bad requests are refused
+//! before anything is built. The work folders are those of `tests/rtl_sim.rs`, so the
+//! harness builds are shared (cached by their inputs).
+
+use assert_cmd::Command;
+use gbump::sim::stream::{build, first_failing_record, run_stream, streams, StreamRun, StreamSource};
+use gbump::sim::{Simulator, Verilator};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn gbump(args: &[&str]) -> (bool, String) {
+    let out = Command::cargo_bin("gbump")
+        .unwrap()
+        .current_dir(root())
+        .args(args)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.success(), log)
+}
+
+#[test]
+fn a_streamed_random_regression_passes_on_the_default_config() {
+    let (ok, log) = gbump(&[
+        "regress",
+        "--stream",
+        "random:20000",
+        "--seed",
+        "3",
+        "--work",
+        "target/test-regress/default",
+    ]);
+    assert!(ok, "{log}");
+    let line = log
+        .lines()
+        .find(|l| l.starts_with("verilator") && l.contains("stream_random20000_top"))
+        .expect(&log);
+    let f: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!((f[2], f[3]), ("20000", "0"), "{line}");
+    assert!(log.contains("1 runs, 20000 vectors, 0 failing run(s)"), "{log}");
+}
+
+#[test]
+fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record() {
+    // The mutant of tests/rtl_sim.rs (texture modulation's rounding constant one off), in its
+    // folder: the same bytes reuse its harness build.
+    let cfg = gbump::PipelineConfig::default();
+    let work = std::path::absolute(root().join("target/test-regress/mutant")).unwrap();
+    let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
+    let tm = rtl
+        .sources
+        .iter()
+        .find(|p| p.to_string_lossy().contains("texture_modulate"))
+        .unwrap();
+    let text = std::fs::read_to_string(tm).unwrap();
+    assert!(text.contains("+ 17'd128;"), "the constant to change is gone; pick another");
+    std::fs::write(tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
+    let exe = build(&cfg, &work, &rtl).unwrap();
+
+    let seed = 11;
+    let o = gbump::vectors::DumpOptions {
+        text: false,
+        binary: true,
+        seed,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let vdir = work.join("stream_vectors");
+    let set = &gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vdir, &o).unwrap()[0];
+    let (m, dir) = gbump::vectors::verify(&set.manifest).unwrap();
+    let bin = dir.join(&m.bin.as_ref().unwrap().name);
+    let table = dir.join(&m.power_table.name);
+
+    // The stream's records are the file's, byte for byte.
+    let s = &streams(&cfg, &StreamSource::Random(20_000), seed, None).unwrap()[0];
+    let contents = gbump::units::MemoryContents::new(&cfg, cfg.shininess);
+    let streamed: Vec<u8> = (0..2).flat_map(|c| s.chunk_bytes(&cfg, &contents.view(), c)).collect();
+    assert!(streamed == std::fs::read(&bin).unwrap(), "streamed records differ from the file's");
+
+    let args: Vec<String> = [
+        "--vectors",
+        bin.to_str().unwrap(),
+        "--table",
+        table.to_str().unwrap(),
+        "--max-errors",
+        "5",
+    ]
+    .iter()
+    .map(|a| a.to_string())
+    .collect();
+    let file = Verilator.run(&exe, &args, None, &work, "file").unwrap();
+    let run = StreamRun {
+        exe: &exe,
+        table: &table,
+        cwd: &work,
+        max_errors: 5,
+        bubbles: 0,
+        stall: 0,
+        progress: false,
+    };
+    let streamed = run_stream(&cfg, s, &run).unwrap();
+    assert!(file.failed >= 5 && file.log.contains("stopping after 5 mismatches"), "{}", file.log);
+    assert_eq!((streamed.passed, streamed.failed), (file.passed, file.failed));
+    let mismatches = |log: &str| {
+        log.lines()
+            .filter(|l| l.starts_with("MISMATCH") || l.starts_with("  "))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(mismatches(&streamed.log), mismatches(&file.log));
+
+    let k = first_failing_record(&streamed.log).expect("a failing record");
+    let hint = s.replay("", Some(k));
+    assert!(
+        hint.contains(&format!("seed {seed}, record {k}")) && hint.contains(&format!("--source random:20000 --seed {seed}")),
+        "{hint}"
+    );
+    assert!(hint.contains("gbump regress --sim verilator"), "{hint}");
+}
+
+/// Every refusal comes before the work folder is made (so before any build), says how to fix
+/// it, and exits non-zero.
+#[test]
+fn bad_stream_requests_are_refused_before_anything_is_built() {
+    let work = root().join("target/test-stream/refused");
+    let _ = std::fs::remove_dir_all(&work);
+    let w = work.to_str().unwrap();
+    let max = gbump::limits::MAX_STREAM_VECTORS;
+    let too_many = format!("random:{}", max + 1);
+    for (args, want) in [
+        (vec!["--stream", "random:0"], "MAX_STREAM_VECTORS"),
+        (vec!["--stream", &too_many], "MAX_STREAM_VECTORS"),
+        (vec!["--stream", "randm:5"], "not a stream source"),
+        (vec!["--stream", "exhaustive:dot_clamp"], "not a stream source"),
+        (vec!["--stream", "scene:no_such_scene"], "no_such_scene"),
+        (vec!["--stream", "random:5", "--sim", "icarus"], "runs on Verilator"),
+        (vec!["--stream", "random:5", "--vectors", "x.json"], "cannot be used with"),
+    ] {
+        let mut a = vec!["regress", "--work", w];
+        a.extend(args.iter().copied());
+        let (ok, log) = gbump(&a);
+        assert!(!ok && log.contains(want), "{a:?}:\n{log}");
+        assert!(log.contains("fix:") || log.contains("Usage"), "{a:?}: no fix:\n{log}");
+        assert!(!Path::new(&work).exists(), "{a:?} made the work folder");
+    }
+    let empty = tempfile::tempdir().unwrap();
+    let out = Command::cargo_bin("gbump")
+        .unwrap()
+        .env("PATH", empty.path())
+        .args(["regress", "--stream", "random:5", "--work", w])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("verilator is not installed"), "{err}");
+    assert!(!Path::new(&work).exists());
+}
