@@ -70,15 +70,5 @@ pub fn regress(
     if let Some(j) = junit {
         crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
     }
-    say(&format!(
-        "regress config {}: {} runs, {} vectors, {} failing run(s)",
-        cfg.hash(),
-        t.runs,
-        t.vectors,
-        t.failing
-    ))?;
-    if t.failing > 0 {
-        return Err(Error::Other(format!("{} regression run(s) failed", t.failing)));
-    }
-    Ok(())
+    super::summary::verdict(cfg, "", &t, say)
 }

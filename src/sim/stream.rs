@@ -380,17 +380,7 @@ pub fn regress_stream(
     for r in &replays {
         say(r)?;
     }
-    say(&format!(
-        "regress config {} (streamed): {} runs, {} vectors, {} failing run(s)",
-        cfg.hash(),
-        t.runs,
-        t.vectors,
-        t.failing
-    ))?;
-    if t.failing > 0 {
-        return Err(Error::Other(format!("{} regression run(s) failed", t.failing)));
-    }
-    Ok(())
+    super::summary::verdict(cfg, " (streamed)", &t, say)
 }
 
 /// The harness of `cfg`'s top, cached under `work/build`.

@@ -52,6 +52,22 @@ pub fn table(results: &[RunResult], say: &mut dyn FnMut(&str) -> Result<()>) -> 
 }
 
 /// JUnit XML of a regression.
+/// The closing line of a regression (`kind`: "" or " (streamed)"), and its verdict: an error
+/// when any run failed.
+pub fn verdict(cfg: &PipelineConfig, kind: &str, t: &Totals, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
+    say(&format!(
+        "regress config {}{kind}: {} runs, {} vectors, {} failing run(s)",
+        cfg.hash(),
+        t.runs,
+        t.vectors,
+        t.failing
+    ))?;
+    if t.failing > 0 {
+        return Err(crate::error::Error::Other(format!("{} regression run(s) failed", t.failing)));
+    }
+    Ok(())
+}
+
 pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
     let esc = |s: &str| {
         s.replace('&', "&amp;")
