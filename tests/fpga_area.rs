@@ -50,13 +50,7 @@ fn ice40_places_and_routes_the_one_light_top_and_a_too_small_device_is_a_result(
     // The power table (one RAM copy for one read port), the triangle banks and the output
     // buffer: every Verilog memory of the top, each counted once.
     let cfg = gbump::PipelineConfig::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(CONFIG)).unwrap();
-    let tri: u32 = gbump::rtlgen::top::port_list(&cfg)
-        .iter()
-        .filter(|p| p.kind == gbump::rtlgen::top::PortKind::Triangle)
-        .map(|p| p.width())
-        .sum();
-    let buffer = gbump::rtlgen::top::output_depth(&cfg).unwrap_or(0) * 3 * cfg.colour_bits;
-    let want = cfg.power_depth() * (cfg.power_frac_bits + 1) + cfg.triangle_banks * tri + buffer;
+    let want = cfg.power_depth() * (cfg.power_frac_bits + 1) + gbump::rtlgen::top::array_bits(&cfg);
     assert_eq!(n(top, "memory_bits"), want as u64, "{top}");
     let pr = &r["place_route"];
     assert_eq!(pr["fits"], true, "{pr}");

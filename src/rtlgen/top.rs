@@ -269,6 +269,18 @@ pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
         .then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
 }
 
+/// Bits of the top's own register arrays, which Yosys counts as memories beside the units'
+/// RAMs: the triangle banks and the output buffer.
+pub fn array_bits(cfg: &PipelineConfig) -> u32 {
+    let banks = if cfg.per_triangle() {
+        let tri: u32 = port_list(cfg).iter().filter(|p| p.kind == PortKind::Triangle).map(|p| p.width()).sum();
+        cfg.triangle_banks * tri
+    } else {
+        0
+    };
+    banks + output_depth(cfg).unwrap_or(0) * 3 * cfg.colour_bits
+}
+
 /// The whole top module.
 pub fn top(cfg: &PipelineConfig) -> String {
     build(cfg).text
