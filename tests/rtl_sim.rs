@@ -355,8 +355,9 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
     let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
+    // `valid ? colour : 0`, where the colour may itself be a conditional (the output buffer).
     let (_, rhs) = gated.split_once(" ? ").unwrap();
-    let ungated = format!("assign out_c = {};", rhs.split(" : ").next().unwrap());
+    let ungated = format!("assign out_c = {};", rhs.rsplit_once(" : ").unwrap().0);
     let mutant_dir = work.join("mutant");
     let rtl2 = write_rtl(&cfg, &mutant_dir, "x").unwrap();
     let top2 = rtl2
