@@ -167,10 +167,20 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
         24,
         "s1.(w-2): at least 2 fraction bits; 24 keeps dot sums within 62 bits",
     ),
-    ("dot_frac_bits", 2, 16, "fd index bits; more than 16 cannot address a practical table"),
+    (
+        "dot_frac_bits",
+        2,
+        16,
+        "fd index bits; more than 16 cannot address a practical table",
+    ),
     ("power_entries", 2, 65536, "a power of two; at most 2^dot_frac_bits + 1 useful"),
     ("power_frac_bits", 2, 16, "entry fraction bits"),
-    ("power_segments", 2, 15, "segments of a segmented power unit; fewer than dot_frac_bits"),
+    (
+        "power_segments",
+        2,
+        15,
+        "segments of a segmented power unit; fewer than dot_frac_bits",
+    ),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
     ("k_frac_bits", 1, 12, "modulation fraction bits"),
@@ -295,7 +305,10 @@ impl PipelineConfig {
             return Err(Error::field(
                 file,
                 "power_segments",
-                format!("{} segments need more than {} dot-product bits", self.power_segments, self.dot_frac_bits),
+                format!(
+                    "{} segments need more than {} dot-product bits",
+                    self.power_segments, self.dot_frac_bits
+                ),
                 "use fewer segments or a wider dot_frac_bits",
             ));
         }
@@ -492,7 +505,9 @@ mod tests {
         assert_eq!(old, new);
         assert_eq!((new.dot_frac_bits, new.power_frac_bits, new.k_frac_bits), (10, 9, 7));
         // Lines are kept, so an error after a renamed key still names its own line.
-        let e = PipelineConfig::from_toml("o.toml", "dot_bits = 10\nlights = \"x\"\n").unwrap_err().to_string();
+        let e = PipelineConfig::from_toml("o.toml", "dot_bits = 10\nlights = \"x\"\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("o.toml:2:"), "{e}");
     }
 

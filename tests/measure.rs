@@ -36,7 +36,8 @@ fn area_reports_every_unit_with_yosys_figures() {
     // are in the RAM's bits, not in the flip-flops or the GE.
     assert_eq!(get("power_table")["flip_flops"], 0, "the table's words are not flip-flops");
     // One RAM copy for one read port, and the top's own arrays (triangle banks, output buffer).
-    let cfg = gbump::PipelineConfig::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/one_light_parallel.toml")).unwrap();
+    let cfg = gbump::PipelineConfig::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/one_light_parallel.toml"))
+        .unwrap();
     assert_eq!(get("gbump_pipeline")["memory_bits"], 256 * 9 + gbump::rtlgen::top::array_bits(&cfg));
     assert!(get("gbump_pipeline")["flip_flops"].as_u64().unwrap() < 256 * 9);
     assert!(get("dot_clamp")["logic_depth"].as_u64().unwrap() > 10);

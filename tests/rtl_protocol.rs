@@ -121,7 +121,15 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
             holds.push(hold - 1);
         }
         for h in holds {
-            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_hold, &format!("localparam BANK_HOLD = {h};")), &hex, &[&table], &w).unwrap();
+            let bad = icarus_top(
+                &w,
+                &rtl,
+                &tb.replace(&tb_hold, &format!("localparam BANK_HOLD = {h};")),
+                &hex,
+                &[&table],
+                &w,
+            )
+            .unwrap();
             assert!(bad.failed > 0 && bad.log.contains("bank"), "icarus, bank hold {h}:\n{}", bad.log);
         }
         if cfg.light_mode == gbump::config::LightMode::Serial {
@@ -142,8 +150,20 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
         assert!(ok.failed == 0 && ok.passed > 0, "stalled harness:\n{}", ok.log);
         // out_ready high one edge in six: the buffer fills even behind a serial top.
         for dd in [d - 1, d + 1] {
-            let bad = icarus_top(&w, &rtl, &tb.replace(&tb_d, &format!("localparam OUT_DEPTH = {dd};")), &hex, &[&table, "+stall=2"], &w).unwrap();
-            assert!(bad.failed > 0 && (bad.log.contains("output buffer") || bad.log.contains("in_ready low")), "icarus, output depth {dd}:\n{}", bad.log);
+            let bad = icarus_top(
+                &w,
+                &rtl,
+                &tb.replace(&tb_d, &format!("localparam OUT_DEPTH = {dd};")),
+                &hex,
+                &[&table, "+stall=2"],
+                &w,
+            )
+            .unwrap();
+            assert!(
+                bad.failed > 0 && (bad.log.contains("output buffer") || bad.log.contains("in_ready low")),
+                "icarus, output depth {dd}:\n{}",
+                bad.log
+            );
         }
     }
     // Verilator builds are slower: one latency and one interval mutant.

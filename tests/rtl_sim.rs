@@ -465,12 +465,25 @@ fn the_per_fragment_top_and_a_three_bank_top_match_the_model() {
         ("tests/configs/three_banks_serial.toml", "three_banks"),
     ] {
         let t = regress(
-            &["--sim", "both", "--config", cfg, "--random", "50000", "--random-icarus", "3000", "--no-scenes"],
+            &[
+                "--sim",
+                "both",
+                "--config",
+                cfg,
+                "--random",
+                "50000",
+                "--random-icarus",
+                "3000",
+                "--no-scenes",
+            ],
             work,
         );
         let r = runs(&t);
         assert!(
-            r.iter().filter(|x| x.1.starts_with("random") && x.1.ends_with("_top") && x.3 == 0 && x.2 > 0).count() == 2,
+            r.iter()
+                .filter(|x| x.1.starts_with("random") && x.1.ends_with("_top") && x.3 == 0 && x.2 > 0)
+                .count()
+                == 2,
             "the random top set on both simulators:\n{t}"
         );
     }

@@ -155,7 +155,15 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         ("ASSIGN", get("ASSIGN", "\n")),
         ("PACK", get("PACK", "\n")),
         ("TRI_CAPTURE", get("TRI_CAPTURE", "\n")),
-        ("TRI_DECLS", if setup { "    logic tri_valid = 1'b0;\n    wire tri_ready;" } else { "    logic tri_valid = 1'b0;\n    wire tri_ready = 1'b1;" }.into()),
+        (
+            "TRI_DECLS",
+            if setup {
+                "    logic tri_valid = 1'b0;\n    wire tri_ready;"
+            } else {
+                "    logic tri_valid = 1'b0;\n    wire tri_ready = 1'b1;"
+            }
+            .into(),
+        ),
         ("TRI_START", if setup { "stim[lsb_tri_start]" } else { "1'b0" }.into()),
         ("OUT_XCHECK", get("OUT_XCHECK", "")),
         ("OUT_EQUAL", get("OUT_EQUAL", " && ")),

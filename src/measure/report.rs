@@ -110,7 +110,13 @@ pub fn report(
         work,
     )?;
     md += "\n### 12-bit dot product\n\n";
-    md += &power_section(PowerFormats { f: 12, p: cfg.power_frac_bits }, work)?;
+    md += &power_section(
+        PowerFormats {
+            f: 12,
+            p: cfg.power_frac_bits,
+        },
+        work,
+    )?;
     md += "\n## FPGA resources and Fmax\n\n";
     md += &fpga_section(&work.join("fpga"))?;
     md += "\n## Timing as a parameter: area and Fmax per pipeline_depth\n\n";

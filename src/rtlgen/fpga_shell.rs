@@ -146,7 +146,11 @@ mod tests {
         }
         // The last input ends at the top of the chain, the last output at the top of core_out.
         let (name, _, w) = top_ports(&cfg).into_iter().rfind(|p| p.1 == "input").unwrap();
-        let slice = if w == 1 { format!("chain[{}]", win - 1) } else { format!("chain[{}:{}]", win - 1, win - w) };
+        let slice = if w == 1 {
+            format!("chain[{}]", win - 1)
+        } else {
+            format!("chain[{}:{}]", win - 1, win - w)
+        };
         assert!(v.contains(&format!(".{name}({slice})")), "{v}");
         assert!(v.contains(&format!("core_out[{}:", wout - 1)));
         assert!(v.contains(&format!("reg [{}:0] chain;", win - 1)));

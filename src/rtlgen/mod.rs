@@ -130,7 +130,16 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             let sigs: &[&str] = if en == "de" {
                 &["in_diffuse_en", "in_l", "fr_diffuse_en", "fr_l", "bank_l"]
             } else {
-                &["in_specular_en", "in_h", "pt_we", "pt_waddr", "pt_wdata", "fr_specular_en", "fr_h", "bank_h"]
+                &[
+                    "in_specular_en",
+                    "in_h",
+                    "pt_we",
+                    "pt_waddr",
+                    "pt_wdata",
+                    "fr_specular_en",
+                    "fr_h",
+                    "bank_h",
+                ]
             };
             for sig in sigs {
                 s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");

@@ -54,7 +54,7 @@ pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
 /// `extra` (parameter, literal) for the top's other memories.
 pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)]) -> String {
     let l = top_layout(cfg);
-    let ports: Vec<String> = crate::rtlgen::top::port_list(cfg).into_iter().map(|p| p.name).collect();
+    let ports = port_names(cfg);
     let mut decls = Vec::new();
     let mut connect = Vec::new();
     let mut assign = Vec::new();
@@ -141,9 +141,17 @@ fn banks(cfg: &PipelineConfig) -> [(&'static str, String); 2] {
     ]
 }
 
+/// The names of the top's ports (a vector column that is not one, `tri_start`, is not driven).
+fn port_names(cfg: &PipelineConfig) -> Vec<String> {
+    crate::rtlgen::top::port_list(cfg).into_iter().map(|p| p.name).collect()
+}
+
 /// The bit of a top record that marks a triangle's first fragment, when the top has setups.
 fn tri_start_bit(l: &Layout) -> Option<u32> {
-    l.columns.iter().find(|c| c.name == crate::vectors::targets::TRI_START).map(|c| c.lsb)
+    l.columns
+        .iter()
+        .find(|c| c.name == crate::vectors::targets::TRI_START)
+        .map(|c| c.lsb)
 }
 
 /// Units present in this configuration, in `UNITS` order.
@@ -232,22 +240,23 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
 /// The Verilator C++ harness for binary top vectors.
 pub fn harness_top(cfg: &PipelineConfig) -> String {
     let l = top_layout(cfg);
-    let ports: Vec<String> = crate::rtlgen::top::port_list(cfg).into_iter().map(|p| p.name).collect();
+    let ports = port_names(cfg);
     let mut assign = Vec::new();
     let mut print = Vec::new();
     for c in l.columns.iter().filter(|c| c.role == Role::Stimulus) {
-        if !ports.contains(&c.name) {
-            // tri_start is read by the harness, not driven.
-        } else if c.width <= 64 {
-            assign.push(format!("            top.{} = get_bits(rin, {}, {});", c.name, c.lsb, c.width));
-        } else {
-            let words = c.width.div_ceil(32);
-            assign.push(format!(
-                "            for (unsigned w = 0; w < {words}; ++w) top.{}[w] = (uint32_t)get_bits(rin, {} + 32 * w, w + 1 < {words} ? 32 : {});",
-                c.name,
-                c.lsb,
-                c.width - 32 * (words - 1)
-            ));
+        // tri_start is read by the harness, not driven.
+        if ports.contains(&c.name) {
+            assign.push(if c.width <= 64 {
+                format!("            top.{} = get_bits(rin, {}, {});", c.name, c.lsb, c.width)
+            } else {
+                let words = c.width.div_ceil(32);
+                format!(
+                    "            for (unsigned w = 0; w < {words}; ++w) top.{}[w] = (uint32_t)get_bits(rin, {} + 32 * w, w + 1 < {words} ? 32 : {});",
+                    c.name,
+                    c.lsb,
+                    c.width - 32 * (words - 1)
+                )
+            });
         }
         let words = c.width.div_ceil(32);
         let mut p = format!("                    printf(\"  {:15} \");", c.name);
@@ -274,22 +283,35 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
         ("II", cfg.initiation_interval().to_string()),
-        ("TRI_START", tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)"))),
+        (
+            "TRI_START",
+            tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)")),
+        ),
     ]);
     s.extend(banks(cfg));
     s.push(("OUT_DEPTH", crate::rtlgen::top::output_depth(cfg).unwrap_or(0).to_string()));
     let bp = cfg.backpressure;
     s.push(("OUT_READY_1", if bp { "top.out_ready = 1;" } else { "" }.to_string()));
-    s.push(("OUT_READY_SET", if bp { "top.out_ready = out_ready;" } else { "out_ready = true;" }.to_string()));
+    s.push((
+        "OUT_READY_SET",
+        if bp { "top.out_ready = out_ready;" } else { "out_ready = true;" }.to_string(),
+    ));
     let tri = cfg.per_triangle();
     s.extend([
         ("TRI_VALID_0", if tri { "top.tri_valid = 0;" } else { "" }.to_string()),
         ("TRI_VALID_1", if tri { "top.tri_valid = 1;" } else { "" }.to_string()),
-        ("TRI_ACCEPT", if tri { "top.tri_valid && top.tri_ready" } else { "false" }.to_string()),
+        (
+            "TRI_ACCEPT",
+            if tri { "top.tri_valid && top.tri_ready" } else { "false" }.to_string(),
+        ),
         (
             "RAW_SETUP",
-            if tri { "top.tri_valid = 1; top.clk = 0; top.eval(); while (!top.tri_ready) tick(); tick(); top.tri_valid = 0;" } else { "" }
-                .to_string(),
+            if tri {
+                "top.tri_valid = 1; top.clk = 0; top.eval(); while (!top.tri_ready) tick(); tick(); top.tri_valid = 0;"
+            } else {
+                ""
+            }
+            .to_string(),
         ),
     ]);
     fill(HARNESS_TOP.to_string(), &s)

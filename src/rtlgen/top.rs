@@ -190,7 +190,11 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             ),
         ]);
     }
-    let (pre, kind) = if cfg.per_triangle() { ("tri", PortKind::Triangle) } else { ("in", PortKind::Fragment) };
+    let (pre, kind) = if cfg.per_triangle() {
+        ("tri", PortKind::Triangle)
+    } else {
+        ("in", PortKind::Fragment)
+    };
     v.extend([
         tp(
             &format!("{pre}_l"),
@@ -216,11 +220,16 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             3 * n,
             "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j",
         ),
-        tp(&format!("{pre}_k"), Dir::In, kind, cfg.k_fmt(), n, "light j at lane j: the light's weight k_j"),
+        tp(
+            &format!("{pre}_k"),
+            Dir::In,
+            kind,
+            cfg.k_fmt(),
+            n,
+            "light j at lane j: the light's weight k_j",
+        ),
     ]);
-    v.extend([
-        tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result"),
-    ]);
+    v.extend([tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result")]);
     if cfg.backpressure {
         v.push(tp(
             "out_ready",
@@ -231,9 +240,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             "the result on out_c is taken at this edge if out_valid; low holds it (and the ones behind it) in the output buffer",
         ));
     }
-    v.extend([
-        tp("out_c", Dir::Out, PortKind::Result, col, 3, "R, G, B of C_new"),
-    ]);
+    v.extend([tp("out_c", Dir::Out, PortKind::Result, col, 3, "R, G, B of C_new")]);
     v
 }
 
@@ -265,15 +272,18 @@ pub fn bank_hold(cfg: &PipelineConfig) -> Option<u32> {
 /// never waits for `out_ready` while it stays high. `in_ready` is low while this many accepted
 /// results have not been taken.
 pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
-    cfg.backpressure
-        .then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
+    cfg.backpressure.then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
 }
 
 /// Bits of the top's own register arrays, which Yosys counts as memories beside the units'
 /// RAMs: the triangle banks and the output buffer.
 pub fn array_bits(cfg: &PipelineConfig) -> u32 {
     let banks = if cfg.per_triangle() {
-        let tri: u32 = port_list(cfg).iter().filter(|p| p.kind == PortKind::Triangle).map(|p| p.width()).sum();
+        let tri: u32 = port_list(cfg)
+            .iter()
+            .filter(|p| p.kind == PortKind::Triangle)
+            .map(|p| p.width())
+            .sum();
         cfg.triangle_banks * tri
     } else {
         0
@@ -538,8 +548,14 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
         let f = &p.name[4..];
         s.m.raw(format!("reg [{}:0] bank_{f} [0:{}];", p.width() - 1, k - 1));
     }
-    let writes: Vec<String> = tri.iter().map(|p| format!("        bank_{0}[tri_next] <= {1};", &p.name[4..], p.name)).collect();
-    s.m.raw(format!("always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend", writes.join("\n")));
+    let writes: Vec<String> = tri
+        .iter()
+        .map(|p| format!("        bank_{0}[tri_next] <= {1};", &p.name[4..], p.name))
+        .collect();
+    s.m.raw(format!(
+        "always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend",
+        writes.join("\n")
+    ));
     s.m.raw(format!(
         "always @(posedge clk) begin\n    if (rst) tri_cur <= {bb}'d0;\n    else if (tri_accept) tri_cur <= tri_next;\nend"
     ));
@@ -561,7 +577,9 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
         let (v, t) = (s.at(valid, st), s.at(tag, st));
         busy.push(format!("({v} && {t} == tri_next)"));
     }
-    s.m.comment(format!("A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."));
+    s.m.comment(format!(
+        "A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."
+    ));
     let busy = if busy.is_empty() { "1'b0".to_string() } else { busy.join(" || ") };
     s.m.raw(format!("assign tri_ready = !rst && !({busy});"));
     last
@@ -569,7 +587,12 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
 
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
-    let (lh3, f1, p1, ff1) = (3 * cfg.lh_bits, cfg.dot_frac_bits + 1, cfg.power_frac_bits + 1, cfg.factor_frac() + 1);
+    let (lh3, f1, p1, ff1) = (
+        3 * cfg.lh_bits,
+        cfg.dot_frac_bits + 1,
+        cfg.power_frac_bits + 1,
+        cfg.factor_frac() + 1,
+    );
     if cfg.backpressure {
         s.m.wire("credit", 1, None);
         s.m.raw("assign in_ready = credit;");
@@ -636,7 +659,12 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             cfg,
             u,
             &format!("u_{}", u.name()),
-            &[("c_in", &format!("{{{c}}}")), ("f", f), ("k", &format!("{{{pre}_k}}")), ("lc", &format!("{{{pre}_lc}}"))],
+            &[
+                ("c_in", &format!("{{{c}}}")),
+                ("f", f),
+                ("k", &format!("{{{pre}_k}}")),
+                ("lc", &format!("{{{pre}_lc}}")),
+            ],
             &[("c_out", name)],
             &[],
         );
@@ -688,7 +716,10 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_texel}", true);
     let k1 = cfg.k_frac_bits + 1;
-    let (lc_tpl, k_tpl) = (format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"), format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"));
+    let (lc_tpl, k_tpl) = (
+        format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"),
+        format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"),
+    );
     if cfg.per_triangle() {
         // Read where the accumulators use them: only the slot index and the tag travel.
         s.late("lc_sel", c3, &lc_tpl);

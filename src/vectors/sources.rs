@@ -246,7 +246,11 @@ fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], 
         specular_en: true,
     };
     // Every corner is a triangle of its own: one-fragment triangles back to back.
-    TopStim { frag, state, tri_start: true }
+    TopStim {
+        frag,
+        state,
+        tri_start: true,
+    }
 }
 
 /// The bump texel a fragment of `cfg` carries for stored codes `rgb`: the codes, or in a
@@ -542,7 +546,11 @@ mod triangle_tests {
             if s.tri_start {
                 lens.push(0);
             } else {
-                assert_eq!(s.state, prev.expect("a triangle before").state, "a triangle's fragments share its state");
+                assert_eq!(
+                    s.state,
+                    prev.expect("a triangle before").state,
+                    "a triangle's fragments share its state"
+                );
             }
             *lens.last_mut().expect("the stream starts a triangle") += 1;
             prev = Some(s);
