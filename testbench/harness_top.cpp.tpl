@@ -37,9 +37,11 @@ static const long long LATENCY = {{LATENCY}};
 static const long long II = {{II}};
 static const size_t FLIGHT = 64;
 // Per-triangle tops: a setup loads bank (setups so far + 1) % TRI_BANKS, and may do so from
-// BANK_HOLD edges after the accept of that bank's last fragment on, not before.
+// BANK_HOLD edges after the accept of that bank's last fragment on, not before; and it spans
+// SETUP_EDGES edges from the first it is offered at. From both on, tri_ready is high.
 static const unsigned TRI_BANKS = {{TRI_BANKS}};
 static const long long BANK_HOLD = {{BANK_HOLD}};
+static const long long SETUP_EDGES = {{SETUP_EDGES}};
 // Tops with out_ready: the output buffer's depth (0: no out_ready). A result is offered
 // (out_valid) from LATENCY edges after its accept on, never before, and stays offered until
 // taken; --stall N holds out_ready low for the first 1-3 edges (at most N) of every N edges.
@@ -202,6 +204,9 @@ int main(int argc, char** argv) {
     size_t gapped_for = (size_t)-1;
     // The record whose triangle setup was accepted last; setups and their waits.
     size_t setup_for = (size_t)-1;
+    // The record whose setup is offered, and the first edge it was offered at.
+    size_t offer_for = (size_t)-1;
+    long long offer_at = 0;
     unsigned long long setups = 0, setup_waits = 0;
     std::vector<long long> frag_edge(TRI_BANKS, -1000000);
     auto timing = [&](const char* what, long long got, long long want) {
@@ -239,10 +244,13 @@ int main(int argc, char** argv) {
         // Sampled before the rising edge, as the design's registers see them.
         bool accept = top.in_valid && top.in_ready;
         if (setup) {
+            if (offer_for != next_in) { offer_for = next_in; offer_at = (long long)cycles; }
             const long long since = (long long)cycles - frag_edge[(setups + 1) % TRI_BANKS];
+            const long long offered = (long long)cycles - offer_at;
             const bool taken = {{TRI_ACCEPT}};
             if (taken && since < BANK_HOLD) timing("setup accepted while its bank is still read", since, BANK_HOLD);
-            else if (!taken && since >= BANK_HOLD) timing("tri_ready low beyond the bank hold", since, BANK_HOLD);
+            else if (taken && offered < SETUP_EDGES - 1) timing("setup accepted before it spans its edges", offered + 1, SETUP_EDGES);
+            else if (!taken && since >= BANK_HOLD && offered >= SETUP_EDGES - 1) timing("tri_ready low beyond the bank hold", since, BANK_HOLD);
             if (taken) { setup_for = next_in; ++setups; }
             else ++setup_waits;
         }

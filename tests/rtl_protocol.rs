@@ -112,13 +112,18 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
         let tb_hold = format!("localparam BANK_HOLD = {hold};");
         assert!(tb.contains(&tb_hold) && cpp.contains(&format!("static const long long BANK_HOLD = {hold};")));
         // A hold longer than the RTL's is caught whenever a setup is offered at the bound;
-        // a shorter one only when setups really wait (serial tops: n slots of reads).
+        // a shorter one only when setups really wait. The serial top's setups span n edges
+        // each, so in a bench that offers one setup after another the hold never binds: its
+        // value is checked by `the_bank_hold_binds_where_the_interface_says` instead.
         let base = icarus_top(&w, &rtl, &tb, &hex, &[&table], &w).unwrap();
         assert!(base.failed == 0 && base.log.contains("triangle setups"), "{}", base.log);
         let waits = !base.log.contains(" 0 edges waited");
         let mut holds = vec![hold + 1];
         if waits {
             holds.push(hold - 1);
+        }
+        if gbump::rtlgen::top::setup_edges(&cfg) > 1 {
+            holds.clear();
         }
         for h in holds {
             let bad = icarus_top(
@@ -133,7 +138,22 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
             assert!(bad.failed > 0 && bad.log.contains("bank"), "icarus, bank hold {h}:\n{}", bad.log);
         }
         if cfg.light_mode == gbump::config::LightMode::Serial {
-            assert!(waits, "one-fragment triangles back to back make serial setups wait:\n{}", base.log);
+            assert!(waits, "serial setups wait (for their slot writes):\n{}", base.log);
+        }
+        // The edges a setup spans (the serial top writes a light slot per edge into its bank
+        // RAM): a bench told one more or one fewer fails, in both benches' checks.
+        let edges = gbump::rtlgen::top::setup_edges(&cfg);
+        assert_eq!(json["bump_state"]["setup_edges"], edges);
+        let tb_edges = format!("localparam SETUP_EDGES = {edges};");
+        let cpp_edges = format!("static const long long SETUP_EDGES = {edges};");
+        assert!(tb.contains(&tb_edges) && cpp.contains(&cpp_edges));
+        if edges > 1 {
+            for e in [edges - 1, edges + 1] {
+                let bad = icarus_top(&w, &rtl, &tb.replace(&tb_edges, &format!("localparam SETUP_EDGES = {e};")), &hex, &[&table], &w).unwrap();
+                assert!(bad.failed > 0 && bad.log.contains("setup"), "icarus, setup edges {e}:\n{}", bad.log);
+            }
+            let bad = harness(&w, &cfg, &rtl, &cpp.replace(&cpp_edges, &format!("static const long long SETUP_EDGES = {};", edges + 1)), &bin, &["--table", &t], &w).unwrap();
+            assert!(bad.failed > 0 && bad.log.contains("setup"), "harness, setup edges {}:\n{}", edges + 1, bad.log);
         }
     }
     // The output buffer: with out_ready stalled, in_ready must fall exactly when the untaken
@@ -314,4 +334,49 @@ fn reset_takes_no_fragment_and_keeps_the_power_table() {
     let (hex, _) = corner_vectors_for(&cfg, &w.join("vectors"), cfg.shininess);
     let bad = icarus_top(&w, &rtl, &tb_top(&cfg, &rtl), &hex, &["+valid_during_reset"], &w).unwrap();
     assert!(bad.failed > 0, "a fragment taken during reset went unnoticed:\n{}", bad.log);
+}
+
+/// Setup A, then fragment A offered together with setup B (B is taken after A's fragment, so
+/// that fragment keeps A's bank), then setup C, which loads A's bank again, offered from the
+/// edge after B's accept. C must be taken exactly at max(A's accept + bank hold, C's first
+/// offer + setup edges - 1), the interface's numbers, and with two banks the hold binds there.
+fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    assert_eq!(cfg.triangle_banks, 2, "the sequence reuses A's bank with the second setup after it");
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let top = gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline");
+    let mut decl = String::new();
+    let mut conn = Vec::new();
+    for p in gbump::rtlgen::top::port_list(&cfg) {
+        let kind = if p.dir == gbump::units::Dir::In { "reg" } else { "wire" };
+        let init = match (p.dir == gbump::units::Dir::In, p.name.as_str()) {
+            (true, "rst") => " = 1'b1".to_string(),
+            (true, "out_ready") => " = 1'b1".to_string(),
+            (true, _) => format!(" = {}'d0", p.width()),
+            _ => String::new(),
+        };
+        decl += &format!("{kind} [{}:0] {}{init};\n", p.width() - 1, p.name);
+        conn.push(format!(".{0}({0})", p.name));
+    }
+    let tb = format!(
+        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d\", a, b, c_off, c_acc);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
+        conn.join(", ")
+    );
+    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_hold", &tb), &rtl).unwrap();
+    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
+    let line = log.lines().find(|l| l.starts_with("a ")).unwrap_or_else(|| panic!("{log}"));
+    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let (a, b, c_off, c_acc) = (v[0], v[1], v[2], v[3]);
+    let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
+    let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
+    assert!(b >= a, "setup B was taken before fragment A: {line}");
+    assert!(a + hold > c_off + edges - 1, "the hold does not bind in this sequence: {line}, hold {hold}");
+    assert_eq!(c_acc, a + hold, "{line}: setup C must be taken {hold} edges (the bank hold) after fragment A");
+}
+
+#[test]
+fn the_bank_hold_binds_where_the_interface_says() {
+    bank_hold_binds(None, "hold_serial");
+    bank_hold_binds(Some("tests/configs/one_light_parallel.toml"), "hold_parallel");
 }

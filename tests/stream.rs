@@ -51,7 +51,7 @@ fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record()
     // The mutant of tests/rtl_sim.rs (texture modulation's rounding constant one off), in its
     // folder: the same bytes reuse its harness build.
     let cfg = gbump::PipelineConfig::default();
-    let work = std::path::absolute(root().join("target/test-regress/mutant")).unwrap();
+    let work = std::path::absolute(root().join("target/test-stream/mutant")).unwrap();
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
     let tm = rtl
         .sources

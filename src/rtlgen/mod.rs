@@ -2,6 +2,7 @@
 //! ROM init files, and a machine-readable interface description, all from one
 //! `PipelineConfig`. Output is deterministic: the same config gives the same bytes.
 
+pub mod booth;
 pub mod fixed_ops;
 pub mod fpga_shell;
 pub mod integration_doc;

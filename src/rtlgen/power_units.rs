@@ -4,6 +4,7 @@
 //! so synthesis can count the datapath's gates apart from the storage, whose size is
 //! reported in bits.
 
+use super::booth::{sum_of_products, Factor, Form};
 use super::writer::VWriter;
 use crate::model::power_unit::{segment_of, PowerDesign, PowerFormats};
 
@@ -107,7 +108,15 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             "wire signed [{}:0] diff = $signed({{2'b00, k1}}) - $signed({{2'b00, k0}});",
             p + 2
         ));
-        w.line(format!("wire signed [{}:0] prod = diff * $signed({{1'b0, {t}}});", pw - 1));
+        let e = sum_of_products(
+            w,
+            Form::Wires,
+            "prodm",
+            &[(Factor::signed("diff", p + 3), Factor::unsigned(t, tw))],
+            0,
+            pw,
+        );
+        w.line(format!("wire signed [{}:0] prod = {e};", pw - 1));
         w.line(format!(
             "wire signed [{}:0] step = (prod + {pw}'sd{}) >>> {f};",
             pw - 1,
@@ -241,7 +250,16 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             ));
             // name = round_half_up(a * b) on u1.wd.
             let product = |w: &mut VWriter, name: String, a: &str, b: &str| {
-                w.line(format!("wire [{}:0] {name}_p = {a} * {b};", 2 * wd + 1));
+                // A chain of up to sixteen products: functions (see `booth::Form`).
+                let e = sum_of_products(
+                    w,
+                    Form::Function,
+                    &format!("{name}_m"),
+                    &[(Factor::unsigned(a, wd + 1), Factor::unsigned(b, wd + 1))],
+                    0,
+                    2 * wd + 2,
+                );
+                w.line(format!("wire [{}:0] {name}_p = {e};", 2 * wd + 1));
                 w.line(format!(
                     "wire [{wd}:0] {name} = ({name}_p + {}'d{}) >> {wd};",
                     2 * wd + 2,

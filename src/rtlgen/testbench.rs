@@ -131,13 +131,14 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
     fill(TB_TOP.to_string(), &s)
 }
 
-/// The banks and the bank hold a testbench checks every setup against (one bank that is never
+/// The banks, the bank hold and the setup's edges a testbench checks every setup against (one bank that is never
 /// loaded when the top has no setup port).
-fn banks(cfg: &PipelineConfig) -> [(&'static str, String); 2] {
+fn banks(cfg: &PipelineConfig) -> [(&'static str, String); 3] {
     let hold = crate::rtlgen::top::bank_hold(cfg);
     [
         ("TRI_BANKS", if hold.is_some() { cfg.triangle_banks } else { 1 }.to_string()),
         ("BANK_HOLD", hold.unwrap_or(0).to_string()),
+        ("SETUP_EDGES", crate::rtlgen::top::setup_edges(cfg).to_string()),
     ]
 }
 

@@ -261,10 +261,22 @@ pub fn latency(cfg: &PipelineConfig) -> u32 {
 
 /// Per-triangle tops: rising edges from the edge that accepts a bank's last fragment to the
 /// first edge at which a setup may load that bank again (before it, `tri_ready` is low while a
-/// setup for that bank is offered; from it on, high). The schedule's result: the last stage
-/// that reads a bank, plus the serial top's n slot cycles. Every testbench checks it per setup.
+/// setup for that bank is offered; from it on, high once the setup has been offered for
+/// [`setup_edges`]). The schedule's result: the last stage that reads a bank, plus the serial
+/// top's n slot cycles and the setup's slot writes. Every testbench checks it per setup.
 pub fn bank_hold(cfg: &PipelineConfig) -> Option<u32> {
     build(cfg).bank_hold
+}
+
+/// Per-triangle tops: the fewest rising edges a setup spans, from the first edge at which it
+/// is offered (`tri_valid` high, its bank free) to the edge that accepts it, both counted. The
+/// serial top writes one light slot per edge into its bank RAM, so n; register banks take a
+/// setup at one edge. Every testbench checks it per setup, with the bank hold.
+pub fn setup_edges(cfg: &PipelineConfig) -> u32 {
+    match cfg.light_mode {
+        LightMode::Serial => cfg.lights,
+        LightMode::Parallel => 1,
+    }
 }
 
 /// Tops with `out_ready`: results the output buffer holds, enough for every fragment that can
@@ -275,8 +287,8 @@ pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
     cfg.backpressure.then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
 }
 
-/// Bits of the top's own register arrays, which Yosys counts as memories beside the units'
-/// RAMs: the triangle banks and the output buffer.
+/// Bits of the top's own arrays, which Yosys counts as memories beside the units' RAMs: the
+/// triangle banks (register arrays, or the serial top's bank RAM) and the output buffer.
 pub fn array_bits(cfg: &PipelineConfig) -> u32 {
     let banks = if cfg.per_triangle() {
         let tri: u32 = port_list(cfg)
@@ -284,7 +296,11 @@ pub fn array_bits(cfg: &PipelineConfig) -> u32 {
             .filter(|p| p.kind == PortKind::Triangle)
             .map(|p| p.width())
             .sum();
-        cfg.triangle_banks * tri
+        match cfg.light_mode {
+            LightMode::Parallel => cfg.triangle_banks * tri,
+            // The RAM's words: a power of two of slots per bank, one slot each.
+            LightMode::Serial => (cfg.triangle_banks << slot_bits(cfg)) * (tri / cfg.lights),
+        }
     } else {
         0
     };
@@ -532,17 +548,11 @@ fn state_pre(cfg: &PipelineConfig, held: bool) -> &'static str {
 /// signals `st_*`, at the stage that uses each field. Returns nothing: [`bank_ready`] closes
 /// the handshake once every read is placed.
 fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
-    let (k, bb) = (cfg.triangle_banks, cfg.bank_bits());
+    let k = cfg.triangle_banks;
     s.m.comment(format!(
         "Triangle setup: {k} register banks. A setup loads the bank after the current one and makes it current; fragments carry the bank's tag."
     ));
-    s.m.reg_decl("tri_cur", bb);
-    s.m.wire(
-        "tri_next",
-        bb,
-        Some(&format!("(tri_cur == {bb}'d{}) ? {bb}'d0 : tri_cur + {bb}'d1", k - 1)),
-    );
-    s.m.wire("tri_accept", 1, Some("tri_valid && tri_ready"));
+    bank_pointer(s, cfg);
     let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
     for p in &tri {
         let f = &p.name[4..];
@@ -556,9 +566,6 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
         "always @(posedge clk) begin\n    if (tri_accept) begin\n{}\n    end\nend",
         writes.join("\n")
     ));
-    s.m.raw(format!(
-        "always @(posedge clk) begin\n    if (rst) tri_cur <= {bb}'d0;\n    else if (tri_accept) tri_cur <= tri_next;\nend"
-    ));
     s.source(tag, 0);
     for p in &tri {
         let f = &p.name[4..];
@@ -566,12 +573,26 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
     }
 }
 
-/// `tri_ready`: low during reset and while a fragment tagged with the next bank can still read
-/// it, at stages `first..` below the last stage that reads a bank (a read at that stage
-/// happens before the edge that would write, so it is not waited for).
-/// Returns the last stage that reads a bank.
-fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
-    let last = s.late_max().expect("a per-triangle top reads its banks");
+/// The current bank `tri_cur` and the one a setup loads, `tri_next`; a setup accepted at an
+/// edge makes `tri_next` current.
+fn bank_pointer(s: &mut Scheduler, cfg: &PipelineConfig) {
+    let (k, bb) = (cfg.triangle_banks, cfg.bank_bits());
+    s.m.reg_decl("tri_cur", bb);
+    s.m.wire(
+        "tri_next",
+        bb,
+        Some(&format!("(tri_cur == {bb}'d{}) ? {bb}'d0 : tri_cur + {bb}'d1", k - 1)),
+    );
+    s.m.wire("tri_accept", 1, Some("tri_valid && tri_ready"));
+    s.m.raw(format!(
+        "always @(posedge clk) begin\n    if (rst) tri_cur <= {bb}'d0;\n    else if (tri_accept) tri_cur <= tri_next;\nend"
+    ));
+}
+
+/// `bank_free`: no fragment tagged with the next bank is at a stage `first..last`, where
+/// `last` is the first stage at which every read of a bank is done (a combinational read at
+/// that stage happens before the edge that would write, so it is not waited for).
+fn bank_free(s: &mut Scheduler, tag: &str, valid: &str, first: u32, last: u32) {
     let mut busy = Vec::new();
     for st in first..last {
         let (v, t) = (s.at(valid, st), s.at(tag, st));
@@ -581,8 +602,71 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
         "A bank is read up to stage {last}: a setup waits while the next bank has a fragment before that stage."
     ));
     let busy = if busy.is_empty() { "1'b0".to_string() } else { busy.join(" || ") };
-    s.m.raw(format!("assign tri_ready = !rst && !({busy});"));
+    s.m.wire("bank_free", 1, Some(&format!("!({busy})")));
+}
+
+/// `tri_ready` of register banks: low during reset and while the next bank is not free.
+/// Returns the last stage that reads a bank.
+fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
+    let last = s.late_max().expect("a per-triangle top reads its banks");
+    bank_free(s, tag, valid, first, last);
+    s.m.raw("assign tri_ready = !rst && bank_free;");
     last
+}
+
+/// The serial top's triangle banks as one RAM (`rtlgen::ram`, block RAM on an FPGA): word
+/// {bank, slot} holds one light slot's state, in place of banks × lights × fields
+/// flip-flops and their read multiplexers (the default four-light top did not fit an iCE40
+/// HX8K with them). A RAM has one write port, so a setup writes its n slots one per edge
+/// while the next bank is free, holding `tri_ready` low until the last (the setup's data is
+/// held meanwhile, as valid/ready requires); fragment slot j is read at the edge that ends its
+/// slot-j cycle at stage 0, so the fields are ready at stage 1 as `st_*`, one slot wide.
+/// Returns the last stage that reads a bank in the sense of [`bank_free`].
+fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
+    let (k, bb, n) = (cfg.triangle_banks, cfg.bank_bits(), cfg.lights);
+    s.m.comment(format!(
+        "Triangle setup: {k} banks of {n} light slot(s) in one RAM, word {{bank, slot}}. A setup writes the bank after the current one, a slot per edge, and makes it current at its last."
+    ));
+    bank_pointer(s, cfg);
+    s.source("fr_tag", 0);
+    let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
+    s.m.reg_decl("tri_slot", jb);
+    let mut fields = Vec::new();
+    let mut off = 0;
+    for p in &tri {
+        let ws = p.width() / n;
+        fields.push((p.name[4..].to_string(), ws, off));
+        off += ws;
+    }
+    let word = off;
+    let parts: Vec<String> = tri
+        .iter()
+        .rev()
+        .map(|p| {
+            let ws = p.width() / n;
+            format!("{}[tri_slot*{ws} +: {ws}]", p.name)
+        })
+        .collect();
+    s.m.wire("tri_word", word, Some(&format!("{{{}}}", parts.join(", "))));
+    s.m.wire("bank_rd", word, None);
+    s.m.raw(format!(
+        "{} #(.WIDTH({word}), .DEPTH({}), .ABITS({}), .INIT_FILE(\"\")) u_banks (.clk(clk), .we(tri_we), .waddr({{tri_next, tri_slot}}), .wdata(tri_word), .raddr({{fr_tag, j}}), .rdata(bank_rd));",
+        module_name(cfg, super::ram::RAM),
+        k << jb,
+        bb + jb
+    ));
+    s.source("bank_rd", 1);
+    for (f, ws, off) in &fields {
+        s.comb(&format!("st_{f}"), *ws, &format!("{{bank_rd}}[{}:{off}]", off + ws - 1));
+    }
+    // The RAM reads at the edge ending stage 0: a write to the bank must wait for stage 0.
+    bank_free(s, "fr_tag", "busy", 0, 1);
+    s.m.wire("tri_we", 1, Some("tri_valid && bank_free && !rst"));
+    s.m.raw(format!("assign tri_ready = !rst && bank_free && tri_slot == {jb}'d{};", n - 1));
+    s.m.raw(format!(
+        "always @(posedge clk) begin\n    if (rst || !tri_we || tri_ready) tri_slot <= {jb}'d0;\n    else tri_slot <= tri_slot + {jb}'d1;\nend"
+    ));
+    1
 }
 
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
@@ -678,10 +762,15 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     (lat, out, v, hold)
 }
 
+/// Bits of the serial top's light slot index `j`.
+fn slot_bits(cfg: &PipelineConfig) -> u32 {
+    (32 - (cfg.lights.max(2) - 1).leading_zeros()).max(1)
+}
+
 fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let n = cfg.lights;
     let (c3, lh3) = (3 * cfg.colour_bits, 3 * cfg.lh_bits);
-    let jb = (32 - (n.max(2) - 1).leading_zeros()).max(1);
+    let jb = slot_bits(cfg);
     s.m.comment("Light sequencer: a fragment is held for n cycles, light slot j in cycle j.");
     s.m.reg_decl("busy", 1);
     s.m.reg_decl("j", jb);
@@ -708,26 +797,24 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.source(sig, 0);
     }
     s.valid_bit("busy");
-    if cfg.per_triangle() {
+    let read_done = cfg.per_triangle().then(|| {
         s.m.reg_decl("fr_tag", cfg.bank_bits());
         s.m.raw("always @(posedge clk) if (accept) fr_tag <= tri_cur;");
-        banks(s, cfg, "fr_tag");
-    }
+        bank_ram(s, cfg, jb)
+    });
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_texel}", true);
     let k1 = cfg.k_frac_bits + 1;
-    let (lc_tpl, k_tpl) = (
-        format!("{{{pre}_lc}}[{{j}}*{c3} +: {c3}]"),
-        format!("{{{pre}_k}}[{{j}}*{k1} +: {k1}]"),
-    );
-    if cfg.per_triangle() {
-        // Read where the accumulators use them: only the slot index and the tag travel.
-        s.late("lc_sel", c3, &lc_tpl);
-        s.late("k_sel", k1, &k_tpl);
-    } else {
-        s.comb("lc_sel", c3, &lc_tpl);
-        s.comb("k_sel", k1, &k_tpl);
-    }
+    // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
+    let slot = |f: &str, w: u32| {
+        if cfg.per_triangle() {
+            format!("{{st_{f}}}")
+        } else {
+            format!("{{{pre}_{f}}}[{{j}}*{w} +: {w}]")
+        }
+    };
+    s.comb("lc_sel", c3, &slot("lc", c3));
+    s.comb("k_sel", k1, &slot("k", k1));
     let dot = units::unit("dot_clamp").expect("unit");
     let acc = units::unit("light_accumulate").expect("unit");
     let aw3 = 3 * cfg.acc_fmt().width;
@@ -761,14 +848,14 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     };
     if cfg.diffuse {
         s.comb("de", 1, &enable(cfg, true, "fr_diffuse_en"));
-        s.comb("l_sel", lh3, &format!("{{{pre}_l}}[{{j}}*{lh3} +: {lh3}]"));
+        s.comb("l_sel", lh3, &slot("l", lh3));
         s.unit(cfg, dot, "u_dot_l", &[("b", "{b}"), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, "{de}"));
         accumulate(s, "dacc", "{dfac}");
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "fr_specular_en"));
-        s.comb("h_sel", lh3, &format!("{{{pre}_h}}[{{j}}*{lh3} +: {lh3}]"));
+        s.comb("h_sel", lh3, &slot("h", lh3));
         s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, "{se}"));
@@ -799,8 +886,9 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let c = s.fill(&format!("{{{out}}}"), lat_out);
     let v = s.fill("{done}", lat_out);
     // Stage 0 holds the fragment (in fr_*) for its n slot cycles, reading its bank; the last
-    // slot's stage s ends n + s edges after the accept.
-    let hold = cfg.per_triangle().then(|| cfg.lights + bank_ready(s, "fr_tag", "busy", 0));
+    // slot's stage s ends n + s edges after the accept, and the setup's n slot writes end
+    // n - 1 edges after the first.
+    let hold = read_done.map(|last| cfg.lights + last + setup_edges(cfg) - 1);
     // Stages count from the cycle of a fragment's slot; its last slot runs n - 1 cycles after
     // the cycle following the accepting edge.
     (cfg.lights + lat_out, c, v, hold)

@@ -4,6 +4,7 @@
 //! emitted combinationally for the serial top, where the fetched normal must be ready in the
 //! same cycle as the first light.
 
+use super::booth::{sum_of_products, Factor, Form};
 use super::fixed_ops::requant_clamp;
 use super::writer::VWriter;
 use crate::config::PipelineConfig;
@@ -87,21 +88,23 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
         f
     ));
     let decl = format!("signed [{}:0]", ex.width - 1);
-    for i in 0..3 {
-        w.stage(
-            cut(cfg, DOT_CLAMP, 0),
-            &decl,
-            &format!("p{i}"),
-            &format!(
-                "$signed(b[{}:{}]) * $signed(v[{}:{}])",
-                i * nb + nb - 1,
-                i * nb,
-                i * lh + lh - 1,
-                i * lh
-            ),
-        );
+    let product = |i: u32| {
+        (
+            Factor::signed(format!("b[{}:{}]", i * nb + nb - 1, i * nb), nb),
+            Factor::signed(format!("v[{}:{}]", i * lh + lh - 1, i * lh), lh),
+        )
+    };
+    if cut(cfg, DOT_CLAMP, 0) {
+        for i in 0..3 {
+            let e = sum_of_products(&mut w, Form::Wires, &format!("p{i}m"), &[product(i)], 0, ex.width);
+            w.stage(true, &decl, &format!("p{i}"), &e);
+        }
+        w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", "p0 + p1 + p2");
+    } else {
+        // No register between the products and their sum: one tree of all twelve rows.
+        let e = sum_of_products(&mut w, Form::Wires, "pm", &[product(0), product(1), product(2)], 0, ex.width);
+        w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", &e);
     }
-    w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", "p0 + p1 + p2");
     requant_clamp(&mut w, "fq", "dot", ex, f, cfg.rounding, 0, 1 << f, f + 1);
     w.block("always @(posedge clk) begin", "end", |w| {
         w.line("f <= fq;");
@@ -260,15 +263,30 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
         3 * c - 1,
         3 * tw - 1
     ));
-    w.stage(cuts >= 1, &format!("[{}:0]", ff + k + 1), "fk", "f * k");
+    let fkw = ff + k + 2;
+    let e = sum_of_products(
+        &mut w,
+        Form::Wires,
+        "fkm",
+        &[(Factor::unsigned("f", ff + 1), Factor::unsigned("k", k + 1))],
+        0,
+        fkw,
+    );
+    w.stage(cuts >= 1, &format!("[{}:0]", fkw - 1), "fk", &e);
     w.stage(cuts >= 1, &format!("[{}:0]", 3 * c - 1), "lc1", "lc");
     for ch in 0..3 {
-        w.stage(
-            cuts >= 2,
-            &format!("[{}:0]", tw - 1),
-            &format!("t{ch}"),
-            &format!("fk * lc1[{}:{}]", ch * c + c - 1, ch * c),
+        let e = sum_of_products(
+            &mut w,
+            Form::Wires,
+            &format!("t{ch}m"),
+            &[(
+                Factor::unsigned("fk", fkw),
+                Factor::unsigned(format!("lc1[{}:{}]", ch * c + c - 1, ch * c), c),
+            )],
+            0,
+            tw,
         );
+        w.stage(cuts >= 2, &format!("[{}:0]", tw - 1), &format!("t{ch}"), &e);
     }
     w.line("assign term = {t2, t1, t0};");
     w.line("endmodule");
@@ -427,20 +445,16 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
         3 * c - 1
     ));
     for ch in 0..3 {
-        w.stage(
-            cut(cfg, TEXTURE, 0),
-            &format!("[{}:0]", 2 * c),
-            &format!("p{ch}"),
-            &format!(
-                "c_in[{}:{}] * t[{}:{}] + {}'d{}",
-                ch * c + c - 1,
-                ch * c,
-                ch * c + c - 1,
-                ch * c,
-                2 * c + 1,
-                1u64 << (c - 1)
-            ),
+        let lanes = |v: &str| Factor::unsigned(format!("{v}[{}:{}]", ch * c + c - 1, ch * c), c);
+        let e = sum_of_products(
+            &mut w,
+            Form::Wires,
+            &format!("p{ch}m"),
+            &[(lanes("c_in"), lanes("t"))],
+            1u128 << (c - 1),
+            2 * c + 1,
         );
+        w.stage(cut(cfg, TEXTURE, 0), &format!("[{}:0]", 2 * c), &format!("p{ch}"), &e);
         w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
     }
     w.block("always @(posedge clk) begin", "end", |w| {

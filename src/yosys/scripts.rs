@@ -15,15 +15,16 @@ pub fn check(files: &[String], top: &str) -> String {
     s
 }
 
-/// Gate-level area of one module: its memories' bits counted first (`stat -json` of the
-/// elaborated hierarchy into `memory.json`), then every RAM (`rtlgen::ram`) made a black box,
-/// so the logic's NAND/NOR/NOT cells (`abc -g cmos2`, flip-flops unmapped) hold no storage:
-/// `stat -json -tech cmos` into `area.json` and `ltp -noff` into `area.ltp`.
+/// Gate-level area of one module: the bits of its RAMs (`rtlgen::ram`) counted first into
+/// `memory.json`, then every RAM made a black box, so the logic's NAND/NOR/NOT cells (`abc -g
+/// cmos2`, flip-flops unmapped) hold no storage: `stat -json -tech cmos` into `area.json` and
+/// `ltp -noff` into `area.ltp`. Any other Verilog array (the top's triangle banks and output
+/// buffer) is synthesised as flip-flops and counted there, so no bit is counted twice.
 pub fn cmos_area(files: &[String], top: &str) -> String {
     format!(
-        "read_verilog -defer {}\nhierarchy -top {top}\n{}blackbox {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
+        "read_verilog -defer {}\nhierarchy -top {top}\ndesign -save elaborated\nproc\nmemory_map {} %n\nflatten\ntee -q -o memory.json stat -json\ndesign -load elaborated\nblackbox {}\nsynth -flatten -top {top}\ndffunmap\nabc -g cmos2\ntee -q -o area.json stat -json -tech cmos\ntee -q -o area.ltp ltp -noff\n",
         files.join(" "),
-        memory_stat(top, "memory.json"),
+        ram_modules(),
         ram_modules()
     )
 }
