@@ -161,7 +161,7 @@ fn queries_agree_with_the_interface() {
         );
         let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").clone();
         assert_eq!((lsb as u32, w as u32, lanes as u32, exp), (out.lsb, out.width, out.lanes, 1));
-        assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_texel");
+        assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_bump");
         assert_eq!(
             gbump_unit_latency(h, c("dot_clamp").as_ptr()) as u32,
             gbump::units::unit("dot_clamp").unwrap().latency(&cfg)

@@ -91,7 +91,7 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let mut out = [0.0; 3];
     for ch in 0..3 {
         let c = s.frag.c_src[ch] as f64;
-        let tex = s.frag.texel[ch] as f64 / max;
+        let tex = s.frag.tex[ch] as f64 / max;
         let c0 = (c + dif[ch]).min(max);
         out[ch] = match cfg.blend_order {
             BlendOrder::DiffuseTextureSpecular => (c0 * tex + spe[ch]).min(max),

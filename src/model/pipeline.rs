@@ -44,8 +44,8 @@ pub struct FragmentIn {
     pub bump: BumpTexel,
     /// Interpolated Gouraud colour C_src.
     pub c_src: [u32; 3],
-    /// Texel colour T (white when the object has no texture).
-    pub texel: [u32; 3],
+    /// Texture colour T (white when the object has no texture).
+    pub tex: [u32; 3],
     pub diffuse_en: bool,
     pub specular_en: bool,
 }
@@ -114,7 +114,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     }
     let diffuse = |c| blend(cfg, c, &dfac[..n], &kd[..n], &lc[..n]);
     let specular = |c| blend(cfg, c, &sfac[..n], &kd[..n], &lc[..n]);
-    let texture = |c| texture_modulate(cfg, c, frag.texel);
+    let texture = |c| texture_modulate(cfg, c, frag.tex);
     let s0 = diffuse(frag.c_src);
     let (s1, s2) = match cfg.blend_order {
         BlendOrder::DiffuseTextureSpecular => {
@@ -144,7 +144,7 @@ mod tests {
         FragmentIn {
             bump: BumpTexel::Rgb([128, 128, 255]),
             c_src: [c; 3],
-            texel: [t; 3],
+            tex: [t; 3],
             diffuse_en: true,
             specular_en: true,
         }
@@ -179,7 +179,7 @@ mod tests {
         assert_eq!(
             shade(&cfg3, &t, None, &st, &frag(0, 0)).colour(),
             [0; 3],
-            "Fig. 3: black texel stays black"
+            "Fig. 3: black texture colour stays black"
         );
     }
 

@@ -1,6 +1,6 @@
 //! texture_modulate: C·T for normalised colour codes, rounded to nearest
 //! (`fixed::unorm_mul`: exact `round(c·t / (2^w-1))` with one adder instead of a divider),
-//! so a white texel passes the colour through unchanged and a black one gives black.
+//! so a white texture colour passes the colour through unchanged and a black one gives black.
 
 use crate::config::PipelineConfig;
 use crate::fixed::unorm_mul;

@@ -11,7 +11,7 @@ use crate::vectors::targets::{eval_top, top_layout, top_record};
 /// What each lane of a multi-lane port holds.
 fn lanes(p: &super::top::TopPort) -> Option<String> {
     let w = p.fmt.width;
-    (p.lanes > 1 || p.name == "in_texel").then(|| {
+    (p.lanes > 1 || p.name == "in_bump").then(|| {
         format!(
             "`{}`: {} lane(s) of {w} bits, lane i in bits [{w}i+{}:{w}i]; {}",
             p.name,

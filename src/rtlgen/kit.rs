@@ -161,7 +161,7 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         &mut s,
         "NORMAL_BITS",
         cfg.normal_bits.into(),
-        "stored bump texel component, offset binary",
+        "stored bump normal component (`in_bump` lane), offset binary",
     );
     p(
         &mut s,
@@ -246,9 +246,9 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
             "    function automatic logic [{lb}-1:0] {port}_lane(input logic [{w}-1:0] v, {args});\n        return v[({idx}) * {lb} +: {lb}];\n    endfunction\n"
         );
     };
-    lane(&mut s, "in_texel", "NORMAL_BITS", 1);
+    lane(&mut s, "in_bump", "NORMAL_BITS", 1);
     lane(&mut s, "in_c_src", "COLOUR_BITS", 1);
-    lane(&mut s, "in_t", "COLOUR_BITS", 1);
+    lane(&mut s, "in_tex", "COLOUR_BITS", 1);
     let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
     lane(&mut s, &st("l"), "LH_BITS", 3);
     lane(&mut s, &st("h"), "LH_BITS", 3);

@@ -24,7 +24,7 @@ fn postamble(w: &mut VWriter) {
     w.line("`default_nettype wire");
 }
 
-/// bump_fetch: offset-binary texel → signed normal (MSB inversion). `registered` adds the
+/// bump_fetch: the stored offset-binary bump normal `bump` → signed normal (MSB inversion). `registered` adds the
 /// output register; otherwise the module is combinational (and has no clock).
 pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     let nb = cfg.normal_bits;
@@ -40,11 +40,11 @@ pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     let clk = if registered { "input  wire clk,\n    " } else { "" };
     let out_kind = if registered { "reg " } else { "wire" };
     w.line(format!(
-        "module {name} (\n    {clk}input  wire [{}:0] texel,\n    output {out_kind} [{}:0] b\n);",
+        "module {name} (\n    {clk}input  wire [{}:0] bump,\n    output {out_kind} [{}:0] b\n);",
         3 * nb - 1,
         3 * nb - 1
     ));
-    let flip = |i: u32| format!("{{~texel[{}], texel[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
+    let flip = |i: u32| format!("{{~bump[{}], bump[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
     let expr = format!("{{{}, {}, {}}}", flip(2), flip(1), flip(0));
     if registered {
         w.block("always @(posedge clk) begin", "end", |w| {
@@ -410,17 +410,17 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.finish()
 }
 
-/// texture_modulate: round(c t / (2^w - 1)) by the add-and-shift identity, registered; a
+/// texture_modulate: round(c_in tex / (2^w - 1)) by the add-and-shift identity, registered; a
 /// register after the product when the depth puts `timing::TEXTURE`'s cut in place.
 pub fn texture_modulate(cfg: &PipelineConfig) -> String {
     use crate::units::timing::{cut, TEXTURE};
     let c = cfg.colour_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line("// texture_modulate (paper §5.1): exact round(c·t / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    w.line("// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
     w.line(format!("// Latency {}.", crate::units::timing::latency(cfg, TEXTURE)));
     w.line(format!(
-        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] t,\n    output reg  [{}:0] c_out\n);",
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] tex,\n    output reg  [{}:0] c_out\n);",
         module_name(cfg, "texture_modulate"),
         3 * c - 1,
         3 * c - 1,
@@ -432,7 +432,7 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
             &format!("[{}:0]", 2 * c),
             &format!("p{ch}"),
             &format!(
-                "c_in[{}:{}] * t[{}:{}] + {}'d{}",
+                "c_in[{}:{}] * tex[{}:{}] + {}'d{}",
                 ch * c + c - 1,
                 ch * c,
                 ch * c + c - 1,
