@@ -542,10 +542,10 @@ fn cases() -> Vec<Case> {
             vec!["--random", "0 is below 1"],
         ),
         (
-            "exhaustive power table without a specular path",
+            "exhaustive power unit without a specular path",
             cfg("specular = false\n"),
-            vec!["vectors", "--source", "exhaustive:power_table", "--config", "c.toml", "--out", "out"],
-            vec!["power_table", "specular = false", "fix:"],
+            vec!["vectors", "--source", "exhaustive:power_unit", "--config", "c.toml", "--out", "out"],
+            vec!["power_unit", "specular = false", "fix:"],
         ),
         (
             "target absent from the configuration",

@@ -127,12 +127,14 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         }
     }
     out.push(dot);
-    // power_table exhaustively over its input.
-    let mut pw = ErrorStats::new("power_table", &format!("exhaustive, n = {n}"));
+    // power_unit exhaustively over its input.
+    let mut pw = ErrorStats::new("power_unit", &format!("exhaustive, n = {n}"));
     let ps = (1u64 << cfg.power_frac_bits) as f64;
     for fd in 0..=(1i64 << cfg.dot_frac_bits) {
         let exact = powi_exact(fd as f64 / one, n) * ps;
-        pw.add(table.lookup(cfg, fd) as f64 - exact, || format!("x = {fd}/2^{}", cfg.dot_frac_bits));
+        pw.add(crate::model::power_unit::power_unit(cfg, &table, fd) as f64 - exact, || {
+            format!("x = {fd}/2^{}", cfg.dot_frac_bits)
+        });
     }
     out.push(pw);
     // Blends over random inputs in their own formats.

@@ -6,6 +6,7 @@ use super::blend::{align_factor, blend};
 use super::bump_fetch::{bump_fetch_index, bump_fetch_rgb, Palette};
 use super::dot_clamp::dot_clamp;
 use super::power_table::PowerTable;
+use super::power_unit::power_unit;
 use super::texture_modulate::texture_modulate;
 use crate::config::{BlendOrder, PipelineConfig};
 
@@ -106,7 +107,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         }
         if cfg.specular {
             out.xh[i] = dot_clamp(cfg, b, s.h);
-            out.fs[i] = table.lookup(cfg, out.xh[i]);
+            out.fs[i] = power_unit(cfg, table, out.xh[i]);
             if specular_on {
                 sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);
             }

@@ -65,16 +65,16 @@ pub fn fetch_unit(cfg: &PipelineConfig) -> &'static dyn Unit {
     units::unit(if cfg.palette { "palette_fetch" } else { "bump_fetch" }).expect("fetch unit")
 }
 
-/// The memories of the top, in port order: the power table's load port is on every top (a
-/// configuration without the specular path leaves it unused, so every top of one light count
-/// has the same ports), then the other units' memories.
+/// The memories of the top, in port order: the power unit's power table (its load port is on
+/// every top: a configuration without the specular path leaves it unused, so every top of one
+/// light count has the same ports), then the other units' memories.
 pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
-    let pt = units::unit("power_table").and_then(|u| u.memory(cfg)).expect("power table memory");
+    let pt = units::unit("power_unit").and_then(|u| u.memory(cfg)).expect("power table memory");
     let mut v = vec![pt];
     v.extend(
         units::included(cfg)
             .iter()
-            .filter(|u| u.name() != "power_table")
+            .filter(|u| u.name() != "power_unit")
             .filter_map(|u| u.memory(cfg)),
     );
     v
@@ -85,7 +85,7 @@ pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
 pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
     units::included(cfg)
         .iter()
-        .filter(|u| u.name() != "power_table")
+        .filter(|u| u.name() != "power_unit")
         .filter_map(|u| {
             u.memory(cfg).map(|m| {
                 (
@@ -173,7 +173,14 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             3,
             "R, G, B of the Gouraud colour C_src (lane 0 = R)",
         ),
-        tp("in_tex", Dir::In, PortKind::Fragment, col, 3, "R, G, B of the texture colour T (lane 0 = R)"),
+        tp(
+            "in_tex",
+            Dir::In,
+            PortKind::Fragment,
+            col,
+            3,
+            "R, G, B of the texture colour T (lane 0 = R)",
+        ),
         tp("in_diffuse_en", Dir::In, PortKind::Fragment, bit, 1, "diffuse blend enable"),
         tp("in_specular_en", Dir::In, PortKind::Fragment, bit, 1, "specular blend enable"),
     ]);
@@ -416,23 +423,23 @@ fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, Strin
 /// The power unit with `r` read ports on `{xh}`, its output `fs` (the unit's ports describe one
 /// read port, so the instance is written as a helper with its `R` parameter).
 fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
-    let pt = units::unit("power_table").expect("unit");
+    let pu = units::unit("power_unit").expect("unit");
     s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
     s.m.inst_helper(
-        &module_name(cfg, "power_table"),
-        &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_table"),
+        &module_name(cfg, "power_unit"),
+        &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_unit"),
         &[
             ("clk", "clk".into()),
-            ("we", "pt_we".into()),
-            ("waddr", "pt_waddr".into()),
-            ("wdata", "pt_wdata".into()),
+            ("we", "power_table_we".into()),
+            ("waddr", "power_table_waddr".into()),
+            ("wdata", "power_table_wdata".into()),
             ("x", x),
             ("fs", "fs".into()),
         ],
     );
-    s.source("fs", st + pt.latency(cfg));
+    s.source("fs", st + pu.latency(cfg));
 }
 
 /// The fetch: `b` from `bump` (a template).

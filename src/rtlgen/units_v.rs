@@ -111,11 +111,11 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// power_table: `R` read ports into one reloadable table, one RAM copy per read port (all
+/// power_unit: `R` read ports into the reloadable power table, one RAM copy per read port (all
 /// written by the load port); index = round(x (N-1) / 2^F) for the paper's table, whose RAM
-/// read register is the output register (latency 1), or the `power_core` datapath of an
+/// read register is the output register (latency 1), or the `power_unit_core` datapath of an
 /// interpolated/segmented unit around its two knot reads (latency 2).
-pub fn power_table(cfg: &PipelineConfig) -> String {
+pub fn power_unit(cfg: &PipelineConfig) -> String {
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
         return power_unit_with_core(cfg);
     }
@@ -124,7 +124,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded",
+        "// power_unit (paper §4.2): fs = (B·H)^n from a {n}-entry power table of {}-bit u1.{p} entries, loaded",
         p + 1
     ));
     w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents. One RAM");
@@ -134,7 +134,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
         cfg.power_index,
         n - 1
     ));
-    power_table_shell(&mut w, cfg);
+    power_unit_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         let sw = f + 1 + ib + 1;
         w.line(format!("wire [{}:0] xr = x[r*{} +: {}];", f, f + 1, f + 1));
@@ -165,8 +165,8 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// The power table's module header: the same for every kind of power unit.
-fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
+/// The power unit's module header: the same for every kind of power unit.
+fn power_unit_shell(w: &mut VWriter, cfg: &PipelineConfig) {
     let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let out = if cfg.power_unit == crate::config::PowerUnitKind::Table {
         "wire"
@@ -175,7 +175,7 @@ fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
     };
     w.line(format!(
         "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output {out} [R*{}-1:0] fs\n);",
-        module_name(cfg, "power_table"),
+        module_name(cfg, "power_unit"),
         rom_file_name(cfg, "power_table", "hex"),
         cfg.power_addr_bits() - 1,
         f + 1,
@@ -185,22 +185,22 @@ fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
 }
 
 /// A loadable table of `power_depth()` words read through two RAM copies per lookup (the
-/// knots on both sides) by the `power_core` datapath: one core instance computes the
+/// knots on both sides) by the `power_unit_core` datapath: one core instance computes the
 /// addresses from x, the RAMs register the knots, and a second instance interpolates from
 /// x one cycle later (synthesis keeps only the half of each that is used).
 fn power_unit_with_core(cfg: &PipelineConfig) -> String {
     let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
-    let core = module_name(cfg, "power_core");
+    let core = module_name(cfg, "power_unit_core");
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
-        cfg.power_design().label()
+        "// power_unit (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
+        cfg.power_unit_design().label()
     ));
     w.line("// INIT_FILE holds the reset contents. Each read port reads two knots from two RAM copies");
     w.line("// (their read registers are the first stage), then interpolates (the output register).");
-    power_table_shell(&mut w, cfg);
+    power_unit_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         w.line(format!("wire [{f}:0] xr = x[r*{} +: {}];", f + 1, f + 1));
         w.line(format!("wire [{}:0] a0;", ab - 1));

@@ -36,7 +36,7 @@ impl Unit for PaletteFetch {
     }
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
         Some(Memory {
-            prefix: "pal",
+            prefix: "palette",
             init_param: "PALETTE_INIT_FILE",
             init_stem: "bump_palette_spiral",
             depth: PALETTE_ENTRIES,

@@ -50,7 +50,10 @@ impl Unit for TextureModulate {
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let m = cfg.colour_max() as i64;
         vec![
-            ("white texture colour T passes the colour through".into(), vec![vec![0, m / 2, m], vec![m; 3]]),
+            (
+                "white texture colour T passes the colour through".into(),
+                vec![vec![0, m / 2, m], vec![m; 3]],
+            ),
             ("black texture colour T gives black".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
             (
                 "half-way products round to nearest".into(),

@@ -329,7 +329,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
                 inputs: vec![t.b.to_vec(), ls.h.to_vec()],
             });
             v.push(UnitStim {
-                unit: "power_table",
+                unit: "power_unit",
                 inputs: vec![vec![t.xh[j]]],
             });
         }
