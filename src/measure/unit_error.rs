@@ -81,10 +81,10 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
         let k = cfg.k_fmt().to_f64(ls.k);
         for ch in 0..3 {
             if d_on {
-                dif[ch] += dot(ls.l) * k * ls.colour[ch] as f64;
+                dif[ch] += dot(ls.l) * k * ls.lc[ch] as f64;
             }
             if s_on {
-                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.colour[ch] as f64;
+                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.lc[ch] as f64;
             }
         }
     }

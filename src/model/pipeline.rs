@@ -21,7 +21,7 @@ pub struct LightSlot {
     /// Half vector H_i, raw `s1.(lh-2)` components.
     pub h: [i64; 3],
     /// Light colour Lc_i, colour codes (an unused slot has colour 0).
-    pub colour: [u32; 3],
+    pub lc: [u32; 3],
     /// Spot/attenuation modulation k_i, raw `u1.K`.
     pub k: i64,
 }
@@ -98,7 +98,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     for i in 0..n {
         let s = &state.lights[i];
         kd[i] = s.k;
-        lc[i] = s.colour;
+        lc[i] = s.lc;
         if cfg.diffuse {
             out.fd[i] = dot_clamp(cfg, b, s.l);
             if diffuse_on {

@@ -6,8 +6,8 @@ use crate::config::PipelineConfig;
 use crate::fixed::unorm_mul;
 
 #[inline]
-pub fn texture_modulate(cfg: &PipelineConfig, c: [u32; 3], t: [u32; 3]) -> [u32; 3] {
-    [0, 1, 2].map(|i| unorm_mul(c[i] as u64, t[i] as u64, cfg.colour_bits) as u32)
+pub fn texture_modulate(cfg: &PipelineConfig, c: [u32; 3], tex: [u32; 3]) -> [u32; 3] {
+    [0, 1, 2].map(|i| unorm_mul(c[i] as u64, tex[i] as u64, cfg.colour_bits) as u32)
 }
 
 #[cfg(test)]

@@ -22,7 +22,7 @@ impl Unit for TextureModulate {
         vec![
             p("c_in", Dir::In, cfg.colour_fmt(), 3, "colour in"),
             p("tex", Dir::In, cfg.colour_fmt(), 3, "texture colour T"),
-            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c t / max)"),
+            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c_in tex / max)"),
         ]
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {

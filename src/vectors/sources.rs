@@ -106,7 +106,7 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         *s = LightSlot {
             l: vec(rng),
             h: vec(rng),
-            colour: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            lc: [0; 3].map(|_| rng.range(0, cmax) as u32),
             k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
         };
     }
@@ -234,7 +234,7 @@ fn corner_stim(cfg: &PipelineConfig, codes: [u32; 3], l: [i64; 3], h: [i64; 3], 
         *s = LightSlot {
             l: fit(l),
             h: fit(h),
-            colour: [lc; 3],
+            lc: [lc; 3],
             k,
         };
     }
@@ -384,7 +384,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     v.push(("dot product on a rounding tie", tie));
     for slot in 0..cfg.lights as usize {
         let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
-        s.state.lights[slot].colour = [cmax, 0, cmax / 2];
+        s.state.lights[slot].lc = [cmax, 0, cmax / 2];
         v.push(("a single active light slot (each slot in turn)", s));
     }
     v

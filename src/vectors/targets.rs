@@ -217,7 +217,7 @@ impl<'a> TopEncoder<'a> {
                 let lane = (3 * j + i) as u32;
                 self.l.set(r, lane, ls.l[i]);
                 self.h.set(r, lane, ls.h[i]);
-                self.lc.set(r, lane, ls.colour[i] as i64);
+                self.lc.set(r, lane, ls.lc[i] as i64);
             }
             self.k.set(r, j as u32, ls.k);
         }
@@ -247,7 +247,7 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
         let b = 3 * j as u32;
         s.l = lane3(c_l, b);
         s.h = lane3(c_h, b);
-        s.colour = lane3(c_lc, b).map(|v| v as u32);
+        s.lc = lane3(c_lc, b).map(|v| v as u32);
         s.k = r.lane_value(c_k, j as u32);
     }
     TopStim {
@@ -314,7 +314,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
         }),
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
-    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].colour.map(|x| x as i64)).collect();
+    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].lc.map(|x| x as i64)).collect();
     for j in 0..n {
         let ls = &s.state.lights[j];
         if cfg.diffuse {
