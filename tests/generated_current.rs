@@ -114,6 +114,16 @@ fn readme_integration_section_is_current() {
     );
 }
 
+/// The README's upgrade table is the list of renames `src/renamed.rs` checks.
+#[test]
+fn readme_upgrade_table_is_current() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.contains(&gbump::renamed::markdown()),
+        "README's upgrade table is stale: paste gbump::renamed::markdown()"
+    );
+}
+
 /// The latency of every unit and top at every `pipeline_depth`, as the README states it, is
 /// what the units and the scheduler return today (the benches check the top's per vector).
 #[test]

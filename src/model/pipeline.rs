@@ -163,7 +163,7 @@ mod tests {
             *s = LightSlot {
                 l: [0, 0, one(&cfg)],
                 h: [0, 0, one(&cfg)],
-                colour: [255; 3],
+                lc: [255; 3],
                 k: 1 << cfg.k_frac_bits,
             };
         }
@@ -193,7 +193,7 @@ mod tests {
         st.lights[0] = LightSlot {
             l: [0, 0, one(&cfg)],
             h: [one(&cfg), 0, 0],
-            colour: [200, 0, 0],
+            lc: [200, 0, 0],
             k: 256,
         };
         let r = shade(&cfg, &t, None, &st, &frag(10, 255));
@@ -210,7 +210,7 @@ mod tests {
         st.lights[0] = LightSlot {
             l: [0, 0, one(&cfg)],
             h: [0, 0, one(&cfg)],
-            colour: [255; 3],
+            lc: [255; 3],
             k: 0,
         };
         assert_eq!(shade(&cfg, &t, None, &st, &frag(77, 255)).colour(), [77; 3]);
@@ -242,7 +242,7 @@ mod tests {
             *s = LightSlot {
                 l: [1000 * i as i64, -3000, 12000],
                 h: [-500, 2000 * i as i64, 15000],
-                colour: [90, 180, 255],
+                lc: [90, 180, 255],
                 k: 200,
             };
         }
