@@ -75,13 +75,10 @@ module tb_top;
     reg [95:0] tri_lc = 0;
     reg [35:0] tri_k = 0;
     wire [23:0] out_c;
-    reg power_table_we = 0;
-    reg [7:0] power_table_waddr = 0;
-    reg [8:0] power_table_wdata = 0;
     gbump_pipeline_0da41704 #(.INIT_FILE(INIT_FILE)) dut (
         .clk(clk), .rst(rst), .power_table_we(power_table_we), .power_table_waddr(power_table_waddr), .power_table_wdata(power_table_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
-        .tri_valid(tri_valid), .tri_ready(tri_ready), .out_ready(out_ready), .in_bump(in_bump), .in_c_src(in_c_src), .in_tex(in_tex), .in_diffuse_en(in_diffuse_en), .in_specular_en(in_specular_en), .tri_l(tri_l), .tri_h(tri_h), .tri_lc(tri_lc), .tri_k(tri_k), .out_c(out_c), .power_table_we(power_table_we), .power_table_waddr(power_table_waddr), .power_table_wdata(power_table_wdata)
+        .tri_valid(tri_valid), .tri_ready(tri_ready), .out_ready(out_ready), .in_bump(in_bump), .in_c_src(in_c_src), .in_tex(in_tex), .in_diffuse_en(in_diffuse_en), .in_specular_en(in_specular_en), .tri_l(tri_l), .tri_h(tri_h), .tri_lc(tri_lc), .tri_k(tri_k), .out_c(out_c)
     );
     always #5 clk = ~clk;
 

@@ -67,7 +67,20 @@ pub const RENAMED: &[Renamed] = &[
     r(Where::PackageParam, "PT_WORDS", "POWER_TABLE_WORDS"),
     r(Where::PackageParam, "PT_ADDR_BITS", "POWER_TABLE_ADDR_BITS"),
     r(Where::InterfaceKey, "power_table.unit", "power_table.power_unit"),
+    r(Where::InterfaceKey, "memories.pt", "memories.power_table"),
+    r(Where::InterfaceKey, "memories.pal", "memories.palette"),
 ];
+
+/// The fix line for a unit name that is not known: its new name if it was renamed, else `usual`.
+pub fn unit_fix(name: &str, usual: String) -> String {
+    match RENAMED.iter().find(|x| x.at == Where::Unit && x.old == name) {
+        Some(x) => format!(
+            "`{}` was renamed `{}`: use {} (README, \"Upgrading: renamed names\")",
+            x.old, x.new, x.new
+        ),
+        None => usual,
+    }
+}
 
 /// The README's upgrade table: every rename, then the configuration fields.
 pub fn markdown() -> String {

@@ -96,7 +96,10 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         }
     }
     // The other memories' load ports idle: the vectors assume their power-up contents.
-    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+    for m in crate::rtlgen::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != crate::units::POWER_TABLE)
+    {
         for (sig, w) in [("we", 1), ("waddr", m.addr_bits), ("wdata", m.data_bits)] {
             let r = if w > 1 { format!("[{}:0] ", w - 1) } else { String::new() };
             decls.push(format!("    reg {r}{}_{sig} = 0;", m.prefix));
@@ -273,7 +276,10 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         p += " printf(\"\\n\");";
         print.push(p);
     }
-    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+    for m in crate::rtlgen::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != crate::units::POWER_TABLE)
+    {
         assign.push(format!("            top.{}_we = 0;", m.prefix));
     }
     let out = l.column("out_c");

@@ -24,6 +24,7 @@ use crate::model::{Palette, PowerTable};
 
 pub use blend::{DIFFUSE_BLEND, SPECULAR_BLEND};
 pub use palette_fetch::PALETTE_ENTRIES;
+pub use power_unit::POWER_TABLE;
 pub use serial_blend::{accumulate, finish};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,6 +6,9 @@ use super::{p, Dir, Lanes, Memories, Memory, Port, Unit};
 use crate::config::{PipelineConfig, PowerUnitKind};
 use crate::model::power_table::powi_exact;
 
+/// The name of the memory the power unit reads: its load port's prefix and its init file's stem.
+pub const POWER_TABLE: &str = "power_table";
+
 pub struct PowerUnit;
 
 impl Unit for PowerUnit {
@@ -38,9 +41,9 @@ impl Unit for PowerUnit {
     }
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
         Some(Memory {
-            prefix: "power_table",
+            prefix: POWER_TABLE,
             init_param: "INIT_FILE",
-            init_stem: "power_table",
+            init_stem: POWER_TABLE,
             depth: cfg.power_depth(),
             addr_bits: cfg.power_addr_bits(),
             data_bits: cfg.power_frac_bits + 1,

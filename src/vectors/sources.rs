@@ -492,9 +492,10 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
 /// before anything is built or written).
 pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
     let Some(u) = crate::units::unit(unit) else {
+        let usual = format!("one of {}", crate::vectors::targets::all_targets()[1..].join(", "));
         return Err(Error::Other(format!(
-            "exhaustive:{unit}: no such unit\n  fix: one of {}",
-            crate::vectors::targets::all_targets()[1..].join(", ")
+            "exhaustive:{unit}: no such unit\n  fix: {}",
+            crate::renamed::unit_fix(unit, usual)
         )));
     };
     let Some(count) = u.exhaustive_count(cfg) else {

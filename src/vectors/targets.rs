@@ -400,9 +400,10 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         let named: Vec<&str> = if t == "all" {
             all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
         } else if !all.contains(&t.as_str()) {
+            let usual = format!("one of all, {}", all.join(", "));
             return Err(Error::Other(format!(
-                "--target {t}: unknown\n  fix: one of all, {}",
-                all.join(", ")
+                "--target {t}: unknown\n  fix: {}",
+                crate::renamed::unit_fix(t, usual)
             )));
         } else if !super::writer::unit_present(cfg, t) {
             let u = crate::units::unit(t).expect("unit");
