@@ -266,7 +266,7 @@ int32_t gbump_shininess(const struct GbumpConfig *h);
 int32_t gbump_power_words(const struct GbumpConfig *h);
 
 /**
- * Bits of one power-table word (`pt_wdata`'s width).
+ * Bits of one power-table word (`power_table_wdata`'s width).
  *
  * # Safety
  * `h` is a live handle.

@@ -70,7 +70,7 @@ package gbump_dpi_pkg;
     import "DPI-C" function int gbump_shininess(input chandle h);
     // Words of the power table memory (what the top's load port addresses).
     import "DPI-C" function int gbump_power_words(input chandle h);
-    // Bits of one power-table word (`pt_wdata`'s width).
+    // Bits of one power-table word (`power_table_wdata`'s width).
     import "DPI-C" function int gbump_power_word_bits(input chandle h);
     // Word `i` of the power table (the ROM file's word `i`); -1 when out of range.
     import "DPI-C" function longint gbump_power_word(input chandle h, input int i);

@@ -33,11 +33,11 @@
 // which for offset binary is an inversion of each component's MSB.
 module bump_fetch_0da41704 (
     input  wire clk,
-    input  wire [23:0] texel,
+    input  wire [23:0] bump,
     output reg  [23:0] b
 );
 always @(posedge clk) begin
-    b <= {{~texel[23], texel[22:16]}, {~texel[15], texel[14:8]}, {~texel[7], texel[6:0]}};
+    b <= {{~bump[23], bump[22:16]}, {~bump[15], bump[14:8]}, {~bump[7], bump[6:0]}};
 end
 endmodule
 `default_nettype wire

@@ -32,9 +32,9 @@
 // bump_fetch (paper sec. 4.1; Cg sec. 8.1.2 range expansion): stored code c -> b = c - 2^(w-1),
 // which for offset binary is an inversion of each component's MSB.
 module bump_fetch_comb_0da41704 (
-    input  wire [23:0] texel,
+    input  wire [23:0] bump,
     output wire [23:0] b
 );
-assign b = {{~texel[23], texel[22:16]}, {~texel[15], texel[14:8]}, {~texel[7], texel[6:0]}};
+assign b = {{~bump[23], bump[22:16]}, {~bump[15], bump[14:8]}, {~bump[7], bump[6:0]}};
 endmodule
 `default_nettype wire

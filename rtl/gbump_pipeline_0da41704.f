@@ -31,7 +31,7 @@
 bump_fetch_0da41704.v
 bump_fetch_comb_0da41704.v
 dot_clamp_0da41704.v
-power_table_0da41704.v
+power_unit_0da41704.v
 sync_ram_0da41704.v
 light_accumulate_0da41704.v
 light_term_0da41704.v

@@ -37,14 +37,14 @@ module gbump_pipeline_0da41704 #(
 ) (
     input  wire clk,
     input  wire rst,
-    input  wire pt_we,
-    input  wire [7:0] pt_waddr,
-    input  wire [8:0] pt_wdata,
+    input  wire power_table_we,
+    input  wire [7:0] power_table_waddr,
+    input  wire [8:0] power_table_wdata,
     input  wire in_valid,
     output wire in_ready,
-    input  wire [23:0] in_texel,
+    input  wire [23:0] in_bump,
     input  wire [23:0] in_c_src,
-    input  wire [23:0] in_t,
+    input  wire [23:0] in_tex,
     input  wire in_diffuse_en,
     input  wire in_specular_en,
     input  wire tri_valid,
@@ -79,12 +79,12 @@ always @(posedge clk) begin
         j <= last ? 2'd0 : j + 2'd1;
     end
 end
-reg [23:0] fr_texel;
-always @(posedge clk) if (accept) fr_texel <= in_texel;
+reg [23:0] fr_bump;
+always @(posedge clk) if (accept) fr_bump <= in_bump;
 reg [23:0] fr_c_src;
 always @(posedge clk) if (accept) fr_c_src <= in_c_src;
-reg [23:0] fr_t;
-always @(posedge clk) if (accept) fr_t <= in_t;
+reg [23:0] fr_tex;
+always @(posedge clk) if (accept) fr_tex <= in_tex;
 reg fr_diffuse_en;
 always @(posedge clk) if (accept) fr_diffuse_en <= in_diffuse_en;
 reg fr_specular_en;
@@ -112,7 +112,7 @@ always @(posedge clk) begin
     else if (tri_accept) tri_cur <= tri_next;
 end
 wire [23:0] b;
-bump_fetch_comb_0da41704 u_bump_fetch (.texel(fr_texel), .b(b));
+bump_fetch_comb_0da41704 u_bump_fetch (.bump(fr_bump), .b(b));
 wire de = fr_diffuse_en;
 wire [191:0] st_l_s0 = bank_l[fr_tag];
 wire [47:0] l_sel = st_l_s0[j*48 +: 48];
@@ -169,7 +169,7 @@ wire [47:0] h_sel = st_h_s0[j*48 +: 48];
 wire [8:0] xh;
 dot_clamp_0da41704 u_dot_h (.clk(clk), .b(b), .v(h_sel), .f(xh));
 wire [8:0] fs;
-power_table_0da41704 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_table (.clk(clk), .we(pt_we), .waddr(pt_waddr), .wdata(pt_wdata), .x(xh), .fs(fs));
+power_unit_0da41704 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_unit (.clk(clk), .we(power_table_we), .waddr(power_table_waddr), .wdata(power_table_wdata), .x(xh), .fs(fs));
 reg se_d1;
 always @(posedge clk) se_d1 <= se;
 reg se_d2;
@@ -205,22 +205,22 @@ reg [23:0] fr_c_src_d6;
 always @(posedge clk) fr_c_src_d6 <= fr_c_src_d5;
 wire [23:0] c_dif;
 blend_finish_0da41704 u_diffuse_finish (.clk(clk), .c_in(fr_c_src_d6), .acc(dacc), .c_out(c_dif));
-reg [23:0] fr_t_d1;
-always @(posedge clk) fr_t_d1 <= fr_t;
-reg [23:0] fr_t_d2;
-always @(posedge clk) fr_t_d2 <= fr_t_d1;
-reg [23:0] fr_t_d3;
-always @(posedge clk) fr_t_d3 <= fr_t_d2;
-reg [23:0] fr_t_d4;
-always @(posedge clk) fr_t_d4 <= fr_t_d3;
-reg [23:0] fr_t_d5;
-always @(posedge clk) fr_t_d5 <= fr_t_d4;
-reg [23:0] fr_t_d6;
-always @(posedge clk) fr_t_d6 <= fr_t_d5;
-reg [23:0] fr_t_d7;
-always @(posedge clk) fr_t_d7 <= fr_t_d6;
+reg [23:0] fr_tex_d1;
+always @(posedge clk) fr_tex_d1 <= fr_tex;
+reg [23:0] fr_tex_d2;
+always @(posedge clk) fr_tex_d2 <= fr_tex_d1;
+reg [23:0] fr_tex_d3;
+always @(posedge clk) fr_tex_d3 <= fr_tex_d2;
+reg [23:0] fr_tex_d4;
+always @(posedge clk) fr_tex_d4 <= fr_tex_d3;
+reg [23:0] fr_tex_d5;
+always @(posedge clk) fr_tex_d5 <= fr_tex_d4;
+reg [23:0] fr_tex_d6;
+always @(posedge clk) fr_tex_d6 <= fr_tex_d5;
+reg [23:0] fr_tex_d7;
+always @(posedge clk) fr_tex_d7 <= fr_tex_d6;
 wire [23:0] c_tex;
-texture_modulate_0da41704 u_texture_modulate (.clk(clk), .c_in(c_dif), .t(fr_t_d7), .c_out(c_tex));
+texture_modulate_0da41704 u_texture_modulate (.clk(clk), .c_in(c_dif), .tex(fr_tex_d7), .c_out(c_tex));
 reg [83:0] sacc_d8;
 always @(posedge clk) sacc_d8 <= sacc;
 reg [83:0] sacc_d9;

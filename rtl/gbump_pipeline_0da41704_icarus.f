@@ -30,7 +30,7 @@
 $(GBUMP_RTL)/bump_fetch_0da41704.v
 $(GBUMP_RTL)/bump_fetch_comb_0da41704.v
 $(GBUMP_RTL)/dot_clamp_0da41704.v
-$(GBUMP_RTL)/power_table_0da41704.v
+$(GBUMP_RTL)/power_unit_0da41704.v
 $(GBUMP_RTL)/sync_ram_0da41704.v
 $(GBUMP_RTL)/light_accumulate_0da41704.v
 $(GBUMP_RTL)/light_term_0da41704.v

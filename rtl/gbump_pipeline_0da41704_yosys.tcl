@@ -28,6 +28,6 @@
 #   # formats: normal s0.7 lh s1.14 dot u1.8 power u1.8 k u1.8 colour u8.0 term u10.16 acc u12.16
 # yosys -c DIR/gbump_pipeline_0da41704_yosys.tcl    or    yosys -p "tcl DIR/gbump_pipeline_0da41704_yosys.tcl; synth -top gbump_pipeline_0da41704"
 set gbump_dir [file dirname [file normalize [info script]]]
-foreach gbump_src {bump_fetch_0da41704.v bump_fetch_comb_0da41704.v dot_clamp_0da41704.v power_table_0da41704.v sync_ram_0da41704.v light_accumulate_0da41704.v light_term_0da41704.v blend_finish_0da41704.v texture_modulate_0da41704.v gbump_pipeline_0da41704.v} {
+foreach gbump_src {bump_fetch_0da41704.v bump_fetch_comb_0da41704.v dot_clamp_0da41704.v power_unit_0da41704.v sync_ram_0da41704.v light_accumulate_0da41704.v light_term_0da41704.v blend_finish_0da41704.v texture_modulate_0da41704.v gbump_pipeline_0da41704.v} {
     yosys read_verilog -defer [file join $gbump_dir $gbump_src]
 }

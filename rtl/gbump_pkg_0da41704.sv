@@ -34,13 +34,13 @@
 package gbump_pkg_0da41704;
     // Formats: lane widths in bits (a lane is one component or one light's value).
     localparam int COLOUR_BITS = 8; // colour code u8.0, max = 1.0
-    localparam int NORMAL_BITS = 8; // stored bump texel component, offset binary
+    localparam int NORMAL_BITS = 8; // stored bump normal component (`in_bump` lane), offset binary
     localparam int LH_BITS = 16; // L_i, H_i component s1.14
     localparam int K_BITS = 9; // k_i u1.8
     localparam int DOT_BITS = 9; // clamped dot product u1.8
     localparam int POWER_BITS = 9; // power-table entry u1.8
-    localparam int PT_WORDS = 256; // words of the power table's memory
-    localparam int PT_ADDR_BITS = 8; // pt_waddr width
+    localparam int POWER_TABLE_WORDS = 256; // words of the power table's memory
+    localparam int POWER_TABLE_ADDR_BITS = 8; // power_table_waddr width
     localparam int LIGHTS = 4; // light slots
     localparam int SHININESS = 16; // shininess of the power-up table
     // Timing (rising edges, as the interface JSON defines them).
@@ -50,14 +50,14 @@ package gbump_pkg_0da41704;
     // Top ports.
     localparam int CLK_BITS = 1; // width of clk
     localparam int RST_BITS = 1; // width of rst
-    localparam int PT_WE_BITS = 1; // width of pt_we
-    localparam int PT_WADDR_BITS = 8; // width of pt_waddr
-    localparam int PT_WDATA_BITS = 9; // width of pt_wdata
+    localparam int POWER_TABLE_WE_BITS = 1; // width of power_table_we
+    localparam int POWER_TABLE_WADDR_BITS = 8; // width of power_table_waddr
+    localparam int POWER_TABLE_WDATA_BITS = 9; // width of power_table_wdata
     localparam int IN_VALID_BITS = 1; // width of in_valid
     localparam int IN_READY_BITS = 1; // width of in_ready
-    localparam int IN_TEXEL_BITS = 24; // width of in_texel
+    localparam int IN_BUMP_BITS = 24; // width of in_bump
     localparam int IN_C_SRC_BITS = 24; // width of in_c_src
-    localparam int IN_T_BITS = 24; // width of in_t
+    localparam int IN_TEX_BITS = 24; // width of in_tex
     localparam int IN_DIFFUSE_EN_BITS = 1; // width of in_diffuse_en
     localparam int IN_SPECULAR_EN_BITS = 1; // width of in_specular_en
     localparam int TRI_VALID_BITS = 1; // width of tri_valid
@@ -80,15 +80,15 @@ package gbump_pkg_0da41704;
         logic [0:0] tri_start; // bits [74:74], 1 x u1.0 (stimulus)
         logic [0:0] in_specular_en; // bits [73:73], 1 x u1.0 (stimulus)
         logic [0:0] in_diffuse_en; // bits [72:72], 1 x u1.0 (stimulus)
-        logic [23:0] in_t; // bits [71:48], 3 x u8.0 (stimulus)
+        logic [23:0] in_tex; // bits [71:48], 3 x u8.0 (stimulus)
         logic [23:0] in_c_src; // bits [47:24], 3 x u8.0 (stimulus)
-        logic [23:0] in_texel; // bits [23:0], 3 x u8.0 (stimulus)
+        logic [23:0] in_bump; // bits [23:0], 3 x u8.0 (stimulus)
     } top_record_t;
     // bump_fetch vector record: a $readmemh'd word of BUMP_FETCH_RECORD_BITS bits assigned to a bump_fetch_record_t.
     localparam int BUMP_FETCH_RECORD_BITS = 48; // bits of one record (LSB-first columns)
     typedef struct packed {
         logic [23:0] b; // bits [47:24], 3 x s0.7 (expected)
-        logic [23:0] texel; // bits [23:0], 3 x u8.0 (stimulus)
+        logic [23:0] bump; // bits [23:0], 3 x u8.0 (stimulus)
     } bump_fetch_record_t;
     // dot_clamp vector record: a $readmemh'd word of DOT_CLAMP_RECORD_BITS bits assigned to a dot_clamp_record_t.
     localparam int DOT_CLAMP_RECORD_BITS = 81; // bits of one record (LSB-first columns)
@@ -97,12 +97,12 @@ package gbump_pkg_0da41704;
         logic [47:0] v; // bits [71:24], 3 x s1.14 (stimulus)
         logic [23:0] b; // bits [23:0], 3 x s0.7 (stimulus)
     } dot_clamp_record_t;
-    // power_table vector record: a $readmemh'd word of POWER_TABLE_RECORD_BITS bits assigned to a power_table_record_t.
-    localparam int POWER_TABLE_RECORD_BITS = 18; // bits of one record (LSB-first columns)
+    // power_unit vector record: a $readmemh'd word of POWER_UNIT_RECORD_BITS bits assigned to a power_unit_record_t.
+    localparam int POWER_UNIT_RECORD_BITS = 18; // bits of one record (LSB-first columns)
     typedef struct packed {
         logic [8:0] fs; // bits [17:9], 1 x u1.8 (expected)
         logic [8:0] x; // bits [8:0], 1 x u1.8 (stimulus)
-    } power_table_record_t;
+    } power_unit_record_t;
     // light_accumulate vector record: a $readmemh'd word of LIGHT_ACCUMULATE_RECORD_BITS bits assigned to a light_accumulate_record_t.
     localparam int LIGHT_ACCUMULATE_RECORD_BITS = 211; // bits of one record (LSB-first columns)
     typedef struct packed {
@@ -124,17 +124,17 @@ package gbump_pkg_0da41704;
     localparam int TEXTURE_MODULATE_RECORD_BITS = 72; // bits of one record (LSB-first columns)
     typedef struct packed {
         logic [23:0] c_out; // bits [71:48], 3 x u8.0 (expected)
-        logic [23:0] t; // bits [47:24], 3 x u8.0 (stimulus)
+        logic [23:0] tex; // bits [47:24], 3 x u8.0 (stimulus)
         logic [23:0] c_in; // bits [23:0], 3 x u8.0 (stimulus)
     } texture_modulate_record_t;
     // Lane helpers for the top ports: lane 0 in the low bits; per light x, y, z (or R, G, B).
-    function automatic logic [NORMAL_BITS-1:0] in_texel_lane(input logic [IN_TEXEL_BITS-1:0] v, input int i);
+    function automatic logic [NORMAL_BITS-1:0] in_bump_lane(input logic [IN_BUMP_BITS-1:0] v, input int i);
         return v[(i) * NORMAL_BITS +: NORMAL_BITS];
     endfunction
     function automatic logic [COLOUR_BITS-1:0] in_c_src_lane(input logic [IN_C_SRC_BITS-1:0] v, input int i);
         return v[(i) * COLOUR_BITS +: COLOUR_BITS];
     endfunction
-    function automatic logic [COLOUR_BITS-1:0] in_t_lane(input logic [IN_T_BITS-1:0] v, input int i);
+    function automatic logic [COLOUR_BITS-1:0] in_tex_lane(input logic [IN_TEX_BITS-1:0] v, input int i);
         return v[(i) * COLOUR_BITS +: COLOUR_BITS];
     endfunction
     function automatic logic [LH_BITS-1:0] tri_l_lane(input logic [TRI_L_BITS-1:0] v, input int light, input int axis);

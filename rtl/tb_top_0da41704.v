@@ -51,12 +51,12 @@ module tb_top;
     parameter INIT_FILE = "power_table_0da41704.hex";
     localparam RB = 615;
     localparam LAT = 14;
-    localparam PT_N = 256;
+    localparam POWER_TABLE_WORDS = 256;
     reg clk = 1'b0;
     reg rst = 1'b1;
-    reg pt_we = 1'b0;
-    reg [8-1:0] pt_waddr = 0;
-    reg [9-1:0] pt_wdata = 0;
+    reg power_table_we = 1'b0;
+    reg [8-1:0] power_table_waddr = 0;
+    reg [9-1:0] power_table_wdata = 0;
     reg in_valid = 1'b0;
     wire in_ready;
     wire out_valid;
@@ -64,9 +64,9 @@ module tb_top;
     wire tri_ready;
     reg out_ready_r = 1'b1;
     wire out_ready = out_ready_r;
-    reg [23:0] in_texel = 0;
+    reg [23:0] in_bump = 0;
     reg [23:0] in_c_src = 0;
-    reg [23:0] in_t = 0;
+    reg [23:0] in_tex = 0;
     reg in_diffuse_en = 0;
     reg in_specular_en = 0;
     reg tri_start = 0;
@@ -76,15 +76,15 @@ module tb_top;
     reg [35:0] tri_k = 0;
     wire [23:0] out_c;
     gbump_pipeline_0da41704 #(.INIT_FILE(INIT_FILE)) dut (
-        .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
+        .clk(clk), .rst(rst), .power_table_we(power_table_we), .power_table_waddr(power_table_waddr), .power_table_wdata(power_table_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
-        .tri_valid(tri_valid), .tri_ready(tri_ready), .out_ready(out_ready), .in_texel(in_texel), .in_c_src(in_c_src), .in_t(in_t), .in_diffuse_en(in_diffuse_en), .in_specular_en(in_specular_en), .tri_l(tri_l), .tri_h(tri_h), .tri_lc(tri_lc), .tri_k(tri_k), .out_c(out_c)
+        .tri_valid(tri_valid), .tri_ready(tri_ready), .out_ready(out_ready), .in_bump(in_bump), .in_c_src(in_c_src), .in_tex(in_tex), .in_diffuse_en(in_diffuse_en), .in_specular_en(in_specular_en), .tri_l(tri_l), .tri_h(tri_h), .tri_lc(tri_lc), .tri_k(tri_k), .out_c(out_c)
     );
     always #5 clk = ~clk;
 
     reg [RB-1:0] stim;
     reg [RB-1:0] chk;
-    reg [9-1:0] table_mem [0:PT_N-1];
+    reg [9-1:0] table_mem [0:POWER_TABLE_WORDS-1];
     reg [8*512-1:0] vec_file;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
@@ -143,9 +143,9 @@ module tb_top;
         // table must keep what was written.
         if ($test$plusargs("valid_during_reset")) begin
             stim = {RB{1'b1}};
-            in_texel = stim[23:0];
+            in_bump = stim[23:0];
             in_c_src = stim[47:24];
-            in_t = stim[71:48];
+            in_tex = stim[71:48];
             in_diffuse_en = stim[72:72];
             in_specular_en = stim[73:73];
             tri_start = stim[74:74];
@@ -161,12 +161,12 @@ module tb_top;
         in_valid = 1'b0;
         tri_valid = 1'b0;
         if (load_table) begin
-            for (i = 0; i < PT_N; i = i + 1) begin
-                pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+            for (i = 0; i < POWER_TABLE_WORDS; i = i + 1) begin
+                power_table_we = 1'b1; power_table_waddr = i; power_table_wdata = table_mem[i];
                 @(negedge clk);
             end
         end
-        pt_we = 1'b0;
+        power_table_we = 1'b0;
         if ($test$plusargs("reset_after_load")) begin
             rst = 1'b1;
             in_valid = $test$plusargs("valid_during_reset");
@@ -182,9 +182,9 @@ module tb_top;
                 in_valid = 1'b0;
                 for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
             end
-            in_texel = stim[23:0];
+            in_bump = stim[23:0];
             in_c_src = stim[47:24];
-            in_t = stim[71:48];
+            in_tex = stim[71:48];
             in_diffuse_en = stim[72:72];
             in_specular_en = stim[73:73];
             tri_start = stim[74:74];
@@ -273,9 +273,9 @@ module tb_top;
                 failed = failed + 1;
                 if (failed <= max_errors) begin
                     $display("MISMATCH unit gbump_pipeline vector %0d:", n_out - 1);
-                    $display("  in_texel        %h", chk[23:0]);
+                    $display("  in_bump         %h", chk[23:0]);
                     $display("  in_c_src        %h", chk[47:24]);
-                    $display("  in_t            %h", chk[71:48]);
+                    $display("  in_tex          %h", chk[71:48]);
                     $display("  in_diffuse_en   %h", chk[72:72]);
                     $display("  in_specular_en  %h", chk[73:73]);
                     $display("  tri_start       %h", chk[74:74]);

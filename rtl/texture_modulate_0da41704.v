@@ -29,22 +29,22 @@
 `timescale 1ns / 1ps
 `default_nettype none
 
-// texture_modulate (paper sec. 5.1): exact round(c*t / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).
+// texture_modulate (paper sec. 5.1): exact round(c_in*tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).
 // Latency 2.
 module texture_modulate_0da41704 (
     input  wire clk,
     input  wire [23:0] c_in,
-    input  wire [23:0] t,
+    input  wire [23:0] tex,
     output reg  [23:0] c_out
 );
 reg [16:0] p0;
-always @(posedge clk) p0 <= c_in[7:0] * t[7:0] + 17'd128;
+always @(posedge clk) p0 <= c_in[7:0] * tex[7:0] + 17'd128;
 wire [16:0] q0 = p0 + (p0 >> 8);
 reg [16:0] p1;
-always @(posedge clk) p1 <= c_in[15:8] * t[15:8] + 17'd128;
+always @(posedge clk) p1 <= c_in[15:8] * tex[15:8] + 17'd128;
 wire [16:0] q1 = p1 + (p1 >> 8);
 reg [16:0] p2;
-always @(posedge clk) p2 <= c_in[23:16] * t[23:16] + 17'd128;
+always @(posedge clk) p2 <= c_in[23:16] * tex[23:16] + 17'd128;
 wire [16:0] q2 = p2 + (p2 >> 8);
 always @(posedge clk) begin
     c_out[7:0] <= q0[15:8];

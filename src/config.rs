@@ -402,15 +402,15 @@ impl PipelineConfig {
         self.power_entries.trailing_zeros()
     }
     /// The power unit as a design of `model::power_unit`.
-    pub fn power_design(&self) -> crate::model::power_unit::PowerDesign {
-        use crate::model::power_unit::PowerDesign;
+    pub fn power_unit_design(&self) -> crate::model::power_unit::PowerUnitDesign {
+        use crate::model::power_unit::PowerUnitDesign;
         match self.power_unit {
-            PowerUnitKind::Table => PowerDesign::Table {
+            PowerUnitKind::Table => PowerUnitDesign::Table {
                 entries: self.power_entries,
                 nearest: self.power_index == PowerIndex::Nearest,
             },
-            PowerUnitKind::Lerp => PowerDesign::Lerp { knots: self.power_entries },
-            PowerUnitKind::Segmented => PowerDesign::Segmented {
+            PowerUnitKind::Lerp => PowerUnitDesign::Lerp { knots: self.power_entries },
+            PowerUnitKind::Segmented => PowerUnitDesign::Segmented {
                 segments: self.power_segments,
                 per_segment: self.power_entries,
                 lerp: true,
@@ -426,7 +426,7 @@ impl PipelineConfig {
     }
     /// Words of the power unit's loadable memory.
     pub fn power_depth(&self) -> u32 {
-        (self.power_design().rom_bits(self.power_formats()) / (self.power_frac_bits as u64 + 1)) as u32
+        (self.power_unit_design().rom_bits(self.power_formats()) / (self.power_frac_bits as u64 + 1)) as u32
     }
     /// Address bits of the power unit's memory (its load port).
     pub fn power_addr_bits(&self) -> u32 {

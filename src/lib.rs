@@ -18,6 +18,7 @@ pub mod names;
 pub mod progress;
 pub mod raster;
 pub mod reference;
+pub mod renamed;
 pub mod render;
 pub mod rtlgen;
 pub mod scene;

@@ -32,7 +32,7 @@
 #include <vector>
 
 static const size_t RECORD_BYTES = {{RECORD_BYTES}};
-static const int PT_N = {{PT_N}};
+static const int POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
 static const long long LATENCY = {{LATENCY}};
 static const long long II = {{II}};
 static const size_t FLIGHT = 64;
@@ -132,7 +132,7 @@ static bool read_table(const char* path, std::vector<uint32_t>& out) {
         std::string tok;
         if (ss >> tok) out.push_back((uint32_t)strtoul(tok.c_str(), nullptr, 16));
     }
-    return (int)out.size() == PT_N;
+    return (int)out.size() == POWER_TABLE_WORDS;
 }
 
 int main(int argc, char** argv) {
@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
     }
     if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
     std::vector<uint32_t> table;
-    if (table_path && !read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, PT_N); return 2; }
+    if (table_path && !read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, POWER_TABLE_WORDS); return 2; }
     Records recs;
     if (!recs.open(vec_path, count)) return 2;
     const size_t n = recs.n;
@@ -170,14 +170,14 @@ int main(int argc, char** argv) {
     ctx.commandArgs(argc, argv);
     V{{TOP}} top(&ctx);
     auto tick = [&]() { top.clk = 0; top.eval(); top.clk = 1; top.eval(); };
-    top.rst = 1; top.in_valid = 0; top.pt_we = 0;
+    top.rst = 1; top.in_valid = 0; top.power_table_we = 0;
     {{TRI_VALID_0}}
     {{OUT_READY_1}}
     for (int i = 0; i < {{RESET_CYCLES}}; ++i) tick();
     top.rst = 0;
     if (table_path)
-        for (int i = 0; i < PT_N; ++i) { top.pt_we = 1; top.pt_waddr = i; top.pt_wdata = table[i]; tick(); }
-    top.pt_we = 0;
+        for (int i = 0; i < POWER_TABLE_WORDS; ++i) { top.power_table_we = 1; top.power_table_waddr = i; top.power_table_wdata = table[i]; tick(); }
+    top.power_table_we = 0;
 
     if (raw_cycles > 0) {
         const uint8_t* rin = recs.next(0, 0);

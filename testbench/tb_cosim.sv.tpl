@@ -19,20 +19,20 @@ module tb_cosim;
     parameter INIT_FILE = {{INIT_FILE}};
     localparam int LAT = {{LATENCY}};
     localparam int II = {{II}};
-    localparam int PT_N = {{PT_N}};
+    localparam int POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
     localparam int FLIGHT = 64;
     logic clk = 1'b0;
     logic rst = 1'b1;
-    logic pt_we = 1'b0;
-    logic [{{PT_AW}}-1:0] pt_waddr = '0;
-    logic [{{PT_W}}-1:0] pt_wdata = '0;
+    logic power_table_we = 1'b0;
+    logic [{{POWER_TABLE_ADDR_BITS}}-1:0] power_table_waddr = '0;
+    logic [{{POWER_TABLE_DATA_BITS}}-1:0] power_table_wdata = '0;
     logic in_valid = 1'b0;
     wire in_ready;
     wire out_valid;
 {{TRI_DECLS}}
 {{DECLS}}
     {{TOP}} #(.INIT_FILE(INIT_FILE)) dut (
-        .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
+        .clk(clk), .rst(rst), .power_table_we(power_table_we), .power_table_waddr(power_table_waddr), .power_table_wdata(power_table_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
 {{CONNECT}}
     );
@@ -90,7 +90,7 @@ module tb_cosim;
         if (model == null) fatal(gbump_last_error());
         if (gbump_latency(model) != LAT) fatal($sformatf("the model's latency is %0d, the interface JSON's %0d: the RTL is of another configuration", gbump_latency(model), LAT));
         if (gbump_initiation_interval(model) != II) fatal($sformatf("the model's initiation interval is %0d, the interface JSON's %0d", gbump_initiation_interval(model), II));
-        if (gbump_power_words(model) != PT_N) fatal($sformatf("the model's power table has %0d words, the RTL's %0d", gbump_power_words(model), PT_N));
+        if (gbump_power_words(model) != POWER_TABLE_WORDS) fatal($sformatf("the model's power table has %0d words, the RTL's %0d", gbump_power_words(model), POWER_TABLE_WORDS));
 {{COLUMNS}}
         $display("cosim: model %0s (config %0s), seed %0d, %0d fragments", gbump_module_name(model), gbump_config_hash(model), $unsigned(seed), count);
         stream = gbump_stim_new(model, seed);
@@ -99,14 +99,14 @@ module tb_cosim;
         repeat (gbump_reset_cycles(model)) @(negedge clk);
         rst = 1'b0;
         // The model's table through the load port, word by word.
-        for (i = 0; i < PT_N; i = i + 1) begin
-            pt_we = 1'b1;
-            pt_waddr = i[{{PT_AW}}-1:0];
+        for (i = 0; i < POWER_TABLE_WORDS; i = i + 1) begin
+            power_table_we = 1'b1;
+            power_table_waddr = i[{{POWER_TABLE_ADDR_BITS}}-1:0];
             pw = gbump_power_word(model, i);
-            pt_wdata = pw[{{PT_W}}-1:0];
+            power_table_wdata = pw[{{POWER_TABLE_DATA_BITS}}-1:0];
             @(negedge clk);
         end
-        pt_we = 1'b0;
+        power_table_we = 1'b0;
         while (n_in < count) begin
             if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin
                 in_valid = 1'b0;

@@ -23,18 +23,18 @@ module tb_top;
     parameter INIT_FILE = {{INIT_FILE}};
     localparam RB = {{RECORD_BITS}};
     localparam LAT = {{LATENCY}};
-    localparam PT_N = {{PT_N}};
+    localparam POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
     reg clk = 1'b0;
     reg rst = 1'b1;
-    reg pt_we = 1'b0;
-    reg [{{PT_AW}}-1:0] pt_waddr = 0;
-    reg [{{PT_W}}-1:0] pt_wdata = 0;
+    reg power_table_we = 1'b0;
+    reg [{{POWER_TABLE_ADDR_BITS}}-1:0] power_table_waddr = 0;
+    reg [{{POWER_TABLE_DATA_BITS}}-1:0] power_table_wdata = 0;
     reg in_valid = 1'b0;
     wire in_ready;
     wire out_valid;
 {{DECLS}}
     {{TOP}} #({{DUT_PARAMS}}) dut (
-        .clk(clk), .rst(rst), .pt_we(pt_we), .pt_waddr(pt_waddr), .pt_wdata(pt_wdata),
+        .clk(clk), .rst(rst), .power_table_we(power_table_we), .power_table_waddr(power_table_waddr), .power_table_wdata(power_table_wdata),
         .in_valid(in_valid), .in_ready(in_ready), .out_valid(out_valid),
 {{CONNECT}}
     );
@@ -42,7 +42,7 @@ module tb_top;
 
     reg [RB-1:0] stim;
     reg [RB-1:0] chk;
-    reg [{{PT_W}}-1:0] table_mem [0:PT_N-1];
+    reg [{{POWER_TABLE_DATA_BITS}}-1:0] table_mem [0:POWER_TABLE_WORDS-1];
     reg [8*512-1:0] vec_file;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
@@ -115,12 +115,12 @@ module tb_top;
         in_valid = 1'b0;
         tri_valid = 1'b0;
         if (load_table) begin
-            for (i = 0; i < PT_N; i = i + 1) begin
-                pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+            for (i = 0; i < POWER_TABLE_WORDS; i = i + 1) begin
+                power_table_we = 1'b1; power_table_waddr = i; power_table_wdata = table_mem[i];
                 @(negedge clk);
             end
         end
-        pt_we = 1'b0;
+        power_table_we = 1'b0;
         if ($test$plusargs("reset_after_load")) begin
             rst = 1'b1;
             in_valid = $test$plusargs("valid_during_reset");

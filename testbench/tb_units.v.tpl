@@ -6,15 +6,15 @@
 `timescale 1ns / 1ps
 `default_nettype none
 module tb_units;
-    localparam PT_N = {{PT_N}};
+    localparam POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
     reg clk = 1'b0;
-    reg pt_we = 1'b0;
-    reg [{{PT_AW}}-1:0] pt_waddr = 0;
-    reg [{{PT_W}}-1:0] pt_wdata = 0;
+    reg power_table_we = 1'b0;
+    reg [{{POWER_TABLE_ADDR_BITS}}-1:0] power_table_waddr = 0;
+    reg [{{POWER_TABLE_DATA_BITS}}-1:0] power_table_wdata = 0;
     always #5 clk = ~clk;
 {{DECLS}}
     reg [{{MAX_RB}}-1:0] rec;
-    reg [{{PT_W}}-1:0] table_mem [0:PT_N-1];
+    reg [{{POWER_TABLE_DATA_BITS}}-1:0] table_mem [0:POWER_TABLE_WORDS-1];
     reg [8*512-1:0] vec_file;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
@@ -42,11 +42,11 @@ module tb_units;
         fin = $fopen(vec_file, "r");
         if (fin == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
         @(negedge clk);
-        for (i = 0; i < PT_N; i = i + 1) begin
-            pt_we = 1'b1; pt_waddr = i; pt_wdata = table_mem[i];
+        for (i = 0; i < POWER_TABLE_WORDS; i = i + 1) begin
+            power_table_we = 1'b1; power_table_waddr = i; power_table_wdata = table_mem[i];
             @(negedge clk);
         end
-        pt_we = 1'b0;
+        power_table_we = 1'b0;
         n = 0;
         code = $fscanf(fin, "%h\n", rec);
         while (code == 1) begin

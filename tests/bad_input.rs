@@ -542,10 +542,22 @@ fn cases() -> Vec<Case> {
             vec!["--random", "0 is below 1"],
         ),
         (
-            "exhaustive power table without a specular path",
-            cfg("specular = false\n"),
+            "exhaustive sweep of the power unit under its old name",
+            cfg(""),
             vec!["vectors", "--source", "exhaustive:power_table", "--config", "c.toml", "--out", "out"],
-            vec!["power_table", "specular = false", "fix:"],
+            vec!["exhaustive:power_table", "renamed `power_unit`", "fix:"],
+        ),
+        (
+            "a target under its old name",
+            cfg(""),
+            vec!["vectors", "--source", "corners", "--target", "power_table", "--config", "c.toml", "--out", "out"],
+            vec!["--target power_table", "renamed `power_unit`", "fix:"],
+        ),
+        (
+            "exhaustive power unit without a specular path",
+            cfg("specular = false\n"),
+            vec!["vectors", "--source", "exhaustive:power_unit", "--config", "c.toml", "--out", "out"],
+            vec!["power_unit", "specular = false", "fix:"],
         ),
         (
             "target absent from the configuration",
@@ -667,7 +679,7 @@ fn leftovers(dir: &Path) -> Vec<String> {
 #[test]
 fn every_bad_input_is_refused_cleanly() {
     let cases = cases();
-    assert!(cases.len() >= 87, "{} cases", cases.len());
+    assert!(cases.len() >= 89, "{} cases", cases.len());
     let mut failures = Vec::new();
     for (name, files, args, needles) in cases {
         let dir = tempfile::tempdir().unwrap();

@@ -161,7 +161,7 @@ fn queries_agree_with_the_interface() {
         );
         let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").clone();
         assert_eq!((lsb as u32, w as u32, lanes as u32, exp), (out.lsb, out.width, out.lanes, 1));
-        assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_texel");
+        assert_eq!(s(gbump_column_name(h, c("top").as_ptr(), 0)), "in_bump");
         assert_eq!(
             gbump_unit_latency(h, c("dot_clamp").as_ptr()) as u32,
             gbump::units::unit("dot_clamp").unwrap().latency(&cfg)
@@ -197,7 +197,7 @@ fn errors_come_back_as_status_and_message() {
         assert_eq!(gbump_set_shininess(h, 5000), -1);
         assert!(s(gbump_last_error()).contains("MAX_SHININESS"));
         // A power-table index beyond the table panics inside the model: caught, reported.
-        let pt = c("power_table");
+        let pt = c("power_unit");
         let mut w = vec![0u32; gbump_record_words(h, pt.as_ptr()) as usize];
         w[0] = 0x1ff;
         assert_eq!(gbump_eval(h, pt.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr()), -1);

@@ -46,7 +46,7 @@ fn ice40_places_and_routes_the_one_light_top_and_a_too_small_device_is_a_result(
     assert_eq!(r["units"].as_array().unwrap().len(), 7, "six units and the top: {r}");
     let top = unit(&r, "gbump_pipeline");
     assert!(n(top, "luts") > 1000 && n(top, "flip_flops") > 100 && n(top, "carry") > 0, "{top}");
-    assert_eq!(n(unit(&r, "power_table"), "block_ram"), 1, "the power table is one SB_RAM40_4K");
+    assert_eq!(n(unit(&r, "power_unit"), "block_ram"), 1, "the power table is one SB_RAM40_4K");
     // The power table (one RAM copy for one read port), the triangle banks and the output
     // buffer: every Verilog memory of the top, each counted once.
     let cfg = gbump::PipelineConfig::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(CONFIG)).unwrap();
@@ -100,7 +100,7 @@ fn ecp5_and_xilinx_count_luts_flip_flops_and_dsps() {
                 "{target}: {u}"
             );
         }
-        let pt = unit(&r, "power_table");
+        let pt = unit(&r, "power_unit");
         assert!(
             n(pt, "block_ram") == 1 && n(pt, "lut_ram") == 0,
             "{target}: one DP16KD or RAMB18E1: {pt}"
@@ -156,7 +156,7 @@ fn the_power_table_and_the_palette_map_to_block_ram_on_ice40() {
     };
     let work = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(WORK).join("bram");
     for target in [Target::Ice40] {
-        let pt = unit_resources(&cfg, target, "power_table", &work, "test").unwrap();
+        let pt = unit_resources(&cfg, target, "power_unit", &work, "test").unwrap();
         assert!(pt.block_ram >= 1 && pt.lut_ram == 0, "{target:?}: {pt:?}");
         assert_eq!(pt.flip_flops, 0, "{target:?}: the read register is the block RAM's: {pt:?}");
         assert_eq!(pt.memory_bits, 64 * 9, "{target:?}");

@@ -71,7 +71,7 @@ fn checked_in_vectors_are_current() {
     let stale = compare(&root().join("vectors"), &files);
     assert!(stale.is_empty(), "stale vectors (run scripts/regen.sh):\n{}", stale.join("\n"));
     for f in &files {
-        if f.0.ends_with(".json") && !f.0.contains("power_table.") {
+        if f.0.ends_with(".json") && !f.0.contains("power_unit.") {
             gbump::vectors::verify(&root().join("vectors").join(&f.0)).unwrap();
         }
     }
@@ -111,6 +111,16 @@ fn readme_integration_section_is_current() {
     assert!(
         readme.contains(&section),
         "README's integration section is stale: paste the output of `gbump integration`"
+    );
+}
+
+/// The README's upgrade table is the list of renames `src/renamed.rs` checks.
+#[test]
+fn readme_upgrade_table_is_current() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.contains(&gbump::renamed::markdown()),
+        "README's upgrade table is stale: paste gbump::renamed::markdown()"
     );
 }
 

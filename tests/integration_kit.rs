@@ -263,7 +263,7 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
         std::fs::write(
             &user,
             format!(
-                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_texel=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_texel, r.{p}_h, r.{p}_k, {p}_h_lane(r.{p}_h, 0, 1), {p}_lc_lane(r.{p}_lc, 0, 2), {p}_k_lane(r.{p}_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
+                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_bump=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_bump, r.{p}_h, r.{p}_k, {p}_h_lane(r.{p}_h, 0, 1), {p}_lc_lane(r.{p}_lc, 0, 2), {p}_k_lane(r.{p}_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
                 hex.display(),
                 p = if cfg.per_triangle() { "tri" } else { "in" }
             ),
@@ -303,9 +303,9 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
         let (h, lc, k) = (col(&st("h")), col(&st("lc")), col(&st("k")));
         let lw = |c: &gbump::vectors::layout::Column| c.width / c.lanes;
         let want = format!(
-            "out_c={} in_texel={} in_h={} in_k={} h01={} lc02={} k0={} lat={} ii={}",
+            "out_c={} in_bump={} in_h={} in_k={} h01={} lc02={} k0={} lat={} ii={}",
             hex_field(&line, col("out_c").lsb, col("out_c").width),
-            hex_field(&line, col("in_texel").lsb, col("in_texel").width),
+            hex_field(&line, col("in_bump").lsb, col("in_bump").width),
             hex_field(&line, h.lsb, h.width),
             hex_field(&line, k.lsb, k.width),
             hex_field(&line, h.lsb + lw(&h), lw(&h)),

@@ -31,10 +31,10 @@ fn area_reports_every_unit_with_yosys_figures() {
         assert_eq!(u["gate_equivalents"].as_f64().unwrap() * 4.0, u["transistors"].as_f64().unwrap());
     }
     let get = |name: &str| units.iter().find(|u| u["unit"].as_str().unwrap().starts_with(name)).unwrap();
-    assert_eq!(get("power_table")["memory_bits"], 256 * 9);
+    assert_eq!(get("power_unit")["memory_bits"], 256 * 9);
     // The table is a RAM, a black box apart from the logic: its words and its read register
     // are in the RAM's bits, not in the flip-flops or the GE.
-    assert_eq!(get("power_table")["flip_flops"], 0, "the table's words are not flip-flops");
+    assert_eq!(get("power_unit")["flip_flops"], 0, "the table's words are not flip-flops");
     // One RAM copy for one read port. The top's own arrays (triangle banks, output buffer)
     // are flip-flops in this flow, counted there and not again in the RAM bits.
     let cfg = gbump::PipelineConfig::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/configs/one_light_parallel.toml"))
@@ -83,7 +83,7 @@ fn error_report_bounds_each_unit() {
         assert!(e["samples"].as_u64().unwrap() > 100);
     }
     // The power table errs between its entries; at n = 16 and 256 entries, under 1 LSB.
-    let p = unit("power_table", "exhaustive");
+    let p = unit("power_unit", "exhaustive");
     assert!(p["max_lsb"].as_f64().unwrap() < 1.0 && p["max_lsb"].as_f64().unwrap() > 0.5, "{p}");
     assert!(r["scenes"].as_array().unwrap().len() >= 11);
 }

@@ -2,41 +2,41 @@
 //! a middle and the largest 8-bit exponent.
 
 use gbump::measure::power_space::verify_rtl;
-use gbump::model::power_unit::{PowerDesign, PowerFormats};
+use gbump::model::power_unit::{PowerFormats, PowerUnitDesign};
 
 #[test]
 fn power_unit_rtl_matches_the_model_exhaustively() {
     let work = tempfile::tempdir().unwrap();
     let designs = [
-        PowerDesign::Table {
+        PowerUnitDesign::Table {
             entries: 256,
             nearest: true,
         },
-        PowerDesign::Table {
+        PowerUnitDesign::Table {
             entries: 128,
             nearest: false,
         },
-        PowerDesign::Lerp { knots: 64 },
-        PowerDesign::Segmented {
+        PowerUnitDesign::Lerp { knots: 64 },
+        PowerUnitDesign::Segmented {
             segments: 6,
             per_segment: 16,
             lerp: true,
         },
-        PowerDesign::Segmented {
+        PowerUnitDesign::Segmented {
             segments: 4,
             per_segment: 64,
             lerp: false,
         },
-        PowerDesign::Segmented {
+        PowerUnitDesign::Segmented {
             segments: 8,
             per_segment: 64,
             lerp: true,
         },
-        PowerDesign::Squaring { guard: 6 },
+        PowerUnitDesign::Squaring { guard: 6 },
     ];
     for fm in [PowerFormats { f: 8, p: 8 }, PowerFormats { f: 12, p: 8 }] {
         for d in &designs {
-            if let PowerDesign::Segmented { segments, .. } = d {
+            if let PowerUnitDesign::Segmented { segments, .. } = d {
                 if *segments >= fm.f {
                     continue;
                 }

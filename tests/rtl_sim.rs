@@ -60,10 +60,10 @@ fn check_suite(text: &str, min_scenes: usize) {
         assert!(mine.iter().any(|x| x.1 == "corners_level2_top"));
         // One top set also runs on the power table's power-up contents, nothing loaded.
         assert!(mine.iter().any(|x| x.1 == "corners_level2_top+power-up"), "{sim}: no power-up run");
-        // The power table exhaustively for the reset shininess and for n = 0, 1, 2, 254, 255, 1024.
+        // The power unit exhaustively for the reset shininess and for n = 0, 1, 2, 254, 255, 1024.
         let power: Vec<_> = mine
             .iter()
-            .filter(|x| x.1.starts_with("exhaustive_power_table_n") && x.2 > 256)
+            .filter(|x| x.1.starts_with("exhaustive_power_unit_n") && x.2 > 256)
             .collect();
         assert!(power.len() >= 6, "{sim}: exhaustive power-table sets: {power:?}");
         assert!(

@@ -3,7 +3,7 @@
 Port names and widths, the latency, the initiation interval and the power table's size come
 from the interface JSON ($GBUMP_INTERFACE); the records, their column layout and the power
 table from the vector manifest ($GBUMP_VECTORS). The test resets the pipeline, loads a power
-table through the load port (pt_we/pt_waddr/pt_wdata; $GBUMP_TABLE or the set's own), streams
+table through the load port (power_table_we/power_table_waddr/power_table_wdata; $GBUMP_TABLE or the set's own), streams
 every record with random bubbles ($GBUMP_BUBBLES: chance of a 1-3 cycle gap, seeded by
 $GBUMP_SEED), and checks every out_c, the latency of every vector (rising edges from the
 accepting edge to the edge at which its out_valid is first sampled high) and the spacing of
@@ -69,20 +69,20 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
         dut.out_ready.value = 1  # every result is taken when offered: exactly at its latency
     if per_triangle:
         dut.tri_valid.value = 0
-    dut.pt_we.value = 0
-    dut.pt_waddr.value = 0
-    dut.pt_wdata.value = 0
+    dut.power_table_we.value = 0
+    dut.power_table_waddr.value = 0
+    dut.power_table_wdata.value = 0
     for c in stim:
         getattr(dut, c["name"]).value = 0
     for _ in range(3):
         await FallingEdge(dut.clk)
     dut.rst.value = 0
     for addr, word in enumerate(table):
-        dut.pt_we.value = 1
-        dut.pt_waddr.value = addr
-        dut.pt_wdata.value = word
+        dut.power_table_we.value = 1
+        dut.power_table_waddr.value = addr
+        dut.power_table_wdata.value = word
         await FallingEdge(dut.clk)
-    dut.pt_we.value = 0
+    dut.power_table_we.value = 0
 
     problems = []
     passed = 0

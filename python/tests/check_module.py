@@ -115,9 +115,9 @@ run("vectors", "--source", "corners", "--target", "top", "--format", "hex", "--o
 check(np.array_equal(c["records"], rows_from_hex(os.path.join(vec, "corners_top.hex"), w)), "corners equal the file")
 with open(os.path.join(vec, "corners_catalogue.txt")) as f:
     check(c["reasons"] == [line.rstrip("\n").split("\t", 1)[1] for line in f], "corner reasons equal the catalogue")
-run("vectors", "--source", "exhaustive:power_table", "--format", "hex", "--out", vec)
-(e,) = model.vectors("exhaustive:power_table")
-check(np.array_equal(e["records"], rows_from_hex(os.path.join(vec, "exhaustive_power_table_power_table.hex"), model.record_words("power_table"))), "exhaustive:power_table equals the file")
+run("vectors", "--source", "exhaustive:power_unit", "--format", "hex", "--out", vec)
+(e,) = model.vectors("exhaustive:power_unit")
+check(np.array_equal(e["records"], rows_from_hex(os.path.join(vec, "exhaustive_power_unit_power_unit.hex"), model.record_words("power_unit"))), "exhaustive:power_unit equals the file")
 
 # A scene's fragments, in the scene's own configuration (as `--scene` picks it), 32x32.
 if not config:

@@ -377,7 +377,7 @@ pub unsafe extern "C" fn gbump_power_words(h: *const GbumpConfig) -> i32 {
     with("gbump_power_words", h, -1, |h| Ok(h.mem.table.entries.len() as i32))
 }
 
-/// Bits of one power-table word (`pt_wdata`'s width).
+/// Bits of one power-table word (`power_table_wdata`'s width).
 ///
 /// # Safety
 /// `h` is a live handle.

@@ -11,7 +11,16 @@ use std::path::Path;
 const TB_COSIM: &str = include_str!("../../testbench/tb_cosim.sv.tpl");
 
 /// Ports the template drives or reads by name.
-const PROTOCOL: [&str; 8] = ["clk", "rst", "pt_we", "pt_waddr", "pt_wdata", "in_valid", "in_ready", "out_valid"];
+const PROTOCOL: [&str; 8] = [
+    "clk",
+    "rst",
+    "power_table_we",
+    "power_table_waddr",
+    "power_table_wdata",
+    "in_valid",
+    "in_ready",
+    "out_valid",
+];
 
 /// The setup handshake of a per-triangle top, driven by name when the top has it.
 const SETUP: [&str; 2] = ["tri_valid", "tri_ready"];
@@ -143,9 +152,9 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         ("INIT_FILE", verilog_string(&init.display().to_string())),
         ("LATENCY", num(j, &["latency_cycles"], file)?.to_string()),
         ("II", num(j, &["initiation_interval"], file)?.to_string()),
-        ("PT_N", num(j, &["power_table", "words"], file)?.to_string()),
-        ("PT_AW", width("pt_waddr").to_string()),
-        ("PT_W", width("pt_wdata").to_string()),
+        ("POWER_TABLE_WORDS", num(j, &["power_table", "words"], file)?.to_string()),
+        ("POWER_TABLE_ADDR_BITS", width("power_table_waddr").to_string()),
+        ("POWER_TABLE_DATA_BITS", width("power_table_wdata").to_string()),
         ("TOP", text(j, &["top"], file)?.to_string()),
         ("HASH", text(j, &["config_hash"], file)?.to_string()),
         ("DECLS", get("DECLS", "\n")),

@@ -1,13 +1,13 @@
 //! The power unit's design space: every design of `model::power_unit` evaluated exhaustively
 //! over its input codes and every exponent 1..=255, against its storage and multipliers.
 
-use crate::model::power_unit::{PowerDesign, PowerFormats};
+use crate::model::power_unit::{PowerFormats, PowerUnitDesign};
 use rayon::prelude::*;
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct DesignResult {
-    pub design: PowerDesign,
+    pub design: PowerUnitDesign,
     pub label: String,
     pub rom_bits: u64,
     pub multipliers: u32,
@@ -19,20 +19,20 @@ pub struct DesignResult {
 }
 
 /// The designs compared by default.
-pub fn default_designs() -> Vec<PowerDesign> {
+pub fn default_designs() -> Vec<PowerUnitDesign> {
     let mut v = Vec::new();
     for entries in [64, 128, 256, 512] {
         for nearest in [true, false] {
-            v.push(PowerDesign::Table { entries, nearest });
+            v.push(PowerUnitDesign::Table { entries, nearest });
         }
     }
     for knots in [16, 32, 64, 128, 256] {
-        v.push(PowerDesign::Lerp { knots });
+        v.push(PowerUnitDesign::Lerp { knots });
     }
     for segments in [4, 6, 8, 10, 12] {
         for per_segment in [8, 16, 32, 64] {
             for lerp in [false, true] {
-                v.push(PowerDesign::Segmented {
+                v.push(PowerUnitDesign::Segmented {
                     segments,
                     per_segment,
                     lerp,
@@ -41,18 +41,18 @@ pub fn default_designs() -> Vec<PowerDesign> {
         }
     }
     for guard in [0, 2, 4, 6] {
-        v.push(PowerDesign::Squaring { guard });
+        v.push(PowerUnitDesign::Squaring { guard });
     }
     v
 }
 
 /// Every design that fits the formats, checked over every input and every n in 1..=max_n
 /// (minutes at wide formats, so each finished design is reported as progress).
-pub fn evaluate(fm: PowerFormats, designs: &[PowerDesign], max_n: u32) -> Vec<DesignResult> {
-    let fits: Vec<&PowerDesign> = designs
+pub fn evaluate(fm: PowerFormats, designs: &[PowerUnitDesign], max_n: u32) -> Vec<DesignResult> {
+    let fits: Vec<&PowerUnitDesign> = designs
         .iter()
         .filter(|d| match d {
-            PowerDesign::Segmented { segments, .. } => *segments < fm.f,
+            PowerUnitDesign::Segmented { segments, .. } => *segments < fm.f,
             _ => true,
         })
         .collect();
@@ -113,7 +113,7 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
 }
 
 /// Write a design's RTL, its ROM (for exponent `n`) and return the Verilog file paths.
-fn write_design(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<(String, Vec<std::path::PathBuf>)> {
+fn write_design(d: &PowerUnitDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<(String, Vec<std::path::PathBuf>)> {
     use crate::error::Error;
     use crate::rtlgen::power_units::{name, rom, rom_depth, unit};
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
@@ -133,7 +133,7 @@ fn write_design(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path
 
 /// Simulate a design under Icarus over every input code and compare with the model.
 /// Returns the number of inputs checked.
-pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<u64> {
+pub fn verify_rtl(d: &PowerUnitDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<u64> {
     use crate::error::Error;
     use crate::sim::Simulator;
     let (m, files) = write_design(d, fm, n, dir)?;
@@ -182,7 +182,7 @@ pub fn verify_rtl(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Pa
 }
 
 /// Yosys gate equivalents of a design's datapath, its ROM left as a black box.
-pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<f64> {
+pub fn area_ge(d: &PowerUnitDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<f64> {
     use crate::error::Error;
     let (m, files) = write_design(d, fm, n, dir)?;
     let names: Vec<String> = files
@@ -205,7 +205,7 @@ pub fn area_ge(d: &PowerDesign, fm: PowerFormats, n: u32, dir: &std::path::Path)
 pub fn area_rows(fm: PowerFormats, rs: &[DesignResult], work: &std::path::Path) -> crate::Result<String> {
     let mut pick: Vec<&DesignResult> = rs
         .iter()
-        .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerDesign::Table { entries: 256, .. }))
+        .filter(|r| r.max_lsb <= 1.0 || matches!(r.design, PowerUnitDesign::Table { entries: 256, .. }))
         .collect();
     pick.sort_by_key(|r| r.rom_bits);
     let progress = crate::progress::Progress::new("power-space area", pick.len() as u64);

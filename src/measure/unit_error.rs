@@ -81,17 +81,17 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
         let k = cfg.k_fmt().to_f64(ls.k);
         for ch in 0..3 {
             if d_on {
-                dif[ch] += dot(ls.l) * k * ls.colour[ch] as f64;
+                dif[ch] += dot(ls.l) * k * ls.lc[ch] as f64;
             }
             if s_on {
-                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.colour[ch] as f64;
+                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.lc[ch] as f64;
             }
         }
     }
     let mut out = [0.0; 3];
     for ch in 0..3 {
         let c = s.frag.c_src[ch] as f64;
-        let tex = s.frag.texel[ch] as f64 / max;
+        let tex = s.frag.tex[ch] as f64 / max;
         let c0 = (c + dif[ch]).min(max);
         out[ch] = match cfg.blend_order {
             BlendOrder::DiffuseTextureSpecular => (c0 * tex + spe[ch]).min(max),
@@ -127,12 +127,14 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         }
     }
     out.push(dot);
-    // power_table exhaustively over its input.
-    let mut pw = ErrorStats::new("power_table", &format!("exhaustive, n = {n}"));
+    // power_unit exhaustively over its input.
+    let mut pw = ErrorStats::new("power_unit", &format!("exhaustive, n = {n}"));
     let ps = (1u64 << cfg.power_frac_bits) as f64;
     for fd in 0..=(1i64 << cfg.dot_frac_bits) {
         let exact = powi_exact(fd as f64 / one, n) * ps;
-        pw.add(table.lookup(cfg, fd) as f64 - exact, || format!("x = {fd}/2^{}", cfg.dot_frac_bits));
+        pw.add(crate::model::power_unit::power_unit(cfg, &table, fd) as f64 - exact, || {
+            format!("x = {fd}/2^{}", cfg.dot_frac_bits)
+        });
     }
     out.push(pw);
     // Blends over random inputs in their own formats.

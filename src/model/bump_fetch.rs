@@ -21,7 +21,7 @@ pub fn compress(cfg: &PipelineConfig, b: i64) -> u32 {
     (b + (1i64 << (cfg.normal_bits - 1))) as u32
 }
 
-/// Stored texel (RGB codes) → expanded normal B.
+/// Stored bump texel (RGB codes) → expanded normal B.
 #[inline]
 pub fn bump_fetch_rgb(cfg: &PipelineConfig, rgb: [u32; 3]) -> [i64; 3] {
     rgb.map(|c| expand(cfg, c))

@@ -3,7 +3,7 @@
 //! in the formats the [`PipelineConfig`](crate::config::PipelineConfig) resolves.
 //!
 //! Units, in data-flow order: [`bump_fetch`] (palette / range expansion), [`dot_clamp`]
-//! (fd = max(0, B·L), also B·H), [`power_table`] (fs = table[B·H]), [`blend`]
+//! (fd = max(0, B·L), also B·H), [`power_unit`] (fs = (B·H)^n from the [`power_table`]), [`blend`]
 //! (`diffuse_blend`, `specular_blend`), [`texture_modulate`]; [`pipeline`] chains them in
 //! the configured order.
 

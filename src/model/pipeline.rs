@@ -6,6 +6,7 @@ use super::blend::{align_factor, blend};
 use super::bump_fetch::{bump_fetch_index, bump_fetch_rgb, Palette};
 use super::dot_clamp::dot_clamp;
 use super::power_table::PowerTable;
+use super::power_unit::power_unit;
 use super::texture_modulate::texture_modulate;
 use crate::config::{BlendOrder, PipelineConfig};
 
@@ -20,7 +21,7 @@ pub struct LightSlot {
     /// Half vector H_i, raw `s1.(lh-2)` components.
     pub h: [i64; 3],
     /// Light colour Lc_i, colour codes (an unused slot has colour 0).
-    pub colour: [u32; 3],
+    pub lc: [u32; 3],
     /// Spot/attenuation modulation k_i, raw `u1.K`.
     pub k: i64,
 }
@@ -44,8 +45,8 @@ pub struct FragmentIn {
     pub bump: BumpTexel,
     /// Interpolated Gouraud colour C_src.
     pub c_src: [u32; 3],
-    /// Texel colour T (white when the object has no texture).
-    pub texel: [u32; 3],
+    /// Texture colour T (white when the object has no texture).
+    pub tex: [u32; 3],
     pub diffuse_en: bool,
     pub specular_en: bool,
 }
@@ -97,7 +98,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     for i in 0..n {
         let s = &state.lights[i];
         kd[i] = s.k;
-        lc[i] = s.colour;
+        lc[i] = s.lc;
         if cfg.diffuse {
             out.fd[i] = dot_clamp(cfg, b, s.l);
             if diffuse_on {
@@ -106,7 +107,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         }
         if cfg.specular {
             out.xh[i] = dot_clamp(cfg, b, s.h);
-            out.fs[i] = table.lookup(cfg, out.xh[i]);
+            out.fs[i] = power_unit(cfg, table, out.xh[i]);
             if specular_on {
                 sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);
             }
@@ -114,7 +115,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     }
     let diffuse = |c| blend(cfg, c, &dfac[..n], &kd[..n], &lc[..n]);
     let specular = |c| blend(cfg, c, &sfac[..n], &kd[..n], &lc[..n]);
-    let texture = |c| texture_modulate(cfg, c, frag.texel);
+    let texture = |c| texture_modulate(cfg, c, frag.tex);
     let s0 = diffuse(frag.c_src);
     let (s1, s2) = match cfg.blend_order {
         BlendOrder::DiffuseTextureSpecular => {
@@ -144,7 +145,7 @@ mod tests {
         FragmentIn {
             bump: BumpTexel::Rgb([128, 128, 255]),
             c_src: [c; 3],
-            texel: [t; 3],
+            tex: [t; 3],
             diffuse_en: true,
             specular_en: true,
         }
@@ -162,7 +163,7 @@ mod tests {
             *s = LightSlot {
                 l: [0, 0, one(&cfg)],
                 h: [0, 0, one(&cfg)],
-                colour: [255; 3],
+                lc: [255; 3],
                 k: 1 << cfg.k_frac_bits,
             };
         }
@@ -179,7 +180,7 @@ mod tests {
         assert_eq!(
             shade(&cfg3, &t, None, &st, &frag(0, 0)).colour(),
             [0; 3],
-            "Fig. 3: black texel stays black"
+            "Fig. 3: black texture colour stays black"
         );
     }
 
@@ -192,7 +193,7 @@ mod tests {
         st.lights[0] = LightSlot {
             l: [0, 0, one(&cfg)],
             h: [one(&cfg), 0, 0],
-            colour: [200, 0, 0],
+            lc: [200, 0, 0],
             k: 256,
         };
         let r = shade(&cfg, &t, None, &st, &frag(10, 255));
@@ -209,7 +210,7 @@ mod tests {
         st.lights[0] = LightSlot {
             l: [0, 0, one(&cfg)],
             h: [0, 0, one(&cfg)],
-            colour: [255; 3],
+            lc: [255; 3],
             k: 0,
         };
         assert_eq!(shade(&cfg, &t, None, &st, &frag(77, 255)).colour(), [77; 3]);
@@ -241,7 +242,7 @@ mod tests {
             *s = LightSlot {
                 l: [1000 * i as i64, -3000, 12000],
                 h: [-500, 2000 * i as i64, 15000],
-                colour: [90, 180, 255],
+                lc: [90, 180, 255],
                 k: 200,
             };
         }

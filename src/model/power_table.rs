@@ -1,7 +1,9 @@
-//! power_table: fs = (B·H)^n by table lookup (paper §4.2: "a simple power table for one
-//! shininess at a time … loaded similar to a color LUT"). Entry i holds x_i^n with
-//! x_i = i/(N-1), so entry 0 is 0^n and entry N-1 is exactly 1.0. The index is
-//! fd·(N-1) (a shift and a subtract), rounded or truncated as the config says.
+//! The power table: the memory the power unit reads (paper §4.2: "a simple power table for
+//! one shininess at a time … loaded similar to a color LUT"). For the paper's plain table,
+//! entry i holds x_i^n with x_i = i/(N-1), so entry 0 is 0^n and entry N-1 is exactly 1.0, and
+//! the index is fd·(N-1) (a shift and a subtract), rounded or truncated as the config says;
+//! the interpolating designs of `power_unit` hold their knots here. The unit itself is
+//! [`power_unit`](super::power_unit::power_unit).
 
 use crate::config::{PipelineConfig, PowerIndex};
 use crate::fixed::{shift_round, Rounding};
@@ -34,7 +36,7 @@ impl PowerTable {
     pub fn build(cfg: &PipelineConfig, n: u32) -> PowerTable {
         PowerTable {
             n,
-            entries: cfg.power_design().table(cfg.power_formats(), n),
+            entries: cfg.power_unit_design().table(cfg.power_formats(), n),
         }
     }
 
@@ -48,20 +50,12 @@ impl PowerTable {
         };
         shift_round(scaled, cfg.dot_frac_bits, rnd) as usize
     }
-
-    /// fs for clamped dot product `fd`.
-    #[inline]
-    pub fn lookup(&self, cfg: &PipelineConfig, fd: i64) -> i64 {
-        match cfg.power_unit {
-            crate::config::PowerUnitKind::Table => self.entries[Self::index(cfg, fd)],
-            _ => cfg.power_design().eval(cfg.power_formats(), &self.entries, self.n, fd),
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::power_unit::power_unit;
 
     #[test]
     fn ends_and_exponents() {
@@ -72,13 +66,13 @@ mod tests {
             assert_eq!(t.entries.len(), 256);
             assert_eq!(*t.entries.last().unwrap(), one, "1^n = 1 for n={n}");
             assert_eq!(t.entries[0], if n == 0 { one } else { 0 }, "0^n for n={n}");
-            assert_eq!(t.lookup(&cfg, 1 << cfg.dot_frac_bits), one);
-            assert_eq!(t.lookup(&cfg, 0), t.entries[0]);
+            assert_eq!(power_unit(&cfg, &t, 1 << cfg.dot_frac_bits), one);
+            assert_eq!(power_unit(&cfg, &t, 0), t.entries[0]);
         }
         // n = 1 is the identity up to the index and entry quantisation.
         let t = PowerTable::build(&cfg, 1);
         for fd in 0..=256i64 {
-            assert!((t.lookup(&cfg, fd) - fd).abs() <= 1, "fd={fd}");
+            assert!((power_unit(&cfg, &t, fd) - fd).abs() <= 1, "fd={fd}");
         }
     }
 

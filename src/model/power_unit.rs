@@ -1,6 +1,6 @@
 //! The design space of the power unit fs = x^n (issue: the paper's 256-entry table loses
 //! accuracy as n grows). Each design is evaluated bit-exactly on the clamped dot product
-//! x = fd / 2^F (u1.F) and produces u1.P, like `power_table`:
+//! x = fd / 2^F (u1.F) and produces u1.P from the power table (`model::power_table`):
 //!
 //! - `Table`: the paper's table, N entries at x_i = i/(N-1), nearest or truncating index;
 //! - `Lerp`: N uniform knots with linear interpolation (one multiplier);
@@ -9,13 +9,25 @@
 //! - `Squaring`: square-and-multiply on u1.(P+G) (the Cg tutorial's x^8 is three squarings);
 //!   no table, but up to 2·log2(n) multipliers and n fixed when the hardware is built.
 
+use crate::config::{PipelineConfig, PowerUnitKind};
 use crate::fixed::{shift_round, Rounding};
-use crate::model::power_table::powi_exact;
+use crate::model::power_table::{powi_exact, PowerTable};
 use serde::Serialize;
 
+/// The power unit of the pipeline (`cfg.power_unit` selects its design): fs for the clamped
+/// dot product `x` (`u1.F`), read from the power table `table`.
+#[inline]
+pub fn power_unit(cfg: &PipelineConfig, table: &PowerTable, x: i64) -> i64 {
+    match cfg.power_unit {
+        PowerUnitKind::Table => table.entries[PowerTable::index(cfg, x)],
+        _ => cfg.power_unit_design().eval(cfg.power_formats(), &table.entries, table.n, x),
+    }
+}
+
+/// One design of the power unit, with its parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
-pub enum PowerDesign {
+pub enum PowerUnitDesign {
     Table { entries: u32, nearest: bool },
     Lerp { knots: u32 },
     Segmented { segments: u32, per_segment: u32, lerp: bool },
@@ -57,18 +69,18 @@ fn entry_of(y: i64, lo: i64, lw: u32, m: u32) -> (i64, i64, u32) {
     }
 }
 
-impl PowerDesign {
+impl PowerUnitDesign {
     /// A short label.
     pub fn label(&self) -> String {
         match self {
-            PowerDesign::Table { entries, nearest } => format!("table {entries} {}", if *nearest { "nearest" } else { "truncate" }),
-            PowerDesign::Lerp { knots } => format!("lerp {knots} knots"),
-            PowerDesign::Segmented {
+            PowerUnitDesign::Table { entries, nearest } => format!("table {entries} {}", if *nearest { "nearest" } else { "truncate" }),
+            PowerUnitDesign::Lerp { knots } => format!("lerp {knots} knots"),
+            PowerUnitDesign::Segmented {
                 segments,
                 per_segment,
                 lerp,
             } => format!("segmented {segments}x{per_segment}{}", if *lerp { " lerp" } else { "" }),
-            PowerDesign::Squaring { guard } => format!("squaring, {guard} guard bits"),
+            PowerUnitDesign::Squaring { guard } => format!("squaring, {guard} guard bits"),
         }
     }
 
@@ -76,34 +88,34 @@ impl PowerDesign {
     pub fn rom_bits(&self, fm: PowerFormats) -> u64 {
         let w = (fm.p + 1) as u64;
         match *self {
-            PowerDesign::Table { entries, .. } => entries as u64 * w,
-            PowerDesign::Lerp { knots } => knots as u64 * w,
-            PowerDesign::Segmented {
+            PowerUnitDesign::Table { entries, .. } => entries as u64 * w,
+            PowerUnitDesign::Lerp { knots } => knots as u64 * w,
+            PowerUnitDesign::Segmented {
                 segments,
                 per_segment,
                 lerp,
             } => (segments * (per_segment + u32::from(lerp))) as u64 * w,
-            PowerDesign::Squaring { .. } => 0,
+            PowerUnitDesign::Squaring { .. } => 0,
         }
     }
 
     /// Multipliers (and their operand widths) the design needs for exponents below 2^8.
     pub fn multipliers(&self, fm: PowerFormats) -> (u32, u32) {
         match *self {
-            PowerDesign::Table { .. } | PowerDesign::Segmented { lerp: false, .. } => (0, 0),
-            PowerDesign::Lerp { .. } | PowerDesign::Segmented { lerp: true, .. } => (1, fm.p + 1),
-            PowerDesign::Squaring { guard } => (15, fm.p + guard + 1),
+            PowerUnitDesign::Table { .. } | PowerUnitDesign::Segmented { lerp: false, .. } => (0, 0),
+            PowerUnitDesign::Lerp { .. } | PowerUnitDesign::Segmented { lerp: true, .. } => (1, fm.p + 1),
+            PowerUnitDesign::Squaring { guard } => (15, fm.p + guard + 1),
         }
     }
 
     /// The stored table for exponent `n` (empty for squaring).
     pub fn table(&self, fm: PowerFormats, n: u32) -> Vec<i64> {
         match *self {
-            PowerDesign::Table { entries, .. } => (0..entries)
+            PowerUnitDesign::Table { entries, .. } => (0..entries)
                 .map(|i| q(powi_exact(i as f64 / (entries - 1) as f64, n), fm.p))
                 .collect(),
-            PowerDesign::Lerp { knots } => (0..knots).map(|i| q(powi_exact(i as f64 / (knots - 1) as f64, n), fm.p)).collect(),
-            PowerDesign::Segmented {
+            PowerUnitDesign::Lerp { knots } => (0..knots).map(|i| q(powi_exact(i as f64 / (knots - 1) as f64, n), fm.p)).collect(),
+            PowerUnitDesign::Segmented {
                 segments,
                 per_segment,
                 lerp,
@@ -137,7 +149,7 @@ impl PowerDesign {
                 }
                 t
             }
-            PowerDesign::Squaring { .. } => Vec::new(),
+            PowerUnitDesign::Squaring { .. } => Vec::new(),
         }
     }
 
@@ -145,11 +157,11 @@ impl PowerDesign {
     pub fn eval(&self, fm: PowerFormats, table: &[i64], n: u32, fd: i64) -> i64 {
         let f = fm.f;
         match *self {
-            PowerDesign::Table { entries, nearest } => {
+            PowerUnitDesign::Table { entries, nearest } => {
                 let r = if nearest { Rounding::HalfUp } else { Rounding::Truncate };
                 table[shift_round(fd as i128 * (entries as i128 - 1), f, r) as usize]
             }
-            PowerDesign::Lerp { knots } => {
+            PowerUnitDesign::Lerp { knots } => {
                 let s = fd * (knots as i64 - 1);
                 let (i, fr) = ((s >> f) as usize, s & ((1 << f) - 1));
                 if i + 1 >= table.len() {
@@ -157,7 +169,7 @@ impl PowerDesign {
                 }
                 table[i] + shift_round(((table[i + 1] - table[i]) * fr) as i128, f, Rounding::HalfUp) as i64
             }
-            PowerDesign::Segmented {
+            PowerUnitDesign::Segmented {
                 segments,
                 per_segment,
                 lerp,
@@ -177,7 +189,7 @@ impl PowerDesign {
                 let t_q = r << (f - sh);
                 table[base] + shift_round(((table[base + 1] - table[base]) * t_q) as i128, f, Rounding::HalfUp) as i64
             }
-            PowerDesign::Squaring { guard } => {
+            PowerUnitDesign::Squaring { guard } => {
                 let w = fm.p + guard;
                 let x = shift_round((fd as i128) << w, f, Rounding::HalfUp) as i64;
                 let mut acc: i64 = 1 << w;
@@ -224,7 +236,7 @@ mod tests {
             f: cfg.dot_frac_bits,
             p: cfg.power_frac_bits,
         };
-        let d = PowerDesign::Table {
+        let d = PowerUnitDesign::Table {
             entries: 256,
             nearest: true,
         };
@@ -232,7 +244,7 @@ mod tests {
             let t = crate::model::PowerTable::build(&cfg, n);
             assert_eq!(d.table(fm, n), t.entries);
             for fd in 0..=256 {
-                assert_eq!(d.eval(fm, &t.entries, n, fd), t.lookup(&cfg, fd));
+                assert_eq!(d.eval(fm, &t.entries, n, fd), power_unit(&cfg, &t, fd));
             }
         }
     }
@@ -240,7 +252,7 @@ mod tests {
     #[test]
     fn a_table_with_an_entry_per_input_code_is_exactly_rounded() {
         let fm = PowerFormats { f: 8, p: 8 };
-        let (worst, ..) = PowerDesign::Table {
+        let (worst, ..) = PowerUnitDesign::Table {
             entries: 257,
             nearest: true,
         }
@@ -251,7 +263,7 @@ mod tests {
     #[test]
     fn squaring_rounds_x_exactly_and_x_squared_within_a_double_rounding() {
         let fm = PowerFormats { f: 8, p: 8 };
-        let d = PowerDesign::Squaring { guard: 4 };
+        let d = PowerUnitDesign::Squaring { guard: 4 };
         let (w1, ..) = d.worst_error(fm, 1..=1);
         let (w2, ..) = d.worst_error(fm, 2..=2);
         // x^2 is rounded to P+G bits, then to P: at most 1/2 + 2^-G LSB.

@@ -1,5 +1,5 @@
 //! Fragment records: what the pipeline receives for one covered pixel (Gouraud colour,
-//! texel, bump texel, enables, and which triangle's bump state applies), and the
+//! texture colour, bump texel, enables, and which triangle's bump state applies), and the
 //! interpolated surface geometry the f64 renderers need.
 
 use super::assets::texture_at;
@@ -60,11 +60,11 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
     let o = &p.objects[hit.obj as usize];
     let max = p.cfg.colour_max();
     // Colour textures are procedural (constant or checker), point-sampled at the fragment's uv.
-    let texel = colour_codes(texture_at(so, g.uv), max);
+    let tex = colour_codes(texture_at(so, g.uv), max);
     FragmentIn {
         bump: sample_bump(&o.stored, g.uv, so.bump.filter),
         c_src: colour_codes(g.c_src, max),
-        texel,
+        tex,
         diffuse_en: so.diffuse,
         specular_en: so.specular,
     }

@@ -52,7 +52,7 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
             st.fixed.lights[i] = LightSlot {
                 l: [q(l.x)?, q(l.y)?, q(l.z)?],
                 h: [q(h.x)?, q(h.y)?, q(h.z)?],
-                colour: light.colour.map(|c| (c * max).round() as u32),
+                lc: light.colour.map(|c| (c * max).round() as u32),
                 k: qk(st.k[i]),
             };
         }

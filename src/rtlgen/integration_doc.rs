@@ -11,7 +11,7 @@ use crate::vectors::targets::{eval_top, top_layout, top_record};
 /// What each lane of a multi-lane port holds.
 fn lanes(p: &super::top::TopPort) -> Option<String> {
     let w = p.fmt.width;
-    (p.lanes > 1 || p.name == "in_texel").then(|| {
+    (p.lanes > 1 || p.name == "in_bump").then(|| {
         format!(
             "`{}`: {} lane(s) of {w} bits, lane i in bits [{w}i+{}:{w}i]; {}",
             p.name,
@@ -70,7 +70,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         );
     }
     s += &format!(
-        "**Loading the power table.** Drive `pt_we` high with `pt_waddr` and `pt_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
+        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
         cfg.power_fmt().name(),
         cfg.power_depth()
     );

@@ -47,7 +47,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
-        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "unit": cfg.power_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "pt_we, pt_waddr, pt_wdata; write when idle"},
+        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "power_table_we, power_table_waddr, power_table_wdata; write when idle"},
         "files": {
             "filelist": super::kit::filelist_names(cfg).0,
             "filelist_icarus": super::kit::filelist_names(cfg).1,

@@ -130,7 +130,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  INIT_FILE:\n    datatype: str\n    paramtype: vlogparam\n    default: {init}\n    description: $readmemh file of the power table's power-up contents, relative to the simulator's working folder\n"
     );
     s += "  vectors:\n    datatype: file\n    paramtype: plusarg\n    description: top vector set in text form (gbump vectors --target top --format hex), one record per line\n";
-    s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through pt_we/pt_waddr/pt_wdata before streaming (the set's _power_table.hex)\n";
+    s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
     s += "  bubbles:\n    datatype: int\n    paramtype: plusarg\n    description: idle in_valid for 1-3 cycles before every Nth record\n";
     s += "  max_errors:\n    datatype: int\n    paramtype: plusarg\n    description: stop after this many mismatches (default 20)\n";
     s
@@ -161,7 +161,7 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         &mut s,
         "NORMAL_BITS",
         cfg.normal_bits.into(),
-        "stored bump texel component, offset binary",
+        "stored bump normal component (`in_bump` lane), offset binary",
     );
     p(
         &mut s,
@@ -182,8 +182,18 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         cfg.power_fmt().width.into(),
         &format!("power-table entry {}", cfg.power_fmt().name()),
     );
-    p(&mut s, "PT_WORDS", cfg.power_depth().into(), "words of the power table's memory");
-    p(&mut s, "PT_ADDR_BITS", cfg.power_addr_bits().into(), "pt_waddr width");
+    p(
+        &mut s,
+        "POWER_TABLE_WORDS",
+        cfg.power_depth().into(),
+        "words of the power table's memory",
+    );
+    p(
+        &mut s,
+        "POWER_TABLE_ADDR_BITS",
+        cfg.power_addr_bits().into(),
+        "power_table_waddr width",
+    );
     p(&mut s, "LIGHTS", cfg.lights.into(), "light slots");
     p(&mut s, "SHININESS", cfg.shininess.into(), "shininess of the power-up table");
     s += "    // Timing (rising edges, as the interface JSON defines them).\n";
@@ -246,9 +256,9 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
             "    function automatic logic [{lb}-1:0] {port}_lane(input logic [{w}-1:0] v, {args});\n        return v[({idx}) * {lb} +: {lb}];\n    endfunction\n"
         );
     };
-    lane(&mut s, "in_texel", "NORMAL_BITS", 1);
+    lane(&mut s, "in_bump", "NORMAL_BITS", 1);
     lane(&mut s, "in_c_src", "COLOUR_BITS", 1);
-    lane(&mut s, "in_t", "COLOUR_BITS", 1);
+    lane(&mut s, "in_tex", "COLOUR_BITS", 1);
     let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
     lane(&mut s, &st("l"), "LH_BITS", 3);
     lane(&mut s, &st("h"), "LH_BITS", 3);

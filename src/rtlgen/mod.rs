@@ -112,13 +112,14 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     );
     s += "// A rounding shift keeps the high bits of its sum and drops the low ones by design; the\n";
     s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
-    s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_table_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
+    s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*texture_modulate_{h}.v\" -match \"Bits of signal are not used: 'q*\"\n");
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
-        s += "// The power core keeps the high bits of its rounded interpolation step and of the scaled\n";
+        s += "// The power unit's core keeps the high bits of its rounded interpolation step and of the scaled\n";
         s += "// index and drops the rest by design; an entry index never reaches its top bits.\n";
         for sig in ["step", "scaled", "j", "off", "prod"] {
-            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+            s +=
+                &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
         }
     }
     // Every configuration has the same top ports; the enable of a blend unit this
@@ -134,9 +135,9 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                 &[
                     "in_specular_en",
                     "in_h",
-                    "pt_we",
-                    "pt_waddr",
-                    "pt_wdata",
+                    "power_table_we",
+                    "power_table_waddr",
+                    "power_table_wdata",
                     "fr_specular_en",
                     "fr_h",
                     "bank_h",

@@ -6,19 +6,19 @@
 
 use super::booth::{sum_of_products, Factor, Form};
 use super::writer::VWriter;
-use crate::model::power_unit::{segment_of, PowerDesign, PowerFormats};
+use crate::model::power_unit::{segment_of, PowerFormats, PowerUnitDesign};
 
 /// Module name of a design.
-pub fn name(d: &PowerDesign, fm: PowerFormats) -> String {
+pub fn name(d: &PowerUnitDesign, fm: PowerFormats) -> String {
     let tag = match *d {
-        PowerDesign::Table { entries, nearest } => format!("table{entries}{}", if nearest { "n" } else { "t" }),
-        PowerDesign::Lerp { knots } => format!("lerp{knots}"),
-        PowerDesign::Segmented {
+        PowerUnitDesign::Table { entries, nearest } => format!("table{entries}{}", if nearest { "n" } else { "t" }),
+        PowerUnitDesign::Lerp { knots } => format!("lerp{knots}"),
+        PowerUnitDesign::Segmented {
             segments,
             per_segment,
             lerp,
         } => format!("seg{segments}x{per_segment}{}", if lerp { "l" } else { "" }),
-        PowerDesign::Squaring { guard } => format!("sq{guard}"),
+        PowerUnitDesign::Squaring { guard } => format!("sq{guard}"),
     };
     format!("pu_{tag}_f{}p{}", fm.f, fm.p)
 }
@@ -44,13 +44,13 @@ pub fn rom(module: &str, width: u32, depth: usize) -> String {
 }
 
 /// Address bits of a design's ROM.
-pub fn rom_depth(d: &PowerDesign, fm: PowerFormats) -> usize {
+pub fn rom_depth(d: &PowerUnitDesign, fm: PowerFormats) -> usize {
     (d.rom_bits(fm) / (fm.p as u64 + 1)) as usize
 }
 
 /// The datapath module (`n` only matters for squaring, where it is built in): registered,
 /// reading its own ROM module.
-pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
+pub fn unit(d: &PowerUnitDesign, fm: PowerFormats, n: u32) -> String {
     let (f, p) = (fm.f, fm.p);
     let m = name(d, fm);
     let mut w = VWriter::new();
@@ -73,7 +73,7 @@ pub fn unit(d: &PowerDesign, fm: PowerFormats, n: u32) -> String {
 
 /// The same datapath as a combinational core that reads an external memory through
 /// (a0 -> k0, a1 -> k1): the pipeline's power unit wraps it around its loadable table.
-pub fn core(d: &PowerDesign, fm: PowerFormats, module: &str) -> String {
+pub fn core(d: &PowerUnitDesign, fm: PowerFormats, module: &str) -> String {
     let (f, p) = (fm.f, fm.p);
     let depth = rom_depth(d, fm);
     let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
@@ -97,7 +97,7 @@ pub fn core(d: &PowerDesign, fm: PowerFormats, module: &str) -> String {
 
 /// Emit the datapath of `d`: address logic driving `a0`/`a1`, then `mem` (which must make
 /// `k0`/`k1` available), then the result; returns the expression of the result.
-fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: bool, mem: &dyn Fn(&mut VWriter)) -> String {
+fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, ports: bool, mem: &dyn Fn(&mut VWriter)) -> String {
     let (f, p) = (fm.f, fm.p);
     let depth = rom_depth(d, fm);
     let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
@@ -133,7 +133,7 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
         }
     };
     match *d {
-        PowerDesign::Table { entries, nearest } => {
+        PowerUnitDesign::Table { entries, nearest } => {
             let ib = entries.trailing_zeros();
             let sw = f + 1 + ib + 1;
             w.line(format!(
@@ -152,7 +152,7 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             mem(w);
             "k0".into()
         }
-        PowerDesign::Lerp { knots } => {
+        PowerUnitDesign::Lerp { knots } => {
             // x * (N - 1) by a constant multiply: N - 1 is not a power of two.
             let sw = f + 1 + ab + 1;
             w.line(format!("wire [{}:0] scaled = {{{}'d0, x}} * {sw}'d{};", sw - 1, ab + 1, knots - 1));
@@ -165,7 +165,7 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
             interp(w, "fr", f);
             "(last ? k0 : y_out)".into()
         }
-        PowerDesign::Segmented {
+        PowerUnitDesign::Segmented {
             segments,
             per_segment,
             lerp,
@@ -237,7 +237,7 @@ fn datapath(w: &mut VWriter, d: &PowerDesign, fm: PowerFormats, n: u32, ports: b
                 "k0".into()
             }
         }
-        PowerDesign::Squaring { guard } => {
+        PowerUnitDesign::Squaring { guard } => {
             let wd = p + guard;
             w.line(format!(
                 "// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."

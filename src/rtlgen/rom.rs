@@ -161,7 +161,7 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
             ),
             _ => format!(
                 "{} knots for n = {n}, u1.{} (layout: model::power_unit)",
-                cfg.power_design().label(),
+                cfg.power_unit_design().label(),
                 cfg.power_frac_bits
             ),
         },

@@ -25,9 +25,9 @@ fn fill(mut t: String, subs: &[(&str, String)]) -> String {
 fn pt(cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
     vec![
         ("RESET_CYCLES", crate::rtlgen::top::RESET_CYCLES.to_string()),
-        ("PT_N", cfg.power_depth().to_string()),
-        ("PT_AW", cfg.power_addr_bits().to_string()),
-        ("PT_W", (cfg.power_frac_bits + 1).to_string()),
+        ("POWER_TABLE_WORDS", cfg.power_depth().to_string()),
+        ("POWER_TABLE_ADDR_BITS", cfg.power_addr_bits().to_string()),
+        ("POWER_TABLE_DATA_BITS", (cfg.power_frac_bits + 1).to_string()),
     ]
 }
 
@@ -96,7 +96,10 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         }
     }
     // The other memories' load ports idle: the vectors assume their power-up contents.
-    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+    for m in crate::rtlgen::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != crate::units::POWER_TABLE)
+    {
         for (sig, w) in [("we", 1), ("waddr", m.addr_bits), ("wdata", m.data_bits)] {
             let r = if w > 1 { format!("[{}:0] ", w - 1) } else { String::new() };
             decls.push(format!("    reg {r}{}_{sig} = 0;", m.prefix));
@@ -170,8 +173,12 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         let l: Layout = unit_layout(cfg, u);
         max_rb = max_rb.max(l.bits);
         let mut conns = vec![".clk(clk)".to_string()];
-        if *u == "power_table" {
-            conns.extend([".we(pt_we)".into(), ".waddr(pt_waddr)".into(), ".wdata(pt_wdata)".into()]);
+        if *u == "power_unit" {
+            conns.extend([
+                ".we(power_table_we)".into(),
+                ".waddr(power_table_waddr)".into(),
+                ".wdata(power_table_wdata)".into(),
+            ]);
         } else if crate::units::unit(u).and_then(|x| x.memory(cfg)).is_some() {
             // Other memories run on their power-up contents, which the unit vectors assume.
             conns.extend([".we(1'b0)".into(), ".waddr(0)".into(), ".wdata(0)".into()]);
@@ -218,7 +225,7 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         k.push("            end".into());
         drive.extend(d);
         check.extend(k);
-        let params = if *u == "power_table" {
+        let params = if *u == "power_unit" {
             format!(" #(.R(1), .INIT_FILE({}))", init_literal(rtl))
         } else if let Some((_, _, f)) = rtl.memory_inits.iter().find(|m| m.1 == *u) {
             format!(" #(.INIT_FILE({}))", verilog_string(&f.display().to_string()))
@@ -270,7 +277,10 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         p += " printf(\"\\n\");";
         print.push(p);
     }
-    for m in crate::rtlgen::top::memories(cfg).iter().filter(|m| m.prefix != "pt") {
+    for m in crate::rtlgen::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != crate::units::POWER_TABLE)
+    {
         assign.push(format!("            top.{}_we = 0;", m.prefix));
     }
     let out = l.column("out_c");

@@ -65,16 +65,16 @@ pub fn fetch_unit(cfg: &PipelineConfig) -> &'static dyn Unit {
     units::unit(if cfg.palette { "palette_fetch" } else { "bump_fetch" }).expect("fetch unit")
 }
 
-/// The memories of the top, in port order: the power table's load port is on every top (a
-/// configuration without the specular path leaves it unused, so every top of one light count
-/// has the same ports), then the other units' memories.
+/// The memories of the top, in port order: the power unit's power table (its load port is on
+/// every top: a configuration without the specular path leaves it unused, so every top of one
+/// light count has the same ports), then the other units' memories.
 pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
-    let pt = units::unit("power_table").and_then(|u| u.memory(cfg)).expect("power table memory");
+    let pt = units::unit("power_unit").and_then(|u| u.memory(cfg)).expect("power table memory");
     let mut v = vec![pt];
     v.extend(
         units::included(cfg)
             .iter()
-            .filter(|u| u.name() != "power_table")
+            .filter(|u| u.name() != "power_unit")
             .filter_map(|u| u.memory(cfg)),
     );
     v
@@ -85,7 +85,7 @@ pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
 pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
     units::included(cfg)
         .iter()
-        .filter(|u| u.name() != "power_table")
+        .filter(|u| u.name() != "power_unit")
         .filter_map(|u| {
             u.memory(cfg).map(|m| {
                 (
@@ -148,7 +148,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         ));
     }
     let fetch_in = units::inputs(fetch_unit(cfg), cfg).remove(0);
-    let texel_doc = if cfg.palette {
+    let bump_doc = if cfg.palette {
         "8-bit index into the bump palette"
     } else {
         "x, y, z of the stored bump normal, offset binary (lane 0 = x)"
@@ -164,7 +164,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             1,
             "the fragment is accepted at this edge if in_valid",
         ),
-        tp("in_texel", Dir::In, PortKind::Fragment, fetch_in.fmt, fetch_in.lanes, texel_doc),
+        tp("in_bump", Dir::In, PortKind::Fragment, fetch_in.fmt, fetch_in.lanes, bump_doc),
         tp(
             "in_c_src",
             Dir::In,
@@ -173,7 +173,14 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             3,
             "R, G, B of the Gouraud colour C_src (lane 0 = R)",
         ),
-        tp("in_t", Dir::In, PortKind::Fragment, col, 3, "R, G, B of the texture colour T"),
+        tp(
+            "in_tex",
+            Dir::In,
+            PortKind::Fragment,
+            col,
+            3,
+            "R, G, B of the texture colour T (lane 0 = R)",
+        ),
         tp("in_diffuse_en", Dir::In, PortKind::Fragment, bit, 1, "diffuse blend enable"),
         tp("in_specular_en", Dir::In, PortKind::Fragment, bit, 1, "specular blend enable"),
     ]);
@@ -432,37 +439,37 @@ fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, Strin
 /// The power unit with `r` read ports on `{xh}`, its output `fs` (the unit's ports describe one
 /// read port, so the instance is written as a helper with its `R` parameter).
 fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
-    let pt = units::unit("power_table").expect("unit");
+    let pu = units::unit("power_unit").expect("unit");
     s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
     s.m.inst_helper(
-        &module_name(cfg, "power_table"),
-        &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_table"),
+        &module_name(cfg, "power_unit"),
+        &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_unit"),
         &[
             ("clk", "clk".into()),
-            ("we", "pt_we".into()),
-            ("waddr", "pt_waddr".into()),
-            ("wdata", "pt_wdata".into()),
+            ("we", "power_table_we".into()),
+            ("waddr", "power_table_waddr".into()),
+            ("wdata", "power_table_wdata".into()),
             ("x", x),
             ("fs", "fs".into()),
         ],
     );
-    s.source("fs", st + pt.latency(cfg));
+    s.source("fs", st + pu.latency(cfg));
 }
 
-/// The fetch: `b` from `texel` (a template).
-fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, texel: &str, combinational: bool) {
+/// The fetch: `b` from `bump` (a template).
+fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, bump: &str, combinational: bool) {
     let u = fetch_unit(cfg);
     let nb3 = 3 * cfg.normal_bits;
     if combinational && !cfg.palette {
-        let st = s.stage_of(&[texel]);
-        let t = s.fill(texel, st);
+        let st = s.stage_of(&[bump]);
+        let t = s.fill(bump, st);
         s.m.wire("b", nb3, None);
         s.m.inst_helper(
             &module_name(cfg, "bump_fetch_comb"),
             "u_bump_fetch",
-            &[("texel", t), ("b", "b".into())],
+            &[("bump", t), ("b", "b".into())],
         );
         s.source("b", st);
     } else {
@@ -471,7 +478,7 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, texel: &str, combinational: bo
             cfg,
             u,
             &format!("u_{}", u.name()),
-            &[(port, texel)],
+            &[(port, bump)],
             &[("b", "b")],
             &mem_params(cfg, u),
         );
@@ -502,13 +509,14 @@ pub fn stage_order(cfg: &PipelineConfig) -> [&'static str; 3] {
     })
 }
 
-/// The three colour stages from `c_in` in the configured order; `blend(stage, c)` emits a
-/// blend stage and returns its output signal. Returns the final colour signal.
+/// The three colour stages from `c_in` (texture colour `tex`) in the configured order;
+/// `blend(stage, c)` emits a blend stage and returns its output signal. Returns the final
+/// colour signal.
 fn colour_stages(
     s: &mut Scheduler,
     cfg: &PipelineConfig,
     c_in: &str,
-    t: &str,
+    tex: &str,
     mut blend: impl FnMut(&mut Scheduler, Stage, &str) -> Option<String>,
 ) -> String {
     let mut c = c_in.to_string();
@@ -519,7 +527,7 @@ fn colour_stages(
                 cfg,
                 u,
                 "u_texture_modulate",
-                &[("c_in", &format!("{{{c}}}")), ("t", t)],
+                &[("c_in", &format!("{{{c}}}")), ("tex", tex)],
                 &[("c_out", "c_tex")],
                 &[],
             );
@@ -694,7 +702,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     }
     let pre = state_pre(cfg, false);
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
-    fetch(s, cfg, "{in_texel}", false);
+    fetch(s, cfg, "{in_bump}", false);
     let dot = units::unit("dot_clamp").expect("unit");
     // One dot_clamp per light slot: B·L_i into fd<i>, or B·H_i into xh<i>.
     let dots = |s: &mut Scheduler, v: &str, out: &str| {
@@ -733,7 +741,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("sfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
     s.m.comment("The colour stages in the configured order.");
-    let out = colour_stages(s, cfg, "in_c_src", "{in_t}", |s, st, c| {
+    let out = colour_stages(s, cfg, "in_c_src", "{in_tex}", |s, st, c| {
         let (u, f, name) = match st {
             Stage::Diffuse if cfg.diffuse => (&units::DIFFUSE_BLEND, "{dfac}", "c_dif"),
             Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe"),
@@ -803,7 +811,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         bank_ram(s, cfg, jb)
     });
     let pre = state_pre(cfg, true);
-    fetch(s, cfg, "{fr_texel}", true);
+    fetch(s, cfg, "{fr_bump}", true);
     let k1 = cfg.k_frac_bits + 1;
     // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
     let slot = |f: &str, w: u32| {
@@ -868,7 +876,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.valid_bit("done");
     }
     let finish = units::unit("blend_finish").expect("unit");
-    let out = colour_stages(s, cfg, "fr_c_src", "{fr_t}", |s, st, c| {
+    let out = colour_stages(s, cfg, "fr_c_src", "{fr_tex}", |s, st, c| {
         let (acc, name, inst) = match st {
             Stage::Diffuse if cfg.diffuse => ("{dacc}", "c_dif", "u_diffuse_finish"),
             Stage::Specular if cfg.specular => ("{sacc}", "c_spe", "u_specular_finish"),

@@ -25,7 +25,7 @@ fn postamble(w: &mut VWriter) {
     w.line("`default_nettype wire");
 }
 
-/// bump_fetch: offset-binary texel → signed normal (MSB inversion). `registered` adds the
+/// bump_fetch: the stored offset-binary bump normal `bump` → signed normal (MSB inversion). `registered` adds the
 /// output register; otherwise the module is combinational (and has no clock).
 pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     let nb = cfg.normal_bits;
@@ -41,11 +41,11 @@ pub fn bump_fetch(cfg: &PipelineConfig, registered: bool) -> String {
     let clk = if registered { "input  wire clk,\n    " } else { "" };
     let out_kind = if registered { "reg " } else { "wire" };
     w.line(format!(
-        "module {name} (\n    {clk}input  wire [{}:0] texel,\n    output {out_kind} [{}:0] b\n);",
+        "module {name} (\n    {clk}input  wire [{}:0] bump,\n    output {out_kind} [{}:0] b\n);",
         3 * nb - 1,
         3 * nb - 1
     ));
-    let flip = |i: u32| format!("{{~texel[{}], texel[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
+    let flip = |i: u32| format!("{{~bump[{}], bump[{}:{}]}}", i * nb + nb - 1, i * nb + nb - 2, i * nb);
     let expr = format!("{{{}, {}, {}}}", flip(2), flip(1), flip(0));
     if registered {
         w.block("always @(posedge clk) begin", "end", |w| {
@@ -114,11 +114,11 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// power_table: `R` read ports into one reloadable table, one RAM copy per read port (all
+/// power_unit: `R` read ports into the reloadable power table, one RAM copy per read port (all
 /// written by the load port); index = round(x (N-1) / 2^F) for the paper's table, whose RAM
-/// read register is the output register (latency 1), or the `power_core` datapath of an
+/// read register is the output register (latency 1), or the `power_unit_core` datapath of an
 /// interpolated/segmented unit around its two knot reads (latency 2).
-pub fn power_table(cfg: &PipelineConfig) -> String {
+pub fn power_unit(cfg: &PipelineConfig) -> String {
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
         return power_unit_with_core(cfg);
     }
@@ -127,7 +127,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// power_table (paper §4.2): fs = (B·H)^n from a {n}-entry table of {}-bit u1.{p} entries, loaded",
+        "// power_unit (paper §4.2): fs = (B·H)^n from a {n}-entry power table of {}-bit u1.{p} entries, loaded",
         p + 1
     ));
     w.line("// like a colour LUT through the write port; INIT_FILE holds the reset contents. One RAM");
@@ -137,7 +137,7 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
         cfg.power_index,
         n - 1
     ));
-    power_table_shell(&mut w, cfg);
+    power_unit_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         let sw = f + 1 + ib + 1;
         w.line(format!("wire [{}:0] xr = x[r*{} +: {}];", f, f + 1, f + 1));
@@ -168,8 +168,8 @@ pub fn power_table(cfg: &PipelineConfig) -> String {
     w.finish()
 }
 
-/// The power table's module header: the same for every kind of power unit.
-fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
+/// The power unit's module header: the same for every kind of power unit.
+fn power_unit_shell(w: &mut VWriter, cfg: &PipelineConfig) {
     let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let out = if cfg.power_unit == crate::config::PowerUnitKind::Table {
         "wire"
@@ -178,7 +178,7 @@ fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
     };
     w.line(format!(
         "module {} #(\n    parameter R = 1,\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [{}:0] waddr,\n    input  wire [{p}:0] wdata,\n    input  wire [R*{}-1:0] x,\n    output {out} [R*{}-1:0] fs\n);",
-        module_name(cfg, "power_table"),
+        module_name(cfg, "power_unit"),
         rom_file_name(cfg, "power_table", "hex"),
         cfg.power_addr_bits() - 1,
         f + 1,
@@ -188,22 +188,22 @@ fn power_table_shell(w: &mut VWriter, cfg: &PipelineConfig) {
 }
 
 /// A loadable table of `power_depth()` words read through two RAM copies per lookup (the
-/// knots on both sides) by the `power_core` datapath: one core instance computes the
+/// knots on both sides) by the `power_unit_core` datapath: one core instance computes the
 /// addresses from x, the RAMs register the knots, and a second instance interpolates from
 /// x one cycle later (synthesis keeps only the half of each that is used).
 fn power_unit_with_core(cfg: &PipelineConfig) -> String {
     let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
     let (depth, ab) = (cfg.power_depth(), cfg.power_addr_bits());
-    let core = module_name(cfg, "power_core");
+    let core = module_name(cfg, "power_unit_core");
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// power_table (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
-        cfg.power_design().label()
+        "// power_unit (paper sec. 4.2, improved): {}, {depth} words of u1.{p} loaded like a colour LUT;",
+        cfg.power_unit_design().label()
     ));
     w.line("// INIT_FILE holds the reset contents. Each read port reads two knots from two RAM copies");
     w.line("// (their read registers are the first stage), then interpolates (the output register).");
-    power_table_shell(&mut w, cfg);
+    power_unit_shell(&mut w, cfg);
     w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
         w.line(format!("wire [{f}:0] xr = x[r*{} +: {}];", f + 1, f + 1));
         w.line(format!("wire [{}:0] a0;", ab - 1));
@@ -428,17 +428,17 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.finish()
 }
 
-/// texture_modulate: round(c t / (2^w - 1)) by the add-and-shift identity, registered; a
+/// texture_modulate: round(c_in tex / (2^w - 1)) by the add-and-shift identity, registered; a
 /// register after the product when the depth puts `timing::TEXTURE`'s cut in place.
 pub fn texture_modulate(cfg: &PipelineConfig) -> String {
     use crate::units::timing::{cut, TEXTURE};
     let c = cfg.colour_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line("// texture_modulate (paper §5.1): exact round(c·t / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    w.line("// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
     w.line(format!("// Latency {}.", crate::units::timing::latency(cfg, TEXTURE)));
     w.line(format!(
-        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] t,\n    output reg  [{}:0] c_out\n);",
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] tex,\n    output reg  [{}:0] c_out\n);",
         module_name(cfg, "texture_modulate"),
         3 * c - 1,
         3 * c - 1,
@@ -450,7 +450,7 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
             &mut w,
             Form::Wires,
             &format!("p{ch}m"),
-            &[(lanes("c_in"), lanes("t"))],
+            &[(lanes("c_in"), lanes("tex"))],
             1u128 << (c - 1),
             2 * c + 1,
         );

@@ -265,7 +265,7 @@ pub fn run_for(
             cfg.normal_bits,
             cfg.lh_bits,
             cfg.dot_frac_bits,
-            cfg.power_design().label(),
+            cfg.power_unit_design().label(),
             cfg.power_frac_bits + 1,
             cfg.colour_bits,
             cfg.k_frac_bits,

@@ -91,9 +91,9 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     }
     // Every unit small enough to sweep in the suite's budget (2^18 inputs: texture pairs up to
     // w = 9; beyond, the random sets and the identity's proof in fixed.rs stand in); the power
-    // table is swept per shininess below.
+    // unit is swept per shininess below.
     for u in crate::units::included(cfg) {
-        if u.name() == "power_table" || u.exhaustive_count(cfg).is_none_or(|c| c > 1 << 18) {
+        if u.name() == "power_unit" || u.exhaustive_count(cfg).is_none_or(|c| c > 1 << 18) {
             continue;
         }
         let unit = u.name().to_string();
@@ -101,7 +101,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             sets.push((s.manifest, None));
         }
     }
-    // The power table exhaustively for its reset shininess and for the extremes, each set
+    // The power unit exhaustively for its reset shininess and for the extremes, each set
     // loading its own table through the load port.
     if cfg.specular {
         let mut ns = vec![cfg.shininess, 0, 1, 2, 254, 255, 1024];
@@ -114,8 +114,8 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             };
             for s in dump(
                 cfg,
-                &Source::Exhaustive("power_table".into()),
-                &["power_table".to_string()],
+                &Source::Exhaustive("power_unit".into()),
+                &["power_unit".to_string()],
                 &sub,
                 &opts,
             )? {

@@ -1,4 +1,4 @@
-//! bump_fetch: stored offset-binary texel → signed bump normal B (paper §4.1; Cg §8.1.2's
+//! bump_fetch: stored offset-binary bump normal `bump` → signed bump normal B (paper §4.1; Cg §8.1.2's
 //! range expansion), an inversion of each component's MSB.
 
 use super::{p, Dir, Lanes, Memories, Port, Unit};
@@ -28,7 +28,7 @@ impl Unit for BumpFetch {
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p(
-                "texel",
+                "bump",
                 Dir::In,
                 Format::u(cfg.normal_bits, 0),
                 3,

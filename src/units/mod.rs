@@ -13,7 +13,7 @@ mod blend;
 mod bump_fetch;
 mod dot_clamp;
 mod palette_fetch;
-mod power_table;
+mod power_unit;
 mod serial_blend;
 mod texture_modulate;
 pub mod timing;
@@ -24,6 +24,7 @@ use crate::model::{Palette, PowerTable};
 
 pub use blend::{DIFFUSE_BLEND, SPECULAR_BLEND};
 pub use palette_fetch::PALETTE_ENTRIES;
+pub use power_unit::POWER_TABLE;
 pub use serial_blend::{accumulate, finish};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -159,7 +160,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &bump_fetch::BumpFetch,
     &palette_fetch::PaletteFetch,
     &dot_clamp::DotClamp,
-    &power_table::PowerTableUnit,
+    &power_unit::PowerUnit,
     &DIFFUSE_BLEND,
     &serial_blend::LightAccumulate,
     &serial_blend::BlendFinish,

@@ -1,6 +1,6 @@
 //! palette_fetch: the paper's §6 palettised bump map ("up to 256 surface orientations"): an
-//! 8-bit index reads a loadable 256-entry normal palette, and the entry is range-expanded
-//! like `bump_fetch`. The palette is a synchronous-read memory (the read register is the
+//! 8-bit index (`bump`, the bump map's texel) reads a loadable 256-entry normal palette, and
+//! the entry is range-expanded like `bump_fetch`. The palette is a synchronous-read memory (the read register is the
 //! unit's output register), so synthesis maps it to block RAM.
 
 use super::{p, Dir, Lanes, Memories, Memory, Port, Unit};
@@ -30,13 +30,13 @@ impl Unit for PaletteFetch {
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("index", Dir::In, Format::u(8, 0), 1, "palette index"),
+            p("bump", Dir::In, Format::u(8, 0), 1, "palette index"),
             p("b", Dir::Out, cfg.normal_fmt(), 3, "bump normal B of the entry"),
         ]
     }
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
         Some(Memory {
-            prefix: "pal",
+            prefix: "palette",
             init_param: "PALETTE_INIT_FILE",
             init_stem: "bump_palette_spiral",
             depth: PALETTE_ENTRIES,
@@ -58,18 +58,18 @@ impl Unit for PaletteFetch {
         v.line("`timescale 1ns / 1ps");
         v.line("`default_nettype none");
         v.line("");
-        v.line("// palette_fetch (paper §6): b = expand(palette[index]). The palette is a RAM with a");
+        v.line("// palette_fetch (paper §6): b = expand(palette[bump]). The palette is a RAM with a");
         v.line("// registered read (block RAM on FPGAs), loaded like a colour LUT through the write port;");
         v.line("// INIT_FILE holds its power-up contents. Expansion (an MSB inversion) follows the read.");
         v.line(format!(
-            "module {} #(\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [7:0] waddr,\n    input  wire [{}:0] wdata,\n    input  wire [7:0] index,\n    output wire [{}:0] b\n);",
+            "module {} #(\n    parameter INIT_FILE = \"{}\"\n) (\n    input  wire clk,\n    input  wire we,\n    input  wire [7:0] waddr,\n    input  wire [{}:0] wdata,\n    input  wire [7:0] bump,\n    output wire [{}:0] b\n);",
             module_name(cfg, "palette_fetch"),
             rom_file_name(cfg, "bump_palette_spiral", "hex"),
             w - 1,
             w - 1
         ));
         v.line(format!("wire [{}:0] rd;", w - 1));
-        v.line(crate::rtlgen::ram::instance(cfg, "u_ram", w, PALETTE_ENTRIES, 8, "index", "rd"));
+        v.line(crate::rtlgen::ram::instance(cfg, "u_ram", w, PALETTE_ENTRIES, 8, "bump", "rd"));
         let flip = |i: u32| format!("~rd[{}], rd[{}:{}]", i * nb + nb - 1, i * nb + nb - 2, i * nb);
         v.line(format!("assign b = {{{}, {}, {}}};", flip(2), flip(1), flip(0)));
         v.line("endmodule");

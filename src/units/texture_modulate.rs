@@ -21,8 +21,8 @@ impl Unit for TextureModulate {
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p("c_in", Dir::In, cfg.colour_fmt(), 3, "colour in"),
-            p("t", Dir::In, cfg.colour_fmt(), 3, "texel T"),
-            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c t / max)"),
+            p("tex", Dir::In, cfg.colour_fmt(), 3, "texture colour T"),
+            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "round(c_in tex / max)"),
         ]
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
@@ -42,7 +42,7 @@ impl Unit for TextureModulate {
         Some((cfg.colour_max() as u64 + 1).pow(2))
     }
     fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
-        // Every (c, t) pair on lane 0; lanes 1 and 2 see the pair mirrored and swapped.
+        // Every (c_in, tex) pair on lane 0; lanes 1 and 2 see the pair mirrored and swapped.
         let c = cfg.colour_max() as i64;
         let (a, b) = ((i / (c as u64 + 1)) as i64, (i % (c as u64 + 1)) as i64);
         vec![vec![a, b, c - a], vec![b, a, c - b]]
@@ -50,8 +50,11 @@ impl Unit for TextureModulate {
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let m = cfg.colour_max() as i64;
         vec![
-            ("white texel passes the colour through".into(), vec![vec![0, m / 2, m], vec![m; 3]]),
-            ("black texel gives black".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
+            (
+                "white texture colour T passes the colour through".into(),
+                vec![vec![0, m / 2, m], vec![m; 3]],
+            ),
+            ("black texture colour T gives black".into(), vec![vec![0, m / 2, m], vec![0; 3]]),
             (
                 "half-way products round to nearest".into(),
                 vec![vec![m / 2, m / 2 + 1, 1], vec![m / 2 + 1, m / 2, m]],

@@ -64,14 +64,14 @@ pub fn markdown() -> String {
         ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
         ("dot_clamp", true, Table, false, ""),
         (
-            "power_table",
+            "power_unit",
             true,
             Table,
             false,
             "table: none (the RAM's read register is the output)",
         ),
         (
-            "power_table",
+            "power_unit",
             true,
             Lerp,
             false,

@@ -106,7 +106,7 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         *s = LightSlot {
             l: vec(rng),
             h: vec(rng),
-            colour: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            lc: [0; 3].map(|_| rng.range(0, cmax) as u32),
             k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
         };
     }
@@ -117,16 +117,16 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn {
     let cmax = cfg.colour_max() as i64;
     let nmax = (1i64 << cfg.normal_bits) - 1;
-    let texel = [0; 3].map(|_| rng.range(0, nmax) as u32);
+    let codes = [0; 3].map(|_| rng.range(0, nmax) as u32);
     let bump = if cfg.palette {
         BumpTexel::Index(rng.range(0, 255) as u8)
     } else {
-        BumpTexel::Rgb(texel)
+        BumpTexel::Rgb(codes)
     };
     FragmentIn {
         bump,
         c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
-        texel: [0; 3].map(|_| rng.range(0, cmax) as u32),
+        tex: [0; 3].map(|_| rng.range(0, cmax) as u32),
         diffuse_en: rng.chance(0.85),
         specular_en: rng.chance(0.85),
     }
@@ -226,7 +226,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
 /// A corner stimulus: every light slot the same, grey colours given in the configuration's
 /// codes, L and H clamped into their format, both blend enables on.
 #[allow(clippy::too_many_arguments)]
-fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32) -> TopStim {
+fn corner_stim(cfg: &PipelineConfig, codes: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32) -> TopStim {
     let lh = cfg.lh_fmt();
     let fit = |v: [i64; 3]| v.map(|x| x.clamp(lh.min_raw(), lh.max_raw()));
     let mut state = BumpState::default();
@@ -234,14 +234,14 @@ fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], 
         *s = LightSlot {
             l: fit(l),
             h: fit(h),
-            colour: [lc; 3],
+            lc: [lc; 3],
             k,
         };
     }
     let frag = FragmentIn {
-        bump: bump_texel(cfg, texel),
+        bump: bump_of(cfg, codes),
         c_src: [c; 3],
-        texel: [t; 3],
+        tex: [t; 3],
         diffuse_en: true,
         specular_en: true,
     };
@@ -255,7 +255,7 @@ fn corner_stim(cfg: &PipelineConfig, texel: [u32; 3], l: [i64; 3], h: [i64; 3], 
 
 /// The bump texel a fragment of `cfg` carries for stored codes `rgb`: the codes, or in a
 /// palette configuration the index of the power-up palette's entry nearest to them.
-fn bump_texel(cfg: &PipelineConfig, rgb: [u32; 3]) -> BumpTexel {
+fn bump_of(cfg: &PipelineConfig, rgb: [u32; 3]) -> BumpTexel {
     if !cfg.palette {
         return BumpTexel::Rgb(rgb);
     }
@@ -300,13 +300,13 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let lh = cfg.lh_fmt();
     // Colours below are written for 8-bit channels and scaled to the configured width.
     let sc = |x: u32| scale8(x, cmax);
-    let base = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
+    let base = |codes: [u32; 3], l: [i64; 3], h: [i64; 3], lc: u32, k: i64, c: u32, t: u32| {
         let (c, t, lc) = (
             if c == cmax { c } else { sc(c) },
             if t == cmax { t } else { sc(t) },
             if lc == cmax { lc } else { sc(lc) },
         );
-        corner_stim(cfg, texel, l, h, lc, k, c, t)
+        corner_stim(cfg, codes, l, h, lc, k, c, t)
     };
     let mut v = vec![
         // Each entry: why it is there, then the stimulus.
@@ -347,7 +347,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
             base(flat, [0, 0, o], [0, 0, o], cmax, 0, 77, cmax),
         ),
         (
-            "black texel: diffuse multiplied away, specular kept in split order",
+            "black texture colour T: diffuse multiplied away, specular kept in split order",
             base(flat, [0, 0, o], [0, 0, o], cmax, kone, 100, 0),
         ),
         (
@@ -384,7 +384,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     v.push(("dot product on a rounding tie", tie));
     for slot in 0..cfg.lights as usize {
         let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
-        s.state.lights[slot].colour = [cmax, 0, cmax / 2];
+        s.state.lights[slot].lc = [cmax, 0, cmax / 2];
         v.push(("a single active light slot (each slot in turn)", s));
     }
     v
@@ -401,7 +401,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let lh = cfg.lh_fmt();
     let flat = [half, half, nmax];
     let sc = |x: u32| scale8(x, cmax);
-    let mk = |texel: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
+    let mk = |codes: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
         let (c, t) = (
             if c == cmax || c == cmax / 2 || c == cmax / 2 + 1 {
                 c
@@ -414,7 +414,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
                 sc(t)
             },
         );
-        corner_stim(cfg, texel, l, h, cmax, k, c, t)
+        corner_stim(cfg, codes, l, h, cmax, k, c, t)
     };
     let mut v = Vec::new();
     // B·L = +1 exactly (B = -1 on x, L = -1 on x) and one or two L LSBs either side.
@@ -476,11 +476,11 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
         "L and H at the largest raw code on every component: |L| ≈ 3.46".into(),
         mk([nmax, nmax, nmax], [lh.max_raw(); 3], [lh.max_raw(); 3], kone, 0, cmax),
     ));
-    // k at 0, one LSB, one LSB below 1, 1; C_src at 0 and max; texel 0 and max.
+    // k at 0, one LSB, one LSB below 1, 1; C_src at 0 and max; T 0 and max.
     for k in [0, 1, kone - 1, kone] {
         for (c, t) in [(0, 0), (0, cmax), (cmax, 0), (cmax, cmax), (cmax / 2, cmax / 2 + 1)] {
             v.push((
-                format!("k = {k}/2^K with C_src {c}, texel {t}"),
+                format!("k = {k}/2^K with C_src {c}, T {t}"),
                 mk(flat, [0, 0, o], [0, 0, o], k, c, t),
             ));
         }
@@ -492,9 +492,10 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
 /// before anything is built or written).
 pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
     let Some(u) = crate::units::unit(unit) else {
+        let usual = format!("one of {}", crate::vectors::targets::all_targets()[1..].join(", "));
         return Err(Error::Other(format!(
-            "exhaustive:{unit}: no such unit\n  fix: one of {}",
-            crate::vectors::targets::all_targets()[1..].join(", ")
+            "exhaustive:{unit}: no such unit\n  fix: {}",
+            crate::renamed::unit_fix(unit, usual)
         )));
     };
     let Some(count) = u.exhaustive_count(cfg) else {

@@ -53,9 +53,9 @@ pub fn state_column(cfg: &PipelineConfig, f: &str) -> String {
 
 /// The top's columns by name, looked up once per layout.
 struct TopColumns<'a> {
-    texel: &'a Column,
+    bump: &'a Column,
     c_src: &'a Column,
-    t: &'a Column,
+    tex: &'a Column,
     de: &'a Column,
     se: &'a Column,
     start: Option<&'a Column>,
@@ -70,9 +70,9 @@ impl<'a> TopColumns<'a> {
     fn of(cfg: &PipelineConfig, l: &'a Layout) -> TopColumns<'a> {
         let st = |f: &str| l.column(&state_column(cfg, f));
         TopColumns {
-            texel: l.column("in_texel"),
+            bump: l.column("in_bump"),
             c_src: l.column("in_c_src"),
-            t: l.column("in_t"),
+            tex: l.column("in_tex"),
             de: l.column("in_diffuse_en"),
             se: l.column("in_specular_en"),
             start: l.columns.iter().find(|c| c.name == TRI_START),
@@ -109,9 +109,9 @@ pub fn top_record(cfg: &PipelineConfig, l: &Layout, s: &TopStim, out: &Shaded) -
 pub struct TopEncoder<'a> {
     cfg: &'a PipelineConfig,
     layout: &'a Layout,
-    texel: Lanes<'a>,
+    bump: Lanes<'a>,
     c_src: Lanes<'a>,
-    t: Lanes<'a>,
+    tex: Lanes<'a>,
     de: Lanes<'a>,
     se: Lanes<'a>,
     start: Option<Lanes<'a>>,
@@ -168,9 +168,9 @@ impl<'a> TopEncoder<'a> {
         TopEncoder {
             cfg,
             layout,
-            texel: Lanes::of(c.texel),
+            bump: Lanes::of(c.bump),
             c_src: Lanes::of(c.c_src),
-            t: Lanes::of(c.t),
+            tex: Lanes::of(c.tex),
             de: Lanes::of(c.de),
             se: Lanes::of(c.se),
             start: c.start.map(Lanes::of),
@@ -196,17 +196,17 @@ impl<'a> TopEncoder<'a> {
             c.set(r, 0, s.tri_start as i64);
         }
         match s.frag.bump {
-            BumpTexel::Rgb(texel) => {
-                for (i, &tx) in texel.iter().enumerate() {
-                    self.texel.set(r, i as u32, tx as i64);
+            BumpTexel::Rgb(codes) => {
+                for (i, &x) in codes.iter().enumerate() {
+                    self.bump.set(r, i as u32, x as i64);
                 }
             }
-            BumpTexel::Index(ix) => self.texel.set(r, 0, ix as i64),
+            BumpTexel::Index(ix) => self.bump.set(r, 0, ix as i64),
         }
         let colour = out.colour();
         for i in 0..3 {
             self.c_src.set(r, i as u32, s.frag.c_src[i] as i64);
-            self.t.set(r, i as u32, s.frag.texel[i] as i64);
+            self.tex.set(r, i as u32, s.frag.tex[i] as i64);
             self.out.set(r, i as u32, colour[i] as i64);
         }
         self.de.set(r, 0, s.frag.diffuse_en as i64);
@@ -217,7 +217,7 @@ impl<'a> TopEncoder<'a> {
                 let lane = (3 * j + i) as u32;
                 self.l.set(r, lane, ls.l[i]);
                 self.h.set(r, lane, ls.h[i]);
-                self.lc.set(r, lane, ls.colour[i] as i64);
+                self.lc.set(r, lane, ls.lc[i] as i64);
             }
             self.k.set(r, j as u32, ls.k);
         }
@@ -228,9 +228,9 @@ impl<'a> TopEncoder<'a> {
 /// ignored), so a record from any source can be evaluated by the model.
 pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
     let TopColumns {
-        texel: c_texel,
+        bump: c_bump,
         c_src,
-        t: c_t,
+        tex: c_tex,
         de: c_de,
         se: c_se,
         start,
@@ -247,18 +247,18 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
         let b = 3 * j as u32;
         s.l = lane3(c_l, b);
         s.h = lane3(c_h, b);
-        s.colour = lane3(c_lc, b).map(|v| v as u32);
+        s.lc = lane3(c_lc, b).map(|v| v as u32);
         s.k = r.lane_value(c_k, j as u32);
     }
     TopStim {
         frag: FragmentIn {
             bump: if cfg.palette {
-                BumpTexel::Index(r.lane_value(c_texel, 0) as u8)
+                BumpTexel::Index(r.lane_value(c_bump, 0) as u8)
             } else {
-                BumpTexel::Rgb(code3(c_texel))
+                BumpTexel::Rgb(code3(c_bump))
             },
             c_src: code3(c_src),
-            texel: code3(c_t),
+            tex: code3(c_tex),
             diffuse_en: r.lane_value(c_de, 0) != 0,
             specular_en: r.lane_value(c_se, 0) != 0,
         },
@@ -304,9 +304,9 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     let n = cfg.lights as usize;
     let mut v = Vec::new();
     match s.frag.bump {
-        BumpTexel::Rgb(texel) => v.push(UnitStim {
+        BumpTexel::Rgb(codes) => v.push(UnitStim {
             unit: "bump_fetch",
-            inputs: vec![texel.iter().map(|&x| x as i64).collect()],
+            inputs: vec![codes.iter().map(|&x| x as i64).collect()],
         }),
         BumpTexel::Index(i) => v.push(UnitStim {
             unit: "palette_fetch",
@@ -314,7 +314,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
         }),
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
-    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].colour.map(|x| x as i64)).collect();
+    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].lc.map(|x| x as i64)).collect();
     for j in 0..n {
         let ls = &s.state.lights[j];
         if cfg.diffuse {
@@ -329,7 +329,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
                 inputs: vec![t.b.to_vec(), ls.h.to_vec()],
             });
             v.push(UnitStim {
-                unit: "power_table",
+                unit: "power_unit",
                 inputs: vec![vec![t.xh[j]]],
             });
         }
@@ -370,7 +370,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
                 unit: "texture_modulate",
                 inputs: vec![
                     c_in.iter().map(|&y| y as i64).collect(),
-                    s.frag.texel.iter().map(|&y| y as i64).collect(),
+                    s.frag.tex.iter().map(|&y| y as i64).collect(),
                 ],
             }),
             _ => {}
@@ -400,9 +400,10 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         let named: Vec<&str> = if t == "all" {
             all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
         } else if !all.contains(&t.as_str()) {
+            let usual = format!("one of all, {}", all.join(", "));
             return Err(Error::Other(format!(
-                "--target {t}: unknown\n  fix: one of all, {}",
-                all.join(", ")
+                "--target {t}: unknown\n  fix: {}",
+                crate::renamed::unit_fix(t, usual)
             )));
         } else if !super::writer::unit_present(cfg, t) {
             let u = crate::units::unit(t).expect("unit");

@@ -1,15 +1,19 @@
-//! power_table: fs = (B·H)^n from a table loaded like a colour LUT (paper §4.2), or one of
-//! the interpolated power units of `model::power_unit` reading the same loadable memory.
+//! power_unit: fs = (B·H)^n read from the power table, a memory loaded like a colour LUT
+//! (paper §4.2): the paper's plain lookup, or one of the interpolating designs of
+//! `model::power_unit` (`power_unit = "lerp" | "segmented"`) reading the same memory.
 
 use super::{p, Dir, Lanes, Memories, Memory, Port, Unit};
 use crate::config::{PipelineConfig, PowerUnitKind};
 use crate::model::power_table::powi_exact;
 
-pub struct PowerTableUnit;
+/// The name of the memory the power unit reads: its load port's prefix and its init file's stem.
+pub const POWER_TABLE: &str = "power_table";
 
-impl Unit for PowerTableUnit {
+pub struct PowerUnit;
+
+impl Unit for PowerUnit {
     fn name(&self) -> &'static str {
-        "power_table"
+        "power_unit"
     }
     fn source(&self) -> &'static str {
         "paper §4.2: fs_i = (B·H_i)^n, a reloadable table for one shininess"
@@ -37,9 +41,9 @@ impl Unit for PowerTableUnit {
     }
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
         Some(Memory {
-            prefix: "pt",
+            prefix: POWER_TABLE,
             init_param: "INIT_FILE",
-            init_stem: "power_table",
+            init_stem: POWER_TABLE,
             depth: cfg.power_depth(),
             addr_bits: cfg.power_addr_bits(),
             data_bits: cfg.power_frac_bits + 1,
@@ -47,7 +51,7 @@ impl Unit for PowerTableUnit {
         })
     }
     fn eval(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![vec![m.table.lookup(cfg, i[0][0])]]
+        vec![vec![crate::model::power_unit::power_unit(cfg, m.table, i[0][0])]]
     }
     fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let x = i[0][0] as f64 / (1u64 << cfg.dot_frac_bits) as f64;
@@ -55,14 +59,14 @@ impl Unit for PowerTableUnit {
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         let mut v = vec![
-            ("power_table", crate::rtlgen::units_v::power_table(cfg)),
+            ("power_unit", crate::rtlgen::units_v::power_unit(cfg)),
             (crate::rtlgen::ram::RAM, crate::rtlgen::ram::ram(cfg)),
         ];
         if cfg.power_unit != PowerUnitKind::Table {
-            let name = crate::rtlgen::units_v::module_name(cfg, "power_core");
+            let name = crate::rtlgen::units_v::module_name(cfg, "power_unit_core");
             v.push((
-                "power_core",
-                crate::rtlgen::power_units::core(&cfg.power_design(), cfg.power_formats(), &name),
+                "power_unit_core",
+                crate::rtlgen::power_units::core(&cfg.power_unit_design(), cfg.power_formats(), &name),
             ));
         }
         v
