@@ -29,7 +29,7 @@
 `timescale 1ns / 1ps
 `default_nettype none
 
-// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 14 cycles, one fragment every 4 cycle(s).
+// gbump_pipeline: Serial lights (4 slot(s)), blend order DiffuseTextureSpecular, latency 15 cycles, one fragment every 4 cycle(s).
 // INIT_FILE: the power table's contents at power-up (rst does not restore them); a path
 // relative to the simulator's working folder, so pass an absolute one from elsewhere.
 module gbump_pipeline_0da41704 #(
@@ -91,83 +91,93 @@ reg fr_specular_en;
 always @(posedge clk) if (accept) fr_specular_en <= in_specular_en;
 reg fr_tag;
 always @(posedge clk) if (accept) fr_tag <= tri_cur;
-// Triangle setup: 2 register banks. A setup loads the bank after the current one and makes it current; fragments carry the bank's tag.
+// Triangle setup: 2 banks of 4 light slot(s) in one RAM, word {bank, slot}. A setup writes the bank after the current one, a slot per edge, and makes it current at its last.
 reg tri_cur;
 wire tri_next = (tri_cur == 1'd1) ? 1'd0 : tri_cur + 1'd1;
 wire tri_accept = tri_valid && tri_ready;
-reg [191:0] bank_l [0:1];
-reg [191:0] bank_h [0:1];
-reg [95:0] bank_lc [0:1];
-reg [35:0] bank_k [0:1];
-always @(posedge clk) begin
-    if (tri_accept) begin
-        bank_l[tri_next] <= tri_l;
-        bank_h[tri_next] <= tri_h;
-        bank_lc[tri_next] <= tri_lc;
-        bank_k[tri_next] <= tri_k;
-    end
-end
 always @(posedge clk) begin
     if (rst) tri_cur <= 1'd0;
     else if (tri_accept) tri_cur <= tri_next;
 end
+reg [1:0] tri_slot;
+wire [128:0] tri_word = {tri_k[tri_slot*9 +: 9], tri_lc[tri_slot*24 +: 24], tri_h[tri_slot*48 +: 48], tri_l[tri_slot*48 +: 48]};
+wire [128:0] bank_rd;
+sync_ram_0da41704 #(.WIDTH(129), .DEPTH(8), .ABITS(3), .INIT_FILE("")) u_banks (.clk(clk), .we(tri_we), .waddr({tri_next, tri_slot}), .wdata(tri_word), .raddr({fr_tag, j}), .rdata(bank_rd));
+wire [47:0] st_l = bank_rd[47:0];
+wire [47:0] st_h = bank_rd[95:48];
+wire [23:0] st_lc = bank_rd[119:96];
+wire [8:0] st_k = bank_rd[128:120];
+// A bank is read up to stage 1: a setup waits while the next bank has a fragment before that stage.
+wire bank_free = !((busy && fr_tag == tri_next));
+wire tri_we = tri_valid && bank_free && !rst;
+assign tri_ready = !rst && bank_free && tri_slot == 2'd3;
+always @(posedge clk) begin
+    if (rst || !tri_we || tri_ready) tri_slot <= 2'd0;
+    else tri_slot <= tri_slot + 2'd1;
+end
 wire [23:0] b;
 bump_fetch_comb_0da41704 u_bump_fetch (.bump(fr_bump), .b(b));
+wire [23:0] lc_sel = st_lc;
+wire [8:0] k_sel = st_k;
 wire de = fr_diffuse_en;
-wire [191:0] st_l_s0 = bank_l[fr_tag];
-wire [47:0] l_sel = st_l_s0[j*48 +: 48];
+wire [47:0] l_sel = st_l;
+reg [23:0] b_d1;
+always @(posedge clk) b_d1 <= b;
 wire [8:0] fd;
-dot_clamp_0da41704 u_dot_l (.clk(clk), .b(b), .v(l_sel), .f(fd));
+dot_clamp_0da41704 u_dot_l (.clk(clk), .b(b_d1), .v(l_sel), .f(fd));
 reg de_d1;
 always @(posedge clk) de_d1 <= de;
 reg de_d2;
 always @(posedge clk) de_d2 <= de_d1;
 reg de_d3;
 always @(posedge clk) de_d3 <= de_d2;
-wire [8:0] dfac = (de_d3 ? fd : 9'd0);
-reg fr_tag_d1;
-always @(posedge clk) fr_tag_d1 <= fr_tag;
-reg fr_tag_d2;
-always @(posedge clk) fr_tag_d2 <= fr_tag_d1;
-reg fr_tag_d3;
-always @(posedge clk) fr_tag_d3 <= fr_tag_d2;
-wire [35:0] st_k_s3 = bank_k[fr_tag_d3];
-reg [1:0] j_d1;
-always @(posedge clk) j_d1 <= j;
-reg [1:0] j_d2;
-always @(posedge clk) j_d2 <= j_d1;
-reg [1:0] j_d3;
-always @(posedge clk) j_d3 <= j_d2;
-wire [8:0] k_sel_s3 = st_k_s3[j_d3*9 +: 9];
-wire [95:0] st_lc_s3 = bank_lc[fr_tag_d3];
-wire [23:0] lc_sel_s3 = st_lc_s3[j_d3*24 +: 24];
+reg de_d4;
+always @(posedge clk) de_d4 <= de_d3;
+wire [8:0] dfac = (de_d4 ? fd : 9'd0);
+reg [8:0] k_sel_d2;
+always @(posedge clk) k_sel_d2 <= k_sel;
+reg [8:0] k_sel_d3;
+always @(posedge clk) k_sel_d3 <= k_sel_d2;
+reg [8:0] k_sel_d4;
+always @(posedge clk) k_sel_d4 <= k_sel_d3;
+reg [23:0] lc_sel_d2;
+always @(posedge clk) lc_sel_d2 <= lc_sel;
+reg [23:0] lc_sel_d3;
+always @(posedge clk) lc_sel_d3 <= lc_sel_d2;
+reg [23:0] lc_sel_d4;
+always @(posedge clk) lc_sel_d4 <= lc_sel_d3;
 reg first_d1;
 always @(posedge clk) first_d1 <= first;
 reg first_d2;
 always @(posedge clk) first_d2 <= first_d1;
 reg first_d3;
 always @(posedge clk) first_d3 <= first_d2;
+reg first_d4;
+always @(posedge clk) first_d4 <= first_d3;
 wire [83:0] dacc;
-light_accumulate_0da41704 u_dacc (.clk(clk), .acc_in(dacc), .first(first_d3), .f(dfac), .k(k_sel_s3), .lc(lc_sel_s3), .acc(dacc));
+light_accumulate_0da41704 u_dacc (.clk(clk), .acc_in(dacc), .first(first_d4), .f(dfac), .k(k_sel_d4), .lc(lc_sel_d4), .acc(dacc));
 reg last_d1;
 always @(posedge clk) last_d1 <= last;
 reg last_d2;
 always @(posedge clk) last_d2 <= last_d1;
 reg last_d3;
 always @(posedge clk) last_d3 <= last_d2;
+reg last_d4;
+always @(posedge clk) last_d4 <= last_d3;
 reg busy_d1;
 always @(posedge clk) busy_d1 <= rst ? 1'd0 : busy;
 reg busy_d2;
 always @(posedge clk) busy_d2 <= rst ? 1'd0 : busy_d1;
 reg busy_d3;
 always @(posedge clk) busy_d3 <= rst ? 1'd0 : busy_d2;
+reg busy_d4;
+always @(posedge clk) busy_d4 <= rst ? 1'd0 : busy_d3;
 reg done;
-always @(posedge clk) done <= rst ? 1'd0 : busy_d3 && last_d3;
+always @(posedge clk) done <= rst ? 1'd0 : busy_d4 && last_d4;
 wire se = fr_specular_en;
-wire [191:0] st_h_s0 = bank_h[fr_tag];
-wire [47:0] h_sel = st_h_s0[j*48 +: 48];
+wire [47:0] h_sel = st_h;
 wire [8:0] xh;
-dot_clamp_0da41704 u_dot_h (.clk(clk), .b(b), .v(h_sel), .f(xh));
+dot_clamp_0da41704 u_dot_h (.clk(clk), .b(b_d1), .v(h_sel), .f(xh));
 wire [8:0] fs;
 power_unit_0da41704 #(.R(1), .INIT_FILE(INIT_FILE)) u_power_unit (.clk(clk), .we(power_table_we), .waddr(power_table_waddr), .wdata(power_table_wdata), .x(xh), .fs(fs));
 reg se_d1;
@@ -178,19 +188,17 @@ reg se_d3;
 always @(posedge clk) se_d3 <= se_d2;
 reg se_d4;
 always @(posedge clk) se_d4 <= se_d3;
-wire [8:0] sfac = (se_d4 ? fs : 9'd0);
-reg fr_tag_d4;
-always @(posedge clk) fr_tag_d4 <= fr_tag_d3;
-wire [35:0] st_k_s4 = bank_k[fr_tag_d4];
-reg [1:0] j_d4;
-always @(posedge clk) j_d4 <= j_d3;
-wire [8:0] k_sel_s4 = st_k_s4[j_d4*9 +: 9];
-wire [95:0] st_lc_s4 = bank_lc[fr_tag_d4];
-wire [23:0] lc_sel_s4 = st_lc_s4[j_d4*24 +: 24];
-reg first_d4;
-always @(posedge clk) first_d4 <= first_d3;
+reg se_d5;
+always @(posedge clk) se_d5 <= se_d4;
+wire [8:0] sfac = (se_d5 ? fs : 9'd0);
+reg [8:0] k_sel_d5;
+always @(posedge clk) k_sel_d5 <= k_sel_d4;
+reg [23:0] lc_sel_d5;
+always @(posedge clk) lc_sel_d5 <= lc_sel_d4;
+reg first_d5;
+always @(posedge clk) first_d5 <= first_d4;
 wire [83:0] sacc;
-light_accumulate_0da41704 u_sacc (.clk(clk), .acc_in(sacc), .first(first_d4), .f(sfac), .k(k_sel_s4), .lc(lc_sel_s4), .acc(sacc));
+light_accumulate_0da41704 u_sacc (.clk(clk), .acc_in(sacc), .first(first_d5), .f(sfac), .k(k_sel_d5), .lc(lc_sel_d5), .acc(sacc));
 reg [23:0] fr_c_src_d1;
 always @(posedge clk) fr_c_src_d1 <= fr_c_src;
 reg [23:0] fr_c_src_d2;
@@ -203,8 +211,10 @@ reg [23:0] fr_c_src_d5;
 always @(posedge clk) fr_c_src_d5 <= fr_c_src_d4;
 reg [23:0] fr_c_src_d6;
 always @(posedge clk) fr_c_src_d6 <= fr_c_src_d5;
+reg [23:0] fr_c_src_d7;
+always @(posedge clk) fr_c_src_d7 <= fr_c_src_d6;
 wire [23:0] c_dif;
-blend_finish_0da41704 u_diffuse_finish (.clk(clk), .c_in(fr_c_src_d6), .acc(dacc), .c_out(c_dif));
+blend_finish_0da41704 u_diffuse_finish (.clk(clk), .c_in(fr_c_src_d7), .acc(dacc), .c_out(c_dif));
 reg [23:0] fr_tex_d1;
 always @(posedge clk) fr_tex_d1 <= fr_tex;
 reg [23:0] fr_tex_d2;
@@ -219,18 +229,18 @@ reg [23:0] fr_tex_d6;
 always @(posedge clk) fr_tex_d6 <= fr_tex_d5;
 reg [23:0] fr_tex_d7;
 always @(posedge clk) fr_tex_d7 <= fr_tex_d6;
+reg [23:0] fr_tex_d8;
+always @(posedge clk) fr_tex_d8 <= fr_tex_d7;
 wire [23:0] c_tex;
-texture_modulate_0da41704 u_texture_modulate (.clk(clk), .c_in(c_dif), .tex(fr_tex_d7), .c_out(c_tex));
-reg [83:0] sacc_d8;
-always @(posedge clk) sacc_d8 <= sacc;
+texture_modulate_0da41704 u_texture_modulate (.clk(clk), .c_in(c_dif), .tex(fr_tex_d8), .c_out(c_tex));
 reg [83:0] sacc_d9;
-always @(posedge clk) sacc_d9 <= sacc_d8;
+always @(posedge clk) sacc_d9 <= sacc;
+reg [83:0] sacc_d10;
+always @(posedge clk) sacc_d10 <= sacc_d9;
 wire [23:0] c_spe;
-blend_finish_0da41704 u_specular_finish (.clk(clk), .c_in(c_tex), .acc(sacc_d9), .c_out(c_spe));
-reg done_d5;
-always @(posedge clk) done_d5 <= rst ? 1'd0 : done;
+blend_finish_0da41704 u_specular_finish (.clk(clk), .c_in(c_tex), .acc(sacc_d10), .c_out(c_spe));
 reg done_d6;
-always @(posedge clk) done_d6 <= rst ? 1'd0 : done_d5;
+always @(posedge clk) done_d6 <= rst ? 1'd0 : done;
 reg done_d7;
 always @(posedge clk) done_d7 <= rst ? 1'd0 : done_d6;
 reg done_d8;
@@ -239,8 +249,8 @@ reg done_d9;
 always @(posedge clk) done_d9 <= rst ? 1'd0 : done_d8;
 reg done_d10;
 always @(posedge clk) done_d10 <= rst ? 1'd0 : done_d9;
-// A bank is read up to stage 4: a setup waits while the next bank has a fragment before that stage.
-assign tri_ready = !rst && !((busy && fr_tag == tri_next) || (busy_d1 && fr_tag_d1 == tri_next) || (busy_d2 && fr_tag_d2 == tri_next) || (busy_d3 && fr_tag_d3 == tri_next));
+reg done_d11;
+always @(posedge clk) done_d11 <= rst ? 1'd0 : done_d10;
 // Output buffer: 5 results (every fragment that can be in flight), fall-through when empty; in_ready is low while 5 accepted results are untaken.
 reg [23:0] obuf [0:4];
 reg [2:0] obuf_rd;
@@ -248,9 +258,9 @@ reg [2:0] obuf_wr;
 reg [2:0] obuf_n;
 reg [2:0] occupancy;
 wire obuf_empty = obuf_n == 3'd0;
-wire obuf_push = done_d10 && !(obuf_empty && out_ready);
+wire obuf_push = done_d11 && !(obuf_empty && out_ready);
 wire obuf_pop = !obuf_empty && out_ready;
-wire taken = (!obuf_empty || done_d10) && out_ready;
+wire taken = (!obuf_empty || done_d11) && out_ready;
 always @(posedge clk) if (obuf_push) obuf[obuf_wr] <= c_spe;
 always @(posedge clk) begin
     if (rst) begin
@@ -268,7 +278,7 @@ always @(posedge clk) begin
 end
 assign credit = occupancy < 3'd5;
 // The colour is forced to 0 while not valid, so no X ever leaves the pipeline after reset.
-assign out_valid = (!obuf_empty || done_d10);
-assign out_c = (!obuf_empty || done_d10) ? (obuf_empty ? c_spe : obuf[obuf_rd]) : 24'd0;
+assign out_valid = (!obuf_empty || done_d11);
+assign out_c = (!obuf_empty || done_d11) ? (obuf_empty ? c_spe : obuf[obuf_rd]) : 24'd0;
 endmodule
 `default_nettype wire

@@ -44,7 +44,7 @@ package gbump_pkg_0da41704;
     localparam int LIGHTS = 4; // light slots
     localparam int SHININESS = 16; // shininess of the power-up table
     // Timing (rising edges, as the interface JSON defines them).
-    localparam int LATENCY = 14; // accepting edge to the edge out_valid is first sampled high
+    localparam int LATENCY = 15; // accepting edge to the edge out_valid is first sampled high
     localparam int INITIATION_INTERVAL = 4; // edges between accepts
     localparam INIT_FILE = "power_table_0da41704.hex"; // power-up table, relative to the simulator's working folder
     // Top ports.

@@ -31,7 +31,7 @@
 
 // sync_ram: DEPTH words of WIDTH bits, one write port, one read port with its read
 // register (block RAM on FPGAs, a RAM macro in a standard-cell flow); INIT_FILE holds
-// the power-up contents, and rst does not restore them.
+// the power-up contents (none when empty), and rst does not restore them.
 module sync_ram_0da41704 #(
     parameter WIDTH = 8,
     parameter DEPTH = 256,
@@ -47,7 +47,9 @@ module sync_ram_0da41704 #(
 );
 (* ram_style = "block", no_rw_check *)
 reg [WIDTH-1:0] mem [0:DEPTH-1];
-initial $readmemh(INIT_FILE, mem);
+generate if (INIT_FILE != "") begin : load
+    initial $readmemh(INIT_FILE, mem);
+end endgenerate
 always @(posedge clk) begin
     if (we) mem[waddr] <= wdata;
     rdata <= mem[raddr];

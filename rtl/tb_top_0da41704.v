@@ -50,7 +50,7 @@ module tb_top;
     // working folder); override with -P tb_top.INIT_FILE / -G INIT_FILE.
     parameter INIT_FILE = "power_table_0da41704.hex";
     localparam RB = 615;
-    localparam LAT = 14;
+    localparam LAT = 15;
     localparam POWER_TABLE_WORDS = 256;
     reg clk = 1'b0;
     reg rst = 1'b1;
@@ -97,12 +97,17 @@ module tb_top;
     localparam OUT_DEPTH = 5;
     integer stall = 0;
     // Per-triangle tops: a setup loads bank (setups so far + 1) % TRI_BANKS, and may do so
-    // from BANK_HOLD edges after the accept of that bank's last fragment on, not before.
+    // from BANK_HOLD edges after the accept of that bank's last fragment on, not before; and
+    // it spans SETUP_EDGES edges from the first it is offered at (its accept is SETUP_EDGES - 1
+    // edges after that one at the earliest). From both on, tri_ready is high.
     localparam TRI_BANKS = 2;
     localparam BANK_HOLD = 8;
+    localparam SETUP_EDGES = 4;
     integer frag_edge [0:TRI_BANKS-1];
     integer n_setup = 0;
     integer bank_at;
+    integer offer_at;
+    reg offered = 1'b0;
     localparam FLIGHT = 64;
     integer cyc = 0;
     integer acc_cyc [0:FLIGHT-1];
@@ -256,10 +261,12 @@ module tb_top;
             timing_error(last_acc < 0 ? cyc : cyc - last_acc, II, "in_ready low beyond the initiation interval");
         end
         if (!rst && tri_valid) begin
+            if (!offered) begin offered = 1'b1; offer_at = cyc; end
             bank_at = frag_edge[(n_setup + 1) % TRI_BANKS];
             if (tri_ready && cyc - bank_at < BANK_HOLD) timing_error(cyc - bank_at, BANK_HOLD, "setup accepted while its bank is still read");
-            else if (!tri_ready && cyc - bank_at >= BANK_HOLD) timing_error(cyc - bank_at, BANK_HOLD, "tri_ready low beyond the bank hold");
-            if (tri_ready) n_setup = n_setup + 1;
+            else if (tri_ready && cyc - offer_at < SETUP_EDGES - 1) timing_error(cyc - offer_at + 1, SETUP_EDGES, "setup accepted before it spans its edges");
+            else if (!tri_ready && cyc - bank_at >= BANK_HOLD && cyc - offer_at >= SETUP_EDGES - 1) timing_error(cyc - bank_at, BANK_HOLD, "tri_ready low beyond the bank hold");
+            if (tri_ready) begin n_setup = n_setup + 1; offered = 1'b0; end
         end
         if (!rst && !out_valid && n_out < n_in && cyc - acc_cyc[n_out % FLIGHT] >= LAT)
             timing_error(cyc - acc_cyc[n_out % FLIGHT], LAT, "latency: the result is not offered");

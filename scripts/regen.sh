@@ -25,3 +25,12 @@ paste_section() { # heading, command
 }
 paste_section "## Interface (default configuration)" $g interface
 paste_section "## Integrating the RTL: protocol and records" $g integration
+# The timing table inside "Timing as a parameter": the table rows only, the prose kept.
+out=$(mktemp)
+$g timing > "$out.body"
+awk -v body="$out.body" '
+    index($0, "| unit | depth 1") == 1 { while ((getline l < body) > 0) print l; skip = 1; next }
+    skip && /^\|/ { next }
+    { skip = 0; print }' README.md > "$out"
+mv "$out" README.md
+rm -f "$out.body"

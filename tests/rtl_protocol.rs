@@ -149,11 +149,33 @@ fn timing_is_checked(cfg_path: Option<&str>, name: &str) {
         assert!(tb.contains(&tb_edges) && cpp.contains(&cpp_edges));
         if edges > 1 {
             for e in [edges - 1, edges + 1] {
-                let bad = icarus_top(&w, &rtl, &tb.replace(&tb_edges, &format!("localparam SETUP_EDGES = {e};")), &hex, &[&table], &w).unwrap();
+                let bad = icarus_top(
+                    &w,
+                    &rtl,
+                    &tb.replace(&tb_edges, &format!("localparam SETUP_EDGES = {e};")),
+                    &hex,
+                    &[&table],
+                    &w,
+                )
+                .unwrap();
                 assert!(bad.failed > 0 && bad.log.contains("setup"), "icarus, setup edges {e}:\n{}", bad.log);
             }
-            let bad = harness(&w, &cfg, &rtl, &cpp.replace(&cpp_edges, &format!("static const long long SETUP_EDGES = {};", edges + 1)), &bin, &["--table", &t], &w).unwrap();
-            assert!(bad.failed > 0 && bad.log.contains("setup"), "harness, setup edges {}:\n{}", edges + 1, bad.log);
+            let bad = harness(
+                &w,
+                &cfg,
+                &rtl,
+                &cpp.replace(&cpp_edges, &format!("static const long long SETUP_EDGES = {};", edges + 1)),
+                &bin,
+                &["--table", &t],
+                &w,
+            )
+            .unwrap();
+            assert!(
+                bad.failed > 0 && bad.log.contains("setup"),
+                "harness, setup edges {}:\n{}",
+                edges + 1,
+                bad.log
+            );
         }
     }
     // The output buffer: with out_ready stalled, in_ready must fall exactly when the untaken
@@ -371,8 +393,15 @@ fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
     let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
     let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
     assert!(b >= a, "setup B was taken before fragment A: {line}");
-    assert!(a + hold > c_off + edges - 1, "the hold does not bind in this sequence: {line}, hold {hold}");
-    assert_eq!(c_acc, a + hold, "{line}: setup C must be taken {hold} edges (the bank hold) after fragment A");
+    assert!(
+        a + hold > c_off + edges - 1,
+        "the hold does not bind in this sequence: {line}, hold {hold}"
+    );
+    assert_eq!(
+        c_acc,
+        a + hold,
+        "{line}: setup C must be taken {hold} edges (the bank hold) after fragment A"
+    );
 }
 
 #[test]
