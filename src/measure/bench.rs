@@ -510,6 +510,36 @@ pub fn disk_rate(path: &Path, bytes: usize) -> Result<f64> {
 
 #[cfg(test)]
 mod tests {
+    /// Each ratio is judged against its constant: one just above its target is met, one just
+    /// below is not, and the per-edge ratios use edges, not vectors.
+    #[test]
+    fn ratios_are_judged_against_their_targets() {
+        let cfg = crate::config::PipelineConfig::default();
+        let speed = |k: f64| super::HarnessSpeed {
+            raw_edges: 8e6,
+            raw_edges_cpu: 8e6,
+            file_vectors: 1e6,
+            file_edges: 8_000_000,
+            file_edges_cpu: 1e6,
+            stream_vectors: 1e6,
+            made: 1e6,
+            stream_edges: 8e6 * super::STREAM_TARGET * k,
+            fast_model: 2e6 * super::MODEL_TARGET * k,
+            readable_model: 1e6,
+            file_seconds: 1.0 / (super::FILE_TARGET * k),
+        };
+        let dump = |k: f64| super::DumpSpeed {
+            dump: 1e8,
+            encoder: 4e8 * super::ENCODER_TARGET * k,
+            disk: 4e8,
+        };
+        let above = super::ratios(&[(&cfg, speed(1.01))], &dump(1.01));
+        assert_eq!(above.matches("| met |").count() + above.matches("| met (").count(), 4, "{above}");
+        assert!(!above.contains("NOT met"), "{above}");
+        let below = super::ratios(&[(&cfg, speed(0.99))], &dump(0.99));
+        assert_eq!(below.matches("NOT met").count(), 4, "{below}");
+    }
+
     #[test]
     fn harness_figures_are_read_from_its_lines() {
         let raw = "raw: 2355129 cycles in 0.420 s, 5610909 cycles/s, 5610909 fragments/s, 0.130 s of CPU\n1 passed, 0 failed\n";

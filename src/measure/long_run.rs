@@ -1,7 +1,7 @@
 //! The long regression of `gbump report`: `random:N` records of one configuration run through
 //! the Verilator harness twice, streamed from the model (`gbump regress --stream`) and from a
 //! vector file of the same records (`gbump vectors`, then the harness on the file), with the
-//! regressions' stall pattern, so the two times stand side by side. The file is removed after
+//! regressions' bubble and stall patterns, so the two times stand side by side. The file is removed after
 //! its run: at 10^8 records it is several gigabytes.
 
 use crate::config::PipelineConfig;
@@ -15,8 +15,9 @@ use std::time::Instant;
 pub const LONG_RUN_RECORDS: u64 = 100_000_000;
 /// Seed of its records.
 pub const LONG_RUN_SEED: u64 = 1;
-/// `gbump regress`'s stall pattern (`--stall`), which the long run keeps.
+/// `gbump regress`'s stall and bubble patterns (`--stall`, `--bubbles`), which the long run keeps.
 pub const LONG_RUN_STALL: u32 = 13;
+pub const LONG_RUN_BUBBLES: u32 = 29;
 
 /// One run's line.
 pub struct Run {
@@ -30,21 +31,22 @@ pub struct Run {
 /// given it) in `work`, with the harness `gbump regress --stream` builds there; an error when
 /// either run fails.
 pub fn long_run(cfg: &PipelineConfig, pick_args: &str, work: &Path, count: u64) -> Result<Vec<Run>> {
-    let exe = regress_harness(cfg, pick_args, work)?;
+    // Absolute, as `gbump regress` makes its --work: the harness build runs in its own folder.
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
-    let table = power_table(cfg, &work.join("table"), cfg.shininess, "gbump report")?;
+    let exe = regress_harness(cfg, pick_args, &work)?;
+    let table = power_table(cfg, &work.join("long_run_table"), cfg.shininess, "gbump report")?;
     let s = &streams(cfg, &StreamSource::Random(count), LONG_RUN_SEED, None)?[0];
     let run = StreamRun {
         exe: &exe,
         table: &table,
         cwd: &work,
         max_errors: 20,
-        bubbles: 0,
+        bubbles: LONG_RUN_BUBBLES,
         stall: LONG_RUN_STALL,
         progress: true,
     };
     let streamed = run_stream(cfg, s, &run)?;
-    let vdir = work.join("vectors");
+    let vdir = work.join("long_run_vectors");
     let _ = std::fs::remove_dir_all(&vdir);
     let o = crate::vectors::DumpOptions {
         text: false,
@@ -65,6 +67,8 @@ pub fn long_run(cfg: &PipelineConfig, pick_args: &str, work: &Path, count: u64) 
         table.display().to_string(),
         "--stall".into(),
         LONG_RUN_STALL.to_string(),
+        "--bubbles".into(),
+        LONG_RUN_BUBBLES.to_string(),
     ];
     let file = Verilator.run(&exe, &args, None, &work, "long file run");
     let _ = std::fs::remove_dir_all(&vdir);
@@ -96,7 +100,7 @@ pub fn long_run(cfg: &PipelineConfig, pick_args: &str, work: &Path, count: u64) 
 /// The runs as the report's Markdown table.
 pub fn markdown(cfg: &PipelineConfig, count: u64, runs: &[Run]) -> String {
     let mut s = format!(
-        "`gbump regress --stream random:{count} --seed {LONG_RUN_SEED}` on config `{}` ({:?} x{}), beside the harness on a file of the same records; both hold `out_ready` low as regressions do (`--stall {LONG_RUN_STALL}`).\n\n| run | vectors passed | failed | harness wall time | vectors/s | writing the file first |\n|---|---:|---:|---:|---:|---:|\n",
+        "`gbump regress --stream random:{count} --seed {LONG_RUN_SEED}` on config `{}` ({:?} x{}), beside the harness on a file of the same records; both idle `in_valid` and hold `out_ready` low as regressions do (`--bubbles {LONG_RUN_BUBBLES} --stall {LONG_RUN_STALL}`).\n\n| run | vectors passed | failed | harness wall time | vectors/s | writing the file first |\n|---|---:|---:|---:|---:|---:|\n",
         &cfg.hash()[..8],
         cfg.light_mode,
         cfg.lights
