@@ -81,7 +81,8 @@ fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record()
     // The stream's records are the file's, byte for byte.
     let s = &streams(&cfg, &StreamSource::Random(20_000), seed, None).unwrap()[0];
     let contents = gbump::units::MemoryContents::new(&cfg, cfg.shininess);
-    let streamed: Vec<u8> = (0..2).flat_map(|c| s.chunk_bytes(&cfg, &contents.view(), c)).collect();
+    let maker = gbump::vectors::top_records::TopRecords::new(&cfg, contents.view());
+    let streamed: Vec<u8> = (0..2).flat_map(|c| s.chunk_bytes(&maker, c).unwrap()).collect();
     assert!(streamed == std::fs::read(&bin).unwrap(), "streamed records differ from the file's");
 
     let args: Vec<String> = [
@@ -160,4 +161,28 @@ fn bad_stream_requests_are_refused_before_anything_is_built() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains("verilator is not installed"), "{err}");
     assert!(!Path::new(&work).exists());
+}
+
+/// The report's long regression at a small count: the streamed run and the file run of the
+/// same records both pass every record, and the report's table holds both. It shares the
+/// default configuration's harness build with the streamed test above (same folder, same
+/// RTL), holding the folder's lock as `gbump regress` does.
+#[test]
+fn the_long_regression_runs_streamed_and_from_a_file() {
+    let work = Path::new("target/test-regress/default");
+    let _lock = gbump::work_lock::WorkLock::acquire(work, "tests/stream.rs long regression").unwrap();
+    let cfg = gbump::config::PipelineConfig::default();
+    let n = 20_000;
+    let runs = gbump::measure::long_run::long_run(&cfg, "", work, n).unwrap();
+    assert_eq!(runs.len(), 2);
+    for r in &runs {
+        assert_eq!((r.outcome.passed, r.outcome.failed), (n, 0), "{}", r.outcome.log);
+    }
+    assert!(runs[1].prepare > 0.0 && runs[0].prepare == 0.0);
+    let md = gbump::measure::long_run::markdown(&cfg, n, &runs);
+    assert!(
+        md.contains(&format!("--stream random:{n}")) && md.contains("| streamed") && md.contains("| from a file"),
+        "{md}"
+    );
+    assert!(!work.join("long_run_vectors").exists(), "the vector file is removed");
 }

@@ -24,6 +24,8 @@ pub struct GbumpConfig {
     pub cfg: PipelineConfig,
     /// The power table (for the current shininess) and the palette the top powers up with.
     pub mem: crate::units::MemoryContents,
+    /// The fast model of `cfg` and `mem` (rebuilt with the table), for batches of top records.
+    pub fast: crate::model::FastModel,
     pub targets: Vec<Target>,
     pub hash: CString,
     pub module: CString,
@@ -58,8 +60,10 @@ impl GbumpConfig {
                 super::MAX_RECORD_BITS
             )));
         }
+        let mem = crate::units::MemoryContents::new(&cfg, cfg.shininess);
         Ok(GbumpConfig {
-            mem: crate::units::MemoryContents::new(&cfg, cfg.shininess),
+            fast: crate::model::FastModel::new(&cfg, &mem.table, Some(&mem.palette)),
+            mem,
             targets,
             hash: cstring(cfg.hash()),
             module: cstring(crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline")),
@@ -92,6 +96,7 @@ impl GbumpConfig {
             )));
         }
         self.mem.table = PowerTable::build(&self.cfg, n as u32);
+        self.fast = crate::model::FastModel::new(&self.cfg, &self.mem.table, Some(&self.mem.palette));
         Ok(())
     }
 
@@ -123,6 +128,9 @@ impl GbumpConfig {
                 t.name
             )));
         }
+        if t.name == "top" {
+            return self.eval_top_words(t, input, out);
+        }
         let eval = |(i, o): (&[u32], &mut [u32])| o.copy_from_slice(&self.eval(t, &Record::from_words32(i)).to_words32(n));
         if input.len() / n >= 1024 {
             input.par_chunks(n).zip(out.par_chunks_mut(n)).for_each(eval);
@@ -130,6 +138,43 @@ impl GbumpConfig {
             input.chunks(n).zip(out.chunks_mut(n)).for_each(eval);
         }
         Ok(())
+    }
+}
+
+impl GbumpConfig {
+    /// [`eval_words`](Self::eval_words) of the top: the fast model, a batch at a time, under
+    /// the readable model's check (`vectors::top_records`, record indices counted from the
+    /// start of this call).
+    fn eval_top_words(&self, t: &Target, input: &[u32], out: &mut [u32]) -> Result<()> {
+        use crate::vectors::targets::TopEncoder;
+        use crate::vectors::top_records::{TopRecords, BATCH};
+        use rayon::prelude::*;
+        let n = t.layout.words32();
+        let maker = TopRecords::with(&self.cfg, self.mem.view(), std::borrow::Cow::Borrowed(&self.fast));
+        let run = |(b, (i, o)): (usize, (&[u32], &mut [u32]))| -> Result<()> {
+            let stims: Vec<_> = i
+                .chunks(n)
+                .map(|w| top_stim(&self.cfg, &t.layout, &Record::from_words32(w)))
+                .collect();
+            let mut colours = vec![[0u32; 3]; stims.len()];
+            maker.colours((b * BATCH) as u64, &stims, &mut colours)?;
+            let enc = TopEncoder::new(&self.cfg, &t.layout);
+            let mut r = Record::new(&t.layout);
+            for ((s, c), o) in stims.iter().zip(&colours).zip(o.chunks_mut(n)) {
+                enc.fill_colour(s, *c, &mut r);
+                o.copy_from_slice(&r.to_words32(n));
+            }
+            Ok(())
+        };
+        if input.len() / n >= 1024 {
+            input
+                .par_chunks(n * BATCH)
+                .zip(out.par_chunks_mut(n * BATCH))
+                .enumerate()
+                .try_for_each(run)
+        } else {
+            input.chunks(n * BATCH).zip(out.chunks_mut(n * BATCH)).enumerate().try_for_each(run)
+        }
     }
 }
 

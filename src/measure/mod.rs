@@ -4,6 +4,7 @@ pub mod area;
 pub mod bench;
 pub mod fpga;
 pub mod image_metrics;
+pub mod long_run;
 pub mod power_space;
 pub mod report;
 pub mod scene_error;

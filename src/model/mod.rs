@@ -5,16 +5,19 @@
 //! Units, in data-flow order: [`bump_fetch`] (palette / range expansion), [`dot_clamp`]
 //! (fd = max(0, B·L), also B·H), [`power_unit`] (fs = (B·H)^n from the [`power_table`]), [`blend`]
 //! (`diffuse_blend`, `specular_blend`), [`texture_modulate`]; [`pipeline`] chains them in
-//! the configured order.
+//! the configured order. [`fast`] is the same pipeline specialised per configuration, for
+//! callers that need the colour alone.
 
 pub mod blend;
 pub mod bump_fetch;
 pub mod dot_clamp;
+pub mod fast;
 pub mod pipeline;
 pub mod power_table;
 pub mod power_unit;
 pub mod texture_modulate;
 
 pub use bump_fetch::Palette;
+pub use fast::FastModel;
 pub use pipeline::{shade, BumpState, BumpTexel, FragmentIn, LightSlot, Shaded, MAX_LIGHTS};
 pub use power_table::PowerTable;

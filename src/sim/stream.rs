@@ -10,9 +10,9 @@ use super::{Outcome, Sim, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::units::MemoryContents;
-use crate::vectors::layout::Record;
-use crate::vectors::sources::{chunk_rng, corners, scene_groups, RandomTriangles, RANDOM_CHUNK};
-use crate::vectors::targets::{eval_top, top_layout, TopEncoder, TopStim};
+use crate::vectors::sources::{chunk_rng, corners, scene_groups, RANDOM_CHUNK};
+use crate::vectors::targets::TopStim;
+use crate::vectors::top_records::TopRecords;
 use crate::work_lock::WorkLock;
 use rayon::prelude::*;
 use std::io::{Read, Write};
@@ -119,29 +119,22 @@ impl Stream {
     }
 
     /// The binary records of chunk `c` (records `c * RANDOM_CHUNK ..`), as `gbump vectors`
-    /// writes them. Random stimuli are drawn as they are encoded (`random_chunk` without the
-    /// chunk's 10 MB of stimuli in between).
-    pub fn chunk_bytes(&self, cfg: &PipelineConfig, mem: &crate::units::Memories, c: u64) -> Vec<u8> {
-        let tl = top_layout(cfg);
-        let enc = TopEncoder::new(cfg, &tl);
+    /// writes them, by the fast model under the readable model's check
+    /// (`vectors::top_records`). Random stimuli are drawn as they are encoded, a batch at a
+    /// time.
+    pub fn chunk_bytes(&self, maker: &TopRecords, c: u64) -> Result<Vec<u8>> {
         let len = RANDOM_CHUNK.min(self.count - c * RANDOM_CHUNK) as usize;
-        let mut bin = Vec::with_capacity(len * tl.bytes());
-        let mut r = Record::new(&tl);
-        let mut put = |s: &TopStim| {
-            enc.fill(s, &eval_top(cfg, mem, s), &mut r);
-            r.to_bytes(tl.bytes(), &mut bin);
-        };
+        let mut bin = Vec::with_capacity(len * maker.layout.bytes());
         match &self.feed {
             Feed::Random(seed) => {
-                let mut tris = RandomTriangles::new(chunk_rng(*seed, c));
-                (0..len).for_each(|_| put(&tris.next(cfg)));
+                maker.random_chunk(*seed, c, self.count, Some(&mut bin), None, false)?;
             }
             Feed::Stims(v, _) => {
                 let lo = (c * RANDOM_CHUNK) as usize;
-                v[lo..lo + len].iter().for_each(put);
+                maker.encode(lo as u64, &v[lo..lo + len], Some(&mut bin), None)?;
             }
         }
-        bin
+        Ok(bin)
     }
 
     /// How to write record `k` of this stream to a file and run it alone (the whole stream
@@ -214,7 +207,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     crate::interrupt::check()?;
     let what = format!("verilator {}", s.set);
     let contents = MemoryContents::new(cfg, s.shininess);
-    let mem = &contents.view();
+    let maker = TopRecords::new(cfg, contents.view());
     let t0 = std::time::Instant::now();
     let mut cmd = Command::new(r.exe);
     cmd.args([
@@ -285,13 +278,20 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
                 break;
             }
             let c1 = (c0 + batch).min(chunks);
-            let done: Vec<(u64, Vec<u8>)> = (c0..c1)
+            let done: Result<Vec<(u64, Vec<u8>)>> = (c0..c1)
                 .into_par_iter()
                 .map(|c| {
-                    let b = s.chunk_bytes(cfg, mem, c);
-                    ((b.len() / top_layout(cfg).bytes()) as u64, b)
+                    let b = s.chunk_bytes(&maker, c)?;
+                    Ok(((b.len() / maker.layout.bytes()) as u64, b))
                 })
                 .collect();
+            let done = match done {
+                Ok(d) => d,
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            };
             for d in done {
                 if tx.send(d).is_err() {
                     break 'feed;
@@ -336,9 +336,7 @@ pub fn regress_stream(
     let streams = streams(cfg, src, o.seed, o.scene_size)?;
     let _lock = lock()?;
     let h = &cfg.hash()[..8];
-    let rtl_dir = o.work.join(format!("rtl_{h}"));
-    let rtl = write_rtl(cfg, &rtl_dir, &format!("gbump rtl {pick_args} --out {}", rtl_dir.display()))?;
-    let exe = build(cfg, &o.work, &rtl)?;
+    let exe = regress_harness(cfg, pick_args, &o.work)?;
     let mut results = Vec::new();
     let mut replays = Vec::new();
     for s in &streams {
@@ -381,6 +379,14 @@ pub fn regress_stream(
         say(r)?;
     }
     super::summary::verdict(cfg, " (streamed)", &t, say)
+}
+
+/// The harness a streamed regression of `cfg` (selected by `pick_args`) builds in `work`:
+/// its RTL in `work/rtl_HASH`, the build cached under `work/build`.
+pub fn regress_harness(cfg: &PipelineConfig, pick_args: &str, work: &Path) -> Result<PathBuf> {
+    let rtl_dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
+    let rtl = write_rtl(cfg, &rtl_dir, &format!("gbump rtl {pick_args} --out {}", rtl_dir.display()))?;
+    build(cfg, work, &rtl)
 }
 
 /// The harness of `cfg`'s top, cached under `work/build`.

@@ -85,7 +85,7 @@ impl Record {
     }
 
     /// Put the low `width` (≤ 64) bits of `v` at `lsb`; at most two word updates.
-    #[inline]
+    #[inline(always)]
     pub fn set(&mut self, lsb: u32, width: u32, v: u64) {
         if width == 0 {
             return;

@@ -9,6 +9,7 @@ pub mod manifest;
 pub mod rng;
 pub mod sources;
 pub mod targets;
+pub mod top_records;
 pub mod writer;
 
 pub use manifest::{verify, Manifest};

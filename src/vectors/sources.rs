@@ -71,6 +71,14 @@ fn one(cfg: &PipelineConfig) -> i64 {
     1 << (cfg.lh_bits - 2)
 }
 
+/// Three draws in order (as `[0; 3].map(..)` draws them, without its call per element).
+#[inline(always)]
+fn three<T>(mut f: impl FnMut() -> T) -> [T; 3] {
+    let a = f();
+    let b = f();
+    [a, b, f()]
+}
+
 fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
     let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     v.map(|c| (c / len * one(cfg) as f64).round() as i64)
@@ -98,7 +106,7 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     for s in state.lights.iter_mut().take(cfg.lights as usize) {
         let vec = |rng: &mut SplitMix64| {
             if raw {
-                [0; 3].map(|_| rng.range(lh.min_raw(), lh.max_raw()))
+                three(|| rng.range(lh.min_raw(), lh.max_raw()))
             } else {
                 q_vec(cfg, [rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, rng.unit() * 1.2 - 0.2])
             }
@@ -106,7 +114,7 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         *s = LightSlot {
             l: vec(rng),
             h: vec(rng),
-            lc: [0; 3].map(|_| rng.range(0, cmax) as u32),
+            lc: three(|| rng.range(0, cmax) as u32),
             k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
         };
     }
@@ -117,7 +125,7 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn {
     let cmax = cfg.colour_max() as i64;
     let nmax = (1i64 << cfg.normal_bits) - 1;
-    let codes = [0; 3].map(|_| rng.range(0, nmax) as u32);
+    let codes = three(|| rng.range(0, nmax) as u32);
     let bump = if cfg.palette {
         BumpTexel::Index(rng.range(0, 255) as u8)
     } else {
@@ -125,8 +133,8 @@ pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn
     };
     FragmentIn {
         bump,
-        c_src: [0; 3].map(|_| rng.range(0, cmax) as u32),
-        tex: [0; 3].map(|_| rng.range(0, cmax) as u32),
+        c_src: three(|| rng.range(0, cmax) as u32),
+        tex: three(|| rng.range(0, cmax) as u32),
         diffuse_en: rng.chance(0.85),
         specular_en: rng.chance(0.85),
     }
@@ -173,6 +181,30 @@ impl RandomTriangles {
     }
 
     pub fn next(&mut self, cfg: &PipelineConfig) -> TopStim {
+        let tri_start = self.start(cfg);
+        self.left -= 1;
+        TopStim {
+            frag: random_fragment(cfg, &mut self.rng),
+            state: self.state,
+            tri_start,
+        }
+    }
+
+    /// The next records as one run of a triangle: up to `max` (>= 1) fragments into `frags`
+    /// (cleared first), the triangle's state, and whether the run starts the triangle. The
+    /// same draws as as many [`next`](Self::next) calls, without a copy of the state per
+    /// fragment.
+    pub fn next_run(&mut self, cfg: &PipelineConfig, max: usize, frags: &mut Vec<FragmentIn>) -> (&BumpState, bool) {
+        let tri_start = self.start(cfg);
+        let k = (self.left as usize).min(max);
+        frags.clear();
+        frags.extend((0..k).map(|_| random_fragment(cfg, &mut self.rng)));
+        self.left -= k as u64;
+        (&self.state, tri_start)
+    }
+
+    /// Draw the next triangle when the current one is done; whether it did.
+    fn start(&mut self, cfg: &PipelineConfig) -> bool {
         let tri_start = self.left == 0;
         if tri_start {
             self.left = if self.rng.chance(ONE_FRAGMENT_SHARE) {
@@ -184,12 +216,7 @@ impl RandomTriangles {
             };
             self.state = random_state(cfg, &mut self.rng);
         }
-        self.left -= 1;
-        TopStim {
-            frag: random_fragment(cfg, &mut self.rng),
-            state: self.state,
-            tri_start,
-        }
+        tri_start
     }
 }
 

@@ -149,16 +149,20 @@ impl<'a> Lanes<'a> {
         }
     }
 
-    /// `Record::set_lane`, with the same refusal of a value that does not fit.
-    #[inline]
+    /// `Record::set_lane`, with the same refusal of a value that does not fit (one unsigned
+    /// compare inline, the message out of line: this runs for every lane of every record).
+    #[inline(always)]
     fn set(&self, r: &mut Record, i: u32, v: i64) {
-        assert!(
-            v >= self.lo && v <= self.hi,
-            "value {v} does not fit {}-bit lane {i} of column {}",
-            self.width,
-            self.col.name
-        );
+        if v.wrapping_sub(self.lo) as u64 > self.hi.wrapping_sub(self.lo) as u64 {
+            self.misfit(i, v);
+        }
         r.set(self.lsb + i * self.width, self.width, v as u64);
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn misfit(&self, i: u32, v: i64) -> ! {
+        panic!("value {v} does not fit {}-bit lane {i} of column {}", self.width, self.col.name)
     }
 }
 
@@ -191,28 +195,21 @@ impl<'a> TopEncoder<'a> {
 
     /// [`record`](Self::record) into `r`, a record of this layout, which it clears first.
     pub fn fill(&self, s: &TopStim, out: &Shaded, r: &mut Record) {
+        self.fill_colour(s, out.colour(), r)
+    }
+
+    /// [`fill`](Self::fill) from the result colour alone (what the fast model gives).
+    pub fn fill_colour(&self, s: &TopStim, colour: [u32; 3], r: &mut Record) {
         r.words.fill(0);
-        if let Some(c) = &self.start {
-            c.set(r, 0, s.tri_start as i64);
-        }
-        match s.frag.bump {
-            BumpTexel::Rgb(codes) => {
-                for (i, &x) in codes.iter().enumerate() {
-                    self.bump.set(r, i as u32, x as i64);
-                }
-            }
-            BumpTexel::Index(ix) => self.bump.set(r, 0, ix as i64),
-        }
-        let colour = out.colour();
-        for i in 0..3 {
-            self.c_src.set(r, i as u32, s.frag.c_src[i] as i64);
-            self.tex.set(r, i as u32, s.frag.tex[i] as i64);
-            self.out.set(r, i as u32, colour[i] as i64);
-        }
-        self.de.set(r, 0, s.frag.diffuse_en as i64);
-        self.se.set(r, 0, s.frag.specular_en as i64);
+        self.fill_state(&s.state, r);
+        self.fill_fragment(&s.frag, s.tri_start, colour, r);
+    }
+
+    /// The bump-state columns, into `r` (whose state columns are zero): a triangle's
+    /// records share them, so a run of its fragments starts from one record holding them.
+    pub fn fill_state(&self, state: &BumpState, r: &mut Record) {
         for j in 0..self.cfg.lights as usize {
-            let ls = &s.state.lights[j];
+            let ls = &state.lights[j];
             for i in 0..3 {
                 let lane = (3 * j + i) as u32;
                 self.l.set(r, lane, ls.l[i]);
@@ -221,6 +218,30 @@ impl<'a> TopEncoder<'a> {
             }
             self.k.set(r, j as u32, ls.k);
         }
+    }
+
+    /// Every other column (the fragment, `tri_start`, the result), into `r` (where they are
+    /// zero).
+    #[inline]
+    pub fn fill_fragment(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3], r: &mut Record) {
+        if let Some(c) = &self.start {
+            c.set(r, 0, tri_start as i64);
+        }
+        match frag.bump {
+            BumpTexel::Rgb(codes) => {
+                for (i, &x) in codes.iter().enumerate() {
+                    self.bump.set(r, i as u32, x as i64);
+                }
+            }
+            BumpTexel::Index(ix) => self.bump.set(r, 0, ix as i64),
+        }
+        for i in 0..3 {
+            self.c_src.set(r, i as u32, frag.c_src[i] as i64);
+            self.tex.set(r, i as u32, frag.tex[i] as i64);
+            self.out.set(r, i as u32, colour[i] as i64);
+        }
+        self.de.set(r, 0, frag.diffuse_en as i64);
+        self.se.set(r, 0, frag.specular_en as i64);
     }
 }
 

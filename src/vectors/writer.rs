@@ -4,8 +4,9 @@
 
 use super::layout::{Layout, Record};
 use super::manifest::{columns, FileEntry, Manifest};
-use super::sources::{corners, exhaustive, exhaustive_count, random_chunk, Source, RANDOM_CHUNK};
-use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopEncoder, TopStim, UnitStim};
+use super::sources::{corners, exhaustive, exhaustive_count, Source, RANDOM_CHUNK};
+use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
+use super::top_records::TopRecords;
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::units::{Memories, MemoryContents};
@@ -296,7 +297,8 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             let mem = &contents.view();
             const CHUNK: u64 = RANDOM_CHUNK;
             let chunks = n.div_ceil(CHUNK);
-            let tl = top_layout(cfg);
+            let maker = TopRecords::new(cfg, *mem);
+            let tl = &maker.layout;
             let batch = 4 * rayon::current_num_threads() as u64;
             // Encoding runs on the rayon pool while a writer thread hashes and writes the
             // previous batch, so the disk and the cores work at the same time.
@@ -323,26 +325,15 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     let keep_stims = want_units && c0 * CHUNK < *n;
                     // Each chunk has its own stream, so chunks are generated in parallel and
                     // the bytes still depend on the seed alone.
-                    let done: Vec<(u64, Vec<TopStim>, String, Vec<u8>)> = (c0..c1)
+                    let done = (c0..c1)
                         .into_par_iter()
                         .map(|c| {
-                            let stims = random_chunk(cfg, o.seed, c, *n);
-                            let len = stims.len() as u64;
-                            let (mut hex, mut bin) = (String::new(), Vec::new());
-                            let enc = TopEncoder::new(cfg, &tl);
-                            for s in &stims {
-                                let r = enc.record(s, &eval_top(cfg, mem, s));
-                                if o.text {
-                                    hex.push_str(&r.hex(tl.hex_digits()));
-                                    hex.push('\n');
-                                }
-                                if o.binary {
-                                    r.to_bytes(tl.bytes(), &mut bin);
-                                }
-                            }
-                            (len, if keep_stims { stims } else { Vec::new() }, hex, bin)
+                            let (mut hex, mut bin) = (String::new(), Vec::with_capacity(CHUNK as usize * tl.bytes()));
+                            let (len, stims) =
+                                maker.random_chunk(o.seed, c, *n, o.binary.then_some(&mut bin), o.text.then_some(&mut hex), keep_stims)?;
+                            Ok((len, stims, hex, bin))
                         })
-                        .collect();
+                        .collect::<Result<Vec<(u64, Vec<TopStim>, String, Vec<u8>)>>>()?;
                     if tx.send(done).is_err() {
                         break;
                     }
@@ -407,6 +398,12 @@ type UnitEval = (UnitStim, Vec<Vec<i64>>);
 fn write_tops(cfg: &PipelineConfig, mem: &Memories, stims: &[TopStim], ws: &mut [SetWriter], with_top: bool) -> Result<()> {
     let want_units = ws.iter().any(|w| w.target != "top" && !w.full());
     let tl = top_layout(cfg);
+    if with_top {
+        // These records come from the readable model (its traces feed the unit sets); the
+        // fast model must agree with them as with every other set.
+        let mut colours = vec![[0u32; 3]; stims.len()];
+        TopRecords::new(cfg, *mem).colours(0, stims, &mut colours)?;
+    }
     let evals: Vec<(Record, Vec<UnitEval>)> = stims
         .par_iter()
         .map(|s| {

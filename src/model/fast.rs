@@ -1,0 +1,343 @@
+//! The golden model's fast path: exactly [`shade`](super::shade)`(..).colour()`, from a value
+//! built once per (configuration, power table, palette) that holds every per-configuration
+//! constant already resolved (rounding increments, shifts, clamp limits, the expanded palette,
+//! the power unit as a flat array over every clamped dot product). Why a second model: the
+//! readable one re-derives formats, matches on rounding modes and the power unit, and keeps
+//! every intermediate for the per-unit traces, per fragment; vector generation, streamed
+//! regressions and the C ABI only need the colour, millions of times.
+//!
+//! Fragments are evaluated in batches by a function monomorphised on the light count and the
+//! blend order, so the inner loop is unrolled and branch-free (enables and the flat bypass are
+//! masks). Every caller that writes or checks records compares it with the readable model
+//! (`vectors::check`), and `tests` below does so over random configurations and corners.
+
+use super::bump_fetch::Palette;
+use super::pipeline::{BumpState, BumpTexel, FragmentIn};
+use super::power_table::PowerTable;
+use crate::config::{BlendOrder, PipelineConfig};
+use crate::fixed::Rounding;
+
+/// `x / 2^down` (after `x · 2^up`) rounded as a [`Rounding`] says, as one add and two shifts:
+/// `(x + bias + ((x >> down) & even)) >> down` is floor, half-up or half-to-even by the
+/// constants alone (half-to-even adds half less one, plus one when the floor is odd).
+#[derive(Clone, Copy, Debug)]
+struct Requant {
+    up: u32,
+    down: u32,
+    bias: i64,
+    even: i64,
+}
+
+impl Requant {
+    fn new(from_frac: u32, to_frac: u32, rnd: Rounding) -> Requant {
+        let (up, down) = (to_frac.saturating_sub(from_frac), from_frac.saturating_sub(to_frac));
+        let half = if down == 0 { 0 } else { 1i64 << (down - 1) };
+        let (bias, even) = match rnd {
+            _ if down == 0 => (0, 0),
+            Rounding::Truncate => (0, 0),
+            Rounding::HalfUp => (half, 0),
+            Rounding::NearestEven => (half - 1, 1),
+        };
+        Requant { up, down, bias, even }
+    }
+
+    #[inline(always)]
+    fn apply(self, x: i64) -> i64 {
+        let x = x << self.up;
+        (x + self.bias + ((x >> self.down) & self.even)) >> self.down
+    }
+}
+
+/// One configuration's pipeline with its memories, ready to shade batches of fragments.
+#[derive(Clone, Debug)]
+pub struct FastModel {
+    lights: usize,
+    texture_last: bool,
+    /// Offset-binary zero of a stored normal component.
+    half: i64,
+    /// The palette's entries already expanded (empty without a palette).
+    palette: Vec<[i64; 3]>,
+    flat: [i64; 3],
+    skip_flat: bool,
+    diffuse: bool,
+    specular: bool,
+    /// Exact B·V to fd, then the clamp to [0, dot_max].
+    dot: Requant,
+    dot_max: i64,
+    /// fd to the common blend-factor format.
+    diffuse_align: u32,
+    /// Clamped B·H (every code 0..=2^F) to fs already aligned to the blend-factor format.
+    specular_factor: Vec<i64>,
+    /// The exact blend sum to colour units.
+    blend: Requant,
+    colour_max: i64,
+    colour_bits: u32,
+}
+
+impl FastModel {
+    /// The fast model of `cfg` with power table `table` and (palette configurations) `palette`.
+    pub fn new(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>) -> FastModel {
+        let half = 1i64 << (cfg.normal_bits - 1);
+        let factor = cfg.factor_frac();
+        let dot_max = 1i64 << cfg.dot_frac_bits;
+        FastModel {
+            lights: cfg.lights as usize,
+            texture_last: cfg.blend_order == BlendOrder::TextureLast,
+            half,
+            palette: palette.map_or(Vec::new(), |p| p.0.iter().map(|e| e.map(|c| c as i64 - half)).collect()),
+            flat: cfg.flat_normal(),
+            skip_flat: cfg.skip_flat,
+            diffuse: cfg.diffuse,
+            specular: cfg.specular,
+            dot: Requant::new(cfg.dot_exact_fmt().frac, cfg.dot_frac_bits, cfg.rounding),
+            dot_max,
+            diffuse_align: factor - cfg.dot_frac_bits,
+            specular_factor: (0..=dot_max)
+                .map(|x| crate::model::power_unit::power_unit(cfg, table, x) << (factor - cfg.power_frac_bits))
+                .collect(),
+            blend: Requant::new(factor + cfg.k_frac_bits, 0, cfg.rounding),
+            colour_max: cfg.colour_max() as i64,
+            colour_bits: cfg.colour_bits,
+        }
+    }
+
+    /// The colours of `frags`, fragments of one triangle with bump state `state`, into `out`:
+    /// the state's per-light products are formed once for the whole run.
+    ///
+    /// # Panics
+    /// As [`colours`](Self::colours).
+    pub fn colours_run(&self, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        assert_eq!(frags.len(), out.len(), "one colour per fragment");
+        macro_rules! by_lights {
+            ($tl:literal) => {
+                match self.lights {
+                    1 => self.run::<1, $tl>(state, frags, out),
+                    2 => self.run::<2, $tl>(state, frags, out),
+                    3 => self.run::<3, $tl>(state, frags, out),
+                    4 => self.run::<4, $tl>(state, frags, out),
+                    5 => self.run::<5, $tl>(state, frags, out),
+                    6 => self.run::<6, $tl>(state, frags, out),
+                    7 => self.run::<7, $tl>(state, frags, out),
+                    8 => self.run::<8, $tl>(state, frags, out),
+                    n => unreachable!("{n} lights: the configuration allows 1 to 8"),
+                }
+            };
+        }
+        if self.texture_last {
+            by_lights!(true)
+        } else {
+            by_lights!(false)
+        }
+    }
+
+    fn run<const N: usize, const TEXTURE_LAST: bool>(&self, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        let lights = lights::<N>(state);
+        for (f, o) in frags.iter().zip(out.iter_mut()) {
+            *o = self.one::<N, TEXTURE_LAST>(&lights, f);
+        }
+    }
+
+    /// The colour of one fragment (for many, [`colours`](Self::colours) chooses the
+    /// specialised loop once per batch instead of once per fragment).
+    pub fn colour(&self, state: &BumpState, frag: &FragmentIn) -> [u32; 3] {
+        let mut out = [[0; 3]];
+        self.colours(std::slice::from_ref(&(state, frag)), |x| (x.0, x.1), &mut out);
+        out[0]
+    }
+
+    /// The colours of `items` (each gives its triangle's state and its fragment) into `out`.
+    ///
+    /// # Panics
+    /// When `out` is not as long as `items`, or a palette index is given to a model built
+    /// without a palette.
+    pub fn colours<T>(&self, items: &[T], get: impl Fn(&T) -> (&BumpState, &FragmentIn), out: &mut [[u32; 3]]) {
+        assert_eq!(items.len(), out.len(), "one colour per fragment");
+        macro_rules! by_lights {
+            ($tl:literal) => {
+                match self.lights {
+                    1 => self.batch::<1, $tl, T>(items, get, out),
+                    2 => self.batch::<2, $tl, T>(items, get, out),
+                    3 => self.batch::<3, $tl, T>(items, get, out),
+                    4 => self.batch::<4, $tl, T>(items, get, out),
+                    5 => self.batch::<5, $tl, T>(items, get, out),
+                    6 => self.batch::<6, $tl, T>(items, get, out),
+                    7 => self.batch::<7, $tl, T>(items, get, out),
+                    8 => self.batch::<8, $tl, T>(items, get, out),
+                    n => unreachable!("{n} lights: the configuration allows 1 to 8"),
+                }
+            };
+        }
+        if self.texture_last {
+            by_lights!(true)
+        } else {
+            by_lights!(false)
+        }
+    }
+
+    fn batch<const N: usize, const TEXTURE_LAST: bool, T>(
+        &self,
+        items: &[T],
+        get: impl Fn(&T) -> (&BumpState, &FragmentIn),
+        out: &mut [[u32; 3]],
+    ) {
+        for (it, o) in items.iter().zip(out.iter_mut()) {
+            let (state, frag) = get(it);
+            *o = self.one::<N, TEXTURE_LAST>(&lights::<N>(state), frag);
+        }
+    }
+
+    #[inline(always)]
+    fn dot(&self, b: [i64; 3], v: [i64; 3]) -> i64 {
+        self.dot.apply(b[0] * v[0] + b[1] * v[1] + b[2] * v[2]).clamp(0, self.dot_max)
+    }
+
+    /// `c_in + round(acc)`, saturated: one blend's close.
+    #[inline(always)]
+    fn close(&self, c_in: [u32; 3], acc: [i64; 3]) -> [u32; 3] {
+        // Written out: `[0, 1, 2].map(..)` became a call per channel.
+        let ch = |i: usize| (c_in[i] as i64 + self.blend.apply(acc[i])).min(self.colour_max) as u32;
+        [ch(0), ch(1), ch(2)]
+    }
+
+    /// Texture modulation: `fixed::unorm_mul` on every channel.
+    #[inline(always)]
+    fn texture(&self, c: [u32; 3], t: [u32; 3]) -> [u32; 3] {
+        let w = self.colour_bits;
+        let ch = |i: usize| {
+            let p = c[i] as u64 * t[i] as u64 + (1u64 << (w - 1));
+            ((p + (p >> w)) >> w) as u32
+        };
+        [ch(0), ch(1), ch(2)]
+    }
+
+    #[inline(always)]
+    fn one<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frag: &FragmentIn) -> [u32; 3] {
+        let b = match frag.bump {
+            BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
+            BumpTexel::Index(i) => self.palette[i as usize],
+        };
+        let bypass = self.skip_flat & (b == self.flat);
+        // All ones where the blend adds, zero where it is off: the factors are masked.
+        let dmask = -i64::from(self.diffuse & frag.diffuse_en & !bypass);
+        let smask = -i64::from(self.specular & frag.specular_en & !bypass);
+        let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
+        for s in lights {
+            let fd = (self.dot(b, s.l) << self.diffuse_align) & dmask;
+            let fs = self.specular_factor[self.dot(b, s.h) as usize] & smask;
+            for ch in 0..3 {
+                dacc[ch] += fd * s.klc[ch];
+                sacc[ch] += fs * s.klc[ch];
+            }
+        }
+        let lit = self.close(frag.c_src, dacc);
+        if TEXTURE_LAST {
+            self.texture(self.close(lit, sacc), frag.tex)
+        } else {
+            self.close(self.texture(lit, frag.tex), sacc)
+        }
+    }
+}
+
+/// One light slot as the blends use it: L, H, and k·Lc per channel (the product the exact
+/// blend sum multiplies by the factor; formed once per triangle).
+#[derive(Clone, Copy)]
+struct Light {
+    l: [i64; 3],
+    h: [i64; 3],
+    klc: [i64; 3],
+}
+
+#[inline(always)]
+fn lights<const N: usize>(state: &BumpState) -> [Light; N] {
+    std::array::from_fn(|i| {
+        let s = &state.lights[i];
+        Light {
+            l: s.l,
+            h: s.h,
+            klc: [s.k * s.lc[0] as i64, s.k * s.lc[1] as i64, s.k * s.lc[2] as i64],
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::shade;
+    use crate::vectors::rng::SplitMix64;
+    use crate::vectors::sources::{corners, random_chunk};
+
+    /// Every fragment of `stims` gets the readable model's colour, in one batch and alone.
+    fn agree(cfg: &PipelineConfig, shininess: u32, stims: &[crate::vectors::targets::TopStim]) {
+        let table = PowerTable::build(cfg, shininess);
+        let palette = crate::rtlgen::rom::default_palette(cfg);
+        let fast = FastModel::new(cfg, &table, Some(&palette));
+        let mut out = vec![[0; 3]; stims.len()];
+        fast.colours(stims, |s| (&s.state, &s.frag), &mut out);
+        for (s, got) in stims.iter().zip(&out) {
+            let want = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
+            assert_eq!(*got, want, "config {}:\n{}\nn = {shininess}, {s:?}", cfg.hash(), cfg.to_toml());
+            assert_eq!(fast.colour(&s.state, &s.frag), want);
+            let mut one = [[0; 3]; 2];
+            fast.colours_run(&s.state, &[s.frag, s.frag], &mut one);
+            assert_eq!(one, [want; 2]);
+        }
+    }
+
+    /// Random valid configurations as `gbump fuzz` draws them, each on random records and on
+    /// its level-2 corners, at a random shininess.
+    #[test]
+    fn random_configurations_agree_with_the_readable_model() {
+        let mut rng = SplitMix64(0x5EED_FA57);
+        for i in 0..150 {
+            let cfg = crate::sim::fuzz::random_config(&mut rng);
+            let n = rng.range(0, crate::limits::MAX_SHININESS as i64) as u32;
+            let mut stims = random_chunk(&cfg, i, 0, 1500);
+            stims.extend(corners(&cfg, 2).into_iter().map(|c| c.1));
+            agree(&cfg, n, &stims);
+        }
+    }
+
+    /// The configurations at the edges of the space (`gbump fuzz`'s fixed list), every
+    /// rounding and both blend orders of the default.
+    #[test]
+    fn corner_configurations_agree_with_the_readable_model() {
+        let mut cfgs: Vec<PipelineConfig> = crate::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
+        for rounding in [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven] {
+            for blend_order in [BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast] {
+                for skip_flat in [false, true] {
+                    cfgs.push(PipelineConfig {
+                        rounding,
+                        blend_order,
+                        skip_flat,
+                        ..Default::default()
+                    });
+                }
+            }
+        }
+        for (i, cfg) in cfgs.iter().enumerate() {
+            let mut stims = random_chunk(cfg, 77 + i as u64, 0, 3000);
+            stims.extend(corners(cfg, 2).into_iter().map(|c| c.1));
+            for n in [0, 1, cfg.shininess, crate::limits::MAX_SHININESS] {
+                agree(cfg, n, &stims);
+            }
+        }
+    }
+
+    /// The rounding constants against `fixed::shift_round` on every value near the ties.
+    #[test]
+    fn requant_is_shift_round() {
+        for rnd in [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven] {
+            for (from, to) in [(4, 4), (3, 6), (9, 2), (20, 8), (1, 0)] {
+                let r = Requant::new(from, to, rnd);
+                for x in -300i64..300 {
+                    let want = if to >= from {
+                        (x as i128) << (to - from)
+                    } else {
+                        crate::fixed::shift_round(x as i128, from - to, rnd)
+                    };
+                    assert_eq!(r.apply(x) as i128, want, "{rnd:?} {from}->{to} x={x}");
+                }
+            }
+        }
+    }
+}
