@@ -55,6 +55,19 @@ pub enum BumpStateAt {
     Fragment,
 }
 
+/// How the units' multipliers are written in the Verilog.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Multipliers {
+    /// Radix-4 Booth partial-product rows in logic (`rtlgen::booth`): smaller in gate
+    /// equivalents and on FPGAs without multiplier blocks (iCE40 HX/LP), which the default
+    /// four-light top needs to fit an HX8K.
+    Booth,
+    /// A Verilog `*` per product, left to synthesis: DSP blocks on ECP5, Xilinx and the iCE40
+    /// UltraPlus, an AND array elsewhere.
+    Inferred,
+}
+
 /// The order of the blend units around texture modulation (paper §5.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -118,6 +131,9 @@ pub struct PipelineConfig {
     /// path holds more than one multiplier, from 3 on none holds a multiplier and the adders
     /// after it. Latencies grow with it; results do not change.
     pub pipeline_depth: u32,
+    /// How the multipliers are written: Booth rows in logic, or `*` for synthesis to map
+    /// (DSP blocks where the FPGA has them). Results do not change.
+    pub multipliers: Multipliers,
 }
 
 impl Default for PipelineConfig {
@@ -146,6 +162,7 @@ impl Default for PipelineConfig {
             backpressure: true,
             triangle_banks: 2,
             pipeline_depth: DEFAULT_PIPELINE_DEPTH,
+            multipliers: Multipliers::Booth,
         }
     }
 }

@@ -11,12 +11,16 @@ const CONFIG: &str = "tests/configs/one_light_parallel.toml";
 const WORK: &str = "target/test-fpga";
 
 fn area(target: &str, extra: &[&str]) -> (String, Value) {
+    area_of(CONFIG, target, extra)
+}
+
+fn area_of(config: &str, target: &str, extra: &[&str]) -> (String, Value) {
     let dir = tempfile::tempdir().unwrap();
     let json = dir.path().join("fpga.json");
     let o = Command::cargo_bin("gbump")
         .unwrap()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["area", "--target", target, "--config", CONFIG, "--work", WORK])
+        .args(["area", "--target", target, "--config", config, "--work", WORK])
         .args(extra)
         .arg("--json")
         .arg(&json)
@@ -83,12 +87,20 @@ fn ice40_places_and_routes_the_one_light_top_and_a_too_small_device_is_a_result(
 #[test]
 fn ecp5_and_xilinx_count_luts_flip_flops_and_dsps() {
     for target in ["ecp5", "xilinx"] {
-        let (text, r) = area(target, &[]);
+        // Booth rows (the default) are logic: no DSP block (one target shows it).
+        if target == "ecp5" {
+            let (_, booth) = area(target, &[]);
+            assert_eq!(n(unit(&booth, "gbump_pipeline"), "dsp"), 0, "{target}: Booth rows are logic");
+        }
+        let (text, r) = area_of("tests/configs/inferred_multipliers.toml", target, &[]);
         assert!(text.contains(&format!("on {target} (Yosys 0.")), "{text}");
         assert!(r["place_route"].is_null(), "only iCE40 is placed and routed");
         let top = unit(&r, "gbump_pipeline");
         assert!(n(top, "luts") > 50 && n(top, "flip_flops") > 100, "{target}: {top}");
-        assert!(n(top, "dsp") > 0, "{target}: the multipliers map to DSP blocks: {top}");
+        assert!(
+            n(top, "dsp") > 0,
+            "{target}: `multipliers = \"inferred\"` maps to DSP blocks: {top}"
+        );
         for u in r["units"].as_array().unwrap() {
             // A table's register is its block RAM's read register.
             assert!(

@@ -3,6 +3,9 @@
 //! Icarus and Verilator (real `fusesoc`); the SystemVerilog package with Verilator and Icarus;
 //! the cocotb example on two configurations (and a mutant RTL it must reject); ROM file names.
 
+#[path = "common/mutants.rs"]
+mod mutants;
+
 use assert_cmd::Command as Gbump;
 use gbump::rtlgen::kit;
 use gbump::rtlgen::units_v::module_name;
@@ -374,8 +377,7 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
             // A wrong rounding constant in texture_modulate: caught and reported.
             let tm = dir.join(format!("{}.v", module_name(&cfg, "texture_modulate")));
             let text = std::fs::read_to_string(&tm).unwrap();
-            assert!(text.contains("+ 17'd128;"));
-            std::fs::write(&tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
+            std::fs::write(&tm, mutants::texture_rounding(&text).expect("the rounding constant")).unwrap();
             let (ok, log) = cocotb(&cwd, &iface, &man, None);
             assert!(
                 !ok && log.contains("MISMATCH") && log.contains("out_c expected"),

@@ -5,6 +5,9 @@
 //! before anything is built. The work folders are those of `tests/rtl_sim.rs`, so the
 //! harness builds are shared (cached by their inputs).
 
+#[path = "common/mutants.rs"]
+mod mutants;
+
 use assert_cmd::Command;
 use gbump::sim::stream::{build, first_failing_record, run_stream, streams, StreamRun, StreamSource};
 use gbump::sim::{Simulator, Verilator};
@@ -59,8 +62,11 @@ fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record()
         .find(|p| p.to_string_lossy().contains("texture_modulate"))
         .unwrap();
     let text = std::fs::read_to_string(tm).unwrap();
-    assert!(text.contains("+ 17'd128;"), "the constant to change is gone; pick another");
-    std::fs::write(tm, text.replace("+ 17'd128;", "+ 17'd127;")).unwrap();
+    std::fs::write(
+        tm,
+        mutants::texture_rounding(&text).expect("the constant to change is gone; pick another"),
+    )
+    .unwrap();
     let exe = build(&cfg, &work, &rtl).unwrap();
 
     let seed = 11;

@@ -78,7 +78,7 @@ pub fn section(work: &Path) -> Result<String> {
     let f = fpga_area(&cfg, Target::Ice40, "hx8k", false, &work.join("fpga"), "gbump report")?;
     let fits = f.place_route.as_ref().is_some_and(|p| p.fits);
     s += &format!(
-        "\nThe default top (4 lights, serial, `pipeline_depth = {}`) on an HX8K: {} ({} LUTs, {} block RAMs of {} RAM bits, logic cells {}, Fmax (MHz): {}). The per-fragment bump-state registers (L_i, H_i, Lc_i, k_i carried beside every fragment) are still in these tops; the per-triangle top removes them.\n",
+        "\nThe default top (4 lights, serial, `pipeline_depth = {}`) on an HX8K: {} ({} LUTs, {} block RAMs of {} RAM bits, logic cells {}, Fmax (MHz): {}). Both are per-triangle tops (`bump_state = \"triangle\"`): the bump state sits in two banks loaded by the setup port, as register banks in the parallel top and as one RAM (block RAM here, written a light slot per edge) in the serial top; multipliers are Booth-recoded (`src/rtlgen/booth.rs`).\n",
         cfg.pipeline_depth,
         if fits { "**fits**" } else { "**does not fit**" },
         f.top().luts,

@@ -61,6 +61,19 @@ pub enum Form {
     Wires,
     /// One Verilog function per product, the rows in a loop: for long chains of products.
     Function,
+    /// No rows: a Verilog `*` per product, for synthesis to map (to a DSP block where the
+    /// FPGA has one; `multipliers = "inferred"`).
+    Inferred,
+}
+
+impl Form {
+    /// The form of the units' products in `cfg` (rows as wires for Booth).
+    pub fn of(cfg: &crate::config::PipelineConfig) -> Form {
+        match cfg.multipliers {
+            crate::config::Multipliers::Booth => Form::Wires,
+            crate::config::Multipliers::Inferred => Form::Inferred,
+        }
+    }
 }
 
 /// Declares, under `prefix`, the partial-product rows of `addend + Σ a_i b_i` and returns
@@ -78,6 +91,19 @@ pub fn sum_of_products(w: &mut VWriter, form: Form, prefix: &str, products: &[(F
         let c = match form {
             Form::Wires => rows_as_wires(w, &p, a, b, out_width, &mut terms),
             Form::Function => rows_in_function(w, &p, a, b, out_width, &mut terms),
+            Form::Inferred => {
+                // Both factors signed at out_width bits: the product modulo 2^out_width.
+                let op = |f: &Factor| {
+                    if f.signed {
+                        format!("$signed({})", f.expr)
+                    } else {
+                        format!("$signed({{1'b0, {}}})", f.expr)
+                    }
+                };
+                w.line(format!("wire signed [{}:0] {p} = {} * {};", out_width - 1, op(x), op(y)));
+                terms.push(p.clone());
+                0
+            }
         };
         constant = (constant + c) % modulus;
     }

@@ -130,7 +130,7 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             s += if en == "de" { "diffuse blend" } else { "specular path" };
             s += ": its enable, light vectors (and power-table port) stay on the interface, unused.\n";
             let sigs: &[&str] = if en == "de" {
-                &["in_diffuse_en", "in_l", "fr_diffuse_en", "fr_l", "bank_l"]
+                &["in_diffuse_en", "in_l", "fr_diffuse_en", "fr_l", "bank_l", "tri_l"]
             } else {
                 &[
                     "in_specular_en",
@@ -141,6 +141,7 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                     "fr_specular_en",
                     "fr_h",
                     "bank_h",
+                    "tri_h",
                 ]
             };
             for sig in sigs {

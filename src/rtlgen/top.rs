@@ -637,7 +637,16 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
     ));
     bank_pointer(s, cfg);
     s.source("fr_tag", 0);
-    let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
+    // Only the fields a blend reads are stored (L for diffuse, H for specular).
+    let used = |f: &str| match f {
+        "l" => cfg.diffuse,
+        "h" => cfg.specular,
+        _ => cfg.diffuse || cfg.specular,
+    };
+    let tri: Vec<TopPort> = port_list(cfg)
+        .into_iter()
+        .filter(|p| p.kind == PortKind::Triangle && used(&p.name[4..]))
+        .collect();
     s.m.reg_decl("tri_slot", jb);
     let mut fields = Vec::new();
     let mut off = 0;

@@ -96,13 +96,13 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
     };
     if cut(cfg, DOT_CLAMP, 0) {
         for i in 0..3 {
-            let e = sum_of_products(&mut w, Form::Wires, &format!("p{i}m"), &[product(i)], 0, ex.width);
+            let e = sum_of_products(&mut w, Form::of(cfg), &format!("p{i}m"), &[product(i)], 0, ex.width);
             w.stage(true, &decl, &format!("p{i}"), &e);
         }
         w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", "p0 + p1 + p2");
     } else {
         // No register between the products and their sum: one tree of all twelve rows.
-        let e = sum_of_products(&mut w, Form::Wires, "pm", &[product(0), product(1), product(2)], 0, ex.width);
+        let e = sum_of_products(&mut w, Form::of(cfg), "pm", &[product(0), product(1), product(2)], 0, ex.width);
         w.stage(cut(cfg, DOT_CLAMP, 1), &decl, "dot", &e);
     }
     requant_clamp(&mut w, "fq", "dot", ex, f, cfg.rounding, 0, 1 << f, f + 1);
@@ -266,7 +266,7 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     let fkw = ff + k + 2;
     let e = sum_of_products(
         &mut w,
-        Form::Wires,
+        Form::of(cfg),
         "fkm",
         &[(Factor::unsigned("f", ff + 1), Factor::unsigned("k", k + 1))],
         0,
@@ -277,7 +277,7 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     for ch in 0..3 {
         let e = sum_of_products(
             &mut w,
-            Form::Wires,
+            Form::of(cfg),
             &format!("t{ch}m"),
             &[(
                 Factor::unsigned("fk", fkw),
@@ -448,7 +448,7 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
         let lanes = |v: &str| Factor::unsigned(format!("{v}[{}:{}]", ch * c + c - 1, ch * c), c);
         let e = sum_of_products(
             &mut w,
-            Form::Wires,
+            Form::of(cfg),
             &format!("p{ch}m"),
             &[(lanes("c_in"), lanes("tex"))],
             1u128 << (c - 1),

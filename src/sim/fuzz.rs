@@ -5,7 +5,7 @@
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::{Sim, Simulator, Verilator};
-use crate::config::{limit, BlendOrder, BumpStateAt, LightMode, PipelineConfig, PowerIndex, PowerUnitKind};
+use crate::config::{limit, BlendOrder, BumpStateAt, LightMode, Multipliers, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
@@ -43,6 +43,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             backpressure: pick(rng, &[false, true]),
             triangle_banks: field(rng, "triangle_banks"),
             pipeline_depth: field(rng, "pipeline_depth"),
+            multipliers: pick(rng, &[Multipliers::Booth, Multipliers::Inferred]),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
