@@ -114,6 +114,8 @@ fn lint_is_clean_for_every_test_configuration() {
         Some("tests/configs/palette_parallel.toml"),
         Some("tests/configs/fragment_state.toml"),
         Some("tests/configs/three_banks_serial.toml"),
+        Some("tests/configs/fuzz_found_serial_no_specular.toml"),
+        Some("tests/configs/inferred_multipliers.toml"),
     ] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);

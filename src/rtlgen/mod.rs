@@ -48,6 +48,10 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
             }
         }
     }
+    // The serial top keeps its triangle banks in the RAM module, whatever units are in.
+    if top::banks_in_ram(cfg) && seen.insert(ram::RAM) {
+        v(ram::RAM, ram::ram(cfg));
+    }
     v("gbump_pipeline", top::top(cfg));
     if cfg.palette {
         let pal = rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE);

@@ -275,6 +275,12 @@ pub fn bank_hold(cfg: &PipelineConfig) -> Option<u32> {
     build(cfg).bank_hold
 }
 
+/// Whether the top keeps its triangle banks in a RAM (`rtlgen::ram`): the serial per-triangle
+/// top does.
+pub fn banks_in_ram(cfg: &PipelineConfig) -> bool {
+    cfg.per_triangle() && cfg.light_mode == LightMode::Serial
+}
+
 /// Per-triangle tops: the fewest rising edges a setup spans, from the first edge at which it
 /// is offered (`tri_valid` high, its bank free) to the edge that accepts it, both counted. The
 /// serial top writes one light slot per edge into its bank RAM, so n; register banks take a
