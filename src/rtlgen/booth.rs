@@ -116,19 +116,39 @@ pub fn sum_of_products(w: &mut VWriter, form: Form, prefix: &str, products: &[(F
     terms.join(" + ")
 }
 
+/// Bits of a row: they hold 2a in two's complement.
+fn row_width(a: &Factor) -> u32 {
+    a.width + if a.signed { 1 } else { 2 }
+}
+
+/// The rows of b (recoded) that start below `out_width`.
+fn rows(b: &Factor, out_width: u32) -> u32 {
+    b.digits().min(out_width.div_ceil(2))
+}
+
+/// a and 2a at [`row_width`] bits, from the bits of a named `x`.
+fn multiples(a: &Factor, x: &str) -> (String, String) {
+    if a.signed {
+        (format!("{{{x}[{}], {x}}}", a.width - 1), format!("{{{x}, 1'b0}}"))
+    } else {
+        (format!("{{2'b00, {x}}}"), format!("{{1'b0, {x}, 1'b0}}"))
+    }
+}
+
+/// The constant `rows` rows of `m` bits need, modulo 2^out_width: -2^(m-1) 4^j for each
+/// (each row's sign bit s is written as 1 - s).
+fn sign_constant(m: u32, rows: u32, out_width: u32) -> u128 {
+    let modulus = 1u128 << out_width;
+    (0..rows).fold(0, |c, j| (c + modulus - ((1u128 << (m - 1 + 2 * j)) % modulus)) % modulus)
+}
+
 /// The rows of a x b (b recoded) as `out_width`-bit wires pushed on `terms`; returns the
 /// constant they need, modulo 2^out_width.
 fn rows_as_wires(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width: u32, terms: &mut Vec<String>) -> u128 {
-    let modulus = 1u128 << out_width;
-    // m bits hold 2a in two's complement.
-    let m = a.width + if a.signed { 1 } else { 2 };
+    let m = row_width(a);
     w.line(format!("wire [{}:0] {p}_a = {};", a.width - 1, a.expr));
     w.line(format!("wire [{}:0] {p}_b = {};", b.width - 1, b.expr));
-    let (a1, a2) = if a.signed {
-        (format!("{{{p}_a[{}], {p}_a}}", a.width - 1), format!("{{{p}_a, 1'b0}}"))
-    } else {
-        (format!("{{2'b00, {p}_a}}"), format!("{{1'b0, {p}_a, 1'b0}}"))
-    };
+    let (a1, a2) = multiples(a, &format!("{p}_a"));
     w.line(format!("wire [{}:0] {p}_a1 = {a1};", m - 1));
     w.line(format!("wire [{}:0] {p}_a2 = {a2};", m - 1));
     let bit = |i: i64| -> String {
@@ -142,13 +162,9 @@ fn rows_as_wires(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width: u3
             "1'b0".into()
         }
     };
-    let mut constant = 0u128;
     let mut negs = Vec::new();
-    for j in 0..b.digits() {
+    for j in 0..rows(b, out_width) {
         let shift = 2 * j;
-        if shift >= out_width {
-            break;
-        }
         let (hi, mid, lo) = (bit(2 * j as i64 + 1), bit(2 * j as i64), bit(2 * j as i64 - 1));
         let r = format!("{p}_r{j}");
         w.line(format!("wire {r}_one = {mid} ^ {lo};"));
@@ -163,7 +179,6 @@ fn rows_as_wires(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width: u3
         let row = placed(&format!("{r}_pp"), m, shift, out_width);
         w.line(format!("wire [{}:0] {r} = {row};", out_width - 1));
         terms.push(r.clone());
-        constant = (constant + modulus - ((1u128 << (m - 1 + shift)) % modulus)) % modulus;
         negs.push((shift, format!("{r}_neg")));
     }
     // The +neg_j bits, one row: bit 2j of it is neg_j.
@@ -181,7 +196,7 @@ fn rows_as_wires(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width: u3
     };
     w.line(format!("wire [{}:0] {p}_neg = {{{bits}}};", out_width - 1));
     terms.push(format!("{p}_neg"));
-    constant
+    sign_constant(m, rows(b, out_width), out_width)
 }
 
 /// Bits `[out_width-1:0]` of the row {~pp[m-1], pp[m-2:0]} shifted left by `shift`, as one
@@ -210,10 +225,8 @@ fn placed(pp: &str, m: u32, shift: u32, out_width: u32) -> String {
 /// 2^out_width; pushes its call on `terms` and returns the constant the rows need (modulo
 /// 2^out_width).
 fn rows_in_function(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width: u32, terms: &mut Vec<String>) -> u128 {
-    let modulus = 1u128 << out_width;
-    // m bits hold 2a in two's complement.
-    let m = a.width + if a.signed { 1 } else { 2 };
-    let digits = b.digits().min(out_width.div_ceil(2));
+    let m = row_width(a);
+    let digits = rows(b, out_width);
     let ow = out_width;
     // bx holds b_{-1} = 0, b, and b's extension up to bit 2 digits - 1 (index shifted by one).
     let bxw = 2 * b.digits() + 1;
@@ -223,24 +236,9 @@ fn rows_in_function(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width:
         (e, true) => format!("{{{{{e}{{booth_y[{}]}}}}, booth_y, 1'b0}}", b.width - 1),
         (e, false) => format!("{{{e}'d0, booth_y, 1'b0}}"),
     };
-    let (a1, a2) = if a.signed {
-        (format!("{{booth_x[{}], booth_x}}", a.width - 1), "{booth_x, 1'b0}".to_string())
-    } else {
-        ("{2'b00, booth_x}".to_string(), "{1'b0, booth_x, 1'b0}".to_string())
-    };
-    // The row {~s, low bits} at `ow` bits (through an m-bit register when m > ow).
-    let row = if ow > m {
-        format!("booth_row = {{{}'d0, ~booth_pp[{}], booth_pp[{}:0]}};", ow - m, m - 1, m - 2)
-    } else if ow == m {
-        format!("booth_row = {{~booth_pp[{}], booth_pp[{}:0]}};", m - 1, m - 2)
-    } else {
-        format!(
-            "booth_rowm = {{~booth_pp[{}], booth_pp[{}:0]}};\n        booth_row = booth_rowm[{}:0];",
-            m - 1,
-            m - 2,
-            ow - 1
-        )
-    };
+    let (a1, a2) = multiples(a, "booth_x");
+    // The unshifted row at `ow` bits; the loop shifts it.
+    let row = placed("booth_pp", m, 0, ow);
     let f = format!("{p}_booth");
     w.block(format!("function [{}:0] {f};", ow - 1), "endfunction", |w| {
         w.line(format!("input [{}:0] booth_x;", a.width - 1));
@@ -248,9 +246,6 @@ fn rows_in_function(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width:
         w.line(format!("reg [{}:0] booth_a1, booth_a2, booth_pp;", m - 1));
         w.line(format!("reg [{}:0] booth_bx;", bxw - 1));
         w.line(format!("reg [{}:0] booth_row, booth_negw;", ow - 1));
-        if m > ow {
-            w.line(format!("reg [{}:0] booth_rowm;", m - 1));
-        }
         w.line("reg booth_one, booth_two, booth_neg;");
         w.line("integer booth_j;");
         w.block("begin", "end", |w| {
@@ -264,9 +259,7 @@ fn rows_in_function(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width:
                 w.line("booth_two = (booth_bx[2*booth_j+2] & ~booth_bx[2*booth_j+1] & ~booth_bx[2*booth_j]) | (~booth_bx[2*booth_j+2] & booth_bx[2*booth_j+1] & booth_bx[2*booth_j]);");
                 w.line("booth_neg = booth_bx[2*booth_j+2];");
                 w.line(format!("booth_pp = (({{{m}{{booth_one}}}} & booth_a1) | ({{{m}{{booth_two}}}} & booth_a2)) ^ {{{m}{{booth_neg}}}};"));
-                for l in row.split('\n') {
-                    w.line(l.trim());
-                }
+                w.line(format!("booth_row = {row};"));
                 w.line(format!("booth_negw = booth_negw | ({{{}'d0, booth_neg}} << (2*booth_j));", ow - 1));
                 w.line(format!("{f} = {f} + (booth_row << (2*booth_j));"));
             });
@@ -276,11 +269,7 @@ fn rows_in_function(w: &mut VWriter, p: &str, a: &Factor, b: &Factor, out_width:
         });
     });
     terms.push(format!("{f}({}, {})", a.expr, b.expr));
-    let mut constant = 0u128;
-    for j in 0..digits {
-        constant = (constant + modulus - ((1u128 << (m - 1 + 2 * j)) % modulus)) % modulus;
-    }
-    constant
+    sign_constant(m, digits, out_width)
 }
 
 #[cfg(test)]

@@ -303,17 +303,17 @@ pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
 /// Bits of the top's own arrays, which Yosys counts as memories beside the units' RAMs: the
 /// triangle banks (register arrays, or the serial top's bank RAM) and the output buffer.
 pub fn array_bits(cfg: &PipelineConfig) -> u32 {
-    let banks = if cfg.per_triangle() {
+    let banks = if banks_in_ram(cfg) {
+        // The RAM's words: a power of two of slots per bank, one slot of the stored fields each.
+        let slot: u32 = bank_ram_ports(cfg).iter().map(|p| p.width() / cfg.lights).sum();
+        (cfg.triangle_banks << slot_bits(cfg)) * slot
+    } else if cfg.per_triangle() {
         let tri: u32 = port_list(cfg)
             .iter()
             .filter(|p| p.kind == PortKind::Triangle)
             .map(|p| p.width())
             .sum();
-        match cfg.light_mode {
-            LightMode::Parallel => cfg.triangle_banks * tri,
-            // The RAM's words: a power of two of slots per bank, one slot each.
-            LightMode::Serial => (cfg.triangle_banks << slot_bits(cfg)) * (tri / cfg.lights),
-        }
+        cfg.triangle_banks * tri
     } else {
         0
     };
@@ -636,6 +636,20 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
 /// held meanwhile, as valid/ready requires); fragment slot j is read at the edge that ends its
 /// slot-j cycle at stage 0, so the fields are ready at stage 1 as `st_*`, one slot wide.
 /// Returns the last stage that reads a bank in the sense of [`bank_free`].
+/// The setup ports the serial top's bank RAM stores, lowest word bits first: only the
+/// fields a blend reads (L for diffuse, H for specular).
+fn bank_ram_ports(cfg: &PipelineConfig) -> Vec<TopPort> {
+    let used = |f: &str| match f {
+        "l" => cfg.diffuse,
+        "h" => cfg.specular,
+        _ => cfg.diffuse || cfg.specular,
+    };
+    port_list(cfg)
+        .into_iter()
+        .filter(|p| p.kind == PortKind::Triangle && used(&p.name[4..]))
+        .collect()
+}
+
 fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
     let (k, bb, n) = (cfg.triangle_banks, cfg.bank_bits(), cfg.lights);
     s.m.comment(format!(
@@ -643,25 +657,9 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
     ));
     bank_pointer(s, cfg);
     s.source("fr_tag", 0);
-    // Only the fields a blend reads are stored (L for diffuse, H for specular).
-    let used = |f: &str| match f {
-        "l" => cfg.diffuse,
-        "h" => cfg.specular,
-        _ => cfg.diffuse || cfg.specular,
-    };
-    let tri: Vec<TopPort> = port_list(cfg)
-        .into_iter()
-        .filter(|p| p.kind == PortKind::Triangle && used(&p.name[4..]))
-        .collect();
+    let tri = bank_ram_ports(cfg);
     s.m.reg_decl("tri_slot", jb);
-    let mut fields = Vec::new();
-    let mut off = 0;
-    for p in &tri {
-        let ws = p.width() / n;
-        fields.push((p.name[4..].to_string(), ws, off));
-        off += ws;
-    }
-    let word = off;
+    let word: u32 = tri.iter().map(|p| p.width() / n).sum();
     let parts: Vec<String> = tri
         .iter()
         .rev()
@@ -679,8 +677,11 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
         bb + jb
     ));
     s.source("bank_rd", 1);
-    for (f, ws, off) in &fields {
-        s.comb(&format!("st_{f}"), *ws, &format!("{{bank_rd}}[{}:{off}]", off + ws - 1));
+    let mut off = 0;
+    for p in &tri {
+        let ws = p.width() / n;
+        s.comb(&format!("st_{}", &p.name[4..]), ws, &format!("{{bank_rd}}[{}:{off}]", off + ws - 1));
+        off += ws;
     }
     // The RAM reads at the edge ending stage 0: a write to the bank must wait for stage 0.
     bank_free(s, "fr_tag", "busy", 0, 1);
