@@ -200,7 +200,7 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
-    ("k_frac_bits", 1, 12, "modulation fraction bits"),
+    ("k_frac_bits", 0, 12, "modulation fraction bits; 0 makes k_i an on/off enable (the paper's sample implementation, where k has no effect)"),
     ("lights", 1, 8, "light slots in hardware"),
     (
         "triangle_banks",

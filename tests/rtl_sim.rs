@@ -46,7 +46,15 @@ fn runs(text: &str) -> Vec<(String, String, u64, u64)> {
         .collect()
 }
 
-fn check_suite(text: &str, min_scenes: usize) {
+/// The random counts of the default regression (Icarus, Verilator).
+const FULL: (u64, u64) = (100_000, 1_000_000);
+/// The other configurations' regressions: fewer random vectors and smaller scene images (every
+/// scene still runs), so the suite stays within its time; `gbump regress --sim both` with the
+/// config runs the full counts.
+const SHORT: (u64, u64) = (20_000, 200_000);
+const SHORT_ARGS: [&str; 6] = ["--random-icarus", "20000", "--random", "200000", "--scene-size", "64x48"];
+
+fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
     let r = runs(text);
     for sim in ["icarus", "verilator"] {
         let mine: Vec<_> = r.iter().filter(|x| x.0 == sim).collect();
@@ -57,7 +65,7 @@ fn check_suite(text: &str, min_scenes: usize) {
             .expect("random top set");
         assert_eq!(
             random_top.2,
-            if sim == "icarus" { 100_000 } else { 1_000_000 },
+            if sim == "icarus" { counts.0 } else { counts.1 },
             "{sim} random count"
         );
         assert!(mine.iter().any(|x| x.1 == "corners_level2_top"));
@@ -79,26 +87,32 @@ fn check_suite(text: &str, min_scenes: usize) {
 #[test]
 fn regress_default_config_on_both_simulators() {
     let t = regress(&["--sim", "both"], "default");
-    check_suite(&t, 12);
+    check_suite(&t, 12, FULL);
+}
+
+/// Short regressions of the other configurations (see [`SHORT`]).
+fn regress_short(config: &str, work: &str, min_scenes: usize) {
+    let mut args = vec!["--sim", "both", "--config", config];
+    args.extend(SHORT_ARGS);
+    let t = regress(&args, work);
+    check_suite(&t, min_scenes, SHORT);
 }
 
 #[test]
 fn regress_one_light_parallel() {
-    let t = regress(
-        &["--sim", "both", "--config", "tests/configs/one_light_parallel.toml"],
-        "one_light_parallel",
-    );
     // Scenes with two bump lights do not fit one light slot; the other eleven run.
-    check_suite(&t, 11);
+    regress_short("tests/configs/one_light_parallel.toml", "one_light_parallel", 11);
+}
+
+#[test]
+fn regress_paper_sample_one_light() {
+    // k_i as an on/off enable: the blends without their f·k multiplier.
+    regress_short("tests/configs/paper_sample_one_light.toml", "paper_sample_one_light", 11);
 }
 
 #[test]
 fn regress_four_lights_serial_dot10() {
-    let t = regress(
-        &["--sim", "both", "--config", "tests/configs/four_serial_dot10.toml"],
-        "four_serial_dot10",
-    );
-    check_suite(&t, 12);
+    regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }
 
 #[test]
@@ -106,6 +120,7 @@ fn lint_is_clean_for_every_test_configuration() {
     for cfg in [
         None,
         Some("tests/configs/one_light_parallel.toml"),
+        Some("tests/configs/paper_sample_one_light.toml"),
         Some("tests/configs/four_serial_dot10.toml"),
         Some("tests/configs/fuzz_found_wide_dot.toml"),
         Some("tests/configs/fuzz_found_equal_frac.toml"),
@@ -208,6 +223,57 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
             "{}",
             out.log
         );
+    }
+}
+
+/// The output buffer reads its RAM one entry ahead; an entry that is the head at the edge that
+/// writes it must come from the bypass register. Stalled top runs on both simulators see the
+/// difference (Icarus and Verilator both return the RAM's old word).
+#[test]
+fn an_output_buffer_that_reads_its_ram_during_the_write_is_caught() {
+    use gbump::sim::regress::{run_sets, write_rtl, RegressOptions};
+    use gbump::sim::Sim;
+    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/one_light_parallel.toml")).unwrap();
+    let work = std::path::absolute(root().join("target/test-regress/mutant_bypass")).unwrap();
+    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
+    let top = rtl
+        .sources
+        .iter()
+        .find(|p| p.to_string_lossy().contains("gbump_pipeline"))
+        .unwrap();
+    let text = std::fs::read_to_string(top).unwrap();
+    std::fs::write(top, mutants::output_bypass(&text).expect("the output buffer's bypass")).unwrap();
+    let o = gbump::vectors::DumpOptions {
+        text: true,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let vec_dir = work.join("vectors");
+    let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(5_000), &["top".into()], &vec_dir, &o).unwrap();
+    let opts = RegressOptions {
+        sims: vec![Sim::Icarus, Sim::Verilator],
+        random_verilator: 0,
+        random_icarus: 0,
+        seed: 1,
+        scenes: false,
+        scene_size: None,
+        work: work.clone(),
+        waves: false,
+        max_errors: 5,
+        command: "test".into(),
+        bubbles: 7,
+        stall: 13,
+        power_up: false,
+    };
+    let res = run_sets(&cfg, &[(tops[0].manifest.clone(), None)], &rtl, &opts).unwrap();
+    assert_eq!(res.len(), 2);
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 5, "{:?}: the mutant passed", r.sim);
+        assert!(out.log.contains("MISMATCH unit gbump_pipeline"), "{}", out.log);
     }
 }
 

@@ -48,8 +48,8 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
             }
         }
     }
-    // The serial top keeps its triangle banks in the RAM module, whatever units are in.
-    if top::banks_in_ram(cfg) && seen.insert(ram::RAM) {
+    // The top's own RAMs (bank RAM, output buffer) need the module whatever units are in.
+    if top::uses_ram_module(cfg) && seen.insert(ram::RAM) {
         v(ram::RAM, ram::ram(cfg));
     }
     v("gbump_pipeline", top::top(cfg));

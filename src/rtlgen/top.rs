@@ -300,14 +300,29 @@ pub fn output_depth(cfg: &PipelineConfig) -> Option<u32> {
     cfg.backpressure.then(|| latency(cfg).div_ceil(cfg.initiation_interval()) + 1)
 }
 
-/// Bits of the top's own arrays, which Yosys counts as memories beside the units' RAMs: the
-/// triangle banks (register arrays, or the serial top's bank RAM) and the output buffer.
-pub fn array_bits(cfg: &PipelineConfig) -> u32 {
+/// Whether the top instantiates the RAM module itself (the serial top's bank RAM, the output
+/// buffer), so the RTL set needs it whatever units are in.
+pub fn uses_ram_module(cfg: &PipelineConfig) -> bool {
+    banks_in_ram(cfg) || cfg.backpressure
+}
+
+/// Bits of the top's own RAMs (instances of the RAM module, black boxes in `gbump area`):
+/// the serial top's bank RAM and the output buffer.
+pub fn ram_bits(cfg: &PipelineConfig) -> u32 {
     let banks = if banks_in_ram(cfg) {
         // The RAM's words: a power of two of slots per bank, one slot of the stored fields each.
         let slot: u32 = bank_ram_ports(cfg).iter().map(|p| p.width() / cfg.lights).sum();
         (cfg.triangle_banks << slot_bits(cfg)) * slot
-    } else if cfg.per_triangle() {
+    } else {
+        0
+    };
+    banks + output_depth(cfg).unwrap_or(0) * 3 * cfg.colour_bits
+}
+
+/// Bits of the top's own arrays, which Yosys counts as memories beside the units' RAMs: its
+/// RAMs ([`ram_bits`]) and the parallel top's register banks (flip-flops in `gbump area`).
+pub fn array_bits(cfg: &PipelineConfig) -> u32 {
+    let register_banks = if cfg.per_triangle() && !banks_in_ram(cfg) {
         let tri: u32 = port_list(cfg)
             .iter()
             .filter(|p| p.kind == PortKind::Triangle)
@@ -317,7 +332,7 @@ pub fn array_bits(cfg: &PipelineConfig) -> u32 {
     } else {
         0
     };
-    banks + output_depth(cfg).unwrap_or(0) * 3 * cfg.colour_bits
+    register_banks + ram_bits(cfg)
 }
 
 /// The whole top module.
@@ -402,16 +417,20 @@ fn build(cfg: &PipelineConfig) -> Built {
 /// (a result the pipeline delivers while the buffer is empty and `out_ready` is high passes
 /// straight through, so the latency is unchanged) and the credit that gates `in_ready`: the
 /// count of accepted results not yet taken. No pipeline register stalls, so `out_ready` fans
-/// out to the buffer alone. Returns the colour and valid the top's outputs show.
+/// out to the buffer alone. The entries sit in the RAM module (a memory, counted with the RAM
+/// bits, block RAM on an FPGA), which reads at every edge the entry that is the head after it
+/// (a look-ahead address), so the head is in the read register when `out_ready` takes it. The
+/// RAM's read of an entry written at the same edge may return the old word (`no_rw_check`),
+/// so an entry that becomes the head at the edge that writes it is shown from `obuf_byp`.
+/// Returns the colour and valid the top's outputs show.
 fn output_buffer(m: &mut ModuleBuilder, cfg: &PipelineConfig, lat: u32, pipe_c: &str, pipe_v: &str) -> (String, String) {
     let d = lat.div_ceil(cfg.initiation_interval()) + 1;
     let cw = 3 * cfg.colour_bits;
     let bits = |n: u32| (32 - n.leading_zeros()).max(1);
     let (ab, cb) = (bits(d - 1), bits(d));
     m.comment(format!(
-        "Output buffer: {d} results (every fragment that can be in flight), fall-through when empty; in_ready is low while {d} accepted results are untaken."
+        "Output buffer: {d} results (every fragment that can be in flight) in a RAM read one entry ahead, fall-through when empty; in_ready is low while {d} accepted results are untaken."
     ));
-    m.raw(format!("reg [{}:0] obuf [0:{}];", cw - 1, d - 1));
     m.reg_decl("obuf_rd", ab);
     m.reg_decl("obuf_wr", ab);
     m.reg_decl("obuf_n", cb);
@@ -421,15 +440,24 @@ fn output_buffer(m: &mut ModuleBuilder, cfg: &PipelineConfig, lat: u32, pipe_c: 
     m.wire("obuf_pop", 1, Some("!obuf_empty && out_ready"));
     m.wire("taken", 1, Some(&format!("(!obuf_empty || {pipe_v}) && out_ready")));
     let wrap = |r: &str| format!("({r} == {ab}'d{}) ? {ab}'d0 : {r} + {ab}'d1", d - 1);
-    m.raw(format!("always @(posedge clk) if (obuf_push) obuf[obuf_wr] <= {pipe_c};"));
+    m.wire("obuf_head", ab, Some(&format!("obuf_pop ? ({}) : obuf_rd", wrap("obuf_rd"))));
+    m.wire("obuf_q", cw, None);
     m.raw(format!(
-        "always @(posedge clk) begin\n    if (rst) begin\n        obuf_rd <= {ab}'d0;\n        obuf_wr <= {ab}'d0;\n        obuf_n <= {cb}'d0;\n        occupancy <= {cb}'d0;\n    end\n    else begin\n        if (obuf_push) obuf_wr <= {};\n        if (obuf_pop) obuf_rd <= {};\n        obuf_n <= obuf_n + {{{{({cb}-1){{1'b0}}}}, obuf_push}} - {{{{({cb}-1){{1'b0}}}}, obuf_pop}};\n        occupancy <= occupancy + {{{{({cb}-1){{1'b0}}}}, accept}} - {{{{({cb}-1){{1'b0}}}}, taken}};\n    end\nend",
+        "{} #(.WIDTH({cw}), .DEPTH({d}), .ABITS({ab}), .INIT_FILE(\"\")) u_obuf (.clk(clk), .we(obuf_push), .waddr(obuf_wr), .wdata({pipe_c}), .raddr(obuf_head), .rdata(obuf_q));",
+        module_name(cfg, super::ram::RAM)
+    ));
+    m.reg_decl("obuf_byp", cw);
+    m.reg_decl("obuf_use_byp", 1);
+    m.raw(format!(
+        "always @(posedge clk) begin\n    obuf_byp <= {pipe_c};\n    obuf_use_byp <= obuf_push && obuf_wr == obuf_head;\nend"
+    ));
+    m.raw(format!(
+        "always @(posedge clk) begin\n    if (rst) begin\n        obuf_rd <= {ab}'d0;\n        obuf_wr <= {ab}'d0;\n        obuf_n <= {cb}'d0;\n        occupancy <= {cb}'d0;\n    end\n    else begin\n        if (obuf_push) obuf_wr <= {};\n        obuf_rd <= obuf_head;\n        obuf_n <= obuf_n + {{{{({cb}-1){{1'b0}}}}, obuf_push}} - {{{{({cb}-1){{1'b0}}}}, obuf_pop}};\n        occupancy <= occupancy + {{{{({cb}-1){{1'b0}}}}, accept}} - {{{{({cb}-1){{1'b0}}}}, taken}};\n    end\nend",
         wrap("obuf_wr"),
-        wrap("obuf_rd")
     ));
     m.raw(format!("assign credit = occupancy < {cb}'d{d};"));
     (
-        format!("(obuf_empty ? {pipe_c} : obuf[obuf_rd])"),
+        format!("(obuf_empty ? {pipe_c} : (obuf_use_byp ? obuf_byp : obuf_q))"),
         format!("(!obuf_empty || {pipe_v})"),
     )
 }
