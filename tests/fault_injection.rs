@@ -156,9 +156,14 @@ fn killed_vector_dumps_leave_nothing_wrong_behind() {
 #[test]
 fn killed_regressions_are_rerun_to_the_same_answer() {
     let base = fresh("regress");
+    // Diffuse only, one light: fewer units for Verilator to build, the same kill-and-rerun path.
+    let config = base.join("diffuse.toml");
+    std::fs::write(&config, "lights = 1\nlight_mode = \"parallel\"\nspecular = false\n").unwrap();
     let args = |work: &Path| {
         let mut a = strings(&[
             "regress",
+            "--config",
+            config.to_str().unwrap(),
             "--sim",
             "verilator",
             "--random",
@@ -191,7 +196,12 @@ fn killed_regressions_are_rerun_to_the_same_answer() {
 fn a_killed_sweep_resumes_to_the_same_table() {
     let base = fresh("sweep");
     let space = base.join("space.toml");
-    std::fs::write(&space, "[base]\nlights = 1\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [8]\n").unwrap();
+    // Diffuse only: a smaller top for Yosys, the same resume path.
+    std::fs::write(
+        &space,
+        "[base]\nlights = 1\nlight_mode = \"parallel\"\nspecular = false\n[grid]\nnormal_bits = [8]\n",
+    )
+    .unwrap();
     let args = |dir: &Path| {
         let mut a = strings(&["sweep", "--space"]);
         a.push(space.display().to_string());
