@@ -50,7 +50,7 @@ fn runs(text: &str) -> Vec<(String, String, u64, u64)> {
 const FULL: (u64, u64) = (100_000, 1_000_000);
 /// The other configurations' regressions: fewer random vectors and smaller scene images (every
 /// scene still runs), so the suite stays within its time; `gbump regress --sim both` with the
-/// config runs the full counts.
+/// config runs the full counts and image size.
 const SHORT: (u64, u64) = (20_000, 200_000);
 const SHORT_ARGS: [&str; 6] = ["--random-icarus", "20000", "--random", "200000", "--scene-size", "64x48"];
 
@@ -86,7 +86,8 @@ fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
 
 #[test]
 fn regress_default_config_on_both_simulators() {
-    let t = regress(&["--sim", "both"], "default");
+    // The full random counts; the scenes at a smaller image (every scene still runs).
+    let t = regress(&["--sim", "both", "--scene-size", "64x48"], "default");
     check_suite(&t, 12, FULL);
 }
 
