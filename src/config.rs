@@ -2,8 +2,10 @@
 //! rounding and ordering choice of the Gouraud bump pipeline.
 //!
 //! Number conventions (chosen so that 1.0 is exact wherever the paper multiplies by it):
-//! - bump-normal components: signed `normal_bits`, value `b / 2^(normal_bits-1)`, stored
-//!   range-compressed as offset binary (`b + 2^(normal_bits-1)`), so expanding is an MSB flip;
+//! - bump-normal components: signed `normal_bits`, value `b / 2^(normal_bits-1)` (or
+//!   `b / (2^(normal_bits-1)-1)` under `normal_range = "symmetric"`, the factor carried by the
+//!   per-triangle L and H), stored range-compressed as offset binary
+//!   (`b + 2^(normal_bits-1)`), so expanding is an MSB flip;
 //! - L and H components: signed `lh_bits` words `s1.(lh_bits-2)` (paper §4.2: 16-bit words);
 //! - fd, fs and k: unsigned `u1.F`, codes `0..=2^F`, so a full-intensity term is exact;
 //! - colours: unsigned normalised codes, `2^colour_bits - 1` is 1.0 (as in a frame buffer).
@@ -68,6 +70,20 @@ pub enum Multipliers {
     Inferred,
 }
 
+/// What a bump-normal code b means. Both store b as offset binary and feed the same dot
+/// product; they differ in the scale the per-triangle L and H carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalRange {
+    /// b / 2^(w-1): +1.0 saturates to (2^(w-1)-1) / 2^(w-1), 127/128 at 8 bits, so a flat
+    /// normal's diffuse term is scaled by that and its highlight by its n-th power.
+    Binary,
+    /// b / (2^(w-1)-1): ±1.0 exact (the SNORM convention). The hardware still computes B·L
+    /// with b / 2^(w-1); the per-triangle L and H are sent multiplied by
+    /// 2^(w-1) / (2^(w-1)-1), so the product is the same at no per-fragment cost.
+    Symmetric,
+}
+
 /// The order of the blend units around texture modulation (paper §5.1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -84,6 +100,9 @@ pub enum BlendOrder {
 pub struct PipelineConfig {
     /// Bits per bump-normal component (signed after expansion).
     pub normal_bits: u32,
+    /// What a bump-normal code means: `binary` (b / 2^(w-1)) or `symmetric` (b / (2^(w-1)-1),
+    /// the scale folded into the per-triangle L and H).
+    pub normal_range: NormalRange,
     /// Bits per L or H component word (paper: 16).
     pub lh_bits: u32,
     /// Fraction bits of the clamped dot products fd and of the power-table index.
@@ -140,6 +159,7 @@ impl Default for PipelineConfig {
     fn default() -> Self {
         PipelineConfig {
             normal_bits: 8,
+            normal_range: NormalRange::Binary,
             lh_bits: 16,
             dot_frac_bits: 8,
             power_entries: 256,
@@ -200,7 +220,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
-    ("k_frac_bits", 0, 12, "modulation fraction bits; 0 makes k_i an on/off enable (the paper's sample implementation, where k has no effect)"),
+    (
+        "k_frac_bits",
+        0,
+        12,
+        "modulation fraction bits; 0 makes k_i an on/off enable (the paper's sample implementation, where k has no effect)",
+    ),
     ("lights", 1, 8, "light slots in hardware"),
     (
         "triangle_banks",
@@ -450,6 +475,18 @@ impl PipelineConfig {
         (32 - (self.power_depth().max(2) - 1).leading_zeros()).max(1)
     }
     /// The flat, unperturbed bump-normal code (0, 0, largest) after expansion.
+    /// The factor between a normal component and its code over 2^(w-1): 1 for `binary`,
+    /// 2^(w-1) / (2^(w-1)-1) for `symmetric`. Normals are encoded divided by it and the
+    /// per-triangle L and H are sent multiplied by it.
+    pub fn normal_scale(&self) -> f64 {
+        match self.normal_range {
+            NormalRange::Binary => 1.0,
+            NormalRange::Symmetric => {
+                let half = (1u64 << (self.normal_bits - 1)) as f64;
+                half / (half - 1.0)
+            }
+        }
+    }
     pub fn flat_normal(&self) -> [i64; 3] {
         [0, 0, self.normal_fmt().max_raw()]
     }

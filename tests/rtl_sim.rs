@@ -237,11 +237,7 @@ fn an_output_buffer_that_reads_its_ram_during_the_write_is_caught() {
     let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/one_light_parallel.toml")).unwrap();
     let work = std::path::absolute(root().join("target/test-regress/mutant_bypass")).unwrap();
     let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
-    let top = rtl
-        .sources
-        .iter()
-        .find(|p| p.to_string_lossy().contains("gbump_pipeline"))
-        .unwrap();
+    let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
     std::fs::write(top, mutants::output_bypass(&text).expect("the output buffer's bypass")).unwrap();
     let o = gbump::vectors::DumpOptions {

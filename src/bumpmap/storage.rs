@@ -25,11 +25,18 @@ pub enum StoredMap {
     },
 }
 
-/// Range-compress one unit normal to stored codes (round to nearest, saturate: +1.0 becomes
-/// the largest code, 2^(w-1)-1 over 2^(w-1)).
+/// Range-compress one unit normal to stored codes (round to nearest, saturate). Under
+/// `normal_range = "binary"` +1.0 becomes the largest code, 2^(w-1)-1 over 2^(w-1); under
+/// `"symmetric"` the component is divided by [`PipelineConfig::normal_scale`] first, so +1.0
+/// is the largest code exactly.
 pub fn encode_normal(cfg: &PipelineConfig, n: DVec3) -> [u32; 3] {
-    let f = cfg.normal_fmt();
-    [n.x, n.y, n.z].map(|c| compress(cfg, from_f64(c, f, Rounding::HalfUp, Overflow::Saturate).expect("finite normal")))
+    let (f, scale) = (cfg.normal_fmt(), cfg.normal_scale());
+    [n.x, n.y, n.z].map(|c| {
+        compress(
+            cfg,
+            from_f64(c / scale, f, Rounding::HalfUp, Overflow::Saturate).expect("finite normal"),
+        )
+    })
 }
 
 impl StoredMap {

@@ -1,7 +1,8 @@
 //! Error of the fixed-point model against exact arithmetic of the same equations, per unit
 //! and for the whole pipeline, in output LSBs: maximum, mean, the worst input, and a
 //! histogram. Inputs are the unit's own quantised inputs, so this is the error each
-//! narrowing adds, not the error of quantising the scene (that is the image error).
+//! narrowing adds; the rows of [`input_errors`] add what quantising the inputs costs (stored
+//! normals, sent L and H), and the image error is the whole scene's.
 
 use crate::config::{BlendOrder, PipelineConfig};
 use crate::model::blend::blend;
@@ -182,7 +183,49 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         }
         out.push(st);
     }
+    out.extend(input_errors(cfg, random, seed));
     out
+}
+
+/// A unit vector from `rng`, in the upper half space when `upper` (bump normals face out).
+fn unit_vector(rng: &mut SplitMix64, upper: bool) -> glam::DVec3 {
+    loop {
+        let v = glam::DVec3::new(rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0);
+        let l = v.length();
+        if (0.05..=1.0).contains(&l) && (!upper || v.z >= 0.0) {
+            return v / l;
+        }
+    }
+}
+
+/// The error of quantising the inputs, apart from the arithmetic: unit bump normals stored as
+/// codes (`encode_normal`) and unit L and H as the setup sends them (times
+/// `normal_scale`), evaluated exactly, against the same equations on the true vectors. The
+/// flat normal under a light straight above is always one sample: under `normal_range =
+/// "binary"` its B·L is 127/128 and its highlight (127/128)^n; `"symmetric"` stores +1.0.
+pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorStats> {
+    use crate::fixed::{from_f64, Overflow, Rounding};
+    let mut rng = SplitMix64(seed ^ 0x1a9u64);
+    let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());
+    let one = (1u64 << cfg.dot_frac_bits) as f64;
+    let ps = (1u64 << cfg.power_frac_bits) as f64;
+    let n = cfg.shininess;
+    let source = "input quantisation: unit B, L, H as stored and sent, exact arithmetic, against the true vectors";
+    let mut dot = ErrorStats::new("dot_clamp", source);
+    let mut pw = ErrorStats::new("power_unit", &format!("{source}, (B·H)^{n}"));
+    let samples = std::iter::once((glam::DVec3::Z, glam::DVec3::Z))
+        .chain((0..random).map(|_| (unit_vector(&mut rng, true), unit_vector(&mut rng, false))));
+    for (bn, v) in samples {
+        let b = crate::bumpmap::storage::encode_normal(cfg, bn).map(|c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c)));
+        let q =
+            [v.x, v.y, v.z].map(|x| lf.to_f64(from_f64(x * cfg.normal_scale(), lf, Rounding::HalfUp, Overflow::Saturate).expect("finite")));
+        let stored = (0..3).map(|i| b[i] * q[i]).sum::<f64>().clamp(0.0, 1.0);
+        let truth = bn.dot(v).clamp(0.0, 1.0);
+        let input = || format!("B={bn:?} V={v:?}");
+        dot.add((stored - truth) * one, input);
+        pw.add((powi_exact(stored, n) - powi_exact(truth, n)) * ps, input);
+    }
+    vec![dot, pw]
 }
 
 /// Markdown table of unit errors.

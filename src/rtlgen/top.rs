@@ -202,6 +202,18 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     } else {
         ("in", PortKind::Fragment)
     };
+    // Under `normal_range = "symmetric"` L and H carry the normal codes' scale.
+    let scaled = match cfg.normal_range {
+        crate::config::NormalRange::Binary => String::new(),
+        crate::config::NormalRange::Symmetric => {
+            let half = 1u64 << (cfg.normal_bits - 1);
+            format!(
+                ", times {half}/{} (normal_range = \"symmetric\": a bump normal code b means b/{}, the hardware multiplies by b/{half})",
+                half - 1,
+                half - 1
+            )
+        }
+    };
     v.extend([
         tp(
             &format!("{pre}_l"),
@@ -209,7 +221,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            "light j, component c (x, y, z) at lane 3j + c: L_j in bump space",
+            &format!("light j, component c (x, y, z) at lane 3j + c: L_j in bump space{scaled}"),
         ),
         tp(
             &format!("{pre}_h"),
@@ -217,7 +229,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            "light j, component c (x, y, z) at lane 3j + c: H_j in bump space",
+            &format!("light j, component c (x, y, z) at lane 3j + c: H_j in bump space{scaled}"),
         ),
         tp(
             &format!("{pre}_lc"),

@@ -5,7 +5,7 @@
 
 use super::regress::{run_sets, write_rtl, RegressOptions};
 use super::{Sim, Simulator, Verilator};
-use crate::config::{limit, BlendOrder, BumpStateAt, LightMode, Multipliers, PipelineConfig, PowerIndex, PowerUnitKind};
+use crate::config::{limit, BlendOrder, BumpStateAt, LightMode, Multipliers, NormalRange, PipelineConfig, PowerIndex, PowerUnitKind};
 use crate::error::{Error, Result};
 use crate::fixed::Rounding;
 use crate::vectors::rng::SplitMix64;
@@ -21,6 +21,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         let (e_lo, e_hi) = limit("power_entries");
         let cfg = PipelineConfig {
             normal_bits: field(rng, "normal_bits"),
+            normal_range: pick(rng, &[NormalRange::Binary, NormalRange::Symmetric]),
             lh_bits: field(rng, "lh_bits"),
             dot_frac_bits: field(rng, "dot_frac_bits"),
             power_entries: 1 << rng.range(e_lo.ilog2() as i64, e_hi.ilog2() as i64),
@@ -108,6 +109,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             "every width at its top",
             PipelineConfig {
                 normal_bits: hi("normal_bits"),
+                normal_range: NormalRange::Symmetric,
                 lh_bits: hi("lh_bits"),
                 colour_bits: hi("colour_bits"),
                 k_frac_bits: hi("k_frac_bits"),
@@ -123,6 +125,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             "every width at its bottom",
             PipelineConfig {
                 normal_bits: lo("normal_bits"),
+                normal_range: NormalRange::Symmetric,
                 lh_bits: lo("lh_bits"),
                 dot_frac_bits: lo("dot_frac_bits"),
                 power_entries: lo("power_entries"),
