@@ -643,13 +643,18 @@ pub fn run() -> anyhow::Result<()> {
         } => cosim(&pick, rtl, random, seed, bubbles, max_errors, lib, &work)?,
         Cmd::Interface { pick } => out!("{}", crate::rtlgen::interface::interface_markdown(&pick.resolve()?)),
         Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
-        Cmd::Config { scene } => {
-            let cfg = match scene {
-                Some(s) => Scene::load(&s)?.derive_config()?,
-                None => PipelineConfig::default(),
-            };
-            out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
-        }
+        Cmd::Config { scene } => match scene {
+            Some(s) => {
+                let scene = Scene::load(&s)?;
+                let cfg = scene.derive_config()?;
+                let why = crate::scene::needs::SceneNeeds::of(&scene).explain(&scene, &cfg)?;
+                out!("{why}# config hash {}\n{}", cfg.hash(), cfg.to_toml());
+            }
+            None => {
+                let cfg = PipelineConfig::default();
+                out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
+            }
+        },
         Cmd::Limits => out!("{}", crate::limits::markdown()),
         Cmd::Timing => out!("{}", crate::units::timing::markdown()),
     }

@@ -7,6 +7,7 @@ pub mod camera;
 mod fingerprint;
 pub mod lighting;
 pub mod mesh;
+pub mod needs;
 pub mod teapot;
 mod validate;
 
@@ -292,13 +293,7 @@ impl Scene {
 
     /// The smallest configuration that renders this scene, then the scene's own overrides.
     pub fn derive_config(&self) -> Result<PipelineConfig> {
-        let mut cfg = PipelineConfig {
-            lights: self.bump_lights().count().max(1) as u32,
-            specular: self.objects.iter().any(|o| o.specular),
-            diffuse: self.objects.iter().any(|o| o.diffuse),
-            shininess: self.objects.iter().find(|o| o.specular).map_or(16, |o| o.shininess),
-            ..PipelineConfig::default()
-        };
+        let mut cfg = needs::SceneNeeds::of(self).sized();
         if let Some(over) = &self.pipeline {
             let mut base = toml::Table::try_from(&cfg).expect("config is a table");
             for (k, v) in over {
