@@ -373,7 +373,8 @@ impl PipelineConfig {
         Ok(())
     }
 
-    fn get(&self, name: &str) -> u32 {
+    /// The numeric field `name` of [`LIMITS`].
+    pub fn get(&self, name: &str) -> u32 {
         match name {
             "normal_bits" => self.normal_bits,
             "lh_bits" => self.lh_bits,

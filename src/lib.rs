@@ -9,6 +9,7 @@ pub mod cli;
 pub mod config;
 pub mod cosim;
 pub mod error;
+pub mod fit;
 pub mod fixed;
 pub mod interrupt;
 pub mod limits;

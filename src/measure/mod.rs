@@ -5,6 +5,7 @@ pub mod bench;
 pub mod fpga;
 pub mod image_metrics;
 pub mod long_run;
+pub mod plot;
 pub mod power_space;
 pub mod report;
 pub mod scene_error;

@@ -389,77 +389,20 @@ pub fn csv(points: &[Point]) -> String {
 
 /// Error against area as SVG: every configuration a dot, the Pareto front joined and ringed.
 pub fn svg(points: &[Point], title: &str) -> String {
-    let (w, h, m) = (720.0, 440.0, 70.0);
-    let xs: Vec<f64> = points.iter().map(|p| p.top_ge).collect();
-    let ys: Vec<f64> = points.iter().map(|p| p.mean_error_lsb).collect();
-    let (x0, x1) = (0.0, xs.iter().cloned().fold(1.0, f64::max) * 1.08);
-    let (y0, y1) = (0.0, ys.iter().cloned().fold(0.01, f64::max) * 1.15);
-    let px = |x: f64| m + (x - x0) / (x1 - x0) * (w - 1.5 * m);
-    let py = |y: f64| h - m - (y - y0) / (y1 - y0) * (h - 1.8 * m);
-    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
-    s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
-    for i in 0..=5 {
-        let xv = x0 + (x1 - x0) * i as f64 / 5.0;
-        let yv = y0 + (y1 - y0) * i as f64 / 5.0;
-        s += &format!(
-            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n",
-            px(xv),
-            h - m + 16.0,
-            xv
-        );
-        s += &format!(
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.3}</text>\n",
-            m - 6.0,
-            py(yv) + 4.0,
-            yv
-        );
-    }
-    s += &format!(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">top area, NAND2 gate equivalents (Yosys)</text>\n",
-        w / 2.0,
-        h - 22.0
-    );
-    s += &format!(
-        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">mean error vs exact arithmetic, LSB</text>\n",
-        h / 2.0,
-        h / 2.0
-    );
-    // The paper's 10,000–25,000 GE estimate for the blend units, as a band.
-    s += &format!(
-        "<rect x=\"{:.1}\" y=\"{}\" width=\"{:.1}\" height=\"{}\" fill=\"#2a7\" opacity=\"0.08\"/>\n",
-        px(10_000.0),
-        0.8 * m,
-        (px(25_000.0) - px(10_000.0)).max(0.0),
-        h - 1.8 * m
-    );
-    s += &format!(
-        "<text x=\"{:.1}\" y=\"{}\" fill=\"#2a7\">paper: 10k-25k GE</text>\n",
-        px(10_000.0) + 4.0,
-        0.8 * m + 12.0
-    );
-    let mut front: Vec<&Point> = points.iter().filter(|p| p.pareto).collect();
-    front.sort_by(|a, b| a.top_ge.total_cmp(&b.top_ge));
-    let path: Vec<String> = front
+    let pts: Vec<super::plot::Dot> = points
         .iter()
-        .map(|p| format!("{:.1},{:.1}", px(p.top_ge), py(p.mean_error_lsb)))
+        .map(|p| super::plot::Dot {
+            x: p.top_ge,
+            y: p.mean_error_lsb,
+            label: p.label.clone(),
+            front: p.pareto,
+            chosen: false,
+        })
         .collect();
-    s += &format!(
-        "<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\"/>\n",
-        path.join(" ")
-    );
-    for p in points {
-        let (cx, cy) = (px(p.top_ge), py(p.mean_error_lsb));
-        s += &format!(
-            "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"3.5\" fill=\"#246\"><title>{}</title></circle>\n",
-            esc(&p.label)
-        );
-        if p.pareto {
-            s += &format!("<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"7\" fill=\"none\" stroke=\"#c33\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"9\">{}</text>\n", cx + 8.0, cy - 6.0, esc(&p.label));
-        }
-    }
-    s + "</svg>\n"
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    super::plot::scatter(
+        &pts,
+        title,
+        "top area, NAND2 gate equivalents (Yosys)",
+        "mean error vs exact arithmetic, LSB",
+    )
 }

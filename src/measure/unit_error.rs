@@ -187,6 +187,24 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     out
 }
 
+/// The whole pipeline's largest error against exact arithmetic over the level-2 corners and
+/// `random` random stimuli (`gbump error`'s pipeline rows, in colour LSB).
+pub fn pipeline_exact_max(cfg: &PipelineConfig, random: u64, seed: u64) -> f64 {
+    let table = PowerTable::build(cfg, cfg.shininess);
+    let palette = crate::rtlgen::rom::default_palette(cfg);
+    let mut rng = SplitMix64(seed);
+    let mut stims: Vec<TopStim> = corners(cfg, 2).into_iter().map(|(_, s)| s).collect();
+    stims.extend((0..random).map(|_| random_stim(cfg, &mut rng)));
+    stims
+        .iter()
+        .map(|s| {
+            let got = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
+            let exact = exact_pipeline(cfg, cfg.shininess, &palette, s);
+            (0..3).map(|ch| (got[ch] as f64 - exact[ch]).abs()).fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
 /// A unit vector from `rng`, in the upper half space when `upper` (bump normals face out).
 fn unit_vector(rng: &mut SplitMix64, upper: bool) -> glam::DVec3 {
     loop {

@@ -1,0 +1,112 @@
+//! The error budget of `gbump fit`: what "within this error" means.
+
+use crate::error::{Error, Result};
+
+/// One bound on the error of a configuration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Budget {
+    /// `max<=X`: the largest colour error, in LSB, of the golden image against the f64
+    /// Gouraud image of the same scene, over every scene.
+    Max(f64),
+    /// `psnr>=X`: the lowest PSNR (dB) of the golden image against the f64 Gouraud image.
+    Psnr(f64),
+    /// `exact<=X`: the largest error, in LSB, of the whole pipeline against exact arithmetic of
+    /// the same equations on random stored inputs (`gbump error`'s pipeline row).
+    Exact(f64),
+}
+
+/// What a configuration measured, for the budget and the front.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Measured {
+    /// Worst max LSB and worst PSNR over the scenes, against the f64 Gouraud images.
+    pub max_lsb: f64,
+    pub psnr_db: f64,
+    /// Pipeline max LSB against exact arithmetic on random inputs (measured when the budget
+    /// asks for it; NaN otherwise).
+    pub exact_lsb: f64,
+}
+
+impl Budget {
+    pub fn parse(text: &str) -> Result<Budget> {
+        let bad = || {
+            Error::Other(format!(
+                "--budget `{text}` is not a budget\n  fix: use max<=LSB (against the f64 Gouraud image), psnr>=DB, or exact<=LSB (against exact arithmetic), e.g. max<=2"
+            ))
+        };
+        let t = text.replace(' ', "");
+        let (kind, value) = if let Some(v) = t.strip_prefix("max<=") {
+            ("max", v)
+        } else if let Some(v) = t.strip_prefix("psnr>=") {
+            ("psnr", v)
+        } else if let Some(v) = t.strip_prefix("exact<=") {
+            ("exact", v)
+        } else {
+            return Err(bad());
+        };
+        let v: f64 = value.parse().map_err(|_| bad())?;
+        if !v.is_finite() || v < 0.0 || (kind == "psnr" && v > 200.0) {
+            return Err(Error::Other(format!(
+                "--budget `{text}`: {v} is out of range\n  fix: a finite bound, at least 0 (PSNR at most 200 dB)"
+            )));
+        }
+        Ok(match kind {
+            "max" => Budget::Max(v),
+            "psnr" => Budget::Psnr(v),
+            _ => Budget::Exact(v),
+        })
+    }
+
+    /// Whether `m` is within the budget.
+    pub fn met(&self, m: &Measured) -> bool {
+        match *self {
+            Budget::Max(x) => m.max_lsb <= x,
+            Budget::Psnr(x) => m.psnr_db >= x,
+            Budget::Exact(x) => m.exact_lsb <= x,
+        }
+    }
+
+    /// The measure the budget bounds, as the front's error axis (smaller is better).
+    pub fn error(&self, m: &Measured) -> f64 {
+        match self {
+            Budget::Max(_) => m.max_lsb,
+            Budget::Psnr(_) => -m.psnr_db,
+            Budget::Exact(_) => m.exact_lsb,
+        }
+    }
+
+    pub fn needs_images(&self) -> bool {
+        !matches!(self, Budget::Exact(_))
+    }
+}
+
+impl std::fmt::Display for Budget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Budget::Max(x) => write!(f, "max<={x}"),
+            Budget::Psnr(x) => write!(f, "psnr>={x}"),
+            Budget::Exact(x) => write!(f, "exact<={x}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn budgets_parse_and_bad_ones_name_the_fix() {
+        assert_eq!(Budget::parse("max<=2").unwrap(), Budget::Max(2.0));
+        assert_eq!(Budget::parse("psnr >= 50").unwrap(), Budget::Psnr(50.0));
+        assert_eq!(Budget::parse("exact<=1").unwrap(), Budget::Exact(1.0));
+        for bad in ["max<2", "psnr>=", "exact<=NaN", "max<=-1", "lsb<=2"] {
+            let e = Budget::parse(bad).unwrap_err().to_string();
+            assert!(e.contains("fix:"), "{bad}: {e}");
+        }
+        let m = Measured {
+            max_lsb: 2.0,
+            psnr_db: 49.9,
+            exact_lsb: 1.5,
+        };
+        assert!(Budget::Max(2.0).met(&m) && !Budget::Psnr(50.0).met(&m) && !Budget::Exact(1.0).met(&m));
+    }
+}

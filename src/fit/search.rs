@@ -1,0 +1,232 @@
+//! The search of `gbump fit`: for every choice that changes the arithmetic (power unit, rounding,
+//! normal range, palette), shrink each width in turn to the smallest that keeps the budget
+//! (a bisection per width, rounds until nothing shrinks), then pick the light mode and depth
+//! by area among those that give the throughput asked. Results do not depend on the light
+//! mode or the depth, so those are chosen by area alone.
+
+use super::budget::Measured;
+use super::evaluate::Evaluator;
+use crate::config::{limit, LightMode, NormalRange, PipelineConfig, PowerUnitKind};
+use crate::error::Result;
+use crate::fixed::Rounding;
+
+/// The widths the search shrinks, in the order it tries them.
+pub const WIDTHS: [&str; 6] = [
+    "power_entries",
+    "power_segments",
+    "normal_bits",
+    "lh_bits",
+    "dot_frac_bits",
+    "power_frac_bits",
+];
+
+/// Rounds of shrinking over all widths at most (the last round usually changes nothing).
+const ROUNDS: usize = 3;
+
+/// A measured candidate.
+#[derive(Clone, Debug)]
+pub struct Candidate {
+    pub cfg: PipelineConfig,
+    pub measured: Measured,
+    pub met: bool,
+    pub area_ge: f64,
+    /// Fragments per clock (1 / initiation interval).
+    pub throughput: f64,
+}
+
+/// What the search may choose from.
+#[derive(Clone, Debug)]
+pub struct Space {
+    pub power_units: Vec<PowerUnitKind>,
+    pub roundings: Vec<Rounding>,
+    pub normal_ranges: Vec<NormalRange>,
+    pub palettes: Vec<bool>,
+    pub light_modes: Vec<LightMode>,
+    pub depths: Vec<u32>,
+}
+
+impl Space {
+    /// Every choice; a palette only when the scenes' maps fit one exactly.
+    pub fn full(palette_exact: bool) -> Space {
+        Space {
+            power_units: vec![PowerUnitKind::Table, PowerUnitKind::Lerp, PowerUnitKind::Segmented],
+            roundings: vec![Rounding::HalfUp, Rounding::Truncate, Rounding::NearestEven],
+            normal_ranges: vec![NormalRange::Binary, NormalRange::Symmetric],
+            palettes: if palette_exact { vec![false, true] } else { vec![false] },
+            light_modes: vec![LightMode::Serial, LightMode::Parallel],
+            depths: (1..=crate::limits::MAX_PIPELINE_DEPTH).collect(),
+        }
+    }
+}
+
+fn get(cfg: &PipelineConfig, field: &str) -> u32 {
+    match field {
+        "power_entries" => cfg.power_entries.trailing_zeros(),
+        f => cfg.get(f),
+    }
+}
+
+fn set(cfg: &PipelineConfig, field: &str, v: u32) -> PipelineConfig {
+    let mut c = cfg.clone();
+    match field {
+        "power_entries" => c.power_entries = 1 << v,
+        "power_segments" => c.power_segments = v,
+        "normal_bits" => c.normal_bits = v,
+        "lh_bits" => c.lh_bits = v,
+        "dot_frac_bits" => c.dot_frac_bits = v,
+        "power_frac_bits" => c.power_frac_bits = v,
+        f => unreachable!("not a searched width: {f}"),
+    }
+    c
+}
+
+fn range(field: &str) -> (u32, u32) {
+    match field {
+        "power_entries" => {
+            let (lo, hi) = limit("power_entries");
+            (lo.trailing_zeros(), hi.trailing_zeros())
+        }
+        f => limit(f),
+    }
+}
+
+/// The generous start of a search: every width near its top, entries that the widths allow.
+pub fn start(base: &PipelineConfig, kind: PowerUnitKind) -> PipelineConfig {
+    let mut c = base.clone();
+    c.power_unit = kind;
+    c.normal_bits = limit("normal_bits").1;
+    c.lh_bits = limit("lh_bits").1;
+    c.dot_frac_bits = limit("dot_frac_bits").1;
+    c.power_frac_bits = limit("power_frac_bits").1;
+    match kind {
+        PowerUnitKind::Segmented => {
+            c.power_segments = limit("power_segments").1.min(c.dot_frac_bits - 1);
+            c.power_entries = 256;
+        }
+        _ => c.power_entries = 4096,
+    }
+    c
+}
+
+/// The search's record: every candidate measured, for the front.
+pub struct Search<'a> {
+    pub eval: &'a mut Evaluator,
+    pub area: &'a dyn Fn(&PipelineConfig) -> f64,
+    pub seen: Vec<Candidate>,
+}
+
+impl Search<'_> {
+    fn note(&mut self, cfg: &PipelineConfig) -> Result<bool> {
+        if cfg.validate("fit").is_err() {
+            return Ok(false);
+        }
+        let measured = self.eval.measure(cfg)?;
+        let met = self.eval.met(cfg)?;
+        if !self.seen.iter().any(|c| c.cfg == *cfg) {
+            self.seen.push(Candidate {
+                cfg: cfg.clone(),
+                measured,
+                met,
+                area_ge: (self.area)(cfg),
+                throughput: 1.0 / cfg.initiation_interval() as f64,
+            });
+        }
+        Ok(met)
+    }
+
+    /// The smallest widths from `cfg` that keep the budget, or None when `cfg` misses it.
+    pub fn shrink(&mut self, cfg: PipelineConfig) -> Result<Option<PipelineConfig>> {
+        if !self.note(&cfg)? {
+            return Ok(None);
+        }
+        let mut cfg = cfg;
+        for _ in 0..ROUNDS {
+            let mut changed = false;
+            for field in WIDTHS {
+                if field == "power_segments" && cfg.power_unit != PowerUnitKind::Segmented {
+                    continue;
+                }
+                let (lo, _) = range(field);
+                let (mut a, mut b) = (lo, get(&cfg, field));
+                // b keeps the budget; find the smallest such value, assuming error falls with width.
+                while a < b {
+                    let mid = (a + b) / 2;
+                    if self.note(&set(&cfg, field, mid))? {
+                        b = mid;
+                    } else {
+                        a = mid + 1;
+                    }
+                }
+                if b != get(&cfg, field) {
+                    cfg = set(&cfg, field, b);
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        Ok(Some(cfg))
+    }
+
+    /// The smallest configuration over `space` that keeps the budget with at least
+    /// `min_throughput` fragments per clock; None when nothing does.
+    pub fn run(&mut self, base: &PipelineConfig, space: &Space, min_throughput: f64) -> Result<Option<Candidate>> {
+        let mut best: Option<Candidate> = None;
+        for &kind in &space.power_units {
+            for &rounding in &space.roundings {
+                for &range in &space.normal_ranges {
+                    for &palette in &space.palettes {
+                        let mut c = start(base, kind);
+                        c.rounding = rounding;
+                        c.normal_range = range;
+                        c.palette = palette;
+                        let Some(w) = self.shrink(c)? else { continue };
+                        let measured = self.eval.measure(&w)?;
+                        for &mode in &space.light_modes {
+                            for &depth in &space.depths {
+                                let mut c = w.clone();
+                                c.light_mode = mode;
+                                c.pipeline_depth = depth;
+                                if c.validate("fit").is_err() {
+                                    continue;
+                                }
+                                let throughput = 1.0 / c.initiation_interval() as f64;
+                                if throughput < min_throughput {
+                                    continue;
+                                }
+                                let area_ge = (self.area)(&c);
+                                if best.as_ref().is_none_or(|b| area_ge < b.area_ge) {
+                                    best = Some(Candidate {
+                                        cfg: c,
+                                        measured,
+                                        met: true,
+                                        area_ge,
+                                        throughput,
+                                    });
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(best)
+    }
+}
+
+/// The candidates no other beats in area, error and throughput at once.
+pub fn pareto(cands: &[Candidate], error: impl Fn(&Measured) -> f64) -> Vec<&Candidate> {
+    let dominated = |a: &Candidate| {
+        cands.iter().any(|b| {
+            let (ea, eb) = (error(&a.measured), error(&b.measured));
+            b.area_ge <= a.area_ge
+                && eb <= ea
+                && b.throughput >= a.throughput
+                && (b.area_ge < a.area_ge || eb < ea || b.throughput > a.throughput)
+        })
+    };
+    let mut front: Vec<&Candidate> = cands.iter().filter(|a| !dominated(a)).collect();
+    front.sort_by(|a, b| a.area_ge.total_cmp(&b.area_ge));
+    front
+}
