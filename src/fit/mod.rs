@@ -4,3 +4,4 @@
 pub mod budget;
 pub mod evaluate;
 pub mod search;
+pub mod run;

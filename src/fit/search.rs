@@ -230,3 +230,38 @@ pub fn pareto(cands: &[Candidate], error: impl Fn(&Measured) -> f64) -> Vec<&Can
     front.sort_by(|a, b| a.area_ge.total_cmp(&b.area_ge));
     front
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fit::budget::Budget;
+
+    /// After the search, every width one step narrower misses the budget: the shrink stops at
+    /// the edge, not before it.
+    #[test]
+    fn shrunk_widths_keep_the_budget_and_one_step_less_misses_it() {
+        let mut s = crate::scene::Scene::load("torus_caps").unwrap();
+        s.size = [64, 48];
+        let base = s.derive_config().unwrap();
+        let mut ev = Evaluator::new(vec![s], &base, Budget::Psnr(45.0)).unwrap();
+        let area = |c: &PipelineConfig| (c.normal_bits * c.lh_bits + c.dot_frac_bits + c.power_frac_bits) as f64;
+        let mut search = Search {
+            eval: &mut ev,
+            area: &area,
+            seen: Vec::new(),
+        };
+        let w = search.shrink(start(&base, PowerUnitKind::Table)).unwrap().expect("the generous start meets 45 dB");
+        assert!(search.seen.iter().any(|c| !c.met), "the search never probed below the budget");
+        let mut edges = 0;
+        for field in WIDTHS.into_iter().filter(|f| *f != "power_segments") {
+            let v = get(&w, field);
+            let narrower = set(&w, field, v - 1);
+            if v > range(field).0 && narrower.validate("t").is_ok() {
+                edges += 1;
+                assert!(!ev.met(&narrower).unwrap(), "{field} = {} still meets the budget", v - 1);
+            }
+        }
+        assert!(edges >= 3, "only {edges} widths could narrow");
+        assert!(ev.met(&w).unwrap());
+    }
+}

@@ -1,0 +1,176 @@
+//! One `gbump fit`: the scenes' common needs as the base, the search, and what it writes (the
+//! chosen configuration as TOML, the front as CSV and SVG).
+
+use super::budget::Budget;
+use super::evaluate::Evaluator;
+use super::search::{pareto, Candidate, Search, Space};
+use crate::config::PipelineConfig;
+use crate::error::Result;
+use crate::scene::Scene;
+
+/// The outcome of a search.
+pub struct Fit {
+    pub budget: Budget,
+    pub scenes: Vec<String>,
+    pub chosen: Candidate,
+    /// Every candidate measured, and the indices of the front among them.
+    pub seen: Vec<Candidate>,
+    pub front: Vec<usize>,
+    pub evaluations: usize,
+    pub seconds: f64,
+    /// The base configuration the search started from (what the scenes need).
+    pub base: PipelineConfig,
+}
+
+/// What every scene needs at once: the most bump lights, any blend any scene uses, k fraction
+/// bits unless every scene's k_i are on/off, the first scene's shininess (the table is
+/// loadable), the rest of the first scene's configuration.
+pub fn common_base(scenes: &[Scene]) -> Result<PipelineConfig> {
+    let mut base = scenes[0].derive_config()?;
+    for s in &scenes[1..] {
+        let c = s.derive_config()?;
+        base.lights = base.lights.max(c.lights);
+        base.diffuse |= c.diffuse;
+        base.specular |= c.specular;
+        base.k_frac_bits = base.k_frac_bits.max(c.k_frac_bits);
+    }
+    Ok(base)
+}
+
+/// Search for the smallest configuration (by `area`) that renders `scenes` within `budget` with
+/// at least `min_throughput` fragments per clock.
+pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &dyn Fn(&PipelineConfig) -> f64) -> Result<Fit> {
+    let t0 = std::time::Instant::now();
+    let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
+    let base = common_base(&scenes)?;
+    // A palette is offered when every map fits one exactly at the base's normal width.
+    let mut palette_exact = true;
+    for s in &scenes {
+        palette_exact &= crate::scene::needs::distinct_normals(s, &base)?.iter().all(|&n| n <= 256);
+    }
+    let mut eval = Evaluator::new(scenes, &base, budget)?;
+    let mut search = Search {
+        eval: &mut eval,
+        area,
+        seen: Vec::new(),
+    };
+    let chosen = search.run(&base, &Space::full(palette_exact), min_throughput)?;
+    let seen = std::mem::take(&mut search.seen);
+    let evaluations = eval.evaluations;
+    let Some(chosen) = chosen else {
+        let best = seen.iter().map(|c| budget.error(&c.measured)).fold(f64::INFINITY, f64::min);
+        let best = if matches!(budget, Budget::Psnr(_)) { -best } else { best };
+        return Err(crate::error::Error::Other(format!(
+            "no configuration renders {} within {budget}{}: the best measured {best:.2}\n  fix: loosen the budget",
+            scene_names.join(", "),
+            if min_throughput > 0.0 { format!(" at {min_throughput} fragments per clock") } else { String::new() }
+        )));
+    };
+    let front_refs = pareto(&seen, |m| budget.error(m));
+    let front = front_refs
+        .iter()
+        .map(|f| seen.iter().position(|c| std::ptr::eq(c, *f)).expect("front from seen"))
+        .collect();
+    Ok(Fit {
+        budget,
+        scenes: scene_names.to_vec(),
+        chosen,
+        seen,
+        front,
+        evaluations,
+        seconds: t0.elapsed().as_secs_f64(),
+        base,
+    })
+}
+
+fn fmt_measure(x: f64) -> String {
+    if x.is_nan() {
+        String::new()
+    } else {
+        format!("{x:.3}")
+    }
+}
+
+impl Fit {
+    /// The front (and every other candidate) as CSV.
+    pub fn csv(&self) -> String {
+        let mut s = String::from("config_hash,power_unit,rounding,normal_range,palette,light_mode,pipeline_depth,normal_bits,lh_bits,dot_frac_bits,power_entries,power_segments,power_frac_bits,area_ge,fragments_per_clock,max_lsb,psnr_db,exact_lsb,meets_budget,on_front\n");
+        for (i, c) in self.seen.iter().enumerate() {
+            let g = &c.cfg;
+            s += &format!(
+                "{},{:?},{:?},{:?},{},{:?},{},{},{},{},{},{},{},{:.0},{:.4},{},{},{},{},{}\n",
+                g.hash(),
+                g.power_unit,
+                g.rounding,
+                g.normal_range,
+                g.palette,
+                g.light_mode,
+                g.pipeline_depth,
+                g.normal_bits,
+                g.lh_bits,
+                g.dot_frac_bits,
+                g.power_entries,
+                g.power_segments,
+                g.power_frac_bits,
+                c.area_ge,
+                c.throughput,
+                fmt_measure(c.measured.max_lsb),
+                fmt_measure(c.measured.psnr_db),
+                fmt_measure(c.measured.exact_lsb),
+                c.met,
+                self.front.contains(&i)
+            );
+        }
+        s
+    }
+
+    /// Area against the budget's measure, the front joined, the chosen point in red.
+    pub fn svg(&self) -> String {
+        let measure = match self.budget {
+            Budget::Max(_) => "max error vs f64 Gouraud, LSB",
+            Budget::Psnr(_) => "minus PSNR vs f64 Gouraud, dB",
+            Budget::Exact(_) => "max error vs exact arithmetic, LSB",
+        };
+        let mut dots: Vec<crate::measure::plot::Dot> = self
+            .seen
+            .iter()
+            .enumerate()
+            .map(|(i, c)| crate::measure::plot::Dot {
+                x: c.area_ge,
+                y: self.budget.error(&c.measured),
+                label: format!("{:?} n{} lh{} d{}", c.cfg.power_unit, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits),
+                front: self.front.contains(&i),
+                chosen: false,
+            })
+            .collect();
+        dots.push(crate::measure::plot::Dot {
+            x: self.chosen.area_ge,
+            y: self.budget.error(&self.chosen.measured),
+            label: "chosen".into(),
+            front: false,
+            chosen: true,
+        });
+        crate::measure::plot::scatter(
+            &dots,
+            &format!("gbump fit {} on {}", self.budget, self.scenes.join(", ")),
+            "top logic, gate equivalents (area model)",
+            measure,
+        )
+    }
+
+    /// The chosen configuration as a TOML file, with how it was found.
+    pub fn toml(&self) -> String {
+        format!(
+            "# gbump fit --budget {} on {}: the smallest configuration found ({:.0} GE by the area model, {} fragment(s) per clock; max {} LSB, PSNR {} dB against the f64 Gouraud images, exact {} LSB)\n# config hash {}\n{}",
+            self.budget,
+            self.scenes.join(", "),
+            self.chosen.area_ge,
+            self.chosen.throughput,
+            fmt_measure(self.chosen.measured.max_lsb),
+            fmt_measure(self.chosen.measured.psnr_db),
+            fmt_measure(self.chosen.measured.exact_lsb),
+            self.chosen.cfg.hash(),
+            self.chosen.cfg.to_toml()
+        )
+    }
+}
