@@ -137,6 +137,26 @@ fn check(form: Form) {
             out: 2,
             random: None,
         },
+        // A one-bit unsigned factor is a gate (k_i with no fraction bits), on either side,
+        // against an unsigned and a signed factor, at the product's width and cut below it.
+        Case {
+            factors: vec![(7, false), (1, false)],
+            addend: 0,
+            out: 8,
+            random: None,
+        },
+        Case {
+            factors: vec![(1, false), (6, true), (5, true), (2, false)],
+            addend: 3,
+            out: 9,
+            random: None,
+        },
+        Case {
+            factors: vec![(6, true), (1, false)],
+            addend: 0,
+            out: 4,
+            random: None,
+        },
         Case {
             factors: vec![(4, true), (4, true), (3, false), (3, false)],
             addend: 5,

@@ -3,5 +3,5 @@
 
 pub mod budget;
 pub mod evaluate;
-pub mod search;
 pub mod run;
+pub mod search;

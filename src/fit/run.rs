@@ -63,7 +63,11 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
         return Err(crate::error::Error::Other(format!(
             "no configuration renders {} within {budget}{}: the best measured {best:.2}\n  fix: loosen the budget",
             scene_names.join(", "),
-            if min_throughput > 0.0 { format!(" at {min_throughput} fragments per clock") } else { String::new() }
+            if min_throughput > 0.0 {
+                format!(" at {min_throughput} fragments per clock")
+            } else {
+                String::new()
+            }
         )));
     };
     let front_refs = pareto(&seen, |m| budget.error(m));
@@ -138,7 +142,10 @@ impl Fit {
             .map(|(i, c)| crate::measure::plot::Dot {
                 x: c.area_ge,
                 y: self.budget.error(&c.measured),
-                label: format!("{:?} n{} lh{} d{}", c.cfg.power_unit, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits),
+                label: format!(
+                    "{:?} n{} lh{} d{}",
+                    c.cfg.power_unit, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits
+                ),
                 front: self.front.contains(&i),
                 chosen: false,
             })

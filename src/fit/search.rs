@@ -250,7 +250,10 @@ mod tests {
             area: &area,
             seen: Vec::new(),
         };
-        let w = search.shrink(start(&base, PowerUnitKind::Table)).unwrap().expect("the generous start meets 45 dB");
+        let w = search
+            .shrink(start(&base, PowerUnitKind::Table))
+            .unwrap()
+            .expect("the generous start meets 45 dB");
         assert!(search.seen.iter().any(|c| !c.met), "the search never probed below the budget");
         let mut edges = 0;
         for field in WIDTHS.into_iter().filter(|f| *f != "power_segments") {

@@ -88,6 +88,12 @@ pub fn sum_of_products(w: &mut VWriter, form: Form, prefix: &str, products: &[(F
     for (i, (x, y)) in products.iter().enumerate() {
         let p = format!("{prefix}_{i}");
         let (a, b) = if y.digits() <= x.digits() { (x, y) } else { (y, x) };
+        // A one-bit unsigned factor is an enable: the product is a gated copy of the other
+        // (k_i with no fraction bits). Booth rows would be twice as wide as the product.
+        if !b.signed && b.width == 1 {
+            terms.push(gated(w, &p, a, &b.expr, out_width));
+            continue;
+        }
         let c = match form {
             Form::Wires => rows_as_wires(w, &p, a, b, out_width, &mut terms),
             Form::Function => rows_in_function(w, &p, a, b, out_width, &mut terms),
@@ -114,6 +120,28 @@ pub fn sum_of_products(w: &mut VWriter, form: Form, prefix: &str, products: &[(F
         terms.push(format!("{out_width}'d0"));
     }
     terms.join(" + ")
+}
+
+/// `a` times the one-bit `bit`, extended to `out_width` bits (sign-extended when `a` is signed)
+/// and cut there, as a wire named `p`.
+fn gated(w: &mut VWriter, p: &str, a: &Factor, bit: &str, out_width: u32) -> String {
+    let wa = a.width;
+    w.line(format!("wire [{}:0] {p}_a = {};", wa - 1, a.expr));
+    let kept = wa.min(out_width);
+    let ext = out_width - kept;
+    let fill = if ext == 0 {
+        String::new()
+    } else if a.signed {
+        format!("{{{ext}{{{p}_a[{}] & {bit}}}}}, ", wa - 1)
+    } else {
+        format!("{ext}'d0, ")
+    };
+    w.line(format!(
+        "wire [{}:0] {p} = {{{fill}{p}_a[{}:0] & {{{kept}{{{bit}}}}}}};",
+        out_width - 1,
+        kept - 1
+    ));
+    p.to_string()
 }
 
 /// Bits of a row: they hold 2a in two's complement.

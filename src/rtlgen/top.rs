@@ -705,7 +705,12 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
         .rev()
         .map(|p| {
             let ws = p.width() / n;
-            format!("{}[tri_slot*{ws} +: {ws}]", p.name)
+            // One slot is the whole port (which may be one bit, a scalar with no range).
+            if n == 1 {
+                p.name.clone()
+            } else {
+                format!("{}[tri_slot*{ws} +: {ws}]", p.name)
+            }
         })
         .collect();
     s.m.wire("tri_word", word, Some(&format!("{{{}}}", parts.join(", "))));
