@@ -132,6 +132,7 @@ fn lint_is_clean_for_every_test_configuration() {
         Some("tests/configs/three_banks_serial.toml"),
         Some("tests/configs/fuzz_found_serial_no_specular.toml"),
         Some("tests/configs/inferred_multipliers.toml"),
+        Some("tests/configs/one_bit_k_fragment.toml"),
     ] {
         let mut c = gbump();
         c.args(["lint", "--work", "target/test-lint"]);

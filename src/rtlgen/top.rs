@@ -876,8 +876,9 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let k1 = cfg.k_frac_bits + 1;
     // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
     let slot = |f: &str, w: u32| {
-        if cfg.per_triangle() {
-            format!("{{st_{f}}}")
+        if cfg.per_triangle() || cfg.lights == 1 {
+            // One slot is the whole signal (which may be one bit, a scalar with no range).
+            format!("{{{}_{f}}}", if cfg.per_triangle() { "st" } else { pre })
         } else {
             format!("{{{pre}_{f}}}[{{j}}*{w} +: {w}]")
         }
