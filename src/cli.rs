@@ -227,6 +227,40 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-sweep")]
         work: PathBuf,
     },
+    /// The smallest configuration that renders the scenes within an error budget, and the front around it.
+    Fit {
+        /// A built-in scene or a scene file (repeat for several).
+        #[arg(long, required = true)]
+        scene: Vec<String>,
+        /// max<=LSB or psnr>=DB (golden against the f64 Gouraud image), or exact<=LSB (against exact arithmetic on random inputs).
+        #[arg(long)]
+        budget: String,
+        /// Fragments per clock at least (1 = one per clock; a serial top of n lights gives 1/n).
+        #[arg(long, default_value_t = 0.0)]
+        min_throughput: f64,
+        /// Where fit.toml, front.csv and front.svg go.
+        #[arg(long, default_value = "out/fit", value_name = "DIR")]
+        out: PathBuf,
+        /// Skip generating, linting and regressing the chosen configuration on both simulators.
+        #[arg(long)]
+        no_regress: bool,
+        #[arg(long, default_value = "target/gbump-fit")]
+        work: PathBuf,
+    },
+    /// Fit the area model to Yosys on the first configurations and check it on the rest.
+    AreaModel {
+        /// Configuration files (a folder: every .toml in it, in name order).
+        #[arg(long, value_name = "DIR")]
+        configs: PathBuf,
+        /// How many of them (in order) to fit on; the rest are held out.
+        #[arg(long, default_value_t = 14)]
+        calibrate: usize,
+        /// Write every sample (config, Yosys GE, estimate) here, one JSON object a line.
+        #[arg(long, value_name = "FILE")]
+        write: Option<PathBuf>,
+        #[arg(long, default_value = "target/gbump-areamodel")]
+        work: PathBuf,
+    },
     /// Measure speed: model, vector dump, Icarus, Verilator harness and raw Verilated rate.
     Bench {
         #[command(flatten)]
@@ -583,6 +617,125 @@ pub fn run() -> anyhow::Result<()> {
             }
             if let Some(j) = json {
                 write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
+            }
+        }
+        Cmd::AreaModel {
+            configs,
+            calibrate,
+            write,
+            work,
+        } => {
+            let mut files: Vec<PathBuf> = std::fs::read_dir(&configs)
+                .map_err(|e| Error::io(&configs, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+                .collect();
+            files.sort();
+            if files.len() <= calibrate {
+                return Err(Error::Other(format!(
+                    "{}: {} configuration(s), none left to check after --calibrate {calibrate}\n  fix: add configurations or lower --calibrate",
+                    configs.display(),
+                    files.len()
+                ))
+                .into());
+            }
+            let _lock = lock_work(&work)?;
+            let (coef, samples) =
+                crate::measure::area_model::calibrate_and_check(&files, calibrate, &work, &mut |m| eprintln!("area-model: {m}"))?;
+            let cfgs: Vec<PipelineConfig> = files.iter().map(|p| PipelineConfig::load(p)).collect::<Result<_>>()?;
+            let t0 = std::time::Instant::now();
+            let mut n = 0;
+            while t0.elapsed().as_secs_f64() < 1.0 {
+                std::hint::black_box(crate::measure::area_model::features(&cfgs[n % cfgs.len()]));
+                n += 1;
+            }
+            let rate = n as f64 / t0.elapsed().as_secs_f64();
+            if let Some(w) = write {
+                let lines: String = samples.iter().map(|x| serde_json::to_string(x).expect("json") + "\n").collect();
+                write_atomic(&w, lines.as_bytes())?;
+            }
+            out!("{}", crate::measure::area_model::markdown(&coef, &samples, rate));
+        }
+        Cmd::Fit {
+            scene,
+            budget,
+            min_throughput,
+            out,
+            no_regress,
+            work,
+        } => {
+            let budget = crate::fit::budget::Budget::parse(&budget)?;
+            if !(0.0..=1.0).contains(&min_throughput) {
+                return Err(Error::Other(format!(
+                    "--min-throughput {min_throughput}: a top takes at most one fragment per clock\n  fix: use a value in 0..=1 (1/n for a serial top of n lights)"
+                ))
+                .into());
+            }
+            let _lock = lock_work(&work)?;
+            let area_work = work.join("area");
+            let area = |c: &PipelineConfig| crate::measure::area::area(c, &area_work, "gbump fit").map(|r| r.top().gate_equivalents);
+            let fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
+            let c = &fit.chosen;
+            crate::render::output::write_files(
+                &out,
+                &[
+                    ("fit.toml".to_string(), fit.toml()),
+                    ("front.csv".to_string(), fit.csv()),
+                    ("front.svg".to_string(), fit.svg()),
+                ],
+            )?;
+            outln!(
+                "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by Yosys, {} fragment(s) per clock): max {:.2} LSB, PSNR {:.2} dB, exact {} LSB",
+                scene.join(", "),
+                fit.evaluations,
+                fit.seconds,
+                &c.cfg.hash()[..8],
+                c.area_ge,
+                c.throughput,
+                c.measured.max_lsb,
+                c.measured.psnr_db,
+                if c.measured.exact_lsb.is_nan() { "-".to_string() } else { format!("{:.2}", c.measured.exact_lsb) }
+            );
+            outln!(
+                "front: {} of {} candidates; wrote fit.toml, front.csv, front.svg in {}",
+                fit.front.len(),
+                fit.seen.len(),
+                out.display()
+            );
+            outln!("{}", c.cfg.to_toml());
+            if !no_regress {
+                let opts = crate::sim::regress::RegressOptions {
+                    sims: vec![crate::sim::Sim::Icarus, crate::sim::Sim::Verilator],
+                    random_verilator: 100_000,
+                    random_icarus: 5_000,
+                    seed: 1,
+                    scenes: true,
+                    scene_size: Some((64, 48)),
+                    work: std::path::absolute(work.join("regress")).map_err(|e| Error::io(&work, e))?,
+                    waves: false,
+                    max_errors: 20,
+                    command: invocation(),
+                    bubbles: 29,
+                    stall: 13,
+                    power_up: true,
+                };
+                let t0 = std::time::Instant::now();
+                crate::sim::regress_cmd::regress(
+                    &c.cfg,
+                    &format!("--config {}", out.join("fit.toml").display()),
+                    &[],
+                    &opts,
+                    None,
+                    || lock_work(&work.join("regress")),
+                    &mut |l| {
+                        outln!("{l}");
+                        Ok(())
+                    },
+                )?;
+                outln!(
+                    "the chosen configuration passes on Icarus and Verilator ({:.0} s)",
+                    t0.elapsed().as_secs_f64()
+                );
             }
         }
         Cmd::Sweep { space, out, work } => {

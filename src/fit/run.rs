@@ -13,9 +13,9 @@ pub struct Fit {
     pub budget: Budget,
     pub scenes: Vec<String>,
     pub chosen: Candidate,
-    /// Every candidate measured, and the indices of the front among them.
+    /// Every candidate measured (unsized), and the sized winners no other winner beats.
     pub seen: Vec<Candidate>,
-    pub front: Vec<usize>,
+    pub front: Vec<Candidate>,
     pub evaluations: usize,
     pub seconds: f64,
     /// The base configuration the search started from (what the scenes need).
@@ -39,7 +39,7 @@ pub fn common_base(scenes: &[Scene]) -> Result<PipelineConfig> {
 
 /// Search for the smallest configuration (by `area`) that renders `scenes` within `budget` with
 /// at least `min_throughput` fragments per clock.
-pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &dyn Fn(&PipelineConfig) -> f64) -> Result<Fit> {
+pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &dyn Fn(&PipelineConfig) -> Result<f64>) -> Result<Fit> {
     let t0 = std::time::Instant::now();
     let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
     let base = common_base(&scenes)?;
@@ -54,7 +54,7 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
         area,
         seen: Vec::new(),
     };
-    let chosen = search.run(&base, &Space::full(palette_exact), min_throughput)?;
+    let (chosen, sized) = search.run(&base, &Space::full(palette_exact), min_throughput)?;
     let seen = std::mem::take(&mut search.seen);
     let evaluations = eval.evaluations;
     let Some(chosen) = chosen else {
@@ -70,11 +70,7 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
             }
         )));
     };
-    let front_refs = pareto(&seen, |m| budget.error(m));
-    let front = front_refs
-        .iter()
-        .map(|f| seen.iter().position(|c| std::ptr::eq(c, *f)).expect("front from seen"))
-        .collect();
+    let front = pareto(&sized, |m| budget.error(m)).into_iter().cloned().collect();
     Ok(Fit {
         budget,
         scenes: scene_names.to_vec(),
@@ -99,10 +95,11 @@ impl Fit {
     /// The front (and every other candidate) as CSV.
     pub fn csv(&self) -> String {
         let mut s = String::from("config_hash,power_unit,rounding,normal_range,palette,light_mode,pipeline_depth,normal_bits,lh_bits,dot_frac_bits,power_entries,power_segments,power_frac_bits,area_ge,fragments_per_clock,max_lsb,psnr_db,exact_lsb,meets_budget,on_front\n");
-        for (i, c) in self.seen.iter().enumerate() {
+        let rows = self.seen.iter().map(|c| (c, false)).chain(self.front.iter().map(|c| (c, true)));
+        for (c, on_front) in rows {
             let g = &c.cfg;
             s += &format!(
-                "{},{:?},{:?},{:?},{},{:?},{},{},{},{},{},{},{},{:.0},{:.4},{},{},{},{},{}\n",
+                "{},{:?},{:?},{:?},{},{:?},{},{},{},{},{},{},{},{},{:.4},{},{},{},{},{}\n",
                 g.hash(),
                 g.power_unit,
                 g.rounding,
@@ -116,13 +113,17 @@ impl Fit {
                 g.power_entries,
                 g.power_segments,
                 g.power_frac_bits,
-                c.area_ge,
+                if c.area_ge.is_nan() {
+                    String::new()
+                } else {
+                    format!("{:.0}", c.area_ge)
+                },
                 c.throughput,
                 fmt_measure(c.measured.max_lsb),
                 fmt_measure(c.measured.psnr_db),
                 fmt_measure(c.measured.exact_lsb),
                 c.met,
-                self.front.contains(&i)
+                on_front
             );
         }
         s
@@ -136,17 +137,16 @@ impl Fit {
             Budget::Exact(_) => "max error vs exact arithmetic, LSB",
         };
         let mut dots: Vec<crate::measure::plot::Dot> = self
-            .seen
+            .front
             .iter()
-            .enumerate()
-            .map(|(i, c)| crate::measure::plot::Dot {
+            .map(|c| crate::measure::plot::Dot {
                 x: c.area_ge,
                 y: self.budget.error(&c.measured),
                 label: format!(
-                    "{:?} n{} lh{} d{}",
-                    c.cfg.power_unit, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits
+                    "{:?} {:?} n{} lh{} d{}",
+                    c.cfg.power_unit, c.cfg.rounding, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits
                 ),
-                front: self.front.contains(&i),
+                front: true,
                 chosen: false,
             })
             .collect();
@@ -160,7 +160,7 @@ impl Fit {
         crate::measure::plot::scatter(
             &dots,
             &format!("gbump fit {} on {}", self.budget, self.scenes.join(", ")),
-            "top logic, gate equivalents (area model)",
+            "top logic, gate equivalents (Yosys)",
             measure,
         )
     }
@@ -168,7 +168,7 @@ impl Fit {
     /// The chosen configuration as a TOML file, with how it was found.
     pub fn toml(&self) -> String {
         format!(
-            "# gbump fit --budget {} on {}: the smallest configuration found ({:.0} GE by the area model, {} fragment(s) per clock; max {} LSB, PSNR {} dB against the f64 Gouraud images, exact {} LSB)\n# config hash {}\n{}",
+            "# gbump fit --budget {} on {}: the smallest configuration found ({:.0} GE by Yosys, {} fragment(s) per clock; max {} LSB, PSNR {} dB against the f64 Gouraud images, exact {} LSB)\n# config hash {}\n{}",
             self.budget,
             self.scenes.join(", "),
             self.chosen.area_ge,

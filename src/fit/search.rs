@@ -1,8 +1,8 @@
 //! The search of `gbump fit`: for every choice that changes the arithmetic (power unit, rounding,
 //! normal range, palette), shrink each width in turn to the smallest that keeps the budget
-//! (a bisection per width, rounds until nothing shrinks), then pick the light mode and depth
-//! by area among those that give the throughput asked. Results do not depend on the light
-//! mode or the depth, so those are chosen by area alone.
+//! (a bisection per width, rounds until nothing shrinks); then size the winners that no other
+//! winner covers width by width, and keep the smallest. The light mode and depth stay the
+//! base's (results do not depend on them), parallel lights only when the throughput asks.
 
 use super::budget::Measured;
 use super::evaluate::Evaluator;
@@ -41,8 +41,6 @@ pub struct Space {
     pub roundings: Vec<Rounding>,
     pub normal_ranges: Vec<NormalRange>,
     pub palettes: Vec<bool>,
-    pub light_modes: Vec<LightMode>,
-    pub depths: Vec<u32>,
 }
 
 impl Space {
@@ -53,8 +51,6 @@ impl Space {
             roundings: vec![Rounding::HalfUp, Rounding::Truncate, Rounding::NearestEven],
             normal_ranges: vec![NormalRange::Binary, NormalRange::Symmetric],
             palettes: if palette_exact { vec![false, true] } else { vec![false] },
-            light_modes: vec![LightMode::Serial, LightMode::Parallel],
-            depths: (1..=crate::limits::MAX_PIPELINE_DEPTH).collect(),
         }
     }
 }
@@ -111,7 +107,7 @@ pub fn start(base: &PipelineConfig, kind: PowerUnitKind) -> PipelineConfig {
 /// The search's record: every candidate measured, for the front.
 pub struct Search<'a> {
     pub eval: &'a mut Evaluator,
-    pub area: &'a dyn Fn(&PipelineConfig) -> f64,
+    pub area: &'a dyn Fn(&PipelineConfig) -> Result<f64>,
     pub seen: Vec<Candidate>,
 }
 
@@ -127,7 +123,8 @@ impl Search<'_> {
                 cfg: cfg.clone(),
                 measured,
                 met,
-                area_ge: (self.area)(cfg),
+                // Only the winners are synthesised (see `run`).
+                area_ge: f64::NAN,
                 throughput: 1.0 / cfg.initiation_interval() as f64,
             });
         }
@@ -170,9 +167,13 @@ impl Search<'_> {
     }
 
     /// The smallest configuration over `space` that keeps the budget with at least
-    /// `min_throughput` fragments per clock; None when nothing does.
-    pub fn run(&mut self, base: &PipelineConfig, space: &Space, min_throughput: f64) -> Result<Option<Candidate>> {
-        let mut best: Option<Candidate> = None;
+    /// `min_throughput` fragments per clock; None when nothing does. Each arithmetic choice
+    /// shrinks to its own widths (no area needed); a winner whose widths are all at least
+    /// another's of the same power unit and palette makes the same or a larger top, so only the
+    /// rest are sized by `area`, in the base's light mode and depth (parallel lights only when
+    /// the throughput asks for it). Returns the winners sized, for the front.
+    pub fn run(&mut self, base: &PipelineConfig, space: &Space, min_throughput: f64) -> Result<(Option<Candidate>, Vec<Candidate>)> {
+        let mut winners: Vec<(PipelineConfig, Measured)> = Vec::new();
         for &kind in &space.power_units {
             for &rounding in &space.roundings {
                 for &range in &space.normal_ranges {
@@ -181,37 +182,48 @@ impl Search<'_> {
                         c.rounding = rounding;
                         c.normal_range = range;
                         c.palette = palette;
-                        let Some(w) = self.shrink(c)? else { continue };
-                        let measured = self.eval.measure(&w)?;
-                        for &mode in &space.light_modes {
-                            for &depth in &space.depths {
-                                let mut c = w.clone();
-                                c.light_mode = mode;
-                                c.pipeline_depth = depth;
-                                if c.validate("fit").is_err() {
-                                    continue;
-                                }
-                                let throughput = 1.0 / c.initiation_interval() as f64;
-                                if throughput < min_throughput {
-                                    continue;
-                                }
-                                let area_ge = (self.area)(&c);
-                                if best.as_ref().is_none_or(|b| area_ge < b.area_ge) {
-                                    best = Some(Candidate {
-                                        cfg: c,
-                                        measured,
-                                        met: true,
-                                        area_ge,
-                                        throughput,
-                                    });
-                                }
-                            }
+                        if let Some(w) = self.shrink(c)? {
+                            let m = self.eval.measure(&w)?;
+                            winners.push((w, m));
                         }
                     }
                 }
             }
         }
-        Ok(best)
+        let widths = |c: &PipelineConfig| WIDTHS.map(|f| get(c, f));
+        let covers = |a: &PipelineConfig, b: &PipelineConfig| {
+            a.power_unit == b.power_unit && a.palette == b.palette && widths(a).iter().zip(widths(b)).all(|(x, y)| *x <= y)
+        };
+        let mut kept: Vec<&(PipelineConfig, Measured)> = Vec::new();
+        for (i, w) in winners.iter().enumerate() {
+            let beaten = winners
+                .iter()
+                .enumerate()
+                .any(|(j, o)| j != i && covers(&o.0, &w.0) && (widths(&o.0) != widths(&w.0) || j < i));
+            if !beaten {
+                kept.push(w);
+            }
+        }
+        let mut sized = Vec::new();
+        for (w, measured) in kept {
+            let mut c = w.clone();
+            if (1.0 / c.initiation_interval() as f64) < min_throughput {
+                c.light_mode = LightMode::Parallel;
+            }
+            let throughput = 1.0 / c.initiation_interval() as f64;
+            if throughput < min_throughput || c.validate("fit").is_err() {
+                continue;
+            }
+            sized.push(Candidate {
+                area_ge: (self.area)(&c)?,
+                cfg: c,
+                measured: *measured,
+                met: true,
+                throughput,
+            });
+        }
+        let best = sized.iter().min_by(|a, b| a.area_ge.total_cmp(&b.area_ge)).cloned();
+        Ok((best, sized))
     }
 }
 
@@ -244,7 +256,7 @@ mod tests {
         s.size = [64, 48];
         let base = s.derive_config().unwrap();
         let mut ev = Evaluator::new(vec![s], &base, Budget::Psnr(45.0)).unwrap();
-        let area = |c: &PipelineConfig| (c.normal_bits * c.lh_bits + c.dot_frac_bits + c.power_frac_bits) as f64;
+        let area = |c: &PipelineConfig| Ok((c.normal_bits * c.lh_bits + c.dot_frac_bits + c.power_frac_bits) as f64);
         let mut search = Search {
             eval: &mut ev,
             area: &area,

@@ -1,6 +1,7 @@
 //! Measurements: image error now; area, unit error and sweeps build on it.
 
 pub mod area;
+pub mod area_model;
 pub mod bench;
 pub mod fpga;
 pub mod image_metrics;

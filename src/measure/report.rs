@@ -125,6 +125,8 @@ pub fn report(
     md += &fpga_section(&work.join("fpga"))?;
     md += "\n## Timing as a parameter: area and Fmax per pipeline_depth\n\n";
     md += &super::timing_report::section(work)?;
+    md += "\n## Area model against Yosys\n\n`gbump area-model --configs tests/area_model/configs --write tests/area_model/samples.jsonl` (the checked-in samples; the estimates under the checked-in coefficients)\n\n";
+    md += &super::area_model::report_section();
     md += "\n## Sweep: error against area\n\n";
     let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true)?;
     let fpga = super::sweep::has_fpga(&pts);
