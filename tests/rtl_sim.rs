@@ -161,10 +161,41 @@ fn images_through_the_rtl_equal_the_golden_images() {
     }
 }
 
+/// Vector dumps of the mutant tests: text and binary, seed 1.
+fn mutant_dump_options() -> gbump::vectors::DumpOptions {
+    gbump::vectors::DumpOptions {
+        text: true,
+        binary: true,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    }
+}
+
+/// Runs of the mutant tests: both simulators, the given sets only, stalls and bubbles on,
+/// stopping after 5 mismatches.
+fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
+    gbump::sim::regress::RegressOptions {
+        sims: vec![gbump::sim::Sim::Icarus, gbump::sim::Sim::Verilator],
+        random_verilator: 0,
+        random_icarus: 0,
+        seed: 1,
+        scenes: false,
+        scene_size: None,
+        work: work.to_path_buf(),
+        waves: false,
+        max_errors: 5,
+        command: "test".into(),
+        bubbles: 7,
+        stall: 13,
+        power_up: false,
+    }
+}
+
 #[test]
 fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
-    use gbump::sim::regress::{run_sets, write_rtl, RegressOptions};
-    use gbump::sim::Sim;
+    use gbump::sim::regress::{run_sets, write_rtl};
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/mutant")).unwrap();
     let rtl_dir = work.join("rtl");
@@ -177,14 +208,7 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     let text = std::fs::read_to_string(tm).unwrap();
     std::fs::write(tm, mutants::texture_rounding(&text).expect("the rounding constant")).unwrap();
     let vec_dir = work.join("vectors");
-    let o = gbump::vectors::DumpOptions {
-        text: true,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "test".into(),
-        shininess: None,
-    };
+    let o = mutant_dump_options();
     let sets = gbump::vectors::dump(
         &cfg,
         &gbump::vectors::Source::Exhaustive("texture_modulate".into()),
@@ -193,21 +217,7 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
         &o,
     )
     .unwrap();
-    let opts = RegressOptions {
-        sims: vec![Sim::Icarus, Sim::Verilator],
-        random_verilator: 0,
-        random_icarus: 0,
-        seed: 1,
-        scenes: false,
-        scene_size: None,
-        work: work.clone(),
-        waves: false,
-        max_errors: 5,
-        command: "test".into(),
-        bubbles: 7,
-        stall: 13,
-        power_up: false,
-    };
+    let opts = mutant_run_options(&work);
     // The unit set runs through the all-units testbench; the random top set through the top
     // testbench on Icarus and the C++ harness on Verilator.
     let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vec_dir, &o).unwrap();
@@ -233,39 +243,17 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
 /// difference (Icarus and Verilator both return the RAM's old word).
 #[test]
 fn an_output_buffer_that_reads_its_ram_during_the_write_is_caught() {
-    use gbump::sim::regress::{run_sets, write_rtl, RegressOptions};
-    use gbump::sim::Sim;
+    use gbump::sim::regress::{run_sets, write_rtl};
     let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/one_light_parallel.toml")).unwrap();
     let work = std::path::absolute(root().join("target/test-regress/mutant_bypass")).unwrap();
     let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
     std::fs::write(top, mutants::output_bypass(&text).expect("the output buffer's bypass")).unwrap();
-    let o = gbump::vectors::DumpOptions {
-        text: true,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "test".into(),
-        shininess: None,
-    };
+    let o = mutant_dump_options();
     let vec_dir = work.join("vectors");
     let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(5_000), &["top".into()], &vec_dir, &o).unwrap();
-    let opts = RegressOptions {
-        sims: vec![Sim::Icarus, Sim::Verilator],
-        random_verilator: 0,
-        random_icarus: 0,
-        seed: 1,
-        scenes: false,
-        scene_size: None,
-        work: work.clone(),
-        waves: false,
-        max_errors: 5,
-        command: "test".into(),
-        bubbles: 7,
-        stall: 13,
-        power_up: false,
-    };
+    let opts = mutant_run_options(&work);
     let res = run_sets(&cfg, &[(tops[0].manifest.clone(), None)], &rtl, &opts).unwrap();
     assert_eq!(res.len(), 2);
     for r in res {

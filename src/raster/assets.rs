@@ -18,6 +18,17 @@ pub struct ObjectAssets {
     pub tris: Vec<TriState>,
 }
 
+/// An object's f64 normal map: its height field, differentiated, curved for a facet-baked
+/// cylinder.
+pub fn normal_map(scene: &Scene, o: &Object) -> Result<NormalMap> {
+    let hf = o.bump.source.generate(o.bump.size as usize, &scene.base)?;
+    let mut normals = NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
+    if o.bump.cylinder_sides > 0 {
+        normals.curve_for_cylinder(o.bump.cylinder_sides);
+    }
+    Ok(normals)
+}
+
 /// A scene made ready to render under one configuration at one size.
 pub struct Prepared<'a> {
     pub scene: &'a Scene,
@@ -34,11 +45,7 @@ impl<'a> Prepared<'a> {
         let mut objects = Vec::new();
         let mut tables = BTreeMap::new();
         for o in &scene.objects {
-            let hf = o.bump.source.generate(o.bump.size as usize, &scene.base)?;
-            let mut normals = NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
-            if o.bump.cylinder_sides > 0 {
-                normals.curve_for_cylinder(o.bump.cylinder_sides);
-            }
+            let normals = normal_map(scene, o)?;
             let stored = StoredMap::store(cfg, &normals);
             let mesh = tessellate(o);
             let tris = tri_states(scene, cfg, &camera, &mesh)?;

@@ -3,7 +3,7 @@
 //! part of the scene asks for which part of the hardware.
 
 use super::{LightKind, Scene};
-use crate::bumpmap::{NormalMap, StoredMap};
+use crate::bumpmap::StoredMap;
 use crate::config::PipelineConfig;
 use crate::error::Result;
 use std::collections::{BTreeSet, HashSet};
@@ -38,11 +38,7 @@ pub fn distinct_normals(scene: &Scene, cfg: &PipelineConfig) -> Result<Vec<usize
     };
     let mut out = Vec::new();
     for o in &scene.objects {
-        let hf = o.bump.source.generate(o.bump.size as usize, &scene.base)?;
-        let mut normals = NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
-        if o.bump.cylinder_sides > 0 {
-            normals.curve_for_cylinder(o.bump.cylinder_sides);
-        }
+        let normals = crate::raster::assets::normal_map(scene, o)?;
         out.push(match StoredMap::store(&plain, &normals) {
             StoredMap::Rgb { codes, .. } => codes.into_iter().collect::<HashSet<_>>().len(),
             StoredMap::Palettised { .. } => unreachable!("stored without a palette"),
