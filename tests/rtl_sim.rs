@@ -116,32 +116,49 @@ fn regress_four_lights_serial_dot10() {
     regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }
 
-#[test]
-fn lint_is_clean_for_every_test_configuration() {
-    for cfg in [
-        None,
-        Some("tests/configs/one_light_parallel.toml"),
-        Some("tests/configs/paper_sample_one_light.toml"),
-        Some("tests/configs/four_serial_dot10.toml"),
-        Some("tests/configs/fuzz_found_wide_dot.toml"),
-        Some("tests/configs/fuzz_found_equal_frac.toml"),
-        Some("tests/configs/segmented_power.toml"),
-        Some("tests/configs/palette_serial.toml"),
-        Some("tests/configs/palette_parallel.toml"),
-        Some("tests/configs/fragment_state.toml"),
-        Some("tests/configs/three_banks_serial.toml"),
-        Some("tests/configs/fuzz_found_serial_no_specular.toml"),
-        Some("tests/configs/inferred_multipliers.toml"),
-        Some("tests/configs/one_bit_k_fragment.toml"),
-    ] {
+/// Lints each configuration (`None`: the default); two tests so the suite lints on both cores.
+fn lint_clean(work: &str, configs: &[Option<&str>]) {
+    for cfg in configs {
         let mut c = gbump();
-        c.args(["lint", "--work", "target/test-lint"]);
+        c.args(["lint", "--work", work]);
         if let Some(p) = cfg {
             c.args(["--config", p]);
         }
         let o = c.assert().success();
-        assert!(String::from_utf8_lossy(&o.get_output().stdout).contains("clean"));
+        assert!(String::from_utf8_lossy(&o.get_output().stdout).contains("clean"), "{cfg:?}");
     }
+}
+
+#[test]
+fn lint_is_clean_for_every_test_configuration() {
+    lint_clean(
+        "target/test-lint",
+        &[
+            None,
+            Some("tests/configs/one_light_parallel.toml"),
+            Some("tests/configs/paper_sample_one_light.toml"),
+            Some("tests/configs/four_serial_dot10.toml"),
+            Some("tests/configs/fuzz_found_wide_dot.toml"),
+            Some("tests/configs/fuzz_found_equal_frac.toml"),
+            Some("tests/configs/segmented_power.toml"),
+        ],
+    );
+}
+
+#[test]
+fn lint_is_clean_for_every_other_test_configuration() {
+    lint_clean(
+        "target/test-lint-2",
+        &[
+            Some("tests/configs/palette_serial.toml"),
+            Some("tests/configs/palette_parallel.toml"),
+            Some("tests/configs/fragment_state.toml"),
+            Some("tests/configs/three_banks_serial.toml"),
+            Some("tests/configs/fuzz_found_serial_no_specular.toml"),
+            Some("tests/configs/inferred_multipliers.toml"),
+            Some("tests/configs/one_bit_k_fragment.toml"),
+        ],
+    );
 }
 
 #[test]
