@@ -625,12 +625,7 @@ pub fn run() -> anyhow::Result<()> {
             write,
             work,
         } => {
-            let mut files: Vec<PathBuf> = std::fs::read_dir(&configs)
-                .map_err(|e| Error::io(&configs, e))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-                .collect();
-            files.sort();
+            let files = crate::measure::area_model::configs_in(&configs)?;
             if files.len() <= calibrate {
                 return Err(Error::Other(format!(
                     "{}: {} configuration(s), none left to check after --calibrate {calibrate}\n  fix: add configurations or lower --calibrate",
@@ -642,14 +637,8 @@ pub fn run() -> anyhow::Result<()> {
             let _lock = lock_work(&work)?;
             let (coef, samples) =
                 crate::measure::area_model::calibrate_and_check(&files, calibrate, &work, &mut |m| eprintln!("area-model: {m}"))?;
-            let cfgs: Vec<PipelineConfig> = files.iter().map(|p| PipelineConfig::load(p)).collect::<Result<_>>()?;
-            let t0 = std::time::Instant::now();
-            let mut n = 0;
-            while t0.elapsed().as_secs_f64() < 1.0 {
-                std::hint::black_box(crate::measure::area_model::features(&cfgs[n % cfgs.len()]));
-                n += 1;
-            }
-            let rate = n as f64 / t0.elapsed().as_secs_f64();
+            let cfgs: Vec<PipelineConfig> = samples.iter().map(|x| x.config.clone()).collect();
+            let rate = crate::measure::area_model::scoring_rate(&cfgs);
             if let Some(w) = write {
                 let lines: String = samples.iter().map(|x| serde_json::to_string(x).expect("json") + "\n").collect();
                 write_atomic(&w, lines.as_bytes())?;
@@ -704,21 +693,7 @@ pub fn run() -> anyhow::Result<()> {
             );
             outln!("{}", c.cfg.to_toml());
             if !no_regress {
-                let opts = crate::sim::regress::RegressOptions {
-                    sims: vec![crate::sim::Sim::Icarus, crate::sim::Sim::Verilator],
-                    random_verilator: 100_000,
-                    random_icarus: 5_000,
-                    seed: 1,
-                    scenes: true,
-                    scene_size: Some((64, 48)),
-                    work: std::path::absolute(work.join("regress")).map_err(|e| Error::io(&work, e))?,
-                    waves: false,
-                    max_errors: 20,
-                    command: invocation(),
-                    bubbles: 29,
-                    stall: 13,
-                    power_up: true,
-                };
+                let opts = crate::fit::run::regress_options(&work.join("regress"), invocation())?;
                 let t0 = std::time::Instant::now();
                 crate::sim::regress_cmd::regress(
                     &c.cfg,

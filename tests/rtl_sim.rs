@@ -52,7 +52,6 @@ const FULL: (u64, u64) = (100_000, 1_000_000);
 /// scene still runs), so the suite stays within its time; `gbump regress --sim both` with the
 /// config runs the full counts and image size.
 const SHORT: (u64, u64) = (20_000, 200_000);
-const SHORT_ARGS: [&str; 6] = ["--random-icarus", "20000", "--random", "200000", "--scene-size", "64x48"];
 
 fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
     let r = runs(text);
@@ -93,8 +92,19 @@ fn regress_default_config_on_both_simulators() {
 
 /// Short regressions of the other configurations (see [`SHORT`]).
 fn regress_short(config: &str, work: &str, min_scenes: usize) {
-    let mut args = vec!["--sim", "both", "--config", config];
-    args.extend(SHORT_ARGS);
+    let (icarus, verilator) = (SHORT.0.to_string(), SHORT.1.to_string());
+    let args = [
+        "--sim",
+        "both",
+        "--config",
+        config,
+        "--random-icarus",
+        &icarus,
+        "--random",
+        &verilator,
+        "--scene-size",
+        "64x48",
+    ];
     let t = regress(&args, work);
     check_suite(&t, min_scenes, SHORT);
 }

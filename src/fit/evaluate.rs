@@ -79,6 +79,10 @@ impl Evaluator {
         Ok(m)
     }
 
+    pub fn budget(&self) -> Budget {
+        self.budget
+    }
+
     pub fn met(&mut self, cfg: &PipelineConfig) -> Result<bool> {
         let m = self.measure(cfg)?;
         Ok(self.budget.met(&m))

@@ -55,6 +55,28 @@ impl Space {
     }
 }
 
+impl Space {
+    /// The generous start of every combination of the arithmetic choices.
+    fn starts(&self, base: &PipelineConfig) -> Vec<PipelineConfig> {
+        let mut out = Vec::new();
+        for &kind in &self.power_units {
+            for &rounding in &self.roundings {
+                for &normal_range in &self.normal_ranges {
+                    for &palette in &self.palettes {
+                        out.push(PipelineConfig {
+                            rounding,
+                            normal_range,
+                            palette,
+                            ..start(base, kind)
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
 fn get(cfg: &PipelineConfig, field: &str) -> u32 {
     match field {
         "power_entries" => cfg.power_entries.trailing_zeros(),
@@ -116,9 +138,11 @@ impl Search<'_> {
         if cfg.validate("fit").is_err() {
             return Ok(false);
         }
+        let before = self.eval.evaluations;
         let measured = self.eval.measure(cfg)?;
-        let met = self.eval.met(cfg)?;
-        if !self.seen.iter().any(|c| c.cfg == *cfg) {
+        let met = self.eval.budget().met(&measured);
+        // A configuration measured before is in `seen` already.
+        if self.eval.evaluations > before {
             self.seen.push(Candidate {
                 cfg: cfg.clone(),
                 measured,
@@ -174,20 +198,10 @@ impl Search<'_> {
     /// the throughput asks for it). Returns the winners sized, for the front.
     pub fn run(&mut self, base: &PipelineConfig, space: &Space, min_throughput: f64) -> Result<(Option<Candidate>, Vec<Candidate>)> {
         let mut winners: Vec<(PipelineConfig, Measured)> = Vec::new();
-        for &kind in &space.power_units {
-            for &rounding in &space.roundings {
-                for &range in &space.normal_ranges {
-                    for &palette in &space.palettes {
-                        let mut c = start(base, kind);
-                        c.rounding = rounding;
-                        c.normal_range = range;
-                        c.palette = palette;
-                        if let Some(w) = self.shrink(c)? {
-                            let m = self.eval.measure(&w)?;
-                            winners.push((w, m));
-                        }
-                    }
-                }
+        for c in space.starts(base) {
+            if let Some(w) = self.shrink(c)? {
+                let m = self.eval.measure(&w)?;
+                winners.push((w, m));
             }
         }
         let widths = |c: &PipelineConfig| WIDTHS.map(|f| get(c, f));

@@ -25,15 +25,19 @@ pub struct Features {
 }
 
 impl Features {
-    fn scaled_add(&mut self, o: &Features, k: f64) {
-        self.ff += k * o.ff;
-        self.pp += k * o.pp;
-        self.add += k * o.add;
-        self.mux += k * o.mux;
+    fn accumulate(&mut self, o: &Features) {
+        self.ff += o.ff;
+        self.pp += o.pp;
+        self.add += o.add;
+        self.mux += o.mux;
     }
     /// The features as the model's regressors (the constant last).
     pub fn row(&self) -> [f64; 5] {
         [self.ff, self.pp, self.add, self.mux, 1.0]
+    }
+    /// GE under `coef`.
+    pub fn ge(&self, coef: &[f64; 5]) -> f64 {
+        self.row().iter().zip(coef).map(|(x, c)| x * c).sum()
     }
 }
 
@@ -174,7 +178,7 @@ pub fn features(cfg: &PipelineConfig) -> Features {
         };
         let mut f = *own;
         for i in insts {
-            f.scaled_add(&total(i, parsed, ram), 1.0);
+            f.accumulate(&total(i, parsed, ram));
         }
         f
     }
@@ -183,7 +187,7 @@ pub fn features(cfg: &PipelineConfig) -> Features {
 
 /// Estimated logic GE of `cfg`'s top with `coef`.
 pub fn estimate_with(cfg: &PipelineConfig, coef: &[f64; 5]) -> f64 {
-    features(cfg).row().iter().zip(coef).map(|(x, c)| x * c).sum()
+    features(cfg).ge(coef)
 }
 
 /// Estimated logic GE of `cfg`'s top (RAM bits apart).
@@ -336,7 +340,7 @@ pub fn calibrate_and_check(
             file: p.clone(),
             hash: cfg.hash(),
             yosys_ge: *ge,
-            model_ge: f.row().iter().zip(&coef).map(|(x, c)| x * c).sum(),
+            model_ge: f.ge(&coef),
             calibration: i < n,
             config: cfg.clone(),
         })
@@ -387,15 +391,32 @@ pub fn markdown(coef: &[f64; 5], samples: &[Sample], rate: f64) -> String {
     s
 }
 
+/// Configurations scored per second, over `cfgs` in turn for about a second.
+pub fn scoring_rate(cfgs: &[PipelineConfig]) -> f64 {
+    let t0 = std::time::Instant::now();
+    let mut n = 0;
+    while t0.elapsed().as_secs_f64() < 1.0 && !cfgs.is_empty() {
+        std::hint::black_box(features(&cfgs[n % cfgs.len()]));
+        n += 1;
+    }
+    n as f64 / t0.elapsed().as_secs_f64()
+}
+
+/// The `.toml` files of `dir`, in name order (the order `calibrate_and_check` splits them in).
+pub fn configs_in(dir: &std::path::Path) -> crate::error::Result<Vec<std::path::PathBuf>> {
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| crate::error::Error::io(dir, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
 /// The report's section: the checked-in samples under the checked-in coefficients, and the
 /// scoring rate measured now.
 pub fn report_section() -> String {
     let samples = checked_in();
-    let t0 = std::time::Instant::now();
-    let mut n = 0;
-    while t0.elapsed().as_secs_f64() < 1.0 && !samples.is_empty() {
-        std::hint::black_box(features(&samples[n % samples.len()].config));
-        n += 1;
-    }
-    markdown(&COEFFICIENTS, &samples, n as f64 / t0.elapsed().as_secs_f64())
+    let cfgs: Vec<PipelineConfig> = samples.iter().map(|s| s.config.clone()).collect();
+    markdown(&COEFFICIENTS, &samples, scoring_rate(&cfgs))
 }

@@ -109,8 +109,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let table = PowerTable::build(cfg, n);
     let palette = crate::rtlgen::rom::default_palette(cfg);
     let mut rng = SplitMix64(seed);
-    let mut stims: Vec<(String, TopStim)> = corners(cfg, 2).into_iter().map(|(_, s)| ("corners".to_string(), s)).collect();
-    stims.extend((0..random).map(|_| ("random".to_string(), random_stim(cfg, &mut rng))));
+    let stims = stimuli(cfg, random, &mut rng);
     let mut out = Vec::new();
     // dot_clamp over every L and H of every stimulus.
     let mut dot = ErrorStats::new("dot_clamp", "corners + random");
@@ -171,20 +170,35 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         }
     }
     out.push(tm);
-    // The whole pipeline.
-    for src in ["corners", "random"] {
-        let mut st = ErrorStats::new("gbump_pipeline", src);
-        for (_, s) in stims.iter().filter(|(k, _)| k == src) {
-            let got = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
-            let exact = exact_pipeline(cfg, n, &palette, s);
-            for ch in 0..3 {
-                st.add(got[ch] as f64 - exact[ch], || format!("{:?}", s.frag));
-            }
-        }
-        out.push(st);
-    }
+    out.extend(pipeline_rows(cfg, &table, &palette, &stims));
     out.extend(input_errors(cfg, random, seed));
     out
+}
+
+/// The stimuli of the error measures, each named by its source: the level-2 corners, then
+/// `random` random ones drawn from `rng`.
+fn stimuli(cfg: &PipelineConfig, random: u64, rng: &mut SplitMix64) -> Vec<(String, TopStim)> {
+    let mut stims: Vec<(String, TopStim)> = corners(cfg, 2).into_iter().map(|(_, s)| ("corners".to_string(), s)).collect();
+    stims.extend((0..random).map(|_| ("random".to_string(), random_stim(cfg, rng))));
+    stims
+}
+
+/// The whole pipeline against exact arithmetic, a row per source of `stims`.
+fn pipeline_rows(cfg: &PipelineConfig, table: &PowerTable, palette: &Palette, stims: &[(String, TopStim)]) -> Vec<ErrorStats> {
+    ["corners", "random"]
+        .into_iter()
+        .map(|src| {
+            let mut st = ErrorStats::new("gbump_pipeline", src);
+            for (_, s) in stims.iter().filter(|(k, _)| k == src) {
+                let got = shade(cfg, table, Some(palette), &s.state, &s.frag).colour();
+                let exact = exact_pipeline(cfg, cfg.shininess, palette, s);
+                for ch in 0..3 {
+                    st.add(got[ch] as f64 - exact[ch], || format!("{:?}", s.frag));
+                }
+            }
+            st
+        })
+        .collect()
 }
 
 /// The whole pipeline's largest error against exact arithmetic over the level-2 corners and
@@ -192,16 +206,9 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
 pub fn pipeline_exact_max(cfg: &PipelineConfig, random: u64, seed: u64) -> f64 {
     let table = PowerTable::build(cfg, cfg.shininess);
     let palette = crate::rtlgen::rom::default_palette(cfg);
-    let mut rng = SplitMix64(seed);
-    let mut stims: Vec<TopStim> = corners(cfg, 2).into_iter().map(|(_, s)| s).collect();
-    stims.extend((0..random).map(|_| random_stim(cfg, &mut rng)));
-    stims
+    pipeline_rows(cfg, &table, &palette, &stimuli(cfg, random, &mut SplitMix64(seed)))
         .iter()
-        .map(|s| {
-            let got = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
-            let exact = exact_pipeline(cfg, cfg.shininess, &palette, s);
-            (0..3).map(|ch| (got[ch] as f64 - exact[ch]).abs()).fold(0.0, f64::max)
-        })
+        .map(|r| r.max_lsb)
         .fold(0.0, f64::max)
 }
 
@@ -222,7 +229,6 @@ fn unit_vector(rng: &mut SplitMix64, upper: bool) -> glam::DVec3 {
 /// flat normal under a light straight above is always one sample: under `normal_range =
 /// "binary"` its B·L is 127/128 and its highlight (127/128)^n; `"symmetric"` stores +1.0.
 pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorStats> {
-    use crate::fixed::{from_f64, Overflow, Rounding};
     let mut rng = SplitMix64(seed ^ 0x1a9u64);
     let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());
     let one = (1u64 << cfg.dot_frac_bits) as f64;
@@ -235,8 +241,7 @@ pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSt
         .chain((0..random).map(|_| (unit_vector(&mut rng, true), unit_vector(&mut rng, false))));
     for (bn, v) in samples {
         let b = crate::bumpmap::storage::encode_normal(cfg, bn).map(|c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c)));
-        let q =
-            [v.x, v.y, v.z].map(|x| lf.to_f64(from_f64(x * cfg.normal_scale(), lf, Rounding::HalfUp, Overflow::Saturate).expect("finite")));
+        let q = [v.x, v.y, v.z].map(|x| lf.to_f64(crate::raster::tri_state::send_lh(cfg, x).expect("finite")));
         let stored = (0..3).map(|i| b[i] * q[i]).sum::<f64>().clamp(0.0, 1.0);
         let truth = bn.dot(v).clamp(0.0, 1.0);
         let input = || format!("B={bn:?} V={v:?}");

@@ -22,14 +22,17 @@ pub struct TriState {
     pub fixed: BumpState,
 }
 
+/// One component of L or H as the setup sends it: times the normal codes' scale
+/// (`normal_range`), so B·L is the same product on the codes, rounded to the L/H word. None
+/// when not finite.
+pub fn send_lh(cfg: &PipelineConfig, x: f64) -> Option<i64> {
+    from_f64(x * cfg.normal_scale(), cfg.lh_fmt(), Rounding::HalfUp, Overflow::Saturate)
+}
+
 pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh) -> Result<Vec<TriState>> {
     let lights: Vec<_> = scene.bump_lights().collect();
     scene.check_config(cfg, "pipeline config")?;
-    let (lh, scale) = (cfg.lh_fmt(), cfg.normal_scale());
-    // L and H carry the normal's scale (`normal_range`), so B·L is the same product on the codes.
-    let q = |x: f64| {
-        from_f64(x * scale, lh, Rounding::HalfUp, Overflow::Saturate).ok_or_else(|| Error::Other("non-finite light vector".into()))
-    };
+    let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite light vector".into()));
     let qk = |x: f64| from_f64(x, cfg.k_fmt(), Rounding::HalfUp, Overflow::Saturate).expect("finite k");
     let max = cfg.colour_max() as f64;
     let mut out = Vec::with_capacity(mesh.tris.len());

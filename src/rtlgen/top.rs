@@ -703,15 +703,7 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
     let parts: Vec<String> = tri
         .iter()
         .rev()
-        .map(|p| {
-            let ws = p.width() / n;
-            // One slot is the whole port (which may be one bit, a scalar with no range).
-            if n == 1 {
-                p.name.clone()
-            } else {
-                format!("{}[tri_slot*{ws} +: {ws}]", p.name)
-            }
-        })
+        .map(|p| super::writer::lane(&p.name, n, "tri_slot", p.width() / n))
         .collect();
     s.m.wire("tri_word", word, Some(&format!("{{{}}}", parts.join(", "))));
     s.m.wire("bank_rd", word, None);
@@ -876,11 +868,10 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let k1 = cfg.k_frac_bits + 1;
     // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
     let slot = |f: &str, w: u32| {
-        if cfg.per_triangle() || cfg.lights == 1 {
-            // One slot is the whole signal (which may be one bit, a scalar with no range).
-            format!("{{{}_{f}}}", if cfg.per_triangle() { "st" } else { pre })
+        if cfg.per_triangle() {
+            format!("{{st_{f}}}")
         } else {
-            format!("{{{pre}_{f}}}[{{j}}*{w} +: {w}]")
+            super::writer::lane(&format!("{{{pre}_{f}}}"), cfg.lights, "{j}", w)
         }
     };
     s.comb("lc_sel", c3, &slot("lc", c3));

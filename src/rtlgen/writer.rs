@@ -91,6 +91,16 @@ pub fn verilog_string(s: &str) -> String {
     format!("\"{}\"", s.replace('\\', "\\\\").replace('"', "\\\""))
 }
 
+/// Lane `index` (an expression) of `lanes` lanes of `width` bits each in `signal`. One lane is
+/// the whole signal, which may be a single bit declared without a range, so it is not selected.
+pub fn lane(signal: &str, lanes: u32, index: &str, width: u32) -> String {
+    if lanes == 1 {
+        signal.to_string()
+    } else {
+        format!("{signal}[{index}*{width} +: {width}]")
+    }
+}
+
 /// Zero-extend `e` by `pad` bits (no concatenation when there is nothing to add).
 pub fn zext(e: &str, pad: u32) -> String {
     if pad == 0 {
