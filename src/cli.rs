@@ -244,6 +244,10 @@ pub enum Cmd {
         /// Skip generating, linting and regressing the chosen configuration on both simulators.
         #[arg(long)]
         no_regress: bool,
+        /// Also synthesise the chosen configuration and the front with Yosys (about 30 s a
+        /// configuration) and print each beside the area model's estimate.
+        #[arg(long)]
+        yosys: bool,
         #[arg(long, default_value = "target/gbump-fit")]
         work: PathBuf,
     },
@@ -644,6 +648,8 @@ pub fn run() -> anyhow::Result<()> {
                 write_atomic(&w, lines.as_bytes())?;
             }
             out!("{}", crate::measure::area_model::markdown(&coef, &samples, rate));
+            // At full precision, for `area_model::COEFFICIENTS`.
+            eprintln!("area-model: coefficients {coef:?}");
         }
         Cmd::Fit {
             scene,
@@ -651,6 +657,7 @@ pub fn run() -> anyhow::Result<()> {
             min_throughput,
             out,
             no_regress,
+            yosys,
             work,
         } => {
             let budget = crate::fit::budget::Budget::parse(&budget)?;
@@ -661,8 +668,11 @@ pub fn run() -> anyhow::Result<()> {
                 .into());
             }
             let _lock = lock_work(&work)?;
-            let area_work = work.join("area");
-            let area = |c: &PipelineConfig| crate::measure::area::area(c, &area_work, "gbump fit").map(|r| r.top().gate_equivalents);
+            if yosys {
+                crate::yosys::require()?;
+            }
+            // The search sizes with the analytical model; Yosys confirms on request.
+            let area = |c: &PipelineConfig| Ok(crate::measure::area_model::estimate(c));
             let fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
             let c = &fit.chosen;
             crate::render::output::write_files(
@@ -674,7 +684,7 @@ pub fn run() -> anyhow::Result<()> {
                 ],
             )?;
             outln!(
-                "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by Yosys, {} fragment(s) per clock): max {:.2} LSB, PSNR {:.2} dB, exact {} LSB",
+                "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by the area model, {} fragment(s) per clock): max {:.2} LSB, PSNR {:.2} dB, exact {} LSB",
                 scene.join(", "),
                 fit.evaluations,
                 fit.seconds,
@@ -692,6 +702,22 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
             outln!("{}", c.cfg.to_toml());
+            if yosys {
+                let area_work = work.join("area");
+                let mut front: Vec<&crate::fit::search::Candidate> = vec![c];
+                front.extend(fit.front.iter().filter(|f| f.cfg != c.cfg));
+                for f in front {
+                    let ge = crate::measure::area::area(&f.cfg, &area_work, "gbump fit")?.top().gate_equivalents;
+                    outln!(
+                        "yosys: {} {:.0} GE, the model {:.0} GE ({:+.1} %){}",
+                        &f.cfg.hash()[..8],
+                        ge,
+                        f.area_ge,
+                        100.0 * (f.area_ge - ge) / ge,
+                        if f.cfg == c.cfg { " (chosen)" } else { "" }
+                    );
+                }
+            }
             if !no_regress {
                 let opts = crate::fit::run::regress_options(&work.join("regress"), invocation())?;
                 let t0 = std::time::Instant::now();

@@ -306,8 +306,23 @@ impl PipelineConfig {
 
     /// Stable 16-hex-digit hash of the canonical TOML.
     pub fn hash(&self) -> String {
-        let d = Sha256::digest(self.to_toml().as_bytes());
-        d.iter().take(8).map(|b| format!("{b:02x}")).collect()
+        // Every module name and file name of a generated set asks for it, so the last
+        // configuration's hash is kept per thread (the TOML and SHA-256 cost 20 µs a call).
+        thread_local! {
+            static LAST: std::cell::RefCell<Option<(PipelineConfig, String)>> = const { std::cell::RefCell::new(None) };
+        }
+        LAST.with(|last| {
+            let mut last = last.borrow_mut();
+            if let Some((c, h)) = last.as_ref() {
+                if c == self {
+                    return h.clone();
+                }
+            }
+            let d = Sha256::digest(self.to_toml().as_bytes());
+            let h: String = d.iter().take(8).map(|b| format!("{b:02x}")).collect();
+            *last = Some((self.clone(), h.clone()));
+            h
+        })
     }
 
     /// Check every field against [`LIMITS`] and the cross-field rules.

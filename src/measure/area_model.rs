@@ -1,192 +1,87 @@
-//! An area model of the top's logic without Yosys: the structure the emitters write (register
-//! bits, Booth partial-product bits, adder bits, multiplexer bits), read from the generated
-//! Verilog of every module and multiplied out over the instance tree, weighted by coefficients
-//! fitted by least squares to Yosys's gate equivalents (`gbump area`, RAMs apart). Reading the
-//! emitted text keeps the model in step with the emitters: a unit that changes its structure
-//! changes its features, with nothing restated here. Not yet good enough to rank designs (held
-//! out: mean 55 % off Yosys, a negative adder coefficient; inferred `*` products and Booth rows
-//! inside functions are not counted), so `gbump fit` sizes with Yosys; the samples and the
-//! calibration command are here for the next features.
+//! An analytical area model of the top's logic: what each unit is built of, counted from its
+//! widths (`Unit::resources`, which mirrors the unit's emitter), times its copies in the top,
+//! plus the top's own delay lines, banks and control as the top builder counts them
+//! (`rtlgen::top::tally`); weighted into NAND2 gate equivalents by coefficients fitted by
+//! least squares (on relative error) to Yosys's figures for each unit alone and for the top
+//! (`gbump area`, RAMs apart). No Verilog is written or read to score a configuration.
 
 use crate::config::PipelineConfig;
-use std::collections::HashMap;
+use crate::units::resources::{Resources, KINDS};
 
-/// Structural features of a design, in bits.
+/// The regressors: register, Booth partial-product, unsigned and signed inferred
+/// bit-products, adder, select (comparator and multiplexer: one weight, as a free pair fits a
+/// negative multiplexer weight) and bank bits, then a constant per module.
+pub const REGRESSORS: usize = KINDS - 1;
+
+/// Coefficients: GE per unit of each regressor, then the constant.
+pub type Coefficients = [f64; REGRESSORS + 1];
+
+/// The features of one module: its resource counts and the constant's weight.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Features {
-    /// Register bits (every `reg` that is not a memory).
-    pub ff: f64,
-    /// Booth partial-product bits (`*_pp` wires): a select and an XOR per bit.
-    pub pp: f64,
-    /// Adder and subtractor bits: each binary `+` or `-` counts the width it drives.
-    pub add: f64,
-    /// Two-way multiplexer bits: each `?` counts the width it drives.
-    pub mux: f64,
+    pub res: Resources,
 }
 
 impl Features {
-    fn accumulate(&mut self, o: &Features) {
-        self.ff += o.ff;
-        self.pp += o.pp;
-        self.add += o.add;
-        self.mux += o.mux;
-    }
-    /// The features as the model's regressors (the constant last).
-    pub fn row(&self) -> [f64; 5] {
-        [self.ff, self.pp, self.add, self.mux, 1.0]
+    /// The model's regressors (the constant last).
+    pub fn row(&self) -> [f64; REGRESSORS + 1] {
+        let r = &self.res;
+        [r.ff, r.pp, r.mul, r.smul, r.add, r.cmp + r.mux, r.array, 1.0]
     }
     /// GE under `coef`.
-    pub fn ge(&self, coef: &[f64; 5]) -> f64 {
+    pub fn ge(&self, coef: &Coefficients) -> f64 {
         self.row().iter().zip(coef).map(|(x, c)| x * c).sum()
     }
 }
 
-/// Coefficients (GE per bit of each feature, then a constant), fitted by `calibrate` on the
-/// calibration half of `AREA_MODEL_DATA`.
-pub const COEFFICIENTS: [f64; 5] = [
-    13.62945266320051,
-    20.411004442363588,
-    -21.54710909127038,
-    84.17995484418712,
-    -426.7522453115101,
+/// Coefficients fitted by `calibrate` on the calibration part of `SAMPLES` (`gbump area-model`
+/// prints them).
+pub const COEFFICIENTS: Coefficients = [
+    3.738874808695778,
+    14.430710365121957,
+    11.256582638618246,
+    14.723336676728666,
+    2.334478800270514,
+    0.656563334564404,
+    5.216115675656021,
+    1.5036470858036286,
 ];
 
-/// Width of a `[h:l]` range at the start of `s` (1 when there is none).
-fn range_width(s: &str) -> (u32, &str) {
-    let t = s.trim_start();
-    if let Some(rest) = t.strip_prefix('[') {
-        if let Some(end) = rest.find(']') {
-            let r = &rest[..end];
-            if let Some((h, l)) = r.split_once(':') {
-                if let (Ok(h), Ok(l)) = (h.trim().parse::<i64>(), l.trim().parse::<i64>()) {
-                    return ((h - l).unsigned_abs() as u32 + 1, &rest[end + 1..]);
-                }
-            }
-        }
-    }
-    (1, t)
+/// The counts of `cfg`'s top: its own logic and every unit instance's.
+pub fn resources(cfg: &PipelineConfig) -> Resources {
+    let t = crate::rtlgen::top::tally(cfg);
+    t.glue
+        + t.instances
+            .iter()
+            .map(|i| {
+                let u = crate::units::unit(i.unit).expect("the top instantiates units");
+                let res = match i.factor_frac {
+                    // A blend whose factor holds fewer fraction bits is the blend of that
+                    // factor width (its extra low bits are zeros that synthesis removes).
+                    Some(f) => u.resources(&PipelineConfig {
+                        dot_frac_bits: f,
+                        power_frac_bits: f,
+                        ..cfg.clone()
+                    }),
+                    None => u.resources(cfg),
+                };
+                res.scaled(i.copies as f64)
+            })
+            .sum()
 }
 
-/// `+`, `-` and `?` operators of an expression, outside index brackets and replication counts.
-fn operators(expr: &str) -> (u32, u32) {
-    let mut depth = 0;
-    let (mut add, mut mux) = (0, 0);
-    let b = expr.as_bytes();
-    for (i, &c) in b.iter().enumerate() {
-        match c {
-            b'[' => depth += 1,
-            b']' => depth -= 1,
-            b'+' | b'-' if depth == 0 => {
-                // `+:` is a part select; a sign after `(`, `{` or `,` is no adder.
-                let next = b.get(i + 1).copied().unwrap_or(b' ');
-                let prev = b[..i].iter().rev().find(|c| !c.is_ascii_whitespace()).copied().unwrap_or(b'(');
-                if next != b':' && !matches!(prev, b'(' | b'{' | b',' | b'=' | b'?' | b':') {
-                    add += 1;
-                }
-            }
-            b'?' if depth == 0 => mux += 1,
-            _ => {}
-        }
-    }
-    (add, mux)
-}
-
-/// One module's own features and the modules it instantiates.
-fn module_features(text: &str, modules: &[String]) -> (Features, Vec<String>) {
-    let mut widths: HashMap<String, u32> = HashMap::new();
-    let mut f = Features::default();
-    let mut insts = Vec::new();
-    for line in text.lines().map(str::trim) {
-        if line.starts_with("//") || line.is_empty() {
-            continue;
-        }
-        let first = line.split(|c: char| !c.is_ascii_alphanumeric() && c != '_').next().unwrap_or("");
-        if modules.iter().any(|m| m == first) && !line.starts_with("module") {
-            insts.push(first.to_string());
-            continue;
-        }
-        // Declarations: `[input|output] (wire|reg) [h:l] name [= expr];`
-        let decl = line.trim_start_matches("input").trim_start_matches("output").trim_start();
-        for kind in ["wire", "reg"] {
-            if let Some(rest) = decl.strip_prefix(kind).filter(|r| r.starts_with([' ', '['])) {
-                let (w, rest) = range_width(rest);
-                let rest = rest.trim_start().trim_start_matches("signed").trim_start();
-                let name: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
-                let after = rest[name.len()..].trim_start();
-                if name.is_empty() || after.starts_with('[') {
-                    // A memory: the RAM module's array or a register file, not logic here.
-                    continue;
-                }
-                widths.insert(name.clone(), w);
-                if kind == "reg" {
-                    f.ff += w as f64;
-                }
-                if name.ends_with("_pp") {
-                    f.pp += w as f64;
-                }
-                if let Some(expr) = after.strip_prefix('=') {
-                    let (a, m) = operators(expr);
-                    f.add += (a * w) as f64;
-                    f.mux += (m * w) as f64;
-                }
-            }
-        }
-        // Assignments: `assign x = e;` and `x <= e;` (the target's declared width, or its range).
-        let assign = line.strip_prefix("assign ").and_then(|r| r.split_once(" = ")).or_else(|| {
-            line.rsplit_once(" <= ")
-                .map(|(l, r)| (l.rsplit([' ', ')']).next().unwrap_or(l), r))
-                .filter(|(l, _)| !l.is_empty())
-        });
-        if let Some((target, expr)) = assign {
-            let name: String = target
-                .trim()
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                .collect();
-            let sel = &target.trim()[name.len()..];
-            let w = if sel.starts_with('[') && sel.contains(':') {
-                range_width(sel).0
-            } else {
-                widths.get(&name).copied().unwrap_or(1)
-            };
-            let (a, m) = operators(expr);
-            f.add += (a * w) as f64;
-            f.mux += (m * w) as f64;
-        }
-    }
-    (f, insts)
-}
-
-/// The features of `cfg`'s top, every module counted once per instance; the RAM module is a
-/// black box (its bits stand apart, as in `gbump area`).
+/// The features of `cfg`'s top.
 pub fn features(cfg: &PipelineConfig) -> Features {
-    let files = crate::rtlgen::generate(cfg, "area model");
-    let ram = crate::rtlgen::units_v::module_name(cfg, crate::rtlgen::ram::RAM);
-    let mods: Vec<(String, String)> = files
-        .into_iter()
-        .filter(|(n, _)| n.ends_with(".v"))
-        .map(|(n, t)| (n.trim_end_matches(".v").to_string(), t))
-        .collect();
-    let names: Vec<String> = mods.iter().map(|m| m.0.clone()).collect();
-    let parsed: HashMap<&str, (Features, Vec<String>)> = mods.iter().map(|(n, t)| (n.as_str(), module_features(t, &names))).collect();
-    fn total(m: &str, parsed: &HashMap<&str, (Features, Vec<String>)>, ram: &str) -> Features {
-        if m == ram {
-            return Features::default();
-        }
-        let Some((own, insts)) = parsed.get(m) else {
-            return Features::default();
-        };
-        let mut f = *own;
-        for i in insts {
-            f.accumulate(&total(i, parsed, ram));
-        }
-        f
-    }
-    total(&crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"), &parsed, &ram)
+    Features { res: resources(cfg) }
+}
+
+/// The features of `unit` alone (one read port), as `gbump area` synthesises it.
+pub fn unit_features(cfg: &PipelineConfig, unit: &str) -> Option<Features> {
+    crate::units::unit(unit).map(|u| Features { res: u.resources(cfg) })
 }
 
 /// Estimated logic GE of `cfg`'s top with `coef`.
-pub fn estimate_with(cfg: &PipelineConfig, coef: &[f64; 5]) -> f64 {
+pub fn estimate_with(cfg: &PipelineConfig, coef: &Coefficients) -> f64 {
     features(cfg).ge(coef)
 }
 
@@ -195,39 +90,53 @@ pub fn estimate(cfg: &PipelineConfig) -> f64 {
     estimate_with(cfg, &COEFFICIENTS)
 }
 
-/// Least-squares coefficients for `(features, measured GE)` samples (normal equations,
-/// Gaussian elimination with partial pivoting).
-pub fn calibrate(samples: &[(Features, f64)]) -> [f64; 5] {
-    let mut a = [[0.0f64; 6]; 5];
-    for (f, y) in samples {
-        let r = f.row();
-        for i in 0..5 {
-            for j in 0..5 {
+/// Coefficients for `(features, measured GE)` samples that minimise the relative error:
+/// least squares weighted by 1/GE-predicted, iterated from 1/GE-measured (weighting by the
+/// measurement alone biases every estimate low), each step solved by the normal equations with
+/// partial pivoting; a regressor no sample exercises gets 0.
+pub fn calibrate(samples: &[(Features, f64)]) -> Coefficients {
+    let mut weight: Vec<f64> = samples.iter().map(|(_, y)| 1.0 / y.max(1.0)).collect();
+    let mut coef = [0.0; REGRESSORS + 1];
+    for _ in 0..10 {
+        coef = weighted_least_squares(samples, &weight);
+        weight = samples.iter().map(|(f, _)| 1.0 / f.ge(&coef).max(1.0)).collect();
+    }
+    coef
+}
+
+fn weighted_least_squares(samples: &[(Features, f64)], weight: &[f64]) -> Coefficients {
+    const N: usize = REGRESSORS + 1;
+    let mut a = [[0.0f64; N + 1]; N];
+    for ((f, y), w) in samples.iter().zip(weight) {
+        let r = f.row().map(|x| x * w);
+        for i in 0..N {
+            for j in 0..N {
                 a[i][j] += r[i] * r[j];
             }
-            a[i][5] += r[i] * y;
+            a[i][N] += r[i] * y * w;
         }
     }
-    for col in 0..5 {
-        let p = (col..5).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).expect("rows");
+    for col in 0..N {
+        let p = (col..N).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).expect("rows");
         a.swap(col, p);
         let d = a[col][col];
         if d.abs() < 1e-12 {
             continue;
         }
-        for j in col..6 {
-            a[col][j] /= d;
+        for x in &mut a[col][col..] {
+            *x /= d;
         }
-        for i in 0..5 {
+        let pivot = a[col];
+        for (i, row) in a.iter_mut().enumerate() {
             if i != col {
-                let k = a[i][col];
-                for j in col..6 {
-                    a[i][j] -= k * a[col][j];
+                let k = row[col];
+                for (x, p) in row[col..].iter_mut().zip(&pivot[col..]) {
+                    *x -= k * p;
                 }
             }
         }
     }
-    [a[0][5], a[1][5], a[2][5], a[3][5], a[4][5]]
+    std::array::from_fn(|i| if a[i][i].abs() < 1e-12 { 0.0 } else { a[i][N] })
 }
 
 #[cfg(test)]
@@ -235,14 +144,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn operators_skip_part_selects_signs_and_indices() {
-        assert_eq!(operators(" a + b - c;"), (2, 0));
-        assert_eq!(operators(" x[j*4 +: 4] + {1'b0, y[3:0]};"), (1, 0));
-        assert_eq!(operators(" s ? a + b : -c;"), (1, 1));
-    }
-
-    #[test]
-    fn features_grow_with_the_widths() {
+    fn counts_grow_with_the_widths() {
         let small = PipelineConfig {
             lights: 1,
             ..Default::default()
@@ -252,24 +154,29 @@ mod tests {
             normal_bits: 12,
             ..small.clone()
         };
-        let (a, b) = (features(&small), features(&wide));
+        let (a, b) = (resources(&small), resources(&wide));
         assert!(b.pp > a.pp && b.add > a.add && b.ff >= a.ff, "{a:?} {b:?}");
         assert!(a.ff > 100.0 && a.pp > 100.0 && a.add > 100.0 && a.mux > 10.0, "{a:?}");
     }
 
     #[test]
     fn calibration_recovers_known_coefficients() {
-        let coef = [4.0, 2.5, 7.0, 2.0, 300.0];
-        let samples: Vec<(Features, f64)> = (0..12)
+        let coef: Coefficients = [4.0, 2.5, 6.0, 9.0, 7.0, 3.0, 5.0, 300.0];
+        let samples: Vec<(Features, f64)> = (0..16)
             .map(|i| {
                 let f = Features {
-                    ff: 100.0 + 37.0 * i as f64,
-                    pp: 500.0 + (i * i) as f64 * 13.0,
-                    add: 800.0 + ((i * 7) % 5) as f64 * 90.0,
-                    mux: 50.0 + ((i * 3) % 4) as f64 * 20.0,
+                    res: Resources {
+                        ff: 100.0 + 37.0 * i as f64,
+                        pp: 500.0 + (i * i) as f64 * 13.0,
+                        mul: ((i * 5) % 7) as f64 * 40.0,
+                        smul: ((i * 3) % 5) as f64 * 70.0 + i as f64,
+                        array: ((i * 13) % 9) as f64 * 25.0,
+                        add: 800.0 + ((i * 7) % 5) as f64 * 90.0,
+                        cmp: 30.0 + ((i * 11) % 6) as f64 * 9.0,
+                        mux: 50.0 + ((i * 3) % 4) as f64 * 20.0,
+                    },
                 };
-                let y = f.row().iter().zip(&coef).map(|(x, c)| x * c).sum();
-                (f, y)
+                (f, f.ge(&coef))
             })
             .collect();
         let got = calibrate(&samples);
@@ -288,6 +195,22 @@ pub struct Sample {
     pub model_ge: f64,
     pub calibration: bool,
     pub config: PipelineConfig,
+    /// Yosys GE of each unit synthesised alone (`gbump area`'s rows), for the calibration.
+    #[serde(default)]
+    pub units: Vec<(String, f64)>,
+}
+
+impl Sample {
+    /// The calibration rows of this sample: the top, and each unit alone.
+    pub fn rows(&self) -> Vec<(Features, f64)> {
+        let mut v = vec![(features(&self.config), self.yosys_ge)];
+        for (u, ge) in &self.units {
+            if let Some(f) = unit_features(&self.config, u) {
+                v.push((f, *ge));
+            }
+        }
+        v
+    }
 }
 
 /// The checked-in calibration and held-out samples (`gbump area-model --configs
@@ -315,12 +238,12 @@ pub fn calibrate_and_check(
     calibrate_on: usize,
     work: &std::path::Path,
     say: &mut dyn FnMut(&str),
-) -> crate::error::Result<([f64; 5], Vec<Sample>)> {
+) -> crate::error::Result<(Coefficients, Vec<Sample>)> {
     let mut rows = Vec::new();
     for (i, p) in configs.iter().enumerate() {
         let cfg = PipelineConfig::load(p)?;
-        // The command `gbump area --config P` writes in the headers, so its cache serves here.
-        let r = super::area::area(&cfg, work, &format!("gbump rtl --config {}", p.display()))?;
+        // Cached by configuration, script and Yosys version, as `gbump sweep` caches.
+        let r = super::sweep::cached_area(&cfg, work)?;
         let ge = r.top().gate_equivalents;
         say(&format!(
             "[{}/{}] {} ({}): {ge:.0} GE",
@@ -329,23 +252,27 @@ pub fn calibrate_and_check(
             p.display(),
             &cfg.hash()[..8]
         ));
-        rows.push((p.display().to_string(), cfg.clone(), features(&cfg), ge));
-    }
-    let n = calibrate_on.min(rows.len());
-    let coef = calibrate(&rows[..n].iter().map(|r| (r.2, r.3)).collect::<Vec<_>>());
-    let samples = rows
-        .iter()
-        .enumerate()
-        .map(|(i, (p, cfg, f, ge))| Sample {
-            file: p.clone(),
+        let units = r
+            .units
+            .iter()
+            .filter(|u| !u.unit.starts_with("gbump_pipeline"))
+            .map(|u| (u.unit.clone(), u.gate_equivalents))
+            .collect();
+        rows.push(Sample {
+            file: p.display().to_string(),
             hash: cfg.hash(),
-            yosys_ge: *ge,
-            model_ge: f.ge(&coef),
-            calibration: i < n,
-            config: cfg.clone(),
-        })
-        .collect();
-    Ok((coef, samples))
+            yosys_ge: ge,
+            model_ge: f64::NAN,
+            calibration: i < calibrate_on,
+            config: cfg,
+            units,
+        });
+    }
+    let coef = calibrate(&rows.iter().filter(|s| s.calibration).flat_map(|s| s.rows()).collect::<Vec<_>>());
+    for s in &mut rows {
+        s.model_ge = estimate_with(&s.config, &coef);
+    }
+    Ok((coef, rows))
 }
 
 /// Mean and max relative error of the held-out samples.
@@ -364,15 +291,23 @@ pub fn held_out_error(samples: &[Sample]) -> (f64, f64, usize) {
 }
 
 /// The table `gbump area-model` prints.
-pub fn markdown(coef: &[f64; 5], samples: &[Sample], rate: f64) -> String {
+pub fn markdown(coef: &Coefficients, samples: &[Sample], rate: f64) -> String {
     let (mean, max, n) = held_out_error(samples);
+    let worst = samples
+        .iter()
+        .filter(|s| !s.calibration)
+        .max_by(|a, b| ((a.model_ge - a.yosys_ge) / a.yosys_ge).abs().total_cmp(&((b.model_ge - b.yosys_ge) / b.yosys_ge).abs()))
+        .map_or(String::new(), |w| format!(" The worst held-out configuration is `{}`.", w.file));
     let mut s = format!(
-        "Area model (`src/measure/area_model.rs`): GE = {:.3} per register bit + {:.3} per Booth partial-product bit + {:.3} per adder bit + {:.3} per multiplexer bit + {:.0}, fitted on {} configurations; held out: {n} configurations, mean error {:.1} %, max {:.1} %; {rate:.0} configurations scored per second.\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
+        "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth partial-product bit + {:.2} per unsigned and {:.2} per signed inferred multiplier bit-product + {:.2} per adder bit + {:.2} per comparator or multiplexer bit + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
         coef[0],
         coef[1],
         coef[2],
         coef[3],
         coef[4],
+        coef[5],
+        coef[6],
+        coef[7],
         samples.iter().filter(|s| s.calibration).count(),
         100.0 * mean,
         100.0 * max
@@ -391,13 +326,24 @@ pub fn markdown(coef: &[f64; 5], samples: &[Sample], rate: f64) -> String {
     s
 }
 
-/// Configurations scored per second, over `cfgs` in turn for about a second.
+/// Configurations scored per second on every core: `cfgs` in turn, each changed in one width
+/// per score so that no two scores see the same configuration, for about a second.
 pub fn scoring_rate(cfgs: &[PipelineConfig]) -> f64 {
+    use rayon::prelude::*;
+    if cfgs.is_empty() {
+        return 0.0;
+    }
     let t0 = std::time::Instant::now();
-    let mut n = 0;
-    while t0.elapsed().as_secs_f64() < 1.0 && !cfgs.is_empty() {
-        std::hint::black_box(features(&cfgs[n % cfgs.len()]));
-        n += 1;
+    let mut n = 0usize;
+    while t0.elapsed().as_secs_f64() < 1.0 {
+        let batch = 2048;
+        (n..n + batch).into_par_iter().for_each(|i| {
+            let mut c = cfgs[i % cfgs.len()].clone();
+            // lh_bits from 8 to 19 (inside every limit) so that each score is a new top.
+            c.lh_bits = 8 + (i / cfgs.len() % 12) as u32;
+            std::hint::black_box(estimate(&c));
+        });
+        n += batch;
     }
     n as f64 / t0.elapsed().as_secs_f64()
 }

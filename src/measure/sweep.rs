@@ -235,7 +235,7 @@ fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<s
 }
 
 /// Yosys area of `cfg`, shared by every point of the same configuration whatever the scene.
-fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaReport> {
+pub(crate) fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaReport> {
     let mut k = crate::cache::Key::new("area");
     k.add(cfg.to_toml().as_bytes())
         .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())

@@ -185,7 +185,7 @@ mod tests {
         let st = s.comb("x", 4, "{a} + {a}");
         assert_eq!(st, 0);
         assert_eq!(names("{a, b} | {c}"), vec!["c".to_string()]);
-        let text = m.finish();
+        let text = m.finish().0;
         assert!(text.contains("a_d2 <= a_d1;"), "{text}");
         assert!(text.contains("v_d1 <= rst ? 1'd0 : v;"), "{text}");
         assert!(!text.contains("a_d3"));
@@ -203,7 +203,7 @@ mod tests {
         s.late("val", 32, "bank[{tag}]");
         assert_eq!(s.fill("{val}[3:0]", 2), "val_s2[3:0]");
         assert_eq!(s.late_max(), Some(2));
-        let text = m.finish();
+        let text = m.finish().0;
         assert!(text.contains("tag_d2 <= tag_d1;"), "{text}");
         assert!(text.contains("bank[tag_d2]"), "{text}");
         assert!(!text.contains("val_d"), "{text}");

@@ -352,8 +352,14 @@ pub fn top(cfg: &PipelineConfig) -> String {
     build(cfg).text
 }
 
+/// What the top is built of: its own logic and its unit instances (the area model's input).
+pub fn tally(cfg: &PipelineConfig) -> super::module::Tally {
+    build_with(cfg, ModuleBuilder::counting("gbump_pipeline")).tally
+}
+
 /// A generated top and the figures its schedule gives.
 struct Built {
+    tally: super::module::Tally,
     text: String,
     latency: u32,
     bank_hold: Option<u32>,
@@ -387,9 +393,12 @@ fn enable(cfg: &PipelineConfig, present: bool, en: &str) -> String {
 }
 
 fn build(cfg: &PipelineConfig) -> Built {
-    let mut m = ModuleBuilder::new(module_name(cfg, "gbump_pipeline"));
+    build_with(cfg, ModuleBuilder::new(module_name(cfg, "gbump_pipeline")))
+}
+
+fn build_with(cfg: &PipelineConfig, mut m: ModuleBuilder) -> Built {
     for mem in memories(cfg) {
-        m.param(mem.init_param, format!("\"{}\"", rom_file_name(cfg, mem.init_stem, "hex")));
+        m.param(mem.init_param, || format!("\"{}\"", rom_file_name(cfg, mem.init_stem, "hex")));
     }
     for p in port_list(cfg) {
         m.port(&p.name, p.dir, p.width());
@@ -416,12 +425,14 @@ fn build(cfg: &PipelineConfig) -> Built {
         cfg.blend_order,
         cfg.initiation_interval()
     );
-    text += &m.finish();
+    let (body, tally) = m.finish();
+    text += &body;
     text += "`default_nettype wire\n";
     Built {
         text,
         latency: lat,
         bank_hold,
+        tally,
     }
 }
 
@@ -489,8 +500,10 @@ fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
     s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
+    s.m.count_instances(pu.name(), r);
     s.m.inst_helper(
-        &module_name(cfg, "power_unit"),
+        cfg,
+        "power_unit",
         &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_unit"),
         &[
             ("clk", "clk".into()),
@@ -513,7 +526,8 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, bump: &str, combinational: boo
         let t = s.fill(bump, st);
         s.m.wire("b", nb3, None);
         s.m.inst_helper(
-            &module_name(cfg, "bump_fetch_comb"),
+            cfg,
+            "bump_fetch_comb",
             "u_bump_fetch",
             &[("bump", t), ("b", "b".into())],
         );
@@ -610,7 +624,7 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
     let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
     for p in &tri {
         let f = &p.name[4..];
-        s.m.raw(format!("reg [{}:0] bank_{f} [0:{}];", p.width() - 1, k - 1));
+        s.m.array(&format!("bank_{f}"), p.width(), k);
     }
     let writes: Vec<String> = tri
         .iter()
@@ -795,9 +809,9 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     }
     s.m.comment("The colour stages in the configured order.");
     let out = colour_stages(s, cfg, "in_c_src", "{in_tex}", |s, st, c| {
-        let (u, f, name) = match st {
-            Stage::Diffuse if cfg.diffuse => (&units::DIFFUSE_BLEND, "{dfac}", "c_dif"),
-            Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe"),
+        let (u, f, name, frac) = match st {
+            Stage::Diffuse if cfg.diffuse => (&units::DIFFUSE_BLEND, "{dfac}", "c_dif", cfg.dot_frac_bits),
+            Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe", cfg.power_frac_bits),
             _ => return None,
         };
         s.unit(
@@ -813,6 +827,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             &[("c_out", name)],
             &[],
         );
+        s.m.factor_frac(frac);
         Some(name.to_string())
     });
     let lat = s.ready(&out);
@@ -879,7 +894,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let dot = units::unit("dot_clamp").expect("unit");
     let acc = units::unit("light_accumulate").expect("unit");
     let aw3 = 3 * cfg.acc_fmt().width;
-    let accumulate = |s: &mut Scheduler, name: &str, f: &str| {
+    let accumulate = |s: &mut Scheduler, name: &str, f: &str, frac: u32| {
         // The accumulator feeds itself back: slot j adds to the sum of slots 0..j-1.
         let st = s.stage_of(&[f, "{k_sel}", "{lc_sel}", "{first}"]);
         let (ff, k, lc, first) = (s.fill(f, st), s.fill("{k_sel}", st), s.fill("{lc_sel}", st), s.fill("{first}", st));
@@ -898,6 +913,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             ],
             &[],
         );
+        s.m.factor_frac(frac);
         s.source(name, st + acc.latency(cfg));
         // The sum is complete after the last slot: from here on a fragment is valid once.
         if !s.m.has("done") {
@@ -912,7 +928,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("l_sel", lh3, &slot("l", lh3));
         s.unit(cfg, dot, "u_dot_l", &[("b", "{b}"), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, "{de}"));
-        accumulate(s, "dacc", "{dfac}");
+        accumulate(s, "dacc", "{dfac}", cfg.dot_frac_bits);
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "fr_specular_en"));
@@ -920,7 +936,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, "{se}"));
-        accumulate(s, "sacc", "{sfac}");
+        accumulate(s, "sacc", "{sfac}", cfg.power_frac_bits);
     }
     if !s.m.has("done") {
         // Neither blend: the fragment leaves after its last slot.
@@ -940,6 +956,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         let (cc, a) = (s.fill(&format!("{{{c}}}"), at), s.fill(acc, at));
         s.m.wire(name, c3, None);
         s.m.inst(cfg, finish, inst, &[("c_in", cc), ("acc", a), ("c_out", name.to_string())], &[]);
+        s.m.factor_frac(if inst == "u_diffuse_finish" { cfg.dot_frac_bits } else { cfg.power_frac_bits });
         s.source(name, at + finish.latency(cfg));
         Some(name.to_string())
     });

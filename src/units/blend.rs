@@ -80,6 +80,17 @@ impl Unit for Blend {
             .collect();
         vec![out]
     }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        use crate::units::resources::{blend_finish, light_term, Resources};
+        use crate::units::timing::{cut, BLEND};
+        let (n, c, aw) = (cfg.lights, cfg.colour_bits, cfg.acc_fmt().width);
+        let lt = crate::rtlgen::units_v::light_term_cuts(cfg);
+        light_term(cfg).scaled(n as f64)
+            + Resources::regs(lt * 3 * c)
+            + Resources::adders(3 * (n - 1) * aw)
+            + Resources::stage(cut(cfg, BLEND, 2), 3 * aw + 3 * c)
+            + blend_finish(cfg)
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         use crate::rtlgen::units_v as v;
         vec![

@@ -44,6 +44,10 @@ impl Unit for BumpFetch {
         // The expansion is exact: the model is the equation.
         vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
     }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        // An inversion of each MSB: the output register only.
+        crate::units::resources::Resources::regs(3 * cfg.normal_bits)
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         vec![
             ("bump_fetch", crate::rtlgen::units_v::bump_fetch(cfg, true)),

@@ -14,6 +14,7 @@ mod bump_fetch;
 mod dot_clamp;
 mod palette_fetch;
 mod power_unit;
+pub mod resources;
 mod serial_blend;
 mod texture_modulate;
 pub mod timing;
@@ -141,6 +142,9 @@ pub trait Unit: Sync {
     /// The Verilog modules (base name, text without the generated-file header): the unit's
     /// own module first, then the helpers it instantiates (two units may share a helper).
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)>;
+    /// What the unit's own module is built of under `cfg` (one read port of a unit with
+    /// several), counted from its widths as its Verilog emitter builds it.
+    fn resources(&self, cfg: &PipelineConfig) -> resources::Resources;
     /// How many inputs `exhaustive:<unit>` sweeps, or None when the domain is too large.
     fn exhaustive_count(&self, _cfg: &PipelineConfig) -> Option<u64> {
         None

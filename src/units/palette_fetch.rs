@@ -51,6 +51,10 @@ impl Unit for PaletteFetch {
     fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
     }
+    fn resources(&self, _cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        // The RAM (its read register included) and an inversion: no logic outside the RAM.
+        crate::units::resources::Resources::default()
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         let nb = cfg.normal_bits;
         let w = 3 * nb;

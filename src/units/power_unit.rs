@@ -57,6 +57,17 @@ impl Unit for PowerUnit {
         let x = i[0][0] as f64 / (1u64 << cfg.dot_frac_bits) as f64;
         vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_frac_bits) as f64]]
     }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        use crate::units::resources::{power_datapath, Resources};
+        let core = power_datapath(&cfg.power_unit_design(), cfg.power_formats());
+        if cfg.power_unit == PowerUnitKind::Table {
+            // The RAM's read register is the output register.
+            core
+        } else {
+            // x waits for the knots beside the RAMs; the interpolation is registered.
+            core + Resources::regs(cfg.dot_frac_bits + 1 + cfg.power_frac_bits + 1)
+        }
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         let mut v = vec![
             ("power_unit", crate::rtlgen::units_v::power_unit(cfg)),

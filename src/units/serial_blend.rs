@@ -74,6 +74,14 @@ impl Unit for LightAccumulate {
         // The sum is exact: the model is the equation.
         vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
     }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        use crate::units::resources::{light_term, Resources};
+        let aw = cfg.acc_fmt().width;
+        // The term, `first` beside it, and per channel (first ? 0 : acc_in) + term, registered.
+        light_term(cfg)
+            + Resources::regs(crate::rtlgen::units_v::light_term_cuts(cfg))
+            + (Resources::muxes(aw) + Resources::adders(aw) + Resources::regs(aw)).scaled(3.0)
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         let (ff, k, c) = (cfg.factor_frac(), cfg.k_frac_bits, cfg.colour_bits);
         let (tw, aw) = (cfg.term_fmt().width, cfg.acc_fmt().width);
@@ -172,6 +180,9 @@ impl Unit for BlendFinish {
         let af = cfg.acc_fmt();
         let max = cfg.colour_max() as f64;
         vec![(0..3).map(|ch| (i[0][ch] as f64 + af.to_f64(i[1][ch])).min(max)).collect()]
+    }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        crate::units::resources::blend_finish(cfg)
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         vec![("blend_finish", crate::rtlgen::units_v::blend_finish(cfg))]

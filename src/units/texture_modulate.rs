@@ -35,6 +35,18 @@ impl Unit for TextureModulate {
         let max = cfg.colour_max() as f64;
         vec![(0..3).map(|k| i[0][k] as f64 * i[1][k] as f64 / max).collect()]
     }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        use crate::units::resources::{sum_of_products, unsigned, Resources};
+        use crate::units::timing::{cut, TEXTURE};
+        let c = cfg.colour_bits;
+        let w = 2 * c + 1;
+        // Per channel: c·t + 2^(c-1), its register when cut, q = p + (p >> c), the output register.
+        let channel = sum_of_products(cfg.multipliers, &[(unsigned(c), unsigned(c))], true, w)
+            + Resources::stage(cut(cfg, TEXTURE, 0), w)
+            + Resources::adders(w)
+            + Resources::regs(c);
+        channel.scaled(3.0)
+    }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         vec![("texture_modulate", crate::rtlgen::units_v::texture_modulate(cfg))]
     }
