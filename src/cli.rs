@@ -248,9 +248,19 @@ pub enum Cmd {
         /// configuration) and print each beside the area model's estimate.
         #[arg(long)]
         yosys: bool,
+        /// Deepen the chosen pipeline until the top, placed and routed on an iCE40 (nextpnr,
+        /// minutes per depth), reaches this clock in MHz.
+        #[arg(long, value_name = "MHZ")]
+        min_fmax: Option<f64>,
+        /// The iCE40 device of --min-fmax (hx1k, hx4k, hx8k, lp1k, lp8k, up5k).
+        #[arg(long, default_value = "hx8k")]
+        device: String,
         #[arg(long, default_value = "target/gbump-fit")]
         work: PathBuf,
     },
+    /// Every built-in scene under max<=2, psnr>=50 and exact<=1: the scene's default
+    /// configuration against the one `gbump fit` chooses (area model, no regression).
+    FitTable,
     /// Fit the area model to Yosys on the first configurations and check it on the rest.
     AreaModel {
         /// Configuration files (a folder: every .toml in it, in name order).
@@ -658,6 +668,8 @@ pub fn run() -> anyhow::Result<()> {
             out,
             no_regress,
             yosys,
+            min_fmax,
+            device,
             work,
         } => {
             let budget = crate::fit::budget::Budget::parse(&budget)?;
@@ -671,9 +683,22 @@ pub fn run() -> anyhow::Result<()> {
             if yosys {
                 crate::yosys::require()?;
             }
+            if let Some(f) = min_fmax {
+                if !f.is_finite() || f <= 0.0 {
+                    return Err(Error::Other(format!("--min-fmax {f}: not a clock\n  fix: a frequency in MHz above 0, e.g. 40")).into());
+                }
+                crate::measure::fpga::ice40_package(&device)?;
+                crate::measure::fpga::require(crate::measure::fpga::Target::Ice40)?;
+            }
             // The search sizes with the analytical model; Yosys confirms on request.
             let area = |c: &PipelineConfig| Ok(crate::measure::area_model::estimate(c));
-            let fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
+            let mut fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
+            let fmax = match min_fmax {
+                Some(f) => Some(crate::fit::run::deepen_for_fmax(&mut fit.chosen, f, &device, &work.join("fpga"), &mut |m| {
+                    eprintln!("fit: {m}")
+                })?),
+                None => None,
+            };
             let c = &fit.chosen;
             crate::render::output::write_files(
                 &out,
@@ -701,6 +726,9 @@ pub fn run() -> anyhow::Result<()> {
                 fit.seen.len(),
                 out.display()
             );
+            if let Some(f) = fmax {
+                outln!("iCE40 {device}: {f:.1} MHz at pipeline_depth {} (nextpnr)", c.cfg.pipeline_depth);
+            }
             outln!("{}", c.cfg.to_toml());
             if yosys {
                 let area_work = work.join("area");
@@ -738,6 +766,10 @@ pub fn run() -> anyhow::Result<()> {
                     t0.elapsed().as_secs_f64()
                 );
             }
+        }
+        Cmd::FitTable => {
+            let rows = crate::fit::table::rows(&mut |m| eprintln!("fit-table: {m}"))?;
+            out!("{}", crate::fit::table::markdown(&rows));
         }
         Cmd::Sweep { space, out, work } => {
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());

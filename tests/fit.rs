@@ -1,6 +1,6 @@
-//! `gbump fit`: bad or unreachable budgets fail cleanly and write nothing. A whole search takes
-//! minutes (`scripts/fit-check.sh` runs one end to end, regression included), so the suite
-//! checks the search itself in `fit::search`'s unit test.
+//! `gbump fit`: issue 12's run end to end (torus_caps within max<=2, the choice regressed on
+//! both simulators), the other budgets, and bad or unreachable budgets failing cleanly with
+//! nothing written. The search's own edges are `fit::search`'s unit test.
 
 use assert_cmd::Command;
 
@@ -28,4 +28,68 @@ fn bad_and_unreachable_budgets_fail_and_write_nothing() {
         assert!(t.contains(want), "{budget}: {t}");
         assert!(!out.exists(), "{budget}: output written");
     }
+}
+
+/// The chosen configuration's budget measure, from the line `gbump fit` prints.
+fn printed(t: &str, key: &str) -> f64 {
+    let line = t.lines().find(|l| l.starts_with("fit ")).unwrap_or_else(|| panic!("no fit line: {t}"));
+    let at = line.find(key).unwrap_or_else(|| panic!("no {key} in {line}")) + key.len();
+    line[at..].trim_start().split(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{key} in {line}"))
+}
+
+#[test]
+fn torus_caps_within_max_2_is_fitted_regressed_and_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit");
+    let o = gbump()
+        .args(["fit", "--scene", "torus_caps", "--budget", "max<=2", "--out"])
+        .arg(&out)
+        .arg("--work")
+        .arg(dir.path().join("work"))
+        .assert()
+        .success();
+    let t = text(o.get_output());
+    assert!(printed(&t, "per clock): max") <= 2.0, "{t}");
+    assert!(t.contains("passes on Icarus and Verilator"), "{t}");
+    // The written configuration is the one printed, and loads.
+    let toml = std::fs::read_to_string(out.join("fit.toml")).unwrap();
+    let cfg = gbump::config::PipelineConfig::from_toml("fit.toml", &toml).unwrap();
+    assert!(t.contains(&format!("chosen {}", &cfg.hash()[..8])), "{t}");
+    for f in ["front.csv", "front.svg"] {
+        assert!(out.join(f).exists(), "{f} missing");
+    }
+}
+
+#[test]
+fn psnr_budgets_fit_and_exact_1_names_its_floor() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("fit");
+    let o = gbump()
+        .args(["fit", "--scene", "torus_caps", "--budget", "psnr>=50", "--no-regress", "--out"])
+        .arg(&out)
+        .assert()
+        .success();
+    let t = text(o.get_output());
+    assert!(printed(&t, "PSNR") >= 50.0, "{t}");
+    // Three colour roundings in a row (diffuse, texture, specular) put the pipeline at
+    // 1.2 LSB from exact arithmetic at any width: the search says so and writes nothing.
+    let out2 = dir.path().join("fit2");
+    let o = gbump()
+        .args(["fit", "--scene", "torus_caps", "--budget", "exact<=1", "--no-regress", "--out"])
+        .arg(&out2)
+        .assert()
+        .failure();
+    let t = text(o.get_output());
+    assert!(t.contains("the best measured 1.2") && t.contains("fix: loosen the budget"), "{t}");
+    assert!(!out2.exists());
+}
+
+#[test]
+fn a_bad_min_fmax_is_refused_before_the_search() {
+    let o = gbump()
+        .args(["fit", "--scene", "torus_caps", "--budget", "max<=2", "--no-regress", "--min-fmax=-3", "--out", "/nonexistent/x"])
+        .assert()
+        .failure();
+    let t = text(o.get_output());
+    assert!(t.contains("--min-fmax -3") && t.contains("fix:"), "{t}");
 }

@@ -5,3 +5,4 @@ pub mod budget;
 pub mod evaluate;
 pub mod run;
 pub mod search;
+pub mod table;

@@ -202,3 +202,41 @@ impl Fit {
         )
     }
 }
+
+/// `--min-fmax`: deepen the chosen configuration's pipeline (its arithmetic, so its error,
+/// stays the same) until the top, placed and routed on the iCE40 `device` in its register
+/// shell, reaches `min_mhz`. Returns the Fmax reached; an error names the best depth when none
+/// does.
+pub fn deepen_for_fmax(chosen: &mut Candidate, min_mhz: f64, device: &str, work: &std::path::Path, say: &mut dyn FnMut(&str)) -> Result<f64> {
+    use crate::measure::fpga::{fpga_area, Target};
+    let mut best: Option<(u32, f64)> = None;
+    for depth in chosen.cfg.pipeline_depth..=crate::limits::MAX_PIPELINE_DEPTH {
+        let cfg = PipelineConfig {
+            pipeline_depth: depth,
+            ..chosen.cfg.clone()
+        };
+        let r = fpga_area(&cfg, Target::Ice40, device, false, work, "gbump fit --min-fmax")?;
+        let pr = r.place_route.expect("iCE40 reports are placed and routed");
+        let fmax = if pr.fits { pr.fmax_mhz.unwrap_or(0.0) } else { 0.0 };
+        say(&format!(
+            "pipeline_depth {depth}: {}",
+            if pr.fits {
+                format!("{fmax:.1} MHz on {device}")
+            } else {
+                format!("does not fit {device}")
+            }
+        ));
+        if best.is_none_or(|b| fmax > b.1) {
+            best = Some((depth, fmax));
+        }
+        if fmax >= min_mhz {
+            chosen.cfg = cfg;
+            chosen.area_ge = crate::measure::area_model::estimate(&chosen.cfg);
+            return Ok(fmax);
+        }
+    }
+    let (d, f) = best.expect("at least one depth");
+    Err(crate::error::Error::Other(format!(
+        "--min-fmax {min_mhz}: no pipeline_depth reaches it on the iCE40 {device}; the best is {f:.1} MHz at depth {d}\n  fix: lower --min-fmax to {f:.0} or less (a deeper pipeline stops helping once the critical path is outside the arithmetic units' register cuts)"
+    )))
+}

@@ -121,7 +121,8 @@ pub fn start(base: &PipelineConfig, kind: PowerUnitKind) -> PipelineConfig {
             c.power_segments = limit("power_segments").1.min(c.dot_frac_bits - 1);
             c.power_entries = 256;
         }
-        _ => c.power_entries = 4096,
+        // As many entries as the index has codes: the table is then exact at every input.
+        _ => c.power_entries = limit("power_entries").1.min(1 << c.dot_frac_bits),
     }
     c
 }

@@ -127,6 +127,8 @@ pub fn report(
     md += &super::timing_report::section(work)?;
     md += "\n## Area model against Yosys\n\n`gbump area-model --configs tests/area_model/configs --write tests/area_model/samples.jsonl` (the checked-in samples; the estimates under the checked-in coefficients)\n\n";
     md += &super::area_model::report_section();
+    md += "\n## Model only what a scene requires: fitted configurations\n\n";
+    md += &crate::fit::table::section(&mut |_| {})?;
     md += "\n## Sweep: error against area\n\n";
     let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true)?;
     let fpga = super::sweep::has_fpga(&pts);

@@ -251,6 +251,15 @@ pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSt
     vec![dot, pw]
 }
 
+/// The 127/128 loss in colour LSBs: the highlight (B·H)^n of the flat normal under H straight
+/// above, with B as stored and H as sent, exact arithmetic, against 1 (full colour).
+/// `normal_range = "binary"` stores +1.0 as 127/128 (at 8 bits); `"symmetric"` as +1.0.
+pub fn flat_highlight_loss(cfg: &PipelineConfig) -> f64 {
+    let b = crate::bumpmap::storage::encode_normal(cfg, glam::DVec3::Z).map(|c| cfg.normal_fmt().to_f64(crate::model::bump_fetch::expand(cfg, c)));
+    let h = cfg.lh_fmt().to_f64(crate::raster::tri_state::send_lh(cfg, 1.0).expect("finite"));
+    (1.0 - powi_exact((b[2] * h).clamp(0.0, 1.0), cfg.shininess)) * cfg.colour_max() as f64
+}
+
 /// Markdown table of unit errors.
 pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
     let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
