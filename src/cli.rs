@@ -226,6 +226,9 @@ pub enum Cmd {
         /// Cache of finished configurations (a re-run resumes from it).
         #[arg(long, default_value = "target/gbump-sweep")]
         work: PathBuf,
+        /// Size every point with Yosys (about 30 s a configuration) instead of the area model.
+        #[arg(long)]
+        yosys: bool,
     },
     /// The smallest configuration that renders the scenes within an error budget, and the front around it.
     Fit {
@@ -771,26 +774,34 @@ pub fn run() -> anyhow::Result<()> {
             let rows = crate::fit::table::rows(&mut |m| eprintln!("fit-table: {m}"))?;
             out!("{}", crate::fit::table::markdown(&rows));
         }
-        Cmd::Sweep { space, out, work } => {
+        Cmd::Sweep { space, out, work, yosys } => {
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
             crate::names::check(&space.display().to_string(), "file name", &name)?;
             let sp = crate::measure::sweep::Space::load(&space)?;
             let _lock = lock_work(&work)?;
             let t0 = std::time::Instant::now();
-            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true)?;
+            let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true, yosys)?;
             let files = vec![
                 (format!("{name}.csv"), crate::measure::sweep::csv(&pts)),
                 (format!("{name}.json"), serde_json::to_string_pretty(&pts).expect("json")),
                 (
                     format!("{name}.svg"),
-                    crate::measure::sweep::svg(&pts, &format!("{name}: error against area ({} configurations)", pts.len())),
+                    crate::measure::sweep::svg(
+                        &pts,
+                        &format!(
+                            "{name}: error against area ({} configurations, area by {})",
+                            pts.len(),
+                            if yosys { "Yosys" } else { "the area model" }
+                        ),
+                    ),
                 ),
             ];
             crate::render::output::write_files(&out, &files)?;
             outln!(
-                "{} configurations in {:.0} s; Pareto front: {}",
+                "{} configurations in {:.0} s (area by {}); Pareto front: {}",
                 pts.len(),
                 t0.elapsed().as_secs_f64(),
+                if yosys { "Yosys" } else { "the area model; --yosys to synthesise" },
                 pts.iter()
                     .filter(|p| p.pareto)
                     .map(|p| p.label.as_str())

@@ -203,7 +203,7 @@ fn a_killed_sweep_resumes_to_the_same_table() {
     )
     .unwrap();
     let args = |dir: &Path| {
-        let mut a = strings(&["sweep", "--space"]);
+        let mut a = strings(&["sweep", "--yosys", "--space"]);
         a.push(space.display().to_string());
         a.extend(["--out".into(), dir.join("out").display().to_string()]);
         a.extend(["--work".into(), dir.join("work").display().to_string()]);

@@ -12,7 +12,7 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     let run = || {
         let o = Command::cargo_bin("gbump")
             .unwrap()
-            .args(["sweep", "--space"])
+            .args(["sweep", "--yosys", "--space"])
             .arg(&space)
             .arg("--out")
             .arg(dir.path().join("out"))
@@ -40,6 +40,27 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     assert!(t1.elapsed() < cold / 2, "the second run should come from the cache");
     assert_eq!(std::fs::read_to_string(dir.path().join("out/tiny.csv")).unwrap(), csv);
     assert!(second.contains("2 configurations"));
+    // The same grid sized by the area model (the default): the same error columns, each top
+    // within 25 % of Yosys, and the plot says which area it shows.
+    Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["sweep", "--space"])
+        .arg(&space)
+        .arg("--out")
+        .arg(dir.path().join("model"))
+        .arg("--work")
+        .arg(&work)
+        .assert()
+        .success();
+    let model: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.path().join("model/tiny.json")).unwrap()).unwrap();
+    for (m, y) in model.as_array().unwrap().iter().zip(pts.as_array().unwrap()) {
+        assert_eq!((m["area_by"].as_str(), y["area_by"].as_str()), (Some("model"), Some("yosys")));
+        assert_eq!(m["max_error_lsb"], y["max_error_lsb"]);
+        let (a, b) = (m["top_ge"].as_f64().unwrap(), y["top_ge"].as_f64().unwrap());
+        assert!((a - b).abs() <= 0.25 * b, "{}: model {a:.0} GE, Yosys {b:.0} GE", m["label"]);
+    }
+    let svg = std::fs::read_to_string(dir.path().join("model/tiny.svg")).unwrap();
+    assert!(svg.contains("(area model)"), "the plot does not say its area is the model's");
 }
 
 #[test]

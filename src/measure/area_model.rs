@@ -50,24 +50,58 @@ pub const COEFFICIENTS: Coefficients = [
 /// The counts of `cfg`'s top: its own logic and every unit instance's.
 pub fn resources(cfg: &PipelineConfig) -> Resources {
     let t = crate::rtlgen::top::tally(cfg);
-    t.glue
-        + t.instances
-            .iter()
-            .map(|i| {
-                let u = crate::units::unit(i.unit).expect("the top instantiates units");
-                let res = match i.factor_frac {
-                    // A blend whose factor holds fewer fraction bits is the blend of that
-                    // factor width (its extra low bits are zeros that synthesis removes).
-                    Some(f) => u.resources(&PipelineConfig {
-                        dot_frac_bits: f,
-                        power_frac_bits: f,
-                        ..cfg.clone()
-                    }),
-                    None => u.resources(cfg),
-                };
-                res.scaled(i.copies as f64)
-            })
-            .sum()
+    t.glue + t.instances.iter().map(|i| instance_resources(cfg, i)).sum()
+}
+
+/// One instance's counts in the top, every copy.
+fn instance_resources(cfg: &PipelineConfig, i: &crate::rtlgen::module::Instance) -> Resources {
+    let u = crate::units::unit(i.unit).expect("the top instantiates units");
+    let res = match i.factor_frac {
+        // A blend whose factor holds fewer fraction bits is the blend of that factor width
+        // (its extra low bits are zeros that synthesis removes).
+        Some(f) => u.resources(&PipelineConfig {
+            dot_frac_bits: f,
+            power_frac_bits: f,
+            ..cfg.clone()
+        }),
+        None => u.resources(cfg),
+    };
+    res.scaled(i.copies as f64)
+}
+
+/// What `gbump sweep` reports of a top's area, by the model instead of Yosys.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelArea {
+    pub top_ge: f64,
+    /// The blend hardware as instantiated (parallel blends, or accumulators and finishes).
+    pub blend_ge: f64,
+    pub flip_flops: u64,
+    /// Bits of every RAM copy and register array (apart from the GE, as Yosys counts them).
+    pub memory_bits: u64,
+}
+
+/// The model's figures for `cfg`'s top.
+pub fn model_area(cfg: &PipelineConfig) -> ModelArea {
+    let t = crate::rtlgen::top::tally(cfg);
+    let (mut blend, mut memory) = (0.0, crate::rtlgen::top::array_bits(cfg) as u64);
+    for i in &t.instances {
+        let u = crate::units::unit(i.unit).expect("the top instantiates units");
+        if ["diffuse_blend", "specular_blend", "light_accumulate", "blend_finish"].contains(&i.unit) {
+            blend += Features { res: instance_resources(cfg, i) }.ge(&COEFFICIENTS);
+        }
+        if let Some(m) = u.memory(cfg) {
+            // An interpolating power unit reads two knots per port: two copies.
+            let per_port = if i.unit == "power_unit" && cfg.power_unit != crate::config::PowerUnitKind::Table { 2 } else { 1 };
+            memory += (m.depth * m.data_bits * i.copies * per_port) as u64;
+        }
+    }
+    let res = resources(cfg);
+    ModelArea {
+        top_ge: Features { res }.ge(&COEFFICIENTS),
+        blend_ge: blend,
+        flip_flops: res.ff.round() as u64,
+        memory_bits: memory,
+    }
 }
 
 /// The features of `cfg`'s top.

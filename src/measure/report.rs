@@ -130,7 +130,7 @@ pub fn report(
     md += "\n## Model only what a scene requires: fitted configurations\n\n";
     md += &crate::fit::table::section(&mut |_| {})?;
     md += "\n## Sweep: error against area\n\n";
-    let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true)?;
+    let pts = super::sweep::sweep(&sp, &space.display().to_string(), &work.join("sweep"), true, true)?;
     let fpga = super::sweep::has_fpga(&pts);
     let (fh, fl) = if fpga {
         (format!(" {} LUTs | Fmax (MHz) |", sp.target.map_or("", |t| t.name())), "---:|---:|")

@@ -54,6 +54,13 @@ pub struct Point {
     /// The top's Fmax on the target (iCE40 only; none when it does not fit).
     #[serde(default)]
     pub fmax_mhz: Option<f64>,
+    /// Where the area figures come from: "model" (`measure::area_model`) or "yosys".
+    #[serde(default = "by_yosys")]
+    pub area_by: String,
+}
+
+fn by_yosys() -> String {
+    "yosys".into()
 }
 
 impl Space {
@@ -212,16 +219,20 @@ const IMAGE: (u32, u32) = (128, 96);
 const ERROR_SAMPLES: u64 = 20_000;
 
 /// The cache key of one point: everything its numbers depend on.
-fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<super::fpga::Target>) -> Result<String> {
+fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<super::fpga::Target>, yosys: bool) -> Result<String> {
     let mut k = crate::cache::Key::new("sweep point");
     k.add(cfg.hash().as_bytes())
         .add(cfg.to_toml().as_bytes())
         .add(scene.fingerprint()?.as_bytes())
         .add(&IMAGE.0.to_le_bytes())
         .add(&IMAGE.1.to_le_bytes())
-        .add(&ERROR_SAMPLES.to_le_bytes())
-        .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())
-        .add_tool("yosys");
+        .add(&ERROR_SAMPLES.to_le_bytes());
+    if yosys {
+        k.add(crate::yosys::scripts::cmos_area(&[], "").as_bytes()).add_tool("yosys");
+    } else {
+        // The model's weights: a recalibration invalidates the points it sized.
+        k.add(format!("area model {:?}", super::area_model::COEFFICIENTS).as_bytes());
+    }
     // Only a space with a target adds to the key, so plain sweeps keep their caches.
     if let Some(t) = target {
         k.add(t.name().as_bytes())
@@ -256,9 +267,9 @@ pub(crate) fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::ar
 
 /// Measure one configuration on `scene` (cached in `work/points/<key>.json`, the key made of
 /// the configuration, the scene and its files, the sizes, gbump's and Yosys's versions).
-pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<super::fpga::Target>, work: &Path) -> Result<Point> {
+pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<super::fpga::Target>, yosys: bool, work: &Path) -> Result<Point> {
     let s = crate::scene::Scene::load(scene)?;
-    let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s, target)?));
+    let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s, target, yosys)?));
     if let Ok(text) = std::fs::read_to_string(&cache) {
         if let Ok(p) = serde_json::from_str::<Point>(&text) {
             if p.config == *cfg {
@@ -269,20 +280,34 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
             }
         }
     }
-    let area = cached_area(cfg, work)?;
     // The top alone on the FPGA (its synthesis and place and route are cached by themselves).
     let fpga = match target {
         Some(t) if t != super::fpga::Target::Cmos => Some(super::fpga::fpga_area(cfg, t, FPGA_DEVICE, false, work, "gbump sweep")?),
         _ => None,
     };
-    let ge = |name: &str| {
-        area.units
-            .iter()
-            .filter(|u| u.unit.starts_with(name))
-            .map(|u| u.gate_equivalents)
-            .sum::<f64>()
+    let area = if yosys {
+        let area = cached_area(cfg, work)?;
+        let ge = |name: &str| {
+            area.units
+                .iter()
+                .filter(|u| u.unit.starts_with(name))
+                .map(|u| u.gate_equivalents)
+                .sum::<f64>()
+        };
+        let top = area.top();
+        super::area_model::ModelArea {
+            top_ge: top.gate_equivalents,
+            // The blend hardware as instantiated: one parallel blend per enabled blend, or in
+            // the serial form one accumulator and one finish per enabled blend.
+            blend_ge: ge("diffuse_blend")
+                + ge("specular_blend")
+                + (cfg.diffuse as u32 + cfg.specular as u32) as f64 * (ge("light_accumulate") + ge("blend_finish")),
+            flip_flops: top.flip_flops,
+            memory_bits: top.memory_bits,
+        }
+    } else {
+        super::area_model::model_area(cfg)
     };
-    let top = area.top();
     let errs = super::unit_error::unit_errors(cfg, ERROR_SAMPLES, 1);
     let pipe = errs
         .iter()
@@ -296,14 +321,10 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
         config_hash: cfg.hash(),
         label: label.to_string(),
         config: cfg.clone(),
-        top_ge: top.gate_equivalents,
-        // The blend hardware as instantiated: one parallel blend per enabled blend, or in the
-        // serial form one accumulator and one finish per enabled blend.
-        blend_ge: ge("diffuse_blend")
-            + ge("specular_blend")
-            + (cfg.diffuse as u32 + cfg.specular as u32) as f64 * (ge("light_accumulate") + ge("blend_finish")),
-        flip_flops: top.flip_flops,
-        memory_bits: top.memory_bits,
+        top_ge: area.top_ge,
+        blend_ge: area.blend_ge,
+        flip_flops: area.flip_flops,
+        memory_bits: area.memory_bits,
         fragments_per_clock: 1.0 / cfg.initiation_interval() as f64,
         latency: crate::rtlgen::top::latency(cfg),
         max_error_lsb: pipe.max_lsb,
@@ -312,6 +333,7 @@ pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<su
         pareto: false,
         fpga_luts: fpga.as_ref().map(|r| r.top().luts),
         fmax_mhz: fpga.as_ref().and_then(|r| r.place_route.as_ref()).and_then(|p| p.fmax_mhz),
+        area_by: if yosys { "yosys" } else { "model" }.into(),
     };
     std::fs::create_dir_all(cache.parent().expect("dir")).map_err(|e| Error::io(&cache, e))?;
     crate::render::output::write_atomic(&cache, serde_json::to_string_pretty(&p).expect("json").as_bytes())?;
@@ -331,13 +353,14 @@ pub fn mark_pareto(points: &mut [Point]) {
 }
 
 /// Run a sweep (parallel; with `progress`, a bar on a terminal or a line per configuration).
-pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool) -> Result<Vec<Point>> {
+/// Every point of `space`; areas by Yosys when `yosys`, else by the area model.
+pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool, yosys: bool) -> Result<Vec<Point>> {
     let configs = space.configs(file)?;
     let bar = progress.then(|| crate::progress::Progress::new("sweep", configs.len() as u64));
     let mut points = configs
         .par_iter()
         .map(|(label, cfg)| {
-            let p = measure(label, cfg, &space.scene, space.target, work);
+            let p = measure(label, cfg, &space.scene, space.target, yosys, work);
             if let Some(b) = &bar {
                 b.done(&format!("{label} ({})", &cfg.hash()[..8]));
             }
@@ -399,10 +422,11 @@ pub fn svg(points: &[Point], title: &str) -> String {
             chosen: false,
         })
         .collect();
+    let by = if points.iter().all(|p| p.area_by == "model") { "area model" } else { "Yosys" };
     super::plot::scatter(
         &pts,
         title,
-        "top area, NAND2 gate equivalents (Yosys)",
+        &format!("top area, NAND2 gate equivalents ({by})"),
         "mean error vs exact arithmetic, LSB",
     )
 }
