@@ -30,7 +30,7 @@ fn head(w: &mut VWriter) {
 
 /// The ROM module: `depth` words, two read ports.
 pub fn rom(module: &str, width: u32, depth: usize) -> String {
-    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let ab = addr_bits(depth);
     let mut w = VWriter::new();
     head(&mut w);
     w.line(format!("module {module}_rom #(parameter INIT_FILE = \"{module}.hex\") (input wire [{}:0] a0, input wire [{}:0] a1, output wire [{}:0] d0, output wire [{}:0] d1);", ab - 1, ab - 1, width - 1, width - 1));
@@ -41,6 +41,26 @@ pub fn rom(module: &str, width: u32, depth: usize) -> String {
     w.line("endmodule");
     w.line("`default_nettype wire");
     w.finish()
+}
+
+/// Address bits of a memory of `depth` words (at least one).
+pub fn addr_bits(depth: usize) -> u32 {
+    (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1)
+}
+
+/// Entry-index bits (at least one) and segment-number bits of a segmented design.
+pub fn segment_bits(segments: u32, per_segment: u32) -> (u32, u32) {
+    (per_segment.trailing_zeros().max(1), (32 - (segments - 1).leading_zeros()).max(1))
+}
+
+/// An input inside segment `s` (the last segment holds 0): what the datapath asks
+/// `segment_of` about that segment's base and width.
+pub fn segment_probe(f: u32, segments: u32, s: u32) -> i64 {
+    if s + 1 == segments {
+        0
+    } else {
+        1i64 << (f - 1 - s)
+    }
 }
 
 /// Address bits of a design's ROM.
@@ -76,7 +96,7 @@ pub fn unit(d: &PowerUnitDesign, fm: PowerFormats, n: u32) -> String {
 pub fn core(d: &PowerUnitDesign, fm: PowerFormats, module: &str) -> String {
     let (f, p) = (fm.f, fm.p);
     let depth = rom_depth(d, fm);
-    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let ab = addr_bits(depth);
     let mut w = VWriter::new();
     head(&mut w);
     w.line(format!(
@@ -100,7 +120,7 @@ pub fn core(d: &PowerUnitDesign, fm: PowerFormats, module: &str) -> String {
 fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, ports: bool, mem: &dyn Fn(&mut VWriter)) -> String {
     let (f, p) = (fm.f, fm.p);
     let depth = rom_depth(d, fm);
-    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    let ab = addr_bits(depth);
     // Rounded signed interpolation k0 + round((k1 - k0) * t / 2^F) in P+2+F+1 bits.
     let interp = |w: &mut VWriter, t: &str, tw: u32| {
         let pw = p + 2 + tw + 1;
@@ -170,8 +190,7 @@ fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, port
             per_segment,
             lerp,
         } => {
-            let mb = per_segment.trailing_zeros().max(1);
-            let sb = (32 - (segments - 1).leading_zeros()).max(1);
+            let (mb, sb) = segment_bits(segments, per_segment);
             w.line(format!("wire [{f}:0] y = {{1'b1, {f}'d0}} - x;"));
             w.line("// Segment: the leading one of y (segment 0 also holds y = 2^F).");
             w.line(format!("reg [{}:0] s;", sb - 1));
@@ -192,7 +211,7 @@ fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, port
             w.block("always @*", "", |w| {
                 w.block("case (s)", "endcase", |w| {
                     for s in 0..segments {
-                        let probe = if s + 1 == segments { 0 } else { 1i64 << (f - 1 - s) };
+                        let probe = segment_probe(f, segments, s);
                         let (_, lo, lw) = segment_of(f, segments, probe);
                         let body = if lw >= mb {
                             let sh = lw - mb;

@@ -224,8 +224,8 @@ pub fn blend_finish(cfg: &PipelineConfig) -> Resources {
 pub fn power_datapath(d: &crate::model::power_unit::PowerUnitDesign, fm: crate::model::power_unit::PowerFormats) -> Resources {
     use crate::model::power_unit::{segment_of, PowerUnitDesign};
     let (f, p) = (fm.f, fm.p);
-    let depth = crate::rtlgen::power_units::rom_depth(d, fm);
-    let ab = (usize::BITS - (depth.max(2) - 1).leading_zeros()).max(1);
+    use crate::rtlgen::power_units::{addr_bits, rom_depth, segment_bits, segment_probe};
+    let ab = addr_bits(rom_depth(d, fm));
     // k0 + round((k1 - k0) t / 2^F) and the select of k0 when t = 0 or at the last knot.
     let interp = |tw: u32| {
         let pw = p + 2 + tw + 1;
@@ -254,14 +254,10 @@ pub fn power_datapath(d: &crate::model::power_unit::PowerUnitDesign, fm: crate::
             per_segment,
             lerp,
         } => {
-            let mb = per_segment.trailing_zeros().max(1);
-            let sb = (32 - (segments - 1).leading_zeros()).max(1);
+            let (mb, sb) = segment_bits(segments, per_segment);
             let per = per_segment + u32::from(lerp);
             // t is nonzero only in a segment with more codes than entries.
-            let t_used = (0..segments).any(|s| {
-                let probe = if s + 1 == segments { 0 } else { 1i64 << (f - 1 - s) };
-                segment_of(f, segments, probe).2 > mb
-            });
+            let t_used = (0..segments).any(|s| segment_of(f, segments, segment_probe(f, segments, s)).2 > mb);
             let mut r = Resources::adders(f + 1)
                 + Resources::muxes(segments * sb)
                 + (Resources::adders(f + 1) + Resources::muxes(2 * (f + 1) + f)).scaled(segments as f64)
