@@ -697,9 +697,13 @@ pub fn run() -> anyhow::Result<()> {
             let area = |c: &PipelineConfig| Ok(crate::measure::area_model::estimate(c));
             let mut fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
             let fmax = match min_fmax {
-                Some(f) => Some(crate::fit::run::deepen_for_fmax(&mut fit.chosen, f, &device, &work.join("fpga"), &mut |m| {
-                    eprintln!("fit: {m}")
-                })?),
+                Some(f) => Some(crate::fit::run::deepen_for_fmax(
+                    &mut fit.chosen,
+                    f,
+                    &device,
+                    &work.join("fpga"),
+                    &mut |m| eprintln!("fit: {m}"),
+                )?),
                 None => None,
             };
             let c = &fit.chosen;

@@ -47,5 +47,9 @@ fn the_model_orders_held_out_tops_as_yosys_does() {
         }
     }
     let share = agree as f64 / pairs as f64;
-    assert!(share >= 0.9, "{agree} of {pairs} pairs ordered as Yosys orders them ({:.1} %)", 100.0 * share);
+    assert!(
+        share >= 0.9,
+        "{agree} of {pairs} pairs ordered as Yosys orders them ({:.1} %)",
+        100.0 * share
+    );
 }

@@ -32,9 +32,18 @@ fn bad_and_unreachable_budgets_fail_and_write_nothing() {
 
 /// The chosen configuration's budget measure, from the line `gbump fit` prints.
 fn printed(t: &str, key: &str) -> f64 {
-    let line = t.lines().find(|l| l.starts_with("fit ")).unwrap_or_else(|| panic!("no fit line: {t}"));
+    let line = t
+        .lines()
+        .find(|l| l.starts_with("fit "))
+        .unwrap_or_else(|| panic!("no fit line: {t}"));
     let at = line.find(key).unwrap_or_else(|| panic!("no {key} in {line}")) + key.len();
-    line[at..].trim_start().split(' ').next().unwrap().parse().unwrap_or_else(|_| panic!("{key} in {line}"))
+    line[at..]
+        .trim_start()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap_or_else(|_| panic!("{key} in {line}"))
 }
 
 #[test]
@@ -87,7 +96,17 @@ fn psnr_budgets_fit_and_exact_1_names_its_floor() {
 #[test]
 fn a_bad_min_fmax_is_refused_before_the_search() {
     let o = gbump()
-        .args(["fit", "--scene", "torus_caps", "--budget", "max<=2", "--no-regress", "--min-fmax=-3", "--out", "/nonexistent/x"])
+        .args([
+            "fit",
+            "--scene",
+            "torus_caps",
+            "--budget",
+            "max<=2",
+            "--no-regress",
+            "--min-fmax=-3",
+            "--out",
+            "/nonexistent/x",
+        ])
         .assert()
         .failure();
     let t = text(o.get_output());

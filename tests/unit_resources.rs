@@ -93,7 +93,13 @@ fn every_units_register_count_is_its_verilogs() {
             let own = gbump::rtlgen::units_v::module_name(cfg, u.verilog(cfg)[0].0);
             let text_bits = register_bits(&own, &mods);
             let counted = u.resources(cfg).ff;
-            assert_eq!(counted, text_bits as f64, "{} under {}: counted {counted}, Verilog {text_bits}", u.name(), cfg.to_toml());
+            assert_eq!(
+                counted,
+                text_bits as f64,
+                "{} under {}: counted {counted}, Verilog {text_bits}",
+                u.name(),
+                cfg.to_toml()
+            );
             checked += 1;
         }
     }

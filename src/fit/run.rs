@@ -207,7 +207,13 @@ impl Fit {
 /// stays the same) until the top, placed and routed on the iCE40 `device` in its register
 /// shell, reaches `min_mhz`. Returns the Fmax reached; an error names the best depth when none
 /// does.
-pub fn deepen_for_fmax(chosen: &mut Candidate, min_mhz: f64, device: &str, work: &std::path::Path, say: &mut dyn FnMut(&str)) -> Result<f64> {
+pub fn deepen_for_fmax(
+    chosen: &mut Candidate,
+    min_mhz: f64,
+    device: &str,
+    work: &std::path::Path,
+    say: &mut dyn FnMut(&str),
+) -> Result<f64> {
     use crate::measure::fpga::{fpga_area, Target};
     let mut best: Option<(u32, f64)> = None;
     for depth in chosen.cfg.pipeline_depth..=crate::limits::MAX_PIPELINE_DEPTH {

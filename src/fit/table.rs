@@ -38,7 +38,10 @@ pub fn rows(say: &mut dyn FnMut(&str)) -> Result<Vec<Row>> {
                 }
                 Err(e) => return Err(e),
             };
-            say(&format!("{name} {budget}: {}", if fitted.is_ok() { "fitted" } else { "none meets it" }));
+            say(&format!(
+                "{name} {budget}: {}",
+                if fitted.is_ok() { "fitted" } else { "none meets it" }
+            ));
             out.push(Row {
                 scene: name.to_string(),
                 budget,

@@ -49,7 +49,11 @@ pub const COEFFICIENTS: Coefficients = [
 
 /// The counts of `cfg`'s top: its own logic and every unit instance's.
 pub fn resources(cfg: &PipelineConfig) -> Resources {
-    let t = crate::rtlgen::top::tally(cfg);
+    tally_resources(cfg, &crate::rtlgen::top::tally(cfg))
+}
+
+/// The counts of a top tallied as `t`.
+fn tally_resources(cfg: &PipelineConfig, t: &crate::rtlgen::module::Tally) -> Resources {
     t.glue + t.instances.iter().map(|i| instance_resources(cfg, i)).sum()
 }
 
@@ -87,15 +91,22 @@ pub fn model_area(cfg: &PipelineConfig) -> ModelArea {
     for i in &t.instances {
         let u = crate::units::unit(i.unit).expect("the top instantiates units");
         if ["diffuse_blend", "specular_blend", "light_accumulate", "blend_finish"].contains(&i.unit) {
-            blend += Features { res: instance_resources(cfg, i) }.ge(&COEFFICIENTS);
+            blend += Features {
+                res: instance_resources(cfg, i),
+            }
+            .ge(&COEFFICIENTS);
         }
         if let Some(m) = u.memory(cfg) {
             // An interpolating power unit reads two knots per port: two copies.
-            let per_port = if i.unit == "power_unit" && cfg.power_unit != crate::config::PowerUnitKind::Table { 2 } else { 1 };
+            let per_port = if i.unit == "power_unit" && cfg.power_unit != crate::config::PowerUnitKind::Table {
+                2
+            } else {
+                1
+            };
             memory += (m.depth * m.data_bits * i.copies * per_port) as u64;
         }
     }
-    let res = resources(cfg);
+    let res = tally_resources(cfg, &t);
     ModelArea {
         top_ge: Features { res }.ge(&COEFFICIENTS),
         blend_ge: blend,
@@ -330,7 +341,11 @@ pub fn markdown(coef: &Coefficients, samples: &[Sample], rate: f64) -> String {
     let worst = samples
         .iter()
         .filter(|s| !s.calibration)
-        .max_by(|a, b| ((a.model_ge - a.yosys_ge) / a.yosys_ge).abs().total_cmp(&((b.model_ge - b.yosys_ge) / b.yosys_ge).abs()))
+        .max_by(|a, b| {
+            ((a.model_ge - a.yosys_ge) / a.yosys_ge)
+                .abs()
+                .total_cmp(&((b.model_ge - b.yosys_ge) / b.yosys_ge).abs())
+        })
         .map_or(String::new(), |w| format!(" The worst held-out configuration is `{}`.", w.file));
     let mut s = format!(
         "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth partial-product bit + {:.2} per unsigned and {:.2} per signed inferred multiplier bit-product + {:.2} per adder bit + {:.2} per comparator or multiplexer bit + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",

@@ -267,7 +267,14 @@ pub(crate) fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::ar
 
 /// Measure one configuration on `scene` (cached in `work/points/<key>.json`, the key made of
 /// the configuration, the scene and its files, the sizes, gbump's and Yosys's versions).
-pub fn measure(label: &str, cfg: &PipelineConfig, scene: &str, target: Option<super::fpga::Target>, yosys: bool, work: &Path) -> Result<Point> {
+pub fn measure(
+    label: &str,
+    cfg: &PipelineConfig,
+    scene: &str,
+    target: Option<super::fpga::Target>,
+    yosys: bool,
+    work: &Path,
+) -> Result<Point> {
     let s = crate::scene::Scene::load(scene)?;
     let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s, target, yosys)?));
     if let Ok(text) = std::fs::read_to_string(&cache) {
@@ -422,7 +429,11 @@ pub fn svg(points: &[Point], title: &str) -> String {
             chosen: false,
         })
         .collect();
-    let by = if points.iter().all(|p| p.area_by == "model") { "area model" } else { "Yosys" };
+    let by = if points.iter().all(|p| p.area_by == "model") {
+        "area model"
+    } else {
+        "Yosys"
+    };
     super::plot::scatter(
         &pts,
         title,

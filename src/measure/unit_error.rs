@@ -255,7 +255,8 @@ pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSt
 /// above, with B as stored and H as sent, exact arithmetic, against 1 (full colour).
 /// `normal_range = "binary"` stores +1.0 as 127/128 (at 8 bits); `"symmetric"` as +1.0.
 pub fn flat_highlight_loss(cfg: &PipelineConfig) -> f64 {
-    let b = crate::bumpmap::storage::encode_normal(cfg, glam::DVec3::Z).map(|c| cfg.normal_fmt().to_f64(crate::model::bump_fetch::expand(cfg, c)));
+    let b = crate::bumpmap::storage::encode_normal(cfg, glam::DVec3::Z)
+        .map(|c| cfg.normal_fmt().to_f64(crate::model::bump_fetch::expand(cfg, c)));
     let h = cfg.lh_fmt().to_f64(crate::raster::tri_state::send_lh(cfg, 1.0).expect("finite"));
     (1.0 - powi_exact((b[2] * h).clamp(0.0, 1.0), cfg.shininess)) * cfg.colour_max() as f64
 }

@@ -44,7 +44,7 @@ pub struct ModuleBuilder {
 
 /// Binary `+`/`-` and `?` operators of an expression, outside index brackets and replication
 /// counts (a sign after `(`, `{`, `,`, `=`, `?` or `:` is no adder; `+:` is a part select).
-pub fn operators(expr: &str) -> (u32, u32) {
+fn operators(expr: &str) -> (u32, u32) {
     let mut depth = 0;
     let (mut add, mut mux) = (0, 0);
     let b = expr.as_bytes();
@@ -102,7 +102,11 @@ impl ModuleBuilder {
         let (a, m) = operators(expr);
         self.tally.glue += Resources::adders(a * width) + Resources::muxes(m * width);
         for (name, (w, depth, read)) in self.arrays.iter_mut() {
-            if expr.contains(&format!("{name}[")) {
+            // `name[`, found without building the pattern: this runs for every expression.
+            if expr
+                .match_indices(name.as_str())
+                .any(|(at, _)| expr[at + name.len()..].starts_with('['))
+            {
                 // Each read selects among every bank; the registers count at the first read.
                 self.tally.glue.array += (*w * *depth) as f64;
                 if !*read {
@@ -295,5 +299,17 @@ impl ModuleBuilder {
         s += &self.body.finish();
         s += "endmodule\n";
         (s, self.tally)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn operators_skip_part_selects_signs_and_indices() {
+        assert_eq!(operators(" a + b - c;"), (2, 0));
+        assert_eq!(operators(" x[j*4 +: 4] + {1'b0, y[3:0]};"), (1, 0));
+        assert_eq!(operators(" s ? a + b : -c;"), (1, 1));
     }
 }

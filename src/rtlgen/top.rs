@@ -525,12 +525,7 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, bump: &str, combinational: boo
         let st = s.stage_of(&[bump]);
         let t = s.fill(bump, st);
         s.m.wire("b", nb3, None);
-        s.m.inst_helper(
-            cfg,
-            "bump_fetch_comb",
-            "u_bump_fetch",
-            &[("bump", t), ("b", "b".into())],
-        );
+        s.m.inst_helper(cfg, "bump_fetch_comb", "u_bump_fetch", &[("bump", t), ("b", "b".into())]);
         s.source("b", st);
     } else {
         let port = units::inputs(u, cfg).remove(0).name;
@@ -956,7 +951,11 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         let (cc, a) = (s.fill(&format!("{{{c}}}"), at), s.fill(acc, at));
         s.m.wire(name, c3, None);
         s.m.inst(cfg, finish, inst, &[("c_in", cc), ("acc", a), ("c_out", name.to_string())], &[]);
-        s.m.factor_frac(if inst == "u_diffuse_finish" { cfg.dot_frac_bits } else { cfg.power_frac_bits });
+        s.m.factor_frac(if inst == "u_diffuse_finish" {
+            cfg.dot_frac_bits
+        } else {
+            cfg.power_frac_bits
+        });
         s.source(name, at + finish.latency(cfg));
         Some(name.to_string())
     });

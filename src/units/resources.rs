@@ -39,18 +39,22 @@ impl Resources {
     pub fn row(&self) -> [f64; KINDS] {
         [self.ff, self.pp, self.mul, self.smul, self.add, self.cmp, self.mux, self.array]
     }
-    pub fn scaled(&self, k: f64) -> Resources {
-        let r = self.row().map(|x| x * k);
+    /// The counts of a [`Resources::row`].
+    pub fn from_row(r: [f64; KINDS]) -> Resources {
+        let [ff, pp, mul, smul, add, cmp, mux, array] = r;
         Resources {
-            ff: r[0],
-            pp: r[1],
-            mul: r[2],
-            smul: r[3],
-            add: r[4],
-            cmp: r[5],
-            mux: r[6],
-            array: r[7],
+            ff,
+            pp,
+            mul,
+            smul,
+            add,
+            cmp,
+            mux,
+            array,
         }
+    }
+    pub fn scaled(&self, k: f64) -> Resources {
+        Resources::from_row(self.row().map(|x| x * k))
     }
     pub fn regs(w: u32) -> Resources {
         Resources {
@@ -90,16 +94,7 @@ impl std::ops::Add for Resources {
     type Output = Resources;
     fn add(self, o: Resources) -> Resources {
         let (a, b) = (self.row(), o.row());
-        Resources {
-            ff: a[0] + b[0],
-            pp: a[1] + b[1],
-            mul: a[2] + b[2],
-            smul: a[3] + b[3],
-            add: a[4] + b[4],
-            cmp: a[5] + b[5],
-            mux: a[6] + b[6],
-            array: a[7] + b[7],
-        }
+        Resources::from_row(std::array::from_fn(|i| a[i] + b[i]))
     }
 }
 
