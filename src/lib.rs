@@ -24,6 +24,7 @@ pub mod render;
 pub mod rtlgen;
 pub mod scene;
 pub mod sim;
+pub mod simd;
 pub mod temp_files;
 pub mod tool;
 pub mod units;

@@ -414,13 +414,18 @@ pub fn made_rate(cfg: &PipelineConfig, count: u64) -> Result<f64> {
     let mut made = Vec::new();
     for _ in 0..HARNESS_TRIES {
         let t = Instant::now();
+        // Each worker reuses one buffer, as the dump recycles the buffers its writer is done with.
+        let chunk_bytes = crate::vectors::sources::RANDOM_CHUNK as usize * maker.layout.bytes();
         let bytes = (0..count.div_ceil(crate::vectors::sources::RANDOM_CHUNK))
             .into_par_iter()
-            .map(|c| {
-                let mut bin = Vec::new();
-                maker.random_chunk(1, c, count, Some(&mut bin), None, false)?;
-                Ok(bin.len())
-            })
+            .map_init(
+                || Vec::with_capacity(chunk_bytes),
+                |bin, c| {
+                    bin.clear();
+                    maker.random_chunk(1, c, count, Some(bin), None, false)?;
+                    Ok(bin.len())
+                },
+            )
             .sum::<Result<usize>>()?;
         std::hint::black_box(bytes);
         made.push(count as f64 / t.elapsed().as_secs_f64());

@@ -16,6 +16,7 @@ use super::pipeline::{BumpState, BumpTexel, FragmentIn};
 use super::power_table::PowerTable;
 use crate::config::{BlendOrder, PipelineConfig};
 use crate::fixed::Rounding;
+use crate::simd::Level;
 
 /// `x / 2^down` (after `x · 2^up`) rounded as a [`Rounding`] says, as one add and two shifts:
 /// `(x + bias + ((x >> down) & even)) >> down` is floor, half-up or half-to-even by the
@@ -107,18 +108,28 @@ impl FastModel {
     /// # Panics
     /// As [`colours`](Self::colours).
     pub fn colours_run(&self, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        self.colours_run_at(crate::simd::level(), state, frags, out)
+    }
+
+    /// [`colours_run`](Self::colours_run) with the loop compiled for `level` (every level gives
+    /// the same colours; the tests check each one this CPU has).
+    ///
+    /// # Panics
+    /// As [`colours`](Self::colours), and when the CPU lacks `level`.
+    pub fn colours_run_at(&self, level: Level, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         assert_eq!(frags.len(), out.len(), "one colour per fragment");
+        assert!(crate::simd::supported(level), "{level:?} is beyond this CPU");
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run::<1, $tl>(state, frags, out),
-                    2 => self.run::<2, $tl>(state, frags, out),
-                    3 => self.run::<3, $tl>(state, frags, out),
-                    4 => self.run::<4, $tl>(state, frags, out),
-                    5 => self.run::<5, $tl>(state, frags, out),
-                    6 => self.run::<6, $tl>(state, frags, out),
-                    7 => self.run::<7, $tl>(state, frags, out),
-                    8 => self.run::<8, $tl>(state, frags, out),
+                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state), frags, out),
+                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state), frags, out),
+                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state), frags, out),
+                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state), frags, out),
+                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state), frags, out),
+                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state), frags, out),
+                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state), frags, out),
+                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state), frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -130,10 +141,104 @@ impl FastModel {
         }
     }
 
-    fn run<const N: usize, const TEXTURE_LAST: bool>(&self, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        let lights = lights::<N>(state);
-        for (f, o) in frags.iter().zip(out.iter_mut()) {
-            *o = self.one::<N, TEXTURE_LAST>(&lights, f);
+    /// [`run`](Self::run) compiled for `level`, which the CPU must have.
+    #[inline(always)]
+    fn run_at<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        level: Level,
+        lights: &[Light; N],
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
+        match level {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU has every feature the function is compiled for (checked by the
+            // caller).
+            Level::Avx512 => unsafe { self.run_avx512::<N, TEXTURE_LAST>(lights, frags, out) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
+            Level::Avx2 => unsafe { self.run_avx2::<N, TEXTURE_LAST>(lights, frags, out) },
+            _ => self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out),
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
+    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi2")]
+    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out)
+    }
+
+    /// One triangle's fragments a block of [`LANES`] at a time, each value of the block in
+    /// its own array so that every step is one vector operation across the block.
+    #[inline(always)]
+    fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
+            self.block::<N, TEXTURE_LAST>(lights, f, o);
+        }
+    }
+
+    #[inline(always)]
+    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        let mut b = [[0i64; LANES]; 3];
+        let (mut dmask, mut smask) = ([0i64; LANES], [0i64; LANES]);
+        let (mut c_src, mut tex) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
+        for (i, f) in frags.iter().enumerate().take(LANES) {
+            let v = match f.bump {
+                BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
+                BumpTexel::Index(x) => self.palette[x as usize],
+            };
+            let bypass = self.skip_flat & (v == self.flat);
+            dmask[i] = -i64::from(self.diffuse & f.diffuse_en & !bypass);
+            smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
+            for ch in 0..3 {
+                b[ch][i] = v[ch];
+                c_src[ch][i] = f.c_src[ch] as i64;
+                tex[ch][i] = f.tex[ch] as i64;
+            }
+        }
+        let (mut dacc, mut sacc) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
+        let top = self.specular_factor.len() as i64 - 1;
+        for s in lights {
+            let mut dh = [0i64; LANES];
+            for i in 0..LANES {
+                let dl = self
+                    .dot
+                    .apply(b[0][i] * s.l[0] + b[1][i] * s.l[1] + b[2][i] * s.l[2])
+                    .clamp(0, self.dot_max);
+                let fd = (dl << self.diffuse_align) & dmask[i];
+                dh[i] = self.dot.apply(b[0][i] * s.h[0] + b[1][i] * s.h[1] + b[2][i] * s.h[2]).clamp(0, top);
+                for ch in 0..3 {
+                    dacc[ch][i] += fd * s.klc[ch];
+                }
+            }
+            let mut fs = [0i64; LANES];
+            for i in 0..LANES {
+                // SAFETY: `dh` is clamped to 0..=top, the table's last index.
+                fs[i] = unsafe { *self.specular_factor.get_unchecked(dh[i] as usize) } & smask[i];
+            }
+            for ch in 0..3 {
+                for i in 0..LANES {
+                    sacc[ch][i] += fs[i] * s.klc[ch];
+                }
+            }
+        }
+        let mut c = c_src;
+        self.close_block(&mut c, &dacc);
+        if TEXTURE_LAST {
+            self.close_block(&mut c, &sacc);
+            self.texture_block(&mut c, &tex);
+        } else {
+            self.texture_block(&mut c, &tex);
+            self.close_block(&mut c, &sacc);
+        }
+        for (i, o) in out.iter_mut().enumerate().take(LANES) {
+            *o = [c[0][i] as u32, c[1][i] as u32, c[2][i] as u32];
         }
     }
 
@@ -199,6 +304,28 @@ impl FastModel {
         [ch(0), ch(1), ch(2)]
     }
 
+    /// [`close`](Self::close) across a block.
+    #[inline(always)]
+    fn close_block(&self, c: &mut [[i64; LANES]; 3], acc: &[[i64; LANES]; 3]) {
+        for ch in 0..3 {
+            for i in 0..LANES {
+                c[ch][i] = (c[ch][i] + self.blend.apply(acc[ch][i])).min(self.colour_max);
+            }
+        }
+    }
+
+    /// [`texture`](Self::texture) across a block.
+    #[inline(always)]
+    fn texture_block(&self, c: &mut [[i64; LANES]; 3], tex: &[[i64; LANES]; 3]) {
+        let w = self.colour_bits;
+        for ch in 0..3 {
+            for i in 0..LANES {
+                let p = c[ch][i] * tex[ch][i] + (1i64 << (w - 1));
+                c[ch][i] = (p + (p >> w)) >> w;
+            }
+        }
+    }
+
     /// Texture modulation: `fixed::unorm_mul` on every channel.
     #[inline(always)]
     fn texture(&self, c: [u32; 3], t: [u32; 3]) -> [u32; 3] {
@@ -237,6 +364,9 @@ impl FastModel {
         }
     }
 }
+
+/// Fragments of one block: AVX-512 holds eight 64-bit values.
+const LANES: usize = 8;
 
 /// One light slot as the blends use it: L, H, and k·Lc per channel (the product the exact
 /// blend sum multiplies by the factor; formed once per triangle).
@@ -277,9 +407,36 @@ mod tests {
             let want = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
             assert_eq!(*got, want, "config {}:\n{}\nn = {shininess}, {s:?}", cfg.hash(), cfg.to_toml());
             assert_eq!(fast.colour(&s.state, &s.frag), want);
-            let mut one = [[0; 3]; 2];
-            fast.colours_run(&s.state, &[s.frag, s.frag], &mut one);
-            assert_eq!(one, [want; 2]);
+        }
+        // A triangle's fragments together, as the encoder gives them (runs of every length
+        // across the block size), at every vector level this CPU has.
+        let mut runs: Vec<(&BumpState, Vec<FragmentIn>, Vec<[u32; 3]>)> = Vec::new();
+        for (s, want) in stims.iter().zip(&out) {
+            match runs.last_mut() {
+                Some((st, fr, w)) if **st == s.state && !s.tri_start => {
+                    fr.push(s.frag);
+                    w.push(*want);
+                }
+                _ => runs.push((&s.state, vec![s.frag], vec![*want])),
+            }
+        }
+        // One run longer than any block, out of every fragment under the first state.
+        let long: Vec<FragmentIn> = stims.iter().take(3 * super::LANES + 5).map(|s| s.frag).collect();
+        let long_want: Vec<[u32; 3]> = long
+            .iter()
+            .map(|f| shade(cfg, &table, Some(&palette), &stims[0].state, f).colour())
+            .collect();
+        runs.push((&stims[0].state, long, long_want));
+        for level in crate::simd::Level::Avx512
+            .and_below()
+            .into_iter()
+            .filter(|l| crate::simd::supported(*l))
+        {
+            for (state, frags, want) in &runs {
+                let mut got = vec![[0; 3]; frags.len()];
+                fast.colours_run_at(level, state, frags, &mut got);
+                assert_eq!(&got, want, "config {} at {level:?}, a run of {}", cfg.hash(), frags.len());
+            }
         }
     }
 

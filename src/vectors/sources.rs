@@ -122,7 +122,23 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 }
 
 /// A random fragment: raw codes over the whole of every format, blends mostly enabled.
+#[inline(always)]
 pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn {
+    if !cfg.palette {
+        // The same draws in the same order, made as one block.
+        use super::rng::{range_of, unit_of};
+        let x = rng.next_block::<11>();
+        let (cmax, nmax) = (cfg.colour_max() as i64, (1i64 << cfg.normal_bits) - 1);
+        let code = |i: usize| range_of(x[i], 0, nmax) as u32;
+        let colour = |i: usize| range_of(x[i], 0, cmax) as u32;
+        return FragmentIn {
+            bump: BumpTexel::Rgb([code(0), code(1), code(2)]),
+            c_src: [colour(3), colour(4), colour(5)],
+            tex: [colour(6), colour(7), colour(8)],
+            diffuse_en: unit_of(x[9]) < 0.85,
+            specular_en: unit_of(x[10]) < 0.85,
+        };
+    }
     let cmax = cfg.colour_max() as i64;
     let nmax = (1i64 << cfg.normal_bits) - 1;
     let codes = three(|| rng.range(0, nmax) as u32);
@@ -198,7 +214,15 @@ impl RandomTriangles {
         let tri_start = self.start(cfg);
         let k = (self.left as usize).min(max);
         frags.clear();
-        frags.extend((0..k).map(|_| random_fragment(cfg, &mut self.rng)));
+        match crate::simd::level() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `simd::level` names only what this CPU has.
+            crate::simd::Level::Avx512 => unsafe { fragments_avx512(cfg, &mut self.rng, k, frags) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
+            crate::simd::Level::Avx2 => unsafe { fragments_avx2(cfg, &mut self.rng, k, frags) },
+            _ => fragments(cfg, &mut self.rng, k, frags),
+        }
         self.left -= k as u64;
         (&self.state, tri_start)
     }
@@ -218,6 +242,25 @@ impl RandomTriangles {
         }
         tri_start
     }
+}
+
+/// `k` random fragments onto `frags` (each fragment's draws are one block of mixes, which
+/// the vector variants below run side by side).
+#[inline(always)]
+fn fragments(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
+    frags.extend((0..k).map(|_| random_fragment(cfg, rng)));
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
+unsafe fn fragments_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
+    fragments(cfg, rng, k, frags)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,bmi2")]
+unsafe fn fragments_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
+    fragments(cfg, rng, k, frags)
 }
 
 /// The fragments of scene `name` rendered at `size` (default: the scene's own), grouped by

@@ -120,6 +120,10 @@ pub struct TopEncoder<'a> {
     lc: Lanes<'a>,
     k: Lanes<'a>,
     out: Lanes<'a>,
+    /// Where the fragment's stimulus columns start, when they follow one another in
+    /// [`fill_fragment`](Self::fill_fragment)'s order within 128 bits (every layout
+    /// `top_layout` makes): they are then packed in one word pair instead of lane by lane.
+    packed_from: Option<u32>,
 }
 
 /// A column's lanes: where lane 0 starts, their width and the values that fit them.
@@ -153,10 +157,15 @@ impl<'a> Lanes<'a> {
     /// compare inline, the message out of line: this runs for every lane of every record).
     #[inline(always)]
     fn set(&self, r: &mut Record, i: u32, v: i64) {
+        self.check(i, v);
+        r.set(self.lsb + i * self.width, self.width, v as u64);
+    }
+
+    #[inline(always)]
+    fn check(&self, i: u32, v: i64) {
         if v.wrapping_sub(self.lo) as u64 > self.hi.wrapping_sub(self.lo) as u64 {
             self.misfit(i, v);
         }
-        r.set(self.lsb + i * self.width, self.width, v as u64);
     }
 
     #[cold]
@@ -183,6 +192,7 @@ impl<'a> TopEncoder<'a> {
             lc: Lanes::of(c.lc),
             k: Lanes::of(c.k),
             out: Lanes::of(c.out),
+            packed_from: packed_from(&c),
         }
     }
 
@@ -220,10 +230,58 @@ impl<'a> TopEncoder<'a> {
         }
     }
 
+    /// The 64-bit words of a record that [`fill_fragment`](Self::fill_fragment) writes: the
+    /// rest of a record is its triangle's state.
+    pub fn fragment_words(&self) -> Vec<usize> {
+        let mut cols = vec![self.bump, self.c_src, self.tex, self.de, self.se, self.out];
+        cols.extend(self.start);
+        let mut words: Vec<usize> = cols
+            .iter()
+            .filter(|c| c.width > 0)
+            .flat_map(|c| (c.lsb / 64) as usize..=((c.lsb + c.width - 1) / 64) as usize)
+            .collect();
+        words.sort_unstable();
+        words.dedup();
+        words
+    }
+
     /// Every other column (the fragment, `tri_start`, the result), into `r` (where they are
     /// zero).
     #[inline]
     pub fn fill_fragment(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3], r: &mut Record) {
+        let Some(lsb) = self.packed_from else {
+            return self.fill_fragment_lanes(frag, tri_start, colour, r);
+        };
+        // A column's three lanes as one value (each lane is at most 21 bits wide here).
+        let three = |l: &Lanes, v: [u32; 3]| {
+            v.iter().rev().fold(0u64, |acc, &x| {
+                l.check(0, x as i64);
+                (acc << l.width) | x as u64
+            })
+        };
+        let bump = match frag.bump {
+            BumpTexel::Rgb(codes) => three(&self.bump, codes),
+            BumpTexel::Index(ix) => {
+                self.bump.check(0, ix as i64);
+                ix as u64
+            }
+        };
+        let mut at = lsb;
+        for (v, w) in [
+            (bump, self.bump.col.width),
+            (three(&self.c_src, frag.c_src), self.c_src.col.width),
+            (three(&self.tex, frag.tex), self.tex.col.width),
+        ] {
+            r.set(at, w, v);
+            at += w;
+        }
+        let flags = frag.diffuse_en as u64 | (frag.specular_en as u64) << 1 | (tri_start as u64) << 2;
+        r.set(at, 2 + self.start.is_some() as u32, flags);
+        r.set(self.out.lsb, self.out.col.width, three(&self.out, colour));
+    }
+
+    /// [`fill_fragment`](Self::fill_fragment) a lane at a time, for any layout.
+    fn fill_fragment_lanes(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3], r: &mut Record) {
         if let Some(c) = &self.start {
             c.set(r, 0, tri_start as i64);
         }
@@ -243,6 +301,28 @@ impl<'a> TopEncoder<'a> {
         self.de.set(r, 0, frag.diffuse_en as i64);
         self.se.set(r, 0, frag.specular_en as i64);
     }
+}
+
+/// Where the fragment's stimulus columns start when they lie one after another in
+/// `fill_fragment`'s order, each three-lane column and the result within one 64-bit value.
+fn packed_from(c: &TopColumns) -> Option<u32> {
+    let mut cols = vec![c.bump, c.c_src, c.tex, c.de, c.se];
+    cols.extend(c.start);
+    let from = cols[0].lsb;
+    let mut at = from;
+    for (i, col) in cols.iter().enumerate() {
+        // The bump column is three codes or one palette index; the flags one bit each.
+        let lanes_ok = match i {
+            0 => col.lanes == 3 || col.lanes == 1,
+            1 | 2 => col.lanes == 3,
+            _ => col.lanes == 1 && col.width == 1,
+        };
+        if col.lsb != at || !lanes_ok || col.width > 63 {
+            return None;
+        }
+        at += col.width;
+    }
+    (c.out.lanes == 3 && c.out.width <= 63).then_some(from)
 }
 
 /// Read a top record's stimulus back (the inverse of [`top_record`]; the expected columns are

@@ -146,17 +146,27 @@ pub struct RunEncoder<'m, 'a> {
     maker: &'m TopRecords<'a>,
     enc: TopEncoder<'m>,
     colours: Vec<[u32; 3]>,
+    /// The run's state columns, the rest zero.
     state: Record,
+    /// A fragment's columns, in the words `frag_words` names (the others stay zero).
     r: Record,
+    frag_words: Vec<usize>,
+    /// One binary record as whole words, its state already in place: a fragment rewrites
+    /// only its own words, and the record goes to the output in one copy.
+    bytes: Vec<u8>,
 }
 
 impl<'m, 'a> RunEncoder<'m, 'a> {
     pub fn new(maker: &'m TopRecords<'a>) -> RunEncoder<'m, 'a> {
+        let enc = TopEncoder::new(maker.cfg, &maker.layout);
+        let r = Record::new(&maker.layout);
         RunEncoder {
-            enc: TopEncoder::new(maker.cfg, &maker.layout),
+            frag_words: enc.fragment_words(),
+            enc,
             colours: vec![[0; 3]; BATCH],
-            state: Record::new(&maker.layout),
-            r: Record::new(&maker.layout),
+            state: r.clone(),
+            bytes: vec![0; 8 * r.words.len()],
+            r,
             maker,
         }
     }
@@ -167,20 +177,36 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         let m = self.maker;
         self.state.words.fill(0);
         self.enc.fill_state(run.state, &mut self.state);
+        for (dst, w) in self.bytes.chunks_exact_mut(8).zip(&self.state.words) {
+            dst.copy_from_slice(&w.to_le_bytes());
+        }
         let (bytes, digits) = (m.layout.bytes(), m.layout.hex_digits());
+        if let Some(bin) = bin.as_deref_mut() {
+            bin.reserve(bytes * run.frags.len());
+        }
         for (b, frags) in run.frags.chunks(BATCH).enumerate() {
             let out = &mut self.colours[..frags.len()];
             m.fast.colours_run(run.state, frags, out);
             for (k, (f, c)) in frags.iter().zip(out.iter()).enumerate() {
                 let i = b * BATCH + k;
                 m.check(run.first + i as u64, run.state, f, *c)?;
-                self.r.words.copy_from_slice(&self.state.words);
+                for &w in &self.frag_words {
+                    self.r.words[w] = 0;
+                }
                 self.enc.fill_fragment(f, run.tri_start && i == 0, *c, &mut self.r);
+                for &w in &self.frag_words {
+                    self.r.words[w] |= self.state.words[w];
+                    self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
+                }
                 if let Some(bin) = bin.as_deref_mut() {
-                    self.r.to_bytes(bytes, bin);
+                    bin.extend_from_slice(&self.bytes[..bytes]);
                 }
                 if let Some(hex) = hex.as_deref_mut() {
-                    hex.push_str(&self.r.hex(digits));
+                    let mut whole = self.state.clone();
+                    for &w in &self.frag_words {
+                        whole.words[w] = self.r.words[w];
+                    }
+                    hex.push_str(&whole.hex(digits));
                     hex.push('\n');
                 }
             }

@@ -304,6 +304,10 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             // previous batch, so the disk and the cores work at the same time.
             let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<(u64, Vec<TopStim>, String, Vec<u8>)>>(1);
             let want_units = ws.iter().any(|w| w.target != "top");
+            // Binary buffers the writer is done with, for the next chunks: fresh ones would
+            // each cost their pages' first-touch faults.
+            let spare: std::sync::Mutex<Vec<Vec<u8>>> = Default::default();
+            let spare = &spare;
             ws = std::thread::scope(|scope| -> Result<Vec<SetWriter>> {
                 let writer = scope.spawn(move || -> Result<Vec<SetWriter>> {
                     for batch in rx {
@@ -314,6 +318,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                             if want_units && ws.iter().any(|w| w.target != "top" && !w.full()) {
                                 write_tops(cfg, mem, &stims, &mut ws, false)?;
                             }
+                            spare.lock().expect("buffer pool").push(bin);
                         }
                     }
                     Ok(ws)
@@ -328,7 +333,10 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     let done = (c0..c1)
                         .into_par_iter()
                         .map(|c| {
-                            let (mut hex, mut bin) = (String::new(), Vec::with_capacity(CHUNK as usize * tl.bytes()));
+                            let mut bin = spare.lock().expect("buffer pool").pop().unwrap_or_default();
+                            bin.clear();
+                            bin.reserve(CHUNK as usize * tl.bytes());
+                            let mut hex = String::new();
                             let (len, stims) =
                                 maker.random_chunk(o.seed, c, *n, o.binary.then_some(&mut bin), o.text.then_some(&mut hex), keep_stims)?;
                             Ok((len, stims, hex, bin))

@@ -1,0 +1,60 @@
+//! Which vector extensions the bulk loops (the fast model, random records) run with. They are
+//! written as plain loops over fixed-size blocks and compiled three times: for AVX-512, for
+//! AVX2 and for the baseline CPU; the best the machine has is chosen once, at run time, so
+//! one binary is fast everywhere and correct everywhere. Every level gives the same bits:
+//! the tests run each level the test machine has.
+
+/// A set of vector extensions, best last.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Level {
+    Baseline,
+    Avx2,
+    Avx512,
+}
+
+impl Level {
+    /// Every level up to `self`.
+    pub fn and_below(self) -> Vec<Level> {
+        [Level::Baseline, Level::Avx2, Level::Avx512]
+            .into_iter()
+            .filter(|l| *l <= self)
+            .collect()
+    }
+}
+
+/// The best level this CPU runs (detected once; later calls are a load). `GBUMP_SIMD=
+/// baseline|avx2` caps it, to measure or check a lower level on a machine with a higher one.
+pub fn level() -> Level {
+    static LEVEL: std::sync::OnceLock<Level> = std::sync::OnceLock::new();
+    *LEVEL.get_or_init(|| {
+        let cap = match std::env::var("GBUMP_SIMD").as_deref() {
+            Ok("baseline") => Level::Baseline,
+            Ok("avx2") => Level::Avx2,
+            _ => Level::Avx512,
+        };
+        detected().min(cap)
+    })
+}
+
+/// Whether this CPU runs code compiled for `level`.
+pub fn supported(level: Level) -> bool {
+    static DETECTED: std::sync::OnceLock<Level> = std::sync::OnceLock::new();
+    level <= *DETECTED.get_or_init(detected)
+}
+
+#[cfg(target_arch = "x86_64")]
+fn detected() -> Level {
+    use std::arch::is_x86_feature_detected as has;
+    if has!("avx512f") && has!("avx512dq") && has!("avx512vl") && has!("avx512bw") && has!("avx2") && has!("bmi2") {
+        Level::Avx512
+    } else if has!("avx2") && has!("bmi2") {
+        Level::Avx2
+    } else {
+        Level::Baseline
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn detected() -> Level {
+    Level::Baseline
+}
