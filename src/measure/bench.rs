@@ -493,8 +493,18 @@ pub fn model_speed(cfg: &PipelineConfig) -> (f64, f64) {
     (fast_rate, readable_rate)
 }
 
-/// Bytes per second the disk under `path` takes: `bytes` written from memory and synced.
+/// Bytes per second the disk under `path` takes: `bytes` written from memory and synced,
+/// best of `HARNESS_TRIES` (as the encoder's figure is), since a virtual disk's sync time
+/// varies several-fold from one write to the next.
 pub fn disk_rate(path: &Path, bytes: usize) -> Result<f64> {
+    let mut best: f64 = 0.0;
+    for _ in 0..HARNESS_TRIES {
+        best = best.max(disk_rate_once(path, bytes)?);
+    }
+    Ok(best)
+}
+
+fn disk_rate_once(path: &Path, bytes: usize) -> Result<f64> {
     use std::io::Write;
     let block = vec![0x5Au8; 1 << 20];
     let t = Instant::now();

@@ -179,7 +179,14 @@ impl FastModel {
     #[inline(always)]
     fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
-            self.block::<N, TEXTURE_LAST>(lights, f, o);
+            if f.len() <= SCALAR_MAX {
+                // Too few to fill a block: each alone costs less than a block of padding.
+                for (f, o) in f.iter().zip(o.iter_mut()) {
+                    *o = self.one::<N, TEXTURE_LAST>(lights, f);
+                }
+            } else {
+                self.block::<N, TEXTURE_LAST>(lights, f, o);
+            }
         }
     }
 
@@ -367,6 +374,8 @@ impl FastModel {
 
 /// Fragments of one block: AVX-512 holds eight 64-bit values.
 const LANES: usize = 8;
+/// Fragments that go one at a time rather than as a padded block.
+const SCALAR_MAX: usize = 2;
 
 /// One light slot as the blends use it: L, H, and k·Lc per channel (the product the exact
 /// blend sum multiplies by the factor; formed once per triangle).
