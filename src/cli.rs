@@ -278,6 +278,27 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-areamodel")]
         work: PathBuf,
     },
+    /// The survey's bump engines (paper §2-3, §6; Cg §8) in f64 on the same scenes, against the
+    /// Blinn reference: PSNR, max/mean error, pixels > 1 LSB, seam error; engines.md, .csv, .png.
+    Engines {
+        /// Scenes (built-in names or .toml paths); every built-in scene when none is given.
+        #[arg(long = "scene", value_name = "NAME")]
+        scenes: Vec<String>,
+        /// Engines to run (the Blinn reference is always run); every engine when none is given.
+        #[arg(long = "engine", value_name = "NAME")]
+        engines: Vec<String>,
+        /// Image size WxH (default: each scene's own, halved).
+        #[arg(long)]
+        size: Option<String>,
+        /// Texels along a side of EMBM's environment maps.
+        #[arg(long, default_value_t = crate::engines::embm::EMBM_MAP)]
+        embm_map: u32,
+        /// Texels along a face edge of the Cg engine's normalisation cube map.
+        #[arg(long, default_value_t = crate::engines::cg::CUBE_FACE)]
+        cg_cube: u32,
+        #[arg(long, default_value = "out/engines")]
+        out: PathBuf,
+    },
     /// Measure speed: model, vector dump, Icarus, Verilator harness and raw Verilated rate.
     Bench {
         #[command(flatten)]
@@ -818,6 +839,14 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
         }
+        Cmd::Engines {
+            scenes,
+            engines,
+            size,
+            embm_map,
+            cg_cube,
+            out,
+        } => engines_command(&scenes, &engines, size.as_deref(), crate::engines::Maps { embm_map, cg_cube }, &out)?,
         Cmd::Bench { pick, work } => {
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;
@@ -859,6 +888,49 @@ pub fn run() -> anyhow::Result<()> {
         Cmd::Limits => out!("{}", crate::limits::markdown()),
         Cmd::Timing => out!("{}", crate::units::timing::markdown()),
     }
+    Ok(())
+}
+
+fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, maps: crate::engines::Maps, out: &Path) -> Result<()> {
+    use crate::engines::{engine, report, ENGINES};
+    use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_ENV_MAP_SIDE};
+    check_count("--embm-map", maps.embm_map.into(), 2, MAX_ENV_MAP_SIDE.into(), "MAX_ENV_MAP_SIDE")?;
+    check_count("--cg-cube", maps.cg_cube.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    let picked: Vec<&'static crate::engines::Engine> = if engines.is_empty() {
+        ENGINES.iter().collect()
+    } else {
+        engines
+            .iter()
+            .map(|n| {
+                engine(n).ok_or_else(|| {
+                    Error::Other(format!(
+                        "--engine {n}: no such engine\n  fix: use one of {}",
+                        ENGINES.iter().map(|e| e.name).collect::<Vec<_>>().join(", ")
+                    ))
+                })
+            })
+            .collect::<Result<_>>()?
+    };
+    let scenes: Vec<String> = if scenes.is_empty() {
+        builtin::ALL.iter().map(|(n, _)| n.to_string()).collect()
+    } else {
+        scenes.to_vec()
+    };
+    let size = size.map(crate::limits::parse_size).transpose()?;
+    let t = report::measure(&scenes, &picked, size, maps)?;
+    let (w, h, px) = t.contact_sheet();
+    let md = t.markdown();
+    let png = crate::render::output::encode_png(w, h, &px)?;
+    crate::render::output::write_files(
+        out,
+        &[
+            ("engines.md".to_string(), md.clone().into_bytes()),
+            ("engines.csv".to_string(), t.csv().into_bytes()),
+            ("engines.png".to_string(), png),
+        ],
+    )?;
+    out!("{md}");
+    outln!("wrote engines.md, engines.csv, engines.png in {}", out.display());
     Ok(())
 }
 

@@ -8,6 +8,7 @@ pub mod capi;
 pub mod cli;
 pub mod config;
 pub mod cosim;
+pub mod engines;
 pub mod error;
 pub mod fit;
 pub mod fixed;

@@ -42,6 +42,8 @@ pub const MAX_BATCH_RECORDS: u64 = 1 << 24;
 pub const MAX_SHININESS: u32 = 1024;
 /// Texels per side of a normalisation cube-map face.
 pub const MAX_CUBE_SIDE: u32 = 1024;
+/// Texels per side of EMBM's environment maps (`gbump engines --embm-map`).
+pub const MAX_ENV_MAP_SIDE: u32 = 4096;
 /// Register stages per unit (`pipeline_depth`): the deepest unit, the parallel blend, has
 /// three cuts (`units::timing`), so a fifth stage would cut nothing.
 pub const MAX_PIPELINE_DEPTH: u32 = 4;
@@ -113,7 +115,12 @@ pub const ALL: &[(&str, u64, &str)] = &[
     (
         "MAX_CUBE_SIDE",
         MAX_CUBE_SIDE as u64,
-        "texels per side of a cube-map face (`--cube-size`)",
+        "texels per side of a cube-map face (`--cube-size`, `engines --cg-cube`)",
+    ),
+    (
+        "MAX_ENV_MAP_SIDE",
+        MAX_ENV_MAP_SIDE as u64,
+        "texels per side of EMBM's environment maps (`engines --embm-map`)",
     ),
     (
         "MAX_PIPELINE_DEPTH",

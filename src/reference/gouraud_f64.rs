@@ -7,7 +7,7 @@ use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DVec2, DVec3};
 
 /// Filtered normal without renormalisation: what a texture unit hands the pipeline.
-fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filter) -> DVec3 {
+pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filter) -> DVec3 {
     match filter {
         Filter::Nearest => crate::bumpmap::sample::sample_normal(map, uv, Filter::Nearest),
         Filter::Bilinear => {

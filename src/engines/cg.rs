@@ -1,0 +1,115 @@
+//! The Cg Tutorial's per-fragment bump mapping (§8.1–8.5): a tangent-space normal map; the
+//! light direction and the half-angle vector formed per vertex in that vertex's tangent
+//! space, interpolated, and normalised per fragment by a normalisation cube map; the specular
+//! power by successive squarings; geometric self-shadowing (§8.5.3) where the scene asks for
+//! it; the decal as the texture colour. Assumptions: the cube map has 32×32 texels a face
+//! (the text's "typically sufficient") read nearest, each texel the unit vector through its
+//! centre (its 8-bit range compression is arithmetic, the fixed-point model's part); the
+//! exponent is the power of two nearest the material's shininess (the text squares three
+//! times for 8); no scene has a gloss map, so the gloss is 1.
+
+use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
+use super::{Ctx, Engine};
+use crate::raster::{Hit, PixelGeom};
+use crate::scene::lighting::{half_vector, light_dir, spot_factor};
+use crate::scene::mesh::frame;
+use glam::DVec3;
+
+pub const CG: Engine = Engine {
+    name: "cg",
+    source: "Cg Tutorial §8.1–8.5: normal map, normalisation cube map, squarings, self-shadowing, decal",
+    per_triangle: "L and H per light per vertex in tangent space (18 words a light)",
+    per_fragment: "uv; L and H per light (6 words a light), two cube-map reads a light",
+    shade,
+};
+
+/// Texels along a cube-map face edge by default (`gbump engines --cg-cube` changes it).
+pub const CUBE_FACE: u32 = 32;
+
+/// The unit vector a normalisation cube map of `face` texels a side holds for direction `v`:
+/// the texel `v` pierces, read nearest, holds the direction through its centre.
+pub fn cube_normalise(v: DVec3, face: u32) -> DVec3 {
+    let a = v.abs();
+    // The major axis picks the face; the other two components, over it, the texel.
+    let (major, u, w) = if a.x >= a.y && a.x >= a.z {
+        (0, v.y / a.x, v.z / a.x)
+    } else if a.y >= a.z {
+        (1, v.x / a.y, v.z / a.y)
+    } else {
+        (2, v.x / a.z, v.y / a.z)
+    };
+    if !(u.is_finite() && w.is_finite()) {
+        return DVec3::Z;
+    }
+    let centre = |c: f64| {
+        let i = (((c + 1.0) * 0.5 * face as f64).floor()).clamp(0.0, face as f64 - 1.0);
+        (i + 0.5) / face as f64 * 2.0 - 1.0
+    };
+    let (cu, cw) = (centre(u), centre(w));
+    let s = v.to_array()[major].signum();
+    let d = match major {
+        0 => DVec3::new(s, cu, cw),
+        1 => DVec3::new(cu, s, cw),
+        _ => DVec3::new(cu, cw, s),
+    };
+    d.normalize()
+}
+
+/// The exponent successive squarings reach nearest `n`: 2^round(log2 n) (1 for n ≤ 1).
+pub fn squarings_exponent(n: u32) -> u32 {
+    if n <= 1 {
+        return n;
+    }
+    1 << (n as f64).log2().round() as u32
+}
+
+fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let p = c.p;
+    let so = &p.scene.objects[hit.obj as usize];
+    let v = corners(p, hit);
+    let nb = bump_normal(p, hit, g);
+    let e = squarings_exponent(so.shininess);
+    let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
+    for l in p.scene.bump_lights() {
+        let at = |i: usize| {
+            let (n, t, b) = frame(v[i].n, v[i].t, v[i].b);
+            let ld = light_dir(l, v[i].p, n);
+            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
+        };
+        let lt = cube_normalise(mix(hit, |i| at(i).0), c.cg_cube);
+        let ht = cube_normalise(mix(hit, |i| at(i).1), c.cg_cube);
+        let (fd, fs) = tangent_factors(p, nb, lt, ht);
+        // Per-vertex lighting in the Tutorial's vertex program: the spot factor at the pixel's
+        // interpolated position.
+        let lc = DVec3::from_array(l.colour) * (l.k * spot_factor(l, g.p));
+        diff += lc * fd;
+        spec += lc * fs.powi(e as i32);
+    }
+    finish(p, hit, g, Base::PerPixel, diff, spec)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cube_map_gives_unit_vectors_near_the_direction() {
+        for v in [DVec3::new(3.0, 1.5, 0.9), DVec3::new(-0.2, 0.1, -4.0), DVec3::new(0.0, -2.0, 0.3)] {
+            let c = cube_normalise(v, 32);
+            assert!((c.length() - 1.0).abs() < 1e-12);
+            // Half a texel of a 32-texel face is at most about 1/32 radian off.
+            assert!(c.dot(v.normalize()) > (1.0f64 / 32.0).cos(), "{v} -> {c}");
+        }
+        // The Tutorial's example: (3, 1.5, 0.9) is about (0.86, 0.43, 0.26).
+        let c = cube_normalise(DVec3::new(3.0, 1.5, 0.9), 32);
+        assert!((c - DVec3::new(0.86, 0.43, 0.26)).length() < 0.02, "{c}");
+    }
+
+    #[test]
+    fn squarings_reach_the_nearest_power_of_two() {
+        assert_eq!(
+            [0, 1, 2, 3, 6, 8, 11, 12, 24, 32, 45].map(squarings_exponent),
+            [0, 1, 2, 4, 8, 8, 8, 16, 32, 32, 32]
+        );
+    }
+}

@@ -1,0 +1,75 @@
+//! Gouraud bump mapping (paper §4–5) and the §6 improvements. The paper's engine holds each
+//! light's L and H per triangle, in the triangle's bump frame, so the highlight is flat over
+//! a triangle (Fig. 7); §6 proposes interpolating the half vector ("no flat shading effect")
+//! and/or the light directions, one per light. Assumptions for the variants: an interpolated
+//! vector is formed at each vertex in that vertex's own frame (so it follows the surface's
+//! curvature as Phong's normal does) and is not renormalised, and k stays per triangle as in
+//! the paper's bump state.
+
+use super::common::{corners, finish, mix, to_frame, Base};
+use super::{Ctx, Engine};
+use crate::model::power_table::powi_exact;
+use crate::raster::{Hit, PixelGeom, Prepared};
+use crate::scene::lighting::{half_vector, light_dir};
+use crate::scene::mesh::frame;
+use glam::DVec3;
+
+pub const GOURAUD: Engine = Engine {
+    name: "gouraud",
+    source: "paper §4–5: L and H per triangle in bump space, blended onto the Gouraud colour",
+    per_triangle: "L, H, Lc, k per light (10 words a light)",
+    per_fragment: "the Gouraud colour and uv: nothing per light",
+    shade: shade_paper,
+};
+
+pub const GOURAUD_H: Engine = Engine {
+    name: "gouraud_h",
+    source: "paper §6: Gouraud bump mapping with the half vector interpolated",
+    per_triangle: "L, Lc, k per light and H per light per vertex (16 words a light)",
+    per_fragment: "the Gouraud colour, uv, H per light (3 words a light)",
+    shade: shade_h,
+};
+
+pub const GOURAUD_HL: Engine = Engine {
+    name: "gouraud_hl",
+    source: "paper §6: Gouraud bump mapping with the half vector and the light direction interpolated",
+    per_triangle: "Lc, k per light and L and H per light per vertex (22 words a light)",
+    per_fragment: "the Gouraud colour, uv, L and H per light (6 words a light)",
+    shade: shade_hl,
+};
+
+fn shade_paper(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    crate::reference::gouraud_f64::shade(c.p, hit, g)
+}
+
+fn shade_h(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    shade_with(c.p, hit, g, false)
+}
+
+fn shade_hl(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    shade_with(c.p, hit, g, true)
+}
+
+fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, interpolate_l: bool) -> DVec3 {
+    let so = &p.scene.objects[hit.obj as usize];
+    let o = &p.objects[hit.obj as usize];
+    let ts = &o.tris[hit.tri as usize];
+    let v = corners(p, hit);
+    let nb = crate::reference::gouraud_f64::filtered_normal(&o.normals, g.uv, so.bump.filter);
+    let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
+    for (i, l) in p.scene.bump_lights().enumerate() {
+        let at = |j: usize| {
+            let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
+            let ld = light_dir(l, v[j].p, n);
+            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
+        };
+        let lt = if interpolate_l { mix(hit, |j| at(j).0) } else { ts.l[i] };
+        let ht = mix(hit, |j| at(j).1);
+        // The blending units clamp; they have no self-shadowing test (as the paper's engine).
+        let (fd, fs) = (nb.dot(lt).clamp(0.0, 1.0), nb.dot(ht).clamp(0.0, 1.0));
+        let lc = DVec3::from_array(l.colour) * ts.k[i];
+        diff += lc * fd;
+        spec += lc * powi_exact(fs, so.shininess);
+    }
+    finish(p, hit, g, Base::Interpolated, diff, spec)
+}

@@ -1,0 +1,107 @@
+//! The survey's bump engines (paper §2–3, §6; Cg Tutorial §8) as f64 models, each rendering
+//! the same scenes through its own approximation of Blinn's perturbed-normal lighting, so
+//! `gbump engines` can say which engine gives which image quality. Each engine keeps the
+//! approximations that define it (what it interpolates, what it holds per triangle, what it
+//! looks up in a map) and none of any arithmetic's rounding: those are the fixed-point
+//! models' part.
+//!
+//! Assumptions the texts leave open, the same for every engine unless its file says
+//! otherwise:
+//! - the bump map is the object's f64 normal map (the stored map before quantisation),
+//!   sampled with the object's filter; an engine that wants offsets (VISA+, EMBM) takes
+//!   `(x/z, y/z)` of it, the height gradient Eq. 1 encodes;
+//! - lights are the scene's bump lights; the viewer is parallel (as in every renderer here);
+//! - the colour is `min(min(C_src + D, 1) · T + S, 1)` with `C_src` the non-bump lighting, the
+//!   combination `reference::perpixel` uses: engines with per-pixel normals evaluate `C_src`
+//!   per pixel, engines on a Gouraud rasteriser interpolate it from the vertices.
+
+pub mod blinn;
+pub mod cg;
+pub mod common;
+pub mod embm;
+pub mod gouraud;
+pub mod harmony;
+pub mod report;
+pub mod sgi;
+pub mod texram;
+pub mod visa;
+
+use crate::raster::{Hit, PixelGeom, Prepared};
+use glam::DVec3;
+
+/// One engine: its name on the command line and in tables, where it comes from, and its
+/// per-pixel colour in [0, 1].
+pub struct Engine {
+    pub name: &'static str,
+    pub source: &'static str,
+    /// What it holds or sends per triangle, and interpolates per fragment (the paper's
+    /// argument is about both).
+    pub per_triangle: &'static str,
+    pub per_fragment: &'static str,
+    pub shade: fn(&Ctx, &Hit, &PixelGeom) -> DVec3,
+}
+
+/// A scene made ready for the engines: the prepared scene, and what an engine computes once
+/// per object rather than per pixel.
+pub struct Ctx<'a> {
+    pub p: &'a Prepared<'a>,
+    /// Each object's centre (the mean of its vertices): where EMBM's stationary lights are
+    /// evaluated.
+    pub centres: Vec<DVec3>,
+    /// Texels along EMBM's environment-map side.
+    pub embm_map: u32,
+    /// Texels along a face edge of the Cg engine's normalisation cube map.
+    pub cg_cube: u32,
+}
+
+impl<'a> Ctx<'a> {
+    pub fn new(p: &'a Prepared<'a>, maps: Maps) -> Ctx<'a> {
+        let centres = p
+            .objects
+            .iter()
+            .map(|o| o.mesh.verts.iter().map(|v| v.p).sum::<DVec3>() / o.mesh.verts.len().max(1) as f64)
+            .collect();
+        Ctx {
+            p,
+            centres,
+            embm_map: maps.embm_map,
+            cg_cube: maps.cg_cube,
+        }
+    }
+}
+
+/// The sizes of the maps that engines look their lighting or normalisation up in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Maps {
+    pub embm_map: u32,
+    pub cg_cube: u32,
+}
+
+impl Default for Maps {
+    fn default() -> Maps {
+        Maps {
+            embm_map: embm::EMBM_MAP,
+            cg_cube: cg::CUBE_FACE,
+        }
+    }
+}
+
+/// Every engine, the reference first.
+pub const ENGINES: &[Engine] = &[
+    blinn::BLINN,
+    texram::TEXRAM,
+    visa::VISA,
+    visa::VISA_QUATERNION,
+    embm::EMBM,
+    sgi::SGI,
+    harmony::HARMONY,
+    gouraud::GOURAUD,
+    gouraud::GOURAUD_H,
+    gouraud::GOURAUD_HL,
+    cg::CG,
+];
+
+/// The engine called `name`.
+pub fn engine(name: &str) -> Option<&'static Engine> {
+    ENGINES.iter().find(|e| e.name == name)
+}

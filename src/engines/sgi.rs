@@ -1,0 +1,45 @@
+//! SGI (paper §3.4, Peercy et al. 1997): a tangent-space normal map (Eq. 1, here with k = 1,
+//! the map every engine reads), L and H transformed into each vertex's tangent space by the
+//! geometry engine and interpolated over the triangle, lit per pixel by dot products with the
+//! map's normal. Assumptions: the interpolated L and H are not renormalised (the text
+//! interpolates them "homogeneously" and says no more), and each light's k and spot factor is
+//! taken at the vertices and interpolated with them.
+
+use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
+use super::{Ctx, Engine};
+use crate::model::power_table::powi_exact;
+use crate::raster::{Hit, PixelGeom};
+use crate::scene::lighting::{half_vector, light_dir, spot_factor};
+use crate::scene::mesh::frame;
+use glam::DVec3;
+
+pub const SGI: Engine = Engine {
+    name: "sgi",
+    source: "paper §3.4 (SGI), Eq. 1: tangent-space normal map, per-vertex L and H in tangent space, interpolated",
+    per_triangle: "L and H per light per vertex in that vertex's tangent space (18 words a light)",
+    per_fragment: "uv; L and H per light (6 words a light, not renormalised)",
+    shade,
+};
+
+fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let p = c.p;
+    let so = &p.scene.objects[hit.obj as usize];
+    let v = corners(p, hit);
+    let nb = bump_normal(p, hit, g);
+    let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
+    for l in p.scene.bump_lights() {
+        let at = |i: usize| {
+            let (n, t, b) = frame(v[i].n, v[i].t, v[i].b);
+            let ld = light_dir(l, v[i].p, n);
+            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
+        };
+        let lt = mix(hit, |i| at(i).0);
+        let ht = mix(hit, |i| at(i).1);
+        let k = mix(hit, |i| DVec3::splat(l.k * spot_factor(l, v[i].p))).x;
+        let (fd, fs) = tangent_factors(p, nb, lt, ht);
+        let lc = DVec3::from_array(l.colour) * k;
+        diff += lc * fd;
+        spec += lc * powi_exact(fs, so.shininess);
+    }
+    finish(p, hit, g, Base::Interpolated, diff, spec)
+}

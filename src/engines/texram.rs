@@ -1,0 +1,34 @@
+//! TexRam (paper §3.1, Schilling et al.): the frame is rebuilt per pixel from the
+//! interpolated normal N_i and a main direction m, e1 = m × N / ‖m × N‖, e2 = N × e1, and the
+//! bump normal is placed in it; lighting per pixel. Assumption: m is the interpolated vertex
+//! tangent (the u direction), "homogeneously interpolated over the triangle"; e1 then lies
+//! along −B, so the map's (x, y, z) land on (e2, −e1, N), with B's handedness kept. The
+//! unnormalised, widened variant (everything times ‖N_i‖) is the same vector up to its length,
+//! so it differs only in fixed point.
+
+use super::common::{bump_normal, finish, per_pixel_lights, Base};
+use super::{Ctx, Engine};
+use crate::raster::{Hit, PixelGeom};
+use glam::DVec3;
+
+pub const TEXRAM: Engine = Engine {
+    name: "texram",
+    source: "paper §3.1 (TexRam): e1 = m×N/‖m×N‖, e2 = N×e1 per pixel",
+    per_triangle: "nothing beyond the vertices",
+    per_fragment: "P, N_i, m; e1 and e2 formed at the pixel (a normalisation); L and H per light",
+    shade,
+};
+
+fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let p = c.p;
+    let n = g.n.try_normalize().unwrap_or(DVec3::Z);
+    let m = g.t;
+    let e1 = m.cross(n).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
+    let e2 = n.cross(e1);
+    // e1 points along −B for a right-handed (T, B, N); a mirrored map flips it back.
+    let v = if (-e1).dot(g.b) >= 0.0 { -e1 } else { e1 };
+    let nb = bump_normal(p, hit, g);
+    let np = (e2 * nb.x + v * nb.y + n * nb.z).try_normalize().unwrap_or(n);
+    let (d, s) = per_pixel_lights(p, hit, g, np, n);
+    finish(p, hit, g, Base::PerPixel, d, s)
+}

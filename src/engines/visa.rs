@@ -1,0 +1,64 @@
+//! VISA+ (paper §3.2, Ernst et al. 1996): N' = N + A·V per pixel, V the map's offset vector
+//! (Δu, Δv) and A the alignment matrix into the tangent plane, lit per pixel. A is held per
+//! triangle: its columns are the triangle's T and B (the vertex frames averaged), so V turns
+//! the same way over the whole triangle and adjacent triangles disagree along their shared
+//! edge, the discontinuity that grows with the angle between them. The quaternion variant
+//! (the paper's [5]) holds a rotation per vertex and interpolates it (normalised linear
+//! interpolation of the vertex quaternions, signs aligned to the first), which removes it.
+
+use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, triangle_frame, Base};
+use super::{Ctx, Engine};
+use crate::raster::{Hit, PixelGeom, Prepared};
+use glam::{DMat3, DQuat, DVec3};
+
+pub const VISA: Engine = Engine {
+    name: "visa",
+    source: "paper §3.2 (VISA+): N' = N + A·V, A per triangle",
+    per_triangle: "the 2×3 alignment matrix A (6 words)",
+    per_fragment: "P, N; L and H per light formed at the pixel",
+    shade: shade_matrix,
+};
+
+pub const VISA_QUATERNION: Engine = Engine {
+    name: "visa_quaternion",
+    source: "paper §3.2 and [5]: A from vertex quaternions interpolated per pixel",
+    per_triangle: "a quaternion per vertex (12 words)",
+    per_fragment: "P, N, the quaternion (4 words, renormalised); L and H per light",
+    shade: shade_quaternion,
+};
+
+fn perturbed(p: &Prepared, hit: &Hit, g: &PixelGeom, t: DVec3, b: DVec3) -> DVec3 {
+    let n = g.n.try_normalize().unwrap_or(DVec3::Z);
+    let (du, dv) = offsets(bump_normal(p, hit, g));
+    let np = (n + t * du + b * dv).try_normalize().unwrap_or(n);
+    let (d, s) = per_pixel_lights(p, hit, g, np, n);
+    finish(p, hit, g, Base::PerPixel, d, s)
+}
+
+fn shade_matrix(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let p = c.p;
+    let (_, t, b) = triangle_frame(&corners(p, hit));
+    perturbed(p, hit, g, t, b)
+}
+
+fn shade_quaternion(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let p = c.p;
+    let v = corners(p, hit);
+    let q: Vec<DQuat> = v
+        .iter()
+        .map(|x| {
+            let (n, t, _) = crate::scene::mesh::frame(x.n, x.t, x.b);
+            // A mirrored frame is a rotation of (t, −b, n); the sign comes back below.
+            DQuat::from_mat3(&DMat3::from_cols(t, n.cross(t), n))
+        })
+        .collect();
+    let mut sum = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+    for (i, qi) in q.iter().enumerate() {
+        let qi = if qi.dot(q[0]) < 0.0 { -*qi } else { *qi };
+        sum = sum + qi * hit.bary[i];
+    }
+    let r = DMat3::from_quat(sum.normalize());
+    let (t, b) = (r.x_axis, r.y_axis);
+    let b = if b.dot(g.b) < 0.0 { -b } else { b };
+    perturbed(p, hit, g, t, b)
+}
