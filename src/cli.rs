@@ -299,6 +299,17 @@ pub enum Cmd {
         #[arg(long, default_value = "out/engines")]
         out: PathBuf,
     },
+    /// One of the paper's claims about the engines, measured: NAME.md and NAME.svg (the
+    /// sections of docs/REPORT.md). `--list` names them.
+    Claim {
+        /// visa-seams, flat-shading or embm-resolution.
+        #[arg(required_unless_present = "list")]
+        name: Option<String>,
+        #[arg(long)]
+        list: bool,
+        #[arg(long, default_value = "out/claims")]
+        out: PathBuf,
+    },
     /// Measure speed: model, vector dump, Icarus, Verilator harness and raw Verilated rate.
     Bench {
         #[command(flatten)]
@@ -847,6 +858,24 @@ pub fn run() -> anyhow::Result<()> {
             cg_cube,
             out,
         } => engines_command(&scenes, &engines, size.as_deref(), crate::engines::Maps { embm_map, cg_cube }, &out)?,
+        Cmd::Claim { name, list, out } => {
+            if list {
+                for (n, what) in crate::engines::claims::CLAIMS {
+                    outln!("{n:18} {what}");
+                }
+            } else {
+                let c = crate::engines::claims::claim(name.as_deref().expect("clap requires it"))?;
+                crate::render::output::write_files(
+                    &out,
+                    &[
+                        (format!("{}.md", c.name), c.markdown.as_bytes()),
+                        (format!("{}.svg", c.name), c.svg.as_bytes()),
+                    ],
+                )?;
+                out!("{}", c.markdown);
+                outln!("wrote {0}.md and {0}.svg in {1}", c.name, out.display());
+            }
+        }
         Cmd::Bench { pick, work } => {
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;

@@ -170,3 +170,47 @@ fn the_command_writes_its_table_sheet_and_csv_and_refuses_unknown_engines() {
     assert!(!dir.path().join("bad").exists(), "a refused run wrote its folder");
     assert!(engine("blinn").is_some() && Scene::load("torus_caps").is_ok() && Path::new(".").exists());
 }
+
+/// The paper's claims, measured (`gbump claim NAME`), hold in the direction the paper says.
+#[test]
+fn the_papers_claims_hold_as_measured() {
+    use gbump::engines::claims::claim;
+    let ys = |c: &gbump::engines::claims::Claim, label: &str| -> Vec<f64> {
+        c.series
+            .iter()
+            .find(|s| s.label.starts_with(label))
+            .unwrap_or_else(|| panic!("no series {label}"))
+            .points
+            .iter()
+            .map(|p| p.1)
+            .collect()
+    };
+    // VISA+'s discontinuity grows with the angle between triangles; quaternions remove it.
+    let v = claim("visa-seams").unwrap();
+    for n in [8, 64] {
+        let (visa, quat) = (ys(&v, &format!("VISA+ n = {n}")), ys(&v, &format!("quaternions n = {n}")));
+        println!("n = {n}: VISA+ {visa:.3?}\n        quaternions {quat:.3?}");
+        assert!(
+            visa.last().unwrap() > &(5.0 * visa[0]),
+            "VISA+ seams do not grow with the angle: {visa:?}"
+        );
+        assert!(
+            visa.iter().zip(&quat).all(|(a, b)| b < &(a / 10.0)),
+            "quaternions leave seams: {quat:?} against {visa:?}"
+        );
+    }
+    // The flat-shading artefact: faceting falls with tessellation, the §5.4.2 fix and the §6
+    // interpolation of H and L reduce it.
+    let f = claim("flat-shading").unwrap();
+    let (plain, fix, hl) = (ys(&f, "Gouraud bump"), ys(&f, "§5.4.2"), ys(&f, "§6 interpolated H and L"));
+    println!("Gouraud {plain:.3?}\nfix {fix:.3?}\nH and L {hl:.3?}");
+    assert!(plain.windows(2).all(|w| w[1] < w[0]), "{plain:?}");
+    assert!(fix[0] < plain[0] / 2.0 && hl.iter().zip(&plain).all(|(a, b)| a < &(b / 2.0)));
+    // EMBM: the map's share of the error falls with every doubling of the map.
+    let e = claim("embm-resolution").unwrap();
+    for s in &e.series {
+        let y: Vec<f64> = s.points.iter().map(|p| p.1).collect();
+        assert!(y.windows(2).all(|w| w[1] < w[0]), "{}: {y:?}", s.label);
+    }
+    assert!(claim("phong").is_err());
+}

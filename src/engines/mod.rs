@@ -17,6 +17,7 @@
 
 pub mod blinn;
 pub mod cg;
+pub mod claims;
 pub mod common;
 pub mod embm;
 pub mod gouraud;

@@ -5,7 +5,6 @@
 //! from the reference); and the Markdown table.
 
 use super::{Ctx, Engine, Maps, ENGINES};
-use crate::config::PipelineConfig;
 use crate::error::Result;
 use crate::raster::fragment::pixel_geom;
 use crate::raster::rasterise::rasterise;
@@ -24,7 +23,8 @@ pub struct EngineImage {
 
 /// Render `engines` over `scene` at `w`×`h`.
 pub fn render(scene: &Scene, engines: &[&Engine], w: u32, h: u32, maps: Maps) -> Result<Vec<EngineImage>> {
-    let cfg = PipelineConfig::default();
+    // The scene's own configuration: the Gouraud engine reads its blend order and skip_flat.
+    let cfg = scene.derive_config()?;
     let p = Prepared::new(scene, &cfg, w, h)?;
     let ctx = Ctx::new(&p, maps);
     let gb = rasterise(&p);
@@ -239,4 +239,27 @@ impl Table {
         }
         (w, h, px)
     }
+}
+
+/// The report's section on the engines: every engine on every built-in scene (each at half
+/// its size) and each of the paper's claims with its figure; the files it links (the
+/// contact sheet and the claims' SVGs) beside it.
+pub fn section() -> Result<(String, Vec<(String, Vec<u8>)>)> {
+    let scenes: Vec<String> = crate::scene::builtin::ALL.iter().map(|(n, _)| n.to_string()).collect();
+    let all: Vec<&'static Engine> = ENGINES.iter().collect();
+    let t = measure(&scenes, &all, None, Maps::default())?;
+    let (w, h, px) = t.contact_sheet();
+    let mut md = String::from("`gbump engines` (every built-in scene at half its size); ![engines as columns, scenes as rows, each over its difference from Blinn](engines.png)\n\n");
+    md += &t.markdown();
+    let mut files = vec![("engines.png".to_string(), crate::render::output::encode_png(w, h, &px)?)];
+    for (name, what) in super::claims::CLAIMS {
+        let c = super::claims::claim(name)?;
+        md += &format!(
+            "\n### {what}\n\n`gbump claim {name}`; ![{name}](claim-{name}.svg)\n\n{}",
+            c.markdown
+        );
+        files.push((format!("claim-{name}.svg"), c.svg.into_bytes()));
+    }
+    md += "\n### Gouraud bump mapping's added units against the per-pixel engines' cost\n\nNot measured yet: it needs each engine's fixed-point datapath as RTL, synthesised like the Gouraud pipeline (its own figures are in the timing and area sections above).\n";
+    Ok((md, files))
 }

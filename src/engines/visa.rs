@@ -1,12 +1,12 @@
 //! VISA+ (paper §3.2, Ernst et al. 1996): N' = N + A·V per pixel, V the map's offset vector
 //! (Δu, Δv) and A the alignment matrix into the tangent plane, lit per pixel. A is held per
-//! triangle: its columns are the triangle's T and B (the vertex frames averaged), so V turns
+//! triangle: its columns are the triangle's T and B in the triangle's plane, so V turns
 //! the same way over the whole triangle and adjacent triangles disagree along their shared
 //! edge, the discontinuity that grows with the angle between them. The quaternion variant
 //! (the paper's [5]) holds a rotation per vertex and interpolates it (normalised linear
 //! interpolation of the vertex quaternions, signs aligned to the first), which removes it.
 
-use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, triangle_frame, Base};
+use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, plane_frame, Base};
 use super::{Ctx, Engine};
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DMat3, DQuat, DVec3};
@@ -37,7 +37,7 @@ fn perturbed(p: &Prepared, hit: &Hit, g: &PixelGeom, t: DVec3, b: DVec3) -> DVec
 
 fn shade_matrix(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let p = c.p;
-    let (_, t, b) = triangle_frame(&corners(p, hit));
+    let (_, t, b) = plane_frame(&corners(p, hit));
     perturbed(p, hit, g, t, b)
 }
 

@@ -88,3 +88,90 @@ pub fn scatter(points: &[Dot], title: &str, x_label: &str, y_label: &str) -> Str
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
+
+/// One series of a line plot: its label and its points in x order.
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A line plot of `series` (each its own colour, dotted where its label says "dashed"), axes
+/// from zero, a legend at the top right; `log2_x` spaces x by its logarithm (map sizes).
+pub fn lines(series: &[Series], title: &str, x_label: &str, y_label: &str, log2_x: bool) -> String {
+    const COLOURS: [&str; 6] = ["#246", "#c33", "#2a7", "#a5c", "#d80", "#555"];
+    let (w, h, m) = (720.0, 440.0, 70.0);
+    let fx = |x: f64| if log2_x { x.max(1e-12).log2() } else { x };
+    let all = || series.iter().flat_map(|s| s.points.iter());
+    let (x0, x1) = (
+        all()
+            .map(|p| fx(p.0))
+            .fold(f64::INFINITY, f64::min)
+            .min(if log2_x { f64::INFINITY } else { 0.0 }),
+        all().map(|p| fx(p.0)).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (x0, x1) = if x1 > x0 { (x0, x1) } else { (x0 - 1.0, x0 + 1.0) };
+    let y1 = all().map(|p| p.1).filter(|y| y.is_finite()).fold(1e-9, f64::max) * 1.1;
+    let px = |x: f64| m + (fx(x) - x0) / (x1 - x0) * (w - 1.5 * m);
+    let py = |y: f64| h - m - y.clamp(0.0, y1) / y1 * (h - 1.8 * m);
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
+    s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
+    for i in 0..=5 {
+        let t = x0 + (x1 - x0) * i as f64 / 5.0;
+        let xv = if log2_x { t.exp2() } else { t };
+        let sx = m + (t - x0) / (x1 - x0) * (w - 1.5 * m);
+        s += &format!(
+            "<text x=\"{sx:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n",
+            h - m + 16.0,
+            xv
+        );
+        let yv = y1 * i as f64 / 5.0;
+        s += &format!(
+            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.2}</text>\n",
+            m - 6.0,
+            py(yv) + 4.0,
+            yv
+        );
+    }
+    s += &format!(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+        w / 2.0,
+        h - 22.0,
+        esc(x_label)
+    );
+    s += &format!(
+        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
+        h / 2.0,
+        h / 2.0,
+        esc(y_label)
+    );
+    for (i, se) in series.iter().enumerate() {
+        let c = COLOURS[i % COLOURS.len()];
+        let dash = if se.label.contains("dashed") {
+            " stroke-dasharray=\"5 3\""
+        } else {
+            ""
+        };
+        let path: Vec<String> = se.points.iter().map(|p| format!("{:.1},{:.1}", px(p.0), py(p.1))).collect();
+        s += &format!(
+            "<polyline points=\"{}\" fill=\"none\" stroke=\"{c}\" stroke-width=\"1.5\"{dash}/>\n",
+            path.join(" ")
+        );
+        for p in &se.points {
+            s += &format!(
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"2.5\" fill=\"{c}\"><title>{}: ({}, {:.3})</title></circle>\n",
+                px(p.0),
+                py(p.1),
+                esc(&se.label),
+                p.0,
+                p.1
+            );
+        }
+        s += &format!(
+            "<text x=\"{}\" y=\"{}\" fill=\"{c}\">{}</text>\n",
+            w - 1.5 * m - 150.0,
+            0.8 * m + 14.0 * i as f64,
+            esc(&se.label)
+        );
+    }
+    s + "</svg>\n"
+}

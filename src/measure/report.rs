@@ -87,7 +87,7 @@ pub fn report(
     work: &Path,
     space: &Path,
     lock: impl FnOnce() -> Result<crate::work_lock::WorkLock>,
-) -> Result<Vec<(String, String)>> {
+) -> Result<Vec<(String, Vec<u8>)>> {
     let cfg = PipelineConfig::default();
     // The sweep comes last; its space is checked before the first Yosys run.
     let sp = super::sweep::Space::load(space)?;
@@ -162,16 +162,21 @@ pub fn report(
         );
     }
     md += "\n### Against the paper\n\nErnst et al. put the blending units at 10,000-25,000 gate equivalents. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's logic (its RAM bits apart), the pipeline registers of `pipeline_depth` and those that carry the bump state with each fragment.\n\n";
-    md += "## Speed\n\n`gbump bench`\n\n";
+    md += "## The survey's bump engines\n\n";
+    let (engines_md, engine_files) = crate::engines::report::section()?;
+    md += &engines_md;
+    md += "\n## Speed\n\n`gbump bench`\n\n";
     md += &super::bench::bench(&cfg, &work.join("bench"))?;
     md += "\n## A long regression, streamed and from a file\n\n";
     let n = super::long_run::LONG_RUN_RECORDS;
     let runs = super::long_run::long_run(&cfg, "", &work.join("long_run"), n)?;
     md += &super::long_run::markdown(&cfg, n, &runs);
-    Ok(vec![
-        ("REPORT.md".into(), md),
-        ("sweep.svg".into(), super::sweep::svg(&pts, "error against area")),
-    ])
+    let mut files = vec![
+        ("REPORT.md".into(), md.into_bytes()),
+        ("sweep.svg".into(), super::sweep::svg(&pts, "error against area").into_bytes()),
+    ];
+    files.extend(engine_files);
+    Ok(files)
 }
 
 #[cfg(test)]
