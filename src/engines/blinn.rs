@@ -3,7 +3,7 @@
 //! re-orthonormalised per pixel and the stored normal map as Eq. 2's normalised (−F_u, −F_v,
 //! 1), this is `reference::perpixel`, the yardstick every other engine is measured against.
 
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
 
@@ -12,6 +12,12 @@ pub const BLINN: Engine = Engine {
     source: "paper §2 (Blinn 1978): N' = N + D per pixel, per-pixel L and H",
     per_triangle: "nothing beyond the vertices",
     per_fragment: "P, N, T, B, uv; L and H per light formed at the pixel",
+    cost: Cost {
+        triangle: 36,
+        triangle_per_light: 0,
+        fragment: 12,
+        fragment_per_light: 0,
+    },
     shade,
 };
 

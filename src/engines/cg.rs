@@ -9,7 +9,7 @@
 //! times for 8); no scene has a gloss map, so the gloss is 1.
 
 use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::{half_vector, light_dir, spot_factor};
 use crate::scene::mesh::frame;
@@ -20,6 +20,12 @@ pub const CG: Engine = Engine {
     source: "Cg Tutorial §8.1–8.5: normal map, normalisation cube map, squarings, self-shadowing, decal",
     per_triangle: "L and H per light per vertex in tangent space (18 words a light)",
     per_fragment: "uv; L and H per light (6 words a light), two cube-map reads a light",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 18,
+        fragment: 0,
+        fragment_per_light: 6,
+    },
     shade,
 };
 

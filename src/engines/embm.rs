@@ -10,7 +10,7 @@
 //! object it lights: `2 · EMBM_MAP²` texels each.
 
 use super::common::{bump_normal, corners, finish, mix, offsets, triangle_frame, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::{half_vector, light_dir, spot_factor};
@@ -24,6 +24,12 @@ pub const EMBM: Engine = Engine {
     source: "paper §3.3 (Direct3D 6): (du, dv) through a 2×2 matrix perturbs environment-map coordinates",
     per_triangle: "the 2×2 matrix (4 words); the maps per object (2 · 64² texels at the default size)",
     per_fragment: "the map coordinates (2 words) and uv; four texels of two maps",
+    cost: Cost {
+        triangle: 10,
+        triangle_per_light: 0,
+        fragment: 2,
+        fragment_per_light: 0,
+    },
     shade,
 };
 

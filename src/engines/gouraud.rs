@@ -7,7 +7,7 @@
 //! the paper's bump state.
 
 use super::common::{corners, finish, mix, to_frame, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use crate::scene::lighting::{half_vector, light_dir};
@@ -19,6 +19,12 @@ pub const GOURAUD: Engine = Engine {
     source: "paper §4–5: L and H per triangle in bump space, blended onto the Gouraud colour",
     per_triangle: "L, H, Lc, k per light (10 words a light)",
     per_fragment: "the Gouraud colour and uv: nothing per light",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 10,
+        fragment: 0,
+        fragment_per_light: 0,
+    },
     shade: shade_paper,
 };
 
@@ -27,6 +33,12 @@ pub const GOURAUD_H: Engine = Engine {
     source: "paper §6: Gouraud bump mapping with the half vector interpolated",
     per_triangle: "L, Lc, k per light and H per light per vertex (16 words a light)",
     per_fragment: "the Gouraud colour, uv, H per light (3 words a light)",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 16,
+        fragment: 0,
+        fragment_per_light: 3,
+    },
     shade: shade_h,
 };
 
@@ -35,6 +47,12 @@ pub const GOURAUD_HL: Engine = Engine {
     source: "paper §6: Gouraud bump mapping with the half vector and the light direction interpolated",
     per_triangle: "Lc, k per light and L and H per light per vertex (22 words a light)",
     per_fragment: "the Gouraud colour, uv, L and H per light (6 words a light)",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 22,
+        fragment: 0,
+        fragment_per_light: 6,
+    },
     shade: shade_hl,
 };
 

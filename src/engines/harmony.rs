@@ -7,7 +7,7 @@
 //! and spot factor is interpolated from the vertices.
 
 use super::common::{bump_normal, corners, finish, mix, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
 use crate::reference::perpixel::light_factors;
@@ -19,6 +19,12 @@ pub const HARMONY: Engine = Engine {
     source: "paper §3.5 (Harmony, E&S): interpolated per-vertex frames, interpolated L and H per light",
     per_triangle: "a frame per vertex (27 words) and L and H per light per vertex (18 words a light)",
     per_fragment: "the frame (9 words), L and H per light (6 words a light), three normalisations",
+    cost: Cost {
+        triangle: 27,
+        triangle_per_light: 18,
+        fragment: 9,
+        fragment_per_light: 6,
+    },
     shade,
 };
 

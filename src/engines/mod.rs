@@ -39,6 +39,7 @@ pub struct Engine {
     /// argument is about both).
     pub per_triangle: &'static str,
     pub per_fragment: &'static str,
+    pub cost: Cost,
     pub shade: fn(&Ctx, &Hit, &PixelGeom) -> DVec3,
 }
 
@@ -84,6 +85,28 @@ impl Default for Maps {
             embm_map: embm::EMBM_MAP,
             cg_cube: cg::CUBE_FACE,
         }
+    }
+}
+
+/// What an engine sends and interpolates, in 16-bit words, beyond what a textured Gouraud
+/// triangle already carries (screen positions, colours, uv): per triangle to the rasteriser,
+/// and per fragment out of its interpolators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cost {
+    pub triangle: u32,
+    pub triangle_per_light: u32,
+    pub fragment: u32,
+    pub fragment_per_light: u32,
+}
+
+impl Cost {
+    /// Bytes sent per triangle with `lights` bump lights.
+    pub fn triangle_bytes(&self, lights: u32) -> u32 {
+        2 * (self.triangle + lights * self.triangle_per_light)
+    }
+    /// Words interpolated per fragment with `lights` bump lights.
+    pub fn fragment_words(&self, lights: u32) -> u32 {
+        self.fragment + lights * self.fragment_per_light
     }
 }
 

@@ -126,6 +126,8 @@ pub fn compare(img: &EngineImage, reference: &EngineImage) -> EngineError {
 pub struct Table {
     pub engines: Vec<&'static Engine>,
     pub scenes: Vec<String>,
+    /// Each scene's bump lights.
+    pub lights: Vec<u32>,
     /// `errors[scene][engine]`.
     pub errors: Vec<Vec<EngineError>>,
     /// `images[scene][engine]`.
@@ -138,9 +140,10 @@ pub struct Table {
 pub fn measure(scenes: &[String], engines: &[&'static Engine], size: Option<(u32, u32)>, maps: Maps) -> Result<Table> {
     let mut list: Vec<&'static Engine> = vec![&ENGINES[0]];
     list.extend(engines.iter().filter(|e| e.name != ENGINES[0].name));
-    let (mut errors, mut images) = (Vec::new(), Vec::new());
+    let (mut errors, mut images, mut lights) = (Vec::new(), Vec::new(), Vec::new());
     for name in scenes {
         let s = Scene::load(name)?;
+        lights.push(s.bump_lights().count() as u32);
         let (w, h) = size.unwrap_or((s.size[0] / 2, s.size[1] / 2));
         crate::limits::check_render(&s.file, w, h, s.triangles())?;
         let imgs = render(&s, &list, w.max(1), h.max(1), maps)?;
@@ -150,6 +153,7 @@ pub fn measure(scenes: &[String], engines: &[&'static Engine], size: Option<(u32
     Ok(Table {
         engines: list,
         scenes: scenes.to_vec(),
+        lights,
         errors,
         images,
         maps,
@@ -160,7 +164,7 @@ impl Table {
     /// The Markdown section: one row per engine and scene, then what each engine holds.
     pub fn markdown(&self) -> String {
         let mut s = String::from(
-            "| scene | engine | PSNR (dB) | max (LSB) | mean (LSB) | pixels > 1 LSB | seam max (LSB) | seam mean (LSB) |\n|---|---|---:|---:|---:|---:|---:|---:|\n",
+            "| scene | engine | PSNR (dB) | max (LSB) | mean (LSB) | pixels > 1 LSB | seam max (LSB) | seam mean (LSB) | bytes per triangle | words per fragment |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
         );
         for (si, scene) in self.scenes.iter().enumerate() {
             for (ei, e) in self.engines.iter().enumerate() {
@@ -170,14 +174,17 @@ impl Table {
                 } else {
                     format!("{:.2}", r.psnr_db)
                 };
+                let n = self.lights[si];
                 s += &format!(
-                    "| {scene} | {} | {psnr} | {:.2} | {:.3} | {:.1} % | {:.2} | {:.3} |\n",
+                    "| {scene} | {} | {psnr} | {:.2} | {:.3} | {:.1} % | {:.2} | {:.3} | {} | {} |\n",
                     e.name,
                     r.max_lsb,
                     r.mean_lsb,
                     100.0 * r.over_1lsb,
                     r.seam_max_lsb,
-                    r.seam_mean_lsb
+                    r.seam_mean_lsb,
+                    e.cost.triangle_bytes(n),
+                    e.cost.fragment_words(n)
                 );
             }
         }
@@ -186,7 +193,7 @@ impl Table {
             s += &format!("| {} | {} | {} | {} |\n", e.name, e.source, e.per_triangle, e.per_fragment);
         }
         s += &format!(
-            "\nErrors are in 8-bit LSBs against `blinn` over the drawn pixels, every engine in f64 (no arithmetic rounding: each engine's own approximations only). The seam error compares the colour jump between two side-by-side pixels on different triangles of one object with the reference's jump there. EMBM's environment maps have {0}×{0} texels; moving one light regenerates 2 · {0}² = {1} texels per object. The Cg engine's normalisation cube map has {2}×{2} texels a face. The contact sheet's columns are the engines in this table's order; under each scene's row of images is their difference from `blinn` (full scale 16 LSB).\n",
+            "\nErrors are in 8-bit LSBs against `blinn` over the drawn pixels, every engine in f64 (no arithmetic rounding: each engine's own approximations only). The seam error compares the colour jump between two side-by-side pixels on different triangles of one object with the reference's jump there. Bytes per triangle and words per fragment count 16-bit words beyond what a textured Gouraud triangle already carries (screen positions, colours, uv), at the scene's number of bump lights: what the engine sends to the rasteriser, and what its interpolators produce per fragment. EMBM's environment maps have {0}×{0} texels; moving one light regenerates 2 · {0}² = {1} texels per object. The Cg engine's normalisation cube map has {2}×{2} texels a face. The contact sheet's columns are the engines in this table's order; under each scene's row of images is their difference from `blinn` (full scale 16 LSB).\n",
             self.maps.embm_map,
             2 * self.maps.embm_map * self.maps.embm_map,
             self.maps.cg_cube
@@ -196,13 +203,22 @@ impl Table {
 
     /// CSV of the error table.
     pub fn csv(&self) -> String {
-        let mut s = String::from("scene,engine,psnr_db,max_lsb,mean_lsb,over_1lsb,seam_max_lsb,seam_mean_lsb\n");
+        let mut s =
+            String::from("scene,engine,psnr_db,max_lsb,mean_lsb,over_1lsb,seam_max_lsb,seam_mean_lsb,triangle_bytes,fragment_words\n");
         for (si, scene) in self.scenes.iter().enumerate() {
             for (ei, e) in self.engines.iter().enumerate() {
                 let r = &self.errors[si][ei];
                 s += &format!(
-                    "{scene},{},{},{},{},{},{},{}\n",
-                    e.name, r.psnr_db, r.max_lsb, r.mean_lsb, r.over_1lsb, r.seam_max_lsb, r.seam_mean_lsb
+                    "{scene},{},{},{},{},{},{},{},{},{}\n",
+                    e.name,
+                    r.psnr_db,
+                    r.max_lsb,
+                    r.mean_lsb,
+                    r.over_1lsb,
+                    r.seam_max_lsb,
+                    r.seam_mean_lsb,
+                    e.cost.triangle_bytes(self.lights[si]),
+                    e.cost.fragment_words(self.lights[si])
                 );
             }
         }

@@ -6,7 +6,7 @@
 //! taken at the vertices and interpolated with them.
 
 use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::{half_vector, light_dir, spot_factor};
@@ -18,6 +18,12 @@ pub const SGI: Engine = Engine {
     source: "paper §3.4 (SGI), Eq. 1: tangent-space normal map, per-vertex L and H in tangent space, interpolated",
     per_triangle: "L and H per light per vertex in that vertex's tangent space (18 words a light)",
     per_fragment: "uv; L and H per light (6 words a light, not renormalised)",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 18,
+        fragment: 0,
+        fragment_per_light: 6,
+    },
     shade,
 };
 

@@ -7,7 +7,7 @@
 //! so it differs only in fixed point.
 
 use super::common::{bump_normal, finish, per_pixel_lights, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
 
@@ -16,6 +16,12 @@ pub const TEXRAM: Engine = Engine {
     source: "paper §3.1 (TexRam): e1 = m×N/‖m×N‖, e2 = N×e1 per pixel",
     per_triangle: "nothing beyond the vertices",
     per_fragment: "P, N_i, m; e1 and e2 formed at the pixel (a normalisation); L and H per light",
+    cost: Cost {
+        triangle: 27,
+        triangle_per_light: 0,
+        fragment: 9,
+        fragment_per_light: 0,
+    },
     shade,
 };
 

@@ -7,7 +7,7 @@
 //! interpolation of the vertex quaternions, signs aligned to the first), which removes it.
 
 use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, plane_frame, Base};
-use super::{Ctx, Engine};
+use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DMat3, DQuat, DVec3};
 
@@ -16,6 +16,12 @@ pub const VISA: Engine = Engine {
     source: "paper §3.2 (VISA+): N' = N + A·V, A per triangle",
     per_triangle: "the 2×3 alignment matrix A (6 words)",
     per_fragment: "P, N; L and H per light formed at the pixel",
+    cost: Cost {
+        triangle: 24,
+        triangle_per_light: 0,
+        fragment: 6,
+        fragment_per_light: 0,
+    },
     shade: shade_matrix,
 };
 
@@ -24,6 +30,12 @@ pub const VISA_QUATERNION: Engine = Engine {
     source: "paper §3.2 and [5]: A from vertex quaternions interpolated per pixel",
     per_triangle: "a quaternion per vertex (12 words)",
     per_fragment: "P, N, the quaternion (4 words, renormalised); L and H per light",
+    cost: Cost {
+        triangle: 30,
+        triangle_per_light: 0,
+        fragment: 10,
+        fragment_per_light: 0,
+    },
     shade: shade_quaternion,
 };
 
