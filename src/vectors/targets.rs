@@ -237,6 +237,8 @@ impl<'a> TopEncoder<'a> {
         cols.extend(self.start);
         let mut words: Vec<usize> = cols
             .iter()
+            // The whole column, every lane (a `Lanes`' own width is one lane's).
+            .map(|c| c.col)
             .filter(|c| c.width > 0)
             .flat_map(|c| (c.lsb / 64) as usize..=((c.lsb + c.width - 1) / 64) as usize)
             .collect();
@@ -254,8 +256,8 @@ impl<'a> TopEncoder<'a> {
         };
         // A column's three lanes as one value (each lane is at most 21 bits wide here).
         let three = |l: &Lanes, v: [u32; 3]| {
-            v.iter().rev().fold(0u64, |acc, &x| {
-                l.check(0, x as i64);
+            v.iter().enumerate().rev().fold(0u64, |acc, (i, &x)| {
+                l.check(i as u32, x as i64);
                 (acc << l.width) | x as u64
             })
         };
@@ -527,4 +529,81 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         ));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A top record built lane by lane from the layout's column names with
+    /// `Record::set_lane`, sharing nothing with `TopEncoder`.
+    fn by_name(cfg: &PipelineConfig, l: &Layout, s: &TopStim, colour: [u32; 3]) -> Record {
+        let mut r = Record::new(l);
+        let mut put = |name: &str, vals: &[i64]| {
+            let c = l.column(name);
+            for (i, v) in vals.iter().enumerate() {
+                r.set_lane(c, i as u32, *v);
+            }
+        };
+        match s.frag.bump {
+            BumpTexel::Rgb(c) => put("in_bump", &c.map(i64::from)),
+            BumpTexel::Index(i) => put("in_bump", &[i64::from(i)]),
+        }
+        put("in_c_src", &s.frag.c_src.map(i64::from));
+        put("in_tex", &s.frag.tex.map(i64::from));
+        put("in_diffuse_en", &[s.frag.diffuse_en as i64]);
+        put("in_specular_en", &[s.frag.specular_en as i64]);
+        if cfg.per_triangle() {
+            put(TRI_START, &[s.tri_start as i64]);
+        }
+        let n = cfg.lights as usize;
+        let st = &s.state.lights[..n];
+        put(&state_column(cfg, "l"), &st.iter().flat_map(|x| x.l).collect::<Vec<_>>());
+        put(&state_column(cfg, "h"), &st.iter().flat_map(|x| x.h).collect::<Vec<_>>());
+        put(
+            &state_column(cfg, "lc"),
+            &st.iter().flat_map(|x| x.lc.map(i64::from)).collect::<Vec<_>>(),
+        );
+        put(&state_column(cfg, "k"), &st.iter().map(|x| x.k).collect::<Vec<_>>());
+        put("out_c", &colour.map(i64::from));
+        r
+    }
+
+    /// The packed fragment columns and the lane-by-lane ones give the records a by-name
+    /// reference gives, over the fuzzer's random and corner configurations.
+    #[test]
+    fn every_layout_packs_as_the_by_name_reference() {
+        let mut rng = crate::vectors::rng::SplitMix64(0xC01_5EED);
+        let mut cfgs: Vec<PipelineConfig> = crate::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
+        cfgs.extend((0..150).map(|_| crate::sim::fuzz::random_config(&mut rng)));
+        let mut packed = 0;
+        for (k, cfg) in cfgs.iter().enumerate() {
+            let l = top_layout(cfg);
+            let enc = TopEncoder::new(cfg, &l);
+            packed += enc.packed_from.is_some() as usize;
+            for s in crate::vectors::sources::random_chunk(cfg, k as u64, 0, 200) {
+                let colour = [0, 1, 2].map(|i| (s.frag.c_src[i] ^ s.frag.tex[(i + 1) % 3]) & cfg.colour_max());
+                let want = by_name(cfg, &l, &s, colour);
+                let mut got = Record::new(&l);
+                enc.fill_state(&s.state, &mut got);
+                enc.fill_fragment(&s.frag, s.tri_start, colour, &mut got);
+                assert_eq!(got.words, want.words, "packed, config {}:\n{}", cfg.hash(), cfg.to_toml());
+                let mut lanes = Record::new(&l);
+                enc.fill_state(&s.state, &mut lanes);
+                enc.fill_fragment_lanes(&s.frag, s.tri_start, colour, &mut lanes);
+                assert_eq!(lanes.words, want.words, "lane by lane, config {}", cfg.hash());
+                // The words `fragment_words` names are the only ones a fragment changes.
+                let mut state_only = Record::new(&l);
+                enc.fill_state(&s.state, &mut state_only);
+                for (w, (a, b)) in want.words.iter().zip(&state_only.words).enumerate() {
+                    assert!(
+                        a == b || enc.fragment_words().contains(&w),
+                        "word {w} changed, config {}",
+                        cfg.hash()
+                    );
+                }
+            }
+        }
+        assert!(packed > cfgs.len() / 2, "{packed} of {} layouts packed", cfgs.len());
+    }
 }

@@ -148,7 +148,8 @@ pub struct RunEncoder<'m, 'a> {
     colours: Vec<[u32; 3]>,
     /// The run's state columns, the rest zero.
     state: Record,
-    /// A fragment's columns, in the words `frag_words` names (the others stay zero).
+    /// The record being made: the run's state, and in the words `frag_words` names the
+    /// current fragment's columns too.
     r: Record,
     frag_words: Vec<usize>,
     /// One binary record as whole words, its state already in place: a fragment rewrites
@@ -177,6 +178,8 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         let m = self.maker;
         self.state.words.fill(0);
         self.enc.fill_state(run.state, &mut self.state);
+        // `r` and `bytes` hold the run's state; a fragment rewrites only its own words.
+        self.r.words.copy_from_slice(&self.state.words);
         for (dst, w) in self.bytes.chunks_exact_mut(8).zip(&self.state.words) {
             dst.copy_from_slice(&w.to_le_bytes());
         }
@@ -191,22 +194,17 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
                 let i = b * BATCH + k;
                 m.check(run.first + i as u64, run.state, f, *c)?;
                 for &w in &self.frag_words {
-                    self.r.words[w] = 0;
+                    self.r.words[w] = self.state.words[w];
                 }
                 self.enc.fill_fragment(f, run.tri_start && i == 0, *c, &mut self.r);
-                for &w in &self.frag_words {
-                    self.r.words[w] |= self.state.words[w];
-                    self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
-                }
                 if let Some(bin) = bin.as_deref_mut() {
+                    for &w in &self.frag_words {
+                        self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
+                    }
                     bin.extend_from_slice(&self.bytes[..bytes]);
                 }
                 if let Some(hex) = hex.as_deref_mut() {
-                    let mut whole = self.state.clone();
-                    for &w in &self.frag_words {
-                        whole.words[w] = self.r.words[w];
-                    }
-                    hex.push_str(&whole.hex(digits));
+                    hex.push_str(&self.r.hex(digits));
                     hex.push('\n');
                 }
             }
@@ -301,6 +299,31 @@ mod tests {
         }
         assert_eq!(bin, want_bin);
         assert_eq!(hex, want_hex);
+    }
+
+    /// The same over random valid configurations (every width, lane count and layout the
+    /// fuzzer draws), where the packed fragment columns and the per-word record updates must
+    /// hold for layouts other than the default's.
+    #[test]
+    fn records_are_the_readable_encoders_for_every_configuration() {
+        let mut rng = crate::vectors::rng::SplitMix64(0xE4C0_DE);
+        for i in 0..120 {
+            let cfg = crate::sim::fuzz::random_config(&mut rng);
+            let contents = MemoryContents::new(&cfg, cfg.shininess);
+            let t = TopRecords::new(&cfg, contents.view());
+            let n = 700;
+            let (mut bin, mut hex) = (Vec::new(), String::new());
+            t.random_chunk(i, 0, n, Some(&mut bin), Some(&mut hex), false).unwrap();
+            let stims = crate::vectors::sources::random_chunk(&cfg, i, 0, n);
+            let (mut want_bin, mut want_hex) = (Vec::new(), String::new());
+            for s in &stims {
+                let r = super::super::targets::top_record(&cfg, &t.layout, s, &super::super::targets::eval_top(&cfg, &t.mem, s));
+                r.to_bytes(t.layout.bytes(), &mut want_bin);
+                want_hex += &(r.hex(t.layout.hex_digits()) + "\n");
+            }
+            assert!(bin == want_bin, "config {} binary records differ:\n{}", cfg.hash(), cfg.to_toml());
+            assert!(hex == want_hex, "config {} text records differ:\n{}", cfg.hash(), cfg.to_toml());
+        }
     }
 
     #[test]
