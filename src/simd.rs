@@ -23,14 +23,20 @@ impl Level {
 }
 
 /// The best level this CPU runs (detected once; later calls are a load). `GBUMP_SIMD=
-/// baseline|avx2` caps it, to measure or check a lower level on a machine with a higher one.
+/// baseline|avx2|avx512` caps it, to measure or check a lower level on a machine with a
+/// higher one.
 pub fn level() -> Level {
     static LEVEL: std::sync::OnceLock<Level> = std::sync::OnceLock::new();
     *LEVEL.get_or_init(|| {
         let cap = match std::env::var("GBUMP_SIMD").as_deref() {
             Ok("baseline") => Level::Baseline,
             Ok("avx2") => Level::Avx2,
-            _ => Level::Avx512,
+            Ok("avx512") | Err(_) => Level::Avx512,
+            Ok(other) => {
+                // Deep in a loop there is no error path; say so once and run uncapped.
+                eprintln!("gbump: warning: GBUMP_SIMD={other:?} is not baseline, avx2 or avx512; ignored");
+                Level::Avx512
+            }
         };
         detected().min(cap)
     })

@@ -2,14 +2,16 @@
 //! environment map, and the bump map's (du, dv), through a 2×2 matrix, perturbs the map
 //! coordinates per pixel. Assumptions: the map is a sphere map of the normal in view space
 //! (coordinates (N·right, N·up), texel centres on a square grid), `EMBM_MAP` texels a side,
-//! read bilinearly; it holds the diffuse and the specular lighting of the object's material
+//! read bilinearly; the bump map's (du, dv) are the bump normal's tangent components (what
+//! moves a unit normal's sphere-map coordinates, so a plane facing the viewer is exact); it
+//! holds the diffuse and the specular lighting of the object's material
 //! from the scene's bump lights taken as distant (their direction and spot factor at the
 //! object's centre: the map's lights are stationary); the map coordinates are interpolated
 //! from the vertices, and the 2×2 matrix is held per triangle, the view-space right and up
 //! components of the triangle's T and B. Moving one light regenerates both maps of every
 //! object it lights: `2 · EMBM_MAP²` texels each.
 
-use super::common::{bump_normal, corners, finish, mix, offsets, triangle_frame, Base};
+use super::common::{bump_normal, corners, finish, mix, triangle_frame, Base};
 use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
@@ -44,7 +46,10 @@ fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     };
     let s0 = mix(hit, |i| st(v[i].n).extend(0.0)).truncate();
     let (_, t, b) = triangle_frame(&v);
-    let (du, dv) = offsets(bump_normal(p, hit, g));
+    // The map is indexed by a unit normal's tangent-plane components, so the bump map's
+    // (du, dv) are its normal's x and y: a tilt moves the coordinates by its sine.
+    let nb = bump_normal(p, hit, g);
+    let (du, dv) = (nb.x, nb.y);
     let m = [
         DVec2::new(t.dot(cam.right), t.dot(cam.up)),
         DVec2::new(b.dot(cam.right), b.dot(cam.up)),

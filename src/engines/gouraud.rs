@@ -4,11 +4,11 @@
 //! and/or the light directions, one per light. Assumptions for the variants: an interpolated
 //! vector is formed at each vertex in that vertex's own frame (so it follows the surface's
 //! curvature as Phong's normal does) and is not renormalised, and k stays per triangle as in
-//! the paper's bump state.
+//! the paper's bump state; the rest (clamps, blend order, skip_flat) is the paper's engine's
+//! own (`reference::gouraud_f64::shade_with`).
 
-use super::common::{corners, finish, mix, to_frame, Base};
+use super::common::{corners, mix, to_frame};
 use super::{Cost, Ctx, Engine};
-use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use crate::scene::lighting::{half_vector, light_dir};
 use crate::scene::mesh::frame;
@@ -69,25 +69,17 @@ fn shade_hl(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
 }
 
 fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, interpolate_l: bool) -> DVec3 {
-    let so = &p.scene.objects[hit.obj as usize];
-    let o = &p.objects[hit.obj as usize];
-    let ts = &o.tris[hit.tri as usize];
+    let ts = &p.objects[hit.obj as usize].tris[hit.tri as usize];
     let v = corners(p, hit);
-    let nb = crate::reference::gouraud_f64::filtered_normal(&o.normals, g.uv, so.bump.filter);
-    let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
-    for (i, l) in p.scene.bump_lights().enumerate() {
-        let at = |j: usize| {
-            let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
-            let ld = light_dir(l, v[j].p, n);
-            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
-        };
-        let lt = if interpolate_l { mix(hit, |j| at(j).0) } else { ts.l[i] };
-        let ht = mix(hit, |j| at(j).1);
-        // The blending units clamp; they have no self-shadowing test (as the paper's engine).
-        let (fd, fs) = (nb.dot(lt).clamp(0.0, 1.0), nb.dot(ht).clamp(0.0, 1.0));
-        let lc = DVec3::from_array(l.colour) * ts.k[i];
-        diff += lc * fd;
-        spec += lc * powi_exact(fs, so.shininess);
-    }
-    finish(p, hit, g, Base::Interpolated, diff, spec)
+    let lights: Vec<_> = p.scene.bump_lights().collect();
+    // Each light's L and H at each vertex, in that vertex's own frame.
+    let at = |i: usize, j: usize| {
+        let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
+        let ld = light_dir(lights[i], v[j].p, n);
+        (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
+    };
+    crate::reference::gouraud_f64::shade_with(p, hit, g, |i| {
+        let l = if interpolate_l { mix(hit, |j| at(i, j).0) } else { ts.l[i] };
+        (l, mix(hit, |j| at(i, j).1))
+    })
 }

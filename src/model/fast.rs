@@ -152,8 +152,8 @@ impl FastModel {
     ) {
         match level {
             #[cfg(target_arch = "x86_64")]
-            // SAFETY: the CPU has every feature the function is compiled for (checked by the
-            // caller).
+            // SAFETY: the CPU has every feature the function is compiled for (the caller's
+            // contract).
             Level::Avx512 => unsafe { self.run_avx512::<N, TEXTURE_LAST>(lights, frags, out) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above.

@@ -25,6 +25,13 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
 }
 
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    let ts = &p.objects[hit.obj as usize].tris[hit.tri as usize];
+    shade_with(p, hit, g, |i| (ts.l[i], ts.h[i]))
+}
+
+/// The Gouraud bump equations with light `i`'s bump-space L and H from `lh(i)`: the paper's
+/// per-triangle vectors, or (the §6 variants, `engines::gouraud`) interpolated ones.
+pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, lh: impl Fn(usize) -> (DVec3, DVec3)) -> DVec3 {
     let cfg = p.cfg;
     let so = &p.scene.objects[hit.obj as usize];
     let o = &p.objects[hit.obj as usize];
@@ -36,11 +43,12 @@ pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
     for (i, l) in p.scene.bump_lights().enumerate() {
         let lc = DVec3::from_array(l.colour) * ts.k[i];
+        let (lv, hv) = lh(i);
         if dif_on {
-            diff += lc * bn.dot(ts.l[i]).clamp(0.0, 1.0);
+            diff += lc * bn.dot(lv).clamp(0.0, 1.0);
         }
         if spe_on {
-            spec += lc * powi_exact(bn.dot(ts.h[i]).clamp(0.0, 1.0), so.shininess);
+            spec += lc * powi_exact(bn.dot(hv).clamp(0.0, 1.0), so.shininess);
         }
     }
     let tex = crate::raster::assets::texture_at(so, g.uv);
