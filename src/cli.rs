@@ -911,7 +911,11 @@ pub fn run() -> anyhow::Result<()> {
             }
             None => {
                 let cfg = PipelineConfig::default();
-                out!("# config hash {}\n{}", cfg.hash(), cfg.to_toml());
+                out!(
+                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n",
+                    cfg.hash(),
+                    cfg.to_toml()
+                );
             }
         },
         Cmd::Limits => out!("{}", crate::limits::markdown()),

@@ -57,6 +57,29 @@ pub enum BumpStateAt {
     Fragment,
 }
 
+/// What the rasteriser interpolates of the bump state (paper §6's improvements): nothing
+/// (the paper's engine: L and H per triangle), the half vectors, or the half vectors and the
+/// light directions. An interpolated vector is formed at each vertex in that vertex's own
+/// frame and interpolated over the triangle, so it reaches the pipeline per fragment: it needs
+/// `bump_state = "fragment"`. The generated RTL is the per-fragment top's; the vectors and
+/// golden images carry each fragment's own L and H.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Interpolate {
+    #[default]
+    None,
+    H,
+    Hl,
+}
+
+impl Interpolate {
+    /// Whether nothing is interpolated (the field is then left out of the TOML, so the
+    /// hashes of configurations from before the field are unchanged).
+    pub fn is_none(&self) -> bool {
+        *self == Interpolate::None
+    }
+}
+
 /// How the units' multipliers are written in the Verilog.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -153,6 +176,9 @@ pub struct PipelineConfig {
     /// How the multipliers are written: Booth rows in logic, or `*` for synthesis to map
     /// (DSP blocks where the FPGA has them). Results do not change.
     pub multipliers: Multipliers,
+    /// What the rasteriser interpolates of the bump state per fragment (`none`, `h`, `hl`).
+    #[serde(skip_serializing_if = "Interpolate::is_none")]
+    pub interpolate: Interpolate,
 }
 
 impl Default for PipelineConfig {
@@ -183,6 +209,7 @@ impl Default for PipelineConfig {
             triangle_banks: 2,
             pipeline_depth: DEFAULT_PIPELINE_DEPTH,
             multipliers: Multipliers::Booth,
+            interpolate: Interpolate::None,
         }
     }
 }
@@ -375,6 +402,17 @@ impl PipelineConfig {
                 "diffuse",
                 "both blend units are off",
                 "enable `diffuse` or `specular`",
+            ));
+        }
+        if !self.interpolate.is_none() && self.bump_state != BumpStateAt::Fragment {
+            return Err(Error::field(
+                file,
+                "interpolate",
+                format!(
+                    "{:?} interpolates L or H per fragment, which a per-triangle top cannot take",
+                    self.interpolate
+                ),
+                "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
             ));
         }
         if self.term_fmt().sum(self.lights).width + 1 > crate::fixed::MAX_WIDTH {

@@ -122,6 +122,13 @@ fn regress_paper_sample_one_light() {
 }
 
 #[test]
+fn regress_interpolated_h_and_l() {
+    // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
+    // port; scenes with more than two bump lights do not fit the two slots.
+    regress_short("tests/configs/interpolate_hl.toml", "interpolate_hl", 10);
+}
+
+#[test]
 fn regress_four_lights_serial_dot10() {
     regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }

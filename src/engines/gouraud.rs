@@ -7,11 +7,9 @@
 //! the paper's bump state; the rest (clamps, blend order, skip_flat) is the paper's engine's
 //! own (`reference::gouraud_f64::shade_with`).
 
-use super::common::{corners, mix, to_frame};
 use super::{Cost, Ctx, Engine};
-use crate::raster::{Hit, PixelGeom, Prepared};
-use crate::scene::lighting::{half_vector, light_dir};
-use crate::scene::mesh::frame;
+use crate::config::Interpolate;
+use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
 
 pub const GOURAUD: Engine = Engine {
@@ -57,29 +55,13 @@ pub const GOURAUD_HL: Engine = Engine {
 };
 
 fn shade_paper(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade(c.p, hit, g)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::None)
 }
 
 fn shade_h(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    shade_with(c.p, hit, g, false)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H)
 }
 
 fn shade_hl(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    shade_with(c.p, hit, g, true)
-}
-
-fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, interpolate_l: bool) -> DVec3 {
-    let ts = &p.objects[hit.obj as usize].tris[hit.tri as usize];
-    let v = corners(p, hit);
-    let lights: Vec<_> = p.scene.bump_lights().collect();
-    // Each light's L and H at each vertex, in that vertex's own frame.
-    let at = |i: usize, j: usize| {
-        let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
-        let ld = light_dir(lights[i], v[j].p, n);
-        (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
-    };
-    crate::reference::gouraud_f64::shade_with(p, hit, g, |i| {
-        let l = if interpolate_l { mix(hit, |j| at(i, j).0) } else { ts.l[i] };
-        (l, mix(hit, |j| at(i, j).1))
-    })
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl)
 }

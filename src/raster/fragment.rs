@@ -5,7 +5,7 @@
 use super::assets::texture_at;
 use super::{Hit, Prepared};
 use crate::bumpmap::sample::sample_bump;
-use crate::model::FragmentIn;
+use crate::model::{BumpState, FragmentIn};
 use crate::scene::lighting::gouraud_colour;
 use glam::{DVec2, DVec3};
 
@@ -17,6 +17,8 @@ pub struct FragmentRecord {
     pub obj: u32,
     pub tri: u32,
     pub frag: FragmentIn,
+    /// The bump state it is shaded with: its triangle's, or under `interpolate` its own.
+    pub state: BumpState,
 }
 
 /// Interpolated geometry at a pixel.
@@ -70,6 +72,19 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
     }
 }
 
+/// The bump state of the fragment at `hit` (`tri_state::fragment_state`).
+pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
+    let o = &p.objects[hit.obj as usize];
+    let ts = &o.tris[hit.tri as usize];
+    if p.cfg.interpolate.is_none() {
+        return ts.fixed;
+    }
+    let v = o.mesh.tris[hit.tri as usize].map(|i| o.mesh.verts[i as usize]);
+    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &v);
+    // Interpolated unit vectors stay within the unit ball, so every component is finite.
+    super::tri_state::fragment_state(p.cfg, ts, &vv, hit.bary).expect("finite interpolated vectors")
+}
+
 /// Every covered pixel's fragment record, triangle by triangle (pixel order within one).
 pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
     use rayon::prelude::*;
@@ -86,6 +101,7 @@ pub fn fragments(p: &Prepared, gb: &super::GBuffer) -> Vec<FragmentRecord> {
                 obj: hit.obj,
                 tri: hit.tri,
                 frag: fragment_in(p, hit, &g),
+                state: state_at(p, hit),
             })
         })
         .collect();

@@ -3,7 +3,7 @@
 //! quantised to the pipeline's L/H words. Parallel viewer and per-triangle parallel lights
 //! are the paper's simplifications (§5.4, items 2 and 3).
 
-use crate::config::PipelineConfig;
+use crate::config::{Interpolate, PipelineConfig};
 use crate::error::{Error, Result};
 use crate::fixed::{from_f64, Overflow, Rounding};
 use crate::model::{BumpState, LightSlot, MAX_LIGHTS};
@@ -65,4 +65,47 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
         out.push(st);
     }
     Ok(out)
+}
+
+/// Each bump light's L and H at each vertex of a triangle, each in that vertex's own frame
+/// (what paper §6's interpolating variants send per vertex): `[light][vertex] = (L, H)`.
+pub fn vertex_vectors(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3]) -> Vec<[(DVec3, DVec3); 3]> {
+    scene
+        .bump_lights()
+        .map(|l| {
+            std::array::from_fn(|j| {
+                let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
+                let to_bump = |w: DVec3| DVec3::new(w.dot(t), w.dot(b), w.dot(n));
+                let ld = light_dir(l, v[j].p, n);
+                (to_bump(ld), to_bump(half_vector(ld, cam.to_viewer)))
+            })
+        })
+        .collect()
+}
+
+/// Light `i`'s bump-space L and H at barycentric weights `w` under `interpolate`: the
+/// triangle's own, or interpolated from `vv` ([`vertex_vectors`]).
+pub fn lh_at(ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3], interpolate: Interpolate, i: usize) -> (DVec3, DVec3) {
+    let mix = |f: &dyn Fn(&(DVec3, DVec3)) -> DVec3| f(&vv[i][0]) * w[0] + f(&vv[i][1]) * w[1] + f(&vv[i][2]) * w[2];
+    match interpolate {
+        Interpolate::None => (ts.l[i], ts.h[i]),
+        Interpolate::H => (ts.l[i], mix(&|x| x.1)),
+        Interpolate::Hl => (mix(&|x| x.0), mix(&|x| x.1)),
+    }
+}
+
+/// The bump state one fragment carries under `cfg.interpolate`: the triangle's, with each
+/// light's interpolated vectors quantised as the setup quantises its own.
+pub fn fragment_state(cfg: &PipelineConfig, ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3]) -> Result<BumpState> {
+    let mut st = ts.fixed;
+    if cfg.interpolate.is_none() {
+        return Ok(st);
+    }
+    let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite interpolated light vector".into()));
+    for i in 0..vv.len() {
+        let (l, h) = lh_at(ts, vv, w, cfg.interpolate, i);
+        st.lights[i].l = [q(l.x)?, q(l.y)?, q(l.z)?];
+        st.lights[i].h = [q(h.x)?, q(h.y)?, q(h.z)?];
+    }
+    Ok(st)
 }

@@ -24,9 +24,24 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
     }
 }
 
+/// The equations with L and H as `p.cfg.interpolate` says (per triangle unless the
+/// configuration interpolates them).
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    let ts = &p.objects[hit.obj as usize].tris[hit.tri as usize];
-    shade_with(p, hit, g, |i| (ts.l[i], ts.h[i]))
+    shade_interpolating(p, hit, g, p.cfg.interpolate)
+}
+
+/// The equations with L and H per triangle or interpolated as `how` says (`engines::gouraud`
+/// asks for each variant whatever the configuration).
+pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::config::Interpolate) -> DVec3 {
+    use crate::raster::tri_state::{lh_at, vertex_vectors};
+    let o = &p.objects[hit.obj as usize];
+    let ts = &o.tris[hit.tri as usize];
+    let vv = if how.is_none() {
+        Vec::new()
+    } else {
+        vertex_vectors(p.scene, &p.camera, &o.mesh.tris[hit.tri as usize].map(|i| o.mesh.verts[i as usize]))
+    };
+    shade_with(p, hit, g, |i| lh_at(ts, &vv, hit.bary, how, i))
 }
 
 /// The Gouraud bump equations with light `i`'s bump-space L and H from `lh(i)`: the paper's

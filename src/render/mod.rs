@@ -40,7 +40,7 @@ pub fn golden_image(p: &Prepared, frags: &[FragmentRecord], bar: &ProgressBar) -
             chunk.iter().map(|f| {
                 let o = &p.objects[f.obj as usize];
                 let table = &p.tables[&p.scene.objects[f.obj as usize].shininess];
-                shade(p.cfg, table, o.stored.palette(), &o.tris[f.tri as usize].fixed, &f.frag).colour()
+                shade(p.cfg, table, o.stored.palette(), &f.state, &f.frag).colour()
             })
         })
         .collect();

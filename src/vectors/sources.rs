@@ -281,7 +281,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
         let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
         groups.entry(n).or_default().push(TopStim {
             frag: f.frag,
-            state: p.objects[f.obj as usize].tris[f.tri as usize].fixed,
+            state: f.state,
             tri_start,
         });
     }
