@@ -8,11 +8,10 @@
 //! exponent is the power of two nearest the material's shininess (the text squares three
 //! times for 8); no scene has a gloss map, so the gloss is 1.
 
-use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
+use super::common::{bump_normal, corners, finish, mix, tangent_factors, Base};
 use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom};
-use crate::scene::lighting::{half_vector, light_dir, spot_factor};
-use crate::scene::mesh::frame;
+use crate::scene::lighting::spot_factor;
 use glam::DVec3;
 
 pub const CG: Engine = Engine {
@@ -76,14 +75,11 @@ fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let nb = bump_normal(p, hit, g);
     let e = squarings_exponent(so.shininess);
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
-    for l in p.scene.bump_lights() {
-        let at = |i: usize| {
-            let (n, t, b) = frame(v[i].n, v[i].t, v[i].b);
-            let ld = light_dir(l, v[i].p, n);
-            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
-        };
-        let lt = cube_normalise(mix(hit, |i| at(i).0), c.cg_cube);
-        let ht = cube_normalise(mix(hit, |i| at(i).1), c.cg_cube);
+    // Each light's L and H at each vertex in that vertex's tangent space.
+    let vv = crate::raster::tri_state::vertex_vectors(p.scene, &p.camera, &v);
+    for (l, at) in p.scene.bump_lights().zip(&vv) {
+        let lt = cube_normalise(mix(hit, |i| at[i].0), c.cg_cube);
+        let ht = cube_normalise(mix(hit, |i| at[i].1), c.cg_cube);
         let (fd, fs) = tangent_factors(p, nb, lt, ht);
         // The spot factor at the pixel's interpolated position (the Tutorial's lights have no
         // cone; a per-pixel cone keeps the comparison about normalisation alone).

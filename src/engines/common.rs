@@ -49,11 +49,6 @@ pub fn offsets(nb: DVec3) -> (f64, f64) {
     (nb.x / z, nb.y / z)
 }
 
-/// `v` in the frame (t, b, n): the components a tangent-space engine works with.
-pub fn to_frame(v: DVec3, n: DVec3, t: DVec3, b: DVec3) -> DVec3 {
-    DVec3::new(v.dot(t), v.dot(b), v.dot(n))
-}
-
 /// Diffuse and specular sums for perturbed normal `np` with per-pixel light and half vectors
 /// at the pixel, each light's colour times its k and spot factor; `n` is the geometric
 /// normal (self-shadowing).

@@ -5,12 +5,11 @@
 //! interpolates them "homogeneously" and says no more), and each light's k and spot factor is
 //! taken at the vertices and interpolated with them.
 
-use super::common::{bump_normal, corners, finish, mix, tangent_factors, to_frame, Base};
+use super::common::{bump_normal, corners, finish, mix, tangent_factors, Base};
 use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
-use crate::scene::lighting::{half_vector, light_dir, spot_factor};
-use crate::scene::mesh::frame;
+use crate::scene::lighting::spot_factor;
 use glam::DVec3;
 
 pub const SGI: Engine = Engine {
@@ -33,14 +32,11 @@ fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let v = corners(p, hit);
     let nb = bump_normal(p, hit, g);
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
-    for l in p.scene.bump_lights() {
-        let at = |i: usize| {
-            let (n, t, b) = frame(v[i].n, v[i].t, v[i].b);
-            let ld = light_dir(l, v[i].p, n);
-            (to_frame(ld, n, t, b), to_frame(half_vector(ld, p.camera.to_viewer), n, t, b))
-        };
-        let lt = mix(hit, |i| at(i).0);
-        let ht = mix(hit, |i| at(i).1);
+    // Each light's L and H at each vertex in that vertex's tangent space.
+    let vv = crate::raster::tri_state::vertex_vectors(p.scene, &p.camera, &v);
+    for (l, at) in p.scene.bump_lights().zip(&vv) {
+        let lt = mix(hit, |i| at[i].0);
+        let ht = mix(hit, |i| at[i].1);
         let k = mix(hit, |i| DVec3::splat(l.k * spot_factor(l, v[i].p))).x;
         let (fd, fs) = tangent_factors(p, nb, lt, ht);
         let lc = DVec3::from_array(l.colour) * k;

@@ -21,36 +21,14 @@ pub fn scatter(points: &[Dot], title: &str, x_label: &str, y_label: &str) -> Str
     );
     let px = |x: f64| m + (x - x0) / (x1 - x0) * (w - 1.5 * m);
     let py = |y: f64| h - m - (y - y0) / (y1 - y0) * (h - 1.8 * m);
-    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
-    s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
-    for i in 0..=5 {
-        let xv = x0 + (x1 - x0) * i as f64 / 5.0;
-        let yv = y0 + (y1 - y0) * i as f64 / 5.0;
-        s += &format!(
-            "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n",
-            px(xv),
-            h - m + 16.0,
-            xv
-        );
-        s += &format!(
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.3}</text>\n",
-            m - 6.0,
-            py(yv) + 4.0,
-            yv
-        );
-    }
-    s += &format!(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
-        w / 2.0,
-        h - 22.0,
-        esc(x_label)
-    );
-    s += &format!(
-        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
-        h / 2.0,
-        h / 2.0,
-        esc(y_label)
-    );
+    let ticks: Vec<(f64, String, f64, String)> = (0..=5)
+        .map(|i| {
+            let xv = x0 + (x1 - x0) * i as f64 / 5.0;
+            let yv = y0 + (y1 - y0) * i as f64 / 5.0;
+            (px(xv), format!("{xv:.0}"), py(yv), format!("{yv:.3}"))
+        })
+        .collect();
+    let mut s = axes((w, h, m), title, x_label, y_label, &ticks);
     // The paper's 10,000–25,000 GE estimate for the blend units, as a band.
     s += &format!(
         "<rect x=\"{:.1}\" y=\"{}\" width=\"{:.1}\" height=\"{}\" fill=\"#2a7\" opacity=\"0.08\"/>\n",
@@ -85,6 +63,30 @@ pub fn scatter(points: &[Dot], title: &str, x_label: &str, y_label: &str) -> Str
     s + "</svg>\n"
 }
 
+/// An SVG's head, title, axes, tick labels (x position and text, y position and text) and
+/// axis names, for a `w`×`h` plot with margin `m`; the caller adds the marks and `</svg>`.
+fn axes((w, h, m): (f64, f64, f64), title: &str, x_label: &str, y_label: &str, ticks: &[(f64, String, f64, String)]) -> String {
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
+    s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
+    for (x, xt, y, yt) in ticks {
+        s += &format!("<text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{xt}</text>\n", h - m + 16.0);
+        s += &format!("<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{yt}</text>\n", m - 6.0, y + 4.0);
+    }
+    s += &format!(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+        w / 2.0,
+        h - 22.0,
+        esc(x_label)
+    );
+    s += &format!(
+        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
+        h / 2.0,
+        h / 2.0,
+        esc(y_label)
+    );
+    s
+}
+
 fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
@@ -113,37 +115,20 @@ pub fn lines(series: &[Series], title: &str, x_label: &str, y_label: &str, log2_
     let y1 = all().map(|p| p.1).filter(|y| y.is_finite()).fold(1e-9, f64::max) * 1.1;
     let px = |x: f64| m + (fx(x) - x0) / (x1 - x0) * (w - 1.5 * m);
     let py = |y: f64| h - m - y.clamp(0.0, y1) / y1 * (h - 1.8 * m);
-    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
-    s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
-    for i in 0..=5 {
-        let t = x0 + (x1 - x0) * i as f64 / 5.0;
-        let xv = if log2_x { t.exp2() } else { t };
-        let sx = m + (t - x0) / (x1 - x0) * (w - 1.5 * m);
-        s += &format!(
-            "<text x=\"{sx:.1}\" y=\"{}\" text-anchor=\"middle\">{:.0}</text>\n",
-            h - m + 16.0,
-            xv
-        );
-        let yv = y1 * i as f64 / 5.0;
-        s += &format!(
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{:.2}</text>\n",
-            m - 6.0,
-            py(yv) + 4.0,
-            yv
-        );
-    }
-    s += &format!(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
-        w / 2.0,
-        h - 22.0,
-        esc(x_label)
-    );
-    s += &format!(
-        "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
-        h / 2.0,
-        h / 2.0,
-        esc(y_label)
-    );
+    let ticks: Vec<(f64, String, f64, String)> = (0..=5)
+        .map(|i| {
+            let t = x0 + (x1 - x0) * i as f64 / 5.0;
+            let xv = if log2_x { t.exp2() } else { t };
+            let yv = y1 * i as f64 / 5.0;
+            (
+                m + (t - x0) / (x1 - x0) * (w - 1.5 * m),
+                format!("{xv:.0}"),
+                py(yv),
+                format!("{yv:.2}"),
+            )
+        })
+        .collect();
+    let mut s = axes((w, h, m), title, x_label, y_label, &ticks);
     for (i, se) in series.iter().enumerate() {
         let c = COLOURS[i % COLOURS.len()];
         let dash = if se.label.contains("dashed") {
