@@ -2,37 +2,25 @@
 //! small size must equal its checked-in PNG exactly. `GBUMP_BLESS=1 cargo test --test
 //! golden_images` rewrites them after an intended change (review the diff images first).
 
-use gbump::render::output::{codes_to_u8, write_png};
+#[path = "common/golden_png.rs"]
+mod golden_png;
+
+use gbump::render::output::codes_to_u8;
 use gbump::render::render;
 use gbump::scene::{builtin, Scene};
-use std::path::Path;
 
 const W: u32 = 96;
 const H: u32 = 72;
 
 #[test]
 fn every_builtin_scene_matches_its_golden_png() {
-    let bless = std::env::var_os("GBUMP_BLESS").is_some();
     let mut failures = Vec::new();
     for (name, _) in builtin::ALL {
         let s = Scene::load(name).unwrap();
         let cfg = s.derive_config().unwrap();
         let img = render(&s, &cfg, W, H, false).unwrap();
         assert_eq!(cfg.colour_bits, 8);
-        let px = codes_to_u8(&img.golden, img.colour_max);
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{name}.png"));
-        if bless {
-            write_png(&path, W, H, &px).unwrap();
-            continue;
-        }
-        let want = image::open(&path)
-            .unwrap_or_else(|e| panic!("{}: {e} (run with GBUMP_BLESS=1 to create)", path.display()))
-            .to_rgb8();
-        let got: Vec<u8> = px.iter().flatten().copied().collect();
-        let diff = want.as_raw().iter().zip(&got).filter(|(a, b)| a != b).count();
-        if diff > 0 {
-            failures.push(format!("{name}: {diff} of {} channels differ", got.len()));
-        }
+        failures.extend(golden_png::check(name, W, H, &codes_to_u8(&img.golden, img.colour_max)));
     }
     assert!(failures.is_empty(), "golden images differ:\n{}", failures.join("\n"));
 }

@@ -6,10 +6,12 @@
 
 use gbump::config::{BumpStateAt, Interpolate, PipelineConfig};
 use gbump::measure::image_metrics::compare;
-use gbump::render::output::{codes_to_u8, write_png};
+#[path = "common/golden_png.rs"]
+mod golden_png;
+
+use gbump::render::output::codes_to_u8;
 use gbump::render::render;
 use gbump::scene::Scene;
-use std::path::Path;
 
 const W: u32 = 96;
 const H: u32 = 96;
@@ -52,21 +54,12 @@ fn a_per_triangle_top_refuses_interpolated_vectors_and_the_default_hash_is_uncha
 #[test]
 fn interpolated_golden_images_match_their_pngs() {
     let s = Scene::load("flat_artifact").unwrap();
-    let bless = std::env::var_os("GBUMP_BLESS").is_some();
     for (how, name) in [(Interpolate::H, "h"), (Interpolate::Hl, "hl")] {
         let img = render(&s, &config(how), W, H, false).unwrap();
         let px = codes_to_u8(&img.golden, img.colour_max);
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/flat_artifact_interpolate_{name}.png"));
-        if bless {
-            write_png(&path, W, H, &px).unwrap();
-            continue;
+        if let Some(diff) = golden_png::check(&format!("flat_artifact_interpolate_{name}"), W, H, &px) {
+            panic!("{diff}");
         }
-        let want = image::open(&path)
-            .unwrap_or_else(|e| panic!("{}: {e} (run with GBUMP_BLESS=1 to create)", path.display()))
-            .to_rgb8();
-        let got: Vec<u8> = px.iter().flatten().copied().collect();
-        let diff = want.as_raw().iter().zip(&got).filter(|(a, b)| a != b).count();
-        assert_eq!(diff, 0, "{name}: {diff} of {} channels differ", got.len());
     }
 }
 

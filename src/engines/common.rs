@@ -9,19 +9,12 @@ use glam::DVec3;
 
 /// The three vertices of the hit's triangle.
 pub fn corners(p: &Prepared, hit: &Hit) -> [Vertex; 3] {
-    let o = &p.objects[hit.obj as usize];
-    o.mesh.tris[hit.tri as usize].map(|i| o.mesh.verts[i as usize])
+    p.objects[hit.obj as usize].mesh.corners(hit.tri)
 }
 
 /// `Σ w_i f(i)` over the hit's barycentric weights.
 pub fn mix(hit: &Hit, f: impl Fn(usize) -> DVec3) -> DVec3 {
     f(0) * hit.bary[0] + f(1) * hit.bary[1] + f(2) * hit.bary[2]
-}
-
-/// The triangle's own frame (N, T, B): its vertex frames averaged and re-orthonormalised, the
-/// frame the Gouraud setup and VISA+'s alignment matrix hold per triangle.
-pub fn triangle_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
-    frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b)
 }
 
 /// The triangle's plane frame (N, T, B): its geometric normal (turned to the vertex normals'

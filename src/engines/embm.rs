@@ -11,11 +11,12 @@
 //! components of the triangle's T and B. Moving one light regenerates both maps of every
 //! object it lights: `2 · EMBM_MAP²` texels each.
 
-use super::common::{bump_normal, corners, finish, mix, triangle_frame, Base};
+use super::common::{bump_normal, corners, finish, mix, Base};
 use super::{Cost, Ctx, Engine};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::{half_vector, light_dir, spot_factor};
+use crate::scene::mesh::triangle_frame;
 use glam::{DVec2, DVec3};
 
 /// Texels along the environment map's side by default (`gbump engines --embm-map` changes it).

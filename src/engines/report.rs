@@ -17,8 +17,8 @@ pub struct EngineImage {
     pub w: u32,
     pub h: u32,
     pub rgb: Vec<[f64; 3]>,
-    /// (object, triangle) drawn at each pixel.
-    pub owner: Vec<Option<(u32, u32)>>,
+    /// (object, triangle) drawn at each pixel: the scene's, shared by every engine's image.
+    pub owner: std::sync::Arc<Vec<Option<(u32, u32)>>>,
 }
 
 /// Render `engines` over `scene` at `w`×`h`.
@@ -28,7 +28,7 @@ pub fn render(scene: &Scene, engines: &[&Engine], w: u32, h: u32, maps: Maps) ->
     let p = Prepared::new(scene, &cfg, w, h)?;
     let ctx = Ctx::new(&p, maps);
     let gb = rasterise(&p);
-    let owner: Vec<Option<(u32, u32)>> = gb.hits.iter().map(|h| h.map(|h| (h.obj, h.tri))).collect();
+    let owner: std::sync::Arc<Vec<Option<(u32, u32)>>> = std::sync::Arc::new(gb.hits.iter().map(|h| h.map(|h| (h.obj, h.tri))).collect());
     let bg = scene.camera.background;
     Ok(engines
         .iter()
@@ -68,23 +68,14 @@ const LSB: f64 = 255.0;
 
 /// `img` against `reference` over the drawn pixels.
 pub fn compare(img: &EngineImage, reference: &EngineImage) -> EngineError {
-    let (mut se, mut sum, mut worst, mut over, mut n) = (0.0f64, 0.0f64, 0.0f64, 0usize, 0usize);
-    for ((a, b), o) in img.rgb.iter().zip(&reference.rgb).zip(&img.owner) {
-        if o.is_none() {
-            continue;
-        }
-        n += 1;
-        let px = (0..3).map(|i| ((a[i] - b[i]) * LSB).abs()).fold(0.0, f64::max);
-        for i in 0..3 {
-            let d = (a[i] - b[i]) * LSB;
-            se += d * d;
-            sum += d.abs();
-        }
-        worst = worst.max(px);
-        over += usize::from(px > 1.0);
-    }
-    let samples = (3 * n).max(1) as f64;
-    let mse = se / samples;
+    let diffs = img
+        .rgb
+        .iter()
+        .zip(&reference.rgb)
+        .zip(img.owner.iter())
+        .filter(|(_, o)| o.is_some())
+        .map(|((a, b), _)| [0, 1, 2].map(|i| (a[i] - b[i]) * LSB));
+    let e = crate::measure::image_metrics::stats(diffs, LSB);
     let (mut seam_max, mut seam_sum, mut pairs) = (0.0f64, 0.0f64, 0usize);
     let (w, h) = (img.w as usize, img.h as usize);
     for y in 0..h {
@@ -109,14 +100,10 @@ pub fn compare(img: &EngineImage, reference: &EngineImage) -> EngineError {
         }
     }
     EngineError {
-        psnr_db: if mse == 0.0 {
-            f64::INFINITY
-        } else {
-            10.0 * (LSB * LSB / mse).log10()
-        },
-        max_lsb: worst,
-        mean_lsb: sum / samples,
-        over_1lsb: over as f64 / n.max(1) as f64,
+        psnr_db: e.psnr_db,
+        max_lsb: e.max_lsb,
+        mean_lsb: e.mean_lsb,
+        over_1lsb: e.over_1lsb,
         seam_max_lsb: seam_max,
         seam_mean_lsb: seam_sum / (3 * pairs).max(1) as f64,
     }

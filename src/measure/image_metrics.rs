@@ -34,15 +34,23 @@ pub fn error_map(golden: &[[u32; 3]], other: &[[f64; 3]], covered: &[bool], max:
 }
 
 pub fn compare(golden: &[[u32; 3]], other: &[[f64; 3]], covered: &[bool], max: u32) -> ImageError {
+    let diffs = golden
+        .iter()
+        .zip(other)
+        .zip(covered)
+        .filter(|(_, c)| **c)
+        .map(|((g, o), _)| [0, 1, 2].map(|i| g[i] as f64 - o[i].clamp(0.0, 1.0) * max as f64));
+    stats(diffs, max as f64)
+}
+
+/// The figures of per-pixel channel differences `diffs` (in LSBs of a format whose largest
+/// code is `max`), one item per covered pixel.
+pub fn stats(diffs: impl Iterator<Item = [f64; 3]>, max: f64) -> ImageError {
     let (mut se, mut sum, mut worst, mut over, mut n) = (0.0f64, 0.0f64, 0.0f64, 0usize, 0usize);
-    for ((g, o), c) in golden.iter().zip(other).zip(covered) {
-        if !*c {
-            continue;
-        }
+    for d in diffs {
         n += 1;
         let mut px_worst = 0.0f64;
-        for i in 0..3 {
-            let d = g[i] as f64 - o[i].clamp(0.0, 1.0) * max as f64;
+        for d in d {
             se += d * d;
             sum += d.abs();
             px_worst = px_worst.max(d.abs());
@@ -55,7 +63,7 @@ pub fn compare(golden: &[[u32; 3]], other: &[[f64; 3]], covered: &[bool], max: u
     let psnr = if mse == 0.0 {
         f64::INFINITY
     } else {
-        10.0 * ((max as f64).powi(2) / mse).log10()
+        10.0 * (max.powi(2) / mse).log10()
     };
     ImageError {
         psnr_db: psnr,

@@ -303,11 +303,26 @@ impl FastModel {
         self.dot.apply(b[0] * v[0] + b[1] * v[1] + b[2] * v[2]).clamp(0, self.dot_max)
     }
 
-    /// `c_in + round(acc)`, saturated: one blend's close.
+    /// `c_in + round(acc)`, saturated: one channel of one blend's close.
+    #[inline(always)]
+    fn close_channel(&self, c_in: i64, acc: i64) -> i64 {
+        (c_in + self.blend.apply(acc)).min(self.colour_max)
+    }
+
+    /// `round(c·t / (2^w − 1))` on colour codes: one channel of the texture modulation
+    /// (`fixed::unorm_mul`).
+    #[inline(always)]
+    fn texture_channel(&self, c: i64, t: i64) -> i64 {
+        let w = self.colour_bits;
+        let p = c * t + (1i64 << (w - 1));
+        (p + (p >> w)) >> w
+    }
+
+    /// [`close_channel`](Self::close_channel) on every channel.
     #[inline(always)]
     fn close(&self, c_in: [u32; 3], acc: [i64; 3]) -> [u32; 3] {
         // Written out: `[0, 1, 2].map(..)` became a call per channel.
-        let ch = |i: usize| (c_in[i] as i64 + self.blend.apply(acc[i])).min(self.colour_max) as u32;
+        let ch = |i: usize| self.close_channel(c_in[i] as i64, acc[i]) as u32;
         [ch(0), ch(1), ch(2)]
     }
 
@@ -316,7 +331,7 @@ impl FastModel {
     fn close_block(&self, c: &mut [[i64; LANES]; 3], acc: &[[i64; LANES]; 3]) {
         for ch in 0..3 {
             for i in 0..LANES {
-                c[ch][i] = (c[ch][i] + self.blend.apply(acc[ch][i])).min(self.colour_max);
+                c[ch][i] = self.close_channel(c[ch][i], acc[ch][i]);
             }
         }
     }
@@ -324,23 +339,17 @@ impl FastModel {
     /// [`texture`](Self::texture) across a block.
     #[inline(always)]
     fn texture_block(&self, c: &mut [[i64; LANES]; 3], tex: &[[i64; LANES]; 3]) {
-        let w = self.colour_bits;
         for ch in 0..3 {
             for i in 0..LANES {
-                let p = c[ch][i] * tex[ch][i] + (1i64 << (w - 1));
-                c[ch][i] = (p + (p >> w)) >> w;
+                c[ch][i] = self.texture_channel(c[ch][i], tex[ch][i]);
             }
         }
     }
 
-    /// Texture modulation: `fixed::unorm_mul` on every channel.
+    /// [`texture_channel`](Self::texture_channel) on every channel.
     #[inline(always)]
     fn texture(&self, c: [u32; 3], t: [u32; 3]) -> [u32; 3] {
-        let w = self.colour_bits;
-        let ch = |i: usize| {
-            let p = c[i] as u64 * t[i] as u64 + (1u64 << (w - 1));
-            ((p + (p >> w)) >> w) as u32
-        };
+        let ch = |i: usize| self.texture_channel(c[i] as i64, t[i] as i64) as u32;
         [ch(0), ch(1), ch(2)]
     }
 

@@ -35,9 +35,7 @@ pub struct PixelGeom {
 
 /// Interpolate a hit's vertex attributes (vectors are not renormalised here).
 pub fn pixel_geom(p: &Prepared, hit: &Hit) -> PixelGeom {
-    let o = &p.objects[hit.obj as usize];
-    let t = o.mesh.tris[hit.tri as usize];
-    let v = t.map(|i| o.mesh.verts[i as usize]);
+    let v = p.objects[hit.obj as usize].mesh.corners(hit.tri);
     let w = hit.bary;
     let mix3 = |f: &dyn Fn(usize) -> DVec3| f(0) * w[0] + f(1) * w[1] + f(2) * w[2];
     let c = |i: usize| gouraud_colour(p.scene, v[i].p, v[i].n);
@@ -79,8 +77,7 @@ pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
     if p.cfg.interpolate.is_none() {
         return ts.fixed;
     }
-    let v = o.mesh.tris[hit.tri as usize].map(|i| o.mesh.verts[i as usize]);
-    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &v);
+    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &o.mesh.corners(hit.tri));
     // Interpolated unit vectors stay within the unit ball, so every component is finite.
     super::tri_state::fragment_state(p.cfg, ts, &vv, hit.bary).expect("finite interpolated vectors")
 }

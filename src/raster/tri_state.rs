@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::fixed::{from_f64, Overflow, Rounding};
 use crate::model::{BumpState, LightSlot, MAX_LIGHTS};
 use crate::scene::lighting::{half_vector, light_dir, spot_factor};
-use crate::scene::mesh::{frame, Mesh};
+use crate::scene::mesh::{frame, triangle_frame, Mesh};
 use crate::scene::{Camera, Scene};
 use glam::DVec3;
 
@@ -39,7 +39,7 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
     for t in &mesh.tris {
         let v = t.map(|i| mesh.verts[i as usize]);
         let centroid = (v[0].p + v[1].p + v[2].p) / 3.0;
-        let (n, tg, bn) = frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b);
+        let (n, tg, bn) = triangle_frame(&v);
         let to_bump = |w: DVec3| DVec3::new(w.dot(tg), w.dot(bn), w.dot(n));
         let mut st = TriState {
             l: [DVec3::ZERO; MAX_LIGHTS],
@@ -98,9 +98,6 @@ pub fn lh_at(ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3], interpolate
 /// light's interpolated vectors quantised as the setup quantises its own.
 pub fn fragment_state(cfg: &PipelineConfig, ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3]) -> Result<BumpState> {
     let mut st = ts.fixed;
-    if cfg.interpolate.is_none() {
-        return Ok(st);
-    }
     let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite interpolated light vector".into()));
     for i in 0..vv.len() {
         let (l, h) = lh_at(ts, vv, w, cfg.interpolate, i);

@@ -39,7 +39,7 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::c
     let vv = if how.is_none() {
         Vec::new()
     } else {
-        vertex_vectors(p.scene, &p.camera, &o.mesh.tris[hit.tri as usize].map(|i| o.mesh.verts[i as usize]))
+        vertex_vectors(p.scene, &p.camera, &o.mesh.corners(hit.tri))
     };
     shade_with(p, hit, g, |i| lh_at(ts, &vv, hit.bary, how, i))
 }

@@ -24,6 +24,20 @@ pub struct Mesh {
     pub tris: Vec<[u32; 3]>,
 }
 
+impl Mesh {
+    /// The three vertices of triangle `tri`.
+    pub fn corners(&self, tri: u32) -> [Vertex; 3] {
+        self.tris[tri as usize].map(|i| self.verts[i as usize])
+    }
+}
+
+/// A triangle's own frame (N, T, B): its vertex frames averaged and re-orthonormalised, the
+/// frame the Gouraud setup sends L and H in (and VISA+'s alignment matrix and EMBM's 2×2
+/// matrix are built from).
+pub fn triangle_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
+    frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b)
+}
+
 /// Orthonormal frame from a normal and raw partial derivatives; zero-length inputs (poles,
 /// degenerate patches) fall back to a frame built from whatever is left, documented in
 /// ARCHITECTURE.md.
