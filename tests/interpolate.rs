@@ -82,4 +82,9 @@ fn interpolation_removes_the_flat_shading_and_tracks_its_equations() {
         to_blinn.push(blinn.mean_lsb);
     }
     assert!(to_blinn[1] < to_blinn[0] && to_blinn[2] < to_blinn[0] / 1.5, "{to_blinn:?}");
+    // The README states the figures measured here.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!("falls from {:.1} to {:.1} LSB with `hl`", to_blinn[0], to_blinn[2]);
+    assert!(flat.contains(&want), "README should say: {want}");
 }
