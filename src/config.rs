@@ -142,6 +142,13 @@ pub struct PipelineConfig {
     pub shininess: u32,
     /// Colour channel bits (paper: 8).
     pub colour_bits: u32,
+    /// Fraction bits the colour keeps between the three colour stages (0: each stage rounds to
+    /// `colour_bits`, as the paper's units do). With g > 0 the diffuse blend, the texture
+    /// modulation and the specular blend pass colours of `colour_bits + g` bits and
+    /// `colour_round` rounds once at the end, so the stages' roundings add 2^-g LSB each
+    /// instead of half an LSB (left out of the TOML when 0, so older hashes are unchanged).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub colour_guard_bits: u32,
     /// Fraction bits of the per-light modulation k_i (u1.K).
     pub k_frac_bits: u32,
     /// Light slots in hardware (1–8; paper: "usually two to four").
@@ -195,6 +202,7 @@ impl Default for PipelineConfig {
             power_segments: 6,
             shininess: 16,
             colour_bits: 8,
+            colour_guard_bits: 0,
             k_frac_bits: 8,
             lights: 4,
             light_mode: LightMode::Serial,
@@ -212,6 +220,10 @@ impl Default for PipelineConfig {
             interpolate: Interpolate::None,
         }
     }
+}
+
+fn is_zero(v: &u32) -> bool {
+    *v == 0
 }
 
 /// The default `pipeline_depth` (see ARCHITECTURE.md, "Timing as a parameter").
@@ -247,6 +259,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ),
     ("shininess", 0, 1024, "the largest exponent the table generator supports"),
     ("colour_bits", 2, 12, "frame-buffer channel width"),
+    (
+        "colour_guard_bits",
+        0,
+        4,
+        "fraction bits kept between the colour stages; 4 leave 1/16 LSB per stage, below any output's resolution",
+    ),
     (
         "k_frac_bits",
         0,
@@ -415,6 +433,18 @@ impl PipelineConfig {
                 "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
             ));
         }
+        if self.colour_guard_bits >= self.factor_frac() + self.k_frac_bits {
+            return Err(Error::field(
+                file,
+                "colour_guard_bits",
+                format!(
+                    "{} guard bits leave nothing to round of the {} fraction bits of the blend sum they are taken from",
+                    self.colour_guard_bits,
+                    self.factor_frac() + self.k_frac_bits
+                ),
+                "lower colour_guard_bits, or raise dot_frac_bits, power_frac_bits or k_frac_bits",
+            ));
+        }
         if self.term_fmt().sum(self.lights).width + 1 > crate::fixed::MAX_WIDTH {
             return Err(Error::field(
                 file,
@@ -437,6 +467,7 @@ impl PipelineConfig {
             "power_segments" => self.power_segments,
             "shininess" => self.shininess,
             "colour_bits" => self.colour_bits,
+            "colour_guard_bits" => self.colour_guard_bits,
             "k_frac_bits" => self.k_frac_bits,
             "lights" => self.lights,
             "triangle_banks" => self.triangle_banks,
@@ -476,6 +507,15 @@ impl PipelineConfig {
     /// Largest colour code (1.0).
     pub fn colour_max(&self) -> u32 {
         (1u32 << self.colour_bits) - 1
+    }
+    /// A colour between the colour stages: `colour_bits` integer bits and
+    /// `colour_guard_bits` fraction bits (the colour format itself when there are none).
+    pub fn stage_colour_fmt(&self) -> Format {
+        Format::u(self.colour_bits + self.colour_guard_bits, self.colour_guard_bits)
+    }
+    /// Largest stage colour code (1.0 in [`Self::stage_colour_fmt`]).
+    pub fn stage_colour_max(&self) -> i64 {
+        (self.colour_max() as i64) << self.colour_guard_bits
     }
     /// Fraction bits of the blend factor (fd or fs) feeding the blend units.
     pub fn factor_frac(&self) -> u32 {

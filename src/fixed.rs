@@ -203,9 +203,109 @@ pub fn unorm_mul(a: u64, b: u64, w: u32) -> u64 {
     (t + (t >> w)) >> w
 }
 
+/// Exact `round(x / (2^w - 1))` (half up; the divisor is odd, so there are no ties).
+#[inline]
+pub fn unorm_div_round(x: u64, w: u32) -> u64 {
+    let d = (1u64 << w) - 1;
+    (x + d / 2) / d
+}
+
+/// `round(x / (2^w - 1))` for `x <= x_max` as hardware computes it without a divider:
+/// `floor((x + (d-1)/2) · m / 2^s)` with `m = ceil(2^s / d)` a constant whose set bits are
+/// shifted adds. It is exact when `y_max · (m·d − 2^s) < 2^s` for `y_max = x_max + (d-1)/2`
+/// (the error term `y·e/(d·2^s)` then stays below `1/d`); `s` is the smallest such.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UnormDiv {
+    pub w: u32,
+    /// The rounding offset `(d-1)/2`.
+    pub half: u64,
+    pub m: u64,
+    pub s: u32,
+    /// Bits of `y = x + half` at `x_max`.
+    pub y_bits: u32,
+}
+
+impl UnormDiv {
+    pub fn new(w: u32, x_max: u64) -> UnormDiv {
+        let d = (1u64 << w) - 1;
+        let half = d / 2;
+        let y_max = (x_max + half) as u128;
+        let s = (w..100)
+            .find(|&s| {
+                let p = 1u128 << s;
+                let m = p.div_ceil(d as u128);
+                y_max * (m * d as u128 - p) < p
+            })
+            .expect("a shift exists");
+        UnormDiv {
+            w,
+            half,
+            m: (1u128 << s).div_ceil(d as u128) as u64,
+            s,
+            y_bits: 128 - y_max.leading_zeros(),
+        }
+    }
+    #[inline]
+    pub fn apply(&self, x: u64) -> u64 {
+        (((x + self.half) as u128 * self.m as u128) >> self.s) as u64
+    }
+    /// The set bits of `m`: the shifts whose sum is the constant product.
+    pub fn m_bits(&self) -> Vec<u32> {
+        (0..64).filter(|b| self.m >> b & 1 == 1).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The constant-reciprocal division against the division, for every product a stage
+    /// colour of up to 4 guard bits and a texture colour can make, at every colour width up
+    /// to 10 (and up to 12 at random); the fast model divides by it at every width, the RTL
+    /// with guard bits. Its constant product stays inside 63 bits (the fast model's i64).
+    #[test]
+    fn unorm_div_is_the_rounded_division_for_every_guarded_product() {
+        for w in 2..=10u32 {
+            let d = (1u64 << w) - 1;
+            for g in 0..=4u32 {
+                let x_max = (d << g) * d;
+                let u = UnormDiv::new(w, x_max);
+                for x in 0..=x_max {
+                    assert_eq!(u.apply(x), unorm_div_round(x, w), "w={w} g={g} x={x}");
+                }
+                assert_eq!(u.apply(x_max), d << g, "white on full colour");
+                assert!(u.y_bits + 64 - u.m.leading_zeros() <= 63, "w={w} g={g}: {u:?}");
+            }
+        }
+        let mut r = 0x9E37_79B9_7F4A_7C15u64;
+        for w in 11..=12u32 {
+            let d = (1u64 << w) - 1;
+            for g in 0..=4u32 {
+                let x_max = (d << g) * d;
+                let u = UnormDiv::new(w, x_max);
+                for x in (0..1_000_000u64).map(|_| {
+                    r ^= r << 13;
+                    r ^= r >> 7;
+                    r ^= r << 17;
+                    r % (x_max + 1)
+                }).chain([x_max, x_max - 1, 0, 1]) {
+                    assert_eq!(u.apply(x), unorm_div_round(x, w), "w={w} g={g} x={x}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn unorm_div_round_is_unorm_mul_where_both_apply() {
+        for w in 1..=8u32 {
+            let m = (1u64 << w) - 1;
+            for a in 0..=m {
+                for b in 0..=m {
+                    assert_eq!(unorm_div_round(a * b, w), unorm_mul(a, b, w));
+                }
+            }
+        }
+    }
 
     /// Oracle: exact rational rounding via i128 floor division.
     fn oracle_div(x: i128, d: i128, rnd: Rounding) -> i128 {

@@ -137,14 +137,18 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         });
     }
     out.push(pw);
-    // Blends over random inputs in their own formats.
+    // Blends over random inputs in their own formats; every colour-stage error is in output
+    // colour LSBs (a stage colour's LSB is 2^-colour_guard_bits of one), so the rows add up.
+    let g = cfg.colour_guard_bits;
+    let stage_lsb = (1u64 << g) as f64;
+    let sm = cfg.stage_colour_max();
     for unit in ["diffuse_blend", "specular_blend"] {
         let mut st = ErrorStats::new(unit, "random");
         let ff = cfg.factor_frac();
         let max = cfg.colour_max() as u64;
         for _ in 0..random {
             let l = cfg.lights as usize;
-            let c_in = [0; 3].map(|_| rng.range(0, max as i64) as u32);
+            let c_in = [0; 3].map(|_| rng.range(0, sm) as u32);
             let f: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << ff)).collect();
             let k: Vec<i64> = (0..l).map(|_| rng.range(0, 1 << cfg.k_frac_bits)).collect();
             let lc: Vec<[u32; 3]> = (0..l).map(|_| [0; 3].map(|_| rng.range(0, max as i64) as u32)).collect();
@@ -153,23 +157,41 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
                 let add: f64 = (0..l)
                     .map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_frac_bits) as f64 * lc[i][ch] as f64)
                     .sum();
-                st.add(o[ch] as f64 - (c_in[ch] as f64 + add).min(max as f64), || {
-                    format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}")
-                });
+                let exact = (c_in[ch] as f64 / stage_lsb + add).min(max as f64);
+                st.add(o[ch] as f64 / stage_lsb - exact, || format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}"));
             }
         }
         out.push(st);
     }
-    // texture_modulate exhaustively.
-    let mut tm = ErrorStats::new("texture_modulate", "exhaustive");
+    // texture_modulate exhaustively where that is at most 2^24 pairs, else at random.
     let max = cfg.colour_max();
-    for c in 0..=max {
-        for t in 0..=max {
-            let o = texture_modulate(cfg, [c, 0, 0], [t, 0, 0])[0];
-            tm.add(o as f64 - c as f64 * t as f64 / max as f64, || format!("c={c} t={t}"));
+    let pairs = (sm as u64 + 1) * (max as u64 + 1);
+    let exhaustive = pairs <= 1 << 24;
+    let mut tm = ErrorStats::new("texture_modulate", if exhaustive { "exhaustive" } else { "random 2^22" });
+    let mut tex_pair = |c: u32, t: u32| {
+        let o = texture_modulate(cfg, [c, 0, 0], [t, 0, 0])[0];
+        tm.add((o as f64 - c as f64 * t as f64 / max as f64) / stage_lsb, || format!("c={c} t={t}"));
+    };
+    if exhaustive {
+        for c in 0..=sm as u32 {
+            for t in 0..=max {
+                tex_pair(c, t);
+            }
+        }
+    } else {
+        for _ in 0..1u32 << 22 {
+            tex_pair(rng.range(0, sm) as u32, rng.range(0, max as i64) as u32);
         }
     }
     out.push(tm);
+    if g > 0 {
+        let mut cr = ErrorStats::new("colour_round", "exhaustive");
+        for c in 0..=sm as u32 {
+            let o = crate::model::texture_modulate::colour_round(cfg, [c, 0, 0])[0];
+            cr.add(o as f64 - c as f64 / stage_lsb, || format!("c={c}/2^{g}"));
+        }
+        out.push(cr);
+    }
     out.extend(pipeline_rows(cfg, &table, &palette, &stims));
     out.extend(input_errors(cfg, random, seed));
     out

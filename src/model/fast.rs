@@ -69,10 +69,19 @@ pub struct FastModel {
     diffuse_align: u32,
     /// Clamped B·H (every code 0..=2^F) to fs already aligned to the blend-factor format.
     specular_factor: Vec<i64>,
-    /// The exact blend sum to colour units.
+    /// The exact blend sum to stage-colour units.
     blend: Requant,
+    /// The largest stage colour (1.0 with the guard bits).
     colour_max: i64,
-    colour_bits: u32,
+    /// Fraction bits of a stage colour.
+    guard: u32,
+    /// The last stage colour to colour codes (`colour_round`; nothing without guard bits).
+    round: Requant,
+    /// `round(c·t / (2^w − 1))` as `((c·t + half) · m) >> s` (`fixed::UnormDiv`, exact for
+    /// every product the stages make).
+    tex_half: i64,
+    tex_m: i64,
+    tex_s: u32,
 }
 
 impl FastModel {
@@ -81,6 +90,7 @@ impl FastModel {
         let half = 1i64 << (cfg.normal_bits - 1);
         let factor = cfg.factor_frac();
         let dot_max = 1i64 << cfg.dot_frac_bits;
+        let div = crate::rtlgen::units_v::texture_divider(cfg);
         FastModel {
             lights: cfg.lights as usize,
             texture_last: cfg.blend_order == BlendOrder::TextureLast,
@@ -96,9 +106,13 @@ impl FastModel {
             specular_factor: (0..=dot_max)
                 .map(|x| crate::model::power_unit::power_unit(cfg, table, x) << (factor - cfg.power_frac_bits))
                 .collect(),
-            blend: Requant::new(factor + cfg.k_frac_bits, 0, cfg.rounding),
-            colour_max: cfg.colour_max() as i64,
-            colour_bits: cfg.colour_bits,
+            blend: Requant::new(factor + cfg.k_frac_bits, cfg.colour_guard_bits, cfg.rounding),
+            colour_max: cfg.stage_colour_max(),
+            guard: cfg.colour_guard_bits,
+            round: Requant::new(cfg.colour_guard_bits, 0, cfg.rounding),
+            tex_half: div.half as i64,
+            tex_m: div.m as i64,
+            tex_s: div.s,
         }
     }
 
@@ -205,7 +219,7 @@ impl FastModel {
             smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
             for ch in 0..3 {
                 b[ch][i] = v[ch];
-                c_src[ch][i] = f.c_src[ch] as i64;
+                c_src[ch][i] = (f.c_src[ch] as i64) << self.guard;
                 tex[ch][i] = f.tex[ch] as i64;
             }
         }
@@ -245,7 +259,7 @@ impl FastModel {
             self.close_block(&mut c, &sacc);
         }
         for (i, o) in out.iter_mut().enumerate().take(LANES) {
-            *o = [c[0][i] as u32, c[1][i] as u32, c[2][i] as u32];
+            *o = [0, 1, 2].map(|ch| self.round.apply(c[ch][i]) as u32);
         }
     }
 
@@ -309,13 +323,11 @@ impl FastModel {
         (c_in + self.blend.apply(acc)).min(self.colour_max)
     }
 
-    /// `round(c·t / (2^w − 1))` on colour codes: one channel of the texture modulation
-    /// (`fixed::unorm_mul`).
+    /// `round(c·t / (2^w − 1))` on a stage colour: one channel of the texture modulation
+    /// (the hardware's divider, `fixed::UnormDiv`).
     #[inline(always)]
     fn texture_channel(&self, c: i64, t: i64) -> i64 {
-        let w = self.colour_bits;
-        let p = c * t + (1i64 << (w - 1));
-        (p + (p >> w)) >> w
+        ((c * t + self.tex_half) * self.tex_m) >> self.tex_s
     }
 
     /// [`close_channel`](Self::close_channel) on every channel.
@@ -372,12 +384,13 @@ impl FastModel {
                 sacc[ch] += fs * s.klc[ch];
             }
         }
-        let lit = self.close(frag.c_src, dacc);
-        if TEXTURE_LAST {
+        let lit = self.close(frag.c_src.map(|c| c << self.guard), dacc);
+        let last = if TEXTURE_LAST {
             self.texture(self.close(lit, sacc), frag.tex)
         } else {
             self.close(self.texture(lit, frag.tex), sacc)
-        }
+        };
+        last.map(|c| self.round.apply(c as i64) as u32)
     }
 }
 

@@ -7,7 +7,7 @@ use super::bump_fetch::{bump_fetch_index, bump_fetch_rgb, Palette};
 use super::dot_clamp::dot_clamp;
 use super::power_table::PowerTable;
 use super::power_unit::power_unit;
-use super::texture_modulate::texture_modulate;
+use super::texture_modulate::{colour_round, texture_modulate};
 use crate::config::{BlendOrder, PipelineConfig};
 
 /// Light slots the model can hold (the config's upper limit).
@@ -63,14 +63,18 @@ pub struct Shaded {
     /// Aligned, enable-gated blend factors as the blend units receive them.
     pub dfac: [i64; MAX_LIGHTS],
     pub sfac: [i64; MAX_LIGHTS],
-    /// Colour after each of the three stages, in pipeline order.
+    /// Colour after each of the three stages, in pipeline order, as stage colours
+    /// (`colour_guard_bits` fraction bits).
     pub stages: [[u32; 3]; 3],
+    /// The final colour C_new: the last stage rounded to colour codes (`colour_round`; the
+    /// last stage itself when there are no guard bits).
+    pub out: [u32; 3],
 }
 
 impl Shaded {
     /// The final colour C_new.
     pub fn colour(&self) -> [u32; 3] {
-        self.stages[2]
+        self.out
     }
 }
 
@@ -116,7 +120,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     let diffuse = |c| blend(cfg, c, &dfac[..n], &kd[..n], &lc[..n]);
     let specular = |c| blend(cfg, c, &sfac[..n], &kd[..n], &lc[..n]);
     let texture = |c| texture_modulate(cfg, c, frag.tex);
-    let s0 = diffuse(frag.c_src);
+    let s0 = diffuse(frag.c_src.map(|c| c << cfg.colour_guard_bits));
     let (s1, s2) = match cfg.blend_order {
         BlendOrder::DiffuseTextureSpecular => {
             let t = texture(s0);
@@ -128,6 +132,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         }
     };
     out.stages = [s0, s1, s2];
+    out.out = colour_round(cfg, s2);
     out.dfac = dfac;
     out.sfac = sfac;
     out

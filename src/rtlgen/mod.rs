@@ -118,6 +118,10 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     s += "// top bits are zero by construction (the index never exceeds N-1, the product never 2^(2w)).\n";
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_{h}.v\" -match \"Bits of signal are not used: 'rounded'*\"\n");
     s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*texture_modulate_{h}.v\" -match \"Bits of signal are not used: 'q*\"\n");
+    if cfg.colour_guard_bits > 0 {
+        s += "// colour_round keeps the integer bits of the rounded stage colour and drops its guard bits.\n";
+        s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*colour_round_{h}.v\" -match \"Bits of signal are not used: 'r*\"\n");
+    }
     if cfg.power_unit != crate::config::PowerUnitKind::Table {
         s += "// The power unit's core keeps the high bits of its rounded interpolation step and of the scaled\n";
         s += "// index and drops the rest by design; an entry index never reaches its top bits.\n";

@@ -575,6 +575,17 @@ fn colour_stages(
     mut blend: impl FnMut(&mut Scheduler, Stage, &str) -> Option<String>,
 ) -> String {
     let mut c = c_in.to_string();
+    let g = cfg.colour_guard_bits;
+    if g > 0 {
+        // Stage colours carry the guard bits: C_src enters with g zero fraction bits.
+        let (cb, cs) = (cfg.colour_bits, cfg.stage_colour_fmt().width);
+        let parts: Vec<String> = (0..3)
+            .rev()
+            .map(|ch| format!("{{{c_in}}}[{}:{}], {g}'d0", ch * cb + cb - 1, ch * cb))
+            .collect();
+        s.comb("c_src_g", 3 * cs, &format!("{{{}}}", parts.join(", ")));
+        c = "c_src_g".into();
+    }
     for st in order(cfg) {
         if st == Stage::Texture {
             let u = units::unit("texture_modulate").expect("unit");
@@ -590,6 +601,11 @@ fn colour_stages(
         } else if let Some(out) = blend(s, st, &c) {
             c = out;
         }
+    }
+    if g > 0 {
+        let u = units::unit("colour_round").expect("unit");
+        s.unit(cfg, u, "u_colour_round", &[("c_in", &format!("{{{c}}}"))], &[("c_out", "c_rnd")], &[]);
+        c = "c_rnd".into();
     }
     c
 }
@@ -949,7 +965,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         // The finish waits for the complete sum (`done`), not for its first slot.
         let at = s.stage_of(&[acc, &format!("{{{c}}}"), "{done}"]);
         let (cc, a) = (s.fill(&format!("{{{c}}}"), at), s.fill(acc, at));
-        s.m.wire(name, c3, None);
+        s.m.wire(name, 3 * cfg.stage_colour_fmt().width, None);
         s.m.inst(cfg, finish, inst, &[("c_in", cc), ("acc", a), ("c_out", name.to_string())], &[]);
         s.m.factor_frac(if inst == "u_diffuse_finish" {
             cfg.dot_frac_bits

@@ -303,18 +303,21 @@ pub fn light_term_clk(cfg: &PipelineConfig) -> &'static str {
     }
 }
 
-/// blend_finish: c_out = sat(c_in + round(acc)) per channel, registered.
+/// blend_finish: c_out = sat(c_in + round(acc)) per channel, registered; colours are stage
+/// colours (`colour_guard_bits` fraction bits), so the sum rounds to that precision.
 pub fn blend_finish(cfg: &PipelineConfig) -> String {
-    let c = cfg.colour_bits;
+    let c = cfg.stage_colour_fmt().width;
+    let g = cfg.colour_guard_bits;
     let acc = cfg.acc_fmt();
-    let shift = cfg.factor_frac() + cfg.k_frac_bits;
+    let shift = crate::model::blend::sum_shift(cfg);
     let mut w = VWriter::new();
     preamble(&mut w);
     w.line(format!(
-        "// blend_finish: c_out = sat(c_in + round_{:?}(acc >> {shift})), acc in {} ({} bits).",
+        "// blend_finish: c_out = sat(c_in + round_{:?}(acc >> {shift})), acc in {} ({} bits), colours {}.",
         cfg.rounding,
         acc.name(),
-        acc.width
+        acc.width,
+        cfg.stage_colour_fmt().name()
     ));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] acc,\n    output reg  [{}:0] c_out\n);",
@@ -323,7 +326,7 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
         3 * acc.width - 1,
         3 * c - 1
     ));
-    let max = cfg.colour_max() as i64;
+    let max = cfg.stage_colour_max();
     for ch in 0..3 {
         w.line(format!(
             "wire [{}:0] a{ch} = acc[{}:{}];",
@@ -333,7 +336,7 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
         ));
         // The rounded sum never exceeds the accumulator's integer range; clamp it at max
         // already, since c_in + anything ≥ max saturates anyway.
-        requant_clamp(&mut w, &format!("add{ch}"), &format!("a{ch}"), acc, 0, cfg.rounding, 0, max, c);
+        requant_clamp(&mut w, &format!("add{ch}"), &format!("a{ch}"), acc, g, cfg.rounding, 0, max, c);
         w.line(format!(
             "wire [{c}:0] s{ch} = {{1'b0, c_in[{}:{}]}} + {{1'b0, add{ch}}};",
             ch * c + c - 1,
@@ -342,8 +345,14 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         for ch in 0..3 {
+            // The saturated sum: the carry, or (with guard bits) anything above 1.0.
+            let over = if g == 0 {
+                format!("s{ch}[{c}]")
+            } else {
+                format!("(s{ch} > {}'d{max})", c + 1)
+            };
             w.line(format!(
-                "c_out[{}:{}] <= s{ch}[{c}] ? {c}'d{max} : s{ch}[{}:0];",
+                "c_out[{}:{}] <= {over} ? {c}'d{max} : s{ch}[{}:0];",
                 ch * c + c - 1,
                 ch * c,
                 c - 1
@@ -360,6 +369,7 @@ pub fn blend_finish(cfg: &PipelineConfig) -> String {
 pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     use crate::units::timing::{cut, BLEND};
     let (ff, k, c, n) = (cfg.factor_frac(), cfg.k_frac_bits, cfg.colour_bits, cfg.lights);
+    let cs = cfg.stage_colour_fmt().width;
     let tw = cfg.term_fmt().width;
     let aw = cfg.acc_fmt().width;
     let lt = light_term_cuts(cfg);
@@ -376,11 +386,11 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] c_out\n);",
         module_name(cfg, unit),
-        3 * c - 1,
+        3 * cs - 1,
         n * (ff + 1) - 1,
         n * (k + 1) - 1,
         3 * n * c - 1,
-        3 * c - 1
+        3 * cs - 1
     ));
     for i in 0..n {
         w.line(format!("wire [{}:0] t{i};", 3 * tw - 1));
@@ -397,7 +407,7 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
         ));
     }
     // c_in waits beside the light terms.
-    let cw = format!("[{}:0]", 3 * c - 1);
+    let cw = format!("[{}:0]", 3 * cs - 1);
     let mut cin = "c_in".to_string();
     for s in 1..=lt {
         w.stage(true, &cw, &format!("c_in_d{s}"), &cin);
@@ -428,38 +438,116 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.finish()
 }
 
-/// texture_modulate: round(c_in tex / (2^w - 1)) by the add-and-shift identity, registered; a
-/// register after the product when the depth puts `timing::TEXTURE`'s cut in place.
+/// The divider of a texture modulation with guard bits: exact for every product of a stage
+/// colour and a texture colour.
+pub fn texture_divider(cfg: &PipelineConfig) -> crate::fixed::UnormDiv {
+    let m = cfg.colour_max() as u64;
+    crate::fixed::UnormDiv::new(cfg.colour_bits, (cfg.stage_colour_max() as u64) * m)
+}
+
+/// texture_modulate: round(c_in tex / (2^w - 1)), registered; a register after the product
+/// when the depth puts `timing::TEXTURE`'s cut in place. Without guard bits the division is
+/// the add-and-shift identity (`fixed::unorm_mul`); with them it is `fixed::UnormDiv`'s
+/// constant reciprocal as shifted adds. Both are proven equal to the division in `fixed`.
 pub fn texture_modulate(cfg: &PipelineConfig) -> String {
     use crate::units::timing::{cut, TEXTURE};
     let c = cfg.colour_bits;
+    let cs = cfg.stage_colour_fmt().width;
+    let g = cfg.colour_guard_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
-    w.line("// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    let div = texture_divider(cfg);
+    if g == 0 {
+        w.line("// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
+    } else {
+        w.line(format!(
+            "// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) for c_in in {} as ((p + {}) * {}) >> {}, the constant as shifted adds.",
+            cfg.stage_colour_fmt().name(),
+            div.half,
+            div.m,
+            div.s
+        ));
+    }
     w.line(format!("// Latency {}.", crate::units::timing::latency(cfg, TEXTURE)));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] tex,\n    output reg  [{}:0] c_out\n);",
         module_name(cfg, "texture_modulate"),
+        3 * cs - 1,
         3 * c - 1,
-        3 * c - 1,
-        3 * c - 1
+        3 * cs - 1
     ));
+    let yw = if g == 0 { 2 * c + 1 } else { div.y_bits };
+    let bits = div.m_bits();
+    let qw = yw + bits.last().copied().unwrap_or(0) + 1;
     for ch in 0..3 {
-        let lanes = |v: &str| Factor::unsigned(format!("{v}[{}:{}]", ch * c + c - 1, ch * c), c);
+        let lane = |v: &str, width: u32| Factor::unsigned(format!("{v}[{}:{}]", ch * width + width - 1, ch * width), width);
         let e = sum_of_products(
             &mut w,
             Form::of(cfg),
             &format!("p{ch}m"),
-            &[(lanes("c_in"), lanes("tex"))],
-            1u128 << (c - 1),
-            2 * c + 1,
+            &[(lane("c_in", cs), lane("tex", c))],
+            if g == 0 { 1u128 << (c - 1) } else { div.half as u128 },
+            yw,
         );
-        w.stage(cut(cfg, TEXTURE, 0), &format!("[{}:0]", 2 * c), &format!("p{ch}"), &e);
-        w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
+        if g == 0 {
+            w.stage(cut(cfg, TEXTURE, 0), &format!("[{}:0]", 2 * c), &format!("p{ch}"), &e);
+            w.line(format!("wire [{}:0] q{ch} = p{ch} + (p{ch} >> {c});", 2 * c));
+        } else {
+            w.stage(cut(cfg, TEXTURE, 0), &format!("[{}:0]", yw - 1), &format!("p{ch}"), &e);
+            let sum: Vec<String> = bits
+                .iter()
+                .map(|&b| format!("({} << {b})", super::writer::zext(&format!("p{ch}"), qw - yw)))
+                .collect();
+            w.line(format!("wire [{}:0] q{ch} = {};", qw - 1, sum.join(" + ")));
+        }
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         for ch in 0..3 {
-            w.line(format!("c_out[{}:{}] <= q{ch}[{}:{c}];", ch * c + c - 1, ch * c, 2 * c - 1));
+            let (hi, lo) = if g == 0 { (2 * c - 1, c) } else { (div.s + cs - 1, div.s) };
+            w.line(format!("c_out[{}:{}] <= q{ch}[{hi}:{lo}];", ch * cs + cs - 1, ch * cs));
+        }
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
+}
+
+/// colour_round: a stage colour to the output colour, rounded by the configured rule,
+/// registered. The stage colour is at most 1.0, so the rounded value never passes the
+/// largest code and needs no clamp.
+pub fn colour_round(cfg: &PipelineConfig) -> String {
+    let c = cfg.colour_bits;
+    let cs = cfg.stage_colour_fmt().width;
+    let g = cfg.colour_guard_bits;
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!(
+        "// colour_round: c_out = round_{:?}(c_in / 2^{g}), c_in in {}, c_out in {}; latency 1.",
+        cfg.rounding,
+        cfg.stage_colour_fmt().name(),
+        cfg.colour_fmt().name()
+    ));
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    output reg  [{}:0] c_out\n);",
+        module_name(cfg, "colour_round"),
+        3 * cs - 1,
+        3 * c - 1
+    ));
+    for ch in 0..3 {
+        let x = format!("c_in[{}:{}]", ch * cs + cs - 1, ch * cs);
+        let inc = match cfg.rounding {
+            crate::fixed::Rounding::Truncate => format!("{cs}'d0"),
+            crate::fixed::Rounding::HalfUp => format!("{cs}'d{}", 1u64 << (g - 1)),
+            crate::fixed::Rounding::NearestEven => {
+                format!("{cs}'d{} + {{{}'d0, c_in[{}]}}", (1u64 << (g - 1)) - 1, cs - 1, ch * cs + g)
+            }
+        };
+        // At most (2^c - 1) 2^g + 2^(g-1): no carry out of cs bits.
+        w.line(format!("wire [{}:0] r{ch} = {x} + {inc};", cs - 1));
+    }
+    w.block("always @(posedge clk) begin", "end", |w| {
+        for ch in 0..3 {
+            w.line(format!("c_out[{}:{}] <= r{ch}[{}:{g}];", ch * c + c - 1, ch * c, cs - 1));
         }
     });
     w.line("endmodule");

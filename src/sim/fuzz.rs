@@ -48,6 +48,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             // What the rasteriser interpolates changes no RTL (the fuzzer's subject), and a
             // draw here would change every configuration a seed gives.
             interpolate: crate::config::Interpolate::None,
+            // Drawn last, so every draw before it is what it was before the field.
+            colour_guard_bits: field(rng, "colour_guard_bits"),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
@@ -115,6 +117,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 normal_range: NormalRange::Symmetric,
                 lh_bits: hi("lh_bits"),
                 colour_bits: hi("colour_bits"),
+                colour_guard_bits: hi("colour_guard_bits"),
                 k_frac_bits: hi("k_frac_bits"),
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,

@@ -46,7 +46,7 @@ impl Unit for Blend {
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("c_in", Dir::In, c.colour_fmt(), 3, "colour in (R, G, B)"),
+            p("c_in", Dir::In, c.stage_colour_fmt(), 3, "colour in (R, G, B; colour_guard_bits fraction bits)"),
             p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
             p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
             p(
@@ -56,7 +56,13 @@ impl Unit for Blend {
                 3 * c.lights,
                 "light colours Lc_i (R, G, B per light)",
             ),
-            p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(sum f_i k_i Lc_i))"),
+            p(
+                "c_out",
+                Dir::Out,
+                c.stage_colour_fmt(),
+                3,
+                "sat(c_in + round(sum f_i k_i Lc_i)), rounded to c_in's fraction bits",
+            ),
         ]
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
@@ -69,13 +75,14 @@ impl Unit for Blend {
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let (ff, kf) = (cfg.factor_fmt(), cfg.k_fmt());
-        let max = cfg.colour_max() as f64;
+        let max = cfg.stage_colour_max() as f64;
+        let one = (1u64 << cfg.colour_guard_bits) as f64;
         let out = (0..3)
             .map(|ch| {
                 let add: f64 = (0..cfg.lights as usize)
                     .map(|j| ff.to_f64(i[1][j]) * kf.to_f64(i[2][j]) * i[3][3 * j + ch] as f64)
                     .sum();
-                (i[0][ch] as f64 + add).min(max)
+                (i[0][ch] as f64 + add * one).min(max)
             })
             .collect();
         vec![out]
@@ -83,7 +90,7 @@ impl Unit for Blend {
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         use crate::units::resources::{blend_finish, light_term, Resources};
         use crate::units::timing::{cut, BLEND};
-        let (n, c, aw) = (cfg.lights, cfg.colour_bits, cfg.acc_fmt().width);
+        let (n, c, aw) = (cfg.lights, cfg.stage_colour_fmt().width, cfg.acc_fmt().width);
         let lt = crate::rtlgen::units_v::light_term_cuts(cfg);
         light_term(cfg).scaled(n as f64)
             + Resources::regs(lt * 3 * c)
@@ -102,16 +109,25 @@ impl Unit for Blend {
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
         let n = cfg.lights as usize;
         let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
+        let sm = cfg.stage_colour_max();
         let all = |c: i64, f: i64, k: i64, lc: i64| vec![vec![c; 3], vec![f; n], vec![k; n], vec![lc; 3 * n]];
         vec![
             (
                 "every light at full strength on white: the sum saturates".into(),
-                all(m, one_f, one_k, m),
+                all(sm, one_f, one_k, m),
             ),
-            ("every term zero: c_in passes through".into(), all(m / 2, 0, one_k, m)),
-            ("k = 0 kills every light".into(), all(m.min(7), one_f, 0, m)),
+            ("every term zero: c_in passes through".into(), all(sm / 2, 0, one_k, m)),
+            ("k = 0 kills every light".into(), all(sm.min(7), one_f, 0, m)),
             ("one LSB terms: the rounding of the smallest sum".into(), all(0, 1, 1, 1)),
             ("half-way sums round by the configured rule".into(), all(0, one_f / 2, one_k, 1)),
+            (
+                "half a stage-colour LSB: the rounding at the guard bits' precision".into(),
+                {
+                    let half = crate::model::blend::sum_shift(cfg) - 1;
+                    let k_exp = half.min(cfg.k_frac_bits);
+                    all(1, 1i64 << (half - k_exp), 1i64 << k_exp, 1)
+                },
+            ),
         ]
     }
 }

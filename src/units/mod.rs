@@ -11,6 +11,7 @@
 
 mod blend;
 mod bump_fetch;
+mod colour_round;
 mod dot_clamp;
 mod palette_fetch;
 mod power_unit;
@@ -170,6 +171,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &serial_blend::BlendFinish,
     &texture_modulate::TextureModulate,
     &SPECULAR_BLEND,
+    &colour_round::ColourRound,
 ];
 
 /// Look a unit up by name.

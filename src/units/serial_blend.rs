@@ -28,10 +28,10 @@ pub fn accumulate(cfg: &PipelineConfig, acc_in: &[i64], first: bool, f: i64, k: 
     })
 }
 
-/// `sat(c_in + round(acc))` per channel.
+/// `sat(c_in + round(acc))` per channel, in stage colours.
 pub fn finish(cfg: &PipelineConfig, c_in: &[i64], acc: &[i64]) -> [i64; 3] {
-    let shift = cfg.factor_frac() + cfg.k_frac_bits;
-    let max = cfg.colour_max() as i64;
+    let shift = crate::model::blend::sum_shift(cfg);
+    let max = cfg.stage_colour_max();
     [0, 1, 2].map(|ch| (c_in[ch] + shift_round(acc[ch] as i128, shift, cfg.rounding) as i64).min(max))
 }
 
@@ -168,9 +168,15 @@ impl Unit for BlendFinish {
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("c_in", Dir::In, c.colour_fmt(), 3, "colour in"),
+            p("c_in", Dir::In, c.stage_colour_fmt(), 3, "colour in (colour_guard_bits fraction bits)"),
             p("acc", Dir::In, c.acc_fmt(), 3, "exact sum of f_i k_i Lc_i"),
-            p("c_out", Dir::Out, c.colour_fmt(), 3, "sat(c_in + round(acc))"),
+            p(
+                "c_out",
+                Dir::Out,
+                c.stage_colour_fmt(),
+                3,
+                "sat(c_in + round(acc)), rounded to c_in's fraction bits",
+            ),
         ]
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
@@ -178,8 +184,9 @@ impl Unit for BlendFinish {
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let af = cfg.acc_fmt();
-        let max = cfg.colour_max() as f64;
-        vec![(0..3).map(|ch| (i[0][ch] as f64 + af.to_f64(i[1][ch])).min(max)).collect()]
+        let max = cfg.stage_colour_max() as f64;
+        let one = (1u64 << cfg.colour_guard_bits) as f64;
+        vec![(0..3).map(|ch| (i[0][ch] as f64 + af.to_f64(i[1][ch]) * one).min(max)).collect()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         crate::units::resources::blend_finish(cfg)
@@ -188,9 +195,9 @@ impl Unit for BlendFinish {
         vec![("blend_finish", crate::rtlgen::units_v::blend_finish(cfg))]
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        let m = cfg.colour_max() as i64;
+        let m = cfg.stage_colour_max();
         let af = cfg.acc_fmt();
-        let half = 1i64 << (cfg.factor_frac() + cfg.k_frac_bits - 1);
+        let half = 1i64 << (crate::model::blend::sum_shift(cfg) - 1);
         vec![
             ("largest sum on white: saturates".into(), vec![vec![m; 3], vec![af.max_raw(); 3]]),
             ("zero sum passes c_in".into(), vec![vec![0, m / 2, m], vec![0; 3]]),

@@ -59,7 +59,7 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 10] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 11] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
         ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
         ("dot_clamp", true, Table, false, ""),
@@ -82,12 +82,17 @@ pub fn markdown() -> String {
         ("blend_finish", true, Table, false, "none"),
         ("texture_modulate", true, Table, false, ""),
         ("specular_blend", false, Table, false, ""),
+        ("colour_round", true, Table, false, "none (present with colour_guard_bits > 0)"),
     ];
     for (name, serial, kind, palette, note) in rows {
         let u = super::unit(name).expect("unit");
         s += &format!("| `{name}` |");
         for d in 1..=hi {
-            s += &format!(" {} |", u.latency(&base(d, serial, kind, palette)));
+            let mut cfg = base(d, serial, kind, palette);
+            if name == "colour_round" {
+                cfg.colour_guard_bits = 2;
+            }
+            s += &format!(" {} |", u.latency(&cfg));
         }
         let cuts = match name {
             "dot_clamp" => DOT_CLAMP,

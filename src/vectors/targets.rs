@@ -464,7 +464,8 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
         });
     };
     let order = crate::rtlgen::top::stage_order(cfg);
-    let mut c_in = s.frag.c_src;
+    // Stage colours carry the guard bits from the first stage on.
+    let mut c_in = s.frag.c_src.map(|c| c << cfg.colour_guard_bits);
     for (i, unit) in order.iter().enumerate() {
         match *unit {
             "diffuse_blend" if cfg.diffuse => blend_in(c_in, &t.dfac, &mut v, "diffuse_blend"),
@@ -479,6 +480,12 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             _ => {}
         }
         c_in = t.stages[i];
+    }
+    if cfg.colour_guard_bits > 0 {
+        v.push(UnitStim {
+            unit: "colour_round",
+            inputs: vec![c_in.iter().map(|&y| y as i64).collect()],
+        });
     }
     v
 }
