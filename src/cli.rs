@@ -748,16 +748,14 @@ pub fn run() -> anyhow::Result<()> {
                 ],
             )?;
             outln!(
-                "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by the area model, {} fragment(s) per clock): max {:.2} LSB, PSNR {:.2} dB, exact {} LSB",
+                "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by the area model, {} fragment(s) per clock): {}",
                 scene.join(", "),
                 fit.evaluations,
                 fit.seconds,
                 &c.cfg.hash()[..8],
                 c.area_ge,
                 c.throughput,
-                c.measured.max_lsb,
-                c.measured.psnr_db,
-                if c.measured.exact_lsb.is_nan() { "-".to_string() } else { format!("{:.2}", c.measured.exact_lsb) }
+                c.measured.describe()
             );
             outln!(
                 "front: {} of {} candidates; wrote fit.toml, front.csv, front.svg in {}",

@@ -70,7 +70,7 @@ fn torus_caps_within_max_2_is_fitted_regressed_and_written() {
 }
 
 #[test]
-fn psnr_budgets_fit_and_exact_1_names_its_floor() {
+fn psnr_and_exact_budgets_fit_and_an_unreachable_one_names_its_floor() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fit");
     let o = gbump()
@@ -80,16 +80,31 @@ fn psnr_budgets_fit_and_exact_1_names_its_floor() {
         .success();
     let t = text(o.get_output());
     assert!(printed(&t, "PSNR") >= 50.0, "{t}");
-    // Three colour roundings in a row (diffuse, texture, specular) put the pipeline at
-    // 1.2 LSB from exact arithmetic at any width: the search says so and writes nothing.
-    let out2 = dir.path().join("fit2");
+    // exact<=1 needs guard bits between the colour stages: without them three roundings in a
+    // row (diffuse, texture, specular) put the pipeline 1.2 LSB from exact arithmetic at any
+    // width. The stored inputs keep the scene's widths (the budget cannot see them).
+    let out1 = dir.path().join("fit1");
     let o = gbump()
         .args(["fit", "--scene", "torus_caps", "--budget", "exact<=1", "--no-regress", "--out"])
+        .arg(&out1)
+        .assert()
+        .success();
+    let t = text(o.get_output());
+    assert!(printed(&t, "exact") <= 1.0, "{t}");
+    let cfg = gbump::config::PipelineConfig::load(&out1.join("fit.toml")).unwrap();
+    assert!(cfg.colour_guard_bits > 0, "exact<=1 without guard bits: {t}");
+    let scene_cfg = gbump::scene::Scene::load("torus_caps").unwrap().derive_config().unwrap();
+    assert_eq!((cfg.normal_bits, cfg.lh_bits), (scene_cfg.normal_bits, scene_cfg.lh_bits), "{t}");
+    // The last rounding to colour codes alone costs half an LSB: below that nothing fits, the
+    // search says so and writes nothing.
+    let out2 = dir.path().join("fit2");
+    let o = gbump()
+        .args(["fit", "--scene", "torus_caps", "--budget", "exact<=0.45", "--no-regress", "--out"])
         .arg(&out2)
         .assert()
         .failure();
     let t = text(o.get_output());
-    assert!(t.contains("the best measured 1.2") && t.contains("fix: loosen the budget"), "{t}");
+    assert!(t.contains("the best measured 0.5") && t.contains("fix: loosen the budget"), "{t}");
     assert!(!out2.exists());
 }
 

@@ -26,6 +26,27 @@ pub struct Measured {
     pub exact_lsb: f64,
 }
 
+impl Measured {
+    /// The measures that were taken, in words (a measure the budget did not ask for is NaN
+    /// and left out).
+    pub fn describe(&self) -> String {
+        let mut parts = Vec::new();
+        if !self.max_lsb.is_nan() {
+            parts.push(format!("max {:.2} LSB", self.max_lsb));
+        }
+        if !self.psnr_db.is_nan() {
+            parts.push(format!("PSNR {:.2} dB", self.psnr_db));
+        }
+        if !parts.is_empty() {
+            parts = vec![format!("{} against the f64 Gouraud images", parts.join(", "))];
+        }
+        if !self.exact_lsb.is_nan() {
+            parts.push(format!("exact {:.3} LSB against exact arithmetic on random stored inputs", self.exact_lsb));
+        }
+        parts.join("; ")
+    }
+}
+
 impl Budget {
     pub fn parse(text: &str) -> Result<Budget> {
         let bad = || {

@@ -115,12 +115,12 @@ fn fmt_measure(x: f64) -> String {
 impl Fit {
     /// The front (and every other candidate) as CSV.
     pub fn csv(&self) -> String {
-        let mut s = String::from("config_hash,power_unit,rounding,normal_range,palette,light_mode,pipeline_depth,normal_bits,lh_bits,dot_frac_bits,power_entries,power_segments,power_frac_bits,area_ge,fragments_per_clock,max_lsb,psnr_db,exact_lsb,meets_budget,on_front\n");
+        let mut s = String::from("config_hash,power_unit,rounding,normal_range,palette,light_mode,pipeline_depth,normal_bits,lh_bits,dot_frac_bits,power_entries,power_segments,power_frac_bits,colour_guard_bits,area_ge,fragments_per_clock,max_lsb,psnr_db,exact_lsb,meets_budget,on_front\n");
         let rows = self.seen.iter().map(|c| (c, false)).chain(self.front.iter().map(|c| (c, true)));
         for (c, on_front) in rows {
             let g = &c.cfg;
             s += &format!(
-                "{},{:?},{:?},{:?},{},{:?},{},{},{},{},{},{},{},{},{:.4},{},{},{},{},{}\n",
+                "{},{:?},{:?},{:?},{},{:?},{},{},{},{},{},{},{},{},{},{:.4},{},{},{},{},{}\n",
                 g.hash(),
                 g.power_unit,
                 g.rounding,
@@ -134,6 +134,7 @@ impl Fit {
                 g.power_entries,
                 g.power_segments,
                 g.power_frac_bits,
+                g.colour_guard_bits,
                 if c.area_ge.is_nan() {
                     String::new()
                 } else {
@@ -164,8 +165,8 @@ impl Fit {
                 x: c.area_ge,
                 y: self.budget.error(&c.measured),
                 label: format!(
-                    "{:?} {:?} n{} lh{} d{}",
-                    c.cfg.power_unit, c.cfg.rounding, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits
+                    "{:?} {:?} n{} lh{} d{} g{}",
+                    c.cfg.power_unit, c.cfg.rounding, c.cfg.normal_bits, c.cfg.lh_bits, c.cfg.dot_frac_bits, c.cfg.colour_guard_bits
                 ),
                 front: true,
                 chosen: false,
@@ -181,7 +182,7 @@ impl Fit {
         crate::measure::plot::scatter(
             &dots,
             &format!("gbump fit {} on {}", self.budget, self.scenes.join(", ")),
-            "top logic, gate equivalents (Yosys)",
+            "top logic, gate equivalents (area model)",
             measure,
         )
     }
@@ -189,14 +190,12 @@ impl Fit {
     /// The chosen configuration as a TOML file, with how it was found.
     pub fn toml(&self) -> String {
         format!(
-            "# gbump fit --budget {} on {}: the smallest configuration found ({:.0} GE by Yosys, {} fragment(s) per clock; max {} LSB, PSNR {} dB against the f64 Gouraud images, exact {} LSB)\n# config hash {}\n{}",
+            "# gbump fit --budget {} on {}: the smallest configuration found ({:.0} GE by the area model, {} fragment(s) per clock; {})\n# config hash {}\n{}",
             self.budget,
             self.scenes.join(", "),
             self.chosen.area_ge,
             self.chosen.throughput,
-            fmt_measure(self.chosen.measured.max_lsb),
-            fmt_measure(self.chosen.measured.psnr_db),
-            fmt_measure(self.chosen.measured.exact_lsb),
+            self.chosen.measured.describe(),
             self.chosen.cfg.hash(),
             self.chosen.cfg.to_toml()
         )

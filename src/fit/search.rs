@@ -1,5 +1,5 @@
 //! The search of `gbump fit`: for every choice that changes the arithmetic (power unit, rounding,
-//! normal range, palette), shrink each width in turn to the smallest that keeps the budget
+//! normal range, palette), shrink each width (colour guard bits among them) in turn to the smallest that keeps the budget
 //! (a bisection per width, rounds until nothing shrinks); then size the winners that no other
 //! winner covers width by width, and keep the smallest. The light mode and depth stay the
 //! base's (results do not depend on them), parallel lights only when the throughput asks.
@@ -10,8 +10,11 @@ use crate::config::{limit, LightMode, NormalRange, PipelineConfig, PowerUnitKind
 use crate::error::Result;
 use crate::fixed::Rounding;
 
-/// The widths the search shrinks, in the order it tries them.
-pub const WIDTHS: [&str; 6] = [
+/// The widths the search shrinks, in the order it tries them. The colour guard bits go first:
+/// from the generous start the colour stages' roundings are the error that is left, so they
+/// shrink to what the budget needs of them before the other widths spend the rest.
+pub const WIDTHS: [&str; 7] = [
+    "colour_guard_bits",
     "power_entries",
     "power_segments",
     "normal_bits",
@@ -19,6 +22,12 @@ pub const WIDTHS: [&str; 6] = [
     "dot_frac_bits",
     "power_frac_bits",
 ];
+
+/// The widths of the stored and sent inputs. An `exact<=` budget measures the arithmetic on the
+/// stored codes, not how well the codes hold the true vectors, so under it these stay the
+/// base's: narrower inputs make the arithmetic exact by making the inputs coarse (3-bit
+/// normals, 4-bit L and H "met" exact<=1), a loss that budget cannot see.
+pub const INPUT_WIDTHS: [&str; 2] = ["normal_bits", "lh_bits"];
 
 /// Rounds of shrinking over all widths at most (the last round usually changes nothing).
 const ROUNDS: usize = 3;
@@ -93,6 +102,7 @@ fn set(cfg: &PipelineConfig, field: &str, v: u32) -> PipelineConfig {
         "lh_bits" => c.lh_bits = v,
         "dot_frac_bits" => c.dot_frac_bits = v,
         "power_frac_bits" => c.power_frac_bits = v,
+        "colour_guard_bits" => c.colour_guard_bits = v,
         f => unreachable!("not a searched width: {f}"),
     }
     c
@@ -116,6 +126,7 @@ pub fn start(base: &PipelineConfig, kind: PowerUnitKind) -> PipelineConfig {
     c.lh_bits = limit("lh_bits").1;
     c.dot_frac_bits = limit("dot_frac_bits").1;
     c.power_frac_bits = limit("power_frac_bits").1;
+    c.colour_guard_bits = limit("colour_guard_bits").1;
     match kind {
         PowerUnitKind::Segmented => {
             c.power_segments = limit("power_segments").1.min(c.dot_frac_bits - 1);
@@ -162,10 +173,14 @@ impl Search<'_> {
             return Ok(None);
         }
         let mut cfg = cfg;
+        let inputs_kept = !self.eval.budget().needs_images();
         for _ in 0..ROUNDS {
             let mut changed = false;
             for field in WIDTHS {
                 if field == "power_segments" && cfg.power_unit != PowerUnitKind::Segmented {
+                    continue;
+                }
+                if inputs_kept && INPUT_WIDTHS.contains(&field) {
                     continue;
                 }
                 let (lo, _) = range(field);
@@ -199,7 +214,11 @@ impl Search<'_> {
     /// the throughput asks for it). Returns the winners sized, for the front.
     pub fn run(&mut self, base: &PipelineConfig, space: &Space, min_throughput: f64) -> Result<(Option<Candidate>, Vec<Candidate>)> {
         let mut winners: Vec<(PipelineConfig, Measured)> = Vec::new();
-        for c in space.starts(base) {
+        let inputs_kept = !self.eval.budget().needs_images();
+        for mut c in space.starts(base) {
+            if inputs_kept {
+                (c.normal_bits, c.lh_bits) = (base.normal_bits, base.lh_bits);
+            }
             if let Some(w) = self.shrink(c)? {
                 let m = self.eval.measure(&w)?;
                 winners.push((w, m));
