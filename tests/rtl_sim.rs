@@ -129,6 +129,37 @@ fn regress_interpolated_h_and_l() {
 }
 
 #[test]
+fn regress_colour_guard_bits_on_both_tops() {
+    // Stage colours with guard bits and colour_round at the end: the serial top in Fig. 2's
+    // order with the scenes, and a parallel top in Fig. 3's order rounding half to even.
+    regress_short("tests/configs/colour_guard.toml", "colour_guard", 12);
+    let t = regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            "tests/configs/colour_guard_parallel.toml",
+            "--random",
+            "20000",
+            "--random-icarus",
+            "2000",
+            "--no-scenes",
+        ],
+        "colour_guard_parallel",
+    );
+    let r = runs(&t);
+    // colour_round whole; texture_modulate's u11.3 x u8 pairs exceed the exhaustive cap, so
+    // its random unit set (random<N>_texture_modulate, N per simulator).
+    for (start, end) in [("exhaustive_colour_round", "_colour_round"), ("random", "_texture_modulate")] {
+        let set = format!("{start}…{end}");
+        assert!(
+            r.iter().filter(|x| x.1.starts_with(start) && x.1.ends_with(end) && x.3 == 0 && x.2 > 0).count() == 2,
+            "{set} on both simulators:\n{t}"
+        );
+    }
+}
+
+#[test]
 fn regress_four_lights_serial_dot10() {
     regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }
@@ -174,6 +205,8 @@ fn lint_is_clean_for_every_other_test_configuration() {
             Some("tests/configs/fuzz_found_serial_no_specular.toml"),
             Some("tests/configs/inferred_multipliers.toml"),
             Some("tests/configs/one_bit_k_fragment.toml"),
+            Some("tests/configs/colour_guard.toml"),
+            Some("tests/configs/colour_guard_parallel.toml"),
         ],
     );
 }
@@ -269,6 +302,42 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
             "{}",
             out.log
         );
+    }
+}
+
+/// Guard bits between the colour stages: a colour_round that truncates and a texture divider
+/// with one shifted add fewer are each caught by their unit's exhaustive set, and the top's
+/// random set catches them together, on both simulators.
+#[test]
+fn guard_bit_mutants_are_caught_by_their_unit_sets_and_the_top() {
+    use gbump::sim::regress::{run_sets, write_rtl};
+    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/colour_guard.toml")).unwrap();
+    let work = std::path::absolute(root().join("target/test-regress/mutant_guard")).unwrap();
+    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
+    for (unit, mutate) in [
+        ("colour_round", mutants::colour_round_truncates as fn(&str) -> Option<String>),
+        ("texture_modulate", mutants::texture_divider_term),
+    ] {
+        let f = rtl.sources.iter().find(|p| p.to_string_lossy().contains(unit)).unwrap();
+        let text = std::fs::read_to_string(f).unwrap();
+        std::fs::write(f, mutate(&text).unwrap_or_else(|| panic!("{unit}: nothing to mutate"))).unwrap();
+    }
+    let vec_dir = work.join("vectors");
+    let o = mutant_dump_options();
+    let mut sets = Vec::new();
+    for unit in ["colour_round", "texture_modulate"] {
+        let d = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Exhaustive(unit.into()), &[unit.into()], &vec_dir, &o).unwrap();
+        sets.push((d[0].manifest.clone(), None));
+    }
+    let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vec_dir, &o).unwrap();
+    sets.push((tops[0].manifest.clone(), None));
+    let res = run_sets(&cfg, &sets, &rtl, &mutant_run_options(&work)).unwrap();
+    assert_eq!(res.len(), 6);
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
+        let unit = if r.target == "top" { "gbump_pipeline" } else { r.target.as_str() };
+        assert!(out.log.contains(&format!("MISMATCH unit {unit}")), "{}", out.log);
     }
 }
 

@@ -20,3 +20,21 @@ pub fn output_bypass(text: &str) -> Option<String> {
     let from = "(obuf_use_byp ? obuf_byp : obuf_q)";
     text.contains(from).then(|| text.replacen(from, "obuf_q", 1))
 }
+
+/// colour_round without its rounding half in the first channel (it truncates): the constant
+/// added on the `r0 =` line becomes 0. None when the design has no such line.
+pub fn colour_round_truncates(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.starts_with("wire [") && l.contains(" r0 = "))?;
+    let at = line.rfind("'d")? + 2;
+    let end = at + line[at..].find(|c: char| !c.is_ascii_digit())?;
+    (line[at..end] != *"0").then(|| text.replacen(line, &format!("{}0{}", &line[..at], &line[end..]), 1))
+}
+
+/// The guard-bit texture divider with one shifted add fewer in the first channel (the
+/// reciprocal constant loses its lowest set bit): the last `+ (...)` term of the `q0 =` line
+/// goes. None when the line has a single term.
+pub fn texture_divider_term(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.starts_with("wire [") && l.contains(" q0 = ") && l.contains(" << "))?;
+    let cut = line.rfind(" + (")?;
+    Some(text.replacen(line, &format!("{};", &line[..cut]), 1))
+}
