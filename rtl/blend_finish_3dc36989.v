@@ -31,7 +31,7 @@
 `timescale 1ns / 1ps
 `default_nettype none
 
-// blend_finish: c_out = sat(c_in + round_HalfUp(acc >> 16)), acc in u12.16 (28 bits).
+// blend_finish: c_out = sat(c_in + round_HalfUp(acc >> 16)), acc in u12.16 (28 bits), colours u8.0.
 module blend_finish_3dc36989 (
     input  wire clk,
     input  wire [23:0] c_in,

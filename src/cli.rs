@@ -910,9 +910,10 @@ pub fn run() -> anyhow::Result<()> {
             None => {
                 let cfg = PipelineConfig::default();
                 out!(
-                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n",
+                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n",
                     cfg.hash(),
-                    cfg.to_toml()
+                    cfg.to_toml(),
+                    crate::config::limit("colour_guard_bits").1
                 );
             }
         },

@@ -90,7 +90,7 @@ fn psnr_and_exact_budgets_fit_and_an_unreachable_one_names_its_floor() {
         .assert()
         .success();
     let t = text(o.get_output());
-    assert!(printed(&t, "exact") <= 1.0, "{t}");
+    assert!(printed(&t, "clock): exact") <= 1.0, "{t}");
     let cfg = gbump::config::PipelineConfig::load(&out1.join("fit.toml")).unwrap();
     assert!(cfg.colour_guard_bits > 0, "exact<=1 without guard bits: {t}");
     let scene_cfg = gbump::scene::Scene::load("torus_caps").unwrap().derive_config().unwrap();

@@ -71,17 +71,21 @@ proptest! {
     fn blends_never_wrap_and_stay_within_their_rounding_bound(seed in any::<u64>(), vals in proptest::collection::vec(any::<u64>(), 3 + 8 + 8 + 3 * 8)) {
         let cfg = cfg_from(seed);
         let n = cfg.lights as usize;
+        // Colours in and out are stage colours (colour_guard_bits fraction bits); light colours
+        // are colour codes.
         let max = cfg.colour_max() as u64;
+        let smax = cfg.stage_colour_max() as u64;
+        let one = (1u64 << cfg.colour_guard_bits) as f64;
         let ff = cfg.factor_frac();
-        let c_in = [vals[0] % (max + 1), vals[1] % (max + 1), vals[2] % (max + 1)].map(|x| x as u32);
+        let c_in = [vals[0] % (smax + 1), vals[1] % (smax + 1), vals[2] % (smax + 1)].map(|x| x as u32);
         let f: Vec<i64> = (0..n).map(|i| (vals[3 + i] % ((1u64 << ff) + 1)) as i64).collect();
         let k: Vec<i64> = (0..n).map(|i| (vals[11 + i] % ((1u64 << cfg.k_frac_bits) + 1)) as i64).collect();
         let lc: Vec<[u32; 3]> = (0..n).map(|i| [0, 1, 2].map(|c| (vals[19 + 3 * i + c] % (max + 1)) as u32)).collect();
         let out = blend(&cfg, c_in, &f, &k, &lc);
         for ch in 0..3 {
-            prop_assert!(out[ch] >= c_in[ch] && out[ch] as u64 <= max, "wrapped: {c_in:?} -> {out:?}");
+            prop_assert!(out[ch] >= c_in[ch] && out[ch] as u64 <= smax, "wrapped: {c_in:?} -> {out:?}");
             let add: f64 = (0..n).map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_frac_bits) as f64 * lc[i][ch] as f64).sum();
-            let exact = (c_in[ch] as f64 + add).min(max as f64);
+            let exact = (c_in[ch] as f64 + add * one).min(smax as f64);
             prop_assert!((out[ch] as f64 - exact).abs() <= bound(cfg.rounding), "channel {ch}: {} vs {exact}", out[ch]);
         }
     }
@@ -90,7 +94,7 @@ proptest! {
     fn texture_modulation_rounds_to_nearest(seed in any::<u64>(), c in any::<[u64; 3]>(), t in any::<[u64; 3]>()) {
         let cfg = cfg_from(seed);
         let max = cfg.colour_max() as u64;
-        let c = c.map(|x| (x % (max + 1)) as u32);
+        let c = c.map(|x| (x % (cfg.stage_colour_max() as u64 + 1)) as u32);
         let t = t.map(|x| (x % (max + 1)) as u32);
         let out = texture_modulate(&cfg, c, t);
         for i in 0..3 {

@@ -23,3 +23,15 @@ fn every_limit_constant_is_in_the_table() {
         assert!(gbump::limits::ALL.iter().any(|(n, ..)| *n == c), "{c} is missing from limits::ALL");
     }
 }
+
+/// The range the README gives for `colour_guard_bits` is the configuration's limit.
+#[test]
+fn readme_guard_bit_range_is_the_limit() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let (lo, hi) = gbump::config::limit("colour_guard_bits");
+    assert!(
+        readme.contains(&format!("`colour_guard_bits = g` ({lo}..={hi}, default 0)")),
+        "README states another range for colour_guard_bits than {lo}..={hi}"
+    );
+    assert_eq!(gbump::PipelineConfig::default().colour_guard_bits, 0);
+}

@@ -236,6 +236,7 @@ mod tests {
                 dot_frac_bits: crate::config::limit("dot_frac_bits").1,
                 power_frac_bits: crate::config::limit("power_frac_bits").1,
                 colour_bits: crate::config::limit("colour_bits").1,
+                colour_guard_bits: crate::config::limit("colour_guard_bits").1,
                 k_frac_bits: crate::config::limit("k_frac_bits").1,
                 power_unit: PowerUnitKind::Table,
                 lights,

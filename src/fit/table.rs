@@ -57,7 +57,7 @@ fn measure(b: Budget, m: &Measured) -> String {
     match b {
         Budget::Max(_) => format!("{:.2} LSB", m.max_lsb),
         Budget::Psnr(_) => format!("{:.2} dB", m.psnr_db),
-        Budget::Exact(_) => format!("{:.2} LSB", m.exact_lsb),
+        Budget::Exact(_) => format!("{:.3} LSB", m.exact_lsb),
     }
 }
 
@@ -67,11 +67,12 @@ fn widths(c: &PipelineConfig) -> String {
         k => format!("{k:?} {}", c.power_entries).to_lowercase(),
     };
     format!(
-        "{unit}, n{} lh{} f{} p{}, {}, {}",
+        "{unit}, n{} lh{} f{} p{} g{}, {}, {}",
         c.normal_bits,
         c.lh_bits,
         c.dot_frac_bits,
         c.power_frac_bits,
+        c.colour_guard_bits,
         format!("{:?}", c.rounding).to_lowercase(),
         format!("{:?}", c.normal_range).to_lowercase()
     )
@@ -81,7 +82,7 @@ fn widths(c: &PipelineConfig) -> String {
 pub fn markdown(rows: &[Row]) -> String {
     use crate::measure::area_model::estimate;
     use crate::measure::unit_error::flat_highlight_loss;
-    let mut s = String::from("| scene | budget | default GE | default error | fitted GE | fitted error | fitted: power unit (segments x entries), normal, L/H, dot and power fraction bits, rounding, normal range | 127/128 loss default → fitted |\n|---|---|---:|---:|---:|---:|---|---|\n");
+    let mut s = String::from("| scene | budget | default GE | default error | fitted GE | fitted error | fitted: power unit (segments x entries), normal, L/H, dot and power fraction bits, colour guard bits, rounding, normal range | 127/128 loss default → fitted |\n|---|---|---:|---:|---:|---:|---|---|\n");
     for r in rows {
         let (dc, dm) = &r.default;
         let (fge, fe, fw, loss) = match &r.fitted {

@@ -285,7 +285,7 @@ pub fn flat_highlight_loss(cfg: &PipelineConfig) -> f64 {
 
 /// Markdown table of unit errors.
 pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
-    let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
+    let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format; the colour stages in LSBs of the output colour)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
     for e in stats {
         let h: Vec<String> = e.histogram.iter().map(|x| x.to_string()).collect();
         s += &format!(
@@ -303,4 +303,38 @@ pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
         s += &format!("- {} ({}): {:.3} LSB at {}\n", e.unit, e.source, e.max_lsb, e.worst_input);
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The README's bound: with g guard bits each colour stage errs by at most 2^-(g+1) of an
+    /// output LSB, and colour_round by at most half an LSB, for every g the configuration
+    /// allows, in both blend orders.
+    #[test]
+    fn each_colour_stage_errs_by_at_most_half_a_stage_lsb() {
+        let (_, hi) = crate::config::limit("colour_guard_bits");
+        for g in 0..=hi {
+            for blend_order in [BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast] {
+                let cfg = PipelineConfig {
+                    colour_guard_bits: g,
+                    colour_bits: 6,
+                    blend_order,
+                    ..Default::default()
+                };
+                let rows = unit_errors(&cfg, 2000, 3);
+                let bound = |unit: &str| if unit == "colour_round" { 0.5 } else { 0.5 / (1u64 << g) as f64 };
+                let mut seen = 0;
+                for r in rows.iter().filter(|r| {
+                    ["diffuse_blend", "specular_blend", "texture_modulate", "colour_round"].contains(&r.unit.as_str())
+                        && !r.source.starts_with("input")
+                }) {
+                    seen += 1;
+                    assert!(r.max_lsb <= bound(&r.unit) + 1e-9, "g={g}: {} errs {} > {}", r.unit, r.max_lsb, bound(&r.unit));
+                }
+                assert_eq!(seen, if g == 0 { 3 } else { 4 }, "g={g}: the colour rows");
+            }
+        }
+    }
 }

@@ -209,8 +209,17 @@ pub fn light_term(cfg: &PipelineConfig) -> Resources {
 /// `rtlgen::units_v::blend_finish`: per channel the rounded, clamped sum and the saturating
 /// add to c_in, registered.
 pub fn blend_finish(cfg: &PipelineConfig) -> Resources {
-    let c = cfg.colour_bits;
-    let channel = requant_clamp(cfg.acc_fmt(), 0, cfg.rounding, c) + Resources::adders(c + 1) + Resources::muxes(c) + Resources::regs(c);
+    let (c, g) = (cfg.stage_colour_fmt().width, cfg.colour_guard_bits);
+    // With guard bits the saturation compares the sum against 1.0; without, it is the carry.
+    let over = if g > 0 {
+        Resources {
+            cmp: (c + 1) as f64,
+            ..Default::default()
+        }
+    } else {
+        Resources::default()
+    };
+    let channel = requant_clamp(cfg.acc_fmt(), g, cfg.rounding, c) + Resources::adders(c + 1) + over + Resources::muxes(c) + Resources::regs(c);
     channel.scaled(3.0)
 }
 
