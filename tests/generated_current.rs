@@ -82,6 +82,7 @@ fn regeneration_is_deterministic() {
     let cfg = PipelineConfig {
         lights: 2,
         light_mode: gbump::config::LightMode::Parallel,
+        colour_guard_bits: 2,
         ..Default::default()
     };
     assert_eq!(gbump::rtlgen::generate(&cfg, "x"), gbump::rtlgen::generate(&cfg, "x"));
