@@ -37,14 +37,14 @@ impl Features {
 /// Coefficients fitted by `calibrate` on the calibration part of `SAMPLES` (`gbump area-model`
 /// prints them).
 pub const COEFFICIENTS: Coefficients = [
-    3.738874808695778,
-    14.430710365121957,
-    11.256582638618246,
-    14.723336676728666,
-    2.334478800270514,
-    0.656563334564404,
-    5.216115675656021,
-    1.5036470858036286,
+    3.8187193802311876,
+    14.475024739083267,
+    12.84030854205841,
+    16.85272025902983,
+    2.33062815389641,
+    0.6472292652163508,
+    5.265191140584693,
+    1.5033423553670235,
 ];
 
 /// The counts of `cfg`'s top: its own logic and every unit instance's.
@@ -70,7 +70,27 @@ fn instance_resources(cfg: &PipelineConfig, i: &crate::rtlgen::module::Instance)
         }),
         None => u.resources(cfg),
     };
-    res.scaled(i.copies as f64)
+    (res - single_slot_savings(cfg, i.unit)).scaled(i.copies as f64)
+}
+
+/// What a one-light serial top removes from each `light_accumulate` it instantiates: its slot
+/// index never leaves 0, so `first` is constant and the running sum is the term alone (no
+/// adder, no select); and the accumulator bits below what `blend_finish` reads drive nothing
+/// (below the rounding shift when truncating, below its half bit when rounding half up; a
+/// half-to-even rounding reads them all). The unit alone keeps all of it: its outputs are
+/// ports.
+fn single_slot_savings(cfg: &PipelineConfig, unit: &str) -> Resources {
+    if unit != "light_accumulate" || cfg.lights != 1 {
+        return Resources::default();
+    }
+    let aw = cfg.acc_fmt().width;
+    let shift = crate::model::blend::sum_shift(cfg);
+    let dead = match cfg.rounding {
+        crate::fixed::Rounding::Truncate => shift,
+        crate::fixed::Rounding::HalfUp => shift.saturating_sub(1),
+        crate::fixed::Rounding::NearestEven => 0,
+    };
+    (Resources::muxes(aw) + Resources::adders(aw) + Resources::regs(dead)).scaled(3.0)
 }
 
 /// What `gbump sweep` reports of a top's area, by the model instead of Yosys.

@@ -98,6 +98,14 @@ impl std::ops::Add for Resources {
     }
 }
 
+impl std::ops::Sub for Resources {
+    type Output = Resources;
+    fn sub(self, o: Resources) -> Resources {
+        let (a, b) = (self.row(), o.row());
+        Resources::from_row(std::array::from_fn(|i| a[i] - b[i]))
+    }
+}
+
 impl std::ops::AddAssign for Resources {
     fn add_assign(&mut self, o: Resources) {
         *self = *self + o;
@@ -157,12 +165,16 @@ pub fn sum_of_products(multipliers: Multipliers, products: &[(Operand, Operand)]
             Multipliers::Inferred => {
                 // Yosys builds the array only below the result's width; a signed factor is
                 // sign-extended up to it, so signed products count apart.
-                let bits = (a.width.min(out_width) * b.width.min(out_width)) as f64;
+                // An a x b array is a x b AND gates and a x (b - 1) adder cells: a two-bit factor
+                // costs one adder row, not two rows of the average array's cost.
+                let (wa, wb) = (a.width.min(out_width), b.width.min(out_width));
+                let cells = (wa * (wb - 1)) as f64;
                 if a.signed || b.signed {
-                    r.smul += bits;
+                    r.smul += cells;
                 } else {
-                    r.mul += bits;
+                    r.mul += cells;
                 }
+                r.mux += (wa * wb) as f64;
                 terms += 1;
             }
         }
