@@ -8,8 +8,8 @@
 use crate::config::PipelineConfig;
 use crate::units::resources::{Resources, KINDS};
 
-/// The regressors: register, Booth partial-product, unsigned and signed inferred
-/// bit-products, adder, select (comparator and multiplexer: one weight, as a free pair fits a
+/// The regressors: register, Booth partial-product, unsigned and signed inferred array adder
+/// cells, adder, select (comparator and multiplexer: one weight, as a free pair fits a
 /// negative multiplexer weight) and bank bits, then a constant per module.
 pub const REGRESSORS: usize = KINDS - 1;
 
@@ -368,7 +368,7 @@ pub fn markdown(coef: &Coefficients, samples: &[Sample], rate: f64) -> String {
         })
         .map_or(String::new(), |w| format!(" The worst held-out configuration is `{}`.", w.file));
     let mut s = format!(
-        "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth partial-product bit + {:.2} per unsigned and {:.2} per signed inferred multiplier bit-product + {:.2} per adder bit + {:.2} per comparator or multiplexer bit + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
+        "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth partial-product bit + {:.2} per adder cell of an unsigned and {:.2} of a signed inferred multiplier array (a x (b-1) for an a x b product) + {:.2} per adder bit + {:.2} per comparator, multiplexer or AND-gate bit (an inferred array's a x b AND gates among them) + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
         coef[0],
         coef[1],
         coef[2],

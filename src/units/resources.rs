@@ -16,16 +16,16 @@ pub struct Resources {
     pub ff: f64,
     /// Booth partial-product bits (a select and an XOR each).
     pub pp: f64,
-    /// Bit-products of unsigned multipliers left to synthesis (`multipliers = "inferred"`).
+    /// Adder cells of unsigned multiplier arrays left to synthesis (`multipliers =
+    /// "inferred"`): a x (b - 1) for an a x b product, whose a x b AND gates count as `mux`.
     pub mul: f64,
-    /// Bit-products of signed multipliers left to synthesis (sign extension makes them
-    /// dearer per bit).
+    /// The same for signed multipliers (sign extension makes them dearer per cell).
     pub smul: f64,
     /// Adder and subtractor bits (an n-operand sum counts n - 1 adders).
     pub add: f64,
     /// Magnitude-comparator bits.
     pub cmp: f64,
-    /// Two-way multiplexer (and AND-gating) bits.
+    /// Two-way multiplexer and AND-gating bits (an inferred array's AND gates among them).
     pub mux: f64,
     /// Register-array bits times the reads of the array: the write enables and the
     /// bank-wide read selects of the top's triangle banks.
