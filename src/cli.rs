@@ -534,12 +534,15 @@ pub fn run() -> anyhow::Result<()> {
                 let (w, h) = crate::limits::parse_size(sz)?;
                 crate::measure::scene_error::check_builtin_renders(w, h)?;
             }
+            // A configuration derived from a scene file is regressed on that scene too.
+            let own_scenes = crate::scene::builtin::files_among(pick.scene.iter());
             let opts = crate::sim::regress::RegressOptions {
                 sims: sim.sims(),
                 random_verilator: random,
                 random_icarus,
                 seed,
                 scenes: !no_scenes,
+                own_scenes,
                 scene_size: scene_size.as_deref().map(crate::limits::parse_size).transpose()?,
                 work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
                 waves,
@@ -784,7 +787,7 @@ pub fn run() -> anyhow::Result<()> {
                 }
             }
             if !no_regress {
-                let opts = crate::fit::run::regress_options(&work.join("regress"), invocation())?;
+                let opts = crate::fit::run::regress_options(&work.join("regress"), invocation(), &scene)?;
                 let t0 = std::time::Instant::now();
                 crate::sim::regress_cmd::regress(
                     &c.cfg,

@@ -186,6 +186,12 @@ pub struct PipelineConfig {
     /// What the rasteriser interpolates of the bump state per fragment (`none`, `h`, `hl`).
     #[serde(skip_serializing_if = "Interpolate::is_none")]
     pub interpolate: Interpolate,
+    /// Every bump light is white (Lc = 1, 1, 1): the blends drop the light-colour multiply
+    /// (f·k·Lc is f·k in colour units, a shift and a subtract) and the banks drop Lc; the
+    /// light-colour port (`tri_lc`, or `in_lc`) stays and is ignored (left out of the TOML
+    /// when false, so older hashes are unchanged).
+    #[serde(skip_serializing_if = "is_false")]
+    pub white_lights: bool,
 }
 
 impl Default for PipelineConfig {
@@ -218,12 +224,17 @@ impl Default for PipelineConfig {
             pipeline_depth: DEFAULT_PIPELINE_DEPTH,
             multipliers: Multipliers::Booth,
             interpolate: Interpolate::None,
+            white_lights: false,
         }
     }
 }
 
 fn is_zero(v: &u32) -> bool {
     *v == 0
+}
+
+fn is_false(v: &bool) -> bool {
+    !*v
 }
 
 /// The default `pipeline_depth` (see ARCHITECTURE.md, "Timing as a parameter").
@@ -512,6 +523,16 @@ impl PipelineConfig {
     /// `colour_guard_bits` fraction bits (the colour format itself when there are none).
     pub fn stage_colour_fmt(&self) -> Format {
         Format::u(self.colour_bits + self.colour_guard_bits, self.colour_guard_bits)
+    }
+    /// The light colour the blends multiply by: a slot's own, or white (every code at 1.0)
+    /// when `white_lights` strips the multiply.
+    #[inline]
+    pub fn light_colour(&self, lc: [u32; 3]) -> [u32; 3] {
+        if self.white_lights {
+            [self.colour_max(); 3]
+        } else {
+            lc
+        }
     }
     /// Largest stage colour code (1.0 in [`Self::stage_colour_fmt`]).
     pub fn stage_colour_max(&self) -> i64 {

@@ -249,6 +249,7 @@ fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
         random_icarus: 0,
         seed: 1,
         scenes: false,
+        own_scenes: Vec::new(),
         scene_size: None,
         work: work.to_path_buf(),
         waves: false,

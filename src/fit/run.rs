@@ -86,13 +86,16 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
 /// The regression the chosen configuration passes before `gbump fit` reports it: both
 /// simulators, `gbump regress`'s protocol (bubbles, stalls, the power-up table), fewer random
 /// vectors and the scenes at 64x48.
-pub fn regress_options(work: &std::path::Path, command: String) -> Result<crate::sim::regress::RegressOptions> {
+/// `scenes` are the fitted scenes: those that are files (not built in) are regressed too.
+pub fn regress_options(work: &std::path::Path, command: String, scenes: &[String]) -> Result<crate::sim::regress::RegressOptions> {
+    let own_scenes = crate::scene::builtin::files_among(scenes);
     Ok(crate::sim::regress::RegressOptions {
         sims: vec![crate::sim::Sim::Icarus, crate::sim::Sim::Verilator],
         random_verilator: 100_000,
         random_icarus: 5_000,
         seed: 1,
         scenes: true,
+        own_scenes,
         scene_size: Some((64, 48)),
         work: std::path::absolute(work).map_err(|e| crate::error::Error::io(work, e))?,
         waves: false,

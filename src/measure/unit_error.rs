@@ -80,12 +80,13 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     for ls in s.state.lights.iter().take(cfg.lights as usize) {
         let dot = |v: [i64; 3]| (0..3).map(|i| b[i] * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0);
         let k = cfg.k_fmt().to_f64(ls.k);
+        let lc = cfg.light_colour(ls.lc);
         for ch in 0..3 {
             if d_on {
-                dif[ch] += dot(ls.l) * k * ls.lc[ch] as f64;
+                dif[ch] += dot(ls.l) * k * lc[ch] as f64;
             }
             if s_on {
-                spe[ch] += powi_exact(dot(ls.h), n) * k * ls.lc[ch] as f64;
+                spe[ch] += powi_exact(dot(ls.h), n) * k * lc[ch] as f64;
             }
         }
     }

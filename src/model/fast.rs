@@ -82,6 +82,8 @@ pub struct FastModel {
     tex_half: i64,
     tex_m: i64,
     tex_s: u32,
+    /// Every light colour at this code (`white_lights`), or each slot's own.
+    white: Option<u32>,
 }
 
 impl FastModel {
@@ -113,6 +115,7 @@ impl FastModel {
             tex_half: div.half as i64,
             tex_m: div.m as i64,
             tex_s: div.s,
+            white: cfg.white_lights.then(|| cfg.colour_max()),
         }
     }
 
@@ -136,14 +139,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state), frags, out),
-                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state), frags, out),
-                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state), frags, out),
-                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state), frags, out),
-                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state), frags, out),
-                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state), frags, out),
-                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state), frags, out),
-                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state), frags, out),
+                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white), frags, out),
+                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white), frags, out),
+                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white), frags, out),
+                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white), frags, out),
+                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white), frags, out),
+                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white), frags, out),
+                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white), frags, out),
+                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white), frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -308,7 +311,7 @@ impl FastModel {
     ) {
         for (it, o) in items.iter().zip(out.iter_mut()) {
             let (state, frag) = get(it);
-            *o = self.one::<N, TEXTURE_LAST>(&lights::<N>(state), frag);
+            *o = self.one::<N, TEXTURE_LAST>(&lights::<N>(state, self.white), frag);
         }
     }
 
@@ -409,13 +412,14 @@ struct Light {
 }
 
 #[inline(always)]
-fn lights<const N: usize>(state: &BumpState) -> [Light; N] {
+fn lights<const N: usize>(state: &BumpState, white: Option<u32>) -> [Light; N] {
     std::array::from_fn(|i| {
         let s = &state.lights[i];
+        let lc = white.map_or(s.lc, |m| [m; 3]);
         Light {
             l: s.l,
             h: s.h,
-            klc: [s.k * s.lc[0] as i64, s.k * s.lc[1] as i64, s.k * s.lc[2] as i64],
+            klc: [s.k * lc[0] as i64, s.k * lc[1] as i64, s.k * lc[2] as i64],
         }
     })
 }

@@ -102,7 +102,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     for i in 0..n {
         let s = &state.lights[i];
         kd[i] = s.k;
-        lc[i] = s.lc;
+        lc[i] = cfg.light_colour(s.lc);
         if cfg.diffuse {
             out.fd[i] = dot_clamp(cfg, b, s.l);
             if diffuse_on {

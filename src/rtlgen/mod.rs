@@ -130,6 +130,12 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                 &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
         }
     }
+    if cfg.white_lights {
+        s += "// White lights: the light-colour port stays on the interface, unused (every Lc is 1).\n";
+        for sig in ["in_lc", "tri_lc"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
+        }
+    }
     // Every configuration has the same top ports; the enable of a blend unit this
     // configuration leaves out is accepted and ignored.
     for (present, en) in [(cfg.diffuse, "de"), (cfg.specular, "se")] {

@@ -632,7 +632,11 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
         "Triangle setup: {k} register banks. A setup loads the bank after the current one and makes it current; fragments carry the bank's tag."
     ));
     bank_pointer(s, cfg);
-    let tri: Vec<TopPort> = port_list(cfg).into_iter().filter(|p| p.kind == PortKind::Triangle).collect();
+    // White lights: Lc is not stored (tri_lc stays on the interface, unused).
+    let tri: Vec<TopPort> = port_list(cfg)
+        .into_iter()
+        .filter(|p| p.kind == PortKind::Triangle && (p.name != "tri_lc" || !cfg.white_lights))
+        .collect();
     for p in &tri {
         let f = &p.name[4..];
         s.m.array(&format!("bank_{f}"), p.width(), k);
@@ -704,15 +708,21 @@ fn bank_ready(s: &mut Scheduler, tag: &str, valid: &str, first: u32) -> u32 {
 /// The setup ports the serial top's bank RAM stores, lowest word bits first: only the
 /// fields a blend reads (L for diffuse, H for specular).
 fn bank_ram_ports(cfg: &PipelineConfig) -> Vec<TopPort> {
-    let used = |f: &str| match f {
-        "l" => cfg.diffuse,
-        "h" => cfg.specular,
-        _ => cfg.diffuse || cfg.specular,
-    };
     port_list(cfg)
         .into_iter()
-        .filter(|p| p.kind == PortKind::Triangle && used(&p.name[4..]))
+        .filter(|p| p.kind == PortKind::Triangle && state_field_used(cfg, &p.name[4..]))
         .collect()
+}
+
+/// Whether a blend reads bump-state field `f` (`l`, `h`, `lc`, `k`): L for diffuse, H for
+/// specular, Lc unless every light is white.
+fn state_field_used(cfg: &PipelineConfig, f: &str) -> bool {
+    match f {
+        "l" => cfg.diffuse,
+        "h" => cfg.specular,
+        "lc" => !cfg.white_lights && (cfg.diffuse || cfg.specular),
+        _ => cfg.diffuse || cfg.specular,
+    }
 }
 
 fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
@@ -825,19 +835,12 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe", cfg.power_frac_bits),
             _ => return None,
         };
-        s.unit(
-            cfg,
-            u,
-            &format!("u_{}", u.name()),
-            &[
-                ("c_in", &format!("{{{c}}}")),
-                ("f", f),
-                ("k", &format!("{{{pre}_k}}")),
-                ("lc", &format!("{{{pre}_lc}}")),
-            ],
-            &[("c_out", name)],
-            &[],
-        );
+        let (c_in, k, lc) = (format!("{{{c}}}"), format!("{{{pre}_k}}"), format!("{{{pre}_lc}}"));
+        let mut ins = vec![("c_in", c_in.as_str()), ("f", f), ("k", k.as_str())];
+        if !cfg.white_lights {
+            ins.push(("lc", lc.as_str()));
+        }
+        s.unit(cfg, u, &format!("u_{}", u.name()), &ins, &[("c_out", name)], &[]);
         s.m.factor_frac(frac);
         Some(name.to_string())
     });
@@ -874,7 +877,10 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         "always @(posedge clk) begin\n    if (rst) begin\n        busy <= 1'b0;\n        j <= {jb}'d0;\n    end\n    else if (accept) begin\n        busy <= 1'b1;\n        j <= {jb}'d0;\n    end\n    else if (busy) begin\n        busy <= !last;\n        j <= last ? {jb}'d0 : j + {jb}'d1;\n    end\nend"
     ));
     // The accepting edge captures the fragment: slot 0 runs in the next cycle, stage 0.
-    for p in port_list(cfg).iter().filter(|p| p.kind == PortKind::Fragment) {
+    for p in port_list(cfg)
+        .iter()
+        .filter(|p| p.kind == PortKind::Fragment && (p.name != "in_lc" || !cfg.white_lights))
+    {
         let fr = format!("fr_{}", &p.name[3..]);
         s.m.reg_decl(&fr, p.width());
         s.m.raw(format!("always @(posedge clk) if (accept) {fr} <= {};", p.name));
@@ -900,30 +906,25 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             super::writer::lane(&format!("{{{pre}_{f}}}"), cfg.lights, "{j}", w)
         }
     };
-    s.comb("lc_sel", c3, &slot("lc", c3));
+    if !cfg.white_lights {
+        s.comb("lc_sel", c3, &slot("lc", c3));
+    }
     s.comb("k_sel", k1, &slot("k", k1));
     let dot = units::unit("dot_clamp").expect("unit");
     let acc = units::unit("light_accumulate").expect("unit");
     let aw3 = 3 * cfg.acc_fmt().width;
     let accumulate = |s: &mut Scheduler, name: &str, f: &str, frac: u32| {
         // The accumulator feeds itself back: slot j adds to the sum of slots 0..j-1.
-        let st = s.stage_of(&[f, "{k_sel}", "{lc_sel}", "{first}"]);
-        let (ff, k, lc, first) = (s.fill(f, st), s.fill("{k_sel}", st), s.fill("{lc_sel}", st), s.fill("{first}", st));
+        let lc_sel = if cfg.white_lights { "" } else { "{lc_sel}" };
+        let st = s.stage_of(&[f, "{k_sel}", lc_sel, "{first}"]);
+        let (ff, k, lc, first) = (s.fill(f, st), s.fill("{k_sel}", st), s.fill(lc_sel, st), s.fill("{first}", st));
         s.m.wire(name, aw3, None);
-        s.m.inst(
-            cfg,
-            acc,
-            &format!("u_{name}"),
-            &[
-                ("acc_in", name.to_string()),
-                ("first", first),
-                ("f", ff),
-                ("k", k),
-                ("lc", lc),
-                ("acc", name.to_string()),
-            ],
-            &[],
-        );
+        let mut conns = vec![("acc_in", name.to_string()), ("first", first), ("f", ff), ("k", k)];
+        if !cfg.white_lights {
+            conns.push(("lc", lc));
+        }
+        conns.push(("acc", name.to_string()));
+        s.m.inst(cfg, acc, &format!("u_{name}"), &conns, &[]);
         s.m.factor_frac(frac);
         s.source(name, st + acc.latency(cfg));
         // The sum is complete after the last slot: from here on a fragment is valid once.

@@ -257,10 +257,14 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
         cfg.term_fmt().name()
     ));
     let clk = if cuts > 0 { "input  wire clk,\n    " } else { "" };
+    let lc_port = if cfg.white_lights {
+        String::new()
+    } else {
+        format!("input  wire [{}:0] lc,\n    ", 3 * c - 1)
+    };
     w.line(format!(
-        "module {} (\n    {clk}input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] term\n);",
+        "module {} (\n    {clk}input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    {lc_port}output wire [{}:0] term\n);",
         module_name(cfg, "light_term"),
-        3 * c - 1,
         3 * tw - 1
     ));
     let fkw = ff + k + 2;
@@ -273,6 +277,15 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
         fkw,
     );
     w.stage(cuts >= 1, &format!("[{}:0]", fkw - 1), "fk", &e);
+    if cfg.white_lights {
+        // Lc = 2^c - 1 on every channel: f k Lc = (f k << c) - f k, one term for all three.
+        w.line(format!("wire [{}:0] tw0 = {{fk, {c}'d0}} - {};", tw - 1, super::writer::zext("fk", tw - fkw)));
+        w.stage(cuts >= 2, &format!("[{}:0]", tw - 1), "t0", "tw0");
+        w.line("assign term = {t0, t0, t0};");
+        w.line("endmodule");
+        postamble(&mut w);
+        return w.finish();
+    }
     w.stage(cuts >= 1, &format!("[{}:0]", 3 * c - 1), "lc1", "lc");
     for ch in 0..3 {
         let e = sum_of_products(
@@ -292,6 +305,15 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     w.line("endmodule");
     postamble(&mut w);
     w.finish()
+}
+
+/// The light-colour connection of a `light_term` instance (none with white lights).
+pub fn light_colour_conn(cfg: &PipelineConfig, lc: &str) -> String {
+    if cfg.white_lights {
+        String::new()
+    } else {
+        format!(", .lc({lc})")
+    }
 }
 
 /// The clock connection of a `light_term` instance (none at depth 1).
@@ -384,26 +406,29 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
         u32::from(cut(cfg, BLEND, 2))
     ));
     w.line(format!(
-        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    input  wire [{}:0] lc,\n    output wire [{}:0] c_out\n);",
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] c_in,\n    input  wire [{}:0] f,\n    input  wire [{}:0] k,\n    {}output wire [{}:0] c_out\n);",
         module_name(cfg, unit),
         3 * cs - 1,
         n * (ff + 1) - 1,
         n * (k + 1) - 1,
-        3 * n * c - 1,
+        if cfg.white_lights {
+            String::new()
+        } else {
+            format!("input  wire [{}:0] lc,\n    ", 3 * n * c - 1)
+        },
         3 * cs - 1
     ));
     for i in 0..n {
         w.line(format!("wire [{}:0] t{i};", 3 * tw - 1));
         w.line(format!(
-            "{} lt{i} ({}.f(f[{}:{}]), .k(k[{}:{}]), .lc(lc[{}:{}]), .term(t{i}));",
+            "{} lt{i} ({}.f(f[{}:{}]), .k(k[{}:{}]){}, .term(t{i}));",
             module_name(cfg, "light_term"),
             light_term_clk(cfg),
             i * (ff + 1) + ff,
             i * (ff + 1),
             i * (k + 1) + k,
             i * (k + 1),
-            3 * c * (i + 1) - 1,
-            3 * c * i
+            light_colour_conn(cfg, &format!("lc[{}:{}]", 3 * c * (i + 1) - 1, 3 * c * i))
         ));
     }
     // c_in waits beside the light terms.

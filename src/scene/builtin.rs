@@ -23,3 +23,8 @@ pub const DEFAULT: &str = "torus_caps";
 pub fn get(name: &str) -> Option<&'static str> {
     ALL.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
+
+/// The names among `names` that are scene files rather than built-in scenes.
+pub fn files_among<'a>(names: impl IntoIterator<Item = &'a String>) -> Vec<String> {
+    names.into_iter().filter(|n| get(n).is_none()).cloned().collect()
+}

@@ -370,6 +370,19 @@ impl Scene {
                 format!("set lights = {n} or more"),
             ));
         }
+        if cfg.white_lights {
+            if let Some(l) = self.bump_lights().find(|l| l.colour != [1.0, 1.0, 1.0]) {
+                return Err(Error::field(
+                    cfg_file,
+                    "white_lights",
+                    format!(
+                        "scene `{}` ({}) has a coloured bump light (colour {:?}) but white_lights = true drops the light-colour multiply",
+                        self.name, self.file, l.colour
+                    ),
+                    "set white_lights = false (or make every bump light's colour [1, 1, 1])",
+                ));
+            }
+        }
         Ok(())
     }
 }

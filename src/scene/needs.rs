@@ -86,6 +86,8 @@ impl SceneNeeds {
             // k_i of 0 or 1 is exact at 0 fraction bits: the blends lose their f·k multiplier
             // and the images do not change (f·k·Lc is exact before its one rounding).
             k_frac_bits: if self.k_on_off { 0 } else { d.k_frac_bits },
+            // Lc = 1 on every channel of every bump light: the multiply by it is x1.
+            white_lights: self.white_lights && !self.bump_lights.is_empty(),
             ..d
         }
     }
@@ -144,14 +146,13 @@ impl SceneNeeds {
                 why.join("; ")
             );
         }
-        s += &format!(
-            "# light colours: {}\n",
-            if self.white_lights {
-                "every bump light is white (the Lc multiply is x1)"
-            } else {
-                "coloured bump lights (the blends multiply by Lc)"
-            }
-        );
+        s += if self.white_lights && !self.bump_lights.is_empty() {
+            "# white_lights = true: every bump light is white (Lc = 1, 1, 1): no Lc multiply in the blends, no Lc in the banks\n"
+        } else if self.bump_lights.is_empty() {
+            "# white_lights = false: no bump light\n"
+        } else {
+            "# white_lights = false: coloured bump lights (the blends multiply by Lc)\n"
+        };
         for (i, n) in distinct_normals(scene, cfg)?.iter().enumerate() {
             s += &format!(
                 "# object {i}: {n} distinct stored normals at normal_bits = {}{}\n",

@@ -50,6 +50,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             interpolate: crate::config::Interpolate::None,
             // Drawn last, so every draw before it is what it was before the field.
             colour_guard_bits: field(rng, "colour_guard_bits"),
+            white_lights: pick(rng, &[false, true]),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
@@ -204,6 +205,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         random_icarus: 0,
         seed,
         scenes: false,
+        own_scenes: Vec::new(),
         scene_size: None,
         work: dir.clone(),
         waves: false,
@@ -338,8 +340,11 @@ mod tests {
             "diffuse",
             "specular",
             "skip_flat",
+            "white_lights",
         ] {
-            let distinct: std::collections::BTreeSet<String> = draws.iter().map(|t| t[f].to_string()).collect();
+            // A choice left out of the TOML at its default (white_lights = false) reads as that.
+            let distinct: std::collections::BTreeSet<String> =
+                draws.iter().map(|t| t.get(f).map_or("false".to_string(), |v| v.to_string())).collect();
             let want = match f {
                 "power_unit" | "rounding" => 3,
                 _ => 2,

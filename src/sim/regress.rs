@@ -32,6 +32,10 @@ pub struct RegressOptions {
     pub seed: u64,
     /// Render every built-in scene whose lights fit and use its fragments.
     pub scenes: bool,
+    /// Scene files (not built in) whose fragments join the suite too: the scene a
+    /// configuration was derived from (`--scene FILE`), which the built-in scenes may not
+    /// exercise (white lights, say).
+    pub own_scenes: Vec<String>,
     /// Image size for scene fragments.
     pub scene_size: Option<(u32, u32)>,
     pub work: PathBuf,
@@ -85,6 +89,13 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
                 continue;
             }
             for s in dump(cfg, &Source::Scene(name.to_string()), &["top".to_string()], dir, &dopt(o.seed))? {
+                sets.push((s.manifest, None));
+            }
+        }
+        // The user's own scenes must fit: a misfit is an error, not a silent skip.
+        for file in &o.own_scenes {
+            crate::scene::Scene::load(file)?.check_config(cfg, "pipeline config")?;
+            for s in dump(cfg, &Source::Scene(file.clone()), &["top".to_string()], dir, &dopt(o.seed))? {
                 sets.push((s.manifest, None));
             }
         }

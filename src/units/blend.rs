@@ -28,6 +28,13 @@ fn rgb(v: &[i64]) -> [u32; 3] {
     [v[0] as u32, v[1] as u32, v[2] as u32]
 }
 
+/// Each light slot's colour: the `lc` input's, or white when the configuration has no `lc`.
+fn light_colours(cfg: &PipelineConfig, i: &[Vec<i64>]) -> Vec<[u32; 3]> {
+    (0..cfg.lights as usize)
+        .map(|j| if cfg.white_lights { [cfg.colour_max(); 3] } else { rgb(&i[3][3 * j..]) })
+        .collect()
+}
+
 impl Unit for Blend {
     fn name(&self) -> &'static str {
         self.name
@@ -45,32 +52,35 @@ impl Unit for Blend {
         cfg.light_mode == crate::config::LightMode::Parallel && if self.specular { cfg.specular } else { cfg.diffuse }
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
-        vec![
+        let mut v = vec![
             p("c_in", Dir::In, c.stage_colour_fmt(), 3, "colour in (R, G, B; colour_guard_bits fraction bits)"),
             p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
             p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
-            p(
+        ];
+        // White lights: no light colour to multiply by.
+        if !c.white_lights {
+            v.push(p(
                 "lc",
                 Dir::In,
                 c.colour_fmt(),
                 3 * c.lights,
                 "light colours Lc_i (R, G, B per light)",
-            ),
-            p(
+            ));
+        }
+        v.push(p(
                 "c_out",
                 Dir::Out,
                 c.stage_colour_fmt(),
                 3,
                 "sat(c_in + round(sum f_i k_i Lc_i)), rounded to c_in's fraction bits",
-            ),
-        ]
+            ));
+        v
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
         super::timing::latency(cfg, super::timing::BLEND)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        let n = cfg.lights as usize;
-        let lc: Vec<[u32; 3]> = (0..n).map(|j| rgb(&i[3][3 * j..])).collect();
+        let lc = light_colours(cfg, i);
         vec![blend(cfg, rgb(&i[0]), &i[1], &i[2], &lc).iter().map(|&x| x as i64).collect()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
@@ -79,8 +89,9 @@ impl Unit for Blend {
         let one = (1u64 << cfg.colour_guard_bits) as f64;
         let out = (0..3)
             .map(|ch| {
+                let lc = light_colours(cfg, i);
                 let add: f64 = (0..cfg.lights as usize)
-                    .map(|j| ff.to_f64(i[1][j]) * kf.to_f64(i[2][j]) * i[3][3 * j + ch] as f64)
+                    .map(|j| ff.to_f64(i[1][j]) * kf.to_f64(i[2][j]) * lc[j][ch] as f64)
                     .sum();
                 (i[0][ch] as f64 + add * one).min(max)
             })
@@ -110,7 +121,14 @@ impl Unit for Blend {
         let n = cfg.lights as usize;
         let (m, one_f, one_k) = (cfg.colour_max() as i64, 1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
         let sm = cfg.stage_colour_max();
-        let all = |c: i64, f: i64, k: i64, lc: i64| vec![vec![c; 3], vec![f; n], vec![k; n], vec![lc; 3 * n]];
+        let white = cfg.white_lights;
+        let all = |c: i64, f: i64, k: i64, lc: i64| {
+            let mut v = vec![vec![c; 3], vec![f; n], vec![k; n]];
+            if !white {
+                v.push(vec![lc; 3 * n]);
+            }
+            v
+        };
         vec![
             (
                 "every light at full strength on white: the sum saturates".into(),

@@ -213,6 +213,10 @@ pub fn light_term(cfg: &PipelineConfig) -> Resources {
     let cuts = crate::rtlgen::units_v::light_term_cuts(cfg);
     let fkw = ff + k + 2;
     let mut r = sum_of_products(form(cfg), &[(unsigned(ff + 1), unsigned(k + 1))], false, fkw);
+    if cfg.white_lights {
+        // (f k << c) - f k, one term for every channel.
+        return r + Resources::stage(cuts >= 1, fkw) + Resources::adders(tw) + Resources::stage(cuts >= 2, tw);
+    }
     r += Resources::stage(cuts >= 1, fkw + 3 * c);
     let channel = sum_of_products(form(cfg), &[(unsigned(fkw), unsigned(c))], false, tw) + Resources::stage(cuts >= 2, tw);
     r + channel.scaled(3.0)

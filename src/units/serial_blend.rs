@@ -63,12 +63,17 @@ impl Unit for LightAccumulate {
             p("first", Dir::In, Format::u(1, 0), 1, "first light slot: start from 0"),
             p("f", Dir::In, c.factor_fmt(), 1, "fd_j or fs_j of this slot, aligned"),
             p("k", Dir::In, c.k_fmt(), 1, "k_j of this slot"),
-            p("lc", Dir::In, c.colour_fmt(), 3, "Lc_j of this slot"),
-            p("acc", Dir::Out, c.acc_fmt(), 3, "(first ? 0 : acc_in) + f k Lc"),
         ]
+        .into_iter()
+        // White lights: no light colour to multiply by.
+        .chain((!c.white_lights).then(|| p("lc", Dir::In, c.colour_fmt(), 3, "Lc_j of this slot")))
+        .chain([p("acc", Dir::Out, c.acc_fmt(), 3, "(first ? 0 : acc_in) + f k Lc")])
+        .collect()
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![accumulate(cfg, &i[0], i[1][0] == 1, i[2][0], i[3][0], &i[4]).to_vec()]
+        let white = [cfg.colour_max() as i64; 3];
+        let lc = if cfg.white_lights { &white[..] } else { &i[4][..] };
+        vec![accumulate(cfg, &i[0], i[1][0] == 1, i[2][0], i[3][0], lc).to_vec()]
     }
     fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         // The sum is exact: the model is the equation.
@@ -95,18 +100,23 @@ impl Unit for LightAccumulate {
             cfg.acc_fmt().name(),
             self.latency(cfg)
         ));
+        let lc_port = if cfg.white_lights {
+            String::new()
+        } else {
+            format!("input  wire [{}:0] lc,\n    ", 3 * c - 1)
+        };
         w.line(format!(
-            "module {} (\n    input  wire clk,\n    input  wire [{}:0] acc_in,\n    input  wire first,\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    input  wire [{}:0] lc,\n    output reg  [{}:0] acc\n);",
+            "module {} (\n    input  wire clk,\n    input  wire [{}:0] acc_in,\n    input  wire first,\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    {lc_port}output reg  [{}:0] acc\n);",
             module_name(cfg, "light_accumulate"),
             3 * aw - 1,
-            3 * c - 1,
             3 * aw - 1
         ));
         w.line(format!("wire [{}:0] term;", 3 * tw - 1));
         w.line(format!(
-            "{} lt ({}.f(f), .k(k), .lc(lc), .term(term));",
+            "{} lt ({}.f(f), .k(k){}, .term(term));",
             module_name(cfg, "light_term"),
-            crate::rtlgen::units_v::light_term_clk(cfg)
+            crate::rtlgen::units_v::light_term_clk(cfg),
+            crate::rtlgen::units_v::light_colour_conn(cfg, "lc")
         ));
         // `first` waits beside the term; acc_in is added at the last stage, so the running
         // sum feeds back in one cycle at any depth.
@@ -150,6 +160,15 @@ impl Unit for LightAccumulate {
             ),
             ("one LSB term".into(), vec![vec![0; 3], vec![1], vec![1], vec![1], vec![1; 3]]),
         ]
+        .into_iter()
+        .map(|(why, mut lanes)| {
+            // White lights: the unit has no light-colour input.
+            if cfg.white_lights {
+                lanes.pop();
+            }
+            (why, lanes)
+        })
+        .collect()
     }
 }
 

@@ -417,7 +417,9 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
         }),
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
-    let lc: Vec<i64> = (0..n).flat_map(|j| s.state.lights[j].lc.map(|x| x as i64)).collect();
+    // The colours the blends multiply by (white: every code at 1.0, and no lc input).
+    let lc: Vec<i64> = (0..n).flat_map(|j| cfg.light_colour(s.state.lights[j].lc).map(|x| x as i64)).collect();
+    let white = cfg.white_lights;
     for j in 0..n {
         let ls = &s.state.lights[j];
         if cfg.diffuse {
@@ -442,16 +444,20 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     let blend_in = |c_in: [u32; 3], f: &[i64], v: &mut Vec<UnitStim>, unit: &'static str| {
         let c = c_in.iter().map(|&y| y as i64).collect::<Vec<_>>();
         if !serial {
-            v.push(UnitStim {
-                unit,
-                inputs: vec![c, f[..n].to_vec(), k.clone(), lc.clone()],
-            });
+            let mut inputs = vec![c, f[..n].to_vec(), k.clone()];
+            if !white {
+                inputs.push(lc.clone());
+            }
+            v.push(UnitStim { unit, inputs });
             return;
         }
         let mut acc = vec![0i64; 3];
         for j in 0..n {
             let lcj = lc[3 * j..3 * j + 3].to_vec();
-            let inputs = vec![acc.clone(), vec![(j == 0) as i64], vec![f[j]], vec![k[j]], lcj.clone()];
+            let mut inputs = vec![acc.clone(), vec![(j == 0) as i64], vec![f[j]], vec![k[j]]];
+            if !white {
+                inputs.push(lcj.clone());
+            }
             acc = crate::units::accumulate(cfg, &acc, j == 0, f[j], k[j], &lcj).to_vec();
             v.push(UnitStim {
                 unit: "light_accumulate",
