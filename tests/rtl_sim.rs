@@ -160,6 +160,77 @@ fn regress_colour_guard_bits_on_both_tops() {
 }
 
 #[test]
+fn regress_white_lights_on_their_scene_and_a_per_fragment_top() {
+    // The configuration derived from a scene of white bump lights (no light-colour multiply,
+    // no Lc in the bank RAM), regressed on that scene's own fragments too.
+    let t = regress(
+        &[
+            "--sim",
+            "both",
+            "--scene",
+            "tests/scenes/white_lights.toml",
+            "--random-icarus",
+            "2000",
+            "--random",
+            "20000",
+            "--scene-size",
+            "64x48",
+        ],
+        "white_lights",
+    );
+    let r = runs(&t);
+    assert!(
+        r.iter().filter(|x| x.1 == "scene_white_lights_top" && x.3 == 0 && x.2 > 0).count() == 2,
+        "the scene's own fragments on both simulators:\n{t}"
+    );
+    regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            "tests/configs/white_lights_fragment_parallel.toml",
+            "--random",
+            "20000",
+            "--random-icarus",
+            "2000",
+            "--no-scenes",
+        ],
+        "white_lights_fragment_parallel",
+    );
+}
+
+/// A white-light term that multiplies by 2^c instead of 2^c - 1 is caught by the blend's
+/// random unit set and the top's, on both simulators (the corners saturate or round it away).
+#[test]
+fn a_white_light_term_without_its_subtract_is_caught() {
+    use gbump::sim::regress::{run_sets, write_rtl};
+    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/white_lights_fragment_parallel.toml")).unwrap();
+    let work = std::path::absolute(root().join("target/test-regress/mutant_white")).unwrap();
+    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
+    let f = rtl.sources.iter().find(|p| p.to_string_lossy().contains("light_term")).unwrap();
+    let text = std::fs::read_to_string(f).unwrap();
+    std::fs::write(f, mutants::white_term_no_subtract(&text).expect("the white term's subtract")).unwrap();
+    let o = mutant_dump_options();
+    let vec_dir = work.join("vectors");
+    let mut sets = Vec::new();
+    let d = gbump::vectors::dump(
+        &cfg,
+        &gbump::vectors::Source::Random(20_000),
+        &["diffuse_blend".into(), "top".into()],
+        &vec_dir,
+        &o,
+    )
+    .unwrap();
+    sets.extend(d.iter().map(|s| (s.manifest.clone(), None)));
+    let res = run_sets(&cfg, &sets, &rtl, &mutant_run_options(&work)).unwrap();
+    assert_eq!(res.len(), 4);
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 1, "{:?} {}: the mutant passed", r.sim, r.set);
+    }
+}
+
+#[test]
 fn regress_four_lights_serial_dot10() {
     regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }
@@ -207,6 +278,7 @@ fn lint_is_clean_for_every_other_test_configuration() {
             Some("tests/configs/one_bit_k_fragment.toml"),
             Some("tests/configs/colour_guard.toml"),
             Some("tests/configs/colour_guard_parallel.toml"),
+            Some("tests/configs/white_lights_fragment_parallel.toml"),
         ],
     );
 }

@@ -63,3 +63,56 @@ fn stripping_the_k_multiplier_changes_no_pixel() {
     }
     assert!(stripped >= 5, "only {stripped} scenes have on/off k");
 }
+
+fn white_scene() -> Scene {
+    Scene::load(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/white_lights.toml")).unwrap()
+}
+
+/// A scene whose bump lights are all white derives `white_lights = true`, and dropping the
+/// light-colour multiply changes no pixel: every Lc is the largest code, so f·k·Lc is the
+/// same with the multiply and with the shift and subtract.
+#[test]
+fn stripping_the_light_colour_multiply_changes_no_pixel() {
+    let s = white_scene();
+    let derived = s.derive_config().unwrap();
+    assert!(derived.white_lights, "white bump lights derive white_lights");
+    let why = SceneNeeds::of(&s).explain(&s, &derived).unwrap();
+    assert!(why.contains("# white_lights = true: every bump light is white"), "{why}");
+    let coloured = PipelineConfig {
+        white_lights: false,
+        ..derived.clone()
+    };
+    let a = gbump::render::render(&s, &derived, 64, 48, false).unwrap();
+    let b = gbump::render::render(&s, &coloured, 64, 48, false).unwrap();
+    assert_eq!(a.golden, b.golden);
+    // The strip is smaller: no Lc multiply, no Lc in the banks (the area model).
+    let (ga, gb) = (
+        gbump::measure::area_model::estimate(&derived),
+        gbump::measure::area_model::estimate(&coloured),
+    );
+    assert!(ga < gb, "white {ga:.0} GE against coloured {gb:.0} GE");
+    // No built-in scene has white bump lights: none derives the strip.
+    for (name, _) in builtin::ALL {
+        assert!(!Scene::load(name).unwrap().derive_config().unwrap().white_lights, "{name}");
+    }
+}
+
+/// A configuration without the light-colour multiply refuses a scene with a coloured bump
+/// light, naming the field and the fix, rather than rendering it with white lights.
+#[test]
+fn white_lights_refuse_a_coloured_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("white.toml");
+    std::fs::write(&cfg, "white_lights = true\nlights = 2\n").unwrap();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["render", "--scene", "torus_caps", "--out"])
+        .arg(dir.path().join("out"))
+        .arg("--config")
+        .arg(&cfg)
+        .assert()
+        .failure();
+    let t = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+    assert!(t.contains("white_lights") && t.contains("coloured bump light") && t.contains("fix:"), "{t}");
+    assert!(!dir.path().join("out").exists(), "nothing written");
+}

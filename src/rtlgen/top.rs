@@ -237,7 +237,11 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             col,
             3 * n,
-            "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j",
+            if cfg.white_lights {
+                "unused: white_lights = true (every Lc_j is 1, 1, 1; drive anything)"
+            } else {
+                "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j"
+            },
         ),
         tp(
             &format!("{pre}_k"),

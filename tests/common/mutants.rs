@@ -38,3 +38,11 @@ pub fn texture_divider_term(text: &str) -> Option<String> {
     let cut = line.rfind(" + (")?;
     Some(text.replacen(line, &format!("{};", &line[..cut]), 1))
 }
+
+/// A white-light `light_term` that multiplies f·k by 2^c instead of 2^c - 1 (its subtract
+/// gone). None when the design has no such line.
+pub fn white_term_no_subtract(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.contains(" tw0 = ") && l.contains(" - "))?;
+    let cut = line.find(" - ")?;
+    Some(text.replacen(line, &format!("{};", &line[..cut]), 1))
+}
