@@ -192,6 +192,12 @@ pub struct PipelineConfig {
     /// when false, so older hashes are unchanged).
     #[serde(skip_serializing_if = "is_false")]
     pub white_lights: bool,
+    /// The power table is a ROM holding x^shininess (its INIT_FILE) for a scene whose
+    /// specular objects share one shininess: the table is never reloaded, so its write port
+    /// is tied off (`power_table_we/_waddr/_wdata` stay on the interface, unused). Left out of
+    /// the TOML when false, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub power_rom: bool,
 }
 
 impl Default for PipelineConfig {
@@ -225,6 +231,7 @@ impl Default for PipelineConfig {
             multipliers: Multipliers::Booth,
             interpolate: Interpolate::None,
             white_lights: false,
+            power_rom: false,
         }
     }
 }
@@ -442,6 +449,14 @@ impl PipelineConfig {
                     self.interpolate
                 ),
                 "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
+            ));
+        }
+        if self.power_rom && !self.specular {
+            return Err(Error::field(
+                file,
+                "power_rom",
+                "power_rom = true but the configuration has no specular path, so no power table",
+                "drop power_rom, or set specular = true",
             ));
         }
         if self.colour_guard_bits >= self.factor_frac() + self.k_frac_bits {

@@ -231,6 +231,28 @@ fn a_white_light_term_without_its_subtract_is_caught() {
 }
 
 #[test]
+fn regress_power_table_as_a_rom() {
+    // The table's write port tied off: every top set runs on the ROM's contents (the load
+    // the benches still drive is ignored), the scenes of its one shininess among them.
+    let t = regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            "tests/configs/power_rom.toml",
+            "--random-icarus",
+            "2000",
+            "--random",
+            "20000",
+            "--scene-size",
+            "64x48",
+        ],
+        "power_rom",
+    );
+    assert!(runs(&t).iter().any(|x| x.1 == "scene_torus_caps_top" && x.3 == 0), "{t}");
+}
+
+#[test]
 fn regress_four_lights_serial_dot10() {
     regress_short("tests/configs/four_serial_dot10.toml", "four_serial_dot10", 12);
 }
@@ -279,6 +301,7 @@ fn lint_is_clean_for_every_other_test_configuration() {
             Some("tests/configs/colour_guard.toml"),
             Some("tests/configs/colour_guard_parallel.toml"),
             Some("tests/configs/white_lights_fragment_parallel.toml"),
+            Some("tests/configs/power_rom.toml"),
         ],
     );
 }

@@ -23,8 +23,9 @@ pub struct Fit {
 }
 
 /// What every scene needs at once: the most bump lights, any blend any scene uses, k fraction
-/// bits unless every scene's k_i are on/off, the first scene's shininess (the table is
-/// loadable), the rest of the first scene's configuration.
+/// bits unless every scene's k_i are on/off, white lights only when every scene's are, the
+/// first scene's shininess (the table is loadable; a ROM when every specular object of every
+/// scene shares one), the rest of the first scene's configuration.
 pub fn common_base(scenes: &[Scene]) -> Result<PipelineConfig> {
     let mut base = scenes[0].derive_config()?;
     for s in &scenes[1..] {
@@ -33,6 +34,17 @@ pub fn common_base(scenes: &[Scene]) -> Result<PipelineConfig> {
         base.diffuse |= c.diffuse;
         base.specular |= c.specular;
         base.k_frac_bits = base.k_frac_bits.max(c.k_frac_bits);
+        base.white_lights &= c.white_lights;
+    }
+    // One shininess over every specular object of every scene: the table is never reloaded,
+    // so it is a ROM (the same logic; a ROM macro instead of a RAM, no load port to drive).
+    let shininess: std::collections::BTreeSet<u32> = scenes
+        .iter()
+        .flat_map(|s| s.objects.iter().filter(|o| o.specular).map(|o| o.shininess))
+        .collect();
+    if base.specular && shininess.len() == 1 {
+        base.shininess = *shininess.iter().next().expect("one");
+        base.power_rom = true;
     }
     Ok(base)
 }

@@ -69,11 +69,18 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             }
         );
     }
+    if cfg.power_rom {
+        s += &format!(
+            "**The power table is a ROM** (`power_rom = true`): it holds x^{} from its INIT_FILE and is never written; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused. A top vector set for another shininess is refused.\n\n",
+            cfg.shininess
+        );
+    } else {
     s += &format!(
         "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
         cfg.power_fmt().name(),
         cfg.power_depth()
     );
+    }
     s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline. ";
     s += if cfg.skip_flat {
         "In this configuration a flat bump normal (the code of (0, 0, 1)) also clears both (paper §5.4.2's bypass).\n\n"

@@ -24,7 +24,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
     for m in super::top::memories(cfg) {
         let init = rom_file_name(cfg, m.init_stem, "hex");
         params.insert(m.init_param.into(), json!({"default": init, "doc": format!("$readmemh file with the power-up contents of the {} memory; relative paths resolve against the simulator's working folder", m.prefix)}));
-        memories.insert(m.prefix.into(), json!({"init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": m.doc, "load_port": format!("{0}_we, {0}_waddr, {0}_wdata; write when idle", m.prefix)}));
+        memories.insert(m.prefix.into(), json!({"init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": m.doc, "load_port": load_port(cfg, m.prefix)}));
     }
     let v = json!({
         "generator": crate::TOOL,
@@ -47,7 +47,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
-        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "load_port": "power_table_we, power_table_waddr, power_table_wdata; write when idle"},
+        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
         "files": {
             "filelist": super::kit::filelist_names(cfg).0,
             "filelist_icarus": super::kit::filelist_names(cfg).1,
@@ -75,4 +75,13 @@ pub fn interface_markdown(cfg: &PipelineConfig) -> String {
         s += &format!("| `{n}` | {d} | {w} |\n");
     }
     s + "\n" + &crate::units::markdown_table(cfg)
+}
+
+/// How a memory is loaded: its load port, or (a ROM power table) not at all.
+fn load_port(cfg: &PipelineConfig, prefix: &str) -> String {
+    if cfg.power_rom && prefix == "power_table" {
+        "none: power_rom = true, the table is a ROM holding its init_file; power_table_we, power_table_waddr, power_table_wdata are unused".into()
+    } else {
+        format!("{prefix}_we, {prefix}_waddr, {prefix}_wdata; write when idle")
+    }
 }

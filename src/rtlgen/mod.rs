@@ -130,6 +130,12 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                 &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
         }
     }
+    if cfg.power_rom {
+        s += "// power_rom: the power table is a ROM; its load port stays on the interface, unused.\n";
+        for sig in ["power_table_we", "power_table_waddr", "power_table_wdata"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
+        }
+    }
     if cfg.white_lights {
         s += "// White lights: the light-colour port stays on the interface, unused (every Lc is 1).\n";
         for sig in ["in_lc", "tri_lc"] {

@@ -122,13 +122,18 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         ),
     ];
     for m in memories(cfg) {
+        let rom = cfg.power_rom && m.prefix == "power_table";
         v.push(tp(
             &format!("{}_we", m.prefix),
             Dir::In,
             PortKind::Load,
             bit,
             1,
-            "write enable of the load port",
+            if rom {
+                "unused: power_rom = true (the table is a ROM holding its INIT_FILE; writes are ignored)"
+            } else {
+                "write enable of the load port"
+            },
         ));
         v.push(tp(
             &format!("{}_waddr", m.prefix),
@@ -501,6 +506,7 @@ fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, Strin
 /// read port, so the instance is written as a helper with its `R` parameter).
 fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
     let pu = units::unit("power_unit").expect("unit");
+    let mem = pu.memory(cfg).expect("the power unit's table");
     s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
@@ -511,14 +517,24 @@ fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
         &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_unit"),
         &[
             ("clk", "clk".into()),
-            ("we", "power_table_we".into()),
-            ("waddr", "power_table_waddr".into()),
-            ("wdata", "power_table_wdata".into()),
+            // A ROM (power_rom): the write port tied off, the contents its INIT_FILE.
+            ("we", if cfg.power_rom { "1'b0".into() } else { "power_table_we".into() }),
+            ("waddr", rom_tie(cfg, "power_table_waddr", mem.addr_bits)),
+            ("wdata", rom_tie(cfg, "power_table_wdata", mem.data_bits)),
             ("x", x),
             ("fs", "fs".into()),
         ],
     );
     s.source("fs", st + pu.latency(cfg));
+}
+
+/// A load-port input of the power table: the top's port, or zeros when the table is a ROM.
+fn rom_tie(cfg: &PipelineConfig, port: &str, width: u32) -> String {
+    if cfg.power_rom {
+        format!("{width}'d0")
+    } else {
+        port.to_string()
+    }
 }
 
 /// The fetch: `b` from `bump` (a template).

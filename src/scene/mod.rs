@@ -370,6 +370,19 @@ impl Scene {
                 format!("set lights = {n} or more"),
             ));
         }
+        if cfg.power_rom {
+            if let Some(o) = self.objects.iter().find(|o| o.specular && o.shininess != cfg.shininess) {
+                return Err(Error::field(
+                    cfg_file,
+                    "power_rom",
+                    format!(
+                        "scene `{}` ({}) has a specular object of shininess {} but the power table is a ROM holding shininess {}",
+                        self.name, self.file, o.shininess, cfg.shininess
+                    ),
+                    format!("set shininess = {} (when every specular object shares it), or power_rom = false", o.shininess),
+                ));
+            }
+        }
         if cfg.white_lights {
             if let Some(l) = self.bump_lights().find(|l| l.colour != [1.0, 1.0, 1.0]) {
                 return Err(Error::field(

@@ -130,7 +130,7 @@ impl SceneNeeds {
                 self.shininess.iter().next().unwrap(),
                 set.join(", "),
                 if self.shininess.len() == 1 {
-                    "; one shininess, so the table need never be reloaded"
+                    "; one shininess, so the table need never be reloaded (power_rom = true makes it a ROM; `gbump fit` chooses that)"
                 } else {
                     "; the power table is reloaded between objects"
                 }

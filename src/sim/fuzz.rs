@@ -51,6 +51,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             // Drawn last, so every draw before it is what it was before the field.
             colour_guard_bits: field(rng, "colour_guard_bits"),
             white_lights: pick(rng, &[false, true]),
+            power_rom: pick(rng, &[false, true]),
         };
         if cfg.validate("random").is_ok() {
             return cfg;
@@ -341,6 +342,7 @@ mod tests {
             "specular",
             "skip_flat",
             "white_lights",
+            "power_rom",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> =

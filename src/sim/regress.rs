@@ -190,6 +190,16 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
                 cfg.hash()
             )));
         }
+        // A ROM power table holds one shininess: a top set for another cannot load its table.
+        if cfg.power_rom && m.target == "top" && m.shininess != cfg.shininess {
+            return Err(Error::Other(format!(
+                "{}: vectors for shininess {} but the configuration's power table is a ROM holding shininess {}\n  fix: regenerate the vectors at shininess {} (drop --shininess), or set power_rom = false",
+                manifest.display(),
+                m.shininess,
+                cfg.shininess,
+                cfg.shininess
+            )));
+        }
         for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {
             bench_for(sim, &m, &manifest.display().to_string(), o.waves)?;
         }

@@ -1,0 +1,72 @@
+//! `power_rom = true`: the power table is a ROM holding x^shininess. What it cannot run is
+//! refused with the field and the fix: a top vector set for another shininess, a scene with a
+//! specular object of another shininess, a configuration without a specular path.
+
+use assert_cmd::Command;
+use std::path::PathBuf;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn gbump() -> Command {
+    let mut c = Command::cargo_bin("gbump").unwrap();
+    c.current_dir(root());
+    c
+}
+
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_top_set_for_another_shininess_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = dir.path().join("v");
+    gbump()
+        .args(["vectors", "--config", "tests/configs/power_rom.toml", "--source", "random:50", "--shininess", "32", "--target", "top", "--out"])
+        .arg(&v)
+        .assert()
+        .success();
+    let o = gbump()
+        .args(["regress", "--config", "tests/configs/power_rom.toml", "--sim", "icarus", "--vectors"])
+        .arg(&v)
+        .arg("--work")
+        .arg(dir.path().join("w"))
+        .assert()
+        .failure();
+    let t = stderr(o.get_output());
+    assert!(t.contains("a ROM holding shininess 24") && t.contains("fix:"), "{t}");
+}
+
+#[test]
+fn a_scene_of_another_shininess_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = gbump()
+        .args(["render", "--scene", "sphere_bricks_spots", "--config", "tests/configs/power_rom.toml", "--out"])
+        .arg(dir.path().join("out"))
+        .assert()
+        .failure();
+    let t = stderr(o.get_output());
+    assert!(t.contains("power_rom") && t.contains("shininess 32") && t.contains("fix:"), "{t}");
+    assert!(!dir.path().join("out").exists());
+}
+
+#[test]
+fn a_rom_without_a_specular_path_is_refused() {
+    let e = gbump::config::PipelineConfig::from_toml("x.toml", "power_rom = true\nspecular = false\n").unwrap_err();
+    let t = e.to_string();
+    assert!(t.contains("x.toml") && t.contains("power_rom") && t.contains("fix:"), "{t}");
+}
+
+/// The interface says the table is a ROM and its load port unused, for a testbench written
+/// from the interface alone.
+#[test]
+fn the_interface_says_the_table_is_a_rom() {
+    let cfg = gbump::config::PipelineConfig::load(&root().join("tests/configs/power_rom.toml")).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(&cfg, "test")).unwrap();
+    assert_eq!(j["power_table"]["rom"], true);
+    assert!(j["power_table"]["load_port"].as_str().unwrap().starts_with("none"), "{}", j["power_table"]);
+    let doc = gbump::rtlgen::integration_doc::markdown(&cfg);
+    assert!(doc.contains("The power table is a ROM"), "{doc}");
+}
