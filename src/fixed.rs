@@ -283,12 +283,15 @@ mod tests {
             for g in 0..=4u32 {
                 let x_max = (d << g) * d;
                 let u = UnormDiv::new(w, x_max);
-                for x in (0..1_000_000u64).map(|_| {
-                    r ^= r << 13;
-                    r ^= r >> 7;
-                    r ^= r << 17;
-                    r % (x_max + 1)
-                }).chain([x_max, x_max - 1, 0, 1]) {
+                for x in (0..1_000_000u64)
+                    .map(|_| {
+                        r ^= r << 13;
+                        r ^= r >> 7;
+                        r ^= r << 17;
+                        r % (x_max + 1)
+                    })
+                    .chain([x_max, x_max - 1, 0, 1])
+                {
                     assert_eq!(u.apply(x), unorm_div_round(x, w), "w={w} g={g} x={x}");
                 }
             }

@@ -24,12 +24,30 @@ fn a_top_set_for_another_shininess_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let v = dir.path().join("v");
     gbump()
-        .args(["vectors", "--config", "tests/configs/power_rom.toml", "--source", "random:50", "--shininess", "32", "--target", "top", "--out"])
+        .args([
+            "vectors",
+            "--config",
+            "tests/configs/power_rom.toml",
+            "--source",
+            "random:50",
+            "--shininess",
+            "32",
+            "--target",
+            "top",
+            "--out",
+        ])
         .arg(&v)
         .assert()
         .success();
     let o = gbump()
-        .args(["regress", "--config", "tests/configs/power_rom.toml", "--sim", "icarus", "--vectors"])
+        .args([
+            "regress",
+            "--config",
+            "tests/configs/power_rom.toml",
+            "--sim",
+            "icarus",
+            "--vectors",
+        ])
         .arg(&v)
         .arg("--work")
         .arg(dir.path().join("w"))
@@ -43,7 +61,14 @@ fn a_top_set_for_another_shininess_is_refused() {
 fn a_scene_of_another_shininess_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let o = gbump()
-        .args(["render", "--scene", "sphere_bricks_spots", "--config", "tests/configs/power_rom.toml", "--out"])
+        .args([
+            "render",
+            "--scene",
+            "sphere_bricks_spots",
+            "--config",
+            "tests/configs/power_rom.toml",
+            "--out",
+        ])
         .arg(dir.path().join("out"))
         .assert()
         .failure();
@@ -66,7 +91,11 @@ fn the_interface_says_the_table_is_a_rom() {
     let cfg = gbump::config::PipelineConfig::load(&root().join("tests/configs/power_rom.toml")).unwrap();
     let j: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(&cfg, "test")).unwrap();
     assert_eq!(j["power_table"]["rom"], true);
-    assert!(j["power_table"]["load_port"].as_str().unwrap().starts_with("none"), "{}", j["power_table"]);
+    assert!(
+        j["power_table"]["load_port"].as_str().unwrap().starts_with("none"),
+        "{}",
+        j["power_table"]
+    );
     let doc = gbump::rtlgen::integration_doc::markdown(&cfg);
     assert!(doc.contains("The power table is a ROM"), "{doc}");
 }

@@ -153,7 +153,10 @@ fn regress_colour_guard_bits_on_both_tops() {
     for (start, end) in [("exhaustive_colour_round", "_colour_round"), ("random", "_texture_modulate")] {
         let set = format!("{start}…{end}");
         assert!(
-            r.iter().filter(|x| x.1.starts_with(start) && x.1.ends_with(end) && x.3 == 0 && x.2 > 0).count() == 2,
+            r.iter()
+                .filter(|x| x.1.starts_with(start) && x.1.ends_with(end) && x.3 == 0 && x.2 > 0)
+                .count()
+                == 2,
             "{set} on both simulators:\n{t}"
         );
     }

@@ -113,6 +113,9 @@ fn white_lights_refuse_a_coloured_scene() {
         .assert()
         .failure();
     let t = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
-    assert!(t.contains("white_lights") && t.contains("coloured bump light") && t.contains("fix:"), "{t}");
+    assert!(
+        t.contains("white_lights") && t.contains("coloured bump light") && t.contains("fix:"),
+        "{t}"
+    );
     assert!(!dir.path().join("out").exists(), "nothing written");
 }

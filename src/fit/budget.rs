@@ -41,7 +41,10 @@ impl Measured {
             parts = vec![format!("{} against the f64 Gouraud images", parts.join(", "))];
         }
         if !self.exact_lsb.is_nan() {
-            parts.push(format!("exact {:.3} LSB against exact arithmetic on random stored inputs", self.exact_lsb));
+            parts.push(format!(
+                "exact {:.3} LSB against exact arithmetic on random stored inputs",
+                self.exact_lsb
+            ));
         }
         parts.join("; ")
     }

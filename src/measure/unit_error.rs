@@ -159,7 +159,9 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
                     .map(|i| f[i] as f64 / (1u64 << ff) as f64 * k[i] as f64 / (1u64 << cfg.k_frac_bits) as f64 * lc[i][ch] as f64)
                     .sum();
                 let exact = (c_in[ch] as f64 / stage_lsb + add).min(max as f64);
-                st.add(o[ch] as f64 / stage_lsb - exact, || format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}"));
+                st.add(o[ch] as f64 / stage_lsb - exact, || {
+                    format!("c_in={c_in:?} f={f:?} k={k:?} lc={lc:?}")
+                });
             }
         }
         out.push(st);
@@ -332,7 +334,13 @@ mod tests {
                         && !r.source.starts_with("input")
                 }) {
                     seen += 1;
-                    assert!(r.max_lsb <= bound(&r.unit) + 1e-9, "g={g}: {} errs {} > {}", r.unit, r.max_lsb, bound(&r.unit));
+                    assert!(
+                        r.max_lsb <= bound(&r.unit) + 1e-9,
+                        "g={g}: {} errs {} > {}",
+                        r.unit,
+                        r.max_lsb,
+                        bound(&r.unit)
+                    );
                 }
                 assert_eq!(seen, if g == 0 { 3 } else { 4 }, "g={g}: the colour rows");
             }

@@ -75,7 +75,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             cfg.shininess
         );
     } else {
-    s += &format!(
+        s += &format!(
         "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
         cfg.power_fmt().name(),
         cfg.power_depth()

@@ -624,7 +624,14 @@ fn colour_stages(
     }
     if g > 0 {
         let u = units::unit("colour_round").expect("unit");
-        s.unit(cfg, u, "u_colour_round", &[("c_in", &format!("{{{c}}}"))], &[("c_out", "c_rnd")], &[]);
+        s.unit(
+            cfg,
+            u,
+            "u_colour_round",
+            &[("c_in", &format!("{{{c}}}"))],
+            &[("c_out", "c_rnd")],
+            &[],
+        );
         c = "c_rnd".into();
     }
     c

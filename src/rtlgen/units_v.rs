@@ -279,7 +279,11 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     w.stage(cuts >= 1, &format!("[{}:0]", fkw - 1), "fk", &e);
     if cfg.white_lights {
         // Lc = 2^c - 1 on every channel: f k Lc = (f k << c) - f k, one term for all three.
-        w.line(format!("wire [{}:0] tw0 = {{fk, {c}'d0}} - {};", tw - 1, super::writer::zext("fk", tw - fkw)));
+        w.line(format!(
+            "wire [{}:0] tw0 = {{fk, {c}'d0}} - {};",
+            tw - 1,
+            super::writer::zext("fk", tw - fkw)
+        ));
         w.stage(cuts >= 2, &format!("[{}:0]", tw - 1), "t0", "tw0");
         w.line("assign term = {t0, t0, t0};");
         w.line("endmodule");

@@ -379,7 +379,10 @@ impl Scene {
                         "scene `{}` ({}) has a specular object of shininess {} but the power table is a ROM holding shininess {}",
                         self.name, self.file, o.shininess, cfg.shininess
                     ),
-                    format!("set shininess = {} (when every specular object shares it), or power_rom = false", o.shininess),
+                    format!(
+                        "set shininess = {} (when every specular object shares it), or power_rom = false",
+                        o.shininess
+                    ),
                 ));
             }
         }

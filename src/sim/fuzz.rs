@@ -345,8 +345,10 @@ mod tests {
             "power_rom",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
-            let distinct: std::collections::BTreeSet<String> =
-                draws.iter().map(|t| t.get(f).map_or("false".to_string(), |v| v.to_string())).collect();
+            let distinct: std::collections::BTreeSet<String> = draws
+                .iter()
+                .map(|t| t.get(f).map_or("false".to_string(), |v| v.to_string()))
+                .collect();
             let want = match f {
                 "power_unit" | "rounding" => 3,
                 _ => 2,

@@ -31,7 +31,13 @@ fn rgb(v: &[i64]) -> [u32; 3] {
 /// Each light slot's colour: the `lc` input's, or white when the configuration has no `lc`.
 fn light_colours(cfg: &PipelineConfig, i: &[Vec<i64>]) -> Vec<[u32; 3]> {
     (0..cfg.lights as usize)
-        .map(|j| if cfg.white_lights { [cfg.colour_max(); 3] } else { rgb(&i[3][3 * j..]) })
+        .map(|j| {
+            if cfg.white_lights {
+                [cfg.colour_max(); 3]
+            } else {
+                rgb(&i[3][3 * j..])
+            }
+        })
         .collect()
 }
 
@@ -53,7 +59,13 @@ impl Unit for Blend {
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         let mut v = vec![
-            p("c_in", Dir::In, c.stage_colour_fmt(), 3, "colour in (R, G, B; colour_guard_bits fraction bits)"),
+            p(
+                "c_in",
+                Dir::In,
+                c.stage_colour_fmt(),
+                3,
+                "colour in (R, G, B; colour_guard_bits fraction bits)",
+            ),
             p("f", Dir::In, c.factor_fmt(), c.lights, "fd_i or fs_i per light, aligned"),
             p("k", Dir::In, c.k_fmt(), c.lights, "k_i per light"),
         ];
@@ -68,12 +80,12 @@ impl Unit for Blend {
             ));
         }
         v.push(p(
-                "c_out",
-                Dir::Out,
-                c.stage_colour_fmt(),
-                3,
-                "sat(c_in + round(sum f_i k_i Lc_i)), rounded to c_in's fraction bits",
-            ));
+            "c_out",
+            Dir::Out,
+            c.stage_colour_fmt(),
+            3,
+            "sat(c_in + round(sum f_i k_i Lc_i)), rounded to c_in's fraction bits",
+        ));
         v
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
@@ -138,14 +150,11 @@ impl Unit for Blend {
             ("k = 0 kills every light".into(), all(sm.min(7), one_f, 0, m)),
             ("one LSB terms: the rounding of the smallest sum".into(), all(0, 1, 1, 1)),
             ("half-way sums round by the configured rule".into(), all(0, one_f / 2, one_k, 1)),
-            (
-                "half a stage-colour LSB: the rounding at the guard bits' precision".into(),
-                {
-                    let half = crate::model::blend::sum_shift(cfg) - 1;
-                    let k_exp = half.min(cfg.k_frac_bits);
-                    all(1, 1i64 << (half - k_exp), 1i64 << k_exp, 1)
-                },
-            ),
+            ("half a stage-colour LSB: the rounding at the guard bits' precision".into(), {
+                let half = crate::model::blend::sum_shift(cfg) - 1;
+                let k_exp = half.min(cfg.k_frac_bits);
+                all(1, 1i64 << (half - k_exp), 1i64 << k_exp, 1)
+            }),
         ]
     }
 }

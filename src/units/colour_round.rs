@@ -23,8 +23,20 @@ impl Unit for ColourRound {
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("c_in", Dir::In, cfg.stage_colour_fmt(), 3, "the last stage's colour (colour_guard_bits fraction bits)"),
-            p("c_out", Dir::Out, cfg.colour_fmt(), 3, "c_in rounded to colour codes by the configured rule"),
+            p(
+                "c_in",
+                Dir::In,
+                cfg.stage_colour_fmt(),
+                3,
+                "the last stage's colour (colour_guard_bits fraction bits)",
+            ),
+            p(
+                "c_out",
+                Dir::Out,
+                cfg.colour_fmt(),
+                3,
+                "c_in rounded to colour codes by the configured rule",
+            ),
         ]
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {

@@ -235,7 +235,8 @@ pub fn blend_finish(cfg: &PipelineConfig) -> Resources {
     } else {
         Resources::default()
     };
-    let channel = requant_clamp(cfg.acc_fmt(), g, cfg.rounding, c) + Resources::adders(c + 1) + over + Resources::muxes(c) + Resources::regs(c);
+    let channel =
+        requant_clamp(cfg.acc_fmt(), g, cfg.rounding, c) + Resources::adders(c + 1) + over + Resources::muxes(c) + Resources::regs(c);
     channel.scaled(3.0)
 }
 

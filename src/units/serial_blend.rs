@@ -187,7 +187,13 @@ impl Unit for BlendFinish {
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("c_in", Dir::In, c.stage_colour_fmt(), 3, "colour in (colour_guard_bits fraction bits)"),
+            p(
+                "c_in",
+                Dir::In,
+                c.stage_colour_fmt(),
+                3,
+                "colour in (colour_guard_bits fraction bits)",
+            ),
             p("acc", Dir::In, c.acc_fmt(), 3, "exact sum of f_i k_i Lc_i"),
             p(
                 "c_out",

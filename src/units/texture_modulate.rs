@@ -20,9 +20,21 @@ impl Unit for TextureModulate {
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("c_in", Dir::In, cfg.stage_colour_fmt(), 3, "colour in (colour_guard_bits fraction bits)"),
+            p(
+                "c_in",
+                Dir::In,
+                cfg.stage_colour_fmt(),
+                3,
+                "colour in (colour_guard_bits fraction bits)",
+            ),
             p("tex", Dir::In, cfg.colour_fmt(), 3, "texture colour T"),
-            p("c_out", Dir::Out, cfg.stage_colour_fmt(), 3, "round(c_in tex / max), in c_in's units"),
+            p(
+                "c_out",
+                Dir::Out,
+                cfg.stage_colour_fmt(),
+                3,
+                "round(c_in tex / max), in c_in's units",
+            ),
         ]
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {

@@ -418,7 +418,9 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
     // The colours the blends multiply by (white: every code at 1.0, and no lc input).
-    let lc: Vec<i64> = (0..n).flat_map(|j| cfg.light_colour(s.state.lights[j].lc).map(|x| x as i64)).collect();
+    let lc: Vec<i64> = (0..n)
+        .flat_map(|j| cfg.light_colour(s.state.lights[j].lc).map(|x| x as i64))
+        .collect();
     let white = cfg.white_lights;
     for j in 0..n {
         let ls = &s.state.lights[j];

@@ -34,7 +34,9 @@ pub fn colour_round_truncates(text: &str) -> Option<String> {
 /// reciprocal constant loses its lowest set bit): the last `+ (...)` term of the `q0 =` line
 /// goes. None when the line has a single term.
 pub fn texture_divider_term(text: &str) -> Option<String> {
-    let line = text.lines().find(|l| l.starts_with("wire [") && l.contains(" q0 = ") && l.contains(" << "))?;
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("wire [") && l.contains(" q0 = ") && l.contains(" << "))?;
     let cut = line.rfind(" + (")?;
     Some(text.replacen(line, &format!("{};", &line[..cut]), 1))
 }
