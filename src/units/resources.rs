@@ -308,8 +308,9 @@ mod tests {
         let r = sum_of_products(Multipliers::Booth, &[(signed(8), signed(16))], false, 26);
         assert_eq!(r.pp, 68.0);
         assert_eq!(r.add, 26.0);
+        // Inferred: the array's 16 x 7 adder cells and its 16 x 8 AND gates.
         let i = sum_of_products(Multipliers::Inferred, &[(signed(8), signed(16))], false, 26);
-        assert_eq!((i.mul, i.smul), (0.0, 128.0));
+        assert_eq!((i.mul, i.smul, i.mux), (0.0, 112.0, 128.0));
         assert_eq!(i.add, 0.0);
         // A one-bit enable is a gate per bit.
         let g = sum_of_products(Multipliers::Booth, &[(unsigned(9), unsigned(1))], false, 10);
