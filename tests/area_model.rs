@@ -18,16 +18,12 @@ fn the_checked_in_coefficients_are_the_fit_of_the_calibration_part() {
 }
 
 /// The held-out accuracy the report states (`area_model::report_section`, from the same
-/// samples). Issue 12 asks for 10 % mean and 20 % max. The mean is met (8.9 %); the max is
-/// not (24.1 %, c31): a one-light serial top with truncating rounding and two-bit colours,
-/// where synthesis prunes more of the flattened top than a count per unit sees even after
-/// `single_slot_savings`. This bounds both so that a change to the emitters or the counts
-/// that makes the model worse is seen.
+/// samples): issue 12 asks for a mean within 10 % and a maximum within 20 %.
 #[test]
 fn held_out_accuracy_is_what_the_report_states() {
     let (mean, max, n) = held_out_error(&checked_in());
     assert!(n >= 30, "{n} held out");
-    assert!(mean <= 0.10 && max <= 0.25, "mean {:.1} %, max {:.1} %", 100.0 * mean, 100.0 * max);
+    assert!(mean <= 0.10 && max <= 0.20, "mean {:.1} %, max {:.1} %", 100.0 * mean, 100.0 * max);
 }
 
 /// Ranking is what the search uses the model for: over the held-out tops, a pair the model

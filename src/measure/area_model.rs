@@ -37,14 +37,14 @@ impl Features {
 /// Coefficients fitted by `calibrate` on the calibration part of `SAMPLES` (`gbump area-model`
 /// prints them).
 pub const COEFFICIENTS: Coefficients = [
-    3.8187193802311876,
-    14.475024739083267,
-    12.84030854205841,
-    16.85272025902983,
-    2.33062815389641,
-    0.6472292652163508,
-    5.265191140584693,
-    1.5033423553670235,
+    3.6801505216328825,
+    23.930374894943498,
+    12.786451447502277,
+    16.932291964863833,
+    2.8517243651858553,
+    0.6554040779892655,
+    4.394633174871729,
+    1.500567764697465,
 ];
 
 /// The counts of `cfg`'s top: its own logic and every unit instance's.
@@ -368,7 +368,7 @@ pub fn markdown(coef: &Coefficients, samples: &[Sample], rate: f64) -> String {
         })
         .map_or(String::new(), |w| format!(" The worst held-out configuration is `{}`.", w.file));
     let mut s = format!(
-        "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth partial-product bit + {:.2} per adder cell of an unsigned and {:.2} of a signed inferred multiplier array (a x (b-1) for an a x b product) + {:.2} per adder bit + {:.2} per comparator, multiplexer or AND-gate bit (an inferred array's a x b AND gates among them) + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
+        "Area model (`src/measure/area_model.rs`): GE = {:.2} per register bit + {:.2} per Booth row bit after a product's first (its full adder in the tree) + {:.2} per adder cell of an unsigned and {:.2} of a signed inferred multiplier array (a x (b-1) for an a x b product) + {:.2} per adder bit + {:.2} per comparator, multiplexer or AND-gate bit (an inferred array's a x b AND gates and every Booth row bit's select among them) + {:.2} per bank bit read + {:.0}, fitted on {} configurations (each top and each unit alone); held out: {n} configurations, mean error {:.1} %, max {:.1} % on the top; {rate:.0} configurations scored per second on every core.{worst}\n\n| config | hash | Yosys GE | model GE | error | |\n|---|---|---:|---:|---:|---|\n",
         coef[0],
         coef[1],
         coef[2],

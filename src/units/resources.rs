@@ -14,7 +14,8 @@ use crate::fixed::{Format, Rounding};
 pub struct Resources {
     /// Register bits.
     pub ff: f64,
-    /// Booth partial-product bits (a select and an XOR each).
+    /// Booth partial-product bits after each product's first row: a full adder each in the
+    /// tree (every row bit's select and negate count as `mux`).
     pub pp: f64,
     /// Adder cells of unsigned multiplier arrays left to synthesis (`multipliers =
     /// "inferred"`): a x (b - 1) for an a x b product, whose a x b AND gates count as `mux`.
@@ -159,7 +160,11 @@ pub fn sum_of_products(multipliers: Multipliers, products: &[(Operand, Operand)]
                 // Each row keeps the bits below out_width. Synthesis sums all rows in one
                 // carry-save tree, a full adder per row bit (counted with the row bit), then
                 // one carry-propagate adder.
-                r.pp += (0..rows).map(|j| m.min(out_width - 2 * j)).sum::<u32>() as f64;
+                // Every row bit is a select and a negate; the rows after the first each add a
+                // full adder per bit in the tree (a two-row product is one adder row).
+                let bits: Vec<u32> = (0..rows).map(|j| m.min(out_width - 2 * j)).collect();
+                r.mux += bits.iter().sum::<u32>() as f64;
+                r.pp += bits.iter().skip(1).sum::<u32>() as f64;
                 terms += 2;
             }
             Multipliers::Inferred => {
@@ -255,12 +260,9 @@ pub fn power_datapath(d: &crate::model::power_unit::PowerUnitDesign, fm: crate::
             + Resources::adders(pw + p + 1)
             + Resources::muxes(p + 1)
     };
-    // A constant multiply: synthesis keeps one row of the array per set bit of the constant,
-    // a row that adds like a partial product.
-    let times = |k: u32, w: u32| Resources {
-        pp: (k.count_ones().saturating_sub(1) * w) as f64,
-        ..Default::default()
-    };
+    // A constant multiply: synthesis keeps one shifted copy per set bit of the constant and
+    // adds them, an adder row per set bit after the first.
+    let times = |k: u32, w: u32| Resources::adders(k.count_ones().saturating_sub(1) * w);
     match *d {
         PowerUnitDesign::Table { entries, nearest } => {
             let sw = f + 1 + entries.trailing_zeros() + 1;
@@ -277,11 +279,29 @@ pub fn power_datapath(d: &crate::model::power_unit::PowerUnitDesign, fm: crate::
         } => {
             let (mb, sb) = segment_bits(segments, per_segment);
             let per = per_segment + u32::from(lerp);
-            // t is nonzero only in a segment with more codes than entries.
-            let t_used = (0..segments).any(|s| segment_of(f, segments, segment_probe(f, segments, s)).2 > mb);
+            // t is nonzero only in a segment with more codes than entries, and there only in its
+            // top lw - mb bits (the rest are zeros synthesis drops from the interpolation).
+            let t_live = (0..segments)
+                .map(|s| segment_of(f, segments, segment_probe(f, segments, s)).2.saturating_sub(mb))
+                .max()
+                .unwrap_or(0);
+            let t_used = t_live > 0;
+            // Each segment's `off = y - lo` subtracts a power of two (or nothing, in the last):
+            // only the bits from lo's up carry.
+            let offsets: u32 = (0..segments)
+                .map(|s| {
+                    let (_, lo, _) = segment_of(f, segments, segment_probe(f, segments, s));
+                    if lo > 0 {
+                        f + 1 - lo.trailing_zeros()
+                    } else {
+                        0
+                    }
+                })
+                .sum();
             let mut r = Resources::adders(f + 1)
                 + Resources::muxes(segments * sb)
-                + (Resources::adders(f + 1) + Resources::muxes(2 * (f + 1) + f)).scaled(segments as f64)
+                + Resources::adders(offsets)
+                + Resources::muxes(2 * (f + 1) + f).scaled(segments as f64)
                 + Resources::compares(ab)
                 + Resources::muxes(ab)
                 + times(per, ab)
@@ -289,7 +309,7 @@ pub fn power_datapath(d: &crate::model::power_unit::PowerUnitDesign, fm: crate::
             if t_used {
                 r += Resources::compares(f) + Resources::adders(ab) + Resources::muxes(ab);
                 if lerp {
-                    r += interp(f);
+                    r += interp(t_live);
                 }
             }
             r
@@ -304,9 +324,10 @@ mod tests {
 
     #[test]
     fn booth_rows_halve_the_multiplier_bits() {
-        // 8 x 16 signed: 4 rows of 17 bits, then the carry-propagate adder.
+        // 8 x 16 signed: 4 rows of 17 bits (a select and a negate per bit), the 3 after the
+        // first adding in the tree, then the carry-propagate adder.
         let r = sum_of_products(Multipliers::Booth, &[(signed(8), signed(16))], false, 26);
-        assert_eq!(r.pp, 68.0);
+        assert_eq!((r.pp, r.mux), (51.0, 68.0));
         assert_eq!(r.add, 26.0);
         // Inferred: the array's 16 x 7 adder cells and its 16 x 8 AND gates.
         let i = sum_of_products(Multipliers::Inferred, &[(signed(8), signed(16))], false, 26);
