@@ -206,13 +206,12 @@ fn regress_white_lights_on_their_scene_and_a_per_fragment_top() {
 /// random unit set and the top's, on both simulators (the corners saturate or round it away).
 #[test]
 fn a_white_light_term_without_its_subtract_is_caught() {
-    use gbump::sim::regress::{run_sets, write_rtl};
-    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/white_lights_fragment_parallel.toml")).unwrap();
-    let work = std::path::absolute(root().join("target/test-regress/mutant_white")).unwrap();
-    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
-    let f = rtl.sources.iter().find(|p| p.to_string_lossy().contains("light_term")).unwrap();
-    let text = std::fs::read_to_string(f).unwrap();
-    std::fs::write(f, mutants::white_term_no_subtract(&text).expect("the white term's subtract")).unwrap();
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/white_lights_fragment_parallel.toml"),
+        "mutant_white",
+        &[("light_term", mutants::white_term_no_subtract)],
+    );
     let o = mutant_dump_options();
     let vec_dir = work.join("vectors");
     let mut sets = Vec::new();
@@ -338,6 +337,29 @@ fn mutant_dump_options() -> gbump::vectors::DumpOptions {
     }
 }
 
+/// A mutant's RTL under `target/test-regress/<work>`: the configuration of `config` (None: the
+/// default) written out, then for each `(file, mutate)` the first source whose name holds
+/// `file` rewritten by `mutate`, which must find what it changes.
+fn mutant_rtl(
+    config: Option<&str>,
+    work: &str,
+    mutations: &[(&str, Mutant)],
+) -> (gbump::PipelineConfig, PathBuf, gbump::sim::rtl_files::Rtl) {
+    let cfg = config.map_or_else(gbump::PipelineConfig::default, |c| {
+        gbump::PipelineConfig::load(&root().join(c)).unwrap()
+    });
+    let work = std::path::absolute(root().join("target/test-regress").join(work)).unwrap();
+    let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
+    for (file, mutate) in mutations {
+        let f = rtl.sources.iter().find(|p| p.to_string_lossy().contains(file)).unwrap();
+        let text = std::fs::read_to_string(f).unwrap();
+        std::fs::write(f, mutate(&text).unwrap_or_else(|| panic!("{file}: nothing to mutate"))).unwrap();
+    }
+    (cfg, work, rtl)
+}
+
+type Mutant = fn(&str) -> Option<String>;
+
 /// Runs of the mutant tests: both simulators, the given sets only, stalls and bubbles on,
 /// stopping after 5 mismatches.
 fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
@@ -361,18 +383,8 @@ fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
 
 #[test]
 fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
-    use gbump::sim::regress::{run_sets, write_rtl};
-    let cfg = gbump::PipelineConfig::default();
-    let work = std::path::absolute(root().join("target/test-regress/mutant")).unwrap();
-    let rtl_dir = work.join("rtl");
-    let rtl = write_rtl(&cfg, &rtl_dir, "mutant").unwrap();
-    let tm = rtl
-        .sources
-        .iter()
-        .find(|p| p.to_string_lossy().contains("texture_modulate"))
-        .unwrap();
-    let text = std::fs::read_to_string(tm).unwrap();
-    std::fs::write(tm, mutants::texture_rounding(&text).expect("the rounding constant")).unwrap();
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(None, "mutant", &[("texture_modulate", mutants::texture_rounding)]);
     let vec_dir = work.join("vectors");
     let o = mutant_dump_options();
     let sets = gbump::vectors::dump(
@@ -409,18 +421,15 @@ fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
 /// random set catches them together, on both simulators.
 #[test]
 fn guard_bit_mutants_are_caught_by_their_unit_sets_and_the_top() {
-    use gbump::sim::regress::{run_sets, write_rtl};
-    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/colour_guard.toml")).unwrap();
-    let work = std::path::absolute(root().join("target/test-regress/mutant_guard")).unwrap();
-    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
-    for (unit, mutate) in [
-        ("colour_round", mutants::colour_round_truncates as fn(&str) -> Option<String>),
-        ("texture_modulate", mutants::texture_divider_term),
-    ] {
-        let f = rtl.sources.iter().find(|p| p.to_string_lossy().contains(unit)).unwrap();
-        let text = std::fs::read_to_string(f).unwrap();
-        std::fs::write(f, mutate(&text).unwrap_or_else(|| panic!("{unit}: nothing to mutate"))).unwrap();
-    }
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/colour_guard.toml"),
+        "mutant_guard",
+        &[
+            ("colour_round", mutants::colour_round_truncates),
+            ("texture_modulate", mutants::texture_divider_term),
+        ],
+    );
     let vec_dir = work.join("vectors");
     let o = mutant_dump_options();
     let mut sets = Vec::new();
@@ -445,13 +454,12 @@ fn guard_bit_mutants_are_caught_by_their_unit_sets_and_the_top() {
 /// difference (Icarus and Verilator both return the RAM's old word).
 #[test]
 fn an_output_buffer_that_reads_its_ram_during_the_write_is_caught() {
-    use gbump::sim::regress::{run_sets, write_rtl};
-    let cfg = gbump::PipelineConfig::load(&root().join("tests/configs/one_light_parallel.toml")).unwrap();
-    let work = std::path::absolute(root().join("target/test-regress/mutant_bypass")).unwrap();
-    let rtl = write_rtl(&cfg, &work.join("rtl"), "mutant").unwrap();
-    let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
-    let text = std::fs::read_to_string(top).unwrap();
-    std::fs::write(top, mutants::output_bypass(&text).expect("the output buffer's bypass")).unwrap();
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/one_light_parallel.toml"),
+        "mutant_bypass",
+        &[("gbump_pipeline", mutants::output_bypass)],
+    );
     let o = mutant_dump_options();
     let vec_dir = work.join("vectors");
     let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(5_000), &["top".into()], &vec_dir, &o).unwrap();
