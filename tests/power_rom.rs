@@ -99,3 +99,32 @@ fn the_interface_says_the_table_is_a_rom() {
     let doc = gbump::rtlgen::integration_doc::markdown(&cfg);
     assert!(doc.contains("The power table is a ROM"), "{doc}");
 }
+
+/// An object without the specular blend reads no table: on a ROM configuration its fragments
+/// join the ROM's shininess set instead of a set of their own that could not run.
+#[test]
+fn a_scene_with_a_non_specular_object_makes_one_set_at_the_roms_shininess() {
+    let scene = root().join("tests/scenes/rom_mixed.toml");
+    let cfg = gbump::scene::Scene::load(scene.to_str().unwrap()).unwrap().derive_config().unwrap();
+    assert!(cfg.power_rom && cfg.shininess == 24, "{}", cfg.to_toml());
+    let dir = tempfile::tempdir().unwrap();
+    let o = gbump::vectors::DumpOptions {
+        text: false,
+        binary: true,
+        seed: 1,
+        size: Some((48, 36)),
+        command: "test".into(),
+        shininess: None,
+    };
+    let sets = gbump::vectors::dump(
+        &cfg,
+        &gbump::vectors::Source::Scene(scene.display().to_string()),
+        &["top".into()],
+        dir.path(),
+        &o,
+    )
+    .unwrap();
+    assert_eq!(sets.len(), 1, "one set");
+    let m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&sets[0].manifest).unwrap()).unwrap();
+    assert_eq!(m["shininess"], 24);
+}

@@ -95,6 +95,13 @@ impl GbumpConfig {
                 "shininess {n}: out of range\n  fix: use 0..={max} (MAX_SHININESS)"
             )));
         }
+        // The top's table is a ROM: its load port is tied off, so no other table can be loaded.
+        if self.cfg.power_rom && n != self.cfg.shininess as i64 {
+            return Err(Error::Other(format!(
+                "shininess {n}: the configuration's power table is a ROM holding shininess {}\n  fix: keep shininess {}, or use a configuration with power_rom = false",
+                self.cfg.shininess, self.cfg.shininess
+            )));
+        }
         self.mem.table = PowerTable::build(&self.cfg, n as u32);
         self.fast = crate::model::FastModel::new(&self.cfg, &self.mem.table, Some(&self.mem.palette));
         Ok(())

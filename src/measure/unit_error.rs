@@ -313,36 +313,49 @@ mod tests {
     use super::*;
 
     /// The README's bound: with g guard bits each colour stage errs by at most 2^-(g+1) of an
-    /// output LSB, and colour_round by at most half an LSB, for every g the configuration
-    /// allows, in both blend orders.
+    /// output LSB when it rounds to nearest (2^-g when the blends truncate; the texture always
+    /// rounds to nearest), and colour_round by at most half an LSB (1 - 2^-g truncating), for
+    /// every g the configuration allows, every rounding and both blend orders.
     #[test]
     fn each_colour_stage_errs_by_at_most_half_a_stage_lsb() {
+        use crate::fixed::Rounding;
         let (_, hi) = crate::config::limit("colour_guard_bits");
         for g in 0..=hi {
-            for blend_order in [BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast] {
-                let cfg = PipelineConfig {
-                    colour_guard_bits: g,
-                    colour_bits: 6,
-                    blend_order,
-                    ..Default::default()
-                };
-                let rows = unit_errors(&cfg, 2000, 3);
-                let bound = |unit: &str| if unit == "colour_round" { 0.5 } else { 0.5 / (1u64 << g) as f64 };
-                let mut seen = 0;
-                for r in rows.iter().filter(|r| {
-                    ["diffuse_blend", "specular_blend", "texture_modulate", "colour_round"].contains(&r.unit.as_str())
-                        && !r.source.starts_with("input")
-                }) {
-                    seen += 1;
-                    assert!(
-                        r.max_lsb <= bound(&r.unit) + 1e-9,
-                        "g={g}: {} errs {} > {}",
-                        r.unit,
-                        r.max_lsb,
-                        bound(&r.unit)
-                    );
+            for rounding in [Rounding::HalfUp, Rounding::NearestEven, Rounding::Truncate] {
+                for blend_order in [BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast] {
+                    let cfg = PipelineConfig {
+                        colour_guard_bits: g,
+                        colour_bits: 6,
+                        rounding,
+                        blend_order,
+                        ..Default::default()
+                    };
+                    let lsb = 1.0 / (1u64 << g) as f64;
+                    let truncating = rounding == Rounding::Truncate;
+                    let bound = |unit: &str| match unit {
+                        "colour_round" if truncating => 1.0 - lsb,
+                        "colour_round" => 0.5,
+                        "texture_modulate" => lsb / 2.0,
+                        _ if truncating => lsb,
+                        _ => lsb / 2.0,
+                    };
+                    let rows = unit_errors(&cfg, 1000, 3);
+                    let mut seen = 0;
+                    for r in rows.iter().filter(|r| {
+                        ["diffuse_blend", "specular_blend", "texture_modulate", "colour_round"].contains(&r.unit.as_str())
+                            && !r.source.starts_with("input")
+                    }) {
+                        seen += 1;
+                        assert!(
+                            r.max_lsb <= bound(&r.unit) + 1e-9,
+                            "g={g} {rounding:?}: {} errs {} > {}",
+                            r.unit,
+                            r.max_lsb,
+                            bound(&r.unit)
+                        );
+                    }
+                    assert_eq!(seen, if g == 0 { 3 } else { 4 }, "g={g}: the colour rows");
                 }
-                assert_eq!(seen, if g == 0 { 3 } else { 4 }, "g={g}: the colour rows");
             }
         }
     }

@@ -141,7 +141,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.addr_bits, 0),
             1,
-            "write address",
+            if rom { "unused: power_rom = true" } else { "write address" },
         ));
         v.push(tp(
             &format!("{}_wdata", m.prefix),
@@ -149,7 +149,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.data_bits, 0),
             1,
-            m.doc,
+            if rom { "unused: power_rom = true" } else { m.doc },
         ));
     }
     let fetch_in = units::inputs(fetch_unit(cfg), cfg).remove(0);
@@ -344,11 +344,7 @@ pub fn ram_bits(cfg: &PipelineConfig) -> u32 {
 /// RAMs ([`ram_bits`]) and the parallel top's register banks (flip-flops in `gbump area`).
 pub fn array_bits(cfg: &PipelineConfig) -> u32 {
     let register_banks = if cfg.per_triangle() && !banks_in_ram(cfg) {
-        let tri: u32 = port_list(cfg)
-            .iter()
-            .filter(|p| p.kind == PortKind::Triangle)
-            .map(|p| p.width())
-            .sum();
+        let tri: u32 = banked_ports(cfg).iter().map(|p| p.width()).sum();
         cfg.triangle_banks * tri
     } else {
         0
@@ -648,6 +644,15 @@ fn state_pre(cfg: &PipelineConfig, held: bool) -> &'static str {
     }
 }
 
+/// The setup ports a register bank stores: every one but `tri_lc` with white lights (it stays
+/// on the interface, unused).
+fn banked_ports(cfg: &PipelineConfig) -> Vec<TopPort> {
+    port_list(cfg)
+        .into_iter()
+        .filter(|p| p.kind == PortKind::Triangle && (p.name != "tri_lc" || !cfg.white_lights))
+        .collect()
+}
+
 /// The triangle-setup port's register banks (per-triangle tops). A setup is written into the
 /// bank after the current one and makes it current; a fragment is tagged with the current
 /// bank when it is accepted (`tag` at stage 0) and reads its state there through late
@@ -659,11 +664,7 @@ fn banks(s: &mut Scheduler, cfg: &PipelineConfig, tag: &str) {
         "Triangle setup: {k} register banks. A setup loads the bank after the current one and makes it current; fragments carry the bank's tag."
     ));
     bank_pointer(s, cfg);
-    // White lights: Lc is not stored (tri_lc stays on the interface, unused).
-    let tri: Vec<TopPort> = port_list(cfg)
-        .into_iter()
-        .filter(|p| p.kind == PortKind::Triangle && (p.name != "tri_lc" || !cfg.white_lights))
-        .collect();
+    let tri = banked_ports(cfg);
     for p in &tri {
         let f = &p.name[4..];
         s.m.array(&format!("bank_{f}"), p.width(), k);

@@ -92,12 +92,20 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
                 sets.push((s.manifest, None));
             }
         }
-        // The user's own scenes must fit: a misfit is an error, not a silent skip.
-        for file in &o.own_scenes {
-            crate::scene::Scene::load(file)?.check_config(cfg, "pipeline config")?;
-            for s in dump(cfg, &Source::Scene(file.clone()), &["top".to_string()], dir, &dopt(o.seed))? {
-                sets.push((s.manifest, None));
-            }
+    }
+    // The user's own scene (`--scene FILE`) runs even with --no-scenes, which skips the
+    // built-in ones; it must fit, and a palette configuration's scene sets are refused by the
+    // dump with the reason: a misfit is an error, not a silent skip.
+    for file in &o.own_scenes {
+        crate::scene::Scene::load(file)?.check_config(cfg, "pipeline config")?;
+        for s in dump(
+            cfg,
+            &Source::Scene(file.clone()),
+            &["top".to_string()],
+            &dir.join("own_scenes"),
+            &dopt(o.seed),
+        )? {
+            sets.push((s.manifest, None));
         }
     }
     // Every unit small enough to sweep in the suite's budget (2^18 inputs: texture pairs up to
@@ -193,7 +201,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
         // A ROM power table holds one shininess: a top set for another cannot load its table.
         if cfg.power_rom && m.target == "top" && m.shininess != cfg.shininess {
             return Err(Error::Other(format!(
-                "{}: vectors for shininess {} but the configuration's power table is a ROM holding shininess {}\n  fix: regenerate the vectors at shininess {} (drop --shininess), or set power_rom = false",
+                "{}: vectors for shininess {} but the configuration's power table is a ROM holding shininess {}\n  fix: regenerate the vectors at shininess {} (a scene's specular objects must all have it), or set power_rom = false",
                 manifest.display(),
                 m.shininess,
                 cfg.shininess,

@@ -277,7 +277,10 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     // `fragments` gives each triangle's fragments together: a setup starts each run.
     let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
     for f in frags {
-        let n = s.objects[f.obj as usize].shininess;
+        let o = &s.objects[f.obj as usize];
+        // A ROM table holds one shininess: an object without the specular blend reads no
+        // table, so its fragments go with the ROM's (a loadable table keeps each object's).
+        let n = if cfg.power_rom && !o.specular { cfg.shininess } else { o.shininess };
         let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
         groups.entry(n).or_default().push(TopStim {
             frag: f.frag,
@@ -455,6 +458,14 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     for slot in 0..cfg.lights as usize {
         let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
         s.state.lights[slot].lc = [cmax, 0, cmax / 2];
+        if cfg.white_lights {
+            // Lc is not read: the other slots are switched off by k instead.
+            for (j, l) in s.state.lights.iter_mut().enumerate().take(cfg.lights as usize) {
+                if j != slot {
+                    l.k = 0;
+                }
+            }
+        }
         v.push(("a single active light slot (each slot in turn)", s));
     }
     v
