@@ -109,6 +109,25 @@ fn regress_short(config: &str, work: &str, min_scenes: usize) {
     check_suite(&t, min_scenes, SHORT);
 }
 
+/// A configuration's suite without the scenes, on both simulators, with 20,000 random
+/// vectors on Verilator and 2,000 on Icarus.
+fn regress_no_scenes(config: &str, work: &str) -> String {
+    regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            config,
+            "--random",
+            "20000",
+            "--random-icarus",
+            "2000",
+            "--no-scenes",
+        ],
+        work,
+    )
+}
+
 #[test]
 fn regress_one_light_parallel() {
     // Scenes with two bump lights do not fit one light slot; the other eleven run.
@@ -133,20 +152,7 @@ fn regress_colour_guard_bits_on_both_tops() {
     // Stage colours with guard bits and colour_round at the end: the serial top in Fig. 2's
     // order with the scenes, and a parallel top in Fig. 3's order rounding half to even.
     regress_short("tests/configs/colour_guard.toml", "colour_guard", 12);
-    let t = regress(
-        &[
-            "--sim",
-            "both",
-            "--config",
-            "tests/configs/colour_guard_parallel.toml",
-            "--random",
-            "20000",
-            "--random-icarus",
-            "2000",
-            "--no-scenes",
-        ],
-        "colour_guard_parallel",
-    );
+    let t = regress_no_scenes("tests/configs/colour_guard_parallel.toml", "colour_guard_parallel");
     let r = runs(&t);
     // colour_round whole; texture_modulate's u11.3 x u8 pairs exceed the exhaustive cap, so
     // its random unit set (random<N>_texture_modulate, N per simulator).
@@ -186,18 +192,8 @@ fn regress_white_lights_on_their_scene_and_a_per_fragment_top() {
         r.iter().filter(|x| x.1 == "scene_white_lights_top" && x.3 == 0 && x.2 > 0).count() == 2,
         "the scene's own fragments on both simulators:\n{t}"
     );
-    regress(
-        &[
-            "--sim",
-            "both",
-            "--config",
-            "tests/configs/white_lights_fragment_parallel.toml",
-            "--random",
-            "20000",
-            "--random-icarus",
-            "2000",
-            "--no-scenes",
-        ],
+    regress_no_scenes(
+        "tests/configs/white_lights_fragment_parallel.toml",
         "white_lights_fragment_parallel",
     );
 }
@@ -730,20 +726,7 @@ fn the_per_fragment_top_and_a_three_bank_top_match_the_model() {
         ("tests/configs/fragment_state.toml", "fragment_state"),
         ("tests/configs/three_banks_serial.toml", "three_banks"),
     ] {
-        let t = regress(
-            &[
-                "--sim",
-                "both",
-                "--config",
-                cfg,
-                "--random",
-                "20000",
-                "--random-icarus",
-                "2000",
-                "--no-scenes",
-            ],
-            work,
-        );
+        let t = regress_no_scenes(cfg, work);
         let r = runs(&t);
         assert!(
             r.iter()
@@ -761,20 +744,7 @@ fn the_configurations_the_fuzzer_found_simulate_clean() {
         ("tests/configs/fuzz_found_wide_dot.toml", "fuzz_found"),
         ("tests/configs/fuzz_found_equal_frac.toml", "fuzz_found_eq"),
     ] {
-        regress(
-            &[
-                "--sim",
-                "both",
-                "--config",
-                cfg,
-                "--random",
-                "20000",
-                "--random-icarus",
-                "2000",
-                "--no-scenes",
-            ],
-            work,
-        );
+        regress_no_scenes(cfg, work);
     }
 }
 

@@ -92,7 +92,7 @@ impl FastModel {
         let half = 1i64 << (cfg.normal_bits - 1);
         let factor = cfg.factor_frac();
         let dot_max = 1i64 << cfg.dot_frac_bits;
-        let div = crate::rtlgen::units_v::texture_divider(cfg);
+        let div = super::texture_modulate::divider(cfg);
         FastModel {
             lights: cfg.lights as usize,
             texture_last: cfg.blend_order == BlendOrder::TextureLast,

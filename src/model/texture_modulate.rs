@@ -6,15 +6,17 @@
 //! division.
 
 use crate::config::PipelineConfig;
-use crate::fixed::{unorm_div_round, unorm_mul};
+use crate::fixed::{unorm_div_round, UnormDiv};
 
 #[inline]
 pub fn texture_modulate(cfg: &PipelineConfig, c: [u32; 3], tex: [u32; 3]) -> [u32; 3] {
-    let w = cfg.colour_bits;
-    if cfg.colour_guard_bits == 0 {
-        return [0, 1, 2].map(|i| unorm_mul(c[i] as u64, tex[i] as u64, w) as u32);
-    }
-    [0, 1, 2].map(|i| unorm_div_round(c[i] as u64 * tex[i] as u64, w) as u32)
+    [0, 1, 2].map(|i| unorm_div_round(c[i] as u64 * tex[i] as u64, cfg.colour_bits) as u32)
+}
+
+/// The divider the hardware with guard bits (and the fast model at every width) uses: exact
+/// for every product of a stage colour and a texture colour.
+pub fn divider(cfg: &PipelineConfig) -> UnormDiv {
+    UnormDiv::new(cfg.colour_bits, cfg.stage_colour_max() as u64 * cfg.colour_max() as u64)
 }
 
 /// colour_round: a stage colour with `colour_guard_bits` fraction bits to the output colour,

@@ -257,11 +257,7 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
         cfg.term_fmt().name()
     ));
     let clk = if cuts > 0 { "input  wire clk,\n    " } else { "" };
-    let lc_port = if cfg.white_lights {
-        String::new()
-    } else {
-        format!("input  wire [{}:0] lc,\n    ", 3 * c - 1)
-    };
+    let lc_port = light_colour_port(cfg, 3 * c);
     w.line(format!(
         "module {} (\n    {clk}input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    {lc_port}output wire [{}:0] term\n);",
         module_name(cfg, "light_term"),
@@ -309,6 +305,15 @@ pub fn light_term(cfg: &PipelineConfig) -> String {
     w.line("endmodule");
     postamble(&mut w);
     w.finish()
+}
+
+/// The light-colour input of a module's port list, `width` bits (none with white lights).
+pub fn light_colour_port(cfg: &PipelineConfig, width: u32) -> String {
+    if cfg.white_lights {
+        String::new()
+    } else {
+        format!("input  wire [{}:0] lc,\n    ", width - 1)
+    }
 }
 
 /// The light-colour connection of a `light_term` instance (none with white lights).
@@ -415,11 +420,7 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
         3 * cs - 1,
         n * (ff + 1) - 1,
         n * (k + 1) - 1,
-        if cfg.white_lights {
-            String::new()
-        } else {
-            format!("input  wire [{}:0] lc,\n    ", 3 * n * c - 1)
-        },
+        light_colour_port(cfg, 3 * n * c),
         3 * cs - 1
     ));
     for i in 0..n {
@@ -467,13 +468,6 @@ pub fn blend(cfg: &PipelineConfig, unit: &str) -> String {
     w.finish()
 }
 
-/// The divider of a texture modulation with guard bits: exact for every product of a stage
-/// colour and a texture colour.
-pub fn texture_divider(cfg: &PipelineConfig) -> crate::fixed::UnormDiv {
-    let m = cfg.colour_max() as u64;
-    crate::fixed::UnormDiv::new(cfg.colour_bits, (cfg.stage_colour_max() as u64) * m)
-}
-
 /// texture_modulate: round(c_in tex / (2^w - 1)), registered; a register after the product
 /// when the depth puts `timing::TEXTURE`'s cut in place. Without guard bits the division is
 /// the add-and-shift identity (`fixed::unorm_mul`); with them it is `fixed::UnormDiv`'s
@@ -485,7 +479,7 @@ pub fn texture_modulate(cfg: &PipelineConfig) -> String {
     let g = cfg.colour_guard_bits;
     let mut w = VWriter::new();
     preamble(&mut w);
-    let div = texture_divider(cfg);
+    let div = crate::model::texture_modulate::divider(cfg);
     if g == 0 {
         w.line("// texture_modulate (paper §5.1): exact round(c_in·tex / (2^w - 1)) as ((p + h) + ((p + h) >> w)) >> w, h = 2^(w-1).");
     } else {

@@ -99,9 +99,9 @@ impl Unit for Blend {
         let (ff, kf) = (cfg.factor_fmt(), cfg.k_fmt());
         let max = cfg.stage_colour_max() as f64;
         let one = (1u64 << cfg.colour_guard_bits) as f64;
+        let lc = light_colours(cfg, i);
         let out = (0..3)
             .map(|ch| {
-                let lc = light_colours(cfg, i);
                 let add: f64 = (0..cfg.lights as usize)
                     .map(|j| ff.to_f64(i[1][j]) * kf.to_f64(i[2][j]) * lc[j][ch] as f64)
                     .sum();

@@ -157,11 +157,10 @@ pub fn sum_of_products(multipliers: Multipliers, products: &[(Operand, Operand)]
             Multipliers::Booth => {
                 let m = a.width + if a.signed { 1 } else { 2 };
                 let rows = b.digits().min(out_width.div_ceil(2));
-                // Each row keeps the bits below out_width. Synthesis sums all rows in one
-                // carry-save tree, a full adder per row bit (counted with the row bit), then
-                // one carry-propagate adder.
-                // Every row bit is a select and a negate; the rows after the first each add a
-                // full adder per bit in the tree (a two-row product is one adder row).
+                // Each row keeps the bits below out_width. Every row bit is a select and a
+                // negate; synthesis sums the rows in one carry-save tree, a full adder per bit
+                // of every row after the first (a two-row product is one adder row), then one
+                // carry-propagate adder.
                 let bits: Vec<u32> = (0..rows).map(|j| m.min(out_width - 2 * j)).collect();
                 r.mux += bits.iter().sum::<u32>() as f64;
                 r.pp += bits.iter().skip(1).sum::<u32>() as f64;
@@ -232,14 +231,7 @@ pub fn light_term(cfg: &PipelineConfig) -> Resources {
 pub fn blend_finish(cfg: &PipelineConfig) -> Resources {
     let (c, g) = (cfg.stage_colour_fmt().width, cfg.colour_guard_bits);
     // With guard bits the saturation compares the sum against 1.0; without, it is the carry.
-    let over = if g > 0 {
-        Resources {
-            cmp: (c + 1) as f64,
-            ..Default::default()
-        }
-    } else {
-        Resources::default()
-    };
+    let over = if g > 0 { Resources::compares(c + 1) } else { Resources::default() };
     let channel =
         requant_clamp(cfg.acc_fmt(), g, cfg.rounding, c) + Resources::adders(c + 1) + over + Resources::muxes(c) + Resources::regs(c);
     channel.scaled(3.0)

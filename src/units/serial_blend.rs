@@ -100,11 +100,7 @@ impl Unit for LightAccumulate {
             cfg.acc_fmt().name(),
             self.latency(cfg)
         ));
-        let lc_port = if cfg.white_lights {
-            String::new()
-        } else {
-            format!("input  wire [{}:0] lc,\n    ", 3 * c - 1)
-        };
+        let lc_port = crate::rtlgen::units_v::light_colour_port(cfg, 3 * c);
         w.line(format!(
             "module {} (\n    input  wire clk,\n    input  wire [{}:0] acc_in,\n    input  wire first,\n    input  wire [{ff}:0] f,\n    input  wire [{k}:0] k,\n    {lc_port}output reg  [{}:0] acc\n);",
             module_name(cfg, "light_accumulate"),

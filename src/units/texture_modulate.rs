@@ -63,7 +63,7 @@ impl Unit for TextureModulate {
         // Per channel: c·t + (d-1)/2, its register when cut, the constant reciprocal's shifted
         // adds (one per set bit after the first), the output register.
         let cs = cfg.stage_colour_fmt().width;
-        let u = crate::rtlgen::units_v::texture_divider(cfg);
+        let u = crate::model::texture_modulate::divider(cfg);
         let qw = u.y_bits + u.m_bits().last().copied().unwrap_or(0) + 1;
         let channel = sum_of_products(cfg.multipliers, &[(unsigned(cs), unsigned(c))], true, u.y_bits)
             + Resources::stage(cut(cfg, TEXTURE, 0), u.y_bits)
