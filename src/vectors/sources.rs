@@ -81,8 +81,17 @@ fn three<T>(mut f: impl FnMut() -> T) -> [T; 3] {
 
 fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
     let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|c| (c / len * one(cfg) as f64).round() as i64)
+    v.map(|c| round_half_away(c / len * one(cfg) as f64))
         .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
+}
+
+/// `x.round() as i64` for the |x| ≤ 2^52 (and NaN, as 0) that `q_vec` makes, without the
+/// library call `round` is on a baseline CPU: the truncation and the remainder are exact there.
+#[inline(always)]
+fn round_half_away(x: f64) -> i64 {
+    let t = x as i64;
+    let f = x - t as f64;
+    t + i64::from(f >= 0.5) - i64::from(f <= -0.5)
 }
 
 /// Random stimuli per independently seeded chunk: `random:N` record `i` is draw `i % RANDOM_CHUNK`
@@ -98,24 +107,53 @@ pub fn chunk_rng(seed: u64, chunk: u64) -> SplitMix64 {
 /// A random triangle's bump state: half realistic (unit vectors), half raw codes over the
 /// whole of every format.
 pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+    match crate::simd::level() {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `simd::level` names only what this CPU has.
+        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, rng) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above.
+        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, rng) },
+        _ => state(cfg, rng),
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
+unsafe fn state_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+    state(cfg, rng)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,bmi2")]
+unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+    state(cfg, rng)
+}
+
+/// [`random_state`]'s draws, a light's ten fixed ones (L, H, Lc and k's coin) as one block.
+#[inline(always)]
+fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+    use super::rng::{range_of, unit_of};
     let cmax = cfg.colour_max() as i64;
     let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
     let mut state = BumpState::default();
     for s in state.lights.iter_mut().take(cfg.lights as usize) {
-        let vec = |rng: &mut SplitMix64| {
+        let x = rng.next_block::<10>();
+        let vec = |at: usize| {
             if raw {
-                three(|| rng.range(lh.min_raw(), lh.max_raw()))
+                [0, 1, 2].map(|i| range_of(x[at + i], lh.min_raw(), lh.max_raw()))
             } else {
-                q_vec(cfg, [rng.unit() * 2.0 - 1.0, rng.unit() * 2.0 - 1.0, rng.unit() * 1.2 - 0.2])
+                let u = |i: usize| unit_of(x[at + i]);
+                q_vec(cfg, [u(0) * 2.0 - 1.0, u(1) * 2.0 - 1.0, u(2) * 1.2 - 0.2])
             }
         };
         *s = LightSlot {
-            l: vec(rng),
-            h: vec(rng),
-            lc: three(|| rng.range(0, cmax) as u32),
-            k: if rng.chance(0.5) { kone } else { rng.range(0, kone) },
+            l: vec(0),
+            h: vec(3),
+            lc: [6, 7, 8].map(|i| range_of(x[i], 0, cmax) as u32),
+            k: if unit_of(x[9]) < 0.5 { kone } else { rng.range(0, kone) },
         };
     }
     state
