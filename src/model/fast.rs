@@ -158,77 +158,6 @@ impl FastModel {
         }
     }
 
-    /// The colours of `frags` into `out`, fragment `i` of the triangle whose state is
-    /// `states[of[i]]`: many short triangles evaluated side by side.
-    ///
-    /// # Panics
-    /// As [`colours`](Self::colours), and when `of` is not as long as `frags` or names a
-    /// state beyond `states`.
-    pub fn colours_mixed(&self, states: &[BumpState], of: &[u32], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        self.colours_mixed_at(crate::simd::level(), states, of, frags, out)
-    }
-
-    /// [`colours_mixed`](Self::colours_mixed) compiled for `level` (as
-    /// [`colours_run_at`](Self::colours_run_at)).
-    pub fn colours_mixed_at(&self, level: Level, states: &[BumpState], of: &[u32], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        assert_eq!(frags.len(), out.len(), "one colour per fragment");
-        assert_eq!(frags.len(), of.len(), "one state index per fragment");
-        assert!(of.iter().all(|&w| (w as usize) < states.len()), "a state index beyond the states");
-        assert!(crate::simd::supported(level), "{level:?} is beyond this CPU");
-        macro_rules! by_lights {
-            ($tl:literal) => {
-                match self.lights {
-                    1 => self.mixed_at::<1, $tl>(level, states, of, frags, out),
-                    2 => self.mixed_at::<2, $tl>(level, states, of, frags, out),
-                    3 => self.mixed_at::<3, $tl>(level, states, of, frags, out),
-                    4 => self.mixed_at::<4, $tl>(level, states, of, frags, out),
-                    5 => self.mixed_at::<5, $tl>(level, states, of, frags, out),
-                    6 => self.mixed_at::<6, $tl>(level, states, of, frags, out),
-                    7 => self.mixed_at::<7, $tl>(level, states, of, frags, out),
-                    8 => self.mixed_at::<8, $tl>(level, states, of, frags, out),
-                    n => unreachable!("{n} lights: the configuration allows 1 to 8"),
-                }
-            };
-        }
-        if self.texture_last {
-            by_lights!(true)
-        } else {
-            by_lights!(false)
-        }
-    }
-
-    #[inline(always)]
-    fn mixed_at<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        level: Level,
-        states: &[BumpState],
-        of: &[u32],
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        match level {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: the CPU has every feature the function is compiled for (checked above).
-            Level::Avx512 => unsafe { self.mixed_avx512::<N, TEXTURE_LAST>(states, of, frags, out) },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: as above.
-            Level::Avx2 => unsafe { self.mixed_avx2::<N, TEXTURE_LAST>(states, of, frags, out) },
-            _ => self.mixed_blocks::<N, TEXTURE_LAST>(states, of, frags, out),
-        }
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn mixed_avx512<const N: usize, const TEXTURE_LAST: bool>(&self, states: &[BumpState], of: &[u32], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        self.mixed_blocks::<N, TEXTURE_LAST>(states, of, frags, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn mixed_avx2<const N: usize, const TEXTURE_LAST: bool>(&self, states: &[BumpState], of: &[u32], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        self.mixed_blocks::<N, TEXTURE_LAST>(states, of, frags, out)
-    }
-
     /// [`run`](Self::run) compiled for `level`, which the CPU must have.
     #[inline(always)]
     fn run_at<const N: usize, const TEXTURE_LAST: bool>(
@@ -266,12 +195,6 @@ impl FastModel {
     /// its own array so that every step is one vector operation across the block.
     #[inline(always)]
     fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        let mut lanes = LaneLights::<N>::default();
-        if frags.len() > SCALAR_MAX {
-            for i in 0..LANES {
-                lanes.set(i, lights);
-            }
-        }
         for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
             if f.len() <= SCALAR_MAX {
                 // Too few to fill a block: each alone costs less than a block of padding.
@@ -279,40 +202,13 @@ impl FastModel {
                     *o = self.one::<N, TEXTURE_LAST>(lights, f);
                 }
             } else {
-                self.block::<N, TEXTURE_LAST>(&lanes, f, o);
-            }
-        }
-    }
-
-    /// Fragments of many triangles, `frags[i]` of the triangle `states[of[i]]`, a block of
-    /// [`LANES`] at a time whatever triangle each lane's fragment is of: one-fragment
-    /// triangles back to back fill whole blocks, where a run at a time would go one by one.
-    #[inline(always)]
-    fn mixed_blocks<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        states: &[BumpState],
-        of: &[u32],
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        let lights: Vec<[Light; N]> = states.iter().map(|s| lights::<N>(s, self.white)).collect();
-        let mut lanes = LaneLights::<N>::default();
-        for ((f, o), w) in frags.chunks(LANES).zip(out.chunks_mut(LANES)).zip(of.chunks(LANES)) {
-            if f.len() <= SCALAR_MAX {
-                for ((f, o), &w) in f.iter().zip(o.iter_mut()).zip(w) {
-                    *o = self.one::<N, TEXTURE_LAST>(&lights[w as usize], f);
-                }
-            } else {
-                for (i, &w) in w.iter().enumerate() {
-                    lanes.set(i, &lights[w as usize]);
-                }
-                self.block::<N, TEXTURE_LAST>(&lanes, f, o);
+                self.block::<N, TEXTURE_LAST>(lights, f, o);
             }
         }
     }
 
     #[inline(always)]
-    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &LaneLights<N>, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         let mut b = [[0i64; LANES]; 3];
         let (mut dmask, mut smask) = ([0i64; LANES], [0i64; LANES]);
         let (mut c_src, mut tex) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
@@ -334,18 +230,17 @@ impl FastModel {
         }
         let (mut dacc, mut sacc) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
         let top = self.specular_factor.len() as i64 - 1;
-        for s in 0..N {
-            let (l, h, klc) = (&lights.l[s], &lights.h[s], &lights.klc[s]);
+        for s in lights {
             let mut dh = [0i64; LANES];
             for i in 0..LANES {
                 let dl = self
                     .dot
-                    .apply(b[0][i] * l[0][i] + b[1][i] * l[1][i] + b[2][i] * l[2][i])
+                    .apply(b[0][i] * s.l[0] + b[1][i] * s.l[1] + b[2][i] * s.l[2])
                     .clamp(0, self.dot_max);
                 let fd = (dl << self.diffuse_align) & dmask[i];
-                dh[i] = self.dot.apply(b[0][i] * h[0][i] + b[1][i] * h[1][i] + b[2][i] * h[2][i]).clamp(0, top);
+                dh[i] = self.dot.apply(b[0][i] * s.h[0] + b[1][i] * s.h[1] + b[2][i] * s.h[2]).clamp(0, top);
                 for ch in 0..3 {
-                    dacc[ch][i] += fd * klc[ch][i];
+                    dacc[ch][i] += fd * s.klc[ch];
                 }
             }
             let mut fs = [0i64; LANES];
@@ -355,7 +250,7 @@ impl FastModel {
             }
             for ch in 0..3 {
                 for i in 0..LANES {
-                    sacc[ch][i] += fs[i] * klc[ch][i];
+                    sacc[ch][i] += fs[i] * s.klc[ch];
                 }
             }
         }
@@ -518,36 +413,6 @@ struct Light {
     klc: [i64; 3],
 }
 
-/// The light slots of each lane of a block, a value of every lane side by side.
-struct LaneLights<const N: usize> {
-    l: [[[i64; LANES]; 3]; N],
-    h: [[[i64; LANES]; 3]; N],
-    klc: [[[i64; LANES]; 3]; N],
-}
-
-impl<const N: usize> Default for LaneLights<N> {
-    fn default() -> Self {
-        LaneLights {
-            l: [[[0; LANES]; 3]; N],
-            h: [[[0; LANES]; 3]; N],
-            klc: [[[0; LANES]; 3]; N],
-        }
-    }
-}
-
-impl<const N: usize> LaneLights<N> {
-    #[inline(always)]
-    fn set(&mut self, lane: usize, lights: &[Light; N]) {
-        for (s, x) in lights.iter().enumerate() {
-            for ch in 0..3 {
-                self.l[s][ch][lane] = x.l[ch];
-                self.h[s][ch][lane] = x.h[ch];
-                self.klc[s][ch][lane] = x.klc[ch];
-            }
-        }
-    }
-}
-
 #[inline(always)]
 fn lights<const N: usize>(state: &BumpState, white: Option<u32>) -> [Light; N] {
     std::array::from_fn(|i| {
@@ -608,19 +473,6 @@ mod tests {
                 let mut got = vec![[0; 3]; frags.len()];
                 fast.colours_run_at(level, state, frags, &mut got);
                 assert_eq!(&got, want, "config {} at {level:?}, a run of {}", cfg.hash(), frags.len());
-            }
-            // Every triangle side by side, as the random records are shaded: blocks that
-            // straddle triangles, in batches of several sizes (a partial last block each).
-            let states: Vec<BumpState> = runs.iter().map(|r| *r.0).collect();
-            let of: Vec<u32> = runs.iter().enumerate().flat_map(|(k, r)| std::iter::repeat_n(k as u32, r.1.len())).collect();
-            let frags: Vec<FragmentIn> = runs.iter().flat_map(|r| r.1.iter().copied()).collect();
-            let want: Vec<[u32; 3]> = runs.iter().flat_map(|r| r.2.iter().copied()).collect();
-            for size in [1, 2, 3, super::LANES + 1, 253, frags.len()] {
-                let mut got = vec![[0; 3]; frags.len()];
-                for ((f, w), g) in frags.chunks(size).zip(of.chunks(size)).zip(got.chunks_mut(size)) {
-                    fast.colours_mixed_at(level, &states, w, f, g);
-                }
-                assert_eq!(got, want, "config {} at {level:?}, triangles side by side in batches of {size}", cfg.hash());
             }
         }
     }

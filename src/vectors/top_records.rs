@@ -101,8 +101,8 @@ impl<'a> TopRecords<'a> {
         Ok(())
     }
 
-    /// Chunk `c` of `random:count` with `seed`, drawn [`BATCH`] records at a time as they
-    /// are encoded (`sources::random_chunk`'s stimuli, without holding them); returns the
+    /// Chunk `c` of `random:count` with `seed`, drawn a triangle's run at a time as it is
+    /// encoded (`sources::random_chunk`'s stimuli, without holding them); returns the
     /// records' count and, when `keep`, their stimuli.
     pub fn random_chunk(
         &self,
@@ -117,67 +117,27 @@ impl<'a> TopRecords<'a> {
         let mut tris = RandomTriangles::new(chunk_rng(seed, c));
         let mut enc = RunEncoder::new(self);
         let mut kept = Vec::new();
-        let mut batch = Batch::default();
-        let mut run = Vec::with_capacity(BATCH);
+        let mut frags = Vec::with_capacity(BATCH);
         let mut done = 0;
         while done < len {
-            batch.clear();
-            // Whole runs (a triangle's fragments, or the part of one that fits) until the
-            // batch is full: the fast model shades them side by side.
-            while batch.frags.len() < BATCH && done + (batch.frags.len() as u64) < len {
-                let room = (BATCH - batch.frags.len()).min((len - done) as usize - batch.frags.len());
-                let (state, tri_start) = tris.next_run(self.cfg, room, &mut run);
-                batch.push(state, tri_start, &run);
+            let (state, tri_start) = tris.next_run(self.cfg, BATCH.min((len - done) as usize), &mut frags);
+            let run = Run {
+                first: c * RANDOM_CHUNK + done,
+                state,
+                tri_start,
+                frags: &frags,
+            };
+            enc.encode_run(&run, bin.as_deref_mut(), hex.as_deref_mut())?;
+            if keep {
+                kept.extend(frags.iter().enumerate().map(|(k, f)| TopStim {
+                    frag: *f,
+                    state: *state,
+                    tri_start: tri_start && k == 0,
+                }));
             }
-            let colours = &mut enc.colours[..batch.frags.len()];
-            self.fast.colours_mixed(&batch.states, &batch.of, &batch.frags, colours);
-            for (k, &(tri_start, at, n)) in batch.runs.iter().enumerate() {
-                let r = Run {
-                    first: c * RANDOM_CHUNK + done + at as u64,
-                    state: &batch.states[k],
-                    tri_start,
-                    frags: &batch.frags[at..at + n],
-                };
-                enc.encode_colours(&r, at, bin.as_deref_mut(), hex.as_deref_mut())?;
-                if keep {
-                    kept.extend(r.frags.iter().enumerate().map(|(i, f)| TopStim {
-                        frag: *f,
-                        state: *r.state,
-                        tri_start: tri_start && i == 0,
-                    }));
-                }
-            }
-            done += batch.frags.len() as u64;
+            done += frags.len() as u64;
         }
         Ok((len, kept))
-    }
-}
-
-/// Runs of several triangles gathered for one call of the fast model.
-#[derive(Default)]
-struct Batch {
-    states: Vec<BumpState>,
-    /// Each run's (whether it starts its triangle, first fragment, fragments).
-    runs: Vec<(bool, usize, usize)>,
-    frags: Vec<FragmentIn>,
-    /// Each fragment's run (its index in `states`).
-    of: Vec<u32>,
-}
-
-impl Batch {
-    fn clear(&mut self) {
-        self.states.clear();
-        self.runs.clear();
-        self.frags.clear();
-        self.of.clear();
-    }
-
-    fn push(&mut self, state: &BumpState, tri_start: bool, frags: &[FragmentIn]) {
-        let k = self.states.len() as u32;
-        self.states.push(*state);
-        self.runs.push((tri_start, self.frags.len(), frags.len()));
-        self.frags.extend_from_slice(frags);
-        self.of.extend(std::iter::repeat_n(k, frags.len()));
     }
 }
 
@@ -215,23 +175,6 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
     /// Append the records of one run of a triangle's fragments: its state's columns are
     /// packed once, the fast model's per-triangle products formed once.
     pub fn encode_run(&mut self, run: &Run, mut bin: Option<&mut Vec<u8>>, mut hex: Option<&mut String>) -> Result<()> {
-        for (b, frags) in run.frags.chunks(BATCH).enumerate() {
-            self.maker.fast.colours_run(run.state, frags, &mut self.colours[..frags.len()]);
-            let part = Run {
-                first: run.first + (b * BATCH) as u64,
-                state: run.state,
-                tri_start: run.tri_start && b == 0,
-                frags,
-            };
-            // Each part's state is packed anew; a run longer than a batch is rare.
-            self.encode_colours(&part, 0, bin.as_deref_mut(), hex.as_deref_mut())?;
-        }
-        Ok(())
-    }
-
-    /// Append the records of `run`, whose colours are `self.colours[at..]`, each checked
-    /// where [`checked`] names it.
-    fn encode_colours(&mut self, run: &Run, at: usize, mut bin: Option<&mut Vec<u8>>, mut hex: Option<&mut String>) -> Result<()> {
         let m = self.maker;
         self.state.words.fill(0);
         self.enc.fill_state(run.state, &mut self.state);
@@ -244,21 +187,26 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         if let Some(bin) = bin.as_deref_mut() {
             bin.reserve(bytes * run.frags.len());
         }
-        for (i, (f, c)) in run.frags.iter().zip(&self.colours[at..at + run.frags.len()]).enumerate() {
-            m.check(run.first + i as u64, run.state, f, *c)?;
-            for &w in &self.frag_words {
-                self.r.words[w] = self.state.words[w];
-            }
-            self.enc.fill_fragment(f, run.tri_start && i == 0, *c, &mut self.r);
-            if let Some(bin) = bin.as_deref_mut() {
+        for (b, frags) in run.frags.chunks(BATCH).enumerate() {
+            let out = &mut self.colours[..frags.len()];
+            m.fast.colours_run(run.state, frags, out);
+            for (k, (f, c)) in frags.iter().zip(out.iter()).enumerate() {
+                let i = b * BATCH + k;
+                m.check(run.first + i as u64, run.state, f, *c)?;
                 for &w in &self.frag_words {
-                    self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
+                    self.r.words[w] = self.state.words[w];
                 }
-                bin.extend_from_slice(&self.bytes[..bytes]);
-            }
-            if let Some(hex) = hex.as_deref_mut() {
-                hex.push_str(&self.r.hex(digits));
-                hex.push('\n');
+                self.enc.fill_fragment(f, run.tri_start && i == 0, *c, &mut self.r);
+                if let Some(bin) = bin.as_deref_mut() {
+                    for &w in &self.frag_words {
+                        self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
+                    }
+                    bin.extend_from_slice(&self.bytes[..bytes]);
+                }
+                if let Some(hex) = hex.as_deref_mut() {
+                    hex.push_str(&self.r.hex(digits));
+                    hex.push('\n');
+                }
             }
         }
         Ok(())
