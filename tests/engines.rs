@@ -218,3 +218,45 @@ fn the_papers_claims_hold_as_measured() {
     }
     assert!(claim("phong").is_err());
 }
+
+/// The engines gbump generates as RTL (Gouraud bump mapping and paper §6's interpolating
+/// variants) carry their bit-accurate path on every scene and no other engine claims one. On
+/// the plane a distant light makes L and H the same at every vertex, so interpolating them
+/// changes nothing: the three paths' golden images, and so every figure, agree exactly,
+/// while the tops differ (the interpolating ones take L and H per fragment).
+#[test]
+fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
+    let t = plane_table(Maps::default());
+    let with: Vec<&str> = t
+        .engines
+        .iter()
+        .zip(&t.fixed[0])
+        .filter(|(_, f)| f.is_some())
+        .map(|(e, _)| e.name)
+        .collect();
+    assert_eq!(with, ["gouraud", "gouraud_h", "gouraud_hl"]);
+    for (e, f) in t.engines.iter().zip(&t.fixed[0]) {
+        assert_eq!(e.fixed.is_some(), f.is_some(), "{}", e.name);
+    }
+    let rows: Vec<&report::Fixed> = t.fixed[0].iter().flatten().collect();
+    let e0 = rows[0].error;
+    println!("bit-accurate paths on the plane: {e0:?}");
+    for f in &rows[1..] {
+        assert_eq!((f.error.max_lsb, f.error.mean_lsb, f.error.psnr_db), (e0.max_lsb, e0.mean_lsb, e0.psnr_db));
+    }
+    assert_ne!(rows[0].config_hash, rows[1].config_hash, "per-triangle and per-fragment tops");
+    // The figures come from the configuration the table names, as `gbump area` would size it.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("plane.toml"), PLANE).unwrap();
+    let s = Scene::load(&dir.path().join("plane.toml").display().to_string()).unwrap();
+    let cfg = engine("gouraud_h").unwrap().fixed_config(&s.derive_config().unwrap()).unwrap();
+    let area = gbump::measure::area_model::model_area(&cfg);
+    assert_eq!(rows[1].config_hash, cfg.hash()[..8]);
+    assert_eq!((rows[1].area_ge, rows[1].memory_bits), (area.top_ge, area.memory_bits));
+    assert_eq!(rows[1].latency, gbump::rtlgen::top::latency(&cfg));
+    let csv = t.csv();
+    assert!(csv.lines().next().unwrap().ends_with("fixed_memory_bits,fixed_latency"));
+    let fields = csv.lines().next().unwrap().split(',').count();
+    assert!(csv.lines().all(|l| l.split(',').count() == fields), "{csv}");
+    assert!(t.markdown().contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `texram`"));
+}

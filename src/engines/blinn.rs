@@ -19,6 +19,7 @@ pub const BLINN: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    fixed: None,
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

@@ -26,6 +26,7 @@ pub const CG: Engine = Engine {
         fragment_per_light: 6,
     },
     shade,
+    fixed: None,
 };
 
 /// Texels along a cube-map face edge by default (`gbump engines --cg-cube` changes it).

@@ -34,6 +34,7 @@ pub const EMBM: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    fixed: None,
 };
 
 /// The EMBM colour with the context's `embm_map`×`embm_map` environment map.

@@ -24,6 +24,7 @@ pub const GOURAUD: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_paper,
+    fixed: Some(Interpolate::None),
 };
 
 pub const GOURAUD_H: Engine = Engine {
@@ -38,6 +39,7 @@ pub const GOURAUD_H: Engine = Engine {
         fragment_per_light: 3,
     },
     shade: shade_h,
+    fixed: Some(Interpolate::H),
 };
 
 pub const GOURAUD_HL: Engine = Engine {
@@ -52,6 +54,7 @@ pub const GOURAUD_HL: Engine = Engine {
         fragment_per_light: 6,
     },
     shade: shade_hl,
+    fixed: Some(Interpolate::Hl),
 };
 
 fn shade_paper(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

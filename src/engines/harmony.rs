@@ -26,6 +26,7 @@ pub const HARMONY: Engine = Engine {
         fragment_per_light: 6,
     },
     shade,
+    fixed: None,
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

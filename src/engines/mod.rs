@@ -41,6 +41,26 @@ pub struct Engine {
     pub per_fragment: &'static str,
     pub cost: Cost,
     pub shade: fn(&Ctx, &Hit, &PixelGeom) -> DVec3,
+    /// The engine's bit-accurate path, where gbump generates it: the scene's own
+    /// configuration (`gbump config --scene`) with this interpolation, rendered by the golden
+    /// model and generated as RTL like any configuration. None: the engine is f64 only so far.
+    pub fixed: Option<crate::config::Interpolate>,
+}
+
+impl Engine {
+    /// The configuration of the engine's bit-accurate path on a scene whose own
+    /// configuration is `scene_cfg` (None: the engine has none yet).
+    pub fn fixed_config(&self, scene_cfg: &crate::config::PipelineConfig) -> Option<crate::config::PipelineConfig> {
+        use crate::config::{BumpStateAt, Interpolate};
+        let interpolate = self.fixed?;
+        let mut cfg = scene_cfg.clone();
+        cfg.interpolate = interpolate;
+        if interpolate != Interpolate::None {
+            // An interpolated vector reaches the pipeline per fragment.
+            cfg.bump_state = BumpStateAt::Fragment;
+        }
+        Some(cfg)
+    }
 }
 
 /// A scene made ready for the engines: the prepared scene, and what an engine computes once

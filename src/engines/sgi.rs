@@ -24,6 +24,7 @@ pub const SGI: Engine = Engine {
         fragment_per_light: 6,
     },
     shade,
+    fixed: None,
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

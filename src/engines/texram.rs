@@ -23,6 +23,7 @@ pub const TEXRAM: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    fixed: None,
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

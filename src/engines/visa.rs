@@ -23,6 +23,7 @@ pub const VISA: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_matrix,
+    fixed: None,
 };
 
 pub const VISA_QUATERNION: Engine = Engine {
@@ -37,6 +38,7 @@ pub const VISA_QUATERNION: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_quaternion,
+    fixed: None,
 };
 
 fn perturbed(p: &Prepared, hit: &Hit, g: &PixelGeom, t: DVec3, b: DVec3) -> DVec3 {
