@@ -302,33 +302,48 @@ impl Table {
         s
     }
 
-    /// The contact sheet: a column per engine, two rows per scene (the image, then its
-    /// difference from the reference as a heat map, full scale at 16 LSB), a 2-pixel gutter.
+    /// The contact sheet: a column per engine under its name, and per scene its name, then
+    /// its images, then their differences from the reference as heat maps (full scale at
+    /// 16 LSB), a 2-pixel gutter.
     pub fn contact_sheet(&self) -> (u32, u32, Vec<[u8; 3]>) {
+        use crate::render::label::{draw, LINE_H};
         const GAP: u32 = 2;
+        const INK: [u8; 3] = [230, 230, 230];
+        let band = LINE_H + GAP;
         let cw = self.images.iter().flat_map(|r| r.iter().map(|i| i.w)).max().unwrap_or(1);
         let ch = self.images.iter().flat_map(|r| r.iter().map(|i| i.h)).max().unwrap_or(1);
-        let (cols, rows) = (self.engines.len() as u32, 2 * self.scenes.len() as u32);
-        let (w, h) = (cols * (cw + GAP) + GAP, rows * (ch + GAP) + GAP);
+        let cols = self.engines.len() as u32;
+        let scene_h = band + 2 * (ch + GAP);
+        let (w, h) = (cols * (cw + GAP) + GAP, GAP + band + self.scenes.len() as u32 * scene_h);
         let mut px = vec![[40u8; 3]; (w * h) as usize];
-        let mut put = |col: u32, row: u32, iw: u32, pixels: &[[u8; 3]]| {
-            let (x0, y0) = (GAP + col * (cw + GAP), GAP + row * (ch + GAP));
+        let col_x = |col: u32| GAP + col * (cw + GAP);
+        for (ei, e) in self.engines.iter().enumerate() {
+            draw(&mut px, w, col_x(ei as u32), GAP, e.name, cw, INK);
+        }
+        let put = |px: &mut [[u8; 3]], col: u32, y0: u32, iw: u32, pixels: &[[u8; 3]]| {
+            let x0 = col_x(col);
             for (k, c) in pixels.iter().enumerate() {
                 let (x, y) = (x0 + k as u32 % iw, y0 + k as u32 / iw);
                 px[(y * w + x) as usize] = *c;
             }
         };
         for (si, row) in self.images.iter().enumerate() {
+            let top = GAP + band + si as u32 * scene_h;
             for (ei, img) in row.iter().enumerate() {
-                put(ei as u32, 2 * si as u32, img.w, &crate::render::output::f64_to_u8(&img.rgb));
+                put(&mut px, ei as u32, top + band, img.w, &crate::render::output::f64_to_u8(&img.rgb));
                 let err: Vec<f64> = img
                     .rgb
                     .iter()
                     .zip(&row[0].rgb)
                     .map(|(a, b)| (0..3).map(|c| ((a[c] - b[c]) * LSB).abs()).fold(0.0, f64::max))
                     .collect();
-                put(ei as u32, 2 * si as u32 + 1, img.w, &crate::render::output::heat_map(&err, 16.0));
+                put(&mut px, ei as u32, top + band + ch + GAP, img.w, &crate::render::output::heat_map(&err, 16.0));
             }
+            let name = std::path::Path::new(&self.scenes[si])
+                .file_stem()
+                .map_or(self.scenes[si].clone(), |s| s.to_string_lossy().into());
+            let label = format!("{name}: images, then |difference from blinn| (16 LSB full scale)");
+            draw(&mut px, w, GAP, top, &label, w - 2 * GAP, INK);
         }
         (w, h, px)
     }

@@ -1,6 +1,7 @@
 //! Rendering a scene three ways: through the golden model (bit-accurate), through the f64
 //! Gouraud bump equations, and through the per-pixel f64 reference.
 
+pub mod label;
 pub mod output;
 pub mod report;
 
