@@ -80,7 +80,7 @@ pub enum Cmd {
     },
     /// Dump stimulus/response vectors from the golden model (text, binary and a manifest).
     Vectors {
-        /// scene:NAME | corners | random:N | exhaustive:UNIT
+        /// scene:NAME (under the scene's own configuration unless --config or --scene names one) | corners | random:N | exhaustive:UNIT
         #[arg(long)]
         source: String,
         /// `all`, `top`, or a unit name (repeatable).

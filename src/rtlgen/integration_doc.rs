@@ -65,7 +65,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight.{}\n\n",
             match super::top::setup_edges(cfg) {
                 1 => String::new(),
-                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges: `tri_ready` is low for the first {} edges at which it is offered with its bank free, and `tri_*` must hold until the accept (as valid/ready requires anyway).", e - 1),
+                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges counted from the first edge at which `tri_valid` offers it, whether its bank is free yet or not: it is taken at the later of that span's last edge (the first offer + {}) and the end of the bank hold (the last use + {hold}), where `tri_ready` is high, and `tri_*` must hold until then (as valid/ready requires anyway).", e - 1),
             }
         );
     }
@@ -76,9 +76,11 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         );
     } else {
         s += &format!(
-        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{}` entry, {} words) for one rising edge per word. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. `rst` does not undo writes.\n\n",
+        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{0}` entry written as its raw {2}-bit word, the value times 2^{3}; line i of a `_power_table.hex` file is the word for address i) for one rising edge per word, {1} words. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. Results waiting in the output buffer for `out_ready` are not in flight (each read the table before its `out_valid`). Writes are taken while `rst` is high too, and `rst` does not undo them.\n\n",
         cfg.power_fmt().name(),
-        cfg.power_depth()
+        cfg.power_depth(),
+        cfg.power_frac_bits + 1,
+        cfg.power_frac_bits
     );
     }
     s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline. ";
@@ -115,8 +117,14 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
     );
     if cfg.per_triangle() {
         s += &format!(
-            "Every record is a whole fragment with its triangle's state, so any record can be evaluated alone. A record whose `{0}` is 1 starts a triangle: drive a setup beat from its `tri_*` columns (with `in_valid` low), then its fragment. A record whose `{0}` is 0 repeats its triangle's state, which the top already holds. Scene vectors keep the scene's triangles (each triangle's visible fragments together); random vectors draw triangles of 1 to 64 fragments, a quarter of them one fragment; every corner record is a triangle of its own.\n",
-            crate::vectors::targets::TRI_START
+            "Every record is a whole fragment with its triangle's state, so any record can be evaluated alone. A record whose `{0}` is 1 starts a triangle: drive a setup beat from its `tri_*` columns (with `in_valid` low), then its fragment. A record whose `{0}` is 0 repeats its triangle's state, which the top already holds. Scene vectors keep the scene's triangles (each triangle's visible fragments together); random vectors draw triangles of 1 to {1} fragments: {2:.0} % of them are drawn as one fragment, the rest a length uniform in 1..s for s a power of two from 1 to {1} (each of the {3} equally likely), so {4:.0} % of triangles are one fragment and a triangle has {5:.1} fragments on average; every {6} records start a new triangle (a chunk of the stream, generated on its own); every corner record is a triangle of its own.\n",
+            crate::vectors::targets::TRI_START,
+            crate::vectors::sources::TRIANGLE_MAX_FRAGMENTS,
+            100.0 * crate::vectors::sources::ONE_FRAGMENT_SHARE,
+            crate::vectors::sources::TRIANGLE_MAX_FRAGMENTS.ilog2() + 1,
+            100.0 * crate::vectors::sources::random_triangle_shape().0,
+            crate::vectors::sources::random_triangle_shape().1,
+            crate::vectors::sources::RANDOM_CHUNK
         );
     }
     let (name, stim) = crate::vectors::sources::corners(cfg, 1).into_iter().next().expect("a corner");
