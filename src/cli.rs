@@ -137,7 +137,7 @@ pub enum Cmd {
         #[arg(long, default_value = "target/gbump-regress")]
         work: PathBuf,
         /// Write JUnit XML here.
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
         junit: Option<PathBuf>,
         /// Dump waveforms (FST) of every run.
         #[arg(long)]
@@ -182,7 +182,7 @@ pub enum Cmd {
         #[arg(long, default_value = "hx8k")]
         device: String,
         /// Also write the report as JSON.
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
         json: Option<PathBuf>,
     },
     /// Error against exact arithmetic per unit and for the pipeline, and image error per scene.
@@ -198,7 +198,7 @@ pub enum Cmd {
         #[arg(long, value_name = "WxH", default_value = "192x144")]
         size: String,
         /// Also write the report as JSON.
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
         json: Option<PathBuf>,
     },
     /// Compare power-unit designs (tables, interpolation, segments, squaring) for every n.
@@ -208,7 +208,7 @@ pub enum Cmd {
         /// Largest exponent to check.
         #[arg(long, default_value_t = 255)]
         max_n: u32,
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
         json: Option<PathBuf>,
         /// Also synthesise the plain tables and every design within 1 LSB with Yosys.
         #[arg(long)]
@@ -399,6 +399,27 @@ impl SimChoice {
 }
 
 /// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
+/// An output file named on the command line, checked before any work: not a folder, and
+/// under a folder (existing or to be made) rather than under a file, so a long run does not
+/// end by failing to write its result.
+fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
+    let p = PathBuf::from(s);
+    if p.is_dir() {
+        return Err(format!("{s} is a folder; give a file name (fix: e.g. {s}/result)"));
+    }
+    let mut up = p.parent();
+    while let Some(a) = up {
+        if a.as_os_str().is_empty() || a.is_dir() {
+            return Ok(p);
+        }
+        if a.exists() {
+            return Err(format!("{} is a file, not a folder (fix: give a path through folders)", a.display()));
+        }
+        up = a.parent();
+    }
+    Ok(p)
+}
+
 #[derive(clap::Args, Clone, Debug)]
 pub struct ConfigPick {
     /// Pipeline configuration TOML.

@@ -44,10 +44,18 @@ impl Error {
     /// An I/O error on `path`, with the OS message.
     pub fn io(path: impl Into<PathBuf>, e: std::io::Error) -> Error {
         let path = path.into();
+        // Every I/O failure says what to do about it, whatever command met it.
+        use std::io::ErrorKind as K;
         let hint = match e.kind() {
-            std::io::ErrorKind::NotFound => " (check the path)",
-            std::io::ErrorKind::PermissionDenied => " (check permissions of the file or folder)",
-            _ => "",
+            K::NotFound => "\n  fix: check the path (nothing is there)",
+            K::PermissionDenied => "\n  fix: check permissions of the file or folder",
+            K::IsADirectory => "\n  fix: this is a folder; give the file itself",
+            K::AlreadyExists => "\n  fix: a file is in the way of a folder gbump makes here; move it, or give another path",
+            K::NotADirectory => "\n  fix: a part of the path is a file, not a folder; give a path through folders",
+            K::StorageFull | K::QuotaExceeded => "\n  fix: free space on that disk, or write elsewhere",
+            K::ReadOnlyFilesystem => "\n  fix: write to a writable folder",
+            K::InvalidData => "\n  fix: give a text file in UTF-8",
+            _ => "\n  fix: check the path, the disk and the permissions",
         };
         Error::Io {
             path,

@@ -1,4 +1,4 @@
-//! Ctrl-C: the first interrupt sets a flag that long loops (vector dumps, renders, regressions)
+//! Ctrl-C, SIGTERM and SIGHUP (a CI runner's timeout, a closed terminal): the first sets a flag that long loops (vector dumps, renders, regressions)
 //! check, so they stop through their normal error path and their temporary files are removed;
 //! a second interrupt exits at once.
 

@@ -219,14 +219,19 @@ pub fn check_render(what: &str, w: u32, h: u32, triangles: u64) -> Result<()> {
 
 /// Read a text input with a byte cap, so `/dev/urandom` or a huge file fails at once.
 pub fn read_text(path: &Path) -> Result<String> {
+    read_text_as(path, "a scene, configuration or sweep space", "give the .toml file itself")
+}
+
+/// [`read_text`] for an input that is `what`, with `fix` when it is not text or too large.
+pub fn read_text_as(path: &Path, what: &str, fix: &str) -> Result<String> {
     let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut buf = Vec::new();
     f.take(MAX_INPUT_BYTES + 1).read_to_end(&mut buf).map_err(|e| Error::io(path, e))?;
     if buf.len() as u64 > MAX_INPUT_BYTES {
         return Err(Error::Other(format!(
-            "{}: larger than MAX_INPUT_BYTES = {MAX_INPUT_BYTES} bytes; not a scene, configuration or sweep space\n  fix: give the .toml file itself",
+            "{}: larger than MAX_INPUT_BYTES = {MAX_INPUT_BYTES} bytes; not {what}\n  fix: {fix}",
             path.display()
         )));
     }
-    String::from_utf8(buf).map_err(|_| Error::Other(format!("{}: not UTF-8 text\n  fix: give a TOML text file", path.display())))
+    String::from_utf8(buf).map_err(|_| Error::Other(format!("{}: not UTF-8 text, so not {what}\n  fix: {fix}", path.display())))
 }

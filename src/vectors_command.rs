@@ -64,6 +64,22 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         _ => crate::scene::pick_config(r.config, r.scene)?,
     };
     let targets = crate::vectors::targets::resolve(&cfg, r.targets)?;
+    if let Source::Exhaustive(u) = &src {
+        // An exhaustive source sweeps one unit's inputs: it writes that unit's set only.
+        if r.targets.iter().any(|t| t != "all" && t != u) {
+            return Err(ignored(
+                "--target",
+                &format!("an exhaustive source writes the set of its unit `{u}` only"),
+            ));
+        }
+    }
+    if let Some(n) = r.shininess.filter(|&n| cfg.power_rom && n != cfg.shininess) {
+        // The set would be refused by every regression of this configuration: refuse it now.
+        return Err(Error::Other(format!(
+            "--shininess {n}: the configuration's power table is a ROM holding shininess {}\n  fix: drop --shininess, or use a configuration with power_rom = false",
+            cfg.shininess
+        )));
+    }
     if r.size.is_some() && !matches!(src, Source::Scene(_)) {
         return Err(Error::Other(format!(
             "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"

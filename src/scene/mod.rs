@@ -312,6 +312,9 @@ impl Scene {
                 e => e,
             })?;
         }
+        // Every configuration a tool builds goes through the same checks as one read from a
+        // file: a scene the pipeline cannot take fails here, named, not deep in a run.
+        cfg.validate(&format!("{} (the configuration it derives)", self.file))?;
         Ok(cfg)
     }
 

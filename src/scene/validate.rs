@@ -68,8 +68,61 @@ impl Checker<'_> {
     }
 }
 
+/// An array in the file longer than the field it fills (serde reads a fixed-size array's
+/// first values and drops the rest, so `size = [32, 24, 3]` would render 32×24 silently):
+/// the scene as read, serialised again, is walked beside the file's own values.
+fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
+    fn walk(given: &toml::Value, read: &toml::Value, path: &str, key: &str, array: Option<(&str, usize)>) -> Option<(String, String, Option<(String, usize)>, usize, usize)> {
+        match (given, read) {
+            (toml::Value::Table(g), toml::Value::Table(r)) => g.iter().find_map(|(k, gv)| {
+                let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                r.get(k).and_then(|rv| walk(gv, rv, &p, k, array))
+            }),
+            (toml::Value::Array(g), toml::Value::Array(r)) => {
+                if g.len() > r.len() {
+                    return Some((path.to_string(), key.to_string(), array.map(|(a, i)| (a.to_string(), i)), g.len(), r.len()));
+                }
+                g.iter().zip(r).enumerate().find_map(|(i, (gv, rv))| {
+                    // An array of tables ([[lights]]) is where a key's line is searched from.
+                    let inner = if gv.is_table() && path.split('.').count() == 1 { Some((key, i)) } else { array };
+                    walk(gv, rv, &format!("{path}[{i}]"), key, inner)
+                })
+            }
+            _ => None,
+        }
+    }
+    let (Ok(given), Ok(read)) = (toml::from_str::<toml::Value>(text), toml::Value::try_from(s)) else {
+        return Ok(());
+    };
+    match walk(&given, &read, "", "", None) {
+        None => Ok(()),
+        Some((path, key, array, got, takes)) => {
+            let c = Checker { s, text };
+            Err(c.fail(
+                array.as_ref().map(|(a, i)| (a.as_str(), *i)),
+                &key,
+                &path,
+                format!("{got} values where the field takes {takes}"),
+                &format!("give exactly {takes} values"),
+            ))
+        }
+    }
+}
+
 pub fn validate(s: &Scene, text: &str) -> Result<()> {
+    no_extra_values(s, text)?;
     let c = Checker { s, text };
+    let bump = s.bump_lights().count();
+    let max_lights = crate::config::LIMITS.iter().find(|l| l.0 == "lights").expect("a lights limit").2;
+    if bump as u32 > max_lights {
+        return Err(c.fail(
+            None,
+            "lights",
+            "lights",
+            format!("{bump} lights act on the bump map; the pipeline has at most {max_lights} light slots"),
+            &format!("set bump = false on all but {max_lights} of them (they then light the Gouraud colour only)"),
+        ));
+    }
     // The name becomes part of every output file's name.
     if !crate::names::is_safe(&s.name) {
         let at = locate(text, None, "name").map_or(String::new(), |l| format!(":{l}"));

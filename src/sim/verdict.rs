@@ -49,7 +49,12 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
         return Err(Error::Other(format!(
             "{what}: the simulator warned, so the run does not count (a warning means it went on with contents nobody meant):\n{}\n  fix: {}",
             warned.iter().take(10).copied().collect::<Vec<_>>().join("\n"),
-            if warned.iter().any(|l| l.to_ascii_lowercase().contains("readmem")) {
+            if warned.iter().any(|l| {
+                let l = l.to_ascii_lowercase();
+                l.contains("readmem") && (l.contains("not enough words") || l.contains("ended before") || l.contains("too many words"))
+            }) {
+                "a memory init file holds the wrong number of words (truncated, or made for another configuration): regenerate it with the command in its header (`gbump rom` or `gbump vectors`)"
+            } else if warned.iter().any(|l| l.to_ascii_lowercase().contains("readmem")) {
                 "a memory init file did not load: check the path given to INIT_FILE (absolute, or relative to the folder the simulator runs in)"
             } else {
                 "read the lines above; rerun with --waves to see the signals"

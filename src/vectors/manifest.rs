@@ -80,9 +80,60 @@ pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
 }
 
 /// Load a manifest and check every file it names: present, right size, same sha256.
+/// The manifest's own fields against each other: its configuration is a valid one and the
+/// one its hash names, its target is a set this configuration has, its record layout is that
+/// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
+fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
+    let file = manifest.display().to_string();
+    let regen = format!("regenerate the set with: {}", m.command);
+    m.config.validate(&file)?;
+    if m.config.hash() != m.config_hash {
+        return Err(Error::field(&file, "config", format!("the configuration's hash is {}, not the config_hash {} the set names", m.config.hash(), m.config_hash), regen));
+    }
+    if !super::writer::unit_present(&m.config, &m.target) {
+        return Err(Error::field(
+            &file,
+            "target",
+            format!("`{}` is not `top` or a unit of this configuration", m.target),
+            regen,
+        ));
+    }
+    if m.shininess > crate::limits::MAX_SHININESS {
+        return Err(Error::field(&file, "shininess", format!("{} is above MAX_SHININESS = {}", m.shininess, crate::limits::MAX_SHININESS), regen));
+    }
+    let l = if m.target == "top" {
+        super::targets::top_layout(&m.config)
+    } else {
+        super::targets::unit_layout(&m.config, &m.target)
+    };
+    let want = columns(&l);
+    if m.record_bits != l.bits || m.record_bytes as usize != l.bytes() || m.columns != want {
+        return Err(Error::field(
+            &file,
+            "columns",
+            format!(
+                "the record layout ({} bits, {} bytes, {} columns) is not the {} layout of this configuration ({} bits, {} bytes, {} columns)",
+                m.record_bits,
+                m.record_bytes,
+                m.columns.len(),
+                m.target,
+                l.bits,
+                l.bytes(),
+                want.len()
+            ),
+            regen,
+        ));
+    }
+    Ok(())
+}
+
 pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
     let dir = manifest.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let text = std::fs::read_to_string(manifest).map_err(|e| Error::io(manifest, e))?;
+    let text = crate::limits::read_text_as(
+        manifest,
+        "a gbump vector manifest",
+        "give the set's .json manifest (`gbump vectors` writes it beside the .hex and .bin files)",
+    )?;
     let m: Manifest = serde_json::from_str(&text).map_err(|e| Error::Input {
         file: manifest.display().to_string(),
         line: e.line(),
@@ -90,6 +141,7 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         msg: format!("not a gbump vector manifest: {e}"),
         fix: "regenerate the set with `gbump vectors`".into(),
     })?;
+    check_fields(manifest, &m)?;
     if m.count == 0 {
         return Err(Error::Other(format!(
             "{}: the set holds no vectors\n  fix: a regression over zero vectors proves nothing; regenerate with a non-empty source",
@@ -115,7 +167,7 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         if b.bytes != m.count * m.record_bytes as u64 {
             return Err(Error::Other(format!(
                 "{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}",
-                b.name, b.bytes, m.count, m.record_bytes, m.command
+                dir.join(&b.name).display(), b.bytes, m.count, m.record_bytes, m.command
             )));
         }
     }
