@@ -120,18 +120,18 @@ pub enum Cmd {
         #[arg(long, value_name = "SOURCE", conflicts_with = "vectors")]
         stream: Option<String>,
         /// Random top vectors on Verilator (0 skips the random sets).
-        #[arg(long, default_value_t = 1_000_000)]
+        #[arg(long, default_value_t = 1_000_000, conflicts_with_all = ["vectors", "stream"])]
         random: u64,
         /// Random top vectors on Icarus (0 skips the random sets).
-        #[arg(long, default_value_t = 100_000)]
+        #[arg(long, default_value_t = 100_000, conflicts_with_all = ["vectors", "stream"])]
         random_icarus: u64,
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, conflicts_with = "vectors")]
         seed: u64,
         /// Skip the built-in scenes' fragments.
-        #[arg(long)]
+        #[arg(long, conflicts_with_all = ["vectors", "stream"])]
         no_scenes: bool,
         /// Scene image size for fragment vectors.
-        #[arg(long, value_name = "WxH")]
+        #[arg(long, value_name = "WxH", conflicts_with = "vectors")]
         scene_size: Option<String>,
         /// Work folder: generated RTL, vectors and cached builds.
         #[arg(long, default_value = "target/gbump-regress")]
@@ -178,9 +178,9 @@ pub enum Cmd {
         /// cmos: NAND2 gate equivalents; ice40, ecp5, xilinx: LUTs, flip-flops, carry, DSP, RAM.
         #[arg(long, value_enum, default_value = "cmos")]
         target: crate::measure::fpga::Target,
-        /// iCE40 device for place and route (hx1k, hx4k, hx8k, lp1k, lp8k, up5k).
-        #[arg(long, default_value = "hx8k")]
-        device: String,
+        /// iCE40 device for place and route (hx1k, hx4k, hx8k, lp1k, lp8k, up5k; default hx8k).
+        #[arg(long)]
+        device: Option<String>,
         /// Also write the report as JSON.
         #[arg(long, value_name = "FILE", value_parser = output_file)]
         json: Option<PathBuf>,
@@ -305,7 +305,7 @@ pub enum Cmd {
         /// visa-seams, flat-shading or embm-resolution.
         #[arg(required_unless_present = "list")]
         name: Option<String>,
-        #[arg(long)]
+        #[arg(long, conflicts_with = "name")]
         list: bool,
         #[arg(long, default_value = "out/claims")]
         out: PathBuf,
@@ -622,6 +622,10 @@ pub fn run() -> anyhow::Result<()> {
             target,
             device,
         } if target != crate::measure::fpga::Target::Cmos => {
+            if device.is_some() && target != crate::measure::fpga::Target::Ice40 {
+                return Err(Error::Other(format!("--device has no effect on --target {target:?}: only ice40 is placed and routed on a device\n  fix: drop --device, or use --target ice40")).into());
+            }
+            let device = device.unwrap_or_else(|| "hx8k".into());
             let cfg = pick.resolve()?;
             crate::measure::fpga::ice40_package(&device)?;
             crate::measure::fpga::require(target)?;
@@ -632,7 +636,10 @@ pub fn run() -> anyhow::Result<()> {
             }
             out!("{}", crate::measure::fpga::markdown(&r));
         }
-        Cmd::Area { pick, work, json, .. } => {
+        Cmd::Area { pick, work, json, device, .. } => {
+            if device.is_some() {
+                return Err(Error::Other("--device has no effect on --target cmos (gate equivalents need no device)\n  fix: drop --device, or use --target ice40".into()).into());
+            }
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
@@ -952,6 +959,11 @@ fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, ma
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_ENV_MAP_SIDE};
     check_count("--embm-map", maps.embm_map.into(), 2, MAX_ENV_MAP_SIDE.into(), "MAX_ENV_MAP_SIDE")?;
     check_count("--cg-cube", maps.cg_cube.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    for (what, list) in [("--scene", scenes), ("--engine", engines)] {
+        if let Some((i, n)) = list.iter().enumerate().find(|(i, n)| list[..*i].contains(n)) {
+            return Err(Error::Other(format!("{what} {n} is given more than once (again as argument {} of its kind)\n  fix: name each once", i + 1)));
+        }
+    }
     let picked: Vec<&'static crate::engines::Engine> = if engines.is_empty() {
         ENGINES.iter().collect()
     } else {

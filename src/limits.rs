@@ -165,7 +165,7 @@ pub fn parse_size(s: &str) -> Result<(u32, u32)> {
     let max = MAX_IMAGE_SIDE;
     let bad = || {
         Error::Other(format!(
-            "--size {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE), e.g. 512x384"
+            "image size {s:?}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE)\n  fix: give a size such as 512x384"
         ))
     };
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;

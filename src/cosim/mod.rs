@@ -64,6 +64,19 @@ fn library(o: &CosimOptions) -> Result<PathBuf> {
             lib.display()
         )));
     }
+    // A shared object starts with the ELF magic; anything else would fail at the link, after
+    // a whole Verilator build, in the linker's words.
+    let mut magic = [0u8; 4];
+    let is_elf = std::fs::File::open(&lib)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut magic))
+        .is_ok()
+        && magic == *b"\x7fELF";
+    if !is_elf {
+        return Err(Error::Other(format!(
+            "{}: not a shared library (no ELF header), so not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
+            lib.display()
+        )));
+    }
     crate::sim::check_tool_path(&lib, "--lib")?;
     Ok(lib)
 }

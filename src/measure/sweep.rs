@@ -149,6 +149,17 @@ impl Space {
             if vals.is_empty() {
                 return Err(Error::field(file, &format!("grid.{k}"), "empty array", "give at least one value"));
             }
+            // A value outside its field's own range is no configuration beside any other value.
+            if let Some(&(_, lo, hi, why)) = crate::config::LIMITS.iter().find(|l| l.0 == k) {
+                if let Some(x) = vals.iter().filter_map(toml::Value::as_integer).find(|&x| x < lo as i64 || x > hi as i64) {
+                    return Err(Error::field(
+                        file,
+                        &format!("grid.{k}"),
+                        format!("{x} is out of range ({why})"),
+                        format!("use values in {lo}..={hi}"),
+                    ));
+                }
+            }
             combos = combos
                 .into_iter()
                 .flat_map(|(lab, t)| {
@@ -163,13 +174,22 @@ impl Space {
                 .collect();
         }
         let mut out = Vec::new();
+        let total = combos.len();
+        let mut skipped: Vec<(String, String)> = Vec::new();
         for (lab, t) in combos {
             let text = toml::to_string(&t).expect("table");
             match PipelineConfig::from_toml(file, &text) {
                 Ok(c) => out.push((lab.join(" "), c)),
-                Err(Error::Field { .. }) => continue, // an invalid combination is skipped
+                // An invalid combination (a rule across fields) is skipped, and counted.
+                Err(Error::Field { field, msg, .. }) => skipped.push((lab.join(" "), format!("{field}: {msg}"))),
                 Err(e) => return Err(e),
             }
+        }
+        if let Some((lab, why)) = skipped.first() {
+            eprintln!(
+                "note: {file}: {} of {total} grid points are invalid combinations and skipped (the first, {lab}: {why})",
+                skipped.len()
+            );
         }
         if out.is_empty() {
             return Err(Error::Other(format!(

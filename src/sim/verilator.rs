@@ -91,7 +91,7 @@ impl Simulator for Verilator {
     }
 
     fn programs(&self) -> &'static [&'static str] {
-        &["verilator"]
+        &["verilator", "make", "g++"]
     }
 
     /// `--binary`; the RTL's `.vlt` waivers go in with it.

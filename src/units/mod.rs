@@ -195,7 +195,13 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
                     .filter(|(k, _)| k.trim() == field)
                     .map(|(_, v)| v.trim().to_string())
             })
-            .unwrap_or_default()
+            // A field at its default is left out of the TOML (colour_guard_bits = 0, white_lights
+            // = false, interpolate = none): name that default.
+            .unwrap_or_else(|| match crate::config::LIMITS.iter().find(|l| l.0 == field) {
+                Some(_) => cfg.get(field).to_string(),
+                None if field == "interpolate" => "\"none\"".into(),
+                None => "false".into(),
+            })
     };
     // (what the configuration has, what the unit needs) for every unmet setting.
     let (has, want): (Vec<String>, Vec<String>) = u
