@@ -552,7 +552,7 @@ pub fn run() -> anyhow::Result<()> {
             // Stopping after zero mismatches would report nothing about a failing run.
             check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
             if let (Some(sz), false) = (&scene_size, no_scenes) {
-                let (w, h) = crate::limits::parse_size(sz)?;
+                let (w, h) = crate::limits::parse_size("--scene-size", sz)?;
                 crate::measure::scene_error::check_builtin_renders(w, h)?;
             }
             // A configuration derived from a scene file is regressed on that scene too.
@@ -564,7 +564,7 @@ pub fn run() -> anyhow::Result<()> {
                 seed,
                 scenes: !no_scenes,
                 own_scenes,
-                scene_size: scene_size.as_deref().map(crate::limits::parse_size).transpose()?,
+                scene_size: scene_size.as_deref().map(|s| crate::limits::parse_size("--scene-size", s)).transpose()?,
                 work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
                 waves,
                 max_errors,
@@ -656,7 +656,7 @@ pub fn run() -> anyhow::Result<()> {
             json,
         } => {
             let cfg = pick.resolve()?;
-            let (w, h) = crate::limits::parse_size(&size)?;
+            let (w, h) = crate::limits::parse_size("--size", &size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
             crate::measure::scene_error::check_builtin_renders(w, h)?;
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
@@ -984,7 +984,7 @@ fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, ma
     } else {
         scenes.to_vec()
     };
-    let size = size.map(crate::limits::parse_size).transpose()?;
+    let size = size.map(|s| crate::limits::parse_size("--size", s)).transpose()?;
     let t = report::measure(&scenes, &picked, size, maps)?;
     let (w, h, px) = t.contact_sheet();
     let md = t.markdown();
@@ -1038,6 +1038,9 @@ fn cosim(
     let cfg = pick.resolve()?;
     crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
     crate::limits::check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
+    if let Some(l) = &lib {
+        crate::cosim::check_library(l)?;
+    }
     let _lock = lock_work(work)?;
     let o = crate::cosim::CosimOptions {
         work: std::path::absolute(work).map_err(|e| Error::io(work, e))?,

@@ -161,11 +161,11 @@ pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<
 }
 
 /// Parse an image size `WxH` (`--size`, `--scene-size`), each side in 1..=[`MAX_IMAGE_SIDE`].
-pub fn parse_size(s: &str) -> Result<(u32, u32)> {
+pub fn parse_size(flag: &str, s: &str) -> Result<(u32, u32)> {
     let max = MAX_IMAGE_SIDE;
     let bad = || {
         Error::Other(format!(
-            "image size {s:?}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE)\n  fix: give a size such as 512x384"
+            "{flag} {s}: expected WxH with 1..={max} pixels per side (MAX_IMAGE_SIDE)\n  fix: give a size such as 512x384"
         ))
     };
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;

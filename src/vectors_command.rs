@@ -89,7 +89,7 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         text: r.text,
         binary: r.binary,
         seed,
-        size: r.size.map(crate::limits::parse_size).transpose()?,
+        size: r.size.map(|s| crate::limits::parse_size("--size", s)).transpose()?,
         command: r.command.clone(),
         shininess: r.shininess,
     };

@@ -655,6 +655,90 @@ fn cases() -> Vec<Case> {
             vec!["rtl", "--out", "out"],
             vec!["out"],
         ),
+        (
+            "more bump lights than light slots",
+            scene(|t| {
+                let light = "\n[[lights]]\nkind = \"directional\"\ndirection = [0.0, 0.0, 1.0]\ncolour = [0.1, 0.1, 0.1]\n";
+                t.to_string() + &light.repeat(9)
+            }),
+            render_nosize(),
+            vec!["s.toml", "light slots", "bump = false"],
+        ),
+        (
+            "a scene's derived configuration with more bump lights than slots",
+            scene(|t| {
+                let light = "\n[[lights]]\nkind = \"directional\"\ndirection = [0.0, 0.0, 1.0]\ncolour = [0.1, 0.1, 0.1]\n";
+                t.to_string() + &light.repeat(9)
+            }),
+            vec!["rtl", "--scene", "s.toml", "--out", "out"],
+            vec!["s.toml", "light slots"],
+        ),
+        (
+            "an array longer than its field",
+            scene(r("size = [256, 128]", "size = [256, 128, 3]")),
+            render_nosize(),
+            vec!["s.toml:", "size", "3 values where the field takes 2", "give exactly 2"],
+        ),
+        (
+            "a huge number",
+            scene(r("height = 2.0", "height = 1e300")),
+            render_nosize(),
+            vec!["s.toml:", "1e300 is out of range"],
+        ),
+        (
+            "a folder as the configuration",
+            vec![],
+            vec!["render", "--config", ".", "--out", "out"],
+            vec!["folder", "give the file itself"],
+        ),
+        (
+            "--shininess on a ROM power table",
+            cfg(include_str!("configs/power_rom.toml")),
+            vec!["vectors", "--source", "random:10", "--target", "top", "--config", "c.toml", "--shininess", "3", "--out", "out"],
+            vec!["--shininess 3", "ROM holding shininess", "fix:"],
+        ),
+        (
+            "an exhaustive source with another target",
+            vec![],
+            vec!["vectors", "--source", "exhaustive:power_unit", "--target", "top", "--out", "out"],
+            vec!["--target", "power_unit", "fix:"],
+        ),
+        (
+            "regress --vectors with --random",
+            vec![],
+            vec!["regress", "--vectors", "x.json", "--random", "5", "--work", "w"],
+            vec!["cannot be used with"],
+        ),
+        (
+            "--json under a file",
+            vec![("afile", "a file".into())],
+            vec!["error", "--json", "afile/x.json", "--random", "10"],
+            vec!["afile is a file", "fix:"],
+        ),
+        (
+            "a sweep grid value outside its field's range",
+            space("scene = \"torus_caps\"\n[grid]\nnormal_bits = [1, 8]\n"),
+            sweep(),
+            vec!["sp.toml", "grid.normal_bits", "3..=16"],
+        ),
+        (
+            "cosim --lib that is not a library",
+            vec![("lib.so", "not a library".into())],
+            vec!["cosim", "--lib", "lib.so", "--work", "w"],
+            vec!["lib.so", "not a shared library", "fix:"],
+        ),
+        (
+            "an engine named twice",
+            vec![],
+            vec!["engines", "--engine", "blinn", "--engine", "blinn", "--out", "out"],
+            vec!["--engine blinn", "more than once"],
+        ),
+        (
+            "--device off ice40",
+            vec![],
+            vec!["area", "--device", "up5k", "--work", "w"],
+            vec!["--device", "no effect", "fix:"],
+        ),
     ]
 }
 
@@ -804,28 +888,86 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
     assert!(text.contains("crashed") && text.contains("signal 11"), "{text}");
 }
 
+/// Ctrl-C, a CI runner's SIGTERM and a closed terminal's SIGHUP each stop a dump midway with
+/// nothing left behind.
 #[test]
 fn an_interrupted_dump_leaves_nothing_behind() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
-        .args(["vectors", "--source", "random:200000000", "--target", "top", "--out"])
-        .arg(dir.path().join("out"))
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    unsafe_kill(child.id());
-    let st = child.wait().unwrap();
-    assert!(!st.success());
-    let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
-        .map(|d| d.map(|e| e.unwrap().file_name()).collect())
-        .unwrap_or_default();
-    assert!(left.is_empty(), "left behind: {left:?}");
+    for signal in ["INT", "TERM", "HUP"] {
+        let dir = tempfile::tempdir().unwrap();
+        let child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+            .args(["vectors", "--source", "random:200000000", "--target", "top", "--out"])
+            .arg(dir.path().join("out"))
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1500));
+        send(signal, child.id());
+        let o = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "SIG{signal}: {err}");
+        assert!(err.contains("interrupted"), "SIG{signal}: {err}");
+        let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
+            .map(|d| d.map(|e| e.unwrap().file_name()).collect())
+            .unwrap_or_default();
+        assert!(left.is_empty(), "SIG{signal} left behind: {left:?}");
+    }
 }
 
-fn unsafe_kill(pid: u32) {
+fn send(signal: &str, pid: u32) {
     std::process::Command::new("kill")
-        .args(["-INT", &pid.to_string()])
+        .args([&format!("-{signal}"), &pid.to_string()])
         .status()
         .unwrap();
+}
+
+/// A vector manifest is checked field against field before anything runs: its data files'
+/// checksums cannot see an edit of the manifest itself. An oversized or binary file given as
+/// the manifest is refused as such.
+#[test]
+fn an_edited_manifest_is_refused_before_anything_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let gbump = || Command::cargo_bin("gbump").unwrap();
+    gbump()
+        .args(["vectors", "--source", "random:20", "--target", "top", "--out", "v"])
+        .current_dir(dir.path())
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(dir.path().join("v/random20_top.json")).unwrap();
+    let m: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let edits: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>, Vec<&str>)> = vec![
+        ("the configuration", Box::new(|m| m["config"]["lights"] = 3.into()), vec!["field `config`", "config_hash", "fix: regenerate"]),
+        ("the record width", Box::new(|m| m["record_bits"] = 600.into()), vec!["field `columns`", "record layout", "fix: regenerate"]),
+        ("a column", Box::new(|m| m["columns"][0]["width"] = 9999.into()), vec!["field `columns`", "fix: regenerate"]),
+        ("the target", Box::new(|m| m["target"] = "nosuchunit".into()), vec!["field `target`", "nosuchunit", "fix: regenerate"]),
+        ("the shininess", Box::new(|m| m["shininess"] = 100000.into()), vec!["field `shininess`", "MAX_SHININESS"]),
+    ];
+    for (what, edit, needles) in edits {
+        let mut e = m.clone();
+        edit(&mut e);
+        let path = dir.path().join("v/edited.json");
+        std::fs::write(&path, serde_json::to_string(&e).unwrap()).unwrap();
+        let o = gbump()
+            .args(["regress", "--sim", "icarus", "--vectors"])
+            .arg(&path)
+            .args(["--work", "w"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{what}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{what}: message lacks `{n}`: {err}");
+        }
+        assert!(!dir.path().join("w").exists() || std::fs::read_dir(dir.path().join("w")).unwrap().next().is_none(), "{what}: ran before refusing");
+    }
+    std::fs::write(dir.path().join("big.json"), vec![b' '; 2 << 20]).unwrap();
+    for (file, needle) in [("big.json", "MAX_INPUT_BYTES"), ("v/random20_top.bin", "not UTF-8")] {
+        let o = gbump()
+            .args(["regress", "--sim", "icarus", "--vectors", file, "--work", "w"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(needle) && err.contains(".json manifest"), "{file}: {err}");
+    }
 }

@@ -52,22 +52,18 @@ pub fn default_library() -> Result<PathBuf> {
     })
 }
 
-fn library(o: &CosimOptions) -> Result<PathBuf> {
-    let lib = match &o.lib {
-        Some(l) => l.clone(),
-        None => default_library()?,
-    };
-    let lib = std::path::absolute(&lib).map_err(|e| Error::io(&lib, e))?;
+/// Refuse `lib` unless it is a file with an ELF header: anything else would fail at the
+/// link, after a whole Verilator build, in the linker's words. Checked before the work folder
+/// is touched.
+pub fn check_library(lib: &Path) -> Result<()> {
     if !lib.is_file() {
         return Err(Error::Other(format!(
             "{}: the gbump C library is not there\n  fix: cargo build --release -j 1 (it builds libgbump.so beside the gbump executable), or pass --lib FILE",
             lib.display()
         )));
     }
-    // A shared object starts with the ELF magic; anything else would fail at the link, after
-    // a whole Verilator build, in the linker's words.
     let mut magic = [0u8; 4];
-    let is_elf = std::fs::File::open(&lib)
+    let is_elf = std::fs::File::open(lib)
         .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut magic))
         .is_ok()
         && magic == *b"\x7fELF";
@@ -77,6 +73,16 @@ fn library(o: &CosimOptions) -> Result<PathBuf> {
             lib.display()
         )));
     }
+    Ok(())
+}
+
+fn library(o: &CosimOptions) -> Result<PathBuf> {
+    let lib = match &o.lib {
+        Some(l) => l.clone(),
+        None => default_library()?,
+    };
+    let lib = std::path::absolute(&lib).map_err(|e| Error::io(&lib, e))?;
+    check_library(&lib)?;
     crate::sim::check_tool_path(&lib, "--lib")?;
     Ok(lib)
 }

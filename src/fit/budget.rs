@@ -70,7 +70,7 @@ impl Budget {
         let v: f64 = value.parse().map_err(|_| bad())?;
         if !v.is_finite() || v < 0.0 || (kind == "psnr" && v > 200.0) {
             return Err(Error::Other(format!(
-                "--budget `{text}`: {v} is out of range\n  fix: a finite bound, at least 0 (PSNR at most 200 dB)"
+                "--budget `{text}`: the bound is out of range\n  fix: a finite bound, at least 0 (PSNR at most 200 dB)"
             )));
         }
         Ok(match kind {

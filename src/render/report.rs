@@ -44,7 +44,7 @@ pub fn scene_and_config(scene: &str, config: Option<&Path>) -> Result<(Scene, Pi
 pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
     let (s, cfg) = scene_and_config(r.scene, r.config)?;
     let (w, h) = match r.size {
-        Some(sz) => crate::limits::parse_size(sz)?,
+        Some(sz) => crate::limits::parse_size("--size", sz)?,
         None => (s.size[0], s.size[1]),
     };
     crate::names::check(&s.file, "name", &s.name)?;

@@ -25,6 +25,15 @@ fn locate(text: &str, array: Option<(&str, usize)>, key: &str) -> Option<usize> 
         .map(|(i, _)| i + 1)
 }
 
+/// A number as a person reads it: 1e300 as `1e300`, not as 301 digits.
+fn short(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 struct Checker<'a> {
     s: &'a Scene,
     text: &'a str,
@@ -45,7 +54,7 @@ impl Checker<'_> {
                 array,
                 key,
                 path,
-                format!("{v} is out of range"),
+                format!("{} is out of range", short(v)),
                 &format!("use a value in [{lo}, {hi}]"),
             ));
         }
