@@ -111,8 +111,12 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         s += &format!("| `{}` | {role} | {} | {} | {} | {} |\n", c.name, c.lsb, c.width, c.lanes, c.format);
     }
     s += &format!(
-        "\nText (`.hex`): one record per line, {} hex digits, most significant digit first (what `$readmemh` and `$fscanf(\"%h\")` read). Binary (`.bin`): the same bits as {} little-endian bytes per record (bit k of the record is bit k % 8 of byte k / 8), records back to back. The power table a set was made for is beside it as `<set>_power_table.hex`.\n\n",
+        "\nText (`.hex`): one record per line, {} hex digits, most significant digit first (what `$readmemh` and `$fscanf(\"%h\")` read){}. Binary (`.bin`): the same bits as {} little-endian bytes per record (bit k of the record is bit k % 8 of byte k / 8), records back to back. The power table a set was made for is beside it as `<set>_power_table.hex`; the manifest's top-level `shininess` names it, while `config.shininess` is the configuration's own table, the one the top powers up with (they differ for a set made with `--shininess`).\n\n",
         l.hex_digits(),
+        match 4 * l.hex_digits() - l.bits as usize {
+            0 => String::new(),
+            pad => format!(" ({} bits; the top {pad} bit(s) beyond the record's {} are 0)", 4 * l.hex_digits(), l.bits),
+        },
         l.bytes()
     );
     if cfg.per_triangle() {
