@@ -6,6 +6,30 @@
 
 #include <stdint.h>
 
+/*
+ * Conventions of every function below:
+ * - Handles: gbump_config_* and gbump_stim_new create one, the matching _free releases it.
+ *   NULL means failure. A NULL or freed handle passed in is refused like any bad argument
+ *   (a NULL handle is never dereferenced; a freed one is undefined behaviour).
+ * - Status: functions returning int32_t give 0 on success and -1 on failure (gbump_eval,
+ *   gbump_eval_batch, gbump_set_shininess, gbump_stim_next); counts, widths, offsets and
+ *   words (gbump_record_words, gbump_column, gbump_power_word, ...) are -1 on failure;
+ *   functions returning a string give NULL on failure (an index out of range, a bad handle).
+ * - Errors: gbump_last_error() says why the last failing call on this thread failed, with
+ *   the fix; it keeps that message until the next failure on the thread (a success does not
+ *   clear it); empty before any failure.
+ * - Strings returned are owned by the library, never freed by the caller: gbump_version and
+ *   gbump_source are static; gbump_config_hash, gbump_config_toml, gbump_port_name and
+ *   gbump_column_name live as long as their handle; gbump_last_error's until the next
+ *   failure on the thread.
+ * - Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
+ *   files (gbump_column gives each column's offset); targets are "top" and the unit names of
+ *   gbump_column_name's table. Bits above a record's last bit are ignored.
+ * - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call.
+ * - Threads: a handle may be read from several threads at once, but not while
+ *   gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.
+ */
+
 /* Compare with gbump_abi_version() at run time. */
 #define GBUMP_ABI_VERSION 1
 
@@ -31,8 +55,16 @@ int32_t gbump_abi_version(void);
 
 /**
  * The library's name and version, as stamped into generated files (`gbump 0.1.0`).
+ * A static string: never freed.
  */
 const char *gbump_version(void);
+
+/**
+ * The hash of the sources the library was built from, as `gbump --version` prints it: a
+ * library built from other sources than the gbump beside it differs here (the version
+ * numbers are the same). A static string: never freed.
+ */
+const char *gbump_source(void);
 
 /**
  * Why the last failing call on this thread failed (empty before any failure).
@@ -78,7 +110,9 @@ void gbump_config_free(struct GbumpConfig *h);
 const char *gbump_config_hash(const struct GbumpConfig *h);
 
 /**
- * The configuration as canonical TOML (every field, the input of the hash).
+ * The configuration as canonical TOML (the input of the hash): every field, except that
+ * colour_guard_bits, white_lights, power_rom and interpolate are left out at their defaults
+ * (0, false, false, "none"), so hashes made before they existed stay.
  *
  * # Safety
  * `h` is a live handle.
@@ -230,7 +264,8 @@ int32_t gbump_eval(const struct GbumpConfig *h,
 
 /**
  * Evaluate `count` records of `target` back to back (`gbump_record_words(h, target)` words
- * each), in parallel on the library's thread pool.
+ * each), in parallel on the library's thread pool; 0 on success, -1 on failure. `count` is
+ * 0..=MAX_BATCH_RECORDS (2^24); with 0 nothing is read or written (the buffers may be NULL).
  *
  * # Safety
  * As `gbump_eval`, with `count` records in each buffer.

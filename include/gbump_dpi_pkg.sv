@@ -10,8 +10,13 @@ package gbump_dpi_pkg;
     typedef bit [GBUMP_MAX_BITS-1:0] gbump_record_t;
     // The ABI version (`ABI_VERSION`): compare with the header's `GBUMP_ABI_VERSION`.
     import "DPI-C" function int gbump_abi_version();
-    // The library's name and version, as stamped into generated files (`gbump 0.1.0`).
+    // The library's name and version, as stamped into generated files (`gbump 0.1.0`). A static
+    // string: never freed.
     import "DPI-C" function string gbump_version();
+    // The hash of the sources the library was built from, as `gbump --version` prints it: a
+    // library built from other sources than the gbump beside it differs here (the version numbers
+    // are the same). A static string: never freed.
+    import "DPI-C" function string gbump_source();
     // Why the last failing call on this thread failed (empty before any failure).
     import "DPI-C" function string gbump_last_error();
     // A handle for the built-in default configuration; NULL on failure.
@@ -25,7 +30,9 @@ package gbump_dpi_pkg;
     import "DPI-C" function void gbump_config_free(input chandle h);
     // The configuration's 16-hex-digit hash (as in every generated file's header).
     import "DPI-C" function string gbump_config_hash(input chandle h);
-    // The configuration as canonical TOML (every field, the input of the hash).
+    // The configuration as canonical TOML (the input of the hash): every field, except that
+    // colour_guard_bits, white_lights, power_rom and interpolate are left out at their defaults
+    // (0, false, false, "none"), so hashes made before they existed stay.
     import "DPI-C" function string gbump_config_toml(input chandle h);
     // The generated top module's name (`gbump_pipeline_<hash8>`).
     import "DPI-C" function string gbump_module_name(input chandle h);

@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 #[derive(Parser)]
 #[command(
     name = "gbump",
-    version,
+    version = crate::LONG_VERSION,
     about = "Golden model, RTL generator and regression runner for Gouraud Bump Mapping hardware"
 )]
 pub struct Cli {
@@ -255,9 +255,9 @@ pub enum Cmd {
         /// minutes per depth), reaches this clock in MHz.
         #[arg(long, value_name = "MHZ")]
         min_fmax: Option<f64>,
-        /// The iCE40 device of --min-fmax (hx1k, hx4k, hx8k, lp1k, lp8k, up5k).
-        #[arg(long, default_value = "hx8k")]
-        device: String,
+        /// The iCE40 device of --min-fmax (hx1k, hx4k, hx8k, lp1k, lp8k, up5k; default hx8k).
+        #[arg(long, requires = "min_fmax")]
+        device: Option<String>,
         #[arg(long, default_value = "target/gbump-fit")]
         work: PathBuf,
     },
@@ -273,7 +273,7 @@ pub enum Cmd {
         #[arg(long, default_value_t = 14)]
         calibrate: usize,
         /// Write every sample (config, Yosys GE, estimate) here, one JSON object a line.
-        #[arg(long, value_name = "FILE")]
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
         write: Option<PathBuf>,
         #[arg(long, default_value = "target/gbump-areamodel")]
         work: PathBuf,
@@ -398,7 +398,6 @@ impl SimChoice {
     }
 }
 
-/// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
 /// An output file named on the command line, checked before any work: not a folder, and
 /// under a folder (existing or to be made) rather than under a file, so a long run does not
 /// end by failing to write its result.
@@ -420,6 +419,7 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     Ok(p)
 }
 
+/// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
 #[derive(clap::Args, Clone, Debug)]
 pub struct ConfigPick {
     /// Pipeline configuration TOML.
@@ -623,7 +623,8 @@ pub fn run() -> anyhow::Result<()> {
             device,
         } if target != crate::measure::fpga::Target::Cmos => {
             if device.is_some() && target != crate::measure::fpga::Target::Ice40 {
-                return Err(Error::Other(format!("--device has no effect on --target {target:?}: only ice40 is placed and routed on a device\n  fix: drop --device, or use --target ice40")).into());
+                let name = clap::ValueEnum::to_possible_value(&target).map_or(String::new(), |v| v.get_name().to_string());
+                return Err(Error::Other(format!("--device has no effect on --target {name}: only ice40 is placed and routed on a device\n  fix: drop --device, or use --target ice40")).into());
             }
             let device = device.unwrap_or_else(|| "hx8k".into());
             let cfg = pick.resolve()?;
@@ -714,6 +715,11 @@ pub fn run() -> anyhow::Result<()> {
                 ))
                 .into());
             }
+            // Every configuration is read before the first synthesis, so a bad one fails now.
+            for f in &files {
+                PipelineConfig::load(f)?;
+            }
+            crate::yosys::require()?;
             let _lock = lock_work(&work)?;
             let (coef, samples) =
                 crate::measure::area_model::calibrate_and_check(&files, calibrate, &work, &mut |m| eprintln!("area-model: {m}"))?;
@@ -745,7 +751,11 @@ pub fn run() -> anyhow::Result<()> {
                 ))
                 .into());
             }
-            let _lock = lock_work(&work)?;
+            // Every input and tool is checked before the work folder is taken.
+            let device = device.unwrap_or_else(|| "hx8k".into());
+            for s in &scene {
+                Scene::load(s)?;
+            }
             if yosys {
                 crate::yosys::require()?;
             }
@@ -756,6 +766,7 @@ pub fn run() -> anyhow::Result<()> {
                 crate::measure::fpga::ice40_package(&device)?;
                 crate::measure::fpga::require(crate::measure::fpga::Target::Ice40)?;
             }
+            let _lock = lock_work(&work)?;
             // The search sizes with the analytical model; Yosys confirms on request.
             let area = |c: &PipelineConfig| Ok(crate::measure::area_model::estimate(c));
             let mut fit = crate::fit::run::fit(&scene, budget, min_throughput, &area)?;
@@ -941,7 +952,7 @@ pub fn run() -> anyhow::Result<()> {
             None => {
                 let cfg = PipelineConfig::default();
                 out!(
-                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n",
+                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n# white_lights = false  (true: every bump light is white, so the Lc multiplies go; tri_lc/in_lc stay on the interface, unused; written only when true, so older hashes stay)\n# power_rom = false  (true: the power table is a ROM holding x^shininess, its load port unused; written only when true, so older hashes stay)\n",
                     cfg.hash(),
                     cfg.to_toml(),
                     crate::config::limit("colour_guard_bits").1
@@ -1038,10 +1049,6 @@ fn cosim(
     let cfg = pick.resolve()?;
     crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
     crate::limits::check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
-    if let Some(l) = &lib {
-        crate::cosim::check_library(l)?;
-    }
-    let _lock = lock_work(work)?;
     let o = crate::cosim::CosimOptions {
         work: std::path::absolute(work).map_err(|e| Error::io(work, e))?,
         rtl,
@@ -1052,6 +1059,8 @@ fn cosim(
         max_errors,
         command: format!("gbump rtl {}", pick.args()),
     };
+    crate::cosim::check_inputs(&cfg, &o)?;
+    let _lock = lock_work(work)?;
     let r = crate::cosim::cosim(&cfg, &o)?;
     // The flags that pick the configuration, for the replay hint.
     let a = if pick.args().is_empty() { String::new() } else { pick.args() + " " };

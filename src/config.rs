@@ -349,6 +349,14 @@ impl PipelineConfig {
     /// Parse a TOML config; `file` names it in errors. Renamed fields are read under their
     /// old names too, with a warning ([`RENAMED_FIELDS`]).
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
+        // Text handed over by the C ABI or Python has the cap a file read has.
+        if text.len() as u64 > crate::limits::MAX_INPUT_BYTES {
+            return Err(Error::Other(format!(
+                "{file}: {} bytes of TOML, larger than MAX_INPUT_BYTES = {}; not a configuration\n  fix: give the configuration's TOML text",
+                text.len(),
+                crate::limits::MAX_INPUT_BYTES
+            )));
+        }
         let text = &upgrade_names(file, text);
         let cfg: PipelineConfig =
             toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))?;

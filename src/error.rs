@@ -55,6 +55,7 @@ impl Error {
             K::StorageFull | K::QuotaExceeded => "\n  fix: free space on that disk, or write elsewhere",
             K::ReadOnlyFilesystem => "\n  fix: write to a writable folder",
             K::InvalidData => "\n  fix: give a text file in UTF-8",
+            K::BrokenPipe => "\n  fix: the program reading this output closed it early; let it read to the end",
             _ => "\n  fix: check the path, the disk and the permissions",
         };
         Error::Io {

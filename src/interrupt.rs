@@ -1,19 +1,57 @@
-//! Ctrl-C, SIGTERM and SIGHUP (a CI runner's timeout, a closed terminal): the first sets a flag that long loops (vector dumps, renders, regressions)
-//! check, so they stop through their normal error path and their temporary files are removed;
-//! a second interrupt exits at once.
+//! Ctrl-C, SIGTERM and SIGHUP (a CI runner's timeout, a closed terminal). Where a run holds a
+//! [`Cleanup`] (writing vector files, output folders, a streamed regression), the first
+//! signal sets a flag that its loops check, so they stop through their normal error path and
+//! remove what they wrote; a second exits at once. Anywhere else the first exits at once, as
+//! the signal's default would, so a long computation is not finished only to be thrown away.
+//! A signal that was ignored when gbump started (`nohup`'s SIGHUP) stays ignored.
 
 use crate::error::{Error, Result};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+static CLEANUPS: AtomicUsize = AtomicUsize::new(0);
 
 /// Install the handler (once, from `main`).
 pub fn install() {
+    #[cfg(unix)]
+    let ignored: Vec<libc::c_int> = [libc::SIGHUP, libc::SIGINT, libc::SIGTERM]
+        .into_iter()
+        .filter(|&s| {
+            // SAFETY: reads the current action into a zeroed struct; changes nothing.
+            unsafe {
+                let mut old: libc::sigaction = std::mem::zeroed();
+                libc::sigaction(s, std::ptr::null(), &mut old) == 0 && old.sa_sigaction == libc::SIG_IGN
+            }
+        })
+        .collect();
     let _ = ctrlc::set_handler(|| {
-        if INTERRUPTED.swap(true, Ordering::SeqCst) {
+        if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
     });
+    #[cfg(unix)]
+    for s in ignored {
+        // SAFETY: restores the ignore disposition the process was started with.
+        unsafe {
+            libc::signal(s, libc::SIG_IGN);
+        }
+    }
+}
+
+/// While held, a signal asks the run to stop through its error path instead of exiting, so
+/// the holder can remove what it wrote.
+pub struct Cleanup(());
+
+/// Hold a [`Cleanup`] for as long as a run writes something it must remove when stopped.
+pub fn cleanup() -> Cleanup {
+    CLEANUPS.fetch_add(1, Ordering::SeqCst);
+    Cleanup(())
+}
+
+impl Drop for Cleanup {
+    fn drop(&mut self) {
+        CLEANUPS.fetch_sub(1, Ordering::SeqCst);
+    }
 }
 
 /// Error if an interrupt arrived.

@@ -39,3 +39,11 @@ pub use error::{Error, Result};
 
 /// Tool name and version, as stamped into every generated file.
 pub const TOOL: &str = concat!("gbump ", env!("CARGO_PKG_VERSION"));
+
+/// A hash of the sources this build was made from (`build.rs`): `gbump --version` prints it,
+/// and the Python module (`gbump.__source__`) and the C library (`gbump_source()`) carry it,
+/// so one built from other sources than the gbump beside it is told apart.
+pub const SOURCE_HASH: &str = env!("GBUMP_SOURCE_HASH");
+
+/// `gbump --version`: the version and the source hash.
+pub const LONG_VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), " (source ", env!("GBUMP_SOURCE_HASH"), ")");

@@ -722,6 +722,12 @@ fn cases() -> Vec<Case> {
             vec!["sp.toml", "grid.normal_bits", "3..=16"],
         ),
         (
+            "a sweep base value outside its field's range",
+            space("scene = \"torus_caps\"\n[base]\nnormal_bits = 1\n[grid]\nlh_bits = [12, 16]\n"),
+            sweep(),
+            vec!["sp.toml:3", "base.normal_bits", "3..=16"],
+        ),
+        (
             "cosim --lib that is not a library",
             vec![("lib.so", "not a library".into())],
             vec!["cosim", "--lib", "lib.so", "--work", "w"],

@@ -19,26 +19,39 @@ fn stderr(o: &std::process::Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// A top set for another shininess is refused where it would be made (`gbump vectors`) and,
+/// made some other way (here: a manifest edited to name another table), where it would run.
+/// Unit sets are not refused: `regress` itself sweeps the power unit at many shininesses.
 #[test]
 fn a_top_set_for_another_shininess_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let v = dir.path().join("v");
+    let base = ["vectors", "--config", "tests/configs/power_rom.toml", "--shininess"];
+    let o = gbump()
+        .args(base)
+        .args(["32", "--source", "random:50", "--target", "top", "--out"])
+        .arg(&v)
+        .assert()
+        .failure();
+    let t = stderr(o.get_output());
+    assert!(t.contains("--shininess 32") && t.contains("ROM holding shininess 24") && t.contains("fix:"), "{t}");
+    assert!(!v.exists(), "a refused set left {v:?}");
     gbump()
-        .args([
-            "vectors",
-            "--config",
-            "tests/configs/power_rom.toml",
-            "--source",
-            "random:50",
-            "--shininess",
-            "32",
-            "--target",
-            "top",
-            "--out",
-        ])
+        .args(base)
+        .args(["5", "--source", "exhaustive:power_unit", "--out"])
+        .arg(dir.path().join("unit"))
+        .assert()
+        .success();
+    gbump()
+        .args(["vectors", "--config", "tests/configs/power_rom.toml", "--source", "random:50", "--target", "top", "--out"])
         .arg(&v)
         .assert()
         .success();
+    let m = v.join("random50_top.json");
+    // The top-level field (two spaces in); the configuration's own stays 24.
+    let text = std::fs::read_to_string(&m).unwrap().replace("\n  \"shininess\": 24", "\n  \"shininess\": 32");
+    assert!(text.contains("\n  \"shininess\": 32"), "the manifest names its table");
+    std::fs::write(&m, text).unwrap();
     let o = gbump()
         .args([
             "regress",

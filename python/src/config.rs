@@ -68,7 +68,7 @@ impl Config {
     #[staticmethod]
     fn from_interface(path: PathBuf) -> PyResult<Self> {
         let p = path.display();
-        let text = std::fs::read_to_string(&path).map_err(|e| crate::err(gbump::Error::io(&path, e)))?;
+        let text = gbump::limits::read_text_as(&path, "an interface JSON", "pass the <top>.json that gbump rtl writes").map_err(crate::err)?;
         let v: serde_json::Value = serde_json::from_str(&text)
             .map_err(|e| crate::fail(format!("{p}: not JSON ({e})\n  fix: pass the <top>.json that gbump rtl writes")))?;
         let (Some(c), Some(hash)) = (v.get("config"), v.get("config_hash").and_then(|h| h.as_str())) else {
@@ -99,13 +99,16 @@ impl Config {
         self.cfg().hash()
     }
 
-    /// Canonical TOML of every field (the input of the hash).
+    /// Canonical TOML of the configuration (the input of the hash): every field, except that
+    /// colour_guard_bits, white_lights, power_rom and interpolate are left out at their
+    /// defaults (0, false, false, "none"), so hashes made before they existed stay.
     #[getter]
     fn toml(&self) -> String {
         self.cfg().to_toml()
     }
 
-    /// Every field, as a dict.
+    /// The fields of `toml`, as a dict (the four left out at their defaults are left out here
+    /// too).
     fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         json_to_py(py, &serde_json::to_string(self.cfg()).expect("config serialises"))
     }
@@ -161,8 +164,9 @@ impl Config {
         Ok(d)
     }
 
-    /// Shininess of the model's power table; setting it reloads the table, as the top's load
-    /// port would.
+    /// Shininess of the model's power table now; setting it reloads the table, as the top's
+    /// load port would (`eval` uses it). The configuration's own shininess, which `vectors`
+    /// and `rom` default to as the command line does, stays as it was.
     #[getter]
     fn shininess(&self) -> u32 {
         self.h.mem.table.n
@@ -187,15 +191,20 @@ impl Config {
 
     /// ROM `name` ("power_table", "bump_palette" or "cube_map") as {name, width, words,
     /// layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
-    /// configuration's, `cube_size` to gbump rom's.
+    /// configuration's own (its TOML field, as `gbump rom` does; not the `shininess`
+    /// property, the model's current table), `cube_size` to gbump rom's.
     #[pyo3(signature = (name, shininess = None, cube_size = 32))]
-    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<u32>, cube_size: u32) -> PyResult<Bound<'py, PyDict>> {
+    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<i128>, cube_size: i128) -> PyResult<Bound<'py, PyDict>> {
         use gbump::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
         use gbump::rtlgen::rom;
         let cfg = self.cfg();
+        let cube_size = crate::arg("cube_size", cube_size, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")? as u32;
         let r = match name {
             "power_table" => {
-                let n = shininess.unwrap_or(cfg.shininess);
+                let n = match shininess {
+                    Some(n) => crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32,
+                    None => cfg.shininess,
+                };
                 check_count("shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS").map_err(crate::err)?;
                 rom::power_rom(cfg, n)
             }
@@ -314,26 +323,44 @@ impl Config {
         crate::fields::unpack(py, t, &out, count)
     }
 
-    /// The seeded random stimulus stream of `gbump vectors --source random:N --seed SEED`.
-    #[pyo3(signature = (seed = 0))]
-    fn stimulus(&self, seed: u64) -> crate::vectors::Stimulus {
-        crate::vectors::Stimulus::new(&self.h, seed)
+    /// The seeded random stimulus stream of `gbump vectors --source random:N --seed SEED`
+    /// (the same default seed, 1).
+    #[pyo3(signature = (seed = 1))]
+    fn stimulus(&self, seed: i128) -> PyResult<crate::vectors::Stimulus> {
+        let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
+        Ok(crate::vectors::Stimulus::new(&self.h, seed))
     }
 
-    /// Vector sets of `source` ("random:N", "corners", "scene:NAME", "exhaustive:UNIT"), as
-    /// `gbump vectors` writes them: a list of {name, target, shininess, records, reasons} (one
-    /// per power table; `reasons` lists why each corner is there, else None). Random and
-    /// corner sets use `shininess` (default the configuration's), scenes their objects'.
-    #[pyo3(signature = (source, seed = 0, shininess = None, size = None))]
+    /// Vector sets of `source` ("random:N", "corners", "scene:NAME", "exhaustive:UNIT"), the
+    /// top's set as `gbump vectors --target top` writes it (an exhaustive source: its unit's
+    /// set), with the same default seed, 1: a list of {name, target, shininess, records,
+    /// reasons} (one per power table; `reasons` lists why each corner is there, else None).
+    /// Random, corner and exhaustive sets use `shininess`, by default the configuration's own
+    /// (its TOML field, what `gbump vectors` uses; not the model's current table, which the
+    /// `shininess` property reads and sets); scenes their objects'.
+    #[pyo3(signature = (source, seed = 1, shininess = None, size = None))]
     fn vectors<'py>(
         &self,
         py: Python<'py>,
         source: &str,
-        seed: u64,
-        shininess: Option<u32>,
-        size: Option<(u32, u32)>,
+        seed: i128,
+        shininess: Option<i128>,
+        size: Option<(i128, i128)>,
     ) -> PyResult<Bound<'py, PyList>> {
-        crate::vectors::vectors(py, &self.h, source, seed, shininess, size)
+        use gbump::limits::{MAX_IMAGE_SIDE, MAX_SHININESS};
+        let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
+        let shininess = match shininess {
+            Some(n) => crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32,
+            None => self.h.cfg.shininess,
+        };
+        let size = match size {
+            Some((w, h)) => Some((
+                crate::arg("size[0]", w, 1, MAX_IMAGE_SIDE.into(), "MAX_IMAGE_SIDE")? as u32,
+                crate::arg("size[1]", h, 1, MAX_IMAGE_SIDE.into(), "MAX_IMAGE_SIDE")? as u32,
+            )),
+            None => None,
+        };
+        crate::vectors::vectors(py, &self.h, source, seed, Some(shininess), size)
     }
 
     fn __repr__(&self) -> String {

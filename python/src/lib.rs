@@ -23,6 +23,18 @@ pub(crate) fn err(e: gbump::Error) -> PyErr {
     GbumpError::new_err(e.to_string())
 }
 
+/// A Python integer argument `name` as a u64 in `lo..=hi` (`limit` names the bound), or a
+/// `GbumpError` naming the argument: a negative or huge value would otherwise surface as
+/// pyo3's OverflowError, which names neither.
+pub(crate) fn arg(name: &str, v: i128, lo: u64, hi: u64, limit: &str) -> PyResult<u64> {
+    if v < 0 {
+        return Err(fail(format!("{name}: {v} is negative\n  fix: use {lo}..={hi}")));
+    }
+    let v = u64::try_from(v).map_err(|_| fail(format!("{name}: {v} does not fit 64 bits\n  fix: use {lo}..={hi}")))?;
+    gbump::limits::check_count(name, v, lo, hi, limit).map_err(err)?;
+    Ok(v)
+}
+
 /// A message of this module's own as a `GbumpError`.
 pub(crate) fn fail(msg: String) -> PyErr {
     GbumpError::new_err(msg)
@@ -33,6 +45,9 @@ pub(crate) fn fail(msg: String) -> PyErr {
 fn gbump_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", gbump::TOOL.trim_start_matches("gbump "))?;
     m.add("TOOL", gbump::TOOL)?;
+    // The sources the module was built from: `gbump --version` prints the same hash for the
+    // same sources (python/tests/check_module.py compares them).
+    m.add("__source__", gbump::SOURCE_HASH)?;
     m.add("GbumpError", m.py().get_type::<GbumpError>())?;
     m.add_class::<config::Config>()?;
     m.add_class::<vectors::Stimulus>()?;

@@ -33,7 +33,8 @@ impl Stimulus {
 impl Stimulus {
     /// The next `n` records, uint32 shape (n, words).
     #[pyo3(signature = (n = 1))]
-    fn next<'py>(&mut self, py: Python<'py>, n: u64) -> PyResult<Bound<'py, PyAny>> {
+    fn next<'py>(&mut self, py: Python<'py>, n: i128) -> PyResult<Bound<'py, PyAny>> {
+        let n = crate::arg("Stimulus.next: n", n, 0, u64::MAX, "")?;
         check_batch("Stimulus.next: n", n)?;
         let w = self.s.layout.words32();
         let mut out = Vec::with_capacity(n as usize * w);

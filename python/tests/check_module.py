@@ -31,6 +31,17 @@ def check(cond, what):
     passed += 1
 
 
+# A module built from other sources than the gbump under test would compare two different
+# programs: say so first, with the fix, rather than fail on whatever differs.
+version = subprocess.run([exe, "--version"], check=True, capture_output=True, text=True).stdout
+if f"(source {gbump.__source__})" not in version:
+    sys.exit(
+        f"FAILED: the installed module was built from other sources (source {gbump.__source__}) than {exe} ({version.strip()})\n"
+        "  fix: rebuild and install it: scripts/python-module.sh"
+    )
+passed += 1
+
+
 def run(*args):
     subprocess.run([exe, *args, *cfg_args], check=True, stdout=subprocess.DEVNULL)
 

@@ -1,16 +1,7 @@
 //! The `extern "C"` functions (cbindgen writes `include/gbump.h` from this file; the DPI-C
-//! package is generated from that header). Conventions:
-//! - a handle is created by `gbump_config_*` / `gbump_stim_new` and released by the matching
-//!   `_free`; NULL means failure, and `gbump_last_error()` says why (per thread);
-//! - functions returning `int32_t` status give 0 on success and -1 on failure; counts and
-//!   widths are -1 on failure;
-//! - a record is `gbump_record_words(h, target)` 32-bit words, LSB first, the layout of the
-//!   vector files (`gbump_column` gives each column's offset); targets are `"top"` and the
-//!   unit names of `gbump_column_name`'s table;
-//! - returned strings live as long as the handle (or, for errors, until the next failure).
-//!
-//! A handle may be read from several threads at once, but not while `gbump_set_shininess` or
-//! `_free` runs on it; a stimulus stream belongs to one thread.
+//! package is generated from that header). Their conventions (handles, status codes, error
+//! messages, string ownership, records, threads) are [`super::CONVENTIONS`], which the header
+//! opens with.
 
 use super::guard::{guard, handle, handle_mut, last_error, str_arg, words, words_mut};
 use super::handle::{GbumpConfig, GbumpStim};
@@ -26,9 +17,18 @@ pub extern "C" fn gbump_abi_version() -> i32 {
 }
 
 /// The library's name and version, as stamped into generated files (`gbump 0.1.0`).
+/// A static string: never freed.
 #[no_mangle]
 pub extern "C" fn gbump_version() -> *const c_char {
     concat!("gbump ", env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// The hash of the sources the library was built from, as `gbump --version` prints it: a
+/// library built from other sources than the gbump beside it differs here (the version
+/// numbers are the same). A static string: never freed.
+#[no_mangle]
+pub extern "C" fn gbump_source() -> *const c_char {
+    concat!(env!("GBUMP_SOURCE_HASH"), "\0").as_ptr().cast()
 }
 
 /// Why the last failing call on this thread failed (empty before any failure).
@@ -100,7 +100,9 @@ pub unsafe extern "C" fn gbump_config_hash(h: *const GbumpConfig) -> *const c_ch
     with("gbump_config_hash", h, std::ptr::null(), |h| Ok(h.hash.as_ptr()))
 }
 
-/// The configuration as canonical TOML (every field, the input of the hash).
+/// The configuration as canonical TOML (the input of the hash): every field, except that
+/// colour_guard_bits, white_lights, power_rom and interpolate are left out at their defaults
+/// (0, false, false, "none"), so hashes made before they existed stay.
 ///
 /// # Safety
 /// `h` is a live handle.
@@ -320,7 +322,8 @@ pub unsafe extern "C" fn gbump_eval(h: *const GbumpConfig, target: *const c_char
 }
 
 /// Evaluate `count` records of `target` back to back (`gbump_record_words(h, target)` words
-/// each), in parallel on the library's thread pool.
+/// each), in parallel on the library's thread pool; 0 on success, -1 on failure. `count` is
+/// 0..=MAX_BATCH_RECORDS (2^24); with 0 nothing is read or written (the buffers may be NULL).
 ///
 /// # Safety
 /// As `gbump_eval`, with `count` records in each buffer.
@@ -332,14 +335,16 @@ pub unsafe extern "C" fn gbump_eval_batch(
     rec_out: *mut u32,
     count: i64,
 ) -> i32 {
-    with("gbump_eval", h, -1, |h| {
+    with("gbump_eval_batch", h, -1, |h| {
         let t = h.target(str_arg(target, "target")?)?;
         let n = t.layout.words32();
         let count =
-            usize::try_from(count).map_err(|_| Error::Other(format!("count {count}: negative\n  fix: pass the number of records")))?;
-        let total = n
-            .checked_mul(count)
-            .ok_or_else(|| Error::Other(format!("count {count}: too large")))?;
+            u64::try_from(count).map_err(|_| Error::Other(format!("count {count}: negative\n  fix: pass the number of records")))?;
+        crate::limits::check_count("count", count, 0, crate::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
+        if count == 0 {
+            return Ok(0);
+        }
+        let total = n * count as usize;
         // Copied first, so `rec_out` may alias `rec_in`.
         let input = words(rec_in, total, "rec_in")?.to_vec();
         h.eval_words(t, &input, words_mut(rec_out, total, "rec_out")?)?;

@@ -16,6 +16,31 @@ mod handle;
 
 pub use handle::{GbumpConfig, GbumpStim, Target};
 
+/// The calling conventions, stated once: the header opens with them and `ffi`'s functions
+/// follow them.
+pub const CONVENTIONS: &str = "\
+Conventions of every function below:
+- Handles: gbump_config_* and gbump_stim_new create one, the matching _free releases it.
+  NULL means failure. A NULL or freed handle passed in is refused like any bad argument
+  (a NULL handle is never dereferenced; a freed one is undefined behaviour).
+- Status: functions returning int32_t give 0 on success and -1 on failure (gbump_eval,
+  gbump_eval_batch, gbump_set_shininess, gbump_stim_next); counts, widths, offsets and
+  words (gbump_record_words, gbump_column, gbump_power_word, ...) are -1 on failure;
+  functions returning a string give NULL on failure (an index out of range, a bad handle).
+- Errors: gbump_last_error() says why the last failing call on this thread failed, with
+  the fix; it keeps that message until the next failure on the thread (a success does not
+  clear it); empty before any failure.
+- Strings returned are owned by the library, never freed by the caller: gbump_version and
+  gbump_source are static; gbump_config_hash, gbump_config_toml, gbump_port_name and
+  gbump_column_name live as long as their handle; gbump_last_error's until the next
+  failure on the thread.
+- Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
+  files (gbump_column gives each column's offset); targets are \"top\" and the unit names of
+  gbump_column_name's table. Bits above a record's last bit are ignored.
+- Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call.
+- Threads: a handle may be read from several threads at once, but not while
+  gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.";
+
 /// Bumped whenever a function's signature or a record's meaning changes.
 pub const ABI_VERSION: i32 = 1;
 

@@ -151,6 +151,38 @@ fn rtl_of(dir: &Path, j: &serde_json::Value, file: &Path) -> Result<Rtl> {
     })
 }
 
+/// The interface JSON of the RTL folder `dir` (read with the input cap), which must be the
+/// RTL of `cfg`: RTL of another configuration would only show after a whole build.
+fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json::Value)> {
+    crate::sim::check_tool_path(dir, "--rtl")?;
+    let jf = interface_file(dir)?;
+    let fix = "regenerate the folder with `gbump rtl --out DIR`";
+    let jtext = crate::limits::read_text_as(&jf, "an interface JSON", fix)?;
+    let j: serde_json::Value =
+        serde_json::from_str(&jtext).map_err(|e| Error::Other(format!("{}: not JSON ({e})\n  fix: {fix}", jf.display())))?;
+    let hash = j.get("config_hash").and_then(|h| h.as_str()).unwrap_or_default();
+    if hash != cfg.hash() {
+        return Err(Error::Other(format!(
+            "--rtl {}: the RTL of another configuration ({hash:?}), not of the one picked ({})\n  fix: pick its configuration (the interface JSON's `config`), or generate this one's RTL with `gbump rtl`",
+            dir.display(),
+            cfg.hash()
+        )));
+    }
+    Ok((jf, j))
+}
+
+/// Everything `cosim` checks that needs no work folder (the simulator, the configuration,
+/// the library, the RTL folder), so a command refuses before it takes one.
+pub fn check_inputs(cfg: &PipelineConfig, o: &CosimOptions) -> Result<()> {
+    crate::sim::require(crate::sim::Sim::Verilator)?;
+    crate::capi::GbumpConfig::new(cfg.clone())?;
+    library(o)?;
+    if let Some(d) = &o.rtl {
+        interface_of(cfg, &std::path::absolute(d).map_err(|e| Error::io(d, e))?)?;
+    }
+    Ok(())
+}
+
 /// Run `o.count` fragments of seed `o.seed` through the RTL (generated for `cfg`, or
 /// `o.rtl`) against the model of `cfg`.
 pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
@@ -164,15 +196,7 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
         Some(d) => std::path::absolute(d).map_err(|e| Error::io(d, e))?,
         None => crate::sim::rtl_files::write_rtl(cfg, &o.work.join(format!("cosim_rtl_{hash}")), &o.command)?.dir,
     };
-    crate::sim::check_tool_path(&rtl_dir, "--rtl")?;
-    let jf = interface_file(&rtl_dir)?;
-    let jtext = std::fs::read_to_string(&jf).map_err(|e| Error::io(&jf, e))?;
-    let j: serde_json::Value = serde_json::from_str(&jtext).map_err(|e| {
-        Error::Other(format!(
-            "{}: not JSON ({e})\n  fix: regenerate the folder with `gbump rtl --out DIR`",
-            jf.display()
-        ))
-    })?;
+    let (jf, j) = interface_of(cfg, &rtl_dir)?;
     let rtl = rtl_of(&rtl_dir, &j, &jf)?;
     let source = format!("{}\n{}", crate::capi::DPI_PACKAGE, tb::fill(&j, &jf, &rtl_dir)?);
     // The model reads the configuration from a file beside the build, whatever picked it.

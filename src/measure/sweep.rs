@@ -149,17 +149,6 @@ impl Space {
             if vals.is_empty() {
                 return Err(Error::field(file, &format!("grid.{k}"), "empty array", "give at least one value"));
             }
-            // A value outside its field's own range is no configuration beside any other value.
-            if let Some(&(_, lo, hi, why)) = crate::config::LIMITS.iter().find(|l| l.0 == k) {
-                if let Some(x) = vals.iter().filter_map(toml::Value::as_integer).find(|&x| x < lo as i64 || x > hi as i64) {
-                    return Err(Error::field(
-                        file,
-                        &format!("grid.{k}"),
-                        format!("{x} is out of range ({why})"),
-                        format!("use values in {lo}..={hi}"),
-                    ));
-                }
-            }
             combos = combos
                 .into_iter()
                 .flat_map(|(lab, t)| {
@@ -211,9 +200,22 @@ struct Spans {
     scene: Option<toml::Spanned<String>>,
 }
 
-/// Refuse an unknown field or a value of the wrong type at its own line; a value out of range
-/// is left to the grid (it may be valid beside another field's value, or is skipped).
+/// Refuse an unknown field, a value of the wrong type or a number outside its field's own
+/// range at its own line; a value that fails only beside another field's value is left to the
+/// grid (that combination is skipped, and counted).
 fn check_value(text: &str, file: &str, field: &str, key: &str, v: &toml::Value, span: std::ops::Range<usize>) -> Result<()> {
+    if let (Some(&(_, lo, hi, why)), Some(x)) = (crate::config::LIMITS.iter().find(|l| l.0 == key), v.as_integer()) {
+        if x < lo as i64 || x > hi as i64 {
+            let (line, col) = crate::error::line_col(text, span.start);
+            return Err(Error::Input {
+                file: file.to_string(),
+                line,
+                col,
+                msg: format!("`{field}`: {x} is out of range ({why})"),
+                fix: format!("use values in {lo}..={hi}"),
+            });
+        }
+    }
     let mut t = toml::Table::new();
     t.insert(key.to_string(), v.clone());
     match PipelineConfig::from_toml(file, &toml::to_string(&t).expect("table")) {

@@ -6,6 +6,7 @@ use std::path::Path;
 
 /// Write `bytes` to `path` atomically (temporary sibling, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let _cleanup = crate::interrupt::cleanup();
     crate::interrupt::check()?;
     // A device or FIFO (e.g. /dev/full, /dev/stdout) is written in place: renaming over it
     // would replace the device node.
@@ -40,6 +41,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// Run `f`, which writes into `dir`; if it fails, remove every entry it added to `dir`, so a
 /// failure midway (a second set, a full disk) leaves nothing that looks like a result.
 pub fn undo_on_error<T>(dir: &Path, f: impl FnOnce() -> Result<T>) -> Result<T> {
+    let _cleanup = crate::interrupt::cleanup();
     let list = || -> std::collections::BTreeSet<std::ffi::OsString> {
         std::fs::read_dir(dir)
             .map(|d| d.filter_map(|e| e.ok().map(|e| e.file_name())).collect())

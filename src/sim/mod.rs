@@ -48,7 +48,14 @@ impl Sim {
 
 /// Error unless every program of `sim` is installed; the message says how to install it.
 pub fn require(sim: Sim) -> Result<()> {
-    sim.simulator().programs().iter().try_for_each(|p| crate::tool::require(p))
+    sim.simulator().programs().iter().try_for_each(|p| crate::tool::require(p))?;
+    if sim == Sim::Verilator {
+        // Verilator builds its model with make and the C++ compiler make calls: $CXX, else g++.
+        let cxx = std::env::var("CXX").ok().filter(|c| !c.trim().is_empty()).unwrap_or_else(|| "g++".into());
+        let prog = cxx.split_whitespace().next().unwrap_or("g++").to_string();
+        crate::tool::require(&prog)?;
+    }
+    Ok(())
 }
 
 /// Refuse a folder or file the simulators would be handed that they cannot take whole:

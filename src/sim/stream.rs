@@ -333,6 +333,8 @@ pub fn regress_stream(
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
     super::require(Sim::Verilator)?;
+    // A signal ends the stream through its error path: the harness stops, the seed is said.
+    let _cleanup = crate::interrupt::cleanup();
     let streams = streams(cfg, src, o.seed, o.scene_size)?;
     let _lock = lock()?;
     let h = &cfg.hash()[..8];

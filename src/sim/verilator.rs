@@ -91,7 +91,7 @@ impl Simulator for Verilator {
     }
 
     fn programs(&self) -> &'static [&'static str] {
-        &["verilator", "make", "g++"]
+        &["verilator", "make"]
     }
 
     /// `--binary`; the RTL's `.vlt` waivers go in with it.

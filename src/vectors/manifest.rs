@@ -79,7 +79,21 @@ pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
     Ok((n, h.finalize().iter().map(|b| format!("{b:02x}")).collect()))
 }
 
-/// Load a manifest and check every file it names: present, right size, same sha256.
+/// What a set of `target` names about its module: (module name, latency, initiation
+/// interval), as the writer states them and the checker expects them.
+pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
+    if target == "top" {
+        (
+            crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline"),
+            crate::rtlgen::top::latency(cfg),
+            cfg.initiation_interval(),
+        )
+    } else {
+        let latency = crate::units::unit(target).map_or(1, |u| u.latency(cfg));
+        (crate::rtlgen::units_v::module_name(cfg, target), latency, 1)
+    }
+}
+
 /// The manifest's own fields against each other: its configuration is a valid one and the
 /// one its hash names, its target is a set this configuration has, its record layout is that
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
@@ -106,6 +120,18 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     } else {
         super::targets::unit_layout(&m.config, &m.target)
     };
+    let (module, latency, ii) = timing(&m.config, &m.target);
+    if m.module != module || m.latency != latency || m.initiation_interval != ii {
+        return Err(Error::field(
+            &file,
+            "module",
+            format!(
+                "module {}, latency {}, interval {} are not this configuration's {} ({module}, {latency}, {ii})",
+                m.module, m.latency, m.initiation_interval, m.target
+            ),
+            regen,
+        ));
+    }
     let want = columns(&l);
     if m.record_bits != l.bits || m.record_bytes as usize != l.bytes() || m.columns != want {
         return Err(Error::field(
@@ -127,6 +153,7 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     Ok(())
 }
 
+/// Load a manifest and check every file it names: present, right size, same sha256.
 pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
     let dir = manifest.parent().unwrap_or(Path::new(".")).to_path_buf();
     let text = crate::limits::read_text_as(

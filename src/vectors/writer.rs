@@ -180,12 +180,11 @@ impl SetWriter {
         );
         crate::render::output::write_atomic(&tp, text.as_bytes())?;
         let (bytes, sha256) = super::manifest::sha256_file(&tp)?;
-        let top = self.target == "top";
         let m = Manifest {
             generator: crate::TOOL.into(),
             command: o.command.clone(),
             target: self.target.clone(),
-            module: crate::rtlgen::units_v::module_name(cfg, if top { "gbump_pipeline" } else { &self.target }),
+            module: super::manifest::timing(cfg, &self.target).0,
             source: format!("{src:?}"),
             seed: o.seed,
             count: self.count,
@@ -202,12 +201,8 @@ impl SetWriter {
                 bytes,
                 sha256,
             },
-            latency: if top {
-                crate::rtlgen::top::latency(cfg)
-            } else {
-                crate::units::unit(&self.target).map_or(1, |u| u.latency(cfg))
-            },
-            initiation_interval: if top { cfg.initiation_interval() } else { 1 },
+            latency: super::manifest::timing(cfg, &self.target).1,
+            initiation_interval: super::manifest::timing(cfg, &self.target).2,
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
@@ -272,6 +267,8 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
 
 /// Dump `src` for `targets` ("top" and unit names) into `dir`.
 pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
+    // A signal stops the dump through its error path, which removes the temporary files.
+    let _cleanup = crate::interrupt::cleanup();
     check(cfg, src, o)?;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();

@@ -1,0 +1,37 @@
+//! The source fingerprint: a hash of every file under src/ and of Cargo.toml, as
+//! `GBUMP_SOURCE_HASH`. The CLI prints it with `--version`, the Python module and the C
+//! library carry it, so a module or library built from other sources than the gbump beside
+//! it is told apart (their version numbers are the same).
+
+use std::path::{Path, PathBuf};
+
+fn files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(dir) else { return };
+    for e in rd.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            files(&p, out);
+        } else {
+            out.push(p);
+        }
+    }
+}
+
+fn main() {
+    let mut all = Vec::new();
+    files(Path::new("src"), &mut all);
+    all.push(PathBuf::from("Cargo.toml"));
+    all.sort();
+    // FNV-1a over each path and its bytes: no dependency, stable across platforms.
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for p in &all {
+        let bytes = std::fs::read(p).unwrap_or_default();
+        for b in p.to_string_lossy().as_bytes().iter().chain([0u8].iter()).chain(bytes.iter()) {
+            h ^= *b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    println!("cargo:rustc-env=GBUMP_SOURCE_HASH={h:016x}");
+    println!("cargo:rerun-if-changed=src");
+    println!("cargo:rerun-if-changed=Cargo.toml");
+}
