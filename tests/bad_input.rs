@@ -977,3 +977,55 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
         assert!(!o.status.success() && err.contains(needle) && err.contains(".json manifest"), "{file}: {err}");
     }
 }
+
+/// With nothing written to clean up, a signal ends gbump at once, as the signal's default
+/// would: a long computation is not finished only to be thrown away.
+#[test]
+fn a_signal_outside_any_cleanup_exits_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .args(["engines", "--size", "1600x1200", "--out"])
+        .arg(dir.path().join("out"))
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    assert!(child.try_wait().unwrap().is_none(), "the render ended before the signal: make it larger");
+    let sent = std::time::Instant::now();
+    send("TERM", child.id());
+    let st = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(sent.elapsed().as_secs() < 5, "still running 5 s after SIGTERM");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    assert!(!st.success());
+    assert!(!dir.path().join("out").exists(), "an interrupted run left its output folder");
+}
+
+/// A signal ignored when gbump starts (`nohup`'s SIGHUP) stays ignored: the run completes.
+#[test]
+fn an_ignored_hangup_stays_ignored() {
+    use std::os::unix::process::CommandExt;
+    let dir = tempfile::tempdir().unwrap();
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"));
+    cmd.args(["vectors", "--source", "random:3000000", "--target", "top", "--format", "bin", "--out"])
+        .arg(dir.path().join("out"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
+    // SAFETY: only async-signal-safe libc calls between fork and exec.
+    unsafe {
+        cmd.pre_exec(|| {
+            libc::signal(libc::SIGHUP, libc::SIG_IGN);
+            Ok(())
+        });
+    }
+    let mut child = cmd.spawn().unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert!(child.try_wait().unwrap().is_none(), "the dump ended before the hangup: make it longer");
+    send("HUP", child.id());
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "a hangup nohup ignores stopped the run: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.path().join("out/random3000000_top.json").is_file());
+}
