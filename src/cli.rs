@@ -46,7 +46,7 @@ pub enum Cmd {
         /// Built-in scene name or path to a scene .toml file.
         #[arg(long, default_value = builtin::DEFAULT)]
         scene: String,
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Image size WxH (default: the scene's).
         #[arg(long, value_name = "WxH")]
@@ -62,14 +62,14 @@ pub enum Cmd {
     Rtl {
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
     },
     /// Write LUT ROM init files (.hex, .mif, .coe): power table, bump palette, cube map.
     Rom {
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Shininess of the power table (default: the config's).
         #[arg(long)]
@@ -88,7 +88,7 @@ pub enum Cmd {
         target: Vec<String>,
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Seed of random sources (default 1).
         #[arg(long)]
@@ -221,7 +221,7 @@ pub enum Cmd {
         /// The space: [base] overrides and [grid] arrays of values (see sweeps/small.toml).
         #[arg(long, value_name = "FILE")]
         space: PathBuf,
-        #[arg(long, value_name = "DIR")]
+        #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Cache of finished configurations (a re-run resumes from it).
         #[arg(long, default_value = "target/gbump-sweep")]
@@ -242,7 +242,7 @@ pub enum Cmd {
         #[arg(long, default_value_t = 0.0)]
         min_throughput: f64,
         /// Where fit.toml, front.csv and front.svg go.
-        #[arg(long, default_value = "out/fit", value_name = "DIR")]
+        #[arg(long, default_value = "out/fit", value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Skip generating, linting and regressing the chosen configuration on both simulators.
         #[arg(long)]
@@ -296,7 +296,7 @@ pub enum Cmd {
         /// Texels along a face edge of the Cg engine's normalisation cube map.
         #[arg(long, default_value_t = crate::engines::cg::CUBE_FACE)]
         cg_cube: u32,
-        #[arg(long, default_value = "out/engines")]
+        #[arg(long, default_value = "out/engines", value_parser = output_dir)]
         out: PathBuf,
     },
     /// One of the paper's claims about the engines, measured: NAME.md and NAME.svg (the
@@ -305,9 +305,9 @@ pub enum Cmd {
         /// visa-seams, flat-shading or embm-resolution.
         #[arg(required_unless_present = "list")]
         name: Option<String>,
-        #[arg(long, conflicts_with = "name")]
+        #[arg(long, conflicts_with_all = ["name", "out"])]
         list: bool,
-        #[arg(long, default_value = "out/claims")]
+        #[arg(long, default_value = "out/claims", value_parser = output_dir)]
         out: PathBuf,
     },
     /// Measure speed: model, vector dump, Icarus, Verilator harness and raw Verilated rate.
@@ -319,7 +319,7 @@ pub enum Cmd {
     },
     /// Write docs/REPORT.md: area, error, the power unit's design space, a sweep and speed.
     Report {
-        #[arg(long, default_value = "docs", value_name = "DIR")]
+        #[arg(long, default_value = "docs", value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         #[arg(long, default_value = "sweeps/small.toml", value_name = "FILE")]
         space: PathBuf,
@@ -396,6 +396,26 @@ impl SimChoice {
             SimChoice::Both => vec![Sim::Icarus, Sim::Verilator],
         }
     }
+}
+
+/// An output folder named on the command line, checked before any work: not a file, and
+/// not under a file, so a long run does not end by failing to make it.
+fn output_dir(s: &str) -> std::result::Result<PathBuf, String> {
+    let p = PathBuf::from(s);
+    if p.exists() && !p.is_dir() {
+        return Err(format!("{s} is a file, not a folder (fix: give a folder path, or move the file)"));
+    }
+    let mut up = p.parent();
+    while let Some(a) = up {
+        if a.as_os_str().is_empty() || a.is_dir() {
+            return Ok(p);
+        }
+        if a.exists() {
+            return Err(format!("{} is a file, not a folder (fix: give a path through folders)", a.display()));
+        }
+        up = a.parent();
+    }
+    Ok(p)
 }
 
 /// An output file named on the command line, checked before any work: not a folder, and
@@ -605,6 +625,9 @@ pub fn run() -> anyhow::Result<()> {
         }
         Cmd::Lint { pick, work } => {
             let cfg = pick.resolve()?;
+            for p in ["verilator", "iverilog", "yosys"] {
+                crate::tool::require(p)?;
+            }
             let _lock = lock_work(&work)?;
             crate::sim::lint::lint(&cfg, &work, &pick.args(), &mut say)?
         }
@@ -684,6 +707,7 @@ pub fn run() -> anyhow::Result<()> {
             crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
             if area {
                 crate::yosys::require()?;
+                crate::sim::check_tool_path(&work, "--work")?;
             }
             let fm = crate::model::power_unit::PowerFormats {
                 f: cfg.dot_frac_bits,
@@ -753,8 +777,17 @@ pub fn run() -> anyhow::Result<()> {
             }
             // Every input and tool is checked before the work folder is taken.
             let device = device.unwrap_or_else(|| "hx8k".into());
-            for s in &scene {
+            for (i, s) in scene.iter().enumerate() {
+                if scene[..i].contains(s) {
+                    return Err(Error::Other(format!("--scene {s} is given more than once\n  fix: name each scene once")).into());
+                }
                 Scene::load(s)?;
+            }
+            if !no_regress {
+                // The fit regresses its choice on both simulators: missing ones are said now,
+                // not after the search.
+                crate::sim::require(crate::sim::Sim::Icarus)?;
+                crate::sim::require(crate::sim::Sim::Verilator)?;
             }
             if yosys {
                 crate::yosys::require()?;

@@ -10,6 +10,27 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 static CLEANUPS: AtomicUsize = AtomicUsize::new(0);
+/// Tools running now (`tool::run_cmd`): a signal that ends gbump ends them too.
+static CHILDREN: std::sync::Mutex<Vec<u32>> = std::sync::Mutex::new(Vec::new());
+
+/// While held, `pid` is signalled when a signal ends gbump.
+pub struct Child(u32);
+
+/// Register a started tool for as long as the result is held.
+pub fn child(pid: u32) -> Child {
+    if let Ok(mut c) = CHILDREN.lock() {
+        c.push(pid);
+    }
+    Child(pid)
+}
+
+impl Drop for Child {
+    fn drop(&mut self) {
+        if let Ok(mut c) = CHILDREN.lock() {
+            c.retain(|&p| p != self.0);
+        }
+    }
+}
 
 /// Install the handler (once, from `main`).
 pub fn install() {
@@ -26,6 +47,16 @@ pub fn install() {
         .collect();
     let _ = ctrlc::set_handler(|| {
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
+            // The handler runs on a thread of its own, not in signal context: it may print
+            // and signal the tools gbump started.
+            #[cfg(unix)]
+            for pid in CHILDREN.lock().map(|c| c.clone()).unwrap_or_default() {
+                // SAFETY: a plain kill(2) of a process this run started and still waits for.
+                unsafe {
+                    libc::kill(pid as libc::pid_t, libc::SIGTERM);
+                }
+            }
+            eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
             std::process::exit(130);
         }
     });

@@ -222,8 +222,28 @@ pub fn read_text(path: &Path) -> Result<String> {
     read_text_as(path, "a scene, configuration or sweep space", "give the .toml file itself")
 }
 
+/// Refuse a named pipe or a socket as an input file: opening one waits for a writer, so the
+/// run would hang rather than fail. (Devices such as /dev/zero are read, and capped.)
+pub fn check_not_pipe(path: &Path, fix: &str) -> Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if let Ok(m) = std::fs::metadata(path) {
+            let t = m.file_type();
+            if t.is_fifo() || t.is_socket() {
+                return Err(Error::Other(format!(
+                    "{}: a named pipe or socket, not a file (reading it would wait for a writer)\n  fix: {fix}",
+                    path.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// [`read_text`] for an input that is `what`, with `fix` when it is not text or too large.
 pub fn read_text_as(path: &Path, what: &str, fix: &str) -> Result<String> {
+    check_not_pipe(path, fix)?;
     let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut buf = Vec::new();
     f.take(MAX_INPUT_BYTES + 1).read_to_end(&mut buf).map_err(|e| Error::io(path, e))?;

@@ -38,13 +38,23 @@ pub fn missing(prog: &str) -> Error {
 pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     crate::interrupt::check()?;
     let t0 = std::time::Instant::now();
-    let out = cmd.output().map_err(|e| {
+    let prog = cmd.get_program().to_string_lossy().into_owned();
+    let start_err = |e: std::io::Error| {
         if e.kind() == std::io::ErrorKind::NotFound {
-            missing(&cmd.get_program().to_string_lossy())
+            missing(&prog)
         } else {
-            Error::Other(format!("{what}: cannot start {}: {e}", cmd.get_program().to_string_lossy()))
+            Error::Other(format!("{what}: cannot start {prog}: {e}"))
         }
-    })?;
+    };
+    let child = cmd
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .map_err(start_err)?;
+    // A signal that ends gbump ends the tool too, rather than leaving it writing on its own.
+    let _child = crate::interrupt::child(child.id());
+    let out = child.wait_with_output().map_err(|e| Error::Other(format!("{what}: {e}")))?;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
     // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).

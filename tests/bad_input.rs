@@ -728,6 +728,36 @@ fn cases() -> Vec<Case> {
             vec!["sp.toml:3", "base.normal_bits", "3..=16"],
         ),
         (
+            "a key in both [base] and [grid]",
+            space("scene = \"torus_caps\"\n[base]\nnormal_bits = 6\n[grid]\nnormal_bits = [6, 8]\n"),
+            sweep(),
+            vec!["sp.toml", "base.normal_bits", "both", "fix:"],
+        ),
+        (
+            "fit --out on a file",
+            vec![("afile", "a file".into())],
+            vec!["fit", "--scene", "torus_caps", "--budget", "max<=2", "--no-regress", "--out", "afile"],
+            vec!["afile is a file"],
+        ),
+        (
+            "a colon in the work folder (make's rule separator)",
+            vec![],
+            vec!["regress", "--sim", "icarus", "--work", "w:c"],
+            vec!["':'", "rule separator", "fix:"],
+        ),
+        (
+            "claim --list with --out",
+            vec![],
+            vec!["claim", "--list", "--out", "x"],
+            vec!["cannot be used with"],
+        ),
+        (
+            "fit naming a scene twice",
+            vec![],
+            vec!["fit", "--scene", "torus_caps", "--scene", "torus_caps", "--budget", "max<=2", "--no-regress", "--out", "out"],
+            vec!["--scene torus_caps", "more than once"],
+        ),
+        (
             "cosim --lib that is not a library",
             vec![("lib.so", "not a library".into())],
             vec!["cosim", "--lib", "lib.so", "--work", "w"],
@@ -1028,4 +1058,38 @@ fn an_ignored_hangup_stays_ignored() {
     let o = child.wait_with_output().unwrap();
     assert!(o.status.success(), "a hangup nohup ignores stopped the run: {}", String::from_utf8_lossy(&o.stderr));
     assert!(dir.path().join("out/random3000000_top.json").is_file());
+}
+
+/// A named pipe given as an input file is refused, not waited on forever.
+#[test]
+fn a_named_pipe_as_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("c.toml");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["rtl", "--config"])
+        .arg(&fifo)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .timeout(std::time::Duration::from_secs(20))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("named pipe") && err.contains("fix:"), "{err}");
+    assert!(!dir.path().join("out").exists());
+}
+
+/// A sweep space may name `target = "cmos"`: gate equivalents, what every sweep measures.
+#[test]
+fn a_sweep_for_cmos_measures_gate_equivalents() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("sp.toml"), "scene = \"torus_caps\"\ntarget = \"cmos\"\n[grid]\nnormal_bits = [6, 8]\n").unwrap();
+    Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["sweep", "--space", "sp.toml", "--out", "so", "--work", "w"])
+        .current_dir(dir.path())
+        .assert()
+        .success();
+    assert!(dir.path().join("so/sp.csv").is_file());
 }

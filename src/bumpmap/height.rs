@@ -124,6 +124,7 @@ fn read_png(p: &std::path::Path) -> Result<image::DynamicImage> {
         path: p.to_path_buf(),
         msg,
     };
+    crate::limits::check_not_pipe(p, "give a PNG file")?;
     let open = || {
         image::ImageReader::open(p)
             .and_then(|r| r.with_guessed_format())

@@ -69,14 +69,18 @@ impl Space {
     pub fn load(path: &Path) -> Result<Space> {
         let text = crate::limits::read_text(path)?;
         let file = path.display().to_string();
-        let s: Space = toml::from_str(&text).map_err(|e| {
+        let mut s: Space = toml::from_str(&text).map_err(|e| {
             toml_error(
                 &file,
                 &text,
                 &e,
-                "a sweep space has [base] (optional) and [grid] with arrays of values",
+                "a sweep space has scene, an optional target (ice40, ecp5 or xilinx: FPGA figures beside the gate equivalents every sweep measures), an optional [base] and a [grid] with arrays of values",
             )
         })?;
+        // Gate equivalents are what every sweep measures: `target = "cmos"` asks for nothing more.
+        if s.target == Some(super::fpga::Target::Cmos) {
+            s.target = None;
+        }
         let spans: Spans = toml::from_str(&text).map_err(|e| toml_error(&file, &text, &e, "check the sweep space"))?;
         let at = |span: std::ops::Range<usize>| format!("{file}:{}", crate::error::line_col(&text, span.start).0);
         if s.grid.is_empty() {
@@ -104,6 +108,14 @@ impl Space {
                 check_value(&text, &file, &field, k, x, v.span())?;
             }
             points = points.saturating_mul(vals.len() as u64);
+        }
+        if let Some(k) = s.base.keys().find(|k| s.grid.contains_key(*k)) {
+            return Err(Error::field(
+                &spans.base.get(k).map_or(file.clone(), |v| at(v.span())),
+                &format!("base.{k}"),
+                format!("`{k}` is in both [base] and [grid], and the grid's values would replace the base's"),
+                format!("keep `{k}` in one of them"),
+            ));
         }
         let max = crate::limits::MAX_SWEEP_POINTS;
         if points > max {

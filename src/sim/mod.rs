@@ -66,13 +66,13 @@ pub fn check_tool_path(p: &Path, flag: &str) -> Result<()> {
     let text = abs.to_string_lossy();
     let bad: Vec<char> = text
         .chars()
-        .filter(|c| !c.is_ascii() || c.is_ascii_whitespace() || c.is_ascii_control() || "\"'\\$`;&|<>*?#%!{}()[]=".contains(*c))
+        .filter(|c| !c.is_ascii() || c.is_ascii_whitespace() || c.is_ascii_control() || "\"'\\$`;&|<>*?#%!{}()[]=:".contains(*c))
         .collect();
     if bad.is_empty() {
         return Ok(());
     }
     Err(Error::Other(format!(
-        "{flag} {}: the path holds {} (in {}), which make, Verilator or a plusarg would split or misread\n  fix: use a folder whose absolute path has only letters, digits and - _ . / + , : @ ~",
+        "{flag} {}: the path holds {} (in {}), which make (a `:` is its rule separator), Verilator or a plusarg would split or misread\n  fix: use a folder whose absolute path has only letters, digits and - _ . / + , @ ~",
         p.display(),
         bad.iter().map(|c| format!("{c:?}")).collect::<Vec<_>>().join(" "),
         text
