@@ -18,7 +18,8 @@ pub struct Space {
     #[serde(default)]
     pub base: toml::Table,
     pub grid: toml::Table,
-    /// Scene whose image error is measured (default torus_caps).
+    /// Scene whose image error is measured (default torus_caps): a built-in name, or a .toml
+    /// file relative to the space file's folder.
     #[serde(default = "default_scene")]
     pub scene: String,
     /// An FPGA to measure each point on as well (`"ice40"`: LUTs and Fmax after place and
@@ -77,6 +78,13 @@ impl Space {
                 "a sweep space has scene, an optional target (ice40, ecp5 or xilinx: FPGA figures beside the gate equivalents every sweep measures), an optional [base] and a [grid] with arrays of values",
             )
         })?;
+        // A scene file named by a relative path is found beside the space file, as a scene's
+        // images are found beside the scene.
+        if s.scene.ends_with(".toml") && Path::new(&s.scene).is_relative() {
+            if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+                s.scene = dir.join(&s.scene).display().to_string();
+            }
+        }
         // Gate equivalents are what every sweep measures: `target = "cmos"` asks for nothing more.
         if s.target == Some(super::fpga::Target::Cmos) {
             s.target = None;

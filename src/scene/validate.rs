@@ -300,7 +300,23 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 }
                 c.num(a, "sigma", &format!("{p}.bump.source.sigma"), *sigma, 1e-3, 1.0)?;
             }
-            H::Flat | H::Png { .. } => {}
+            H::Png { path } => {
+                // The image is decoded later (its size checked from its header); that it is a
+                // file there is checked here, so every command refuses the scene alike, at its line.
+                let full = if path.is_absolute() { path.clone() } else { s.base.join(path) };
+                let at = format!("{p}.bump.source.path");
+                if !full.is_file() {
+                    let what = if full.exists() { "is not a file" } else { "is not there" };
+                    return Err(c.fail(
+                        a,
+                        "path",
+                        &at,
+                        format!("{} {what}", full.display()),
+                        "give the path of a greyscale or RGB PNG, relative to the scene file's folder",
+                    ));
+                }
+            }
+            H::Flat => {}
         }
     }
     let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
