@@ -47,6 +47,8 @@ impl Error {
         // Every I/O failure says what to do about it, whatever command met it.
         use std::io::ErrorKind as K;
         let hint = match e.kind() {
+            // A relative path in a folder that was removed under the run reads as missing.
+            K::NotFound if std::env::current_dir().is_err() => "\n  fix: the current folder no longer exists; cd to one that does",
             K::NotFound => "\n  fix: check the path (nothing is there)",
             K::PermissionDenied => "\n  fix: check permissions of the file or folder",
             K::IsADirectory => "\n  fix: this is a folder; give the file itself",
