@@ -458,8 +458,8 @@ impl ConfigPick {
     /// The arguments that select this configuration, for regeneration commands in headers.
     pub fn args(&self) -> String {
         match (&self.config, &self.scene) {
-            (Some(p), _) => format!("--config {}", p.display()),
-            (None, Some(s)) => format!("--scene {s}"),
+            (Some(p), _) => format!("--config {}", quoted(&p.display().to_string())),
+            (None, Some(s)) => format!("--scene {}", quoted(s)),
             (None, None) => String::new(),
         }
     }
@@ -501,7 +501,7 @@ pub fn run() -> anyhow::Result<()> {
         }
         Cmd::Rtl { pick, out } => {
             let cfg = pick.resolve()?;
-            let cmd = format!("gbump rtl {} --out {}", pick.args(), out.display()).replace("  ", " ");
+            let cmd = format!("gbump rtl {} --out {}", pick.args(), quoted(&out.display().to_string())).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
             crate::render::output::write_files(&out, &files)?;
             outln!(
@@ -1063,9 +1063,19 @@ fn scenes(show: Option<String>) -> Result<()> {
 /// that generated files do not depend on where the binary lives.
 pub fn invocation() -> String {
     std::iter::once("gbump".to_string())
-        .chain(std::env::args().skip(1))
+        .chain(std::env::args().skip(1).map(|a| quoted(&a)))
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// `a` as a POSIX shell reads it back: as is when it holds only safe characters, else in
+/// single quotes, so a regeneration command in a file header pastes back whole.
+pub fn quoted(a: &str) -> String {
+    if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./+,:@=%^".contains(c)) {
+        a.to_string()
+    } else {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
