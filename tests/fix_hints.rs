@@ -35,6 +35,13 @@ fn problems(cli: &clap::Command, line: &str) -> Vec<String> {
     let Some(sub) = words.next().filter(|s| s.chars().all(|c| c.is_ascii_lowercase() || c == '-')) else {
         return vec![];
     };
+    // The top level's own flags, which clap adds itself.
+    if sub.starts_with("--") {
+        return match sub {
+            "--version" | "--help" => vec![],
+            _ => vec![format!("`gbump {line}`: gbump has no flag {sub}")],
+        };
+    }
     let Some(cmd) = cli.find_subcommand(sub) else {
         return vec![format!("`gbump {line}`: no subcommand `{sub}`")];
     };
@@ -72,4 +79,6 @@ fn the_checker_catches_a_wrong_flag() {
     assert!(!problems(&cli, "config --show").is_empty());
     assert!(!problems(&cli, "nosuch --x").is_empty());
     assert!(problems(&cli, "scenes --show NAME").is_empty());
+    assert!(problems(&cli, "--version").is_empty());
+    assert!(!problems(&cli, "--nosuch").is_empty());
 }
