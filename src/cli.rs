@@ -405,17 +405,7 @@ fn output_dir(s: &str) -> std::result::Result<PathBuf, String> {
     if p.exists() && !p.is_dir() {
         return Err(format!("{s} is a file, not a folder (fix: give a folder path, or move the file)"));
     }
-    let mut up = p.parent();
-    while let Some(a) = up {
-        if a.as_os_str().is_empty() || a.is_dir() {
-            return Ok(p);
-        }
-        if a.exists() {
-            return Err(format!("{} is a file, not a folder (fix: give a path through folders)", a.display()));
-        }
-        up = a.parent();
-    }
-    Ok(p)
+    under_folders(p)
 }
 
 /// An output file named on the command line, checked before any work: not a folder, and
@@ -426,10 +416,15 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     if p.is_dir() {
         return Err(format!("{s} is a folder; give a file name (fix: e.g. {s}/result)"));
     }
+    under_folders(p)
+}
+
+/// `p` when its nearest existing ancestor is a folder (what is missing is made on writing).
+fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
     let mut up = p.parent();
     while let Some(a) = up {
         if a.as_os_str().is_empty() || a.is_dir() {
-            return Ok(p);
+            break;
         }
         if a.exists() {
             return Err(format!("{} is a file, not a folder (fix: give a path through folders)", a.display()));
