@@ -427,7 +427,10 @@ fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
             break;
         }
         if a.exists() {
-            return Err(format!("{} is a file, not a folder (fix: give a path through folders)", a.display()));
+            return Err(format!(
+                "{} is a file, not a folder (fix: give a path through folders)",
+                a.display()
+            ));
         }
         up = a.parent();
     }
@@ -579,7 +582,10 @@ pub fn run() -> anyhow::Result<()> {
                 seed,
                 scenes: !no_scenes,
                 own_scenes,
-                scene_size: scene_size.as_deref().map(|s| crate::limits::parse_size("--scene-size", s)).transpose()?,
+                scene_size: scene_size
+                    .as_deref()
+                    .map(|s| crate::limits::parse_size("--scene-size", s))
+                    .transpose()?,
                 work: std::path::absolute(&work).map_err(|e| Error::io(&work, e))?,
                 waves,
                 max_errors,
@@ -655,7 +661,9 @@ pub fn run() -> anyhow::Result<()> {
             }
             out!("{}", crate::measure::fpga::markdown(&r));
         }
-        Cmd::Area { pick, work, json, device, .. } => {
+        Cmd::Area {
+            pick, work, json, device, ..
+        } => {
             if device.is_some() {
                 return Err(Error::Other("--device has no effect on --target cmos (gate equivalents need no device)\n  fix: drop --device, or use --target ice40".into()).into());
             }
@@ -1000,7 +1008,10 @@ fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, ma
     check_count("--cg-cube", maps.cg_cube.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
     for (what, list) in [("--scene", scenes), ("--engine", engines)] {
         if let Some((i, n)) = list.iter().enumerate().find(|(i, n)| list[..*i].contains(n)) {
-            return Err(Error::Other(format!("{what} {n} is given more than once (again as argument {} of its kind)\n  fix: name each once", i + 1)));
+            return Err(Error::Other(format!(
+                "{what} {n} is given more than once (again as argument {} of its kind)\n  fix: name each once",
+                i + 1
+            )));
         }
     }
     let picked: Vec<&'static crate::engines::Engine> = if engines.is_empty() {

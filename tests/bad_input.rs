@@ -971,11 +971,31 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
     let text = std::fs::read_to_string(dir.path().join("v/random20_top.json")).unwrap();
     let m: serde_json::Value = serde_json::from_str(&text).unwrap();
     let edits: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>, Vec<&str>)> = vec![
-        ("the configuration", Box::new(|m| m["config"]["lights"] = 3.into()), vec!["field `config`", "config_hash", "fix: regenerate"]),
-        ("the record width", Box::new(|m| m["record_bits"] = 600.into()), vec!["field `columns`", "record layout", "fix: regenerate"]),
-        ("a column", Box::new(|m| m["columns"][0]["width"] = 9999.into()), vec!["field `columns`", "fix: regenerate"]),
-        ("the target", Box::new(|m| m["target"] = "nosuchunit".into()), vec!["field `target`", "nosuchunit", "fix: regenerate"]),
-        ("the shininess", Box::new(|m| m["shininess"] = 100000.into()), vec!["field `shininess`", "MAX_SHININESS"]),
+        (
+            "the configuration",
+            Box::new(|m| m["config"]["lights"] = 3.into()),
+            vec!["field `config`", "config_hash", "fix: regenerate"],
+        ),
+        (
+            "the record width",
+            Box::new(|m| m["record_bits"] = 600.into()),
+            vec!["field `columns`", "record layout", "fix: regenerate"],
+        ),
+        (
+            "a column",
+            Box::new(|m| m["columns"][0]["width"] = 9999.into()),
+            vec!["field `columns`", "fix: regenerate"],
+        ),
+        (
+            "the target",
+            Box::new(|m| m["target"] = "nosuchunit".into()),
+            vec!["field `target`", "nosuchunit", "fix: regenerate"],
+        ),
+        (
+            "the shininess",
+            Box::new(|m| m["shininess"] = 100000.into()),
+            vec!["field `shininess`", "MAX_SHININESS"],
+        ),
     ];
     for (what, edit, needles) in edits {
         let mut e = m.clone();
@@ -994,7 +1014,10 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
         for n in needles {
             assert!(err.contains(n), "{what}: message lacks `{n}`: {err}");
         }
-        assert!(!dir.path().join("w").exists() || std::fs::read_dir(dir.path().join("w")).unwrap().next().is_none(), "{what}: ran before refusing");
+        assert!(
+            !dir.path().join("w").exists() || std::fs::read_dir(dir.path().join("w")).unwrap().next().is_none(),
+            "{what}: ran before refusing"
+        );
     }
     std::fs::write(dir.path().join("big.json"), vec![b' '; 2 << 20]).unwrap();
     for (file, needle) in [("big.json", "MAX_INPUT_BYTES"), ("v/random20_top.bin", "not UTF-8")] {
@@ -1004,7 +1027,10 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success() && err.contains(needle) && err.contains(".json manifest"), "{file}: {err}");
+        assert!(
+            !o.status.success() && err.contains(needle) && err.contains(".json manifest"),
+            "{file}: {err}"
+        );
     }
 }
 
@@ -1020,7 +1046,10 @@ fn a_signal_outside_any_cleanup_exits_at_once() {
         .spawn()
         .unwrap();
     std::thread::sleep(std::time::Duration::from_millis(500));
-    assert!(child.try_wait().unwrap().is_none(), "the render ended before the signal: make it larger");
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the render ended before the signal: make it larger"
+    );
     let sent = std::time::Instant::now();
     send("TERM", child.id());
     let st = loop {
@@ -1040,10 +1069,19 @@ fn an_ignored_hangup_stays_ignored() {
     use std::os::unix::process::CommandExt;
     let dir = tempfile::tempdir().unwrap();
     let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"));
-    cmd.args(["vectors", "--source", "random:3000000", "--target", "top", "--format", "bin", "--out"])
-        .arg(dir.path().join("out"))
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped());
+    cmd.args([
+        "vectors",
+        "--source",
+        "random:3000000",
+        "--target",
+        "top",
+        "--format",
+        "bin",
+        "--out",
+    ])
+    .arg(dir.path().join("out"))
+    .stdout(std::process::Stdio::null())
+    .stderr(std::process::Stdio::piped());
     // SAFETY: only async-signal-safe libc calls between fork and exec.
     unsafe {
         cmd.pre_exec(|| {
@@ -1053,10 +1091,17 @@ fn an_ignored_hangup_stays_ignored() {
     }
     let mut child = cmd.spawn().unwrap();
     std::thread::sleep(std::time::Duration::from_millis(300));
-    assert!(child.try_wait().unwrap().is_none(), "the dump ended before the hangup: make it longer");
+    assert!(
+        child.try_wait().unwrap().is_none(),
+        "the dump ended before the hangup: make it longer"
+    );
     send("HUP", child.id());
     let o = child.wait_with_output().unwrap();
-    assert!(o.status.success(), "a hangup nohup ignores stopped the run: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "a hangup nohup ignores stopped the run: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(dir.path().join("out/random3000000_top.json").is_file());
 }
 
@@ -1084,7 +1129,11 @@ fn a_named_pipe_as_input_is_refused() {
 #[test]
 fn a_sweep_for_cmos_measures_gate_equivalents() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("sp.toml"), "scene = \"torus_caps\"\ntarget = \"cmos\"\n[grid]\nnormal_bits = [6, 8]\n").unwrap();
+    std::fs::write(
+        dir.path().join("sp.toml"),
+        "scene = \"torus_caps\"\ntarget = \"cmos\"\n[grid]\nnormal_bits = [6, 8]\n",
+    )
+    .unwrap();
     Command::cargo_bin("gbump")
         .unwrap()
         .args(["sweep", "--space", "sp.toml", "--out", "so", "--work", "w"])

@@ -242,7 +242,10 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     let e0 = rows[0].error;
     println!("bit-accurate paths on the plane: {e0:?}");
     for f in &rows[1..] {
-        assert_eq!((f.error.max_lsb, f.error.mean_lsb, f.error.psnr_db), (e0.max_lsb, e0.mean_lsb, e0.psnr_db));
+        assert_eq!(
+            (f.error.max_lsb, f.error.mean_lsb, f.error.psnr_db),
+            (e0.max_lsb, e0.mean_lsb, e0.psnr_db)
+        );
     }
     assert_ne!(rows[0].config_hash, rows[1].config_hash, "per-triangle and per-fragment tops");
     // The figures come from the configuration the table names, as `gbump area` would size it.
@@ -258,5 +261,7 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     assert!(csv.lines().next().unwrap().ends_with("fixed_memory_bits,fixed_latency"));
     let fields = csv.lines().next().unwrap().split(',').count();
     assert!(csv.lines().all(|l| l.split(',').count() == fields), "{csv}");
-    assert!(t.markdown().contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `texram`"));
+    assert!(t
+        .markdown()
+        .contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `texram`"));
 }

@@ -34,7 +34,10 @@ fn a_top_set_for_another_shininess_is_refused() {
         .assert()
         .failure();
     let t = stderr(o.get_output());
-    assert!(t.contains("--shininess 32") && t.contains("ROM holding shininess 24") && t.contains("fix:"), "{t}");
+    assert!(
+        t.contains("--shininess 32") && t.contains("ROM holding shininess 24") && t.contains("fix:"),
+        "{t}"
+    );
     assert!(!v.exists(), "a refused set left {v:?}");
     gbump()
         .args(base)
@@ -43,13 +46,24 @@ fn a_top_set_for_another_shininess_is_refused() {
         .assert()
         .success();
     gbump()
-        .args(["vectors", "--config", "tests/configs/power_rom.toml", "--source", "random:50", "--target", "top", "--out"])
+        .args([
+            "vectors",
+            "--config",
+            "tests/configs/power_rom.toml",
+            "--source",
+            "random:50",
+            "--target",
+            "top",
+            "--out",
+        ])
         .arg(&v)
         .assert()
         .success();
     let m = v.join("random50_top.json");
     // The top-level field (two spaces in); the configuration's own stays 24.
-    let text = std::fs::read_to_string(&m).unwrap().replace("\n  \"shininess\": 24", "\n  \"shininess\": 32");
+    let text = std::fs::read_to_string(&m)
+        .unwrap()
+        .replace("\n  \"shininess\": 24", "\n  \"shininess\": 32");
     assert!(text.contains("\n  \"shininess\": 32"), "the manifest names its table");
     std::fs::write(&m, text).unwrap();
     let o = gbump()

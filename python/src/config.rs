@@ -68,7 +68,8 @@ impl Config {
     #[staticmethod]
     fn from_interface(path: PathBuf) -> PyResult<Self> {
         let p = path.display();
-        let text = gbump::limits::read_text_as(&path, "an interface JSON", "pass the <top>.json that gbump rtl writes").map_err(crate::err)?;
+        let text =
+            gbump::limits::read_text_as(&path, "an interface JSON", "pass the <top>.json that gbump rtl writes").map_err(crate::err)?;
         let v: serde_json::Value = serde_json::from_str(&text)
             .map_err(|e| crate::fail(format!("{p}: not JSON ({e})\n  fix: pass the <top>.json that gbump rtl writes")))?;
         let (Some(c), Some(hash)) = (v.get("config"), v.get("config_hash").and_then(|h| h.as_str())) else {

@@ -282,7 +282,16 @@ impl Table {
                     let r = &f.error;
                     format!(
                         "{},{},{},{},{},{},{},{},{},{}",
-                        f.config_hash, r.psnr_db, r.max_lsb, r.mean_lsb, r.over_1lsb, r.seam_max_lsb, f.area_ge, f.flip_flops, f.memory_bits, f.latency
+                        f.config_hash,
+                        r.psnr_db,
+                        r.max_lsb,
+                        r.mean_lsb,
+                        r.over_1lsb,
+                        r.seam_max_lsb,
+                        f.area_ge,
+                        f.flip_flops,
+                        f.memory_bits,
+                        f.latency
                     )
                 });
                 s += &format!(
@@ -337,7 +346,13 @@ impl Table {
                     .zip(&row[0].rgb)
                     .map(|(a, b)| (0..3).map(|c| ((a[c] - b[c]) * LSB).abs()).fold(0.0, f64::max))
                     .collect();
-                put(&mut px, ei as u32, top + band + ch + GAP, img.w, &crate::render::output::heat_map(&err, 16.0));
+                put(
+                    &mut px,
+                    ei as u32,
+                    top + band + ch + GAP,
+                    img.w,
+                    &crate::render::output::heat_map(&err, 16.0),
+                );
             }
             let name = std::path::Path::new(&self.scenes[si])
                 .file_stem()

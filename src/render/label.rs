@@ -55,7 +55,11 @@ mod tests {
         draw(&mut px, w, 0, 0, "I", 40, INK);
         let one = lit(&px);
         assert!(one > 5, "an I has ink");
-        assert!(px.iter().enumerate().filter(|(_, p)| **p == INK).all(|(i, _)| (i as u32 % w) < CHAR_W && (i as u32 / w) < LINE_H));
+        assert!(px
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| **p == INK)
+            .all(|(i, _)| (i as u32 % w) < CHAR_W && (i as u32 / w) < LINE_H));
         let mut cut = vec![[0u8; 3]; (w * 10) as usize];
         draw(&mut cut, w, 0, 0, "gouraud_hl", 24, INK);
         let mut want = vec![[0u8; 3]; (w * 10) as usize];

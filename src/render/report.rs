@@ -53,7 +53,10 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
         crate::sim::require(crate::sim::Sim::Verilator)?;
         // Its work folder is under the current one: a path the simulators cannot take is
         // refused before anything is rendered or written.
-        crate::sim::check_tool_path(Path::new(crate::sim::rtl_image::RENDER_WORK), "the RTL work folder (under the current folder)")?;
+        crate::sim::check_tool_path(
+            Path::new(crate::sim::rtl_image::RENDER_WORK),
+            "the RTL work folder (under the current folder)",
+        )?;
     }
     let t0 = std::time::Instant::now();
     let img = super::render(&s, &cfg, w, h, std::io::stderr().is_terminal())?;

@@ -81,7 +81,13 @@ impl Checker<'_> {
 /// first values and drops the rest, so `size = [32, 24, 3]` would render 32×24 silently):
 /// the scene as read, serialised again, is walked beside the file's own values.
 fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
-    fn walk(given: &toml::Value, read: &toml::Value, path: &str, key: &str, array: Option<(&str, usize)>) -> Option<(String, String, Option<(String, usize)>, usize, usize)> {
+    fn walk(
+        given: &toml::Value,
+        read: &toml::Value,
+        path: &str,
+        key: &str,
+        array: Option<(&str, usize)>,
+    ) -> Option<(String, String, Option<(String, usize)>, usize, usize)> {
         match (given, read) {
             (toml::Value::Table(g), toml::Value::Table(r)) => g.iter().find_map(|(k, gv)| {
                 let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
@@ -89,11 +95,21 @@ fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
             }),
             (toml::Value::Array(g), toml::Value::Array(r)) => {
                 if g.len() > r.len() {
-                    return Some((path.to_string(), key.to_string(), array.map(|(a, i)| (a.to_string(), i)), g.len(), r.len()));
+                    return Some((
+                        path.to_string(),
+                        key.to_string(),
+                        array.map(|(a, i)| (a.to_string(), i)),
+                        g.len(),
+                        r.len(),
+                    ));
                 }
                 g.iter().zip(r).enumerate().find_map(|(i, (gv, rv))| {
                     // An array of tables ([[lights]]) is where a key's line is searched from.
-                    let inner = if gv.is_table() && path.split('.').count() == 1 { Some((key, i)) } else { array };
+                    let inner = if gv.is_table() && path.split('.').count() == 1 {
+                        Some((key, i))
+                    } else {
+                        array
+                    };
                     walk(gv, rv, &format!("{path}[{i}]"), key, inner)
                 })
             }

@@ -51,7 +51,10 @@ pub fn require(sim: Sim) -> Result<()> {
     sim.simulator().programs().iter().try_for_each(|p| crate::tool::require(p))?;
     if sim == Sim::Verilator {
         // Verilator builds its model with make and the C++ compiler make calls: $CXX, else g++.
-        let cxx = std::env::var("CXX").ok().filter(|c| !c.trim().is_empty()).unwrap_or_else(|| "g++".into());
+        let cxx = std::env::var("CXX")
+            .ok()
+            .filter(|c| !c.trim().is_empty())
+            .unwrap_or_else(|| "g++".into());
         let prog = cxx.split_whitespace().next().unwrap_or("g++").to_string();
         crate::tool::require(&prog)?;
     }

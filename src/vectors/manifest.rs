@@ -102,7 +102,16 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     let regen = format!("regenerate the set with: {}", m.command);
     m.config.validate(&file)?;
     if m.config.hash() != m.config_hash {
-        return Err(Error::field(&file, "config", format!("the configuration's hash is {}, not the config_hash {} the set names", m.config.hash(), m.config_hash), regen));
+        return Err(Error::field(
+            &file,
+            "config",
+            format!(
+                "the configuration's hash is {}, not the config_hash {} the set names",
+                m.config.hash(),
+                m.config_hash
+            ),
+            regen,
+        ));
     }
     if !super::writer::unit_present(&m.config, &m.target) {
         return Err(Error::field(
@@ -113,7 +122,12 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
         ));
     }
     if m.shininess > crate::limits::MAX_SHININESS {
-        return Err(Error::field(&file, "shininess", format!("{} is above MAX_SHININESS = {}", m.shininess, crate::limits::MAX_SHININESS), regen));
+        return Err(Error::field(
+            &file,
+            "shininess",
+            format!("{} is above MAX_SHININESS = {}", m.shininess, crate::limits::MAX_SHININESS),
+            regen,
+        ));
     }
     let l = if m.target == "top" {
         super::targets::top_layout(&m.config)
@@ -194,7 +208,11 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         if b.bytes != m.count * m.record_bytes as u64 {
             return Err(Error::Other(format!(
                 "{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}",
-                dir.join(&b.name).display(), b.bytes, m.count, m.record_bytes, m.command
+                dir.join(&b.name).display(),
+                b.bytes,
+                m.count,
+                m.record_bytes,
+                m.command
             )));
         }
     }

@@ -695,7 +695,10 @@ mod triangle_tests {
         let mean = lens.iter().sum::<u64>() as f64 / lens.len() as f64;
         // The figures the integration notes state, from the same function.
         let (want_ones, want_mean) = random_triangle_shape();
-        println!("one-fragment share {ones:.4} (stated {want_ones:.4}), mean {mean:.3} (stated {want_mean:.3}) over {} triangles", lens.len());
+        println!(
+            "one-fragment share {ones:.4} (stated {want_ones:.4}), mean {mean:.3} (stated {want_mean:.3}) over {} triangles",
+            lens.len()
+        );
         assert!((ones - want_ones).abs() < 0.01, "{ones} against {want_ones}");
         assert!((mean / want_mean - 1.0).abs() < 0.02, "{mean} against {want_mean}");
         assert!(lens.windows(2).any(|w| w == [1, 1]));
