@@ -437,6 +437,26 @@ fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
     Ok(p)
 }
 
+/// Refuse a repeatable option naming one value twice (the run would do its work twice).
+fn named_once(flag: &str, values: &[String]) -> Result<()> {
+    match values.iter().enumerate().find(|(i, v)| values[..*i].contains(v)) {
+        Some((_, v)) => Err(Error::Other(format!("{flag} {v} is given more than once\n  fix: name each once"))),
+        None => Ok(()),
+    }
+}
+
+/// The iCE40 device `area` places and routes on: refused for a target that is not placed and
+/// routed, the default when none is named.
+fn device_for(target: crate::measure::fpga::Target, device: Option<String>) -> Result<String> {
+    if device.is_some() && target != crate::measure::fpga::Target::Ice40 {
+        let name = clap::ValueEnum::to_possible_value(&target).map_or(String::new(), |v| v.get_name().to_string());
+        return Err(Error::Other(format!(
+            "--device has no effect on --target {name}: only ice40 is placed and routed on a device\n  fix: drop --device, or use --target ice40"
+        )));
+    }
+    Ok(device.unwrap_or_else(|| crate::measure::fpga::DEFAULT_DEVICE.into()))
+}
+
 /// Which configuration a command works on: a TOML file, a scene's derived one, or the default.
 #[derive(clap::Args, Clone, Debug)]
 pub struct ConfigPick {
@@ -626,9 +646,7 @@ pub fn run() -> anyhow::Result<()> {
         }
         Cmd::Lint { pick, work } => {
             let cfg = pick.resolve()?;
-            for p in ["verilator", "iverilog", "yosys"] {
-                crate::tool::require(p)?;
-            }
+            crate::sim::lint::require_tools()?;
             let _lock = lock_work(&work)?;
             crate::sim::lint::lint(&cfg, &work, &pick.args(), &mut say)?
         }
@@ -646,11 +664,7 @@ pub fn run() -> anyhow::Result<()> {
             target,
             device,
         } if target != crate::measure::fpga::Target::Cmos => {
-            if device.is_some() && target != crate::measure::fpga::Target::Ice40 {
-                let name = clap::ValueEnum::to_possible_value(&target).map_or(String::new(), |v| v.get_name().to_string());
-                return Err(Error::Other(format!("--device has no effect on --target {name}: only ice40 is placed and routed on a device\n  fix: drop --device, or use --target ice40")).into());
-            }
-            let device = device.unwrap_or_else(|| "hx8k".into());
+            let device = device_for(target, device)?;
             let cfg = pick.resolve()?;
             crate::measure::fpga::ice40_package(&device)?;
             crate::measure::fpga::require(target)?;
@@ -662,11 +676,13 @@ pub fn run() -> anyhow::Result<()> {
             out!("{}", crate::measure::fpga::markdown(&r));
         }
         Cmd::Area {
-            pick, work, json, device, ..
+            pick,
+            work,
+            json,
+            target,
+            device,
         } => {
-            if device.is_some() {
-                return Err(Error::Other("--device has no effect on --target cmos (gate equivalents need no device)\n  fix: drop --device, or use --target ice40".into()).into());
-            }
+            device_for(target, device)?;
             let cfg = pick.resolve()?;
             let _lock = lock_work(&work)?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
@@ -779,11 +795,9 @@ pub fn run() -> anyhow::Result<()> {
                 .into());
             }
             // Every input and tool is checked before the work folder is taken.
-            let device = device.unwrap_or_else(|| "hx8k".into());
-            for (i, s) in scene.iter().enumerate() {
-                if scene[..i].contains(s) {
-                    return Err(Error::Other(format!("--scene {s} is given more than once\n  fix: name each scene once")).into());
-                }
+            let device = device.unwrap_or_else(|| crate::measure::fpga::DEFAULT_DEVICE.into());
+            named_once("--scene", &scene)?;
+            for s in &scene {
                 Scene::load(s)?;
             }
             if !no_regress {
@@ -1006,14 +1020,8 @@ fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, ma
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_ENV_MAP_SIDE};
     check_count("--embm-map", maps.embm_map.into(), 2, MAX_ENV_MAP_SIDE.into(), "MAX_ENV_MAP_SIDE")?;
     check_count("--cg-cube", maps.cg_cube.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
-    for (what, list) in [("--scene", scenes), ("--engine", engines)] {
-        if let Some((i, n)) = list.iter().enumerate().find(|(i, n)| list[..*i].contains(n)) {
-            return Err(Error::Other(format!(
-                "{what} {n} is given more than once (again as argument {} of its kind)\n  fix: name each once",
-                i + 1
-            )));
-        }
-    }
+    named_once("--scene", scenes)?;
+    named_once("--engine", engines)?;
     let picked: Vec<&'static crate::engines::Engine> = if engines.is_empty() {
         ENGINES.iter().collect()
     } else {

@@ -24,9 +24,6 @@ pub fn require(prog: &str) -> Result<()> {
 pub fn missing(prog: &str) -> Error {
     let pkg = match prog {
         "vvp" | "iverilog" => "iverilog",
-        // Verilator builds its C++ model through make and a C++ compiler.
-        "make" => "make",
-        "g++" => "g++",
         p => p,
     };
     Error::Other(format!(

@@ -196,7 +196,7 @@ impl Config {
     /// property, the model's current table), `cube_size` to gbump rom's.
     #[pyo3(signature = (name, shininess = None, cube_size = 32))]
     fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<i128>, cube_size: i128) -> PyResult<Bound<'py, PyDict>> {
-        use gbump::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
+        use gbump::limits::{MAX_CUBE_SIDE, MAX_SHININESS};
         use gbump::rtlgen::rom;
         let cfg = self.cfg();
         let cube_size = crate::arg("cube_size", cube_size, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")? as u32;
@@ -206,14 +206,10 @@ impl Config {
                     Some(n) => crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32,
                     None => cfg.shininess,
                 };
-                check_count("shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS").map_err(crate::err)?;
                 rom::power_rom(cfg, n)
             }
             "bump_palette" => rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE),
-            "cube_map" => {
-                check_count("cube_size", cube_size.into(), 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE").map_err(crate::err)?;
-                rom::cube_map_rom(cube_size as usize)
-            }
+            "cube_map" => rom::cube_map_rom(cube_size as usize),
             _ => {
                 return Err(crate::fail(format!(
                     "rom `{name}`: unknown\n  fix: one of power_table, bump_palette, cube_map"
@@ -351,8 +347,8 @@ impl Config {
         use gbump::limits::{MAX_IMAGE_SIDE, MAX_SHININESS};
         let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
         let shininess = match shininess {
-            Some(n) => crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32,
-            None => self.h.cfg.shininess,
+            Some(n) => Some(crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32),
+            None => None,
         };
         let size = match size {
             Some((w, h)) => Some((
@@ -361,7 +357,7 @@ impl Config {
             )),
             None => None,
         };
-        crate::vectors::vectors(py, &self.h, source, seed, Some(shininess), size)
+        crate::vectors::vectors(py, &self.h, source, seed, shininess, size)
     }
 
     fn __repr__(&self) -> String {

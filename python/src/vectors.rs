@@ -94,12 +94,8 @@ pub fn vectors<'py>(
     shininess: Option<u32>,
     size: Option<(u32, u32)>,
 ) -> PyResult<Bound<'py, PyList>> {
-    use gbump::limits::{check_count, MAX_SHININESS};
     let cfg = &h.cfg;
     let src = Source::parse(source).map_err(crate::err)?;
-    if let Some(n) = shininess {
-        check_count("shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS").map_err(crate::err)?;
-    }
     let n = shininess.unwrap_or(cfg.shininess);
     let top_w = gbump::vectors::targets::top_layout(cfg).words32();
     let out = PyList::empty(py);

@@ -176,6 +176,9 @@ pub fn does_not_fit(p: &NextpnrLog) -> bool {
         })
 }
 
+/// The iCE40 device placed and routed on when none is named.
+pub const DEFAULT_DEVICE: &str = "hx8k";
+
 /// iCE40 devices nextpnr-ice40 knows, with the package gbump uses for each (the one with the
 /// most pins).
 pub const ICE40_DEVICES: [(&str, &str); 6] = [

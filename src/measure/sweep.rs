@@ -254,7 +254,7 @@ fn check_value(text: &str, file: &str, field: &str, key: &str, v: &toml::Value, 
 }
 
 /// The iCE40 a sweep with `target = "ice40"` places and routes on.
-pub const FPGA_DEVICE: &str = "hx8k";
+pub const FPGA_DEVICE: &str = super::fpga::DEFAULT_DEVICE;
 
 /// Image size and random stimuli per point: part of every point's cache key.
 const IMAGE: (u32, u32) = (128, 96);

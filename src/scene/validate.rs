@@ -138,7 +138,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     no_extra_values(s, text)?;
     let c = Checker { s, text };
     let bump = s.bump_lights().count();
-    let max_lights = crate::config::LIMITS.iter().find(|l| l.0 == "lights").expect("a lights limit").2;
+    let max_lights = crate::config::limit("lights").1;
     if bump as u32 > max_lights {
         return Err(c.fail(
             None,
@@ -319,7 +319,8 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             H::Png { path } => {
                 // The image is decoded later (its size checked from its header); that it is a
                 // file there is checked here, so every command refuses the scene alike, at its line.
-                let full = if path.is_absolute() { path.clone() } else { s.base.join(path) };
+                // `join` keeps an absolute path as it is.
+                let full = s.base.join(path);
                 let at = format!("{p}.bump.source.path");
                 if !full.is_file() {
                     let what = if full.exists() { "is not a file" } else { "is not there" };

@@ -10,12 +10,15 @@ use crate::rtlgen::units_v::module_name;
 use crate::tool::tail;
 use std::path::Path;
 
+/// Error unless every linter is installed (the message says how to install it).
+pub fn require_tools() -> Result<()> {
+    ["verilator", "iverilog", "yosys"].iter().try_for_each(|p| crate::tool::require(p))
+}
+
 /// Lint `cfg`'s RTL (written under `work`; `pick_args` selects it in the files' headers); the
 /// verdict line goes to `say`, the problems into the error.
 pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
-    for p in ["verilator", "iverilog", "yosys"] {
-        crate::tool::require(p)?;
-    }
+    require_tools()?;
     let dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
     let super::rtl_files::Rtl {
         sources: v, waivers: vlt, ..

@@ -197,10 +197,10 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
             })
             // A field at its default is left out of the TOML (colour_guard_bits = 0, white_lights
             // = false, interpolate = none): name that default.
-            .unwrap_or_else(|| match crate::config::LIMITS.iter().find(|l| l.0 == field) {
-                Some(_) => cfg.get(field).to_string(),
-                None if field == "interpolate" => "\"none\"".into(),
-                None => "false".into(),
+            .unwrap_or_else(|| match crate::config::LIMITS.iter().any(|l| l.0 == field) {
+                true => cfg.get(field).to_string(),
+                false if field == "interpolate" => "\"none\"".into(),
+                false => "false".into(),
             })
     };
     // (what the configuration has, what the unit needs) for every unmet setting.

@@ -129,11 +129,7 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
             regen,
         ));
     }
-    let l = if m.target == "top" {
-        super::targets::top_layout(&m.config)
-    } else {
-        super::targets::unit_layout(&m.config, &m.target)
-    };
+    let l = super::targets::layout(&m.config, &m.target);
     let (module, latency, ii) = timing(&m.config, &m.target);
     if m.module != module || m.latency != latency || m.initiation_interval != ii {
         return Err(Error::field(

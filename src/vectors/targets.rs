@@ -85,6 +85,15 @@ impl<'a> TopColumns<'a> {
     }
 }
 
+/// Layout of `target`'s vectors: the top's, or a unit's.
+pub fn layout(cfg: &PipelineConfig, target: &str) -> Layout {
+    if target == "top" {
+        top_layout(cfg)
+    } else {
+        unit_layout(cfg, target)
+    }
+}
+
 /// Layout of a unit's vectors: its ports from `UNITS`, inputs then outputs.
 pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
     let u = crate::units::unit(unit).unwrap_or_else(|| panic!("unknown unit {unit}"));

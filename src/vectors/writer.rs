@@ -180,11 +180,12 @@ impl SetWriter {
         );
         crate::render::output::write_atomic(&tp, text.as_bytes())?;
         let (bytes, sha256) = super::manifest::sha256_file(&tp)?;
+        let (module, latency, initiation_interval) = super::manifest::timing(cfg, &self.target);
         let m = Manifest {
             generator: crate::TOOL.into(),
             command: o.command.clone(),
             target: self.target.clone(),
-            module: super::manifest::timing(cfg, &self.target).0,
+            module,
             source: format!("{src:?}"),
             seed: o.seed,
             count: self.count,
@@ -201,8 +202,8 @@ impl SetWriter {
                 bytes,
                 sha256,
             },
-            latency: super::manifest::timing(cfg, &self.target).1,
-            initiation_interval: super::manifest::timing(cfg, &self.target).2,
+            latency,
+            initiation_interval,
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
@@ -390,7 +391,7 @@ fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &Du
     targets
         .iter()
         .map(|t| {
-            let l = if t == "top" { top_layout(cfg) } else { unit_layout(cfg, t) };
+            let l = super::targets::layout(cfg, t);
             SetWriter::new(dir, stem, t, l, o, limit)
         })
         .collect()
