@@ -198,6 +198,12 @@ pub struct PipelineConfig {
     /// the TOML when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub power_rom: bool,
+    /// The pipeline scales every interpolated L and H back to unit length per fragment (the
+    /// `normalise` unit: a reciprocal-square-root table and Newton steps), as per-pixel
+    /// engines do: interpolating unit vectors shortens them. Needs `interpolate` and parallel
+    /// lights. Left out of the TOML when false, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub renormalise: bool,
 }
 
 impl Default for PipelineConfig {
@@ -232,6 +238,7 @@ impl Default for PipelineConfig {
             interpolate: Interpolate::None,
             white_lights: false,
             power_rom: false,
+            renormalise: false,
         }
     }
 }
@@ -457,6 +464,22 @@ impl PipelineConfig {
                     self.interpolate
                 ),
                 "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
+            ));
+        }
+        if self.renormalise && self.interpolate.is_none() {
+            return Err(Error::field(
+                file,
+                "renormalise",
+                "renormalise = true but nothing is interpolated: the per-triangle L and H are already unit vectors",
+                "set interpolate = \"h\" or \"hl\" (with bump_state = \"fragment\"), or drop renormalise",
+            ));
+        }
+        if self.renormalise && self.light_mode != LightMode::Parallel {
+            return Err(Error::field(
+                file,
+                "renormalise",
+                "renormalise = true needs light_mode = \"parallel\": the normalise units sit one per interpolated vector before the dot products",
+                "set light_mode = \"parallel\", or drop renormalise",
             ));
         }
         if self.power_rom && !self.specular {

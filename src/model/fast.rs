@@ -84,6 +84,9 @@ pub struct FastModel {
     tex_s: u32,
     /// Every light colour at this code (`white_lights`), or each slot's own.
     white: Option<u32>,
+    /// The configuration, when it renormalises interpolated vectors before the dot products
+    /// (`pipeline::renormalised`: the same integer steps as the readable model).
+    renorm: Option<PipelineConfig>,
 }
 
 impl FastModel {
@@ -116,6 +119,7 @@ impl FastModel {
             tex_m: div.m as i64,
             tex_s: div.s,
             white: cfg.white_lights.then(|| cfg.colour_max()),
+            renorm: cfg.renormalise.then(|| cfg.clone()),
         }
     }
 
@@ -136,6 +140,14 @@ impl FastModel {
     pub fn colours_run_at(&self, level: Level, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         assert_eq!(frags.len(), out.len(), "one colour per fragment");
         assert!(crate::simd::supported(level), "{level:?} is beyond this CPU");
+        let owned;
+        let state = match &self.renorm {
+            Some(cfg) => {
+                owned = super::pipeline::renormalised(cfg, state);
+                &owned
+            }
+            None => state,
+        };
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
@@ -313,7 +325,11 @@ impl FastModel {
     ) {
         for (it, o) in items.iter().zip(out.iter_mut()) {
             let (state, frag) = get(it);
-            *o = self.one::<N, TEXTURE_LAST>(&lights::<N>(state, self.white), frag);
+            let l = match &self.renorm {
+                Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white),
+                None => lights::<N>(state, self.white),
+            };
+            *o = self.one::<N, TEXTURE_LAST>(&l, frag);
         }
     }
 

@@ -12,6 +12,7 @@ pub mod blend;
 pub mod bump_fetch;
 pub mod dot_clamp;
 pub mod fast;
+pub mod normalise;
 pub mod pipeline;
 pub mod power_table;
 pub mod power_unit;

@@ -8,7 +8,7 @@ use super::dot_clamp::dot_clamp;
 use super::power_table::PowerTable;
 use super::power_unit::power_unit;
 use super::texture_modulate::{colour_round, texture_modulate};
-use crate::config::{BlendOrder, PipelineConfig};
+use crate::config::{BlendOrder, Interpolate, PipelineConfig};
 
 /// Light slots the model can hold (the config's upper limit).
 pub const MAX_LIGHTS: usize = 8;
@@ -55,6 +55,9 @@ pub struct FragmentIn {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Shaded {
     pub b: [i64; 3],
+    /// L_i and H_i as the dot products see them (`normalise`d under `renormalise`).
+    pub l: [[i64; 3]; MAX_LIGHTS],
+    pub h: [[i64; 3]; MAX_LIGHTS],
     pub flat: bool,
     pub fd: [i64; MAX_LIGHTS],
     /// Clamped B·H_i: the power table's index input.
@@ -76,6 +79,29 @@ impl Shaded {
     pub fn colour(&self) -> [u32; 3] {
         self.out
     }
+}
+
+/// Light slot `s`'s L and H as the dot products see them: the slot's own, or under
+/// `renormalise` each interpolated one through the `normalise` unit (H, and L with
+/// `interpolate = "hl"`; a per-triangle L is a unit vector already).
+pub fn dot_vectors(cfg: &PipelineConfig, s: &LightSlot) -> ([i64; 3], [i64; 3]) {
+    if !cfg.renormalise {
+        return (s.l, s.h);
+    }
+    let l = match cfg.interpolate {
+        Interpolate::Hl => super::normalise::normalise(cfg, s.l),
+        _ => s.l,
+    };
+    (l, super::normalise::normalise(cfg, s.h))
+}
+
+/// `state` with every slot's L and H as the dot products see them ([`dot_vectors`]).
+pub fn renormalised(cfg: &PipelineConfig, state: &BumpState) -> BumpState {
+    let mut st = *state;
+    for s in st.lights.iter_mut().take(cfg.lights as usize) {
+        (s.l, s.h) = dot_vectors(cfg, s);
+    }
+    st
 }
 
 /// Shade one fragment. `palette` must be given when `cfg.palette` is set.
@@ -103,14 +129,15 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         let s = &state.lights[i];
         kd[i] = s.k;
         lc[i] = cfg.light_colour(s.lc);
+        (out.l[i], out.h[i]) = dot_vectors(cfg, s);
         if cfg.diffuse {
-            out.fd[i] = dot_clamp(cfg, b, s.l);
+            out.fd[i] = dot_clamp(cfg, b, out.l[i]);
             if diffuse_on {
                 dfac[i] = align_factor(cfg, out.fd[i], cfg.dot_frac_bits);
             }
         }
         if cfg.specular {
-            out.xh[i] = dot_clamp(cfg, b, s.h);
+            out.xh[i] = dot_clamp(cfg, b, out.h[i]);
             out.fs[i] = power_unit(cfg, table, out.xh[i]);
             if specular_on {
                 sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);

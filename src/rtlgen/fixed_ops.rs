@@ -17,7 +17,7 @@ pub fn slit(w: u32, v: i64) -> String {
 
 /// Declare `name`: `x` (a wire of format `from`) requantised to `to_frac` fraction bits with
 /// `rnd`, then clamped to `[lo, hi]` and truncated to `out_w` bits (unsigned output when
-/// `lo >= 0`). Mirrors `fixed::requant(.., Overflow::Saturate)` followed by a clamp.
+/// `lo >= 0`, else its two's-complement bits). Mirrors `fixed::requant(.., Overflow::Saturate)` followed by a clamp.
 // The arguments are the operation's own parameters (source, destination, rounding, bounds).
 #[allow(clippy::too_many_arguments)]
 pub fn requant_clamp(w: &mut VWriter, name: &str, x: &str, from: Format, to_frac: u32, rnd: Rounding, lo: i64, hi: i64, out_w: u32) {
@@ -51,10 +51,9 @@ pub fn requant_clamp(w: &mut VWriter, name: &str, x: &str, from: Format, to_frac
         "wire {}{name} = ({name}_r < {}) ? {out_w}'d{} : ({name}_r > {}) ? {out_w}'d{} : {name}_r[{}:0];",
         range(out_w),
         slit(rw, lo),
-        lo.max(0),
+        (lo as i128).rem_euclid(1i128 << out_w),
         slit(rw, hi),
         hi,
         out_w - 1
     ));
-    debug_assert!(lo >= 0, "signed clamp outputs are not emitted");
 }

@@ -9,6 +9,7 @@ pub mod integration_doc;
 pub mod interface;
 pub mod kit;
 pub mod module;
+pub mod normalise_v;
 pub mod power_units;
 pub mod ram;
 pub mod rom;

@@ -820,10 +820,18 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_bump}", false);
     let dot = units::unit("dot_clamp").expect("unit");
+    let norm = units::unit("normalise").expect("unit");
+    // Which vectors are renormalised before their dot products: H, and L when interpolated.
+    let renormalised = |v: &str| cfg.renormalise && (v == "h" || cfg.interpolate == crate::config::Interpolate::Hl);
     // One dot_clamp per light slot: B·L_i into fd<i>, or B·H_i into xh<i>.
     let dots = |s: &mut Scheduler, v: &str, out: &str| {
         for i in 0..n {
-            let lanes = format!("{{{pre}_{v}}}{}", lane(i, lh3));
+            let mut lanes = format!("{{{pre}_{v}}}{}", lane(i, lh3));
+            if renormalised(v) {
+                let nv = format!("n{v}{i}");
+                s.unit(cfg, norm, &format!("u_norm_{v}{i}"), &[("v", &lanes)], &[("n", &nv)], &[]);
+                lanes = format!("{{{nv}}}");
+            }
             s.unit(
                 cfg,
                 dot,

@@ -19,7 +19,7 @@ use std::path::Path;
 pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
     loop {
         let (e_lo, e_hi) = limit("power_entries");
-        let cfg = PipelineConfig {
+        let mut cfg = PipelineConfig {
             normal_bits: field(rng, "normal_bits"),
             normal_range: pick(rng, &[NormalRange::Binary, NormalRange::Symmetric]),
             lh_bits: field(rng, "lh_bits"),
@@ -52,7 +52,15 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             colour_guard_bits: field(rng, "colour_guard_bits"),
             white_lights: pick(rng, &[false, true]),
             power_rom: pick(rng, &[false, true]),
+            renormalise: false,
         };
+        // Drawn only where it is valid (per-fragment state, parallel lights), so no other
+        // configuration is redrawn for it; what it renormalises (H, or H and L) changes the
+        // RTL, so that is drawn with it.
+        if cfg.bump_state == BumpStateAt::Fragment && cfg.light_mode == LightMode::Parallel && pick(rng, &[false, true]) {
+            cfg.renormalise = true;
+            cfg.interpolate = pick(rng, &[crate::config::Interpolate::H, crate::config::Interpolate::Hl]);
+        }
         if cfg.validate("random").is_ok() {
             return cfg;
         }
@@ -343,6 +351,7 @@ mod tests {
             "skip_flat",
             "white_lights",
             "power_rom",
+            "renormalise",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> = draws

@@ -13,6 +13,7 @@ mod blend;
 mod bump_fetch;
 mod colour_round;
 mod dot_clamp;
+mod normalise;
 mod palette_fetch;
 mod power_unit;
 pub mod resources;
@@ -164,6 +165,7 @@ pub trait Unit: Sync {
 pub static UNITS: &[&dyn Unit] = &[
     &bump_fetch::BumpFetch,
     &palette_fetch::PaletteFetch,
+    &normalise::Normalise,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,
     &DIFFUSE_BLEND,

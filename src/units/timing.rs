@@ -18,6 +18,14 @@ pub const ACCUMULATE: &[&str] = &["after f k", "after f k Lc"];
 /// texture_modulate: c·t, then the exact division by 2^w - 1 (two adds).
 pub const TEXTURE: &[&str] = &["after c t"];
 
+/// normalise: the squared length; the shift, the table and the Newton steps; the scaled
+/// products x·r (their shift and rounding stay before the output register).
+pub const NORMALISE: &[&str] = &[
+    "after the sum of squares",
+    "after the table and the Newton steps",
+    "after the products x r",
+];
+
 /// How many of `cuts` are in place at the configuration's depth.
 pub fn cuts_in_place(cfg: &PipelineConfig, cuts: &[&str]) -> u32 {
     (cfg.pipeline_depth.saturating_sub(1)).min(cuts.len() as u32)
@@ -59,8 +67,9 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 11] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 12] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
+        ("normalise", false, Table, false, ""),
         ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
         ("dot_clamp", true, Table, false, ""),
         (
@@ -92,6 +101,11 @@ pub fn markdown() -> String {
             if name == "colour_round" {
                 cfg.colour_guard_bits = 2;
             }
+            if name == "normalise" {
+                cfg.bump_state = crate::config::BumpStateAt::Fragment;
+                cfg.interpolate = crate::config::Interpolate::H;
+                cfg.renormalise = true;
+            }
             s += &format!(" {} |", u.latency(&cfg));
         }
         let cuts = match name {
@@ -99,6 +113,7 @@ pub fn markdown() -> String {
             "diffuse_blend" | "specular_blend" => BLEND,
             "light_accumulate" => ACCUMULATE,
             "texture_modulate" => TEXTURE,
+            "normalise" => NORMALISE,
             _ => &[],
         };
         let text = if cuts.is_empty() { note.to_string() } else { cuts.join("; ") };
@@ -135,7 +150,7 @@ mod tests {
         assert_eq!(latency(&at(4), BLEND), 4);
         assert_eq!(latency(&at(4), TEXTURE), 2);
         // The deepest unit's cuts end at the limit: one more stage would cut nothing.
-        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE].iter().map(|c| c.len()).max().unwrap() as u32;
+        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE].iter().map(|c| c.len()).max().unwrap() as u32;
         assert_eq!(deepest + 1, crate::limits::MAX_PIPELINE_DEPTH);
     }
 }

@@ -433,16 +433,31 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     let white = cfg.white_lights;
     for j in 0..n {
         let ls = &s.state.lights[j];
+        // The normalise instances: H's, and L's when it is interpolated too.
+        if cfg.renormalise {
+            if cfg.diffuse && cfg.interpolate == crate::config::Interpolate::Hl {
+                v.push(UnitStim {
+                    unit: "normalise",
+                    inputs: vec![ls.l.to_vec()],
+                });
+            }
+            if cfg.specular {
+                v.push(UnitStim {
+                    unit: "normalise",
+                    inputs: vec![ls.h.to_vec()],
+                });
+            }
+        }
         if cfg.diffuse {
             v.push(UnitStim {
                 unit: "dot_clamp",
-                inputs: vec![t.b.to_vec(), ls.l.to_vec()],
+                inputs: vec![t.b.to_vec(), t.l[j].to_vec()],
             });
         }
         if cfg.specular {
             v.push(UnitStim {
                 unit: "dot_clamp",
-                inputs: vec![t.b.to_vec(), ls.h.to_vec()],
+                inputs: vec![t.b.to_vec(), t.h[j].to_vec()],
             });
             v.push(UnitStim {
                 unit: "power_unit",

@@ -1,0 +1,241 @@
+//! normalise: a vector scaled back to unit length, as per-pixel engines renormalise their
+//! interpolated vectors (the Cg tutorial's normalisation cube map, §8.2; Blinn's N'/|N'|,
+//! paper §2), done the way hardware does it without a divider or a square root: a table of
+//! reciprocal square roots, indexed by the leading bits of the squared length, refined by
+//! Newton steps.
+//!
+//! For a vector v of raw `s1.F` components (F = lh_bits - 2) the unit computes
+//! `v · scale / |v|` in the same format, `scale` being the factor the L and H carry
+//! (`PipelineConfig::normal_scale`: 1, or 2^(w-1)/(2^(w-1)-1) for symmetric normals).
+//!
+//! 1. `s = x² + y² + z²`, exact. For symmetric normals `S = s·(h-1)²` with h = 2^(nb-1)
+//!    (two shifted subtractions), so that `scale/sqrt(s) = h/sqrt(S)`; otherwise `S = s`.
+//! 2. `S` is shifted left by the even amount `z` that puts its leading one in the top two
+//!    bits of an `L`-bit window (`L` = 2·lh, plus 2(nb-1) for symmetric normals):
+//!    `m = (S << z) / 2^L` lies in [1/4, 1) and `1/sqrt(S) = (1/sqrt(m)) · 2^((z-L)/2)`.
+//! 3. `r0 = table[top T bits of S << z]`: `round(2^Y / sqrt(mid-point of the interval))`,
+//!    u2.Y. The table has `3·2^(T-2)` entries (the index's top two bits are never 00).
+//! 4. Newton steps for `1/sqrt(m)`, each truncating to Y fraction bits:
+//!    `q = r²`, `u = m_M · q` (m cut to M bits), `r = r · (3 - u) / 2`.
+//! 5. `n = round(x · r · 2^(z/2) / 2^(Y+2))`, by the configured rounding, saturated to s1.F.
+//!
+//! A zero vector stays zero. How many table bits and Newton steps are used follows from F
+//! ([`params`]): the table alone for short words, one step when a table of at most 2^7
+//! index values makes it enough, two otherwise; `normalise`'s tests hold the result within
+//! one LSB of `v·scale/|v|` for every width.
+
+use crate::config::{NormalRange, PipelineConfig};
+use crate::fixed::shift_round;
+
+/// The sizes of a normalise unit under a configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Params {
+    /// Index bits T of the reciprocal-square-root table.
+    pub table_bits: u32,
+    /// Newton steps after the table (0 to 2).
+    pub steps: u32,
+    /// Fraction bits Y of the reciprocal r (u2.Y).
+    pub r_frac: u32,
+    /// Bits M of m that the Newton steps multiply by.
+    pub m_bits: u32,
+    /// Extra bits of S for symmetric normals (nb - 1, else 0).
+    pub pre_bits: u32,
+    /// Width L of the normalised squared-length window.
+    pub window: u32,
+}
+
+impl Params {
+    /// Table entries: index values 2^(T-2) ..= 2^T - 1.
+    pub fn entries(&self) -> u32 {
+        3 << (self.table_bits - 2)
+    }
+    /// The first index the table holds.
+    pub fn first_index(&self) -> u32 {
+        1 << (self.table_bits - 2)
+    }
+    /// Bits of a table word (u2.Y).
+    pub fn word_bits(&self) -> u32 {
+        self.r_frac + 2
+    }
+}
+
+/// The table and Newton-step sizes for `cfg`: enough for the result to be within one LSB of
+/// `v·scale/|v|`. The relative error of a mid-point table is at most 2^-T (at m = 1/4), and a
+/// Newton step squares it (times 3/2); the result needs about 2^-(F+2).
+pub fn params(cfg: &PipelineConfig) -> Params {
+    let f = cfg.lh_bits - 2;
+    let (table_bits, steps) = if f + 2 <= 6 {
+        ((f + 2).max(4), 0)
+    } else if (f + 3).div_ceil(2) <= 7 {
+        ((f + 3).div_ceil(2), 1)
+    } else {
+        ((f + 4).div_ceil(4).max(4), 2)
+    };
+    let pre_bits = match cfg.normal_range {
+        NormalRange::Binary => 0,
+        NormalRange::Symmetric => cfg.normal_bits - 1,
+    };
+    let r_frac = f + 4;
+    Params {
+        table_bits,
+        steps,
+        r_frac,
+        m_bits: r_frac + 2,
+        pre_bits,
+        window: 2 * cfg.lh_bits + 2 * pre_bits,
+    }
+}
+
+/// Table word `i` (index `first_index + i`): round(2^Y / sqrt(mid-point)), u2.Y. Computed in
+/// f64 from a correctly rounded square root and division, so every platform agrees.
+pub fn table_word(p: &Params, i: u32) -> i64 {
+    let idx = (p.first_index() + i) as f64;
+    let mid = (idx + 0.5) / (p.table_bits as f64).exp2();
+    ((p.r_frac as f64).exp2() / mid.sqrt() + 0.5).floor() as i64
+}
+
+/// Every intermediate value of one normalisation, for the unit's tests and its Verilog's
+/// comments.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Trace {
+    /// S (the scaled squared length).
+    pub big_s: i128,
+    /// The even shift z.
+    pub shift: u32,
+    /// The table index.
+    pub index: u32,
+    /// r after the table and after each step.
+    pub r: i64,
+}
+
+/// The unit's arithmetic up to the reciprocal: None for a zero vector.
+pub fn reciprocal(p: &Params, v: [i64; 3]) -> Option<Trace> {
+    let s: i128 = v.iter().map(|&x| (x as i128) * (x as i128)).sum();
+    if s == 0 {
+        return None;
+    }
+    let big_s = if p.pre_bits == 0 {
+        s
+    } else {
+        // s·(h-1)² = s·h² - 2·s·h + s, h = 2^(nb-1): shifts and adds.
+        (s << (2 * p.pre_bits)) - (s << (p.pre_bits + 1)) + s
+    };
+    let len = 128 - big_s.leading_zeros();
+    let shift = (p.window - len) & !1;
+    let sn = big_s << shift;
+    let index = (sn >> (p.window - p.table_bits)) as u32;
+    let mut r = table_word(p, index - p.first_index()) as i128;
+    let m = sn >> (p.window - p.m_bits);
+    let y = p.r_frac;
+    for _ in 0..p.steps {
+        let q = (r * r) >> y;
+        let u = (m * q) >> p.m_bits;
+        let e = (3i128 << y) - u;
+        r = (r * e) >> (y + 1);
+    }
+    Some(Trace {
+        big_s,
+        shift,
+        index,
+        r: r as i64,
+    })
+}
+
+/// The normalised vector, raw `s1.F` components.
+pub fn normalise(cfg: &PipelineConfig, v: [i64; 3]) -> [i64; 3] {
+    let p = params(cfg);
+    let Some(t) = reciprocal(&p, v) else {
+        return [0; 3];
+    };
+    let fmt = cfg.lh_fmt();
+    v.map(|x| {
+        let q = ((x as i128) * (t.r as i128)) << (t.shift / 2);
+        let n = shift_round(q, p.r_frac + 2, cfg.rounding);
+        n.clamp(fmt.min_raw() as i128, fmt.max_raw() as i128) as i64
+    })
+}
+
+/// The same in f64, without roundings: `v · scale / |v|` in output LSBs (0 for a zero vector).
+pub fn normalise_exact(cfg: &PipelineConfig, v: [i64; 3]) -> [f64; 3] {
+    let s: f64 = v.iter().map(|&x| (x as f64) * (x as f64)).sum();
+    if s == 0.0 {
+        return [0.0; 3];
+    }
+    let k = cfg.normal_scale() * ((cfg.lh_bits - 2) as f64).exp2() / s.sqrt();
+    v.map(|x| x as f64 * k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cfg(lh: u32, range: NormalRange, nb: u32) -> PipelineConfig {
+        PipelineConfig {
+            lh_bits: lh,
+            normal_range: range,
+            normal_bits: nb,
+            ..Default::default()
+        }
+    }
+
+    /// SplitMix64, for reproducible draws without a dependency.
+    fn next(s: &mut u64) -> u64 {
+        *s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = *s;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Within one LSB of the exact unit vector for every word width and both normal ranges,
+    /// over vectors of every length the format holds (interpolated unit vectors shrink; a
+    /// quantised one may exceed 1 a little) and the shortest ones.
+    #[test]
+    fn within_one_lsb_of_the_exact_unit_vector_at_every_width() {
+        let (lo, hi) = crate::config::limit("lh_bits");
+        for lh in lo..=hi {
+            for (range, nb) in [(NormalRange::Binary, 8), (NormalRange::Symmetric, 3), (NormalRange::Symmetric, 16)] {
+                let c = cfg(lh, range, nb);
+                let top = c.lh_fmt().max_raw();
+                let mut seed = lh as u64 * 1000 + nb as u64;
+                let mut worst = 0f64;
+                for i in 0..20_000 {
+                    // Lengths from the shortest vectors up to the format's edge.
+                    let bits = 1 + (i % (lh as u64 - 1)) as u32;
+                    let lim = (1i64 << bits).min(top);
+                    let v = [0, 1, 2].map(|_| (next(&mut seed) % (2 * lim as u64 + 1)) as i64 - lim);
+                    let v = v.map(|x| x.clamp(c.lh_fmt().min_raw(), top));
+                    let n = normalise(&c, v);
+                    let e = normalise_exact(&c, v);
+                    for k in 0..3 {
+                        let exact = e[k].clamp(c.lh_fmt().min_raw() as f64, top as f64);
+                        worst = worst.max((n[k] as f64 - exact).abs());
+                    }
+                }
+                eprintln!("lh {lh} {range:?} {nb} worst {worst:.3} {:?}", params(&c));
+                assert!(worst <= 1.0, "lh {lh} {range:?} nb {nb}: worst {worst} LSB, {:?}", params(&c));
+            }
+        }
+    }
+
+    #[test]
+    fn axes_stay_unit_vectors_and_zero_stays_zero() {
+        let c = PipelineConfig::default();
+        let one = 1i64 << (c.lh_bits - 2);
+        assert_eq!(normalise(&c, [0, 0, 0]), [0, 0, 0]);
+        for len in [1, 3, one / 2, one, one + 7, 2 * one - 1] {
+            assert_eq!(normalise(&c, [0, 0, len]), [0, 0, one], "length {len}");
+            assert_eq!(normalise(&c, [-len, 0, 0]), [-one, 0, 0], "length {len}");
+        }
+    }
+
+    #[test]
+    fn the_table_index_covers_its_words() {
+        for lh in 4..=24 {
+            let p = params(&cfg(lh, NormalRange::Binary, 8));
+            assert!((4..=7).contains(&p.table_bits), "{p:?}");
+            // The largest word fits u2.Y.
+            assert!(table_word(&p, 0) < 1 << p.word_bits());
+        }
+    }
+}

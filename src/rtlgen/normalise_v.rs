@@ -1,0 +1,207 @@
+//! The `normalise` unit's Verilog: the steps of `model::normalise` (squared length, even
+//! leading-zero shift, reciprocal-square-root table, Newton steps, scaled products, one
+//! rounding), with the register cuts of `units::timing::NORMALISE` the depth puts in place.
+
+use super::booth::{sum_of_products, Factor, Form};
+use super::fixed_ops::requant_clamp;
+use super::units_v::module_name;
+use super::writer::VWriter;
+use crate::config::PipelineConfig;
+use crate::fixed::Format;
+use crate::model::normalise::{params, table_word};
+use crate::units::timing::{cut, cuts_in_place, latency, NORMALISE};
+
+/// Width of the scaled product x·r·2^(z/2) before its rounding.
+pub fn scaled_width(cfg: &PipelineConfig) -> u32 {
+    let p = params(cfg);
+    cfg.lh_bits + p.word_bits() + 1 + p.window / 2
+}
+
+pub fn normalise(cfg: &PipelineConfig) -> String {
+    let p = params(cfg);
+    let lh = cfg.lh_bits;
+    let (l, t, y, mb) = (p.window, p.table_bits, p.r_frac, p.m_bits);
+    let rw = p.word_bits();
+    // z reaches l - 2 (S = 1).
+    let zw = 32 - (l - 2).leading_zeros();
+    let mut w = VWriter::new();
+    w.line("`timescale 1ns / 1ps");
+    w.line("`default_nettype none");
+    w.line("");
+    w.line(format!(
+        "// normalise: n = v scale / |v| in s1.{} (scale {:.6}), a zero vector stays zero. S = sum of squares{};",
+        lh - 2,
+        cfg.normal_scale(),
+        if p.pre_bits > 0 {
+            format!(" times (2^{} - 1)^2", p.pre_bits)
+        } else {
+            String::new()
+        }
+    ));
+    w.line(format!(
+        "// its leading one shifted into the top two of {l} bits by an even z; r = 1/sqrt(m) from a {}-word table (index: the top {t} bits),",
+        p.entries()
+    ));
+    w.line(format!(
+        "// {} Newton step(s) r = r (3 - m r^2) / 2 in u2.{y} (m cut to {mb} bits); n = round(x r 2^(z/2) / 2^{}) ({:?}), saturated.",
+        p.steps,
+        y + 2,
+        cfg.rounding
+    ));
+    w.line(format!(
+        "// Latency {}: pipeline_depth {} puts {} of its register cuts in place.",
+        latency(cfg, NORMALISE),
+        cfg.pipeline_depth,
+        cuts_in_place(cfg, NORMALISE)
+    ));
+    w.line(format!(
+        "module {} (\n    input  wire clk,\n    input  wire [{}:0] v,\n    output reg  [{}:0] n\n);",
+        module_name(cfg, "normalise"),
+        3 * lh - 1,
+        3 * lh - 1
+    ));
+    // The reciprocal-square-root table: a constant, so a case in logic.
+    w.block(format!("function [{}:0] rsqrt;", rw - 1), "endfunction", |w| {
+        w.line(format!("input [{}:0] i;", t - 1));
+        w.block("case (i)", "endcase", |w| {
+            for k in 0..p.entries() {
+                w.line(format!("{t}'d{}: rsqrt = {rw}'d{};", p.first_index() + k, table_word(&p, k)));
+            }
+            w.line(format!("default: rsqrt = {rw}'d0;"));
+        });
+    });
+    // The even shift that puts S's leading one into its top two bits (0 for S = 0, whose
+    // products are zero whatever r is).
+    w.block(format!("function [{}:0] lead2;", zw - 1), "endfunction", |w| {
+        w.line(format!("input [{}:0] s;", l - 1));
+        w.line("integer k;");
+        w.block("begin", "end", |w| {
+            w.line(format!("lead2 = {zw}'d0;"));
+            w.line(format!(
+                "for (k = 0; k < {}; k = k + 1) if (s[2 * k +: 2] != 2'b00) lead2 = {} - 2 * k;",
+                l / 2,
+                l - 2
+            ));
+        });
+    });
+    let vw = format!("[{}:0]", 3 * lh - 1);
+    let x = |v: &str, i: u32| format!("{v}[{}:{}]", i * lh + lh - 1, i * lh);
+    // Stage 1: the squared length, scaled for symmetric normals.
+    let sq = sum_of_products(
+        &mut w,
+        Form::of(cfg),
+        "sq",
+        &[0, 1, 2].map(|i| (Factor::signed(x("v", i), lh), Factor::signed(x("v", i), lh))),
+        0,
+        2 * lh + 1,
+    );
+    w.line(format!("wire [{}:0] s_all = {sq};", 2 * lh));
+    w.line(format!("wire [{}:0] s = s_all[{}:0];", 2 * lh - 1, 2 * lh - 1));
+    let big_s = if p.pre_bits == 0 {
+        "s".to_string()
+    } else {
+        let a = p.pre_bits;
+        format!(
+            "{{s, {}'d0}} - {{{}'d0, s, {}'d0}} + {{{}'d0, s}}",
+            2 * a,
+            a - 1,
+            a + 1,
+            2 * a
+        )
+    };
+    w.line(format!("wire [{}:0] s_w = {big_s};", l - 1));
+    let c0 = cut(cfg, NORMALISE, 0);
+    w.stage(c0, &format!("[{}:0]", l - 1), "s1", "s_w");
+    w.stage(c0, &vw, "v1", "v");
+    // Stage 2: shift, table, Newton steps.
+    w.line(format!("wire [{}:0] z1 = lead2(s1);", zw - 1));
+    w.line(format!("wire [{}:0] sn = s1 << z1;", l - 1));
+    w.line(format!("wire [{}:0] m = sn[{}:{}];", mb - 1, l - 1, l - mb));
+    w.line(format!("wire [{}:0] r0 = rsqrt(sn[{}:{}]);", rw - 1, l - 1, l - t));
+    let mut r = "r0".to_string();
+    // The steps chain up to six products: as Booth rows in functions, which Icarus evaluates
+    // once per input change instead of once per row of every product upstream.
+    let chain = match Form::of(cfg) {
+        Form::Wires => Form::Function,
+        f => f,
+    };
+    for k in 1..=p.steps {
+        let rr = sum_of_products(
+            &mut w,
+            chain,
+            &format!("rr{k}"),
+            &[(Factor::unsigned(&r, rw), Factor::unsigned(&r, rw))],
+            0,
+            2 * rw,
+        );
+        w.line(format!("wire [{}:0] rr{k}_p = {rr};", 2 * rw - 1));
+        let qw = rw + 2;
+        w.line(format!("wire [{}:0] nq{k} = rr{k}_p[{}:{}];", qw - 1, 2 * rw - 1, y));
+        let mq = sum_of_products(
+            &mut w,
+            chain,
+            &format!("mq{k}"),
+            &[(Factor::unsigned("m", mb), Factor::unsigned(format!("nq{k}"), qw))],
+            0,
+            mb + qw,
+        );
+        w.line(format!("wire [{}:0] mq{k}_p = {mq};", mb + qw - 1));
+        w.line(format!("wire [{}:0] u{k} = mq{k}_p[{}:{}];", qw - 1, mb + qw - 1, mb));
+        // 0 < 3 - m r^2 < 4 for every table word and m of its interval (the model's tests).
+        w.line(format!("wire [{}:0] e{k} = {}'d{} - u{k};", rw - 1, rw, 3u64 << y));
+        let re = sum_of_products(
+            &mut w,
+            chain,
+            &format!("re{k}"),
+            &[(Factor::unsigned(&r, rw), Factor::unsigned(format!("e{k}"), rw))],
+            0,
+            2 * rw,
+        );
+        w.line(format!("wire [{}:0] re{k}_p = {re};", 2 * rw - 1));
+        w.line(format!("wire [{}:0] nr{k} = re{k}_p[{}:{}];", rw - 1, y + rw, y + 1));
+        r = format!("nr{k}");
+    }
+    let c1 = cut(cfg, NORMALISE, 1);
+    w.stage(c1, &format!("[{}:0]", rw - 1), "r_s2", &r);
+    w.stage(c1, &format!("[{}:0]", zw - 1), "h2", "z1 >> 1");
+    w.stage(c1, &vw, "v2", "v1");
+    // Stage 3: the products x r, then the shift by z/2 and one rounding.
+    let pw = lh + rw + 1;
+    let c2 = cut(cfg, NORMALISE, 2);
+    for i in 0..3 {
+        let e = sum_of_products(
+            &mut w,
+            Form::of(cfg),
+            &format!("xr{i}"),
+            &[(Factor::signed(x("v2", i), lh), Factor::unsigned("r_s2", rw))],
+            0,
+            pw,
+        );
+        w.stage(c2, &format!("signed [{}:0]", pw - 1), &format!("p{i}"), &e);
+    }
+    w.stage(c2, &format!("[{}:0]", zw - 1), "h3", "h2");
+    let sw = scaled_width(cfg);
+    // Wider than the model's i64 formats at the widest words: only its shape is read here.
+    let fmt = Format {
+        width: sw,
+        frac: y + 2,
+        signed: true,
+    };
+    let lo = cfg.lh_fmt().min_raw();
+    let hi = cfg.lh_fmt().max_raw();
+    for i in 0..3 {
+        w.line(format!(
+            "wire signed [{}:0] sc{i} = $signed({{{{{}{{p{i}[{}]}}}}, p{i}}}) <<< h3;",
+            sw - 1,
+            sw - pw,
+            pw - 1
+        ));
+        requant_clamp(&mut w, &format!("n{i}"), &format!("sc{i}"), fmt, 0, cfg.rounding, lo, hi, lh);
+    }
+    w.block("always @(posedge clk) begin", "end", |w| {
+        w.line("n <= {n2, n1, n0};");
+    });
+    w.line("endmodule");
+    w.line("`default_nettype wire");
+    w.finish()
+}
