@@ -234,18 +234,24 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
         .filter(|(_, f)| f.is_some())
         .map(|(e, _)| e.name)
         .collect();
-    assert_eq!(with, ["gouraud", "gouraud_h", "gouraud_hl"]);
+    assert_eq!(with, ["gouraud", "gouraud_h", "gouraud_hl", "gouraud_hn", "gouraud_hln"]);
     for (e, f) in t.engines.iter().zip(&t.fixed[0]) {
         assert_eq!(e.fixed.is_some(), f.is_some(), "{}", e.name);
     }
     let rows: Vec<&report::Fixed> = t.fixed[0].iter().flatten().collect();
     let e0 = rows[0].error;
     println!("bit-accurate paths on the plane: {e0:?}");
-    for f in &rows[1..] {
+    for f in &rows[1..3] {
         assert_eq!(
             (f.error.max_lsb, f.error.mean_lsb, f.error.psnr_db),
             (e0.max_lsb, e0.mean_lsb, e0.psnr_db)
         );
+    }
+    // Renormalising a quantised unit vector moves it by at most an LSB of L and H, which the
+    // dot products' rounding may pass on: within a colour LSB of the others.
+    for f in &rows[3..] {
+        println!("renormalised on the plane: {:?}", f.error);
+        assert!((f.error.max_lsb - e0.max_lsb).abs() <= 1.0 && (f.error.mean_lsb - e0.mean_lsb).abs() <= 0.05, "{:?}", f.error);
     }
     assert_ne!(rows[0].config_hash, rows[1].config_hash, "per-triangle and per-fragment tops");
     // The figures come from the configuration the table names, as `gbump area` would size it.

@@ -141,6 +141,35 @@ fn regress_paper_sample_one_light() {
 }
 
 #[test]
+fn regress_renormalised_h_and_l() {
+    // The normalise units before the dot products, symmetric normals (their scale in S);
+    // scenes with more than two bump lights do not fit the two slots. Icarus evaluates the
+    // Newton steps' Booth rows slowly (about 2 ms a vector), so it runs 2,000 random vectors.
+    let counts = (2_000u64, SHORT.1);
+    let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
+    let args = [
+        "--sim",
+        "both",
+        "--config",
+        "tests/configs/renormalise_hl.toml",
+        "--random-icarus",
+        &icarus,
+        "--random",
+        &verilator,
+        "--scene-size",
+        "64x48",
+    ];
+    let t = regress(&args, "renormalise_hl");
+    check_suite(&t, 10, counts);
+    // The unit's own sets ran on both simulators.
+    let r = runs(&t);
+    for sim in ["icarus", "verilator"] {
+        assert!(r.iter().any(|x| x.0 == sim && x.1.starts_with("corners") && x.1.ends_with("_normalise")), "{t}");
+        assert!(r.iter().any(|x| x.0 == sim && x.1.starts_with("random") && x.1.ends_with("_normalise")), "{t}");
+    }
+}
+
+#[test]
 fn regress_interpolated_h_and_l() {
     // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
     // port; scenes with more than two bump lights do not fit the two slots.
@@ -441,6 +470,34 @@ fn guard_bit_mutants_are_caught_by_their_unit_sets_and_the_top() {
         let out = r.outcome.unwrap();
         assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
         let unit = if r.target == "top" { "gbump_pipeline" } else { r.target.as_str() };
+        assert!(out.log.contains(&format!("MISMATCH unit {unit}")), "{}", out.log);
+    }
+}
+
+/// normalise with a Newton step fewer is caught by its unit's corners and random set and by
+/// the top's random set, on both simulators (the table alone is within a few LSB, so only
+/// a bit-exact bench sees it).
+#[test]
+fn a_normalise_with_a_newton_step_fewer_is_caught() {
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/renormalise_hl.toml"),
+        "mutant_normalise",
+        &[("normalise", mutants::normalise_step_fewer)],
+    );
+    let vec_dir = work.join("vectors");
+    let o = mutant_dump_options();
+    let mut sets = Vec::new();
+    let units = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(2_000), &["normalise".into()], &vec_dir, &o).unwrap();
+    sets.push((units[0].manifest.clone(), None));
+    let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(2_000), &["top".into()], &vec_dir, &o).unwrap();
+    sets.push((tops[0].manifest.clone(), None));
+    let res = run_sets(&cfg, &sets, &rtl, &mutant_run_options(&work)).unwrap();
+    assert_eq!(res.len(), 4);
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
+        let unit = if r.target == "top" { "gbump_pipeline" } else { "normalise" };
         assert!(out.log.contains(&format!("MISMATCH unit {unit}")), "{}", out.log);
     }
 }

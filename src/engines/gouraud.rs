@@ -3,11 +3,12 @@
 //! a triangle (Fig. 7); §6 proposes interpolating the half vector ("no flat shading effect")
 //! and/or the light directions, one per light. Assumptions for the variants: an interpolated
 //! vector is formed at each vertex in that vertex's own frame (so it follows the surface's
-//! curvature as Phong's normal does) and is not renormalised, and k stays per triangle as in
+//! curvature as Phong's normal does) and is not renormalised (the `_n` variants renormalise
+//! it per fragment, as the `normalise` unit does), and k stays per triangle as in
 //! the paper's bump state; the rest (clamps, blend order, skip_flat) is the paper's engine's
 //! own (`reference::gouraud_f64::shade_with`).
 
-use super::{Cost, Ctx, Engine};
+use super::{Cost, Ctx, Engine, Variant};
 use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
@@ -24,7 +25,10 @@ pub const GOURAUD: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_paper,
-    fixed: Some(Interpolate::None),
+    fixed: Some(Variant {
+        interpolate: Interpolate::None,
+        renormalise: false,
+    }),
 };
 
 pub const GOURAUD_H: Engine = Engine {
@@ -39,7 +43,10 @@ pub const GOURAUD_H: Engine = Engine {
         fragment_per_light: 3,
     },
     shade: shade_h,
-    fixed: Some(Interpolate::H),
+    fixed: Some(Variant {
+        interpolate: Interpolate::H,
+        renormalise: false,
+    }),
 };
 
 pub const GOURAUD_HL: Engine = Engine {
@@ -54,17 +61,64 @@ pub const GOURAUD_HL: Engine = Engine {
         fragment_per_light: 6,
     },
     shade: shade_hl,
-    fixed: Some(Interpolate::Hl),
+    fixed: Some(Variant {
+        interpolate: Interpolate::Hl,
+        renormalise: false,
+    }),
+};
+
+pub const GOURAUD_HN: Engine = Engine {
+    name: "gouraud_hn",
+    source: "paper §6 with the interpolated half vector renormalised per fragment (the normalise unit), as per-pixel engines do",
+    per_triangle: "L, Lc, k per light and H per light per vertex (16 words a light)",
+    per_fragment: "the Gouraud colour, uv, H per light (3 words a light), one normalisation a light",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 16,
+        fragment: 0,
+        fragment_per_light: 3,
+    },
+    shade: shade_hn,
+    fixed: Some(Variant {
+        interpolate: Interpolate::H,
+        renormalise: true,
+    }),
+};
+
+pub const GOURAUD_HLN: Engine = Engine {
+    name: "gouraud_hln",
+    source: "paper §6 with the interpolated half vector and light direction renormalised per fragment (the normalise unit)",
+    per_triangle: "Lc, k per light and L and H per light per vertex (22 words a light)",
+    per_fragment: "the Gouraud colour, uv, L and H per light (6 words a light), two normalisations a light",
+    cost: Cost {
+        triangle: 0,
+        triangle_per_light: 22,
+        fragment: 0,
+        fragment_per_light: 6,
+    },
+    shade: shade_hln,
+    fixed: Some(Variant {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+    }),
 };
 
 fn shade_paper(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::None)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::None, false)
 }
 
 fn shade_h(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H, false)
+}
+
+fn shade_hn(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H, true)
+}
+
+fn shade_hln(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl, true)
 }
 
 fn shade_hl(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl, false)
 }

@@ -44,20 +44,34 @@ pub struct Engine {
     /// The engine's bit-accurate path, where gbump generates it: the scene's own
     /// configuration (`gbump config --scene`) with this interpolation, rendered by the golden
     /// model and generated as RTL like any configuration. None: the engine is f64 only so far.
-    pub fixed: Option<crate::config::Interpolate>,
+    pub fixed: Option<Variant>,
+}
+
+/// What an engine's bit-accurate path changes in the scene's configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variant {
+    /// What the rasteriser interpolates per fragment.
+    pub interpolate: crate::config::Interpolate,
+    /// Whether the pipeline renormalises the interpolated vectors (the `normalise` unit).
+    pub renormalise: bool,
 }
 
 impl Engine {
     /// The configuration of the engine's bit-accurate path on a scene whose own
     /// configuration is `scene_cfg` (None: the engine has none yet).
     pub fn fixed_config(&self, scene_cfg: &crate::config::PipelineConfig) -> Option<crate::config::PipelineConfig> {
-        use crate::config::{BumpStateAt, Interpolate};
-        let interpolate = self.fixed?;
+        use crate::config::{BumpStateAt, Interpolate, LightMode};
+        let v = self.fixed?;
         let mut cfg = scene_cfg.clone();
-        cfg.interpolate = interpolate;
-        if interpolate != Interpolate::None {
+        cfg.interpolate = v.interpolate;
+        if v.interpolate != Interpolate::None {
             // An interpolated vector reaches the pipeline per fragment.
             cfg.bump_state = BumpStateAt::Fragment;
+        }
+        if v.renormalise {
+            // The normalise units sit one per vector before the parallel dot products.
+            cfg.renormalise = true;
+            cfg.light_mode = LightMode::Parallel;
         }
         Some(cfg)
     }
@@ -142,6 +156,8 @@ pub const ENGINES: &[Engine] = &[
     gouraud::GOURAUD,
     gouraud::GOURAUD_H,
     gouraud::GOURAUD_HL,
+    gouraud::GOURAUD_HN,
+    gouraud::GOURAUD_HLN,
     cg::CG,
 ];
 

@@ -27,12 +27,13 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
 /// The equations with L and H as `p.cfg.interpolate` says (per triangle unless the
 /// configuration interpolates them).
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    shade_interpolating(p, hit, g, p.cfg.interpolate)
+    shade_interpolating(p, hit, g, p.cfg.interpolate, p.cfg.renormalise)
 }
 
 /// The equations with L and H per triangle or interpolated as `how` says (`engines::gouraud`
-/// asks for each variant whatever the configuration).
-pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::config::Interpolate) -> DVec3 {
+/// asks for each variant whatever the configuration); `renormalise` scales each interpolated
+/// vector back to unit length (H, and L when it is interpolated), as the `normalise` unit does.
+pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::config::Interpolate, renormalise: bool) -> DVec3 {
     use crate::raster::tri_state::{lh_at, vertex_vectors};
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
@@ -41,7 +42,14 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::c
     } else {
         vertex_vectors(p.scene, &p.camera, &o.mesh.corners(hit.tri))
     };
-    shade_with(p, hit, g, |i| lh_at(ts, &vv, hit.bary, how, i))
+    shade_with(p, hit, g, |i| {
+        let (l, h) = lh_at(ts, &vv, hit.bary, how, i);
+        match (renormalise, how) {
+            (false, _) | (_, crate::config::Interpolate::None) => (l, h),
+            (true, crate::config::Interpolate::H) => (l, h.normalize_or_zero()),
+            (true, crate::config::Interpolate::Hl) => (l.normalize_or_zero(), h.normalize_or_zero()),
+        }
+    })
 }
 
 /// The Gouraud bump equations with light `i`'s bump-space L and H from `lh(i)`: the paper's

@@ -48,3 +48,16 @@ pub fn white_term_no_subtract(text: &str) -> Option<String> {
     let cut = line.find(" - ")?;
     Some(text.replacen(line, &format!("{};", &line[..cut]), 1))
 }
+
+/// normalise with its last Newton step skipped: the reciprocal the products use is the one
+/// before it (the table's, with one step). None when the unit takes no Newton step.
+pub fn normalise_step_fewer(text: &str) -> Option<String> {
+    let steps = (1..=4).take_while(|k| text.contains(&format!(" nr{k} = "))).count();
+    if steps == 0 {
+        return None;
+    }
+    let before = if steps == 1 { "r0".to_string() } else { format!("nr{}", steps - 1) };
+    let last = format!("nr{steps}");
+    let line = text.lines().find(|l| l.contains("r_s2") && (l.ends_with(&format!(" {last};"))))?;
+    Some(text.replacen(line, &line.replace(&format!(" {last};"), &format!(" {before};")), 1))
+}
