@@ -74,14 +74,13 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     // products are zero whatever r is).
     w.block(format!("function [{}:0] lead2;", zw - 1), "endfunction", |w| {
         w.line(format!("input [{}:0] s;", l - 1));
-        w.line("integer k;");
         w.block("begin", "end", |w| {
-            w.line(format!("lead2 = {zw}'d0;"));
-            w.line(format!(
-                "for (k = 0; k < {}; k = k + 1) if (s[2 * k +: 2] != 2'b00) lead2 = {} - 2 * k;",
-                l / 2,
-                l - 2
-            ));
+            for k in 0..l / 2 {
+                let hi = l - 1 - 2 * k;
+                let kw = if k == 0 { "if" } else { "else if" };
+                w.line(format!("{kw} (s[{hi}:{}] != 2'b00) lead2 = {zw}'d{};", hi - 1, 2 * k));
+            }
+            w.line(format!("else lead2 = {zw}'d0;"));
         });
     });
     let vw = format!("[{}:0]", 3 * lh - 1);
@@ -93,10 +92,10 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
         "sq",
         &[0, 1, 2].map(|i| (Factor::signed(x("v", i), lh), Factor::signed(x("v", i), lh))),
         0,
-        2 * lh + 1,
+        2 * lh,
     );
-    w.line(format!("wire [{}:0] s_all = {sq};", 2 * lh));
-    w.line(format!("wire [{}:0] s = s_all[{}:0];", 2 * lh - 1, 2 * lh - 1));
+    // Exact modulo 2^(2 lh), and 3 (2^(lh-1))^2 < 2^(2 lh).
+    w.line(format!("wire [{}:0] s = {sq};", 2 * lh - 1));
     let big_s = if p.pre_bits == 0 {
         "s".to_string()
     } else {
@@ -116,7 +115,9 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     // Stage 2: shift, table, Newton steps.
     w.line(format!("wire [{}:0] z1 = lead2(s1);", zw - 1));
     w.line(format!("wire [{}:0] sn = s1 << z1;", l - 1));
-    w.line(format!("wire [{}:0] m = sn[{}:{}];", mb - 1, l - 1, l - mb));
+    if p.steps > 0 {
+        w.line(format!("wire [{}:0] m = sn[{}:{}];", mb - 1, l - 1, l - mb));
+    }
     w.line(format!("wire [{}:0] r0 = rsqrt(sn[{}:{}]);", rw - 1, l - 1, l - t));
     let mut r = "r0".to_string();
     // The steps chain up to six products: as Booth rows in functions, which Icarus evaluates
@@ -146,8 +147,9 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
             mb + qw,
         );
         w.line(format!("wire [{}:0] mq{k}_p = {mq};", mb + qw - 1));
-        w.line(format!("wire [{}:0] u{k} = mq{k}_p[{}:{}];", qw - 1, mb + qw - 1, mb));
-        // 0 < 3 - m r^2 < 4 for every table word and m of its interval (the model's tests).
+        // 0 < 3 - m r^2 < 4 for every table word and m of its interval (the unit's tests), so
+        // m r^2 and 3 - m r^2 fit u2.Y.
+        w.line(format!("wire [{}:0] u{k} = mq{k}_p[{}:{}];", rw - 1, mb + rw - 1, mb));
         w.line(format!("wire [{}:0] e{k} = {}'d{} - u{k};", rw - 1, rw, 3u64 << y));
         let re = sum_of_products(
             &mut w,

@@ -55,7 +55,7 @@ impl Unit for Normalise {
         // z reaches l - 2 (S = 1).
     let zw = 32 - (l - 2).leading_zeros();
         let m = cfg.multipliers;
-        let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh + 1);
+        let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh);
         if pr.pre_bits > 0 {
             r += Resources::adders(2 * l);
         }
