@@ -488,7 +488,7 @@ fn a_normalise_with_a_newton_step_fewer_is_caught() {
     use gbump::sim::regress::run_sets;
     let (cfg, work, rtl) = mutant_rtl(
         Some("tests/configs/renormalise_hl.toml"),
-        "mutant_normalise",
+        "mutant_newton",
         &[("normalise", mutants::normalise_step_fewer)],
     );
     let vec_dir = work.join("vectors");
