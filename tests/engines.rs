@@ -251,7 +251,11 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     // dot products' rounding may pass on: within a colour LSB of the others.
     for f in &rows[3..] {
         println!("renormalised on the plane: {:?}", f.error);
-        assert!((f.error.max_lsb - e0.max_lsb).abs() <= 1.0 && (f.error.mean_lsb - e0.mean_lsb).abs() <= 0.05, "{:?}", f.error);
+        assert!(
+            (f.error.max_lsb - e0.max_lsb).abs() <= 1.0 && (f.error.mean_lsb - e0.mean_lsb).abs() <= 0.05,
+            "{:?}",
+            f.error
+        );
     }
     assert_ne!(rows[0].config_hash, rows[1].config_hash, "per-triangle and per-fragment tops");
     // The figures come from the configuration the table names, as `gbump area` would size it.

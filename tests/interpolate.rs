@@ -37,7 +37,10 @@ fn renormalised(how: Interpolate) -> PipelineConfig {
 #[test]
 fn renormalise_needs_interpolated_vectors_and_parallel_lights_and_keeps_old_hashes() {
     let e = PipelineConfig::from_toml("x.toml", "renormalise = true\n").unwrap_err().to_string();
-    assert!(e.contains("x.toml") && e.contains("renormalise") && e.contains("interpolate = \"h\""), "{e}");
+    assert!(
+        e.contains("x.toml") && e.contains("renormalise") && e.contains("interpolate = \"h\""),
+        "{e}"
+    );
     let serial = "renormalise = true\ninterpolate = \"h\"\nbump_state = \"fragment\"\nlight_mode = \"serial\"\n";
     let e = PipelineConfig::from_toml("x.toml", serial).unwrap_err().to_string();
     assert!(e.contains("light_mode = \"parallel\""), "{e}");

@@ -164,8 +164,16 @@ fn regress_renormalised_h_and_l() {
     // The unit's own sets ran on both simulators.
     let r = runs(&t);
     for sim in ["icarus", "verilator"] {
-        assert!(r.iter().any(|x| x.0 == sim && x.1.starts_with("corners") && x.1.ends_with("_normalise")), "{t}");
-        assert!(r.iter().any(|x| x.0 == sim && x.1.starts_with("random") && x.1.ends_with("_normalise")), "{t}");
+        assert!(
+            r.iter()
+                .any(|x| x.0 == sim && x.1.starts_with("corners") && x.1.ends_with("_normalise")),
+            "{t}"
+        );
+        assert!(
+            r.iter()
+                .any(|x| x.0 == sim && x.1.starts_with("random") && x.1.ends_with("_normalise")),
+            "{t}"
+        );
     }
 }
 

@@ -221,7 +221,11 @@ mod tests {
                         worst = worst.max((n[k] as f64 - exact).abs());
                     }
                 }
-                assert!(worst <= ERROR_BOUND_LSB, "lh {lh} {range:?} nb {nb}: worst {worst} LSB, {:?}", params(&c));
+                assert!(
+                    worst <= ERROR_BOUND_LSB,
+                    "lh {lh} {range:?} nb {nb}: worst {worst} LSB, {:?}",
+                    params(&c)
+                );
             }
         }
     }

@@ -100,13 +100,7 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
         "s".to_string()
     } else {
         let a = p.pre_bits;
-        format!(
-            "{{s, {}'d0}} - {{{}'d0, s, {}'d0}} + {{{}'d0, s}}",
-            2 * a,
-            a - 1,
-            a + 1,
-            2 * a
-        )
+        format!("{{s, {}'d0}} - {{{}'d0, s, {}'d0}} + {{{}'d0, s}}", 2 * a, a - 1, a + 1, 2 * a)
     };
     w.line(format!("wire [{}:0] s_w = {big_s};", l - 1));
     let c0 = cut(cfg, NORMALISE, 0);

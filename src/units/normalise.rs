@@ -53,7 +53,7 @@ impl Unit for Normalise {
         let pr = params(cfg);
         let (lh, rw, mb, l) = (cfg.lh_bits, pr.word_bits(), pr.m_bits, pr.window);
         // z reaches l - 2 (S = 1).
-    let zw = 32 - (l - 2).leading_zeros();
+        let zw = 32 - (l - 2).leading_zeros();
         let m = cfg.multipliers;
         let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh);
         if pr.pre_bits > 0 {

@@ -150,7 +150,11 @@ mod tests {
         assert_eq!(latency(&at(4), BLEND), 4);
         assert_eq!(latency(&at(4), TEXTURE), 2);
         // The deepest unit's cuts end at the limit: one more stage would cut nothing.
-        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE].iter().map(|c| c.len()).max().unwrap() as u32;
+        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE]
+            .iter()
+            .map(|c| c.len())
+            .max()
+            .unwrap() as u32;
         assert_eq!(deepest + 1, crate::limits::MAX_PIPELINE_DEPTH);
     }
 }
