@@ -482,6 +482,14 @@ impl PipelineConfig {
                 "set light_mode = \"parallel\", or drop renormalise",
             ));
         }
+        if self.renormalise && !self.specular && !(self.diffuse && self.interpolate == Interpolate::Hl) {
+            return Err(Error::field(
+                file,
+                "renormalise",
+                "renormalise = true but no interpolated vector reaches a dot product (no specular path, and L is not interpolated)",
+                "set specular = true, or interpolate = \"hl\" with diffuse = true, or drop renormalise",
+            ));
+        }
         if self.power_rom && !self.specular {
             return Err(Error::field(
                 file,

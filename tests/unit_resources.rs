@@ -67,6 +67,7 @@ fn register_bits(module: &str, mods: &HashMap<String, String>) -> u32 {
 fn every_units_register_count_is_its_verilogs() {
     let mut cfgs: Vec<PipelineConfig> = gbump::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
     cfgs.push(PipelineConfig::default());
+    cfgs.extend(gbump::sim::fuzz::normalise_configs());
     for power_unit in [gbump::config::PowerUnitKind::Lerp, gbump::config::PowerUnitKind::Segmented] {
         for pipeline_depth in 1..=4 {
             for light_mode in [gbump::config::LightMode::Serial, gbump::config::LightMode::Parallel] {

@@ -77,16 +77,27 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let d_on = cfg.diffuse && s.frag.diffuse_en && !bypass;
     let s_on = cfg.specular && s.frag.specular_en && !bypass;
     let (mut dif, mut spe) = ([0.0; 3], [0.0; 3]);
+    // A renormalised vector enters the dot product at exactly its unit length (times the
+    // normals' scale), as the normalise unit's equation says; the others as their codes.
+    let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
+    let real = |v: [i64; 3], norm: bool| -> [f64; 3] {
+        if norm {
+            crate::model::normalise::normalise_exact(cfg, v).map(|x| x / (1u64 << lf.frac) as f64)
+        } else {
+            v.map(|x| lf.to_f64(x))
+        }
+    };
     for ls in s.state.lights.iter().take(cfg.lights as usize) {
-        let dot = |v: [i64; 3]| (0..3).map(|i| b[i] * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0);
+        let dot = |v: [f64; 3]| (0..3).map(|i| b[i] * v[i]).sum::<f64>().clamp(0.0, 1.0);
         let k = cfg.k_fmt().to_f64(ls.k);
         let lc = cfg.light_colour(ls.lc);
+        let (l, h) = (real(ls.l, norm_l), real(ls.h, norm_h));
         for ch in 0..3 {
             if d_on {
-                dif[ch] += dot(ls.l) * k * lc[ch] as f64;
+                dif[ch] += dot(l) * k * lc[ch] as f64;
             }
             if s_on {
-                spe[ch] += powi_exact(dot(ls.h), n) * k * lc[ch] as f64;
+                spe[ch] += powi_exact(dot(h), n) * k * lc[ch] as f64;
             }
         }
     }
@@ -117,15 +128,44 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let nf = cfg.normal_fmt();
     let lf = cfg.lh_fmt();
     let one = (1u64 << cfg.dot_frac_bits) as f64;
+    // normalise over every vector it renormalises and its corners, against v·scale/|v|.
+    let mut norm = ErrorStats::new("normalise", "corners + random");
+    let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
+    let mut norm_add = |v: [i64; 3]| {
+        let got = crate::model::normalise::normalise(cfg, v);
+        let want = crate::model::normalise::normalise_exact(cfg, v);
+        for i in 0..3 {
+            let w = want[i].clamp(lf.min_raw() as f64, lf.max_raw() as f64);
+            norm.add(got[i] as f64 - w, || format!("v={v:?}"));
+        }
+    };
+    if cfg.renormalise {
+        if let Some(u) = crate::units::unit("normalise") {
+            for (_, c) in u.corners(cfg) {
+                norm_add([c[0][0], c[0][1], c[0][2]]);
+            }
+        }
+    }
     for (_, s) in &stims {
         let t = stored_codes(&palette, s.frag.bump);
         let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
-            for v in [ls.l, ls.h] {
+            if norm_l {
+                norm_add(ls.l);
+            }
+            if norm_h {
+                norm_add(ls.h);
+            }
+            // dot_clamp sees the vectors as the pipeline hands them on.
+            let (l, h) = crate::model::pipeline::dot_vectors(cfg, ls);
+            for v in [l, h] {
                 let exact = (0..3).map(|i| nf.to_f64(b[i]) * lf.to_f64(v[i])).sum::<f64>().clamp(0.0, 1.0) * one;
                 dot.add(dot_clamp(cfg, b, v) as f64 - exact, || format!("B={b:?} V={v:?}"));
             }
         }
+    }
+    if cfg.renormalise {
+        out.push(norm);
     }
     out.push(dot);
     // power_unit exhaustively over its input.

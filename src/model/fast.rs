@@ -512,6 +512,7 @@ mod tests {
     #[test]
     fn corner_configurations_agree_with_the_readable_model() {
         let mut cfgs: Vec<PipelineConfig> = crate::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
+        cfgs.extend(crate::sim::fuzz::normalise_configs());
         for rounding in [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven] {
             for blend_order in [BlendOrder::DiffuseTextureSpecular, BlendOrder::TextureLast] {
                 for skip_flat in [false, true] {

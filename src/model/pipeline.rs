@@ -8,7 +8,7 @@ use super::dot_clamp::dot_clamp;
 use super::power_table::PowerTable;
 use super::power_unit::power_unit;
 use super::texture_modulate::{colour_round, texture_modulate};
-use crate::config::{BlendOrder, Interpolate, PipelineConfig};
+use crate::config::{BlendOrder, PipelineConfig};
 
 /// Light slots the model can hold (the config's upper limit).
 pub const MAX_LIGHTS: usize = 8;
@@ -85,14 +85,10 @@ impl Shaded {
 /// `renormalise` each interpolated one through the `normalise` unit (H, and L with
 /// `interpolate = "hl"`; a per-triangle L is a unit vector already).
 pub fn dot_vectors(cfg: &PipelineConfig, s: &LightSlot) -> ([i64; 3], [i64; 3]) {
-    if !cfg.renormalise {
-        return (s.l, s.h);
-    }
-    let l = match cfg.interpolate {
-        Interpolate::Hl => super::normalise::normalise(cfg, s.l),
-        _ => s.l,
-    };
-    (l, super::normalise::normalise(cfg, s.h))
+    use super::normalise::{normalise, renormalised};
+    let (nl, nh) = renormalised(cfg);
+    let pick = |on: bool, v: [i64; 3]| if on { normalise(cfg, v) } else { v };
+    (pick(nl, s.l), pick(nh, s.h))
 }
 
 /// `state` with every slot's L and H as the dot products see them ([`dot_vectors`]).

@@ -46,7 +46,7 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
         "// {} Newton step(s) r = r (3 - m r^2) / 2 in u2.{y} (m cut to {mb} bits); n = round(x r 2^(z/2) / 2^{}) ({:?}), saturated.",
         p.steps,
         y + 2,
-        cfg.rounding
+        crate::model::normalise::ROUNDING
     ));
     w.line(format!(
         "// Latency {}: pipeline_depth {} puts {} of its register cuts in place.",
@@ -73,12 +73,12 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     // The even shift that puts S's leading one into its top two bits (0 for S = 0, whose
     // products are zero whatever r is).
     w.block(format!("function [{}:0] lead2;", zw - 1), "endfunction", |w| {
-        w.line(format!("input [{}:0] s;", l - 1));
+        w.line(format!("input [{}:0] lead2_s;", l - 1));
         w.block("begin", "end", |w| {
             for k in 0..l / 2 {
                 let hi = l - 1 - 2 * k;
                 let kw = if k == 0 { "if" } else { "else if" };
-                w.line(format!("{kw} (s[{hi}:{}] != 2'b00) lead2 = {zw}'d{};", hi - 1, 2 * k));
+                w.line(format!("{kw} (lead2_s[{hi}:{}] != 2'b00) lead2 = {zw}'d{};", hi - 1, 2 * k));
             }
             w.line(format!("else lead2 = {zw}'d0;"));
         });
@@ -192,7 +192,7 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
             sw - pw,
             pw - 1
         ));
-        requant_clamp(&mut w, &format!("n{i}"), &format!("sc{i}"), fmt, 0, cfg.rounding, lo, hi, lh);
+        requant_clamp(&mut w, &format!("n{i}"), &format!("sc{i}"), fmt, 0, crate::model::normalise::ROUNDING, lo, hi, lh);
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         w.line("n <= {n2, n1, n0};");

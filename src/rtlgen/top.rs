@@ -3,8 +3,8 @@
 //! valid-out, synchronous reset of the valid bits, the load port of every unit memory, and the
 //! latency the schedule returns.
 //!
-//! Parallel lights (one fragment per clock): the fetch, a dot_clamp per L_i and H_i, the power
-//! unit with n read ports, then the three colour stages in the configured order.
+//! Parallel lights (one fragment per clock): the fetch, a dot_clamp per L_i and H_i (each
+//! interpolated one after a `normalise` under `renormalise`), the power unit with n read ports, then the three colour stages in the configured order.
 //! Serial lights (paper §4.2, n clocks per fragment): the fragment is held while a counter
 //! walks the light slots through one dot_clamp pair, one power-table port and one
 //! `light_accumulate` per blend; `blend_finish` closes each sum; `in_ready` is low meanwhile.
@@ -822,7 +822,8 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let dot = units::unit("dot_clamp").expect("unit");
     let norm = units::unit("normalise").expect("unit");
     // Which vectors are renormalised before their dot products: H, and L when interpolated.
-    let renormalised = |v: &str| cfg.renormalise && (v == "h" || cfg.interpolate == crate::config::Interpolate::Hl);
+    let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
+    let renormalised = |v: &str| if v == "l" { norm_l } else { norm_h };
     // One dot_clamp per light slot: B·L_i into fd<i>, or B·H_i into xh<i>.
     let dots = |s: &mut Scheduler, v: &str, out: &str| {
         for i in 0..n {

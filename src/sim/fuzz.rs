@@ -45,8 +45,9 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             triangle_banks: field(rng, "triangle_banks"),
             pipeline_depth: field(rng, "pipeline_depth"),
             multipliers: pick(rng, &[Multipliers::Booth, Multipliers::Inferred]),
-            // What the rasteriser interpolates changes no RTL (the fuzzer's subject), and a
-            // draw here would change every configuration a seed gives.
+            // What the rasteriser interpolates changes no RTL by itself (renormalise, below,
+            // draws it where it does), and a draw here would change every configuration a
+            // seed gives.
             interpolate: crate::config::Interpolate::None,
             // Drawn last, so every draw before it is what it was before the field.
             colour_guard_bits: field(rng, "colour_guard_bits"),
@@ -54,9 +55,10 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             power_rom: pick(rng, &[false, true]),
             renormalise: false,
         };
-        // Drawn only where it is valid (per-fragment state, parallel lights), so no other
-        // configuration is redrawn for it; what it renormalises (H, or H and L) changes the
-        // RTL, so that is drawn with it.
+        // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
+        // rejected for it (its draws do shift every later configuration of a seed, as any
+        // new field does); what it renormalises (H, or H and L) changes the RTL, so that is
+        // drawn with it.
         if cfg.bump_state == BumpStateAt::Fragment && cfg.light_mode == LightMode::Parallel && pick(rng, &[false, true]) {
             cfg.renormalise = true;
             cfg.interpolate = pick(rng, &[crate::config::Interpolate::H, crate::config::Interpolate::Hl]);
@@ -157,6 +159,41 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             },
         ),
     ]
+}
+
+/// Configurations at the normalise unit's edges: every regime of its table and Newton steps
+/// (table alone, one step, two steps) at the narrowest and widest words, both normal ranges
+/// (symmetric ones at the widest normals: the longest S), every rounding and every depth. The
+/// unit-level tests read them; the simulated corners above leave them out, since synthesis of
+/// the two-step unit is slow.
+pub fn normalise_configs() -> Vec<PipelineConfig> {
+    let mut out = Vec::new();
+    for (lh, range, nb) in [
+        (4, NormalRange::Binary, 8),
+        (7, NormalRange::Symmetric, 3),
+        (16, NormalRange::Binary, 8),
+        (18, NormalRange::Symmetric, 8),
+        (24, NormalRange::Symmetric, 16),
+    ] {
+        for depth in 1..=crate::limits::MAX_PIPELINE_DEPTH {
+            let rounding = [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven][depth as usize % 3];
+            out.push(PipelineConfig {
+                lh_bits: lh,
+                normal_range: range,
+                normal_bits: nb,
+                bump_state: BumpStateAt::Fragment,
+                interpolate: crate::config::Interpolate::Hl,
+                renormalise: true,
+                light_mode: LightMode::Parallel,
+                lights: 2,
+                rounding,
+                pipeline_depth: depth,
+                multipliers: if depth == 2 { Multipliers::Inferred } else { Multipliers::Booth },
+                ..PipelineConfig::default()
+            });
+        }
+    }
+    out
 }
 
 /// Random vectors to simulate for `cfg` when `random` are asked for: fewer for big

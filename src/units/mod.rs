@@ -275,19 +275,7 @@ mod tests {
             lights: 2,
             ..Default::default()
         });
-        // The normalise unit at its narrowest and widest words (symmetric: the longest S).
-        for (lh, nb) in [(4, 3), (24, 16)] {
-            cfgs.push(PipelineConfig {
-                bump_state: crate::config::BumpStateAt::Fragment,
-                interpolate: crate::config::Interpolate::Hl,
-                renormalise: true,
-                light_mode: crate::config::LightMode::Parallel,
-                lh_bits: lh,
-                normal_bits: nb,
-                normal_range: crate::config::NormalRange::Symmetric,
-                ..Default::default()
-            });
-        }
+        cfgs.extend(crate::sim::fuzz::normalise_configs());
         for cfg in cfgs {
             let table = PowerTable::build(&cfg, cfg.shininess);
             let palette = crate::rtlgen::rom::default_palette(&cfg);

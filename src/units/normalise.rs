@@ -21,8 +21,17 @@ impl Unit for Normalise {
     fn source(&self) -> &'static str {
         "per-pixel renormalisation of interpolated vectors (paper §2 N'/|N'|, §6; Cg §8.2 normalisation cube map), by a reciprocal-square-root table and Newton steps"
     }
-    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        vec![("renormalise", "true")]
+    fn requires(&self, cfg: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        let interpolate = match cfg.interpolate {
+            crate::config::Interpolate::Hl => "\"hl\"",
+            _ => "\"h\"",
+        };
+        vec![
+            ("renormalise", "true"),
+            ("interpolate", interpolate),
+            ("bump_state", "\"fragment\""),
+            ("light_mode", "\"parallel\""),
+        ]
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
         cfg.renormalise
@@ -80,7 +89,7 @@ impl Unit for Normalise {
             frac: pr.r_frac + 2,
             signed: true,
         };
-        r += (Resources::muxes(sw * zw) + requant_clamp(fmt, 0, cfg.rounding, lh)).scaled(3.0);
+        r += (Resources::muxes(sw * zw) + requant_clamp(fmt, 0, crate::model::normalise::ROUNDING, lh)).scaled(3.0);
         r + Resources::regs(3 * lh)
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {

@@ -434,17 +434,12 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     for j in 0..n {
         let ls = &s.state.lights[j];
         // The normalise instances: H's, and L's when it is interpolated too.
-        if cfg.renormalise {
-            if cfg.diffuse && cfg.interpolate == crate::config::Interpolate::Hl {
+        let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
+        for (on, v_in) in [(cfg.diffuse && norm_l, ls.l), (cfg.specular && norm_h, ls.h)] {
+            if on {
                 v.push(UnitStim {
                     unit: "normalise",
-                    inputs: vec![ls.l.to_vec()],
-                });
-            }
-            if cfg.specular {
-                v.push(UnitStim {
-                    unit: "normalise",
-                    inputs: vec![ls.h.to_vec()],
+                    inputs: vec![v_in.to_vec()],
                 });
             }
         }
@@ -614,6 +609,7 @@ mod tests {
     fn every_layout_packs_as_the_by_name_reference() {
         let mut rng = crate::vectors::rng::SplitMix64(0xC01_5EED);
         let mut cfgs: Vec<PipelineConfig> = crate::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
+        cfgs.extend(crate::sim::fuzz::normalise_configs());
         cfgs.extend((0..150).map(|_| crate::sim::fuzz::random_config(&mut rng)));
         let mut packed = 0;
         for (k, cfg) in cfgs.iter().enumerate() {
