@@ -94,7 +94,10 @@ fn regress_default_config_on_both_simulators() {
     check_suite(&t, 12, (SHORT.0, FULL.1));
     // The defaults `scripts/run.sh` runs are FULL's.
     let help = gbump().args(["regress", "--help"]).output().unwrap();
-    let help = String::from_utf8_lossy(&help.stdout).split_whitespace().collect::<Vec<_>>().join(" ");
+    let help = String::from_utf8_lossy(&help.stdout)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     for (flag, n) in [("--random <RANDOM>", FULL.1), ("--random-icarus <RANDOM_ICARUS>", FULL.0)] {
         let at = help.find(flag).unwrap_or_else(|| panic!("{flag} in {help}"));
         assert!(help[at..].contains(&format!("[default: {n}]")), "{flag}: {help}");

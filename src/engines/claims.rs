@@ -156,7 +156,13 @@ fn flat_shading() -> Result<Claim> {
         let fixed = tessellated("flat_artifact_fixed", segs)?;
         let a = render(
             &plain,
-            &[eng("blinn"), eng("gouraud"), eng("gouraud_h"), eng("gouraud_hl"), eng("gouraud_hln")],
+            &[
+                eng("blinn"),
+                eng("gouraud"),
+                eng("gouraud_h"),
+                eng("gouraud_hl"),
+                eng("gouraud_hln"),
+            ],
             192,
             192,
             Maps::default(),
@@ -176,7 +182,7 @@ fn flat_shading() -> Result<Claim> {
         }
         md += "\n";
     }
-    md += "\nThe scene of Fig. 7 (constant bump normals on a sphere, a distant light) and its §5.4.2 fix (`flat_artifact_fixed`: part of the light carried by the Gouraud colour, the bump blends skip unperturbed normals), each against its own Blinn reference, at four tessellations. The artefact is faceting, so the measure is the seam error: how much more the colour jumps across a triangle edge than Blinn's does. With L and H per triangle every triangle of the plain scene is shaded flat; the fix leaves only the Gouraud colour's interpolation on unperturbed normals (its PSNR is low because, by design, the bump light does not act on them); interpolating H per vertex (§6) smooths the highlight but leaves the diffuse term faceted; interpolating L too removes the faceting, and renormalising the interpolated vectors per fragment (`gouraud_hln`, the `normalise` unit's f64 side) brings the highlight's level back to Blinn's.\n";
+    md += "\nThe scene of Fig. 7 (constant bump normals on a sphere, a distant light) and its §5.4.2 fix (`flat_artifact_fixed`: part of the light carried by the Gouraud colour, the bump blends skip unperturbed normals), each against its own Blinn reference, at four tessellations. The artefact is faceting, so the measure is the seam error: how much more the colour jumps across a triangle edge than Blinn's does. With L and H per triangle every triangle of the plain scene is shaded flat; the fix leaves only the Gouraud colour's interpolation on unperturbed normals (its PSNR is low because, by design, the bump light does not act on them); interpolating H per vertex (§6) smooths the highlight but leaves the diffuse term faceted; interpolating L too removes the faceting, and renormalising the interpolated vectors per fragment (`gouraud_hln`, the `normalise` unit's f64 side) lowers the seam error further at every tessellation and raises the PSNR: an interpolated unit vector is shorter than one between the vertices, which dims the highlight there.\n";
     Ok(Claim {
         name: "flat-shading",
         svg: lines(

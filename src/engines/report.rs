@@ -393,7 +393,10 @@ pub fn cost_claim(t: &Table) -> String {
     let compared = if unit > hi {
         "That one step alone costs more than the whole Gouraud bump top of any scene, which is the paper's argument".to_string()
     } else {
-        format!("That one step alone costs {:.0} % of the largest Gouraud bump top", 100.0 * unit / hi)
+        format!(
+            "That one step alone costs {:.0} % of the largest Gouraud bump top",
+            100.0 * unit / hi
+        )
     };
     format!(
         "\n### Gouraud bump mapping's added units against the per-pixel engines' cost\n\nHalf measured. Gouraud bump mapping's side is in the bit-accurate table above: each scene's own configuration, the whole generated top (every unit the paper adds to a textured Gouraud pipeline, bank registers and output buffer included), {lo:.0} to {hi:.0} GE of logic by the area model (held within 10 % mean, 20 % max of Yosys, section \"Area model against Yosys\"), the power table and banks in memory bits apart. The per-pixel side has its first building block: the `normalise` unit that every per-pixel engine needs to scale an interpolated vector back to unit length (a reciprocal-square-root table and a Newton step) is {unit:.0} GE by the area model at the default 16-bit L and H (the model is calibrated on the Gouraud units and has not been fitted to this one; `gbump area --config tests/configs/renormalise_hl.toml` synthesises it), one per vector, so the renormalising variants `gouraud_hn` (one a light) and `gouraud_hln` (two a light) take {nlo:.0} to {nhi:.0} GE for the whole top (parallel lights: the normalise units sit before the parallel dot products). {compared}; the rest of each per-pixel engine (frames, cross products, 3×3 transforms, environment maps) is not generated yet (the engines the table lists as f64 only).\n"

@@ -160,7 +160,10 @@ pub fn reciprocal(p: &Params, v: [i64; 3]) -> Option<Trace> {
 /// per-triangle L is a unit vector already). The top, the model, the per-unit stimuli and the
 /// error measure all ask this.
 pub fn renormalised(cfg: &PipelineConfig) -> (bool, bool) {
-    (cfg.renormalise && cfg.interpolate == crate::config::Interpolate::Hl, cfg.renormalise)
+    (
+        cfg.renormalise && cfg.interpolate == crate::config::Interpolate::Hl,
+        cfg.renormalise,
+    )
 }
 
 /// The normalised vector, raw `s1.F` components.
@@ -249,10 +252,21 @@ mod tests {
                 let (min, top) = (f.min_raw(), f.max_raw());
                 let (w, at) = if lh <= 6 {
                     let span = (top - min + 1) as u64;
-                    worst(&c, (0..span.pow(3)).map(|i| [i % span, i / span % span, i / span / span].map(|x| min + x as i64)))
+                    worst(
+                        &c,
+                        (0..span.pow(3)).map(|i| [i % span, i / span % span, i / span / span].map(|x| min + x as i64)),
+                    )
                 } else {
                     let mut seed = lh as u64 * 1000 + nb as u64;
-                    let edges = [[min, 0, 0], [min, min, min], [min, top, 0], [top, top, top], [1, 0, 0], [1, 1, 1], [-1, 1, -1]];
+                    let edges = [
+                        [min, 0, 0],
+                        [min, min, min],
+                        [min, top, 0],
+                        [top, top, top],
+                        [1, 0, 0],
+                        [1, 1, 1],
+                        [-1, 1, -1],
+                    ];
                     let random = (0..20_000u64).map(move |i| {
                         let bits = 1 + (i % (lh as u64 - 1)) as u32;
                         let lim = 1i64 << bits;
@@ -260,7 +274,11 @@ mod tests {
                     });
                     worst(&c, edges.into_iter().chain(random))
                 };
-                assert!(w <= ERROR_BOUND_LSB, "lh {lh} {range:?} nb {nb}: {w} LSB at {at:?}, {:?}", params(&c));
+                assert!(
+                    w <= ERROR_BOUND_LSB,
+                    "lh {lh} {range:?} nb {nb}: {w} LSB at {at:?}, {:?}",
+                    params(&c)
+                );
             }
         }
     }

@@ -192,7 +192,17 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
             sw - pw,
             pw - 1
         ));
-        requant_clamp(&mut w, &format!("n{i}"), &format!("sc{i}"), fmt, 0, crate::model::normalise::ROUNDING, lo, hi, lh);
+        requant_clamp(
+            &mut w,
+            &format!("n{i}"),
+            &format!("sc{i}"),
+            fmt,
+            0,
+            crate::model::normalise::ROUNDING,
+            lo,
+            hi,
+            lh,
+        );
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         w.line("n <= {n2, n1, n0};");
