@@ -460,8 +460,8 @@ impl PipelineConfig {
                 file,
                 "interpolate",
                 format!(
-                    "{:?} interpolates L or H per fragment, which a per-triangle top cannot take",
-                    self.interpolate
+                    "interpolate = \"{}\" sends L or H per fragment, which a per-triangle top cannot take",
+                    if self.interpolate == Interpolate::Hl { "hl" } else { "h" }
                 ),
                 "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
             ));

@@ -151,6 +151,11 @@ pub trait Unit: Sync {
     fn exhaustive_count(&self, _cfg: &PipelineConfig) -> Option<u64> {
         None
     }
+    /// When the unit has an exhaustive sweep, for a unit whose domain is too large under some
+    /// configurations (the refusal names it, with the fix).
+    fn exhaustive_when(&self) -> Option<&'static str> {
+        None
+    }
     /// The `i`-th input of the exhaustive sweep (`i < exhaustive_count`).
     fn exhaustive_input(&self, _cfg: &PipelineConfig, _i: u64) -> Lanes {
         unreachable!("{} has no exhaustive domain", self.name())

@@ -96,7 +96,10 @@ impl Unit for Normalise {
         vec![("normalise", crate::rtlgen::normalise_v::normalise(cfg))]
     }
     fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
-        (3 * cfg.lh_bits <= 18).then(|| 1u64 << (3 * cfg.lh_bits))
+        (cfg.lh_bits <= 6).then(|| 1u64 << (3 * cfg.lh_bits))
+    }
+    fn exhaustive_when(&self) -> Option<&'static str> {
+        Some("lh_bits <= 6 (2^18 inputs at most)")
     }
     fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
         let lh = cfg.lh_bits;

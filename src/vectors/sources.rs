@@ -633,11 +633,14 @@ pub fn exhaustive_count(cfg: &PipelineConfig, unit: &str) -> Result<u64> {
     let Some(count) = u.exhaustive_count(cfg) else {
         let swept: Vec<&str> = crate::units::UNITS
             .iter()
-            .filter(|u| u.exhaustive_count(cfg).is_some())
+            .filter(|u| u.included(cfg) && u.exhaustive_count(cfg).is_some())
             .map(|u| u.name())
             .collect();
+        let when = u
+            .exhaustive_when()
+            .map_or(String::new(), |w| format!("; exhaustive:{unit} needs {w}"));
         return Err(Error::Other(format!(
-            "exhaustive:{unit}: {unit} has too many input combinations to sweep\n  fix: use random:N, or exhaustive: {}",
+            "exhaustive:{unit}: {unit} has too many input combinations to sweep under this configuration\n  fix: use random:N{when}; this configuration sweeps whole: {}",
             swept.join(", ")
         )));
     };
@@ -660,6 +663,20 @@ pub fn exhaustive(cfg: &PipelineConfig, unit: &str) -> Result<Vec<UnitStim>> {
             inputs: u.exhaustive_input(cfg, i),
         })
         .collect())
+}
+
+#[cfg(test)]
+mod exhaustive_tests {
+    /// A unit whose domain fits only some configurations says which, with the fix.
+    #[test]
+    fn a_too_large_domain_names_when_the_unit_has_one() {
+        let toml = "bump_state = \"fragment\"\ninterpolate = \"h\"\nrenormalise = true\nlight_mode = \"parallel\"\n";
+        let cfg = crate::PipelineConfig::from_toml("x.toml", toml).unwrap();
+        let e = super::exhaustive_count(&cfg, "normalise").unwrap_err().to_string();
+        assert!(e.contains("needs lh_bits <= 6") && e.contains("random:N"), "{e}");
+        let narrow = crate::PipelineConfig { lh_bits: 6, ..cfg };
+        assert_eq!(super::exhaustive_count(&narrow, "normalise").unwrap(), 1 << 18);
+    }
 }
 
 #[cfg(test)]
