@@ -62,6 +62,10 @@ impl Params {
     pub fn first_index(&self) -> u32 {
         1 << (self.table_bits - 2)
     }
+    /// Bits of the even shift z, which reaches L - 2 (S = 1).
+    pub fn shift_bits(&self) -> u32 {
+        32 - (self.window - 2).leading_zeros()
+    }
     /// Bits of a table word (u2.Y).
     pub fn word_bits(&self) -> u32 {
         self.r_frac + 2
@@ -108,22 +112,18 @@ pub fn table_word(p: &Params, i: u32) -> i64 {
     ((p.r_frac as f64).exp2() / mid.sqrt() + 0.5).floor() as i64
 }
 
-/// Every intermediate value of one normalisation, for the unit's tests and its Verilog's
-/// comments.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Trace {
-    /// S (the scaled squared length).
-    pub big_s: i128,
-    /// The even shift z.
-    pub shift: u32,
-    /// The table index.
-    pub index: u32,
-    /// r after the table and after each step.
-    pub r: i64,
+/// One Newton step for 1/sqrt(m) from `r` (u2.Y, m cut to M bits), as the RTL computes it:
+/// the step's `3 - m r²` and the new r.
+pub fn newton_step(p: &Params, m: i128, r: i128) -> (i128, i128) {
+    let y = p.r_frac;
+    let q = (r * r) >> y;
+    let e = (3i128 << y) - ((m * q) >> p.m_bits);
+    (e, (r * e) >> (y + 1))
 }
 
-/// The unit's arithmetic up to the reciprocal: None for a zero vector.
-pub fn reciprocal(p: &Params, v: [i64; 3]) -> Option<Trace> {
+/// The unit's arithmetic up to the reciprocal, as (the even shift z, r): None for a zero
+/// vector.
+pub fn reciprocal(p: &Params, v: [i64; 3]) -> Option<(u32, i64)> {
     let s: i128 = v.iter().map(|&x| (x as i128) * (x as i128)).sum();
     if s == 0 {
         return None;
@@ -140,19 +140,10 @@ pub fn reciprocal(p: &Params, v: [i64; 3]) -> Option<Trace> {
     let index = (sn >> (p.window - p.table_bits)) as u32;
     let mut r = table_word(p, index - p.first_index()) as i128;
     let m = sn >> (p.window - p.m_bits);
-    let y = p.r_frac;
     for _ in 0..p.steps {
-        let q = (r * r) >> y;
-        let u = (m * q) >> p.m_bits;
-        let e = (3i128 << y) - u;
-        r = (r * e) >> (y + 1);
+        r = newton_step(p, m, r).1;
     }
-    Some(Trace {
-        big_s,
-        shift,
-        index,
-        r: r as i64,
-    })
+    Some((shift, r as i64))
 }
 
 /// Which of a light's vectors the pipeline renormalises under `cfg`, as (L, H): H whenever
@@ -169,12 +160,12 @@ pub fn renormalised(cfg: &PipelineConfig) -> (bool, bool) {
 /// The normalised vector, raw `s1.F` components.
 pub fn normalise(cfg: &PipelineConfig, v: [i64; 3]) -> [i64; 3] {
     let p = params(cfg);
-    let Some(t) = reciprocal(&p, v) else {
+    let Some((shift, r)) = reciprocal(&p, v) else {
         return [0; 3];
     };
     let fmt = cfg.lh_fmt();
     v.map(|x| {
-        let q = ((x as i128) * (t.r as i128)) << (t.shift / 2);
+        let q = ((x as i128) * (r as i128)) << (shift / 2);
         let n = shift_round(q, p.r_frac + 2, ROUNDING);
         n.clamp(fmt.min_raw() as i128, fmt.max_raw() as i128) as i64
     })

@@ -22,8 +22,7 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     let lh = cfg.lh_bits;
     let (l, t, y, mb) = (p.window, p.table_bits, p.r_frac, p.m_bits);
     let rw = p.word_bits();
-    // z reaches l - 2 (S = 1).
-    let zw = 32 - (l - 2).leading_zeros();
+    let zw = p.shift_bits();
     let mut w = VWriter::new();
     w.line("`timescale 1ns / 1ps");
     w.line("`default_nettype none");

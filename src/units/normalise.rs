@@ -61,8 +61,7 @@ impl Unit for Normalise {
         use crate::units::resources::{requant_clamp, signed, sum_of_products, unsigned, Resources};
         let pr = params(cfg);
         let (lh, rw, mb, l) = (cfg.lh_bits, pr.word_bits(), pr.m_bits, pr.window);
-        // z reaches l - 2 (S = 1).
-        let zw = 32 - (l - 2).leading_zeros();
+        let zw = pr.shift_bits();
         let m = cfg.multipliers;
         let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh);
         if pr.pre_bits > 0 {
@@ -144,7 +143,7 @@ impl Unit for Normalise {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::normalise::table_word;
+    use crate::model::normalise::{newton_step, table_word};
 
     /// Every Newton step stays inside the widths the Verilog gives it: 0 < 3 - m r^2 and
     /// every r below 2^(Y+2), for every table word at both ends of its interval of m.
@@ -160,15 +159,13 @@ mod tests {
                 let p = params(&cfg);
                 for k in 0..p.entries() {
                     assert!(table_word(&p, k) < 1 << p.word_bits());
-                    let y = p.r_frac;
                     for end in [0i128, (1i128 << (p.m_bits - p.table_bits)) - 1] {
                         let m = (((p.first_index() + k) as i128) << (p.m_bits - p.table_bits)) + end;
                         let mut r = table_word(&p, k) as i128;
                         for _ in 0..p.steps {
-                            let q = (r * r) >> y;
-                            let e = (3i128 << y) - ((m * q) >> p.m_bits);
+                            let (e, next) = newton_step(&p, m, r);
                             assert!(e > 0 && e < 1 << p.word_bits(), "lh {lh} entry {k}: e {e}");
-                            r = (r * e) >> (y + 1);
+                            r = next;
                             assert!(r < 1 << p.word_bits());
                         }
                     }
