@@ -361,10 +361,15 @@ pub enum Cmd {
         #[command(flatten)]
         pick: ConfigPick,
     },
-    /// Print a pipeline configuration as TOML with its hash: the default, or a scene's.
+    /// Print a pipeline configuration as TOML with its hash: the default, or a scene's, or an
+    /// engine's bit-accurate path on a scene (what `gbump engines` renders, area-counts and
+    /// what `gbump regress --config` then simulates).
     Config {
         #[arg(long)]
         scene: Option<String>,
+        /// An engine with a bit-accurate path (`gbump engines` lists them); needs --scene.
+        #[arg(long, requires = "scene")]
+        engine: Option<String>,
     },
     /// Print the bounds on every size and count (the README's Limits table) as Markdown.
     Limits,
@@ -992,17 +997,30 @@ pub fn run() -> anyhow::Result<()> {
         } => cosim(&pick, rtl, random, seed, bubbles, max_errors, lib, &work)?,
         Cmd::Interface { pick } => out!("{}", crate::rtlgen::interface::interface_markdown(&pick.resolve()?)),
         Cmd::Integration { pick } => out!("{}", crate::rtlgen::integration_doc::markdown(&pick.resolve()?)),
-        Cmd::Config { scene } => match scene {
+        Cmd::Config { scene, engine } => match scene {
             Some(s) => {
                 let scene = Scene::load(&s)?;
                 let cfg = scene.derive_config()?;
                 let why = crate::scene::needs::SceneNeeds::of(&scene).explain(&scene, &cfg)?;
-                out!("{why}# config hash {}\n{}", cfg.hash(), cfg.to_toml());
+                match engine {
+                    None => out!("{why}# config hash {}\n{}", cfg.hash(), cfg.to_toml()),
+                    Some(name) => {
+                        let e = crate::engines::fixed_engine(&name)?;
+                        let fixed = e.fixed_config(&cfg).expect("fixed_engine has a bit-accurate path");
+                        fixed.validate(&format!("{} (engine {name})", scene.file))?;
+                        out!(
+                            "{why}# engine {name}'s bit-accurate path on this scene: {:?}\n# config hash {}\n{}",
+                            e.fixed.expect("a bit-accurate path"),
+                            fixed.hash(),
+                            fixed.to_toml()
+                        );
+                    }
+                }
             }
             None => {
                 let cfg = PipelineConfig::default();
                 out!(
-                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n# white_lights = false  (true: every bump light is white, so the Lc multiplies go; tri_lc/in_lc stay on the interface, unused; written only when true, so older hashes stay)\n# power_rom = false  (true: the power table is a ROM holding x^shininess, its load port unused; written only when true, so older hashes stay)\n# renormalise = false  (true: a normalise unit scales each interpolated L and H back to unit length per fragment, a reciprocal-square-root table and Newton steps; needs interpolate and light_mode = \"parallel\"; written only when true, so older hashes stay)\n",
+                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n# white_lights = false  (true: every bump light is white, so the Lc multiplies go; tri_lc/in_lc stay on the interface, unused; written only when true, so older hashes stay)\n# power_rom = false  (true: the power table is a ROM holding x^shininess, its load port unused; written only when true, so older hashes stay)\n# renormalise = false  (true: a normalise unit scales each interpolated L and H back to unit length per fragment, a reciprocal-square-root table and Newton steps; needs interpolate and light_mode = \"parallel\"; written only when true, so older hashes stay)\n# interpolate_k = false  (true: the rasteriser interpolates each light's k, intensity times spot factor, from the vertices; needs bump_state = \"fragment\"; no RTL changes; written only when true, so older hashes stay)\n",
                     cfg.hash(),
                     cfg.to_toml(),
                     crate::config::limit("colour_guard_bits").1

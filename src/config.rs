@@ -204,6 +204,37 @@ pub struct PipelineConfig {
     /// lights. Left out of the TOML when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub renormalise: bool,
+    /// The rasteriser interpolates each bump light's k (its intensity times its spot factor,
+    /// taken at the vertices) per fragment instead of holding the triangle's, as SGI's and
+    /// Harmony's per-vertex lighting does. The pipeline is unchanged: k reaches it on the
+    /// fragment port with the rest of the bump state, so this needs bump_state = "fragment".
+    /// Left out of the TOML when false, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub interpolate_k: bool,
+}
+
+/// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
+/// engine: the choices `gbump engines` varies to turn a scene's configuration into an
+/// engine's bit-accurate path, and the f64 model of that path reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PerFragment {
+    /// What the rasteriser interpolates of L and H.
+    pub interpolate: Interpolate,
+    /// Whether the pipeline renormalises the interpolated vectors (the `normalise` unit).
+    pub renormalise: bool,
+    /// Whether the rasteriser interpolates each light's k.
+    pub interpolate_k: bool,
+}
+
+impl PipelineConfig {
+    /// This configuration's per-fragment choices.
+    pub fn per_fragment(&self) -> PerFragment {
+        PerFragment {
+            interpolate: self.interpolate,
+            renormalise: self.renormalise,
+            interpolate_k: self.interpolate_k,
+        }
+    }
 }
 
 impl Default for PipelineConfig {
@@ -239,6 +270,7 @@ impl Default for PipelineConfig {
             white_lights: false,
             power_rom: false,
             renormalise: false,
+            interpolate_k: false,
         }
     }
 }
@@ -464,6 +496,14 @@ impl PipelineConfig {
                     if self.interpolate == Interpolate::Hl { "hl" } else { "h" }
                 ),
                 "set bump_state = \"fragment\" (the fragment port carries L and H), or interpolate = \"none\"",
+            ));
+        }
+        if self.interpolate_k && self.bump_state != BumpStateAt::Fragment {
+            return Err(Error::field(
+                file,
+                "interpolate_k",
+                "interpolate_k = true sends each light's k per fragment, which a per-triangle top cannot take",
+                "set bump_state = \"fragment\" (the fragment port carries k with L and H), or drop interpolate_k",
             ));
         }
         if self.renormalise && self.interpolate.is_none() {

@@ -101,14 +101,14 @@ impl Config {
     }
 
     /// Canonical TOML of the configuration (the input of the hash): every field, except that
-    /// colour_guard_bits, white_lights, power_rom, renormalise and interpolate are left out at their
-    /// defaults (0, false, false, false, "none"), so hashes made before they existed stay.
+    /// colour_guard_bits, white_lights, power_rom, renormalise, interpolate_k and interpolate are left out
+    /// at their defaults (0, false, false, false, false, "none"), so hashes made before they existed stay.
     #[getter]
     fn toml(&self) -> String {
         self.cfg().to_toml()
     }
 
-    /// The fields of `toml`, as a dict (the four left out at their defaults are left out here
+    /// The fields of `toml`, as a dict (the fields left out at their defaults are left out here
     /// too).
     fn as_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         json_to_py(py, &serde_json::to_string(self.cfg()).expect("config serialises"))

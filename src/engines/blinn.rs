@@ -19,6 +19,7 @@ pub const BLINN: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    scene_blend: false,
     fixed: None,
 };
 

@@ -26,6 +26,7 @@ pub const CG: Engine = Engine {
         fragment_per_light: 6,
     },
     shade,
+    scene_blend: false,
     fixed: None,
 };
 

@@ -34,6 +34,7 @@ pub const EMBM: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    scene_blend: false,
     fixed: None,
 };
 

@@ -8,7 +8,7 @@
 //! the paper's bump state; the rest (clamps, blend order, skip_flat) is the paper's engine's
 //! own (`reference::gouraud_f64::shade_with`).
 
-use super::{Cost, Ctx, Engine, Variant};
+use super::{Cost, Ctx, Engine, PerFragment};
 use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
@@ -25,9 +25,11 @@ pub const GOURAUD: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_paper,
-    fixed: Some(Variant {
+    scene_blend: true,
+    fixed: Some(PerFragment {
         interpolate: Interpolate::None,
         renormalise: false,
+        interpolate_k: false,
     }),
 };
 
@@ -43,9 +45,11 @@ pub const GOURAUD_H: Engine = Engine {
         fragment_per_light: 3,
     },
     shade: shade_h,
-    fixed: Some(Variant {
+    scene_blend: true,
+    fixed: Some(PerFragment {
         interpolate: Interpolate::H,
         renormalise: false,
+        interpolate_k: false,
     }),
 };
 
@@ -61,9 +65,11 @@ pub const GOURAUD_HL: Engine = Engine {
         fragment_per_light: 6,
     },
     shade: shade_hl,
-    fixed: Some(Variant {
+    scene_blend: true,
+    fixed: Some(PerFragment {
         interpolate: Interpolate::Hl,
         renormalise: false,
+        interpolate_k: false,
     }),
 };
 
@@ -79,9 +85,11 @@ pub const GOURAUD_HN: Engine = Engine {
         fragment_per_light: 3,
     },
     shade: shade_hn,
-    fixed: Some(Variant {
+    scene_blend: true,
+    fixed: Some(PerFragment {
         interpolate: Interpolate::H,
         renormalise: true,
+        interpolate_k: false,
     }),
 };
 
@@ -97,28 +105,36 @@ pub const GOURAUD_HLN: Engine = Engine {
         fragment_per_light: 6,
     },
     shade: shade_hln,
-    fixed: Some(Variant {
+    scene_blend: true,
+    fixed: Some(PerFragment {
         interpolate: Interpolate::Hl,
         renormalise: true,
+        interpolate_k: false,
     }),
 };
 
 fn shade_paper(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::None, false)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, fixed_variant(&GOURAUD))
 }
 
 fn shade_h(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H, false)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, fixed_variant(&GOURAUD_H))
 }
 
 fn shade_hn(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::H, true)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, fixed_variant(&GOURAUD_HN))
 }
 
 fn shade_hln(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl, true)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, fixed_variant(&GOURAUD_HLN))
 }
 
 fn shade_hl(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, Interpolate::Hl, false)
+    crate::reference::gouraud_f64::shade_interpolating(c.p, hit, g, fixed_variant(&GOURAUD_HL))
+}
+
+/// A Gouraud variant's per-fragment choices: its f64 model and its bit-accurate path are the
+/// same engine.
+fn fixed_variant(e: &Engine) -> PerFragment {
+    e.fixed.expect("every Gouraud variant has a bit-accurate path")
 }

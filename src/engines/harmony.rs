@@ -26,6 +26,7 @@ pub const HARMONY: Engine = Engine {
         fragment_per_light: 6,
     },
     shade,
+    scene_blend: false,
     fixed: None,
 };
 

@@ -27,6 +27,7 @@ pub mod sgi;
 pub mod texram;
 pub mod visa;
 
+pub use crate::config::PerFragment;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::DVec3;
 
@@ -41,19 +42,15 @@ pub struct Engine {
     pub per_fragment: &'static str,
     pub cost: Cost,
     pub shade: fn(&Ctx, &Hit, &PixelGeom) -> DVec3,
+    /// Whether the engine blends as the scene's configuration says (blend order, skip_flat:
+    /// Gouraud bump mapping's engines) rather than as every other engine does,
+    /// `min(min(C_src + D, 1) · T + S, 1)` with no flat bypass (`common::finish`).
+    pub scene_blend: bool,
     /// The engine's bit-accurate path, where gbump generates it: the scene's own
-    /// configuration (`gbump config --scene`) with this interpolation, rendered by the golden
-    /// model and generated as RTL like any configuration. None: the engine is f64 only so far.
-    pub fixed: Option<Variant>,
-}
-
-/// What an engine's bit-accurate path changes in the scene's configuration.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Variant {
-    /// What the rasteriser interpolates per fragment.
-    pub interpolate: crate::config::Interpolate,
-    /// Whether the pipeline renormalises the interpolated vectors (the `normalise` unit).
-    pub renormalise: bool,
+    /// configuration (`gbump config --scene`) with these per-fragment choices, rendered by the
+    /// golden model and generated as RTL like any configuration. None: the engine is f64 only
+    /// so far.
+    pub fixed: Option<PerFragment>,
 }
 
 impl Engine {
@@ -63,9 +60,18 @@ impl Engine {
         use crate::config::{BumpStateAt, Interpolate, LightMode};
         let v = self.fixed?;
         let mut cfg = scene_cfg.clone();
+        if !self.scene_blend {
+            cfg.blend_order = crate::config::BlendOrder::DiffuseTextureSpecular;
+            cfg.skip_flat = false;
+        }
         cfg.interpolate = v.interpolate;
         if v.interpolate != Interpolate::None {
             // An interpolated vector reaches the pipeline per fragment.
+            cfg.bump_state = BumpStateAt::Fragment;
+        }
+        if v.interpolate_k {
+            // k reaches the pipeline per fragment with the rest of the bump state.
+            cfg.interpolate_k = true;
             cfg.bump_state = BumpStateAt::Fragment;
         }
         if v.renormalise {
@@ -160,6 +166,24 @@ pub const ENGINES: &[Engine] = &[
     gouraud::GOURAUD_HLN,
     cg::CG,
 ];
+
+/// The engine called `name` when it has a bit-accurate path; otherwise an error naming the
+/// engines that have one.
+pub fn fixed_engine(name: &str) -> crate::error::Result<&'static Engine> {
+    let with: Vec<&str> = ENGINES.iter().filter(|e| e.fixed.is_some()).map(|e| e.name).collect();
+    match engine(name) {
+        Some(e) if e.fixed.is_some() => Ok(e),
+        found => Err(crate::error::Error::Other(format!(
+            "--engine {name}: {}\n  fix: use one of {}",
+            if found.is_some() {
+                "this engine is f64 only so far (no bit-accurate path, no RTL)"
+            } else {
+                "no such engine"
+            },
+            with.join(", ")
+        ))),
+    }
+}
 
 /// The engine called `name`.
 pub fn engine(name: &str) -> Option<&'static Engine> {

@@ -23,6 +23,7 @@ pub const TEXRAM: Engine = Engine {
         fragment_per_light: 0,
     },
     shade,
+    scene_blend: false,
     fixed: None,
 };
 

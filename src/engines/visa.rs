@@ -23,6 +23,7 @@ pub const VISA: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_matrix,
+    scene_blend: false,
     fixed: None,
 };
 
@@ -38,6 +39,7 @@ pub const VISA_QUATERNION: Engine = Engine {
         fragment_per_light: 0,
     },
     shade: shade_quaternion,
+    scene_blend: false,
     fixed: None,
 };
 

@@ -74,12 +74,14 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
 pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
-    if p.cfg.interpolate.is_none() {
+    if p.cfg.interpolate.is_none() && !p.cfg.interpolate_k {
         return ts.fixed;
     }
-    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &o.mesh.corners(hit.tri));
+    let corners = o.mesh.corners(hit.tri);
+    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &corners);
+    let vk = super::tri_state::vertex_k(p.scene, &corners);
     // Interpolated unit vectors stay within the unit ball, so every component is finite.
-    super::tri_state::fragment_state(p.cfg, ts, &vv, hit.bary).expect("finite interpolated vectors")
+    super::tri_state::fragment_state(p.cfg, ts, &vv, &vk, hit.bary).expect("finite interpolated vectors")
 }
 
 /// Every covered pixel's fragment record, triangle by triangle (pixel order within one).

@@ -29,11 +29,15 @@ pub fn send_lh(cfg: &PipelineConfig, x: f64) -> Option<i64> {
     from_f64(x * cfg.normal_scale(), cfg.lh_fmt(), Rounding::HalfUp, Overflow::Saturate)
 }
 
+/// A light's k (intensity times spot factor) as the setup sends it, rounded to u1.K.
+pub fn send_k(cfg: &PipelineConfig, x: f64) -> i64 {
+    from_f64(x, cfg.k_fmt(), Rounding::HalfUp, Overflow::Saturate).expect("finite k")
+}
+
 pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh) -> Result<Vec<TriState>> {
     let lights: Vec<_> = scene.bump_lights().collect();
     scene.check_config(cfg, "pipeline config")?;
     let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite light vector".into()));
-    let qk = |x: f64| from_f64(x, cfg.k_fmt(), Rounding::HalfUp, Overflow::Saturate).expect("finite k");
     let max = cfg.colour_max() as f64;
     let mut out = Vec::with_capacity(mesh.tris.len());
     for t in &mesh.tris {
@@ -59,7 +63,7 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
                 l: [q(l.x)?, q(l.y)?, q(l.z)?],
                 h: [q(h.x)?, q(h.y)?, q(h.z)?],
                 lc: light.colour.map(|c| (c * max).round() as u32),
-                k: qk(st.k[i]),
+                k: send_k(cfg, st.k[i]),
             };
         }
         out.push(st);
@@ -83,6 +87,25 @@ pub fn vertex_vectors(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vert
         .collect()
 }
 
+/// Each bump light's k (intensity times spot factor) at each vertex of a triangle:
+/// `[light][vertex]` (what `interpolate_k` interpolates; the triangle holds it at its centroid).
+pub fn vertex_k(scene: &Scene, v: &[crate::scene::mesh::Vertex; 3]) -> Vec<[f64; 3]> {
+    scene
+        .bump_lights()
+        .map(|l| std::array::from_fn(|j| l.k * spot_factor(l, v[j].p)))
+        .collect()
+}
+
+/// Light `i`'s k at barycentric weights `w`: the triangle's own, or interpolated from `vk`
+/// ([`vertex_k`]) under `interpolate_k`.
+pub fn k_at(ts: &TriState, vk: &[[f64; 3]], w: [f64; 3], interpolate_k: bool, i: usize) -> f64 {
+    if interpolate_k {
+        vk[i][0] * w[0] + vk[i][1] * w[1] + vk[i][2] * w[2]
+    } else {
+        ts.k[i]
+    }
+}
+
 /// Light `i`'s bump-space L and H at barycentric weights `w` under `interpolate`: the
 /// triangle's own, or interpolated from `vv` ([`vertex_vectors`]).
 pub fn lh_at(ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3], interpolate: Interpolate, i: usize) -> (DVec3, DVec3) {
@@ -94,15 +117,19 @@ pub fn lh_at(ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3], interpolate
     }
 }
 
-/// The bump state one fragment carries under `cfg.interpolate`: the triangle's, with each
-/// light's interpolated vectors quantised as the setup quantises its own.
-pub fn fragment_state(cfg: &PipelineConfig, ts: &TriState, vv: &[[(DVec3, DVec3); 3]], w: [f64; 3]) -> Result<BumpState> {
+/// The bump state one fragment carries under `cfg.interpolate` and `cfg.interpolate_k`: the
+/// triangle's, with each light's interpolated vectors and k quantised as the setup quantises
+/// its own.
+pub fn fragment_state(cfg: &PipelineConfig, ts: &TriState, vv: &[[(DVec3, DVec3); 3]], vk: &[[f64; 3]], w: [f64; 3]) -> Result<BumpState> {
     let mut st = ts.fixed;
     let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite interpolated light vector".into()));
     for i in 0..vv.len() {
         let (l, h) = lh_at(ts, vv, w, cfg.interpolate, i);
         st.lights[i].l = [q(l.x)?, q(l.y)?, q(l.z)?];
         st.lights[i].h = [q(h.x)?, q(h.y)?, q(h.z)?];
+        if cfg.interpolate_k {
+            st.lights[i].k = send_k(cfg, k_at(ts, vk, w, true, i));
+        }
     }
     Ok(st)
 }

@@ -1,7 +1,7 @@
 //! The Gouraud bump equations in f64: the golden model's algorithm without its quantisation.
 
 use crate::bumpmap::sample::Filter;
-use crate::config::BlendOrder;
+use crate::config::{BlendOrder, Interpolate, PerFragment};
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DVec2, DVec3};
@@ -24,49 +24,56 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
     }
 }
 
-/// The equations with L and H as `p.cfg.interpolate` says (per triangle unless the
-/// configuration interpolates them).
+/// The equations with L, H and k as the configuration's per-fragment choices say (per
+/// triangle unless it interpolates them).
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    shade_interpolating(p, hit, g, p.cfg.interpolate, p.cfg.renormalise)
+    shade_interpolating(p, hit, g, p.cfg.per_fragment())
 }
 
-/// The equations with L and H per triangle or interpolated as `how` says (`engines::gouraud`
-/// asks for each variant whatever the configuration); `renormalise` scales each interpolated
+/// The equations with L, H and k per triangle or interpolated as `how` says (the engines ask
+/// for each variant whatever the configuration); `how.renormalise` scales each interpolated
 /// vector back to unit length (H, and L when it is interpolated), as the `normalise` unit does.
-pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: crate::config::Interpolate, renormalise: bool) -> DVec3 {
-    use crate::raster::tri_state::{lh_at, vertex_vectors};
+pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragment) -> DVec3 {
+    use crate::raster::tri_state::{k_at, lh_at, vertex_k, vertex_vectors};
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
-    let vv = if how.is_none() {
+    let corners = o.mesh.corners(hit.tri);
+    let vv = if how.interpolate.is_none() {
         Vec::new()
     } else {
-        vertex_vectors(p.scene, &p.camera, &o.mesh.corners(hit.tri))
+        vertex_vectors(p.scene, &p.camera, &corners)
+    };
+    let vk = if how.interpolate_k {
+        vertex_k(p.scene, &corners)
+    } else {
+        Vec::new()
     };
     shade_with(p, hit, g, |i| {
-        let (l, h) = lh_at(ts, &vv, hit.bary, how, i);
-        match (renormalise, how) {
-            (false, _) | (_, crate::config::Interpolate::None) => (l, h),
-            (true, crate::config::Interpolate::H) => (l, h.normalize_or_zero()),
-            (true, crate::config::Interpolate::Hl) => (l.normalize_or_zero(), h.normalize_or_zero()),
-        }
+        let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);
+        let k = k_at(ts, &vk, hit.bary, how.interpolate_k, i);
+        let (l, h) = match (how.renormalise, how.interpolate) {
+            (false, _) | (_, Interpolate::None) => (l, h),
+            (true, Interpolate::H) => (l, h.normalize_or_zero()),
+            (true, Interpolate::Hl) => (l.normalize_or_zero(), h.normalize_or_zero()),
+        };
+        (l, h, k)
     })
 }
 
-/// The Gouraud bump equations with light `i`'s bump-space L and H from `lh(i)`: the paper's
-/// per-triangle vectors, or (the §6 variants, `engines::gouraud`) interpolated ones.
-pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, lh: impl Fn(usize) -> (DVec3, DVec3)) -> DVec3 {
+/// The Gouraud bump equations with light `i`'s bump-space L, H and k from `lhk(i)`: the
+/// paper's per-triangle values, or (the §6 variants and SGI, `engines`) interpolated ones.
+pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, lhk: impl Fn(usize) -> (DVec3, DVec3, f64)) -> DVec3 {
     let cfg = p.cfg;
     let so = &p.scene.objects[hit.obj as usize];
     let o = &p.objects[hit.obj as usize];
-    let ts = &o.tris[hit.tri as usize];
     let bn = filtered_normal(&o.normals, g.uv, so.bump.filter);
     let bypass = cfg.skip_flat && (bn - DVec3::Z).length() < 1e-9;
     let dif_on = cfg.diffuse && so.diffuse && !bypass;
     let spe_on = cfg.specular && so.specular && !bypass;
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
     for (i, l) in p.scene.bump_lights().enumerate() {
-        let lc = DVec3::from_array(l.colour) * ts.k[i];
-        let (lv, hv) = lh(i);
+        let (lv, hv, k) = lhk(i);
+        let lc = DVec3::from_array(l.colour) * k;
         if dif_on {
             diff += lc * bn.dot(lv).clamp(0.0, 1.0);
         }

@@ -54,6 +54,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             white_lights: pick(rng, &[false, true]),
             power_rom: pick(rng, &[false, true]),
             renormalise: false,
+            // As interpolate: the rasteriser's choice, no RTL of its own.
+            interpolate_k: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
