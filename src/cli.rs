@@ -296,13 +296,17 @@ pub enum Cmd {
         /// Texels along a face edge of the Cg engine's normalisation cube map.
         #[arg(long, default_value_t = crate::engines::cg::CUBE_FACE)]
         cg_cube: u32,
+        /// What-if: the engines that light with the map's filtered normal directly (SGI, Cg)
+        /// renormalise it first (neither text does; f64 only).
+        #[arg(long)]
+        renormalise_map: bool,
         #[arg(long, default_value = "out/engines", value_parser = output_dir)]
         out: PathBuf,
     },
     /// One of the paper's claims about the engines, measured: NAME.md and NAME.svg (the
     /// sections of docs/REPORT.md). `--list` names them.
     Claim {
-        /// visa-seams, flat-shading or embm-resolution.
+        /// visa-seams, flat-shading, embm-resolution or map-filter.
         #[arg(required_unless_present = "list")]
         name: Option<String>,
         #[arg(long, conflicts_with_all = ["name", "out"])]
@@ -951,8 +955,19 @@ pub fn run() -> anyhow::Result<()> {
             size,
             embm_map,
             cg_cube,
+            renormalise_map,
             out,
-        } => engines_command(&scenes, &engines, size.as_deref(), crate::engines::Maps { embm_map, cg_cube }, &out)?,
+        } => engines_command(
+            &scenes,
+            &engines,
+            size.as_deref(),
+            crate::engines::Maps {
+                embm_map,
+                cg_cube,
+                renormalise_map,
+            },
+            &out,
+        )?,
         Cmd::Claim { name, list, out } => {
             if list {
                 for (n, what) in crate::engines::claims::CLAIMS {

@@ -171,12 +171,29 @@ fn regress_sgi_on_the_spotlit_wall() {
     let vectors = work.join("vectors");
     let source = format!("scene:{scene}");
     gbump()
-        .args(["vectors", "--config", cfg_path.to_str().unwrap(), "--source", &source, "--size", "64x32", "--target", "top"])
+        .args([
+            "vectors",
+            "--config",
+            cfg_path.to_str().unwrap(),
+            "--source",
+            &source,
+            "--size",
+            "64x32",
+            "--target",
+            "top",
+        ])
         .args(["--out", vectors.to_str().unwrap()])
         .assert()
         .success();
     let text = regress(
-        &["--sim", "both", "--config", cfg_path.to_str().unwrap(), "--vectors", vectors.to_str().unwrap()],
+        &[
+            "--sim",
+            "both",
+            "--config",
+            cfg_path.to_str().unwrap(),
+            "--vectors",
+            vectors.to_str().unwrap(),
+        ],
         "sgi_spot_runs",
     );
     let r = runs(&text);

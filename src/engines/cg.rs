@@ -6,9 +6,11 @@
 //! (the text's "typically sufficient") read nearest, each texel the unit vector through its
 //! centre (its 8-bit range compression is arithmetic, the fixed-point model's part); the
 //! exponent is the power of two nearest the material's shininess (the text squares three
-//! times for 8); no scene has a gloss map, so the gloss is 1.
+//! times for 8); no scene has a gloss map, so the gloss is 1; the normal map's sample is
+//! range-expanded and used as the filter leaves it, not renormalised (Example 8-2's
+//! `expand(tex2D(normalMap, …))`).
 
-use super::common::{bump_normal, corners, finish, mix, tangent_factors, Base};
+use super::common::{corners, finish, map_normal, mix, tangent_factors, Base};
 use super::{Cost, Ctx, Engine};
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::spot_factor;
@@ -74,7 +76,7 @@ fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let p = c.p;
     let so = &p.scene.objects[hit.obj as usize];
     let v = corners(p, hit);
-    let nb = bump_normal(p, hit, g);
+    let nb = map_normal(c, hit, g);
     let e = squarings_exponent(so.shininess);
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
     // Each light's L and H at each vertex in that vertex's tangent space.

@@ -1,6 +1,7 @@
 //! What the engines share: a hit's vertices, barycentric mixes, the bump-map normal and its
 //! offsets, per-pixel lighting for a perturbed normal, and the final colour combination.
 
+use super::Ctx;
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use crate::scene::lighting::{gouraud_colour, half_vector, light_dir, spot_factor};
@@ -32,6 +33,17 @@ pub fn plane_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
 pub fn bump_normal(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let so = &p.scene.objects[hit.obj as usize];
     crate::bumpmap::sample::sample_normal(&p.objects[hit.obj as usize].normals, g.uv, so.bump.filter)
+}
+
+/// The map's normal as a texture unit hands it to an engine that lights with it directly: the
+/// stored unit normals filtered, so shorter than 1 between texels that disagree, unless the
+/// context asks for the what-if of renormalising it ([`Ctx::renormalise_map`]).
+pub fn map_normal(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    if c.renormalise_map {
+        return bump_normal(c.p, hit, g);
+    }
+    let so = &c.p.scene.objects[hit.obj as usize];
+    crate::reference::gouraud_f64::filtered_normal(&c.p.objects[hit.obj as usize].normals, g.uv, so.bump.filter)
 }
 
 /// The bump normal as tangent-plane offsets (the height gradient `(x/z, y/z)` that Eq. 1

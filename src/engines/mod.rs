@@ -9,7 +9,11 @@
 //! otherwise:
 //! - the bump map is the object's f64 normal map (the stored map before quantisation),
 //!   sampled with the object's filter; an engine that wants offsets (VISA+, EMBM) takes
-//!   `(x/z, y/z)` of it, the height gradient Eq. 1 encodes;
+//!   `(x/z, y/z)` of it, the height gradient Eq. 1 encodes; an engine that lights with the
+//!   map's normal directly (SGI, Cg, Gouraud's) takes it as the texture unit's filter leaves
+//!   it, shortened between texels, since neither text renormalises it (`common::map_normal`;
+//!   the engines that place it in a frame renormalise the result, which undoes the
+//!   shortening);
 //! - lights are the scene's bump lights; the viewer is parallel (as in every renderer here);
 //! - the colour is `min(min(C_src + D, 1) · T + S, 1)` with `C_src` the non-bump lighting, the
 //!   combination `reference::perpixel` uses: engines with per-pixel normals evaluate `C_src`
@@ -94,6 +98,9 @@ pub struct Ctx<'a> {
     pub embm_map: u32,
     /// Texels along a face edge of the Cg engine's normalisation cube map.
     pub cg_cube: u32,
+    /// Engines that light with the map's normal as the texture unit filters it (SGI, Cg)
+    /// renormalise it first: a what-if that `gbump claim map-filter` measures.
+    pub renormalise_map: bool,
 }
 
 impl<'a> Ctx<'a> {
@@ -108,15 +115,19 @@ impl<'a> Ctx<'a> {
             centres,
             embm_map: maps.embm_map,
             cg_cube: maps.cg_cube,
+            renormalise_map: maps.renormalise_map,
         }
     }
 }
 
-/// The sizes of the maps that engines look their lighting or normalisation up in.
+/// The sizes of the maps that engines look their lighting or normalisation up in, and how
+/// the bump map's filtered normal reaches the engines that light with it directly.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Maps {
     pub embm_map: u32,
     pub cg_cube: u32,
+    /// See [`Ctx::renormalise_map`]; false is each engine's own text.
+    pub renormalise_map: bool,
 }
 
 impl Default for Maps {
@@ -124,6 +135,7 @@ impl Default for Maps {
         Maps {
             embm_map: embm::EMBM_MAP,
             cg_cube: cg::CUBE_FACE,
+            renormalise_map: false,
         }
     }
 }

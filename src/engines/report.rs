@@ -231,6 +231,9 @@ impl Table {
             2 * self.maps.embm_map * self.maps.embm_map,
             self.maps.cg_cube
         );
+        if self.maps.renormalise_map {
+            s += "\nWhat-if (`--renormalise-map`): SGI and Cg renormalise the map's filtered normal before lighting with it, which neither text does; the f64 rows above show it, the bit-accurate paths do not (their texture unit hands the filtered normal on as it is).\n";
+        }
         s
     }
 

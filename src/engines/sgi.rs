@@ -11,7 +11,7 @@
 //! bit-accurate path is that top, the scene's blend order and flat bypass replaced by this
 //! engine's combination.
 
-use super::common::{corners, finish, mix, Base};
+use super::common::{corners, finish, map_normal, mix, Base};
 use super::{Cost, Ctx, Engine, PerFragment};
 use crate::config::Interpolate;
 use crate::model::power_table::powi_exact;
@@ -43,7 +43,7 @@ fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let p = c.p;
     let so = &p.scene.objects[hit.obj as usize];
     let v = corners(p, hit);
-    let nb = crate::reference::gouraud_f64::filtered_normal(&p.objects[hit.obj as usize].normals, g.uv, so.bump.filter);
+    let nb = map_normal(c, hit, g);
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
     // Each light's L and H at each vertex in that vertex's tangent space.
     let vv = crate::raster::tri_state::vertex_vectors(p.scene, &p.camera, &v);
