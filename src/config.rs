@@ -211,6 +211,14 @@ pub struct PipelineConfig {
     /// Left out of the TOML when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub interpolate_k: bool,
+    /// The pipeline scales the fetched bump normal back to unit length per fragment (a
+    /// `normalise_b` unit after the fetch, the `normalise` unit's arithmetic at the normal's
+    /// width): a texture unit's bilinear filter averages unit normals, and between texels that
+    /// disagree the average is short, which darkens the diffuse light and dims the highlight
+    /// (`gbump claim map-filter`). The flat bypass still compares the fetched normal. Left out
+    /// of the TOML when false, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub renormalise_bump: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -271,6 +279,7 @@ impl Default for PipelineConfig {
             power_rom: false,
             renormalise: false,
             interpolate_k: false,
+            renormalise_bump: false,
         }
     }
 }

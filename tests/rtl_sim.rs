@@ -154,6 +154,44 @@ fn regress_paper_sample_one_light() {
     regress_short("tests/configs/paper_sample_one_light.toml", "paper_sample_one_light", 11);
 }
 
+/// `renormalise_bump`: the fetched bump normal through `normalise_b` before the dot products,
+/// on the default serial top with the scenes (whose bilinear maps it renormalises) and on a
+/// one-light parallel top with symmetric normals (its (2^(nb-1) - 1) multiply), both
+/// simulators, the unit's corners and random set among the runs, 0 mismatches.
+#[test]
+fn regress_renormalised_bump_normal_on_both_tops() {
+    let t = regress(
+        &[
+            "--sim",
+            "both",
+            "--config",
+            "tests/configs/renormalise_bump.toml",
+            "--random-icarus",
+            "5000",
+            "--random",
+            "100000",
+            "--scene-size",
+            "64x48",
+        ],
+        "renormalise_bump",
+    );
+    let sym = regress_no_scenes("tests/configs/renormalise_bump_symmetric.toml", "renormalise_bump_symmetric");
+    for text in [&t, &sym] {
+        let r = runs(text);
+        for sim in ["icarus", "verilator"] {
+            let mine: Vec<_> = r.iter().filter(|x| x.0 == sim).collect();
+            assert!(mine.iter().all(|x| x.3 == 0 && x.2 > 0), "{sim}: {text}");
+            for set in ["corners_level2_normalise_b", "random"] {
+                assert!(
+                    mine.iter().any(|x| x.1.starts_with(set) && x.1.ends_with("_normalise_b")),
+                    "{sim}: no {set} normalise_b set in\n{text}"
+                );
+            }
+        }
+    }
+    assert!(runs(&t).iter().filter(|x| x.1 == "scene_cg_wall_front_top").count() == 2, "{t}");
+}
+
 /// SGI's bit-accurate path (paper §3.4: L, H and k per vertex in tangent space, interpolated)
 /// on the spotlit wall, on both simulators: the configuration `gbump config --engine sgi`
 /// prints, the scene's fragments dumped under it (each carrying its own k), 0 mismatches.
@@ -409,8 +447,15 @@ fn lint_is_clean_for_every_other_test_configuration() {
 
 #[test]
 fn lint_is_clean_for_the_renormalising_configuration() {
-    // Its own test: the normalise unit is the slowest to synthesise, so it runs beside the others.
-    lint_clean("target/test-lint-3", &[Some("tests/configs/renormalise_hl.toml")]);
+    // Its own test: the normalise units are the slowest to synthesise, so they run beside the others.
+    lint_clean(
+        "target/test-lint-3",
+        &[
+            Some("tests/configs/renormalise_hl.toml"),
+            Some("tests/configs/renormalise_bump.toml"),
+            Some("tests/configs/renormalise_bump_symmetric.toml"),
+        ],
+    );
 }
 
 #[test]

@@ -71,7 +71,17 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let lf = cfg.lh_fmt();
     let max = cfg.colour_max() as f64;
     let t = stored_codes(palette, s.frag.bump);
-    let b: Vec<f64> = t.iter().map(|&c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c))).collect();
+    let codes = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
+    // Renormalised, B enters the dot products at exactly its unit length, as normalise_b's
+    // equation says; otherwise as its codes.
+    let b: Vec<f64> = if cfg.renormalise_bump {
+        let shape = crate::model::normalise::Shape::bump(cfg);
+        crate::model::normalise::normalise_exact_shape(&shape, codes)
+            .map(|x| x / (1u64 << shape.frac) as f64)
+            .to_vec()
+    } else {
+        codes.iter().map(|&c| nf.to_f64(c)).collect()
+    };
     let flat = t.iter().map(|&c| crate::model::bump_fetch::expand(cfg, c)).collect::<Vec<_>>() == cfg.flat_normal().to_vec();
     let bypass = cfg.skip_flat && flat;
     let d_on = cfg.diffuse && s.frag.diffuse_en && !bypass;
@@ -146,9 +156,38 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
             }
         }
     }
+    // normalise_b over every fetched normal and its corners, against b·unit/|b|.
+    let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
+    let bshape = crate::model::normalise::Shape::bump(cfg);
+    let mut norm_b_add = |v: [i64; 3]| {
+        let got = crate::model::normalise::normalise_shape(&bshape, v);
+        let want = crate::model::normalise::normalise_exact_shape(&bshape, v);
+        let f = bshape.fmt();
+        for i in 0..3 {
+            norm_b.add(got[i] as f64 - want[i].clamp(f.min_raw() as f64, f.max_raw() as f64), || {
+                format!("b={v:?}")
+            });
+        }
+    };
+    if cfg.renormalise_bump {
+        if let Some(u) = crate::units::unit("normalise_b") {
+            for (_, c) in u.corners(cfg) {
+                norm_b_add([c[0][0], c[0][1], c[0][2]]);
+            }
+        }
+    }
     for (_, s) in &stims {
         let t = stored_codes(&palette, s.frag.bump);
-        let b = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
+        let fetched = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
+        if cfg.renormalise_bump {
+            norm_b_add(fetched);
+        }
+        // dot_clamp sees B as the pipeline hands it on.
+        let b = if cfg.renormalise_bump {
+            crate::model::normalise::normalise_shape(&bshape, fetched)
+        } else {
+            fetched
+        };
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             if norm_l {
                 norm_add(ls.l);
@@ -163,6 +202,9 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
                 dot.add(dot_clamp(cfg, b, v) as f64 - exact, || format!("B={b:?} V={v:?}"));
             }
         }
+    }
+    if cfg.renormalise_bump {
+        out.push(norm_b);
     }
     if cfg.renormalise {
         out.push(norm);

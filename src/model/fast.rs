@@ -87,6 +87,9 @@ pub struct FastModel {
     /// The configuration, when it renormalises interpolated vectors before the dot products
     /// (`pipeline::renormalised`: the same integer steps as the readable model).
     renorm: Option<PipelineConfig>,
+    /// The bump normal's shape, when the pipeline renormalises it after the fetch
+    /// (`renormalise_bump`: `normalise_b`, the same integer steps as the readable model).
+    renorm_b: Option<super::normalise::Shape>,
 }
 
 impl FastModel {
@@ -120,6 +123,16 @@ impl FastModel {
             tex_s: div.s,
             white: cfg.white_lights.then(|| cfg.colour_max()),
             renorm: cfg.renormalise.then(|| cfg.clone()),
+            renorm_b: cfg.renormalise_bump.then(|| super::normalise::Shape::bump(cfg)),
+        }
+    }
+
+    /// The fetched bump normal as the dot products see it.
+    #[inline(always)]
+    fn dot_normal(&self, v: [i64; 3]) -> [i64; 3] {
+        match &self.renorm_b {
+            Some(shape) => super::normalise::normalise_shape(shape, v),
+            None => v,
         }
     }
 
@@ -234,6 +247,7 @@ impl FastModel {
             let bypass = self.skip_flat & (v[0] == self.flat[0]) & (v[1] == self.flat[1]) & (v[2] == self.flat[2]);
             dmask[i] = -i64::from(self.diffuse & f.diffuse_en & !bypass);
             smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
+            let v = self.dot_normal(v);
             for ch in 0..3 {
                 b[ch][i] = v[ch];
                 c_src[ch][i] = (f.c_src[ch] as i64) << self.guard;
@@ -396,6 +410,7 @@ impl FastModel {
         // All ones where the blend adds, zero where it is off: the factors are masked.
         let dmask = -i64::from(self.diffuse & frag.diffuse_en & !bypass);
         let smask = -i64::from(self.specular & frag.specular_en & !bypass);
+        let b = self.dot_normal(b);
         let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
         for s in lights {
             let fd = (self.dot(b, s.l) << self.diffuse_align) & dmask;

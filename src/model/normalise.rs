@@ -36,6 +36,63 @@ pub const ROUNDING: crate::fixed::Rounding = crate::fixed::Rounding::HalfUp;
 /// (the tests hold it; the README states it).
 pub const ERROR_BOUND_LSB: f64 = 0.75;
 
+/// What a normalise unit scales: its components' width and fraction bits (`s?.F`), and the
+/// factor its unit length carries: `v · 2^F · scale / |v|`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shape {
+    pub width: u32,
+    pub frac: u32,
+    /// S is multiplied by (2^pre - 1)^2, scaling the result by 2^pre / (2^pre - 1): L and H
+    /// with symmetric normals (0: none).
+    pub pre_bits: u32,
+    /// The result is multiplied by (2^post - 1) / 2^post: a bump normal with symmetric
+    /// normals, whose unit is 2^(nb-1) - 1 (0: none).
+    pub post_bits: u32,
+}
+
+impl Shape {
+    /// An interpolated L or H: `s1.(lh-2)`, times the normals' scale.
+    pub fn lh(cfg: &PipelineConfig) -> Shape {
+        Shape {
+            width: cfg.lh_bits,
+            frac: cfg.lh_bits - 2,
+            pre_bits: match cfg.normal_range {
+                NormalRange::Binary => 0,
+                NormalRange::Symmetric => cfg.normal_bits - 1,
+            },
+            post_bits: 0,
+        }
+    }
+    /// A fetched bump normal B: `s0.(nb-1)`, whose unit is 2^(nb-1) (binary) or 2^(nb-1) - 1
+    /// (symmetric) codes.
+    pub fn bump(cfg: &PipelineConfig) -> Shape {
+        Shape {
+            width: cfg.normal_bits,
+            frac: cfg.normal_bits - 1,
+            pre_bits: 0,
+            post_bits: match cfg.normal_range {
+                NormalRange::Binary => 0,
+                NormalRange::Symmetric => cfg.normal_bits - 1,
+            },
+        }
+    }
+    /// The components' format, in and out.
+    pub fn fmt(&self) -> crate::fixed::Format {
+        crate::fixed::Format::s(self.width, self.frac)
+    }
+    /// The factor the unit length carries.
+    pub fn scale(&self) -> f64 {
+        let up = |b: u32| {
+            if b == 0 {
+                1.0
+            } else {
+                (b as f64).exp2() / ((b as f64).exp2() - 1.0)
+            }
+        };
+        up(self.pre_bits) / up(self.post_bits)
+    }
+}
+
 /// The sizes of a normalise unit under a configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Params {
@@ -49,6 +106,8 @@ pub struct Params {
     pub m_bits: u32,
     /// Extra bits of S for symmetric normals (nb - 1, else 0).
     pub pre_bits: u32,
+    /// Bits of the final (2^post - 1) multiply ([`Shape::post_bits`]).
+    pub post_bits: u32,
     /// Width L of the normalised squared-length window.
     pub window: u32,
 }
@@ -81,7 +140,12 @@ pub const MAX_ONE_STEP_TABLE_BITS: u32 = 9;
 /// `v·scale/|v|`. The relative error of a mid-point table is at most 2^-T (at m = 1/4), and a
 /// Newton step squares it (times 3/2); the result needs about 2^-(F+2).
 pub fn params(cfg: &PipelineConfig) -> Params {
-    let f = cfg.lh_bits - 2;
+    params_of(&Shape::lh(cfg))
+}
+
+/// The same for any [`Shape`]: the sizes follow from its fraction bits F alone.
+pub fn params_of(shape: &Shape) -> Params {
+    let f = shape.frac;
     let (table_bits, steps) = if f + 2 <= 6 {
         ((f + 2).max(4), 0)
     } else if (f + 3).div_ceil(2) <= MAX_ONE_STEP_TABLE_BITS {
@@ -89,10 +153,7 @@ pub fn params(cfg: &PipelineConfig) -> Params {
     } else {
         ((f + 4).div_ceil(4).max(4), 2)
     };
-    let pre_bits = match cfg.normal_range {
-        NormalRange::Binary => 0,
-        NormalRange::Symmetric => cfg.normal_bits - 1,
-    };
+    let pre_bits = shape.pre_bits;
     let r_frac = f + 4;
     Params {
         table_bits,
@@ -100,7 +161,8 @@ pub fn params(cfg: &PipelineConfig) -> Params {
         r_frac,
         m_bits: r_frac + 2,
         pre_bits,
-        window: 2 * cfg.lh_bits + 2 * pre_bits,
+        post_bits: shape.post_bits,
+        window: 2 * (f + 2) + 2 * pre_bits,
     }
 }
 
@@ -157,27 +219,46 @@ pub fn renormalised(cfg: &PipelineConfig) -> (bool, bool) {
     )
 }
 
-/// The normalised vector, raw `s1.F` components.
+/// The normalised L or H, raw `s1.F` components.
 pub fn normalise(cfg: &PipelineConfig, v: [i64; 3]) -> [i64; 3] {
-    let p = params(cfg);
+    normalise_shape(&Shape::lh(cfg), v)
+}
+
+/// The normalised bump normal (`renormalise_bump`), raw `s0.(nb-1)` components.
+pub fn normalise_bump(cfg: &PipelineConfig, b: [i64; 3]) -> [i64; 3] {
+    normalise_shape(&Shape::bump(cfg), b)
+}
+
+/// A vector of `shape` normalised: the unit's arithmetic.
+pub fn normalise_shape(shape: &Shape, v: [i64; 3]) -> [i64; 3] {
+    let p = params_of(shape);
     let Some((shift, r)) = reciprocal(&p, v) else {
         return [0; 3];
     };
-    let fmt = cfg.lh_fmt();
+    let fmt = shape.fmt();
     v.map(|x| {
-        let q = ((x as i128) * (r as i128)) << (shift / 2);
-        let n = shift_round(q, p.r_frac + 2, ROUNDING);
+        let mut q = (x as i128) * (r as i128);
+        if p.post_bits > 0 {
+            // Times 2^post - 1: a shift and a subtraction.
+            q = (q << p.post_bits) - q;
+        }
+        let n = shift_round(q << (shift / 2), p.r_frac + 2 + p.post_bits, ROUNDING);
         n.clamp(fmt.min_raw() as i128, fmt.max_raw() as i128) as i64
     })
 }
 
 /// The same in f64, without roundings: `v · scale / |v|` in output LSBs (0 for a zero vector).
 pub fn normalise_exact(cfg: &PipelineConfig, v: [i64; 3]) -> [f64; 3] {
+    normalise_exact_shape(&Shape::lh(cfg), v)
+}
+
+/// [`normalise_exact`] for any [`Shape`].
+pub fn normalise_exact_shape(shape: &Shape, v: [i64; 3]) -> [f64; 3] {
     let s: f64 = v.iter().map(|&x| (x as f64) * (x as f64)).sum();
     if s == 0.0 {
         return [0.0; 3];
     }
-    let k = cfg.normal_scale() * ((cfg.lh_bits - 2) as f64).exp2() / s.sqrt();
+    let k = shape.scale() * (shape.frac as f64).exp2() / s.sqrt();
     v.map(|x| x as f64 * k)
 }
 
@@ -271,6 +352,49 @@ mod tests {
                     params(&c)
                 );
             }
+        }
+    }
+
+    /// A fetched bump normal (`renormalise_bump`) within the same bound of `b · unit / |b|`:
+    /// every vector up to 6-bit normals, edges and random vectors above, both ranges.
+    #[test]
+    fn bump_normals_are_within_the_bound_at_every_width() {
+        let (lo, hi) = crate::config::limit("normal_bits");
+        for nb in lo..=hi {
+            for range in [NormalRange::Binary, NormalRange::Symmetric] {
+                let c = cfg(16, range, nb);
+                let shape = Shape::bump(&c);
+                let f = shape.fmt();
+                let (min, top) = (f.min_raw(), f.max_raw());
+                let all: Box<dyn Iterator<Item = [i64; 3]>> = if nb <= 6 {
+                    let span = (top - min + 1) as u64;
+                    Box::new((0..span.pow(3)).map(move |i| [i % span, i / span % span, i / span / span].map(|x| min + x as i64)))
+                } else {
+                    let mut seed = nb as u64 * 77;
+                    let edges = [[min, 0, 0], [min, min, min], [top, top, top], [1, 0, 0], [-1, 1, -1], [0, 0, top]];
+                    Box::new(edges.into_iter().chain((0..20_000u64).map(move |i| {
+                        let bits = 1 + (i % (nb as u64 - 1)) as u32;
+                        let lim = 1i64 << bits;
+                        [0, 1, 2].map(|_| ((next(&mut seed) % (2 * lim as u64 + 1)) as i64 - lim).clamp(min, top))
+                    })))
+                };
+                let mut w = (0f64, [0; 3]);
+                for v in all {
+                    let (n, e) = (normalise_shape(&shape, v), normalise_exact_shape(&shape, v));
+                    for k in 0..3 {
+                        let d = (n[k] as f64 - e[k].clamp(min as f64, top as f64)).abs();
+                        if d > w.0 {
+                            w = (d, v);
+                        }
+                    }
+                }
+                assert!(w.0 <= ERROR_BOUND_LSB, "nb {nb} {range:?}: {} LSB at {:?}", w.0, w.1);
+            }
+        }
+        // The flat normal stays the flat normal, so the flat bypass sees the same codes.
+        for range in [NormalRange::Binary, NormalRange::Symmetric] {
+            let c = cfg(16, range, 8);
+            assert_eq!(normalise_bump(&c, c.flat_normal()), c.flat_normal());
         }
     }
 

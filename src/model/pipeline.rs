@@ -54,6 +54,9 @@ pub struct FragmentIn {
 /// Every intermediate value of one fragment, for per-unit vectors and debugging.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Shaded {
+    /// The bump normal as the fetch hands it on.
+    pub fetched: [i64; 3],
+    /// The bump normal as the dot products see it (`normalise_b`d under `renormalise_bump`).
     pub b: [i64; 3],
     /// L_i and H_i as the dot products see them (`normalise`d under `renormalise`).
     pub l: [[i64; 3]; MAX_LIGHTS],
@@ -107,12 +110,20 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         BumpTexel::Rgb(rgb) => bump_fetch_rgb(cfg, rgb),
         BumpTexel::Index(i) => bump_fetch_index(cfg, palette.expect("palette mode needs a palette"), i),
     };
+    // The flat bypass compares the fetched normal; the dot products see it renormalised.
     let flat = b == cfg.flat_normal();
     let bypass = cfg.skip_flat && flat;
     let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
     let specular_on = cfg.specular && frag.specular_en && !bypass;
+    let fetched = b;
+    let b = if cfg.renormalise_bump {
+        super::normalise::normalise_bump(cfg, b)
+    } else {
+        b
+    };
 
     let mut out = Shaded {
+        fetched,
         b,
         flat,
         ..Default::default()

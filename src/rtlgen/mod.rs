@@ -123,11 +123,13 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
         s += "// colour_round keeps the integer bits of the rounded stage colour and drops its guard bits.\n";
         s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*colour_round_{h}.v\" -match \"Bits of signal are not used: 'r*\"\n");
     }
-    if cfg.renormalise {
-        s += "// normalise reads the top bits of the shifted squared length (the table index, m) and keeps\n";
-        s += "// the high bits of each Newton product, truncating the rest by design.\n";
-        for sig in ["sn", "rr*_p", "mq*_p", "re*_p"] {
-            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*normalise_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+    for (on, unit) in [(cfg.renormalise, "normalise"), (cfg.renormalise_bump, "normalise_b")] {
+        if on {
+            s += &format!("// {unit} reads the top bits of the shifted squared length (the table index, m) and keeps\n");
+            s += "// the high bits of each Newton product, truncating the rest by design.\n";
+            for sig in ["sn", "rr*_p", "mq*_p", "re*_p"] {
+                s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*{unit}_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+            }
         }
     }
     if cfg.power_unit != crate::config::PowerUnitKind::Table {

@@ -8,18 +8,20 @@ use super::units_v::module_name;
 use super::writer::VWriter;
 use crate::config::PipelineConfig;
 use crate::fixed::Format;
-use crate::model::normalise::{params, table_word};
+use crate::model::normalise::{params_of, table_word, Shape};
 use crate::units::timing::{cut, cuts_in_place, latency, NORMALISE};
 
-/// Width of the scaled product x·r·2^(z/2) before its rounding.
-pub fn scaled_width(cfg: &PipelineConfig) -> u32 {
-    let p = params(cfg);
-    cfg.lh_bits + p.word_bits() + 1 + p.window / 2
+/// Width of the scaled product x·r·(2^post - 1)·2^(z/2) before its rounding.
+pub fn scaled_width(shape: &Shape) -> u32 {
+    let p = params_of(shape);
+    shape.width + p.word_bits() + 1 + p.post_bits + p.window / 2
 }
 
-pub fn normalise(cfg: &PipelineConfig) -> String {
-    let p = params(cfg);
-    let lh = cfg.lh_bits;
+/// The module `base` (`normalise` for L and H, `normalise_b` for the bump normal) for vectors
+/// of `shape`.
+pub fn normalise(cfg: &PipelineConfig, shape: &Shape, base: &str) -> String {
+    let p = params_of(shape);
+    let lh = shape.width;
     let (l, t, y, mb) = (p.window, p.table_bits, p.r_frac, p.m_bits);
     let rw = p.word_bits();
     let zw = p.shift_bits();
@@ -28,9 +30,10 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     w.line("`default_nettype none");
     w.line("");
     w.line(format!(
-        "// normalise: n = v scale / |v| in s1.{} (scale {:.6}), a zero vector stays zero. S = sum of squares{};",
-        lh - 2,
-        cfg.normal_scale(),
+        "// {base}: n = v scale / |v| in s{}.{} (scale {:.6}), a zero vector stays zero. S = sum of squares{};",
+        lh - 1 - shape.frac,
+        shape.frac,
+        shape.scale(),
         if p.pre_bits > 0 {
             format!(" times (2^{} - 1)^2", p.pre_bits)
         } else {
@@ -42,9 +45,14 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
         p.entries()
     ));
     w.line(format!(
-        "// {} Newton step(s) r = r (3 - m r^2) / 2 in u2.{y} (m cut to {mb} bits); n = round(x r 2^(z/2) / 2^{}) ({:?}), saturated.",
+        "// {} Newton step(s) r = r (3 - m r^2) / 2 in u2.{y} (m cut to {mb} bits); n = round(x r{} 2^(z/2) / 2^{}) ({:?}), saturated.",
         p.steps,
-        y + 2,
+        if p.post_bits > 0 {
+            format!(" (2^{} - 1)", p.post_bits)
+        } else {
+            String::new()
+        },
+        y + 2 + p.post_bits,
         crate::model::normalise::ROUNDING
     ));
     w.line(format!(
@@ -55,7 +63,7 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     ));
     w.line(format!(
         "module {} (\n    input  wire clk,\n    input  wire [{}:0] v,\n    output reg  [{}:0] n\n);",
-        module_name(cfg, "normalise"),
+        module_name(cfg, base),
         3 * lh - 1,
         3 * lh - 1
     ));
@@ -96,7 +104,12 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     // Exact modulo 2^(2 lh), and 3 (2^(lh-1))^2 < 2^(2 lh).
     w.line(format!("wire [{}:0] s = {sq};", 2 * lh - 1));
     let big_s = if p.pre_bits == 0 {
-        "s".to_string()
+        // A bump normal's window is two bits wider than its squared length (F + 2 = width + 1).
+        if l > 2 * lh {
+            format!("{{{}'d0, s}}", l - 2 * lh)
+        } else {
+            "s".to_string()
+        }
     } else {
         let a = p.pre_bits;
         format!("{{s, {}'d0}} - {{{}'d0, s, {}'d0}} + {{{}'d0, s}}", 2 * a, a - 1, a + 1, 2 * a)
@@ -160,8 +173,10 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
     w.stage(c1, &format!("[{}:0]", rw - 1), "r_s2", &r);
     w.stage(c1, &format!("[{}:0]", zw - 1), "h2", "z1 >> 1");
     w.stage(c1, &vw, "v2", "v1");
-    // Stage 3: the products x r, then the shift by z/2 and one rounding.
-    let pw = lh + rw + 1;
+    // Stage 3: the products x r (times 2^post - 1: a shift and a subtraction), then the shift
+    // by z/2 and one rounding.
+    let xw = lh + rw + 1;
+    let pw = xw + p.post_bits;
     let c2 = cut(cfg, NORMALISE, 2);
     for i in 0..3 {
         let e = sum_of_products(
@@ -170,20 +185,27 @@ pub fn normalise(cfg: &PipelineConfig) -> String {
             &format!("xr{i}"),
             &[(Factor::signed(x("v2", i), lh), Factor::unsigned("r_s2", rw))],
             0,
-            pw,
+            xw,
         );
+        let e = if p.post_bits > 0 {
+            w.line(format!("wire signed [{}:0] xr{i}_p = {e};", xw - 1));
+            let ext = format!("$signed({{{{{}{{xr{i}_p[{}]}}}}, xr{i}_p}})", p.post_bits, xw - 1);
+            format!("($signed({{xr{i}_p, {}'d0}}) - {ext})", p.post_bits)
+        } else {
+            e
+        };
         w.stage(c2, &format!("signed [{}:0]", pw - 1), &format!("p{i}"), &e);
     }
     w.stage(c2, &format!("[{}:0]", zw - 1), "h3", "h2");
-    let sw = scaled_width(cfg);
+    let sw = scaled_width(shape);
     // Wider than the model's i64 formats at the widest words: only its shape is read here.
     let fmt = Format {
         width: sw,
-        frac: y + 2,
+        frac: y + 2 + p.post_bits,
         signed: true,
     };
-    let lo = cfg.lh_fmt().min_raw();
-    let hi = cfg.lh_fmt().max_raw();
+    let lo = shape.fmt().min_raw();
+    let hi = shape.fmt().max_raw();
     for i in 0..3 {
         w.line(format!(
             "wire signed [{}:0] sc{i} = $signed({{{{{}{{p{i}[{}]}}}}, p{i}}}) <<< h3;",

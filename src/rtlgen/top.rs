@@ -556,6 +556,17 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, bump: &str, combinational: boo
     }
 }
 
+/// The bump normal the dot products read: the fetch's `b`, or under `renormalise_bump` the
+/// `normalise_b` unit's `bn` after it (the flat bypass keeps comparing `b`).
+fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig) -> &'static str {
+    if !cfg.renormalise_bump {
+        return "{b}";
+    }
+    let u = units::unit("normalise_b").expect("unit");
+    s.unit(cfg, u, "u_norm_b", &[("v", "{b}")], &[("n", "bn")], &[]);
+    "{bn}"
+}
+
 /// Which blend a colour stage runs.
 #[derive(Clone, Copy, PartialEq)]
 enum Stage {
@@ -819,6 +830,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let pre = state_pre(cfg, false);
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_bump}", false);
+    let bn = dot_normal(s, cfg);
     let dot = units::unit("dot_clamp").expect("unit");
     let norm = units::unit("normalise").expect("unit");
     // Which vectors are renormalised before their dot products: H, and L when interpolated.
@@ -837,7 +849,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
                 cfg,
                 dot,
                 &format!("u_dot_{v}{i}"),
-                &[("b", "{b}"), ("v", &lanes)],
+                &[("b", bn), ("v", &lanes)],
                 &[("f", &format!("{out}{i}"))],
                 &[],
             );
@@ -934,6 +946,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     });
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_bump}", true);
+    let bn = dot_normal(s, cfg);
     let k1 = cfg.k_frac_bits + 1;
     // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
     let slot = |f: &str, w: u32| {
@@ -975,14 +988,14 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     if cfg.diffuse {
         s.comb("de", 1, &enable(cfg, true, "fr_diffuse_en"));
         s.comb("l_sel", lh3, &slot("l", lh3));
-        s.unit(cfg, dot, "u_dot_l", &[("b", "{b}"), ("v", "{l_sel}")], &[("f", "fd")], &[]);
+        s.unit(cfg, dot, "u_dot_l", &[("b", bn), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, "{de}"));
         accumulate(s, "dacc", "{dfac}", cfg.dot_frac_bits);
     }
     if cfg.specular {
         s.comb("se", 1, &enable(cfg, true, "fr_specular_en"));
         s.comb("h_sel", lh3, &slot("h", lh3));
-        s.unit(cfg, dot, "u_dot_h", &[("b", "{b}"), ("v", "{h_sel}")], &[("f", "xh")], &[]);
+        s.unit(cfg, dot, "u_dot_h", &[("b", bn), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
         s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, "{se}"));
         accumulate(s, "sacc", "{sfac}", cfg.power_frac_bits);

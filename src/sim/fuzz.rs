@@ -56,6 +56,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             renormalise: false,
             // As interpolate: the rasteriser's choice, no RTL of its own.
             interpolate_k: false,
+            renormalise_bump: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -65,6 +66,9 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             cfg.renormalise = true;
             cfg.interpolate = pick(rng, &[crate::config::Interpolate::H, crate::config::Interpolate::Hl]);
         }
+        // Drawn last, so every draw before it is what it was; valid everywhere, and the
+        // normalise_b unit changes the RTL.
+        cfg.renormalise_bump = pick(rng, &[false, true]);
         if cfg.validate("random").is_ok() {
             return cfg;
         }
@@ -163,9 +167,10 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     ]
 }
 
-/// Configurations at the normalise unit's edges: every regime of its table and Newton steps
+/// Configurations at the normalise units' edges: every regime of its table and Newton steps
 /// (table alone, one step, two steps) at the narrowest and widest words, both normal ranges
-/// (symmetric ones at the widest normals: the longest S), every rounding and every depth. The
+/// (symmetric ones at the widest normals: the longest S), every rounding and every depth, and
+/// `normalise_b` (the bump normal's) on serial tops at narrow and default normals. The
 /// unit-level tests read them; the simulated corners above leave them out, since synthesis of
 /// the two-step unit is slow.
 pub fn normalise_configs() -> Vec<PipelineConfig> {
@@ -191,6 +196,27 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
                 rounding,
                 pipeline_depth: depth,
                 multipliers: if depth == 2 { Multipliers::Inferred } else { Multipliers::Booth },
+                // The bump normal's unit beside them on every other depth.
+                renormalise_bump: depth % 2 == 0,
+                ..PipelineConfig::default()
+            });
+        }
+    }
+    // normalise_b alone on serial tops: its table-alone regime (5-bit normals, both ranges)
+    // and the default normals, at every depth.
+    for (nb, range) in [
+        (5, NormalRange::Symmetric),
+        (5, NormalRange::Binary),
+        (8, NormalRange::Binary),
+        (12, NormalRange::Symmetric),
+    ] {
+        for depth in 1..=crate::limits::MAX_PIPELINE_DEPTH {
+            out.push(PipelineConfig {
+                normal_bits: nb,
+                normal_range: range,
+                renormalise_bump: true,
+                pipeline_depth: depth,
+                skip_flat: depth % 2 == 1,
                 ..PipelineConfig::default()
             });
         }
@@ -391,6 +417,7 @@ mod tests {
             "white_lights",
             "power_rom",
             "renormalise",
+            "renormalise_bump",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> = draws

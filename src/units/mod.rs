@@ -171,6 +171,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &bump_fetch::BumpFetch,
     &palette_fetch::PaletteFetch,
     &normalise::Normalise,
+    &normalise::NormaliseBump,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,
     &DIFFUSE_BLEND,

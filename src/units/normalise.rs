@@ -1,17 +1,119 @@
 //! normalise: an interpolated L or H scaled back to unit length per fragment (a reciprocal
 //! square root from a table and Newton steps; `model::normalise` holds the arithmetic).
 //! Present with `renormalise = true`, one instance per interpolated vector the top uses,
-//! between the fragment port and the dot products.
+//! between the fragment port and the dot products. normalise_b: the same arithmetic on the
+//! fetched bump normal (`renormalise_bump = true`), one instance after the fetch.
 
 use super::{p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
-use crate::model::normalise::{normalise, normalise_exact, params};
+use crate::model::normalise::{normalise_exact_shape, normalise_shape, params_of, Shape};
 use crate::units::timing::{cut, NORMALISE};
 
+/// An interpolated L or H (`renormalise`).
 pub struct Normalise;
+
+/// The fetched bump normal (`renormalise_bump`): the same arithmetic at the normal's width.
+pub struct NormaliseBump;
 
 fn vec3(i: &[i64]) -> [i64; 3] {
     [i[0], i[1], i[2]]
+}
+
+/// What both units share, given the vector's shape.
+fn ports(shape: &Shape, what: &'static str) -> Vec<Port> {
+    vec![
+        p("v", Dir::In, shape.fmt(), 3, what),
+        p(
+            "n",
+            Dir::Out,
+            shape.fmt(),
+            3,
+            "v scaled to the length it carries at unit length (the normals' scale); zero stays zero",
+        ),
+    ]
+}
+
+fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Resources {
+    use crate::units::resources::{requant_clamp, signed, sum_of_products, unsigned, Resources};
+    let pr = params_of(shape);
+    let (lh, rw, mb, l) = (shape.width, pr.word_bits(), pr.m_bits, pr.window);
+    let zw = pr.shift_bits();
+    let m = cfg.multipliers;
+    let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh);
+    if pr.pre_bits > 0 {
+        r += Resources::adders(2 * l);
+    }
+    r += Resources::stage(cut(cfg, NORMALISE, 0), l + 3 * lh);
+    // The leading-pair search and the shift (a barrel shifter of l bits, zw levels), and
+    // the table: a word per entry, selected by the index.
+    r += Resources::compares(l / 2) + Resources::muxes(l * zw);
+    r += Resources::muxes(pr.entries() * rw);
+    for _ in 0..pr.steps {
+        r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
+        r += sum_of_products(m, &[(unsigned(mb), unsigned(rw + 2))], false, mb + rw + 2);
+        r += Resources::adders(rw);
+        r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
+    }
+    r += Resources::stage(cut(cfg, NORMALISE, 1), rw + zw + 3 * lh);
+    let pw = lh + rw + 1 + pr.post_bits;
+    r += sum_of_products(m, &[(signed(lh), unsigned(rw))], false, pw).scaled(3.0);
+    if pr.post_bits > 0 {
+        r += Resources::adders(pw).scaled(3.0);
+    }
+    r += Resources::stage(cut(cfg, NORMALISE, 2), 3 * pw + zw);
+    let sw = crate::rtlgen::normalise_v::scaled_width(shape);
+    let fmt = crate::fixed::Format {
+        width: sw,
+        frac: pr.r_frac + 2 + pr.post_bits,
+        signed: true,
+    };
+    r += (Resources::muxes(sw * zw) + requant_clamp(fmt, 0, crate::model::normalise::ROUNDING, lh)).scaled(3.0);
+    r + Resources::regs(3 * lh)
+}
+
+fn exhaustive_input(shape: &Shape, i: u64) -> Lanes {
+    let w = shape.width;
+    let f = shape.fmt();
+    let lane = |k: u32| crate::fixed::fit(((i >> (k * w)) & ((1 << w) - 1)) as i128, f, crate::fixed::Overflow::Wrap);
+    vec![vec![lane(0), lane(1), lane(2)]]
+}
+
+fn corners(shape: &Shape, interpolated: bool) -> Vec<(String, Lanes)> {
+    let f = shape.fmt();
+    let (lo, hi) = (f.min_raw(), f.max_raw());
+    let one = (1i64 << shape.frac).min(hi);
+    let mut c = vec![
+        ("a zero vector stays zero".to_string(), vec![vec![0, 0, 0]]),
+        ("a unit axis is a fixed point".into(), vec![vec![0, 0, one]]),
+        ("the shortest vector: the largest shift".into(), vec![vec![1, 0, 0]]),
+        ("the shortest negative vector".into(), vec![vec![0, -1, 0]]),
+        ("the longest vector: no shift, the largest S".into(), vec![vec![lo, lo, lo]]),
+        ("the largest positive components".into(), vec![vec![hi, hi, hi]]),
+        (
+            if interpolated {
+                "an interpolated unit vector at 70 % length (the dihedral of a coarse mesh)"
+            } else {
+                "a filtered normal at 70 % length (the average of two texels 90 degrees apart)"
+            }
+            .into(),
+            vec![vec![one * 7 / 10 * 3 / 5, -(one * 7 / 10 * 4 / 5), 0]],
+        ),
+        (
+            "a length just under 1: m just under 1, the table's last word".into(),
+            vec![vec![0, one - 1, 0]],
+        ),
+        (
+            "a length of 1/2: m = 1/4 exactly with binary normals, the table's first word".into(),
+            vec![vec![one / 2, 0, 0]],
+        ),
+    ];
+    // Every shift the unit can take: lengths 2^k and 2^k - 1 for every k the format holds.
+    for k in 0..shape.width - 1 {
+        let x = 1i64 << k;
+        c.push((format!("length 2^{k}: shift for S = 4^{k}"), vec![vec![x, 0, 0]]));
+        c.push((format!("length 2^{k} - 1 on two axes"), vec![vec![0, -(x - 1).max(1), x - 1]]));
+    }
+    c
 }
 
 impl Unit for Normalise {
@@ -37,62 +139,25 @@ impl Unit for Normalise {
         cfg.renormalise
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
-        vec![
-            p("v", Dir::In, cfg.lh_fmt(), 3, "an interpolated L or H, any length"),
-            p(
-                "n",
-                Dir::Out,
-                cfg.lh_fmt(),
-                3,
-                "v scaled to the length L and H carry (1, or the symmetric normals' scale); zero stays zero",
-            ),
-        ]
+        ports(&Shape::lh(cfg), "an interpolated L or H, any length")
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
         crate::units::timing::latency(cfg, NORMALISE)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![normalise(cfg, vec3(&i[0])).to_vec()]
+        vec![normalise_shape(&Shape::lh(cfg), vec3(&i[0])).to_vec()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![normalise_exact(cfg, vec3(&i[0])).to_vec()]
+        vec![normalise_exact_shape(&Shape::lh(cfg), vec3(&i[0])).to_vec()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        use crate::units::resources::{requant_clamp, signed, sum_of_products, unsigned, Resources};
-        let pr = params(cfg);
-        let (lh, rw, mb, l) = (cfg.lh_bits, pr.word_bits(), pr.m_bits, pr.window);
-        let zw = pr.shift_bits();
-        let m = cfg.multipliers;
-        let mut r = sum_of_products(m, &[(signed(lh), signed(lh)); 3], false, 2 * lh);
-        if pr.pre_bits > 0 {
-            r += Resources::adders(2 * l);
-        }
-        r += Resources::stage(cut(cfg, NORMALISE, 0), l + 3 * lh);
-        // The leading-pair search and the shift (a barrel shifter of l bits, zw levels), and
-        // the table: a word per entry, selected by the index.
-        r += Resources::compares(l / 2) + Resources::muxes(l * zw);
-        r += Resources::muxes(pr.entries() * rw);
-        for _ in 0..pr.steps {
-            r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
-            r += sum_of_products(m, &[(unsigned(mb), unsigned(rw + 2))], false, mb + rw + 2);
-            r += Resources::adders(rw);
-            r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
-        }
-        r += Resources::stage(cut(cfg, NORMALISE, 1), rw + zw + 3 * lh);
-        let pw = lh + rw + 1;
-        r += sum_of_products(m, &[(signed(lh), unsigned(rw))], false, pw).scaled(3.0);
-        r += Resources::stage(cut(cfg, NORMALISE, 2), 3 * pw + zw);
-        let sw = crate::rtlgen::normalise_v::scaled_width(cfg);
-        let fmt = crate::fixed::Format {
-            width: sw,
-            frac: pr.r_frac + 2,
-            signed: true,
-        };
-        r += (Resources::muxes(sw * zw) + requant_clamp(fmt, 0, crate::model::normalise::ROUNDING, lh)).scaled(3.0);
-        r + Resources::regs(3 * lh)
+        resources(cfg, &Shape::lh(cfg))
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
-        vec![("normalise", crate::rtlgen::normalise_v::normalise(cfg))]
+        vec![(
+            "normalise",
+            crate::rtlgen::normalise_v::normalise(cfg, &Shape::lh(cfg), "normalise"),
+        )]
     }
     fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
         (cfg.lh_bits <= 6).then(|| 1u64 << (3 * cfg.lh_bits))
@@ -101,49 +166,65 @@ impl Unit for Normalise {
         Some("lh_bits <= 6 (2^18 inputs at most)")
     }
     fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
-        let lh = cfg.lh_bits;
-        let f = cfg.lh_fmt();
-        let lane = |k: u32| crate::fixed::fit(((i >> (k * lh)) & ((1 << lh) - 1)) as i128, f, crate::fixed::Overflow::Wrap);
-        vec![vec![lane(0), lane(1), lane(2)]]
+        exhaustive_input(&Shape::lh(cfg), i)
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        let f = cfg.lh_fmt();
-        let (lo, hi) = (f.min_raw(), f.max_raw());
-        let one = 1i64 << (cfg.lh_bits - 2);
-        let mut c = vec![
-            ("a zero vector stays zero".to_string(), vec![vec![0, 0, 0]]),
-            ("a unit axis is a fixed point".into(), vec![vec![0, 0, one]]),
-            ("the shortest vector: the largest shift".into(), vec![vec![1, 0, 0]]),
-            ("the shortest negative vector".into(), vec![vec![0, -1, 0]]),
-            ("the longest vector: no shift, the largest S".into(), vec![vec![lo, lo, lo]]),
-            ("the largest positive components".into(), vec![vec![hi, hi, hi]]),
-            (
-                "an interpolated unit vector at 70 % length (the dihedral of a coarse mesh)".into(),
-                vec![vec![one * 7 / 10 * 3 / 5, -(one * 7 / 10 * 4 / 5), 0]],
-            ),
-            (
-                "a length just under 1: m just under 1, the table's last word".into(),
-                vec![vec![0, one - 1, 0]],
-            ),
-            (
-                "a length of 1/2: m = 1/4 exactly with binary normals, the table's first word".into(),
-                vec![vec![one / 2, 0, 0]],
-            ),
-        ];
-        // Every shift the unit can take: lengths 2^k and 2^k - 1 for every k the format holds.
-        for k in 0..cfg.lh_bits - 1 {
-            let x = 1i64 << k;
-            c.push((format!("length 2^{k}: shift for S = 4^{k}"), vec![vec![x, 0, 0]]));
-            c.push((format!("length 2^{k} - 1 on two axes"), vec![vec![0, -(x - 1).max(1), x - 1]]));
-        }
-        c
+        corners(&Shape::lh(cfg), true)
+    }
+}
+
+impl Unit for NormaliseBump {
+    fn name(&self) -> &'static str {
+        "normalise_b"
+    }
+    fn source(&self) -> &'static str {
+        "the fetched bump normal scaled back to unit length after the texture filter shortened it (paper §2 N'/|N'|; gbump claim map-filter), the normalise unit's arithmetic at the normal's width"
+    }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![("renormalise_bump", "true")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        cfg.renormalise_bump
+    }
+    fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
+        ports(&Shape::bump(cfg), "the fetched bump normal B, any length (a filter shortens it)")
+    }
+    fn latency(&self, cfg: &PipelineConfig) -> u32 {
+        crate::units::timing::latency(cfg, NORMALISE)
+    }
+    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
+        vec![normalise_shape(&Shape::bump(cfg), vec3(&i[0])).to_vec()]
+    }
+    fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
+        vec![normalise_exact_shape(&Shape::bump(cfg), vec3(&i[0])).to_vec()]
+    }
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        resources(cfg, &Shape::bump(cfg))
+    }
+    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
+        vec![(
+            "normalise_b",
+            crate::rtlgen::normalise_v::normalise(cfg, &Shape::bump(cfg), "normalise_b"),
+        )]
+    }
+    fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
+        (cfg.normal_bits <= 6).then(|| 1u64 << (3 * cfg.normal_bits))
+    }
+    fn exhaustive_when(&self) -> Option<&'static str> {
+        Some("normal_bits <= 6 (2^18 inputs at most)")
+    }
+    fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
+        exhaustive_input(&Shape::bump(cfg), i)
+    }
+    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
+        corners(&Shape::bump(cfg), false)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::normalise::{newton_step, table_word};
+    use crate::model::normalise::{newton_step, params, table_word};
 
     /// Every Newton step stays inside the widths the Verilog gives it: 0 < 3 - m r^2 and
     /// every r below 2^(Y+2), for every table word at both ends of its interval of m.

@@ -67,9 +67,10 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 12] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 13] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
         ("normalise", false, Table, false, ""),
+        ("normalise_b", true, Table, false, ""),
         ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
         ("dot_clamp", true, Table, false, ""),
         (
@@ -106,6 +107,7 @@ pub fn markdown() -> String {
                 cfg.interpolate = crate::config::Interpolate::H;
                 cfg.renormalise = true;
             }
+            cfg.renormalise_bump = name == "normalise_b";
             s += &format!(" {} |", u.latency(&cfg));
         }
         let cuts = match name {
@@ -113,7 +115,7 @@ pub fn markdown() -> String {
             "diffuse_blend" | "specular_blend" => BLEND,
             "light_accumulate" => ACCUMULATE,
             "texture_modulate" => TEXTURE,
-            "normalise" => NORMALISE,
+            "normalise" | "normalise_b" => NORMALISE,
             _ => &[],
         };
         let text = if cuts.is_empty() { note.to_string() } else { cuts.join("; ") };

@@ -425,6 +425,12 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![vec![i as i64]],
         }),
     }
+    if cfg.renormalise_bump {
+        v.push(UnitStim {
+            unit: "normalise_b",
+            inputs: vec![t.fetched.to_vec()],
+        });
+    }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
     // The colours the blends multiply by (white: every code at 1.0, and no lc input).
     let lc: Vec<i64> = (0..n)
