@@ -232,6 +232,14 @@ fn the_papers_claims_hold_as_measured() {
         println!("{engine}: as filtered {filtered:.3?}\n     renormalised {renormalised:.3?}");
         assert!(filtered.iter().zip(&renormalised).all(|(a, b)| b < a), "{engine}");
     }
+    // And in bit-accurate form: the normalise_b unit (`renormalise_bump`) cuts the paper's
+    // pipeline's error on the wall at every strength to a fraction of it.
+    let (plain, fixed) = (
+        ys(&m, "Gouraud bump, bit-accurate ("),
+        ys(&m, "Gouraud bump, bit-accurate, renormalise_bump"),
+    );
+    println!("bit-accurate: {plain:.3?}\nrenormalise_bump: {fixed:.3?}");
+    assert!(plain.iter().zip(&fixed).all(|(a, b)| b < &(a / 4.0)), "{plain:?} {fixed:?}");
     assert!(claim("phong").is_err());
 }
 
