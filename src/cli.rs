@@ -1024,7 +1024,7 @@ pub fn run() -> anyhow::Result<()> {
                         let fixed = e.fixed_config(&cfg).expect("fixed_engine has a bit-accurate path");
                         fixed.validate(&format!("{} (engine {name})", scene.file))?;
                         out!(
-                            "{why}# engine {name}'s bit-accurate path on this scene: {:?}\n# config hash {}\n{}",
+                            "{why}# engine {name}'s bit-accurate path on this scene: {}\n# config hash {}\n{}",
                             e.fixed.expect("a bit-accurate path"),
                             fixed.hash(),
                             fixed.to_toml()

@@ -222,8 +222,8 @@ pub struct PipelineConfig {
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
-/// engine: the choices `gbump engines` varies to turn a scene's configuration into an
-/// engine's bit-accurate path, and the f64 model of that path reads.
+/// engine: the choices `gbump engines` sets, every one of them, to turn a scene's
+/// configuration into an engine's bit-accurate path, and the f64 model of that path reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PerFragment {
     /// What the rasteriser interpolates of L and H.
@@ -232,6 +232,24 @@ pub struct PerFragment {
     pub renormalise: bool,
     /// Whether the rasteriser interpolates each light's k.
     pub interpolate_k: bool,
+    /// Whether the pipeline renormalises the fetched bump normal (the `normalise_b` unit).
+    pub renormalise_bump: bool,
+}
+
+impl std::fmt::Display for PerFragment {
+    /// As the configuration's TOML fields.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let i = match self.interpolate {
+            Interpolate::None => "none",
+            Interpolate::H => "h",
+            Interpolate::Hl => "hl",
+        };
+        write!(
+            f,
+            "interpolate = \"{i}\", renormalise = {}, interpolate_k = {}, renormalise_bump = {}",
+            self.renormalise, self.interpolate_k, self.renormalise_bump
+        )
+    }
 }
 
 impl PipelineConfig {
@@ -241,6 +259,7 @@ impl PipelineConfig {
             interpolate: self.interpolate,
             renormalise: self.renormalise,
             interpolate_k: self.interpolate_k,
+            renormalise_bump: self.renormalise_bump,
         }
     }
 }
@@ -513,6 +532,22 @@ impl PipelineConfig {
                 "interpolate_k",
                 "interpolate_k = true sends each light's k per fragment, which a per-triangle top cannot take",
                 "set bump_state = \"fragment\" (the fragment port carries k with L and H), or drop interpolate_k",
+            ));
+        }
+        if self.interpolate_k && self.k_frac_bits == 0 {
+            return Err(Error::field(
+                file,
+                "interpolate_k",
+                "interpolate_k = true with k_frac_bits = 0: an interpolated k rounds to 0 or 1, so it only switches lights on and off",
+                "give k fraction bits (k_frac_bits = 8 is the default), or drop interpolate_k",
+            ));
+        }
+        if self.renormalise_bump && self.palette {
+            return Err(Error::field(
+                file,
+                "renormalise_bump",
+                "renormalise_bump = true with palette = true: a palette index is not filtered, so the fetched normal is the entry as loaded",
+                "load unit-length palette entries and drop renormalise_bump, or set palette = false",
             ));
         }
         if self.renormalise && self.interpolate.is_none() {

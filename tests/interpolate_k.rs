@@ -51,6 +51,10 @@ fn interpolate_k_needs_per_fragment_state_and_keeps_old_hashes() {
         e.contains("x.toml") && e.contains("interpolate_k") && e.contains("bump_state = \"fragment\""),
         "{e}"
     );
+    let e = PipelineConfig::from_toml("x.toml", "interpolate_k = true\nbump_state = \"fragment\"\nk_frac_bits = 0\n")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("interpolate_k") && e.contains("k_frac_bits"), "{e}");
     let on = PipelineConfig::from_toml("x.toml", "interpolate_k = true\nbump_state = \"fragment\"\n").unwrap();
     assert!(on.to_toml().contains("interpolate_k = true"));
     assert_eq!(PipelineConfig::from_toml("y.toml", &on.to_toml()).unwrap(), on);
@@ -59,6 +63,7 @@ fn interpolate_k_needs_per_fragment_state_and_keeps_old_hashes() {
         on.hash(),
         PipelineConfig {
             interpolate_k: false,
+            renormalise_bump: false,
             ..on.clone()
         }
         .hash()
@@ -85,6 +90,7 @@ fn each_fragment_carries_k_interpolated_from_its_vertices() {
     let light = s.bump_lights().next().unwrap();
     let per_tri = PipelineConfig {
         interpolate_k: false,
+        renormalise_bump: false,
         ..cfg.clone()
     };
     let p = Prepared::new(&s, &cfg, 128, 64).unwrap();
@@ -222,6 +228,7 @@ fn sgi_f64_model_is_the_datapath_it_generates() {
         interpolate: Interpolate::Hl,
         renormalise: false,
         interpolate_k: true,
+        renormalise_bump: false,
     };
     let mut names: Vec<String> = gbump::scene::builtin::ALL.iter().map(|(n, _)| n.to_string()).collect();
     names.push(SPOT.into());

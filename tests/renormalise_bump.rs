@@ -65,3 +65,32 @@ fn the_field_keeps_old_hashes_and_places_the_unit() {
         assert!(!gbump::rtlgen::top::top(&off).contains("u_norm_b"));
     }
 }
+
+/// A palette index is not filtered, so the unit would only cost area: refused with the fix;
+/// the integration notes say what the unit does to `in_bump`.
+#[test]
+fn a_palette_is_refused_and_the_integration_notes_explain_the_unit() {
+    let e = PipelineConfig::from_toml("x.toml", "renormalise_bump = true\npalette = true\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("x.toml") && e.contains("renormalise_bump") && e.contains("unit-length palette entries"),
+        "{e}"
+    );
+    let cfg = PipelineConfig::from_toml("x.toml", "renormalise_bump = true\nskip_flat = true\n").unwrap();
+    let doc = gbump::rtlgen::integration_doc::markdown(&cfg);
+    assert!(
+        doc.contains("**Renormalised inputs.**") && doc.contains("compares the fetched code"),
+        "{doc}"
+    );
+    assert!(!gbump::rtlgen::integration_doc::markdown(&PipelineConfig::default()).contains("Renormalised inputs"));
+    // A scene with bilinear maps is told about the unit by `gbump config --scene`.
+    let s = gbump::scene::Scene::load("cg_wall_front").unwrap();
+    let why = gbump::scene::needs::SceneNeeds::of(&s)
+        .explain(&s, &s.derive_config().unwrap())
+        .unwrap();
+    assert!(
+        why.contains("# renormalise_bump = false: objects [0] filter their maps bilinearly"),
+        "{why}"
+    );
+}

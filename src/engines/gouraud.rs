@@ -30,6 +30,7 @@ pub const GOURAUD: Engine = Engine {
         interpolate: Interpolate::None,
         renormalise: false,
         interpolate_k: false,
+        renormalise_bump: false,
     }),
 };
 
@@ -50,6 +51,7 @@ pub const GOURAUD_H: Engine = Engine {
         interpolate: Interpolate::H,
         renormalise: false,
         interpolate_k: false,
+        renormalise_bump: false,
     }),
 };
 
@@ -70,6 +72,7 @@ pub const GOURAUD_HL: Engine = Engine {
         interpolate: Interpolate::Hl,
         renormalise: false,
         interpolate_k: false,
+        renormalise_bump: false,
     }),
 };
 
@@ -90,6 +93,7 @@ pub const GOURAUD_HN: Engine = Engine {
         interpolate: Interpolate::H,
         renormalise: true,
         interpolate_k: false,
+        renormalise_bump: false,
     }),
 };
 
@@ -110,6 +114,7 @@ pub const GOURAUD_HLN: Engine = Engine {
         interpolate: Interpolate::Hl,
         renormalise: true,
         interpolate_k: false,
+        renormalise_bump: false,
     }),
 };
 

@@ -10,10 +10,10 @@
 //! - the bump map is the object's f64 normal map (the stored map before quantisation),
 //!   sampled with the object's filter; an engine that wants offsets (VISA+, EMBM) takes
 //!   `(x/z, y/z)` of it, the height gradient Eq. 1 encodes; an engine that lights with the
-//!   map's normal directly (SGI, Cg, Gouraud's) takes it as the texture unit's filter leaves
-//!   it, shortened between texels, since neither text renormalises it (`common::map_normal`;
-//!   the engines that place it in a frame renormalise the result, which undoes the
-//!   shortening);
+//!   map's normal directly (SGI, Cg, and Gouraud's, whose variants all leave
+//!   `renormalise_bump` off) takes it as the texture unit's filter leaves it, shortened
+//!   between texels, since no text renormalises it (`common::map_normal`; the engines that
+//!   place it in a frame renormalise the result, which undoes the shortening);
 //! - lights are the scene's bump lights; the viewer is parallel (as in every renderer here);
 //! - the colour is `min(min(C_src + D, 1) · T + S, 1)` with `C_src` the non-bump lighting, the
 //!   combination `reference::perpixel` uses: engines with per-pixel normals evaluate `C_src`
@@ -68,19 +68,22 @@ impl Engine {
             cfg.blend_order = crate::config::BlendOrder::DiffuseTextureSpecular;
             cfg.skip_flat = false;
         }
+        // Every per-fragment choice is the engine's, whatever the scene's configuration says.
         cfg.interpolate = v.interpolate;
-        if v.interpolate != Interpolate::None {
-            // An interpolated vector reaches the pipeline per fragment.
+        cfg.renormalise = v.renormalise;
+        cfg.interpolate_k = v.interpolate_k;
+        cfg.renormalise_bump = v.renormalise_bump;
+        if v.interpolate != Interpolate::None || v.interpolate_k {
+            // An interpolated vector or k reaches the pipeline per fragment.
             cfg.bump_state = BumpStateAt::Fragment;
         }
-        if v.interpolate_k {
-            // k reaches the pipeline per fragment with the rest of the bump state.
-            cfg.interpolate_k = true;
-            cfg.bump_state = BumpStateAt::Fragment;
+        if v.interpolate_k && cfg.k_frac_bits == 0 {
+            // A scene whose k are all 0 or 1 at the triangles still needs fractions between
+            // its vertices.
+            cfg.k_frac_bits = crate::config::PipelineConfig::default().k_frac_bits;
         }
         if v.renormalise {
             // The normalise units sit one per vector before the parallel dot products.
-            cfg.renormalise = true;
             cfg.light_mode = LightMode::Parallel;
         }
         Some(cfg)

@@ -232,7 +232,7 @@ impl Table {
             self.maps.cg_cube
         );
         if self.maps.renormalise_map {
-            s += "\nWhat-if (`--renormalise-map`): SGI and Cg renormalise the map's filtered normal before lighting with it, which neither text does; the f64 rows above show it, the bit-accurate paths do not (their texture unit hands the filtered normal on as it is).\n";
+            s += "\nWhat-if (`--renormalise-map`): SGI and Cg renormalise the map's filtered normal before lighting with it, which neither text does; their f64 rows above show it, no other engine's changes, and the bit-accurate paths do not (in hardware that is `renormalise_bump = true`, a `normalise_b` unit after the fetch: `gbump claim map-filter`).\n";
         }
         s
     }
@@ -240,7 +240,7 @@ impl Table {
     /// The bit-accurate paths: each engine that has one, on each scene.
     fn fixed_markdown(&self) -> String {
         let mut s = String::from(
-            "\nBit-accurate paths (the golden model's image, what the generated RTL computes, against `blinn`; the top's logic by the area model, `gbump area` synthesises it with Yosys):\n\n| scene | engine | config | PSNR (dB) | max (LSB) | mean (LSB) | pixels > 1 LSB | seam max (LSB) | logic (GE, model) | flip-flops | memory bits | latency (cycles) |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+            "\nBit-accurate paths (the golden model's image, what the generated RTL computes, against `blinn`; the top's logic by the area model, `gbump area` synthesises it with Yosys):\n\n| scene | engine | config | PSNR (dB) | max (LSB) | mean (LSB) | pixels > 1 LSB | seam max (LSB) | seam mean (LSB) | logic (GE, model) | flip-flops | memory bits | latency (cycles) |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
         );
         let mut none = Vec::new();
         for (si, scene) in self.scenes.iter().enumerate() {
@@ -253,7 +253,7 @@ impl Table {
                 };
                 let r = &f.error;
                 s += &format!(
-                    "| {scene} | {} | `{}` | {:.2} | {:.2} | {:.3} | {:.1} % | {:.2} | {:.0} | {} | {} | {} |\n",
+                    "| {scene} | {} | `{}` | {:.2} | {:.2} | {:.3} | {:.1} % | {:.2} | {:.3} | {:.0} | {} | {} | {} |\n",
                     e.name,
                     f.config_hash,
                     r.psnr_db,
@@ -261,6 +261,7 @@ impl Table {
                     r.mean_lsb,
                     100.0 * r.over_1lsb,
                     r.seam_max_lsb,
+                    r.seam_mean_lsb,
                     f.area_ge,
                     f.flip_flops,
                     f.memory_bits,
@@ -277,20 +278,21 @@ impl Table {
     /// CSV of the error table.
     pub fn csv(&self) -> String {
         let mut s =
-            String::from("scene,engine,psnr_db,max_lsb,mean_lsb,over_1lsb,seam_max_lsb,seam_mean_lsb,triangle_bytes,fragment_words,fixed_config,fixed_psnr_db,fixed_max_lsb,fixed_mean_lsb,fixed_over_1lsb,fixed_seam_max_lsb,fixed_logic_ge,fixed_flip_flops,fixed_memory_bits,fixed_latency\n");
+            String::from("scene,engine,psnr_db,max_lsb,mean_lsb,over_1lsb,seam_max_lsb,seam_mean_lsb,triangle_bytes,fragment_words,fixed_config,fixed_psnr_db,fixed_max_lsb,fixed_mean_lsb,fixed_over_1lsb,fixed_seam_max_lsb,fixed_seam_mean_lsb,fixed_logic_ge,fixed_flip_flops,fixed_memory_bits,fixed_latency\n");
         for (si, scene) in self.scenes.iter().enumerate() {
             for (ei, e) in self.engines.iter().enumerate() {
                 let r = &self.errors[si][ei];
-                let fx = self.fixed[si][ei].as_ref().map_or(",,,,,,,,,".to_string(), |f| {
+                let fx = self.fixed[si][ei].as_ref().map_or(",,,,,,,,,,".to_string(), |f| {
                     let r = &f.error;
                     format!(
-                        "{},{},{},{},{},{},{},{},{},{}",
+                        "{},{},{},{},{},{},{},{},{},{},{}",
                         f.config_hash,
                         r.psnr_db,
                         r.max_lsb,
                         r.mean_lsb,
                         r.over_1lsb,
                         r.seam_max_lsb,
+                        r.seam_mean_lsb,
                         f.area_ge,
                         f.flip_flops,
                         f.memory_bits,

@@ -36,6 +36,7 @@ pub const SGI: Engine = Engine {
         interpolate: Interpolate::Hl,
         renormalise: false,
         interpolate_k: true,
+        renormalise_bump: false,
     }),
 };
 

@@ -75,9 +75,12 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     // Renormalised, B enters the dot products at exactly its unit length, as normalise_b's
     // equation says; otherwise as its codes.
     let b: Vec<f64> = if cfg.renormalise_bump {
+        // Clamped to the format, as the unit saturates: under binary normals +1.0 is one code
+        // beyond it, which is the format's, not the arithmetic's, error.
         let shape = crate::model::normalise::Shape::bump(cfg);
+        let f = shape.fmt();
         crate::model::normalise::normalise_exact_shape(&shape, codes)
-            .map(|x| x / (1u64 << shape.frac) as f64)
+            .map(|x| x.clamp(f.min_raw() as f64, f.max_raw() as f64) / (1u64 << shape.frac) as f64)
             .to_vec()
     } else {
         codes.iter().map(|&c| nf.to_f64(c)).collect()
@@ -347,7 +350,14 @@ pub fn input_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSt
     let samples = std::iter::once((glam::DVec3::Z, glam::DVec3::Z))
         .chain((0..random).map(|_| (unit_vector(&mut rng, true), unit_vector(&mut rng, false))));
     for (bn, v) in samples {
-        let b = crate::bumpmap::storage::encode_normal(cfg, bn).map(|c| nf.to_f64(crate::model::bump_fetch::expand(cfg, c)));
+        // As the dot products see it: the stored codes, through normalise_b when it is there.
+        let codes = crate::bumpmap::storage::encode_normal(cfg, bn).map(|c| crate::model::bump_fetch::expand(cfg, c));
+        let codes = if cfg.renormalise_bump {
+            crate::model::normalise::normalise_bump(cfg, codes)
+        } else {
+            codes
+        };
+        let b = codes.map(|c| nf.to_f64(c));
         let q = [v.x, v.y, v.z].map(|x| lf.to_f64(crate::raster::tri_state::send_lh(cfg, x).expect("finite")));
         let stored = (0..3).map(|i| b[i] * q[i]).sum::<f64>().clamp(0.0, 1.0);
         let truth = bn.dot(v).clamp(0.0, 1.0);

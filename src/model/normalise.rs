@@ -4,22 +4,27 @@
 //! reciprocal square roots, indexed by the leading bits of the squared length, refined by
 //! Newton steps.
 //!
-//! For a vector v of raw `s1.F` components (F = lh_bits - 2) the unit computes
-//! `v · scale / |v|` in the same format, `scale` being the factor the L and H carry
-//! (`PipelineConfig::normal_scale`: 1, or 2^(w-1)/(2^(w-1)-1) for symmetric normals).
+//! Two units share it, each for its [`Shape`]: `normalise` for an interpolated L or H (raw
+//! `s1.F` components, F = lh_bits - 2, the unit length carrying `scale` =
+//! `PipelineConfig::normal_scale`: 1, or 2^(w-1)/(2^(w-1)-1) for symmetric normals), and
+//! `normalise_b` for the fetched bump normal (raw `s0.F`, F = normal_bits - 1, whose unit is
+//! 2^F codes, or 2^F - 1 for symmetric normals). Each computes `v · 2^F · scale / |v|`:
 //!
-//! 1. `s = x² + y² + z²`, exact. For symmetric normals `S = s·(h-1)²` with h = 2^(nb-1)
-//!    (two shifted subtractions), so that `scale/sqrt(s) = h/sqrt(S)`; otherwise `S = s`.
+//! 1. `s = x² + y² + z²`, exact. For L and H with symmetric normals `S = s·(h-1)²` with
+//!    h = 2^(nb-1) (two shifted subtractions), so that `scale/sqrt(s) = h/sqrt(S)`; otherwise
+//!    `S = s`.
 //! 2. `S` is shifted left by the even amount `z` that puts its leading one in the top two
-//!    bits of an `L`-bit window (`L` = 2·lh, plus 2(nb-1) for symmetric normals):
-//!    `m = (S << z) / 2^L` lies in [1/4, 1) and `1/sqrt(S) = (1/sqrt(m)) · 2^((z-L)/2)`.
+//!    bits of an `L`-bit window (`L` = 2(F+2), plus 2(nb-1) for L and H with symmetric
+//!    normals): `m = (S << z) / 2^L` lies in [1/4, 1) and `1/sqrt(S) = (1/sqrt(m)) · 2^((z-L)/2)`.
 //! 3. `r0 = table[top T bits of S << z]`: `round(2^Y / sqrt(mid-point of the interval))`,
 //!    u2.Y. The table has `3·2^(T-2)` entries (the index's top two bits are never 00).
 //! 4. Newton steps for `1/sqrt(m)`, each truncating to Y fraction bits:
 //!    `q = r²`, `u = m_M · q` (m cut to M bits), `r = r · (3 - u) / 2`.
 //! 5. `n = round(x · r · 2^(z/2) / 2^(Y+2))`, half up whatever the configuration's `rounding`
 //!    (Newton's method approaches 1/sqrt(m) from below, so truncating would shorten every
-//!    vector: a unit axis would lose an LSB), saturated to s1.F.
+//!    vector: a unit axis would lose an LSB), saturated to the input's format. A bump normal
+//!    with symmetric normals is multiplied by 2^(nb-1) - 1 (a shift and a subtraction)
+//!    before that rounding, which then drops nb - 1 more bits.
 //!
 //! A zero vector stays zero. How many table bits and Newton steps are used follows from F
 //! ([`params`]): the table alone for short words, one step when a table of at most

@@ -48,7 +48,7 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
     } else {
         Vec::new()
     };
-    shade_with(p, hit, g, |i| {
+    shade_with(p, hit, g, how.renormalise_bump, |i| {
         let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);
         let k = k_at(ts, &vk, hit.bary, how.interpolate_k, i);
         let (l, h) = match (how.renormalise, how.interpolate) {
@@ -61,8 +61,9 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
 }
 
 /// The Gouraud bump equations with light `i`'s bump-space L, H and k from `lhk(i)`: the
-/// paper's per-triangle values, or (the §6 variants and SGI, `engines`) interpolated ones.
-pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, lhk: impl Fn(usize) -> (DVec3, DVec3, f64)) -> DVec3 {
+/// paper's per-triangle values, or (the §6 variants and SGI, `engines`) interpolated ones;
+/// `renormalise_bump` scales the filtered bump normal back to unit length (`normalise_b`).
+pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, renormalise_bump: bool, lhk: impl Fn(usize) -> (DVec3, DVec3, f64)) -> DVec3 {
     let cfg = p.cfg;
     let so = &p.scene.objects[hit.obj as usize];
     let o = &p.objects[hit.obj as usize];
@@ -70,7 +71,7 @@ pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, lhk: impl Fn(usize) ->
     // normalise_b scales the filtered normal back to unit length; the flat test below reads
     // the filtered one, as the pipeline's bypass reads the fetched codes.
     let bf = bn;
-    let bn = if cfg.renormalise_bump { bn.normalize_or_zero() } else { bn };
+    let bn = if renormalise_bump { bn.normalize_or_zero() } else { bn };
     let bypass = cfg.skip_flat && (bf - DVec3::Z).length() < 1e-9;
     let dif_on = cfg.diffuse && so.diffuse && !bypass;
     let spe_on = cfg.specular && so.specular && !bypass;

@@ -89,6 +89,9 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     } else {
         "\n\n"
     };
+    if cfg.renormalise_bump || cfg.renormalise {
+        s += &renormalising(cfg);
+    }
     s += "**Lane order** (every multi-lane port packs lane 0 in its low bits):\n\n";
     for p in super::top::port_list(cfg) {
         if let Some(l) = lanes(&p) {
@@ -169,4 +172,29 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         s += &format!("| `{}` | {hex} | {value} |\n", c.name);
     }
     s
+}
+
+/// What the normalise units do to the inputs a testbench drives, when the top has them.
+fn renormalising(cfg: &PipelineConfig) -> String {
+    let mut s = String::from("**Renormalised inputs.** ");
+    if cfg.renormalise_bump {
+        s += &format!(
+            "`in_bump` may be any length, as a texture unit's filter leaves it: the top scales the fetched normal back to unit length (`normalise_b`, within {} LSB of b·unit/|b|) before every dot product. A zero vector stays zero. {}",
+            crate::model::normalise::ERROR_BOUND_LSB,
+            if cfg.skip_flat {
+                "The flat bypass compares the fetched code, before the scaling: only the flat code itself is bypassed. "
+            } else {
+                ""
+            }
+        );
+    }
+    if cfg.renormalise {
+        let (l, _) = crate::model::normalise::renormalised(cfg);
+        s += &format!(
+            "The interpolated {} may be any length: a `normalise` unit scales each back to the length L and H carry before its dot product (within {} LSB). ",
+            if l { "L and H" } else { "H" },
+            crate::model::normalise::ERROR_BOUND_LSB
+        );
+    }
+    s + "The vectors' expected colours include these units' roundings.\n\n"
 }

@@ -1,4 +1,4 @@
-//! The `normalise` unit's Verilog: the steps of `model::normalise` (squared length, even
+//! The `normalise` and `normalise_b` units' Verilog, one emitter for every `Shape`: the steps of `model::normalise` (squared length, even
 //! leading-zero shift, reciprocal-square-root table, Newton steps, scaled products, one
 //! rounding), with the register cuts of `units::timing::NORMALISE` the depth puts in place.
 

@@ -164,6 +164,19 @@ impl SceneNeeds {
                 }
             );
         }
+        let filtered: Vec<String> = scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.bump.filter == crate::bumpmap::sample::Filter::Bilinear)
+            .map(|(i, _)| i.to_string())
+            .collect();
+        if !filtered.is_empty() && !cfg.renormalise_bump {
+            s += &format!(
+                "# renormalise_bump = false: objects [{}] filter their maps bilinearly, which shortens the normal between texels that disagree; renormalise_bump = true renormalises it in the pipeline (a normalise_b unit; `gbump claim map-filter` measures what it buys)\n",
+                filtered.join(", ")
+            );
+        }
         Ok(s)
     }
 }

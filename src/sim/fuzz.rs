@@ -66,9 +66,9 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             cfg.renormalise = true;
             cfg.interpolate = pick(rng, &[crate::config::Interpolate::H, crate::config::Interpolate::Hl]);
         }
-        // Drawn last, so every draw before it is what it was; valid everywhere, and the
-        // normalise_b unit changes the RTL.
-        cfg.renormalise_bump = pick(rng, &[false, true]);
+        // Drawn last, so every draw before it is what it was; valid without a palette, and
+        // the normalise_b unit changes the RTL.
+        cfg.renormalise_bump = !cfg.palette && pick(rng, &[false, true]);
         if cfg.validate("random").is_ok() {
             return cfg;
         }
@@ -88,7 +88,9 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 
 /// Fixed configurations at the edges of the space, which uniform draws reach only now and
 /// then: every light slot (serial, and parallel on a palettised map), the widest dot product
-/// and table, the widest segmented unit, and every width at its top and at its bottom.
+/// and table, the widest segmented unit, and every width at its top and at its bottom;
+/// `normalise_b` on two of them (the widest normals with the flat bypass, the narrowest
+/// normals in its table-alone regime with inferred multipliers).
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
@@ -142,6 +144,8 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 rounding: Rounding::NearestEven,
                 triangle_banks: hi("triangle_banks"),
                 pipeline_depth: hi("pipeline_depth"),
+                renormalise_bump: true,
+                skip_flat: true,
                 ..widest_dot
             },
         ),
@@ -161,6 +165,10 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 rounding: Rounding::Truncate,
                 triangle_banks: lo("triangle_banks"),
                 pipeline_depth: lo("pipeline_depth"),
+                // normalise_b's table-alone regime at the narrowest normals, multipliers
+                // left to synthesis.
+                renormalise_bump: true,
+                multipliers: Multipliers::Inferred,
                 ..d
             },
         ),

@@ -55,8 +55,9 @@ fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Re
         r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
     }
     r += Resources::stage(cut(cfg, NORMALISE, 1), rw + zw + 3 * lh);
-    let pw = lh + rw + 1 + pr.post_bits;
-    r += sum_of_products(m, &[(signed(lh), unsigned(rw))], false, pw).scaled(3.0);
+    let xw = lh + rw + 1;
+    let pw = xw + pr.post_bits;
+    r += sum_of_products(m, &[(signed(lh), unsigned(rw))], false, xw).scaled(3.0);
     if pr.post_bits > 0 {
         r += Resources::adders(pw).scaled(3.0);
     }
