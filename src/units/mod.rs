@@ -170,8 +170,8 @@ pub trait Unit: Sync {
 pub static UNITS: &[&dyn Unit] = &[
     &bump_fetch::BumpFetch,
     &palette_fetch::PaletteFetch,
-    &normalise::Normalise,
-    &normalise::NormaliseBump,
+    &normalise::NORMALISE,
+    &normalise::NORMALISE_B,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,
     &DIFFUSE_BLEND,

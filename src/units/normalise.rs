@@ -7,13 +7,58 @@
 use super::{p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
 use crate::model::normalise::{normalise_exact_shape, normalise_shape, params_of, Shape};
-use crate::units::timing::{cut, NORMALISE};
+use crate::units::timing::{cut, NORMALISE as NORMALISE_CUTS};
+
+/// One normalise unit: which vector it scales (its [`Shape`]), where it is and what it needs.
+pub struct Normalise {
+    name: &'static str,
+    source: &'static str,
+    shape: fn(&PipelineConfig) -> Shape,
+    included: fn(&PipelineConfig) -> bool,
+    requires: fn(&PipelineConfig) -> Vec<(&'static str, &'static str)>,
+    /// The input port's description.
+    v_doc: &'static str,
+    /// Whether it scales an interpolated vector (else the fetched bump normal): its corners'
+    /// wording.
+    interpolated: bool,
+    /// When its sweep is exhaustive: the vector's width field up to 6 bits.
+    exhaustive_when: &'static str,
+}
 
 /// An interpolated L or H (`renormalise`).
-pub struct Normalise;
+pub static NORMALISE: Normalise = Normalise {
+    name: "normalise",
+    source: "per-pixel renormalisation of interpolated vectors (paper §2 N'/|N'|, §6; Cg §8.2 normalisation cube map), by a reciprocal-square-root table and Newton steps",
+    shape: Shape::lh,
+    included: |cfg| cfg.renormalise,
+    requires: |cfg| {
+        let interpolate = match cfg.interpolate {
+            crate::config::Interpolate::Hl => "\"hl\"",
+            _ => "\"h\"",
+        };
+        vec![
+            ("renormalise", "true"),
+            ("interpolate", interpolate),
+            ("bump_state", "\"fragment\""),
+            ("light_mode", "\"parallel\""),
+        ]
+    },
+    v_doc: "an interpolated L or H, any length",
+    interpolated: true,
+    exhaustive_when: "lh_bits <= 6 (2^18 inputs at most)",
+};
 
 /// The fetched bump normal (`renormalise_bump`): the same arithmetic at the normal's width.
-pub struct NormaliseBump;
+pub static NORMALISE_B: Normalise = Normalise {
+    name: "normalise_b",
+    source: "the fetched bump normal scaled back to unit length after the texture filter shortened it (paper §2 N'/|N'|; gbump claim map-filter), the normalise unit's arithmetic at the normal's width",
+    shape: Shape::bump,
+    included: |cfg| cfg.renormalise_bump,
+    requires: |_| vec![("renormalise_bump", "true"), ("palette", "false")],
+    v_doc: "the fetched bump normal B, any length (a filter shortens it)",
+    interpolated: false,
+    exhaustive_when: "normal_bits <= 6 (2^18 inputs at most)",
+};
 
 fn vec3(i: &[i64]) -> [i64; 3] {
     [i[0], i[1], i[2]]
@@ -43,7 +88,7 @@ fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Re
     if pr.pre_bits > 0 {
         r += Resources::adders(2 * l);
     }
-    r += Resources::stage(cut(cfg, NORMALISE, 0), l + 3 * lh);
+    r += Resources::stage(cut(cfg, NORMALISE_CUTS, 0), l + 3 * lh);
     // The leading-pair search and the shift (a barrel shifter of l bits, zw levels), and
     // the table: a word per entry, selected by the index.
     r += Resources::compares(l / 2) + Resources::muxes(l * zw);
@@ -54,14 +99,14 @@ fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Re
         r += Resources::adders(rw);
         r += sum_of_products(m, &[(unsigned(rw), unsigned(rw))], false, 2 * rw);
     }
-    r += Resources::stage(cut(cfg, NORMALISE, 1), rw + zw + 3 * lh);
+    r += Resources::stage(cut(cfg, NORMALISE_CUTS, 1), rw + zw + 3 * lh);
     let xw = lh + rw + 1;
     let pw = xw + pr.post_bits;
     r += sum_of_products(m, &[(signed(lh), unsigned(rw))], false, xw).scaled(3.0);
     if pr.post_bits > 0 {
         r += Resources::adders(pw).scaled(3.0);
     }
-    r += Resources::stage(cut(cfg, NORMALISE, 2), 3 * pw + zw);
+    r += Resources::stage(cut(cfg, NORMALISE_CUTS, 2), 3 * pw + zw);
     let sw = crate::rtlgen::normalise_v::scaled_width(shape);
     let fmt = crate::fixed::Format {
         width: sw,
@@ -119,106 +164,47 @@ fn corners(shape: &Shape, interpolated: bool) -> Vec<(String, Lanes)> {
 
 impl Unit for Normalise {
     fn name(&self) -> &'static str {
-        "normalise"
+        self.name
     }
     fn source(&self) -> &'static str {
-        "per-pixel renormalisation of interpolated vectors (paper §2 N'/|N'|, §6; Cg §8.2 normalisation cube map), by a reciprocal-square-root table and Newton steps"
+        self.source
     }
     fn requires(&self, cfg: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        let interpolate = match cfg.interpolate {
-            crate::config::Interpolate::Hl => "\"hl\"",
-            _ => "\"h\"",
-        };
-        vec![
-            ("renormalise", "true"),
-            ("interpolate", interpolate),
-            ("bump_state", "\"fragment\""),
-            ("light_mode", "\"parallel\""),
-        ]
+        (self.requires)(cfg)
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
-        cfg.renormalise
+        (self.included)(cfg)
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
-        ports(&Shape::lh(cfg), "an interpolated L or H, any length")
+        ports(&(self.shape)(cfg), self.v_doc)
     }
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
-        crate::units::timing::latency(cfg, NORMALISE)
+        crate::units::timing::latency(cfg, NORMALISE_CUTS)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![normalise_shape(&Shape::lh(cfg), vec3(&i[0])).to_vec()]
+        vec![normalise_shape(&(self.shape)(cfg), vec3(&i[0])).to_vec()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![normalise_exact_shape(&Shape::lh(cfg), vec3(&i[0])).to_vec()]
+        vec![normalise_exact_shape(&(self.shape)(cfg), vec3(&i[0])).to_vec()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        resources(cfg, &Shape::lh(cfg))
+        resources(cfg, &(self.shape)(cfg))
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
-        vec![(
-            "normalise",
-            crate::rtlgen::normalise_v::normalise(cfg, &Shape::lh(cfg), "normalise"),
-        )]
+        vec![(self.name, crate::rtlgen::normalise_v::normalise(cfg, &(self.shape)(cfg), self.name))]
     }
     fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
-        (cfg.lh_bits <= 6).then(|| 1u64 << (3 * cfg.lh_bits))
+        let w = (self.shape)(cfg).width;
+        (w <= 6).then(|| 1u64 << (3 * w))
     }
     fn exhaustive_when(&self) -> Option<&'static str> {
-        Some("lh_bits <= 6 (2^18 inputs at most)")
+        Some(self.exhaustive_when)
     }
     fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
-        exhaustive_input(&Shape::lh(cfg), i)
+        exhaustive_input(&(self.shape)(cfg), i)
     }
     fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        corners(&Shape::lh(cfg), true)
-    }
-}
-
-impl Unit for NormaliseBump {
-    fn name(&self) -> &'static str {
-        "normalise_b"
-    }
-    fn source(&self) -> &'static str {
-        "the fetched bump normal scaled back to unit length after the texture filter shortened it (paper §2 N'/|N'|; gbump claim map-filter), the normalise unit's arithmetic at the normal's width"
-    }
-    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        vec![("renormalise_bump", "true")]
-    }
-    fn included(&self, cfg: &PipelineConfig) -> bool {
-        cfg.renormalise_bump
-    }
-    fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
-        ports(&Shape::bump(cfg), "the fetched bump normal B, any length (a filter shortens it)")
-    }
-    fn latency(&self, cfg: &PipelineConfig) -> u32 {
-        crate::units::timing::latency(cfg, NORMALISE)
-    }
-    fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![normalise_shape(&Shape::bump(cfg), vec3(&i[0])).to_vec()]
-    }
-    fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![normalise_exact_shape(&Shape::bump(cfg), vec3(&i[0])).to_vec()]
-    }
-    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        resources(cfg, &Shape::bump(cfg))
-    }
-    fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
-        vec![(
-            "normalise_b",
-            crate::rtlgen::normalise_v::normalise(cfg, &Shape::bump(cfg), "normalise_b"),
-        )]
-    }
-    fn exhaustive_count(&self, cfg: &PipelineConfig) -> Option<u64> {
-        (cfg.normal_bits <= 6).then(|| 1u64 << (3 * cfg.normal_bits))
-    }
-    fn exhaustive_when(&self) -> Option<&'static str> {
-        Some("normal_bits <= 6 (2^18 inputs at most)")
-    }
-    fn exhaustive_input(&self, cfg: &PipelineConfig, i: u64) -> Lanes {
-        exhaustive_input(&Shape::bump(cfg), i)
-    }
-    fn corners(&self, cfg: &PipelineConfig) -> Vec<(String, Lanes)> {
-        corners(&Shape::bump(cfg), false)
+        corners(&(self.shape)(cfg), self.interpolated)
     }
 }
 
