@@ -876,9 +876,10 @@ fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
 
 #[test]
 fn the_palette_unit_matches_the_model_on_both_tops() {
-    for (cfg, work) in [
-        ("tests/configs/palette_serial.toml", "palette_serial"),
-        ("tests/configs/palette_parallel.toml", "palette_parallel"),
+    for (cfg, work, scenes) in [
+        ("tests/configs/palette_serial.toml", "palette_serial", "--no-scenes"),
+        // Without --no-scenes: the built-in scene sets are skipped, and regress says so.
+        ("tests/configs/palette_parallel.toml", "palette_parallel", "--seed=1"),
     ] {
         let t = regress(
             &[
@@ -890,11 +891,13 @@ fn the_palette_unit_matches_the_model_on_both_tops() {
                 "30000",
                 "--random-icarus",
                 "2000",
-                "--no-scenes",
+                scenes,
             ],
             work,
         );
+        assert_eq!(t.contains("the built-in scene sets are skipped"), scenes != "--no-scenes", "{t}");
         let r = runs(&t);
+        assert!(r.iter().all(|x| !x.1.starts_with("scene_")), "{t}");
         // Palette indices 0 and 255 are among the corners, and the palette is swept whole.
         for set in ["corners_level2_palette_fetch", "exhaustive_palette_fetch_palette_fetch"] {
             assert!(

@@ -435,7 +435,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let mut v = vec![
         // Each entry: why it is there, then the stimulus.
         (
-            "flat normal, light and half vector straight up: B·L = 1 - 2^-(w-1), the largest dot",
+            "flat normal, light and half vector straight up: the largest dot (B·L = 1 - 2^-(w-1) under binary normals, 1 under symmetric; bypassed under skip_flat)",
             base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax),
         ),
         (
