@@ -31,14 +31,7 @@ fn engine_images(name: &str, s: &Scene, w: u32, h: u32) -> (EngineImage, EngineI
     let e = engine(name).unwrap();
     let f64_img = render(s, &[e], w, h, Maps::default()).unwrap().remove(0);
     let cfg = e.fixed_config(&s.derive_config().unwrap()).unwrap();
-    let (codes, _) = gbump::render::golden(s, &cfg, w, h).unwrap();
-    let m = cfg.colour_max() as f64;
-    let fixed = EngineImage {
-        w,
-        h,
-        rgb: codes.iter().map(|c| c.map(|x| x as f64 / m)).collect(),
-        owner: f64_img.owner.clone(),
-    };
+    let fixed = gbump::engines::report::golden_image(s, &cfg, &f64_img).unwrap();
     (fixed, f64_img)
 }
 

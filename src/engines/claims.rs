@@ -231,20 +231,12 @@ fn map_filter() -> Result<Claim> {
     let mut md = String::from("| bump strength | SGI as filtered: mean (LSB), PSNR | SGI renormalised | Cg as filtered | Cg renormalised | Gouraud bump, bit-accurate | the same, `renormalise_bump = true` |\n|---:|---:|---:|---:|---:|---:|---:|\n");
     // The paper's engine as the golden model renders it (what the RTL computes), with and
     // without the normalise_b unit, against Blinn.
-    let golden = |s: &Scene, w: u32, h: u32, on: bool, blinn_img: &super::report::EngineImage| -> Result<super::report::EngineError> {
+    let golden = |s: &Scene, on: bool, blinn_img: &super::report::EngineImage| -> Result<super::report::EngineError> {
         let cfg = crate::config::PipelineConfig {
             renormalise_bump: on,
             ..s.derive_config()?
         };
-        let (codes, _) = crate::render::golden(s, &cfg, w, h)?;
-        let m = cfg.colour_max() as f64;
-        let img = super::report::EngineImage {
-            w,
-            h,
-            rgb: codes.iter().map(|c| c.map(|x| x as f64 / m)).collect(),
-            owner: blinn_img.owner.clone(),
-        };
-        Ok(compare(&img, blinn_img))
+        Ok(compare(&super::report::golden_image(s, &cfg, blinn_img)?, blinn_img))
     };
     // Each image's mean error for the four series, on one scene.
     let four = |s: &Scene, w: u32, h: u32| -> Result<[super::report::EngineError; 4]> {
@@ -264,8 +256,8 @@ fn map_filter() -> Result<Claim> {
         }
         let mut e = four(&s, 128, 64)?.to_vec();
         let b = render(&s, &[blinn], 128, 64, maps(false))?.remove(0);
-        e.push(golden(&s, 128, 64, false, &b)?);
-        e.push(golden(&s, 128, 64, true, &b)?);
+        e.push(golden(&s, false, &b)?);
+        e.push(golden(&s, true, &b)?);
         md += &format!("| {k} |");
         for (i, x) in e.iter().enumerate() {
             md += &format!(" {:.2}, {:.1} dB |", x.mean_lsb, x.psnr_db);

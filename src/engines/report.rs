@@ -136,20 +136,28 @@ pub struct Fixed {
     pub latency: u32,
 }
 
-/// The bit-accurate path of `e` on `scene` at `w`×`h` against `reference`, when it has one.
-fn fixed(scene: &Scene, e: &Engine, w: u32, h: u32, reference: &EngineImage) -> Result<Option<Fixed>> {
-    let Some(cfg) = e.fixed_config(&scene.derive_config()?) else {
-        return Ok(None);
-    };
-    cfg.validate(&format!("{} (engine {})", scene.file, e.name))?;
-    let (codes, _) = crate::render::golden(scene, &cfg, w, h)?;
+/// The golden model's image of `scene` under `cfg` (what the generated RTL computes) as an
+/// engine image the size of `reference`, sharing its drawn pixels, so `compare` measures it
+/// against the reference.
+pub fn golden_image(scene: &Scene, cfg: &crate::config::PipelineConfig, reference: &EngineImage) -> Result<EngineImage> {
+    let (w, h) = (reference.w, reference.h);
+    let (codes, _) = crate::render::golden(scene, cfg, w, h)?;
     let m = cfg.colour_max() as f64;
-    let img = EngineImage {
+    Ok(EngineImage {
         w,
         h,
         rgb: codes.iter().map(|c| c.map(|x| x as f64 / m)).collect(),
         owner: reference.owner.clone(),
+    })
+}
+
+/// The bit-accurate path of `e` on `scene` at `reference`'s size against it, when it has one.
+fn fixed(scene: &Scene, e: &Engine, reference: &EngineImage) -> Result<Option<Fixed>> {
+    let Some(cfg) = e.fixed_config(&scene.derive_config()?) else {
+        return Ok(None);
     };
+    cfg.validate(&format!("{} (engine {})", scene.file, e.name))?;
+    let img = golden_image(scene, &cfg, reference)?;
     let area = crate::measure::area_model::model_area(&cfg);
     Ok(Some(Fixed {
         config_hash: cfg.hash()[..8].to_string(),
@@ -174,11 +182,7 @@ pub fn measure(scenes: &[String], engines: &[&'static Engine], size: Option<(u32
         crate::limits::check_render(&s.file, w, h, s.triangles())?;
         let imgs = render(&s, &list, w.max(1), h.max(1), maps)?;
         errors.push(imgs.iter().map(|i| compare(i, &imgs[0])).collect());
-        fixeds.push(
-            list.iter()
-                .map(|e| fixed(&s, e, w.max(1), h.max(1), &imgs[0]))
-                .collect::<Result<Vec<_>>>()?,
-        );
+        fixeds.push(list.iter().map(|e| fixed(&s, e, &imgs[0])).collect::<Result<Vec<_>>>()?);
         images.push(imgs);
     }
     Ok(Table {

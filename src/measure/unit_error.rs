@@ -85,7 +85,7 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     } else {
         codes.iter().map(|&c| nf.to_f64(c)).collect()
     };
-    let flat = t.iter().map(|&c| crate::model::bump_fetch::expand(cfg, c)).collect::<Vec<_>>() == cfg.flat_normal().to_vec();
+    let flat = codes == cfg.flat_normal();
     let bypass = cfg.skip_flat && flat;
     let d_on = cfg.diffuse && s.frag.diffuse_en && !bypass;
     let s_on = cfg.specular && s.frag.specular_en && !bypass;
@@ -141,62 +141,38 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let nf = cfg.normal_fmt();
     let lf = cfg.lh_fmt();
     let one = (1u64 << cfg.dot_frac_bits) as f64;
-    // normalise over every vector it renormalises and its corners, against v·scale/|v|.
+    // The normalise units over every vector they scale and their corners, against
+    // v·unit/|v|: `normalise` on L and H, `normalise_b` on the fetched bump normal.
+    use crate::model::normalise::Shape;
+    let (lh_shape, b_shape) = (Shape::lh(cfg), Shape::bump(cfg));
     let mut norm = ErrorStats::new("normalise", "corners + random");
-    let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
-    let mut norm_add = |v: [i64; 3]| {
-        let got = crate::model::normalise::normalise(cfg, v);
-        let want = crate::model::normalise::normalise_exact(cfg, v);
-        for i in 0..3 {
-            let w = want[i].clamp(lf.min_raw() as f64, lf.max_raw() as f64);
-            norm.add(got[i] as f64 - w, || format!("v={v:?}"));
-        }
-    };
-    if cfg.renormalise {
-        if let Some(u) = crate::units::unit("normalise") {
-            for (_, c) in u.corners(cfg) {
-                norm_add([c[0][0], c[0][1], c[0][2]]);
-            }
-        }
-    }
-    // normalise_b over every fetched normal and its corners, against b·unit/|b|.
     let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
-    let bshape = crate::model::normalise::Shape::bump(cfg);
-    let mut norm_b_add = |v: [i64; 3]| {
-        let got = crate::model::normalise::normalise_shape(&bshape, v);
-        let want = crate::model::normalise::normalise_exact_shape(&bshape, v);
-        let f = bshape.fmt();
-        for i in 0..3 {
-            norm_b.add(got[i] as f64 - want[i].clamp(f.min_raw() as f64, f.max_raw() as f64), || {
-                format!("b={v:?}")
-            });
-        }
-    };
-    if cfg.renormalise_bump {
-        if let Some(u) = crate::units::unit("normalise_b") {
+    let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
+    for (on, name, shape, stats) in [
+        (cfg.renormalise, "normalise", &lh_shape, &mut norm),
+        (cfg.renormalise_bump, "normalise_b", &b_shape, &mut norm_b),
+    ] {
+        if let Some(u) = crate::units::unit(name).filter(|_| on) {
             for (_, c) in u.corners(cfg) {
-                norm_b_add([c[0][0], c[0][1], c[0][2]]);
+                normalise_error(stats, shape, [c[0][0], c[0][1], c[0][2]]);
             }
         }
     }
     for (_, s) in &stims {
         let t = stored_codes(&palette, s.frag.bump);
         let fetched = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
-        if cfg.renormalise_bump {
-            norm_b_add(fetched);
-        }
         // dot_clamp sees B as the pipeline hands it on.
         let b = if cfg.renormalise_bump {
-            crate::model::normalise::normalise_shape(&bshape, fetched)
+            normalise_error(&mut norm_b, &b_shape, fetched)
         } else {
             fetched
         };
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             if norm_l {
-                norm_add(ls.l);
+                normalise_error(&mut norm, &lh_shape, ls.l);
             }
             if norm_h {
-                norm_add(ls.h);
+                normalise_error(&mut norm, &lh_shape, ls.h);
             }
             // dot_clamp sees the vectors as the pipeline hands them on.
             let (l, h) = crate::model::pipeline::dot_vectors(cfg, ls);
@@ -331,6 +307,20 @@ fn unit_vector(rng: &mut SplitMix64, upper: bool) -> glam::DVec3 {
             return v / l;
         }
     }
+}
+
+/// One normalise unit's error on `v` (of `shape`) against `v·unit/|v|`, clamped to the format
+/// as the unit saturates, added to `stats`; the unit's result.
+fn normalise_error(stats: &mut ErrorStats, shape: &crate::model::normalise::Shape, v: [i64; 3]) -> [i64; 3] {
+    let got = crate::model::normalise::normalise_shape(shape, v);
+    let want = crate::model::normalise::normalise_exact_shape(shape, v);
+    let f = shape.fmt();
+    for i in 0..3 {
+        stats.add(got[i] as f64 - want[i].clamp(f.min_raw() as f64, f.max_raw() as f64), || {
+            format!("v={v:?}")
+        });
+    }
+    got
 }
 
 /// The error of quantising the inputs, apart from the arithmetic: unit bump normals stored as

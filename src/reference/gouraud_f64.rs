@@ -68,11 +68,10 @@ pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, renormalise_bump: bool
     let so = &p.scene.objects[hit.obj as usize];
     let o = &p.objects[hit.obj as usize];
     let bn = filtered_normal(&o.normals, g.uv, so.bump.filter);
-    // normalise_b scales the filtered normal back to unit length; the flat test below reads
-    // the filtered one, as the pipeline's bypass reads the fetched codes.
-    let bf = bn;
+    // The flat test reads the filtered normal, as the pipeline's bypass reads the fetched
+    // codes; normalise_b then scales it back to unit length.
+    let bypass = cfg.skip_flat && (bn - DVec3::Z).length() < 1e-9;
     let bn = if renormalise_bump { bn.normalize_or_zero() } else { bn };
-    let bypass = cfg.skip_flat && (bf - DVec3::Z).length() < 1e-9;
     let dif_on = cfg.diffuse && so.diffuse && !bypass;
     let spe_on = cfg.specular && so.specular && !bypass;
     let (mut diff, mut spec) = (DVec3::ZERO, DVec3::ZERO);
