@@ -170,6 +170,26 @@ impl<'a> Lanes<'a> {
         r.set(self.lsb + i * self.width, self.width, v as u64);
     }
 
+    /// Lanes `i..i + 3` in one or two writes (a triangle's state is a run of such triples).
+    #[inline(always)]
+    fn set3(&self, r: &mut Record, i: u32, v: [i64; 3]) {
+        let (lsb, width) = (self.lsb + i * self.width, 3 * self.width);
+        if width > 128 {
+            // Wider than one u128 (lanes above 42 bits): a lane at a time.
+            return (0..3).for_each(|k| self.set(r, i + k as u32, v[k]));
+        }
+        let mask = if self.width >= 64 { u64::MAX } else { (1u64 << self.width) - 1 };
+        let mut all = 0u128;
+        for k in (0..3).rev() {
+            self.check(i + k as u32, v[k]);
+            all = (all << self.width) | (v[k] as u64 & mask) as u128;
+        }
+        r.set(lsb, width.min(64), all as u64);
+        if width > 64 {
+            r.set(lsb + 64, width - 64, (all >> 64) as u64);
+        }
+    }
+
     #[inline(always)]
     fn check(&self, i: u32, v: i64) {
         if v.wrapping_sub(self.lo) as u64 > self.hi.wrapping_sub(self.lo) as u64 {
@@ -229,12 +249,10 @@ impl<'a> TopEncoder<'a> {
     pub fn fill_state(&self, state: &BumpState, r: &mut Record) {
         for j in 0..self.cfg.lights as usize {
             let ls = &state.lights[j];
-            for i in 0..3 {
-                let lane = (3 * j + i) as u32;
-                self.l.set(r, lane, ls.l[i]);
-                self.h.set(r, lane, ls.h[i]);
-                self.lc.set(r, lane, ls.lc[i] as i64);
-            }
+            let lane = 3 * j as u32;
+            self.l.set3(r, lane, ls.l);
+            self.h.set3(r, lane, ls.h);
+            self.lc.set3(r, lane, ls.lc.map(i64::from));
             self.k.set(r, j as u32, ls.k);
         }
     }
@@ -260,35 +278,53 @@ impl<'a> TopEncoder<'a> {
     /// zero).
     #[inline]
     pub fn fill_fragment(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3], r: &mut Record) {
-        let Some(lsb) = self.packed_from else {
+        let Some(p) = self.packed() else {
             return self.fill_fragment_lanes(frag, tri_start, colour, r);
         };
+        let (stim, out) = self.fragment_bits(frag, tri_start, colour);
+        for (lsb, width, v) in [(p.stim_lsb, p.stim_width, stim), (p.out_lsb, p.out_width, out)] {
+            r.set(lsb, width.min(64), v as u64);
+            if width > 64 {
+                r.set(lsb + 64, width - 64, (v >> 64) as u64);
+            }
+        }
+    }
+
+    /// Where the fragment's columns lie when they are packed (see [`PackedFragment`]).
+    pub fn packed(&self) -> Option<PackedFragment> {
+        let lsb = self.packed_from?;
+        Some(PackedFragment {
+            stim_lsb: lsb,
+            stim_width: self.bump.col.width + self.c_src.col.width + self.tex.col.width + 2 + self.start.is_some() as u32,
+            out_lsb: self.out.lsb,
+            out_width: self.out.col.width,
+        })
+    }
+
+    /// A packed layout's fragment columns as two values: the stimulus (bump, c_src, tex and
+    /// the flags, from its first column up) and the result, each refused if it does not fit
+    /// its lanes.
+    #[inline(always)]
+    pub fn fragment_bits(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3]) -> (u128, u128) {
         // A column's three lanes as one value (each lane is at most 21 bits wide here).
         let three = |l: &Lanes, v: [u32; 3]| {
-            v.iter().enumerate().rev().fold(0u64, |acc, (i, &x)| {
+            v.iter().enumerate().rev().fold(0u128, |acc, (i, &x)| {
                 l.check(i as u32, x as i64);
-                (acc << l.width) | x as u64
+                (acc << l.width) | x as u128
             })
         };
         let bump = match frag.bump {
             BumpTexel::Rgb(codes) => three(&self.bump, codes),
             BumpTexel::Index(ix) => {
                 self.bump.check(0, ix as i64);
-                ix as u64
+                ix as u128
             }
         };
-        let mut at = lsb;
-        for (v, w) in [
-            (bump, self.bump.col.width),
-            (three(&self.c_src, frag.c_src), self.c_src.col.width),
-            (three(&self.tex, frag.tex), self.tex.col.width),
-        ] {
-            r.set(at, w, v);
-            at += w;
-        }
-        let flags = frag.diffuse_en as u64 | (frag.specular_en as u64) << 1 | (tri_start as u64) << 2;
-        r.set(at, 2 + self.start.is_some() as u32, flags);
-        r.set(self.out.lsb, self.out.col.width, three(&self.out, colour));
+        // `tri_start` has a column only where the layout holds one.
+        let flags = frag.diffuse_en as u128 | (frag.specular_en as u128) << 1 | ((tri_start & self.start.is_some()) as u128) << 2;
+        let (wb, wc, wt) = (self.bump.col.width, self.c_src.col.width, self.tex.col.width);
+        let stim = bump | three(&self.c_src, frag.c_src) << wb | three(&self.tex, frag.tex) << (wb + wc) | flags << (wb + wc + wt);
+        (stim, three(&self.out, colour))
     }
 
     /// [`fill_fragment`](Self::fill_fragment) a lane at a time, for any layout.
@@ -315,7 +351,8 @@ impl<'a> TopEncoder<'a> {
 }
 
 /// Where the fragment's stimulus columns start when they lie one after another in
-/// `fill_fragment`'s order, each three-lane column and the result within one 64-bit value.
+/// `fill_fragment`'s order, each three-lane column and the result within one 64-bit value,
+/// the stimulus columns within 120 bits.
 fn packed_from(c: &TopColumns) -> Option<u32> {
     let mut cols = vec![c.bump, c.c_src, c.tex, c.de, c.se];
     cols.extend(c.start);
@@ -333,7 +370,39 @@ fn packed_from(c: &TopColumns) -> Option<u32> {
         }
         at += col.width;
     }
-    (c.out.lanes == 3 && c.out.width <= 63).then_some(from)
+    // Each value, shifted to its byte, in one u128.
+    (c.out.lanes == 3 && c.out.width <= 63 && at - from <= 120).then_some(from)
+}
+
+/// Where a packed layout's fragment columns lie: the stimulus columns one after another from
+/// `stim_lsb`, the result at `out_lsb`; each at most 120 bits, so a value shifted to its byte
+/// offset fits a u128.
+#[derive(Clone, Copy, Debug)]
+pub struct PackedFragment {
+    pub stim_lsb: u32,
+    pub stim_width: u32,
+    pub out_lsb: u32,
+    pub out_width: u32,
+}
+
+impl PackedFragment {
+    /// OR the fragment's two values (as [`TopEncoder::fragment_bits`] gives them) into
+    /// `record`, one record's little-endian bytes whose fragment columns are zero.
+    #[inline(always)]
+    pub fn or_into(&self, record: &mut [u8], stim: u128, out: u128) {
+        or_bits(record, self.stim_lsb, self.stim_width, stim);
+        or_bits(record, self.out_lsb, self.out_width, out);
+    }
+}
+
+#[inline(always)]
+fn or_bits(record: &mut [u8], lsb: u32, width: u32, v: u128) {
+    let (at, shift) = ((lsb / 8) as usize, lsb % 8);
+    let n = (shift + width).div_ceil(8) as usize;
+    let b = (v << shift).to_le_bytes();
+    for (d, s) in record[at..at + n].iter_mut().zip(&b[..n]) {
+        *d |= *s;
+    }
 }
 
 /// Read a top record's stimulus back (the inverse of [`top_record`]; the expected columns are

@@ -187,17 +187,30 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         if let Some(bin) = bin.as_deref_mut() {
             bin.reserve(bytes * run.frags.len());
         }
+        // A packed layout's binary record is the state's bytes with the fragment's two
+        // values ORed in: no record of words in between.
+        let packed = self.enc.packed();
         for (b, frags) in run.frags.chunks(BATCH).enumerate() {
             let out = &mut self.colours[..frags.len()];
             m.fast.colours_run(run.state, frags, out);
             for (k, (f, c)) in frags.iter().zip(out.iter()).enumerate() {
                 let i = b * BATCH + k;
                 m.check(run.first + i as u64, run.state, f, *c)?;
+                let tri_start = run.tri_start && i == 0;
+                if let (Some(bin), Some(p)) = (bin.as_deref_mut(), packed) {
+                    let (stim, colour) = self.enc.fragment_bits(f, tri_start, *c);
+                    let at = bin.len();
+                    bin.extend_from_slice(&self.bytes[..bytes]);
+                    p.or_into(&mut bin[at..], stim, colour);
+                    if hex.is_none() {
+                        continue;
+                    }
+                }
                 for &w in &self.frag_words {
                     self.r.words[w] = self.state.words[w];
                 }
-                self.enc.fill_fragment(f, run.tri_start && i == 0, *c, &mut self.r);
-                if let Some(bin) = bin.as_deref_mut() {
+                self.enc.fill_fragment(f, tri_start, *c, &mut self.r);
+                if let (Some(bin), None) = (bin.as_deref_mut(), packed) {
                     for &w in &self.frag_words {
                         self.bytes[8 * w..8 * w + 8].copy_from_slice(&self.r.words[w].to_le_bytes());
                     }
