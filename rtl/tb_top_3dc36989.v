@@ -124,19 +124,33 @@ module tb_top;
     integer failed = 0;
     reg done = 1'b0;
 
+    // Exit code 1 when anything failed or the run gave up, for scripts and FuseSoC: the
+    // run's last line is then gbump testbench: exit code 1, see the lines above, which gbump's verdict reads past. Verilator's
+    // --binary main exits 0 after $finish and aborts on $fatal, so there the summary line
+    // (or a FATAL line) is the verdict.
+    reg gave_up = 1'b0;
+    task end_run(input bad);
+        begin
+`ifndef VERILATOR
+            if (bad) $fatal(1, "gbump testbench: exit code 1, see the lines above");
+`endif
+            $finish;
+        end
+    endtask
+
     task finish_run;
         begin
             if (n_tri > 0) $display("%0d triangle setups, %0d edges waited for tri_ready, %0d edges in all", n_tri, tri_waits, cyc);
             $display("%0d passed, %0d failed", passed, failed);
             if (passed + failed == 0) $display("FATAL: no vectors were checked");
-            $finish;
+            end_run(gave_up || failed > 0 || passed + failed == 0);
         end
     endtask
 
     initial begin
         for (i = 0; i < TRI_BANKS; i = i + 1) frag_edge[i] = -1000000;
         if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
-        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
+        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); end_run(1); end
         load_table = $value$plusargs("table=%s", table_file);
         if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
         if (!$value$plusargs("stall=%d", stall)) stall = 0;
@@ -144,7 +158,7 @@ module tb_top;
         if (load_table) $readmemh(table_file, table_mem);
         fin = $fopen(vec_file, "r");
         fchk = $fopen(vec_file, "r");
-        if (fin == 0 || fchk == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
+        if (fin == 0 || fchk == 0) begin $display("FATAL: cannot open %0s", vec_file); end_run(1); end
         // +valid_during_reset offers a fragment (all ones) through every reset edge: the top
         // must not take it. +reset_after_load resets again after the table is loaded: the
         // table must keep what was written.
@@ -214,6 +228,9 @@ module tb_top;
             n_in = n_in + 1;
             code = $fscanf(fin, "%h\n", stim);
         end
+        // The loop stops at the end of the file or at a character that is not a hex digit (the
+        // part of its line before it was read as a record).
+        if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n_in); gave_up = 1'b1; end
         in_valid = 1'b0;
         cycles = 0;
         while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
@@ -253,7 +270,7 @@ module tb_top;
     always @(posedge clk) begin
         if (!rst && in_valid && in_ready) begin
             if (last_acc >= 0 && cyc - last_acc < II) timing_error(cyc - last_acc, II, "accepts closer than the initiation interval");
-            if (n_in - n_out >= FLIGHT) begin $display("FATAL: more than %0d fragments in flight", FLIGHT); finish_run; end
+            if (n_in - n_out >= FLIGHT) begin $display("FATAL: more than %0d fragments in flight", FLIGHT); gave_up = 1'b1; finish_run; end
             if (OUT_DEPTH > 0 && n_in - n_out >= OUT_DEPTH) timing_error(n_in - n_out, OUT_DEPTH, "accepted while the output buffer's untaken results fill it");
             acc_cyc[n_in % FLIGHT] = cyc;
             last_acc = cyc;

@@ -38,7 +38,9 @@ pub struct Cli {
 pub enum Cmd {
     /// List the built-in scenes, or print one as TOML.
     Scenes {
-        #[arg(long, value_name = "NAME")]
+        /// Print a built-in scene's TOML (a template for your own), or check a scene file
+        /// and print it.
+        #[arg(long, value_name = "NAME|FILE")]
         show: Option<String>,
     },
     /// Render a scene: golden image, f64 Gouraud-equation image, per-pixel reference, heat map.
@@ -623,7 +625,29 @@ pub fn run() -> anyhow::Result<()> {
                 stall: 13,
                 power_up: true,
             };
-            let cfg = pick.resolve()?;
+            // Sets run alone carry their configuration: with no --config or --scene it is
+            // the first manifest's (written to the work folder, so generated headers can
+            // name it), and check_sets refuses any set of another.
+            let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty()) {
+                (None, None, false) => {
+                    let first = crate::sim::regress_cmd::given_manifests(&vectors)?.remove(0);
+                    // Checked whole (fields, files) before anything is written or said.
+                    let (m, _) = crate::vectors::verify(&first)?;
+                    let dir = std::path::absolute(&work).map_err(|e| Error::io(&work, e))?;
+                    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+                    let file = dir.join(format!("config_{}.toml", m.config.hash()));
+                    crate::render::output::write_atomic(&file, m.config.to_toml().as_bytes())?;
+                    say(&format!("configuration {} from {}", m.config.hash(), first.display()))?;
+                    (
+                        m.config,
+                        ConfigPick {
+                            config: Some(file),
+                            scene: None,
+                        },
+                    )
+                }
+                _ => (pick.resolve()?, pick),
+            };
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
                 if matches!(sim, SimChoice::Icarus) {
@@ -1095,7 +1119,14 @@ fn engines_command(scenes: &[String], engines: &[String], size: Option<&str>, ma
 
 fn scenes(show: Option<String>) -> Result<()> {
     match show {
-        Some(name) => out!("{}", builtin::get(&name).ok_or(Error::UnknownScene { name: name.clone() })?),
+        Some(name) => match builtin::get(&name) {
+            Some(text) => out!("{text}"),
+            None => {
+                // A file is loaded (so every error it holds is reported) before it is shown.
+                Scene::load(&name)?;
+                out!("{}", crate::limits::read_text(Path::new(&name))?)
+            }
+        },
         None => {
             for (name, text) in builtin::ALL {
                 let s = Scene::from_toml(name, text, Path::new("scenes"))?;

@@ -463,6 +463,37 @@ impl PipelineConfig {
         })
     }
 
+    /// A field away from its default that no unit reads under the other settings, and why:
+    /// two configurations differing only there would generate the same hardware under two
+    /// hashes. [`canonical`](Self::canonical) puts such fields back.
+    pub fn inert_field(&self) -> Option<(&'static str, &'static str)> {
+        let d = PipelineConfig::default();
+        if self.bump_state == BumpStateAt::Fragment && self.triangle_banks != d.triangle_banks {
+            return Some((
+                "triangle_banks",
+                "with bump_state = \"fragment\" the state comes with each fragment: there are no triangle banks",
+            ));
+        }
+        if self.power_unit != PowerUnitKind::Segmented && self.power_segments != d.power_segments {
+            return Some(("power_segments", "only power_unit = \"segmented\" has segments"));
+        }
+        None
+    }
+
+    /// This configuration with every field [`inert_field`](Self::inert_field) names at its
+    /// default: the one hash of its hardware (for configurations drawn or searched, not
+    /// written by a user, whose stray value is refused instead).
+    pub fn canonical(mut self) -> PipelineConfig {
+        let d = PipelineConfig::default();
+        if self.bump_state == BumpStateAt::Fragment {
+            self.triangle_banks = d.triangle_banks;
+        }
+        if self.power_unit != PowerUnitKind::Segmented {
+            self.power_segments = d.power_segments;
+        }
+        self
+    }
+
     /// Check every field against [`LIMITS`] and the cross-field rules.
     pub fn validate(&self, file: &str) -> Result<()> {
         for &(name, lo, hi, why) in LIMITS {
@@ -505,6 +536,18 @@ impl PipelineConfig {
                     self.power_segments, self.dot_frac_bits
                 ),
                 "use fewer segments or a wider dot_frac_bits",
+            ));
+        }
+        if let Some((field, why)) = self.inert_field() {
+            let d = PipelineConfig::default().get(field);
+            return Err(Error::field(
+                file,
+                field,
+                format!(
+                    "{} does nothing here ({why}), yet it would change the configuration's hash and every module name",
+                    self.get(field)
+                ),
+                format!("leave `{field}` out or at its default {d}"),
             ));
         }
         if !self.diffuse && !self.specular {
@@ -832,5 +875,40 @@ mod tests {
         assert!(e.contains("power of two"), "{e}");
         let e = PipelineConfig::from_toml("cfg.toml", "bogus = 1\n").unwrap_err().to_string();
         assert!(e.contains("unknown field"), "{e}");
+        // The parser's own message is empty at a missing value and never names the key.
+        for text in ["lh_bits = 16\nshininess = ", "shininess =\nlights = 2\n"] {
+            let e = PipelineConfig::from_toml("cfg.toml", text).unwrap_err().to_string();
+            assert!(e.contains("`shininess` has no value after `=`"), "{text:?}: {e}");
+        }
+        let e = PipelineConfig::from_toml("cfg.toml", "lights = 2\nlh_bits = \"x\"\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("cfg.toml:2:") && e.contains("`lh_bits`: invalid type"), "{e}");
+    }
+
+    /// A value no unit reads under the other settings is refused, since it would only change
+    /// the hash; the same value where a unit reads it is accepted, and `canonical` (what the
+    /// fuzzer draws through) puts it back.
+    #[test]
+    fn inert_fields_are_refused_and_canonical_clears_them() {
+        for (text, field) in [
+            ("bump_state = \"fragment\"\ntriangle_banks = 4\n", "triangle_banks"),
+            ("power_unit = \"lerp\"\npower_segments = 4\n", "power_segments"),
+            ("power_segments = 4\n", "power_segments"),
+        ] {
+            let e = PipelineConfig::from_toml("cfg.toml", text).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("`{field}`")) && e.contains("does nothing here") && e.contains("leave"),
+                "{e}"
+            );
+            let c: PipelineConfig = toml::from_str(text).unwrap();
+            let c = c.canonical();
+            assert_eq!(c.inert_field(), None);
+            c.validate("canonical").unwrap();
+        }
+        PipelineConfig::from_toml("cfg.toml", "triangle_banks = 4\n").unwrap();
+        PipelineConfig::from_toml("cfg.toml", "power_unit = \"segmented\"\npower_segments = 4\n").unwrap();
+        let d = PipelineConfig::default();
+        assert_eq!(d.clone().canonical().hash(), d.hash());
     }
 }

@@ -85,13 +85,37 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 }
 
 /// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
+///
+/// The parser's message names neither the key nor, at a missing value, anything at all
+/// (`shininess =` at the end of a file gives an empty one), so the key is read off the line
+/// the error points into and a missing value is said in words.
 pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Error {
-    let (line, col) = e.span().map_or((1, 1), |s| line_col(text, s.start));
+    let start = e.span().map_or(0, |s| s.start.min(text.len()));
+    let (line, col) = line_col(text, start);
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    let (before, after) = (&text[line_start..start], &text[start..line_end]);
+    let key = before
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"'))
+        .filter(|k| !k.is_empty() && !k.starts_with('#') && !k.starts_with('['));
+    let mut msg = e.message().trim().to_string();
+    if let Some(k) = key {
+        if before.trim_end().ends_with('=') && after.trim().is_empty() {
+            msg = format!("`{k}` has no value after `=`");
+        } else if msg.is_empty() {
+            msg = format!("`{k}`: this value cannot be read");
+        } else {
+            msg = format!("`{k}`: {msg}");
+        }
+    } else if msg.is_empty() {
+        msg = "the file cannot be read as TOML here".to_string();
+    }
     Error::Input {
         file: file.to_string(),
         line,
         col,
-        msg: e.message().trim().to_string(),
+        msg,
         fix: fix.to_string(),
     }
 }

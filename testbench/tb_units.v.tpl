@@ -24,23 +24,37 @@ module tb_units;
     integer failed = 0;
     reg ok;
 
+    // Exit code 1 when anything failed or the run gave up, for scripts and FuseSoC: the
+    // run's last line is then {{EXIT_MARK}}, which gbump's verdict reads past. Verilator's
+    // --binary main exits 0 after $finish and aborts on $fatal, so there the summary line
+    // (or a FATAL line) is the verdict.
+    reg gave_up = 1'b0;
+    task end_run(input bad);
+        begin
+`ifndef VERILATOR
+            if (bad) $fatal(1, "{{EXIT_MARK}}");
+`endif
+            $finish;
+        end
+    endtask
+
     task finish_run;
         begin
             $display("%0d passed, %0d failed", passed, failed);
             if (passed + failed == 0) $display("FATAL: no vectors were checked");
-            $finish;
+            end_run(gave_up || failed > 0 || passed + failed == 0);
         end
     endtask
 
     initial begin
         if (!$value$plusargs("max_errors=%d", max_errors)) max_errors = 20;
-        if (!$value$plusargs("unit=%s", unit)) begin $display("FATAL: +unit=NAME is missing"); $finish; end
-        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); $finish; end
-        if (!$value$plusargs("table=%s", table_file)) begin $display("FATAL: +table=FILE is missing"); $finish; end
+        if (!$value$plusargs("unit=%s", unit)) begin $display("FATAL: +unit=NAME is missing"); end_run(1); end
+        if (!$value$plusargs("vectors=%s", vec_file)) begin $display("FATAL: +vectors=FILE is missing"); end_run(1); end
+        if (!$value$plusargs("table=%s", table_file)) begin $display("FATAL: +table=FILE is missing"); end_run(1); end
         if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_units); end
         $readmemh(table_file, table_mem);
         fin = $fopen(vec_file, "r");
-        if (fin == 0) begin $display("FATAL: cannot open %0s", vec_file); $finish; end
+        if (fin == 0) begin $display("FATAL: cannot open %0s", vec_file); end_run(1); end
         @(negedge clk);
         for (i = 0; i < POWER_TABLE_WORDS; i = i + 1) begin
             power_table_we = 1'b1; power_table_waddr = i; power_table_wdata = table_mem[i];
@@ -66,6 +80,9 @@ module tb_units;
             n = n + 1;
             code = $fscanf(fin, "%h\n", rec);
         end
+        // The loop stops at the end of the file or at a character that is not a hex digit (the
+        // part of its line before it was read as a record).
+        if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n); gave_up = 1'b1; end
         finish_run;
     end
 endmodule

@@ -300,6 +300,36 @@ fn cases() -> Vec<Case> {
             vec!["normal_bits", "3..=16"],
         ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
+        (
+            "a key with no value at the end of the file",
+            cfg("lh_bits = 16\nshininess = "),
+            render_cfg(),
+            vec!["c.toml:2:", "`shininess` has no value"],
+        ),
+        (
+            "a key with no value before the next line",
+            cfg("lh_bits =\nshininess = 8\n"),
+            render_cfg(),
+            vec!["c.toml:1:", "`lh_bits` has no value"],
+        ),
+        (
+            "triangle banks with per-fragment state",
+            cfg("bump_state = \"fragment\"\ntriangle_banks = 4\n"),
+            render_cfg(),
+            vec!["c.toml", "`triangle_banks`", "does nothing here", "leave"],
+        ),
+        (
+            "segments of a power table",
+            cfg("power_unit = \"table\"\npower_segments = 4\n"),
+            render_cfg(),
+            vec!["c.toml", "`power_segments`", "does nothing here"],
+        ),
+        (
+            "a broken scene file shown",
+            scene(r("size = [256, 128]", "size = ")),
+            vec!["scenes", "--show", "s.toml"],
+            vec!["s.toml:", "`size` has no value"],
+        ),
         ("dot_frac_bits 64", cfg("dot_frac_bits = 64\n"), render_cfg(), vec!["dot_frac_bits", "2..=16"]),
         (
             "negative width",

@@ -82,3 +82,28 @@ fn the_checker_catches_a_wrong_flag() {
     assert!(problems(&cli, "--version").is_empty());
     assert!(!problems(&cli, "--nosuch").is_empty());
 }
+
+/// Every file the README's commands name with `--config` or `--space` exists in the
+/// repository, apart from the placeholder `my.toml` the reader writes.
+#[test]
+fn files_the_readme_names_exist() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let mut missing = Vec::new();
+    let mut seen = 0;
+    for flag in ["--config ", "--space "] {
+        for (i, _) in readme.match_indices(flag) {
+            let rest = &readme[i + flag.len()..];
+            let word: String = rest.chars().take_while(|c| !c.is_whitespace() && !"`)|,".contains(*c)).collect();
+            if !word.ends_with(".toml") || word == "my.toml" || word.contains("FILE") {
+                continue;
+            }
+            seen += 1;
+            if !root.join(&word).exists() {
+                missing.push(word);
+            }
+        }
+    }
+    assert!(seen > 0, "the README names no configuration file");
+    assert!(missing.is_empty(), "the README names files that do not exist: {missing:?}");
+}

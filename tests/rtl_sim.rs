@@ -726,6 +726,96 @@ fn a_testbench_given_no_vectors_fails() {
     assert!(e.contains("checked no vectors"), "{e}");
 }
 
+/// A set run alone carries its configuration: no --config or --scene needed to regress a
+/// scene's vectors, and another configuration given is refused with the way out.
+#[test]
+fn a_set_run_alone_is_regressed_under_its_manifests_configuration() {
+    let dir = tempfile::tempdir().unwrap();
+    gbump()
+        .args([
+            "vectors",
+            "--scene",
+            "torus_caps",
+            "--source",
+            "random:40",
+            "--target",
+            "top",
+            "--format",
+            "hex",
+            "--out",
+        ])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let hash = gbump::scene::pick_config(None, Some("torus_caps")).unwrap().hash();
+    let o = gbump()
+        .args(["regress", "--sim", "icarus", "--work", "target/test-regress/alone", "--vectors"])
+        .arg(dir.path())
+        .assert()
+        .success();
+    let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert!(
+        out.contains(&format!("configuration {hash} from")) && out.contains("0 failing run(s)"),
+        "{out}"
+    );
+    let o = gbump()
+        .args(["regress", "--sim", "icarus", "--work", "target/test-regress/alone", "--vectors"])
+        .arg(dir.path())
+        .args(["--scene", "teapot_hat"])
+        .assert()
+        .failure();
+    let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+    assert!(err.contains("run the set alone"), "{err}");
+}
+
+/// The generated testbench, run by hand as FuseSoC or a script would: exit code 0 only when
+/// every vector passed; a mismatch, a line that is not hex digits, or a file that does not
+/// open gives 1, and gbump's own verdict of the same runs still says what failed.
+#[test]
+fn the_testbench_exit_code_is_its_verdict() {
+    let cfg = gbump::PipelineConfig::default();
+    let work = std::path::absolute(root().join("target/test-regress/exit_code")).unwrap();
+    let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
+    let exe = Icarus
+        .build(
+            &work.join("build"),
+            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+            &rtl,
+        )
+        .unwrap();
+    let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
+    let good = std::fs::read_to_string(root().join("vectors/corners_top.hex")).unwrap();
+    let run = |name: &str, text: &str| {
+        let f = work.join(name);
+        std::fs::write(&f, text).unwrap();
+        let plus = [format!("+vectors={}", f.display()), format!("+table={}", table.display())];
+        let st = std::process::Command::new("vvp").arg("-n").arg(&exe).args(&plus).output().unwrap();
+        (st.status.code(), Icarus.run(&exe, &plus, None, &work, name))
+    };
+    let (code, v) = run("good.hex", &good);
+    assert_eq!(code, Some(0));
+    assert_eq!(v.unwrap().failed, 0);
+    let mut lines: Vec<String> = good.lines().map(str::to_string).collect();
+    // One bit of the expected colour flipped is one mismatch.
+    let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").lsb as usize;
+    let at = lines[2].len() - 1 - out / 4;
+    let d = lines[2].as_bytes()[at] as char;
+    let flipped = char::from_digit(d.to_digit(16).unwrap() ^ (1 << (out % 4)), 16).unwrap();
+    lines[2].replace_range(at..at + 1, &flipped.to_string());
+    let (code, v) = run("mismatch.hex", &(lines.join("\n") + "\n"));
+    assert_eq!(code, Some(1));
+    assert_eq!(v.unwrap().failed, 1, "the verdict reads past the exit line");
+    lines[2] = good.lines().nth(2).unwrap().to_string();
+    lines[4].replace_range(3..4, "g");
+    let (code, v) = run("malformed.hex", &(lines.join("\n") + "\n"));
+    assert_eq!(code, Some(1));
+    let e = v.unwrap_err().to_string();
+    assert!(e.contains("not a hex digit, in or after record 5"), "{e}");
+    let plus = [format!("+vectors={}", work.join("absent.hex").display())];
+    let st = std::process::Command::new("vvp").arg("-n").arg(&exe).args(&plus).output().unwrap();
+    assert_eq!(st.status.code(), Some(1), "{}", String::from_utf8_lossy(&st.stdout));
+}
+
 fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {
     let work = tempfile::tempdir().unwrap();
     let exe = work.path().join("rb.vvp");

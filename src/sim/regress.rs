@@ -197,7 +197,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
         let (m, dir) = verify(manifest)?;
         if m.config_hash != cfg.hash() {
             return Err(Error::Other(format!(
-                "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or pass its config",
+                "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or run the set alone (without --config or --scene its manifest's configuration is used), or pass the same --config/--scene the set was made with",
                 manifest.display(),
                 m.config_hash,
                 cfg.hash()

@@ -44,7 +44,12 @@ pub fn simulator_warnings(log: &str) -> Vec<&str> {
 /// Turn a finished run into an outcome, or an error when the testbench did not report, gave
 /// up (a FATAL line), or the simulator warned.
 pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> {
-    let warned = simulator_warnings(&log);
+    // A failed run's testbench ends with `$fatal` (exit code 1); what failed is above it.
+    let judged = match log.find(crate::rtlgen::testbench::EXIT_MARK) {
+        Some(at) => &log[..log[..at].rfind('\n').map_or(0, |i| i + 1)],
+        None => &log[..],
+    };
+    let warned = simulator_warnings(judged);
     if !warned.is_empty() {
         return Err(Error::Other(format!(
             "{what}: the simulator warned, so the run does not count (a warning means it went on with contents nobody meant):\n{}\n  fix: {}",
@@ -67,7 +72,7 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
             tail(&log, 10)
         )));
     }
-    if let Some(fatal) = log.lines().find(|l| l.trim_start().starts_with("FATAL")) {
+    if let Some(fatal) = judged.lines().find(|l| l.trim_start().starts_with("FATAL")) {
         return Err(Error::Other(format!("{what}: the testbench gave up: {}", fatal.trim())));
     }
     match parse_summary(&log) {

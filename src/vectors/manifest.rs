@@ -99,7 +99,8 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     let file = manifest.display().to_string();
-    let regen = format!("regenerate the set with: {}", m.command);
+    let dir = manifest.parent().unwrap_or(Path::new("."));
+    let regen = format!("regenerate the set with: {}", regenerate_into(&m.command, dir));
     m.config.validate(&file)?;
     if m.config.hash() != m.config_hash {
         return Err(Error::field(
@@ -190,27 +191,100 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
     for f in files.into_iter().flatten() {
         crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
     }
+    let regen = regenerate_into(&m.command, &dir);
     for f in files.into_iter().flatten() {
         let p = dir.join(&f.name);
         let (bytes, sha) = sha256_file(&p)?;
         if bytes != f.bytes || sha != f.sha256 {
             return Err(Error::Other(format!(
-                "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): truncated, corrupted or from another run\n  fix: regenerate with: {}",
-                p.display(), manifest.display(), bytes, &sha[..12], f.bytes, &f.sha256[..12.min(f.sha256.len())], m.command
+                "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): truncated, corrupted or from another run\n  fix: regenerate with: {regen}",
+                p.display(), manifest.display(), bytes, &sha[..12], f.bytes, &f.sha256[..12.min(f.sha256.len())]
             )));
         }
     }
     if let Some(b) = &m.bin {
         if b.bytes != m.count * m.record_bytes as u64 {
             return Err(Error::Other(format!(
-                "{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {}",
+                "{}: {} bytes is not {} records of {} bytes\n  fix: regenerate with: {regen}",
                 dir.join(&b.name).display(),
                 b.bytes,
                 m.count,
                 m.record_bytes,
-                m.command
             )));
         }
     }
+    // A checksum proves only that the file is the one the manifest names; a manifest edited
+    // beside an edited file proves nothing, so the text records are read as the simulators
+    // will read them: as many lines as the set's count, each one record's digits, no bit
+    // above the record.
+    if let Some(h) = &m.hex {
+        check_hex_records(&dir.join(&h.name), &m, &regen)?;
+    }
     Ok((m, dir))
+}
+
+/// `command` (the one that wrote a set) writing into `dir` instead of its own `--out`, so
+/// the fix a failed check prints regenerates the set it found wherever it now lies.
+pub fn regenerate_into(command: &str, dir: &Path) -> String {
+    let d = dir.display().to_string();
+    let d = if d.contains(char::is_whitespace) { format!("'{d}'") } else { d };
+    let mut words: Vec<String> = command.split_whitespace().map(str::to_string).collect();
+    match words.iter().position(|w| w == "--out" || w.starts_with("--out=")) {
+        Some(i) if words[i] == "--out" && i + 1 < words.len() => words[i + 1] = d,
+        Some(i) => words[i] = format!("--out={d}"),
+        None => words.extend(["--out".to_string(), d]),
+    }
+    words.join(" ")
+}
+
+/// Every line of a set's text records: `m.count` lines of `hex_digits` hex digits whose
+/// value fits `record_bits`.
+fn check_hex_records(p: &Path, m: &Manifest, regen: &str) -> Result<()> {
+    use std::io::BufRead;
+    let digits = (m.record_bits as usize).div_ceil(4);
+    // The top digit holds this many of the record's bits.
+    let top_bits = m.record_bits as usize - 4 * (digits - 1);
+    let bad = |line: u64, what: String| Error::Input {
+        file: p.display().to_string(),
+        line: line as usize,
+        col: 1,
+        msg: what,
+        fix: format!("the set is not as `gbump vectors` wrote it; regenerate with: {regen}"),
+    };
+    let f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
+    let mut n = 0u64;
+    for line in std::io::BufReader::with_capacity(1 << 20, f).split(b'\n') {
+        let line = line.map_err(|e| Error::io(p, e))?;
+        n += 1;
+        if n > m.count {
+            return Err(bad(n, format!("more records than the {} the manifest counts", m.count)));
+        }
+        if line.len() != digits {
+            return Err(bad(
+                n,
+                format!(
+                    "{} characters; a record of {} bits is {digits} hex digits",
+                    line.len(),
+                    m.record_bits
+                ),
+            ));
+        }
+        if let Some(k) = line.iter().position(|c| !c.is_ascii_hexdigit()) {
+            return Err(bad(n, format!("character {} ({:?}) is not a hex digit", k + 1, line[k] as char)));
+        }
+        let top = (line[0] as char).to_digit(16).unwrap_or(0);
+        if top >> top_bits != 0 {
+            return Err(bad(
+                n,
+                format!(
+                    "the first digit {:?} sets a bit above the record's {} bits",
+                    line[0] as char, m.record_bits
+                ),
+            ));
+        }
+    }
+    if n != m.count {
+        return Err(bad(n, format!("{n} records; the manifest counts {}", m.count)));
+    }
+    Ok(())
 }

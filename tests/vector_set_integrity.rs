@@ -1,0 +1,92 @@
+//! A vector set's text records are read as a simulator will read them, even when an edited
+//! manifest agrees with an edited file (checksums prove only that the two match), and a
+//! failed check's fix regenerates the set where it now lies.
+
+use gbump::vectors::manifest::{sha256_file, Manifest};
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The checked-in corner set copied to `dir`.
+fn corner_set(dir: &Path) -> PathBuf {
+    for f in std::fs::read_dir(root().join("vectors")).unwrap() {
+        let p = f.unwrap().path();
+        if p.file_name().unwrap().to_string_lossy().starts_with("corners_top") {
+            std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
+        }
+    }
+    dir.join("corners_top.json")
+}
+
+/// Replace the set's text records with `text` and make the manifest agree with it.
+fn edit(manifest: &Path, text: &str) {
+    let dir = manifest.parent().unwrap();
+    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(manifest).unwrap()).unwrap();
+    let hex = m.hex.as_mut().unwrap();
+    std::fs::write(dir.join(&hex.name), text).unwrap();
+    (hex.bytes, hex.sha256) = sha256_file(&dir.join(&hex.name)).unwrap();
+    std::fs::write(manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+}
+
+#[test]
+fn text_records_are_read_whole_even_when_the_manifest_agrees() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let (m, _) = gbump::vectors::verify(&manifest).expect("the checked-in set verifies");
+    let text = std::fs::read_to_string(dir.path().join(&m.hex.as_ref().unwrap().name)).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let join = |ls: &[String]| ls.iter().map(|l| format!("{l}\n")).collect::<String>();
+    let owned: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    let top_bits = m.record_bits as usize - 4 * (lines[0].len() - 1);
+    let mut cases: Vec<(String, Vec<String>, &str)> = Vec::new();
+    let mut fewer = owned.clone();
+    fewer.remove(3);
+    cases.push(("a record deleted".into(), fewer, "records; the manifest counts"));
+    let mut more = owned.clone();
+    more.push(owned[0].clone());
+    cases.push(("a record added".into(), more, "more records than"));
+    let mut bad = owned.clone();
+    bad[4].replace_range(7..8, "g");
+    cases.push(("a non-hex digit".into(), bad, "is not a hex digit"));
+    let mut long = owned.clone();
+    long[5].push('0');
+    cases.push(("a digit too many".into(), long, "characters; a record of"));
+    let mut short = owned.clone();
+    short[5].pop();
+    cases.push(("a digit too few".into(), short, "characters; a record of"));
+    if top_bits < 4 {
+        let mut high = owned.clone();
+        high[6].replace_range(0..1, "f");
+        cases.push(("a bit above the record".into(), high, "above the record"));
+    }
+    for (what, ls, says) in cases {
+        edit(&manifest, &join(&ls));
+        let e = gbump::vectors::verify(&manifest).expect_err(&what).to_string();
+        assert!(
+            e.contains(says) && e.contains("corners_top.hex:") && e.contains("regenerate"),
+            "{what}: {e}"
+        );
+    }
+    edit(&manifest, &join(&owned));
+    gbump::vectors::verify(&manifest).expect("the set restored verifies");
+}
+
+#[test]
+fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let hex = dir.path().join("corners_top.hex");
+    let text = std::fs::read_to_string(&hex).unwrap();
+    std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    let fix = e.lines().find(|l| l.contains("fix:")).unwrap_or_else(|| panic!("{e}"));
+    assert!(fix.contains(&format!("--out {}", dir.path().display())), "{e}");
+    assert!(!fix.contains("--out vectors"), "{e}");
+    // The rewrite keeps every other word and adds --out where the command had none.
+    let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source corners --out=v --level 2", Path::new("/x y"));
+    assert_eq!(r, "gbump vectors --source corners --out='/x y' --level 2");
+    let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source corners", Path::new("/s"));
+    assert_eq!(r, "gbump vectors --source corners --out /s");
+}
