@@ -90,3 +90,22 @@ fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
     let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source corners", Path::new("/s"));
     assert_eq!(r, "gbump vectors --source corners --out /s");
 }
+
+#[test]
+fn a_binary_record_with_a_bit_above_its_width_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    assert!(m.record_bits % 8 != 0, "the default record has padding bits ({} bits)", m.record_bits);
+    let bin = dir.path().join(&m.bin.as_ref().unwrap().name);
+    let mut b = std::fs::read(&bin).unwrap();
+    let r = m.record_bytes as usize;
+    // Record 3's last byte, its top bit: padding the harness would drop.
+    b[4 * r - 1] |= 0x80;
+    std::fs::write(&bin, &b).unwrap();
+    let e = m.bin.as_mut().unwrap();
+    (e.bytes, e.sha256) = sha256_file(&bin).unwrap();
+    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    let err = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    assert!(err.contains("record 3 sets a bit above the record's"), "{err}");
+}

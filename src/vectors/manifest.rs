@@ -64,6 +64,12 @@ pub fn columns(l: &Layout) -> Vec<ColumnEntry> {
 
 /// sha256 of a file, hex.
 pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
+    sha256_visit(p, |_, _| {})
+}
+
+/// [`sha256_file`], handing every block read to `see` with its offset in the file (so a
+/// check of the contents costs no second read).
+fn sha256_visit(p: &Path, mut see: impl FnMut(u64, &[u8])) -> Result<(u64, String)> {
     let mut f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
     let mut h = Sha256::new();
     let mut buf = vec![0u8; 1 << 20];
@@ -73,10 +79,47 @@ pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
         if k == 0 {
             break;
         }
+        see(n, &buf[..k]);
         n += k as u64;
         h.update(&buf[..k]);
     }
     Ok((n, h.finalize().iter().map(|b| format!("{b:02x}")).collect()))
+}
+
+/// The first binary record (0-based) whose last byte sets a bit above the record's bits:
+/// the harness would drop it unseen, so a file carrying one is not what the writer made.
+struct PaddingCheck {
+    record_bytes: u64,
+    /// The bits of a record's last byte that must be zero.
+    mask: u8,
+    first_bad: Option<u64>,
+}
+
+impl PaddingCheck {
+    fn new(m: &Manifest) -> PaddingCheck {
+        let used = m.record_bits % 8;
+        PaddingCheck {
+            record_bytes: m.record_bytes.max(1) as u64,
+            mask: if used == 0 { 0 } else { !((1u8 << used) - 1) },
+            first_bad: None,
+        }
+    }
+
+    fn see(&mut self, at: u64, block: &[u8]) {
+        if self.mask == 0 || self.first_bad.is_some() {
+            return;
+        }
+        let r = self.record_bytes;
+        // The offset of the first record end within this block.
+        let mut i = (r - 1 - at % r) % r;
+        while (i as usize) < block.len() {
+            if block[i as usize] & self.mask != 0 {
+                self.first_bad = Some((at + i) / r);
+                return;
+            }
+            i += r;
+        }
+    }
 }
 
 /// What a set of `target` names about its module: (module name, latency, initiation
@@ -192,9 +235,15 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
     }
     let regen = regenerate_into(&m.command, &dir);
+    let mut padding = PaddingCheck::new(&m);
     for f in files.into_iter().flatten() {
         let p = dir.join(&f.name);
-        let (bytes, sha) = sha256_file(&p)?;
+        let is_bin = m.bin.as_ref().is_some_and(|b| std::ptr::eq(b, f));
+        let (bytes, sha) = sha256_visit(&p, |at, block| {
+            if is_bin {
+                padding.see(at, block)
+            }
+        })?;
         if bytes != f.bytes || sha != f.sha256 {
             return Err(Error::Other(format!(
                 "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): truncated, corrupted or from another run\n  fix: regenerate with: {regen}",
@@ -212,6 +261,13 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
                 m.record_bytes,
             )));
         }
+    }
+    if let (Some(b), Some(r)) = (&m.bin, padding.first_bad) {
+        return Err(Error::Other(format!(
+            "{}: record {r} sets a bit above the record's {} bits (its last byte's top bits are padding, always zero)\n  fix: the set is not as `gbump vectors` wrote it; regenerate with: {regen}",
+            dir.join(&b.name).display(),
+            m.record_bits
+        )));
     }
     // A checksum proves only that the file is the one the manifest names; a manifest edited
     // beside an edited file proves nothing, so the text records are read as the simulators
