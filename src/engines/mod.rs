@@ -86,7 +86,8 @@ impl Engine {
             // The normalise units sit one per vector before the parallel dot products.
             cfg.light_mode = LightMode::Parallel;
         }
-        Some(cfg)
+        // Per-fragment state has no triangle banks, whatever the scene's configuration held.
+        Some(cfg.canonical())
     }
 }
 

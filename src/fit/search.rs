@@ -135,7 +135,8 @@ pub fn start(base: &PipelineConfig, kind: PowerUnitKind) -> PipelineConfig {
         // As many entries as the index has codes: the table is then exact at every input.
         _ => c.power_entries = limit("power_entries").1.min(1 << c.dot_frac_bits),
     }
-    c
+    // A base of another unit may hold segments this one has none of.
+    c.canonical()
 }
 
 /// The search's record: every candidate measured, for the front.
