@@ -416,7 +416,23 @@ impl PipelineConfig {
     /// Parse a TOML config; `file` names it in errors. Renamed fields are read under their
     /// old names too, with a warning ([`RENAMED_FIELDS`]).
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
-        // Text handed over by the C ABI or Python has the cap a file read has.
+        // Text handed over by the C ABI or Python has the cap a file read has (in parse).
+        let cfg = Self::parse(file, text)?;
+        cfg.validate(file)?;
+        Ok(cfg)
+    }
+
+    /// [`from_toml`](Self::from_toml) for a configuration a program composed (a sweep's grid
+    /// point): a field that does nothing beside another's value is set to its default instead
+    /// of refused, so the point is the hardware it describes.
+    pub fn from_toml_canonical(file: &str, text: &str) -> Result<PipelineConfig> {
+        let cfg = Self::parse(file, text)?.canonical();
+        cfg.validate(file)?;
+        Ok(cfg)
+    }
+
+    /// The fields of `text`, unchecked.
+    fn parse(file: &str, text: &str) -> Result<PipelineConfig> {
         if text.len() as u64 > crate::limits::MAX_INPUT_BYTES {
             return Err(Error::Other(format!(
                 "{file}: {} bytes of TOML, larger than MAX_INPUT_BYTES = {}; not a configuration\n  fix: give the configuration's TOML text",
@@ -425,10 +441,7 @@ impl PipelineConfig {
             )));
         }
         let text = &upgrade_names(file, text);
-        let cfg: PipelineConfig =
-            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))?;
-        cfg.validate(file)?;
-        Ok(cfg)
+        toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))
     }
 
     /// Load from a file.

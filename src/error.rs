@@ -84,6 +84,24 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// The key whose value the error points into: the word before the last `=` on the line, after
+/// any `{` or `,` of an inline table (`light = { x = }` names `x`). None on a comment, a
+/// table header or a line without `=`.
+fn key_before(before: &str) -> Option<&str> {
+    let (lhs, _) = before.rsplit_once('=')?;
+    let k = lhs.rsplit(['{', ',']).next()?.trim().trim_matches('"');
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_-.".contains(c);
+    (!k.is_empty() && k.chars().all(plain) && !before.trim_start().starts_with(['#', '['])).then_some(k)
+}
+
+/// The `[table]` (or `[[array]]`) header the text above a line last opened, if any.
+fn table_above(above: &str) -> Option<&str> {
+    above.lines().rev().map(str::trim).find(|l| l.starts_with('[')).map(|l| {
+        let l = l.split('#').next().unwrap_or(l).trim();
+        l.trim_start_matches('[').trim_end_matches(']').trim()
+    })
+}
+
 /// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
 ///
 /// The parser's message names neither the key nor, at a missing value, anything at all
@@ -95,10 +113,10 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let (before, after) = (&text[line_start..start], &text[start..line_end]);
-    let key = before
-        .split_once('=')
-        .map(|(k, _)| k.trim().trim_matches('"'))
-        .filter(|k| !k.is_empty() && !k.starts_with('#') && !k.starts_with('['));
+    let key = key_before(before).map(|k| match table_above(&text[..line_start]) {
+        Some(t) => format!("{t}.{k}"),
+        None => k.to_string(),
+    });
     let mut msg = e.message().trim().to_string();
     if let Some(k) = key {
         if before.trim_end().ends_with('=') && after.trim().is_empty() {
@@ -117,5 +135,41 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         col,
         msg,
         fix: fix.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The message of `toml_error` for `text` read as a table of integers and strings.
+    fn message(text: &str) -> String {
+        let e = toml::from_str::<toml::Table>(text).map(|_| ()).or_else(|_| {
+            // Syntax is fine: fail on a type instead, as a config's fields do.
+            #[derive(serde::Deserialize, Debug)]
+            #[allow(dead_code)]
+            struct T {
+                a: Option<u32>,
+                light: Option<std::collections::BTreeMap<String, u32>>,
+            }
+            toml::from_str::<T>(text).map(|_| ())
+        });
+        let e = e.expect_err(text);
+        match toml_error("f.toml", text, &e, "fix") {
+            Error::Input { msg, .. } => msg,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_key_is_the_one_the_error_points_into() {
+        assert_eq!(message("a =\n"), "`a` has no value after `=`");
+        let m = message("[light]\nx = 1\ny =\n");
+        assert!(m.starts_with("`light.y`"), "{m}");
+        let m = message("light = { x = 1, y = }\n");
+        assert!(m.starts_with("`y`"), "{m}");
+        // No key is made up from a comment or a header.
+        let m = message("# a = \n[light\n");
+        assert!(!m.starts_with('`'), "{m}");
     }
 }

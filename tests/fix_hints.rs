@@ -107,3 +107,26 @@ fn files_the_readme_names_exist() {
     assert!(seen > 0, "the README names no configuration file");
     assert!(missing.is_empty(), "the README names files that do not exist: {missing:?}");
 }
+
+/// Every configuration the repository carries loads as a user's would: a rule added to the
+/// loader (a refused inert field, say) must not leave a checked-in file the README or a test
+/// names behind it.
+#[test]
+fn every_checked_in_configuration_loads() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut loaded = 0;
+    let mut bad = Vec::new();
+    for dir in ["tests/configs", "tests/area_model/configs"] {
+        for e in std::fs::read_dir(root.join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "toml") {
+                loaded += 1;
+                if let Err(e) = gbump::config::PipelineConfig::load(&p) {
+                    bad.push(e.to_string());
+                }
+            }
+        }
+    }
+    assert!(loaded > 40, "{loaded} configurations found");
+    assert!(bad.is_empty(), "checked-in configurations refused:\n{}", bad.join("\n"));
+}

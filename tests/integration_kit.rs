@@ -169,11 +169,17 @@ fn filelists_work_from_any_folder_with_verilator_icarus_and_yosys() {
     }
 }
 
-/// `fusesoc run` of the generated core from another folder; the testbench's log.
-fn fusesoc(cwd: &Path, cores: &Path, target: &str, core: &str, plus: &[String]) -> String {
+/// `fusesoc run` of the generated core from another folder: whether it exited 0, and the
+/// testbench's log.
+fn fusesoc_run(cwd: &Path, cores: &Path, target: &str, core: &str, plus: &[String]) -> (bool, String) {
     let mut c = Command::new("fusesoc");
     c.arg("--cores-root").arg(cores).args(["run", "--target", target, core]).args(plus);
-    let (ok, log) = run(&mut c, cwd);
+    run(&mut c, cwd)
+}
+
+/// A `fusesoc run` that must pass; its log.
+fn fusesoc(cwd: &Path, cores: &Path, target: &str, core: &str, plus: &[String]) -> String {
+    let (ok, log) = fusesoc_run(cwd, cores, target, core, plus);
     assert!(ok, "fusesoc run --target {target}:\n{log}");
     log
 }
@@ -209,10 +215,11 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
         assert_eq!(passed_failed(&log), (400, 0), "{target}:\n{log}");
     }
     // Without the table the pipeline runs on its power-up contents (n = 16, INIT_FILE found
-    // in the simulator's folder): the n = 40 vectors must fail there.
-    let log = fusesoc(&cwd, Path::new("../cores"), "sim_icarus", &core, &[format!("--vectors={hex}")]);
+    // in the simulator's folder): the n = 40 vectors must fail there, and fusesoc with them.
+    let (ok, log) = fusesoc_run(&cwd, Path::new("../cores"), "sim_icarus", &core, &[format!("--vectors={hex}")]);
     let (_, failed) = passed_failed(&log);
     assert!(failed > 0, "n = 40 vectors passed on the n = 16 power-up table:\n{log}");
+    assert!(!ok, "fusesoc exited 0 on a failing simulation:\n{log}");
     // ... and the power-up table's own shininess passes with nothing loaded.
     top_vectors(None, "random:100", cfg.shininess, &tmp.path().join("v16"));
     let log = fusesoc(

@@ -108,3 +108,29 @@ fn one_work_folder_never_serves_one_scenes_results_for_another() {
     assert_ne!(torus, wall_shared, "the second scene was served the first scene's PSNR");
     assert_eq!(wall_shared, wall_fresh, "a shared work folder and a fresh one disagree");
 }
+
+/// A grid point whose base or grid value is inert beside its other values (segments of a
+/// table power unit) is the design it describes, not refused; points that differ only there
+/// are one design, measured once.
+#[test]
+fn grid_points_differing_only_in_an_unused_field_are_one_design() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("space.toml");
+    std::fs::write(
+        &p,
+        "scene = \"cg_wall_front\"\n[base]\npower_segments = 4\n[grid]\npower_unit = [\"table\", \"segmented\"]\ntriangle_banks = [2, 3]\nbump_state = [\"triangle\", \"fragment\"]\n",
+    )
+    .unwrap();
+    let space = gbump::measure::sweep::Space::load(&p).unwrap();
+    let cfgs = space.configs(&p.display().to_string()).unwrap();
+    // 2 units x (2 bank counts under triangle state + 1 design under fragment state).
+    assert_eq!(cfgs.len(), 6, "{:#?}", cfgs.iter().map(|c| &c.0).collect::<Vec<_>>());
+    let table = cfgs
+        .iter()
+        .filter(|(_, c)| c.power_unit == gbump::config::PowerUnitKind::Table)
+        .count();
+    assert_eq!(table, 3);
+    for (lab, c) in &cfgs {
+        assert_eq!(c.clone().canonical().hash(), c.hash(), "{lab} is not canonical");
+    }
+}

@@ -86,9 +86,33 @@ fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
     assert!(!fix.contains("--out vectors"), "{e}");
     // The rewrite keeps every other word and adds --out where the command had none.
     let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source corners --out=v --level 2", Path::new("/x y"));
-    assert_eq!(r, "gbump vectors --source corners --out='/x y' --level 2");
+    assert_eq!(r, "gbump vectors --source corners '--out=/x y' --level 2");
     let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source corners", Path::new("/s"));
     assert_eq!(r, "gbump vectors --source corners --out /s");
+    // A quoted folder is one word, whichever way it was quoted, and the result splits back
+    // into the words a shell would pass.
+    for (cmd, dir, want) in [
+        (
+            "gbump vectors --out 'my dir' --level 2",
+            "/n e w",
+            vec!["gbump", "vectors", "--out", "/n e w", "--level", "2"],
+        ),
+        (
+            "gbump vectors '--out=a b' --level 2",
+            "/c",
+            vec!["gbump", "vectors", "--out=/c", "--level", "2"],
+        ),
+        (
+            "gbump vectors --config 'it'\\''s.toml'",
+            "d",
+            vec!["gbump", "vectors", "--config", "it's.toml", "--out", "d"],
+        ),
+        // A manifest named without a folder lies in the working folder.
+        ("gbump vectors --out v", "", vec!["gbump", "vectors", "--out", "."]),
+    ] {
+        let r = gbump::vectors::manifest::regenerate_into(cmd, Path::new(dir));
+        assert_eq!(shell_words::split(&r).unwrap(), want, "{cmd} into {dir:?} gave {r}");
+    }
 }
 
 #[test]
@@ -96,7 +120,11 @@ fn a_binary_record_with_a_bit_above_its_width_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = corner_set(dir.path());
     let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
-    assert!(m.record_bits % 8 != 0, "the default record has padding bits ({} bits)", m.record_bits);
+    assert!(
+        m.record_bits % 8 != 0,
+        "the default record has padding bits ({} bits)",
+        m.record_bits
+    );
     let bin = dir.path().join(&m.bin.as_ref().unwrap().name);
     let mut b = std::fs::read(&bin).unwrap();
     let r = m.record_bytes as usize;

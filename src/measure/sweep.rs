@@ -185,9 +185,14 @@ impl Space {
         let mut out = Vec::new();
         let total = combos.len();
         let mut skipped: Vec<(String, String)> = Vec::new();
+        // Points that differ only in a field their other values make inert are one design:
+        // it is measured once, under the first point's label.
+        let mut seen = std::collections::HashSet::new();
+        let mut merged = 0;
         for (lab, t) in combos {
             let text = toml::to_string(&t).expect("table");
-            match PipelineConfig::from_toml(file, &text) {
+            match PipelineConfig::from_toml_canonical(file, &text) {
+                Ok(c) if !seen.insert(c.hash()) => merged += 1,
                 Ok(c) => out.push((lab.join(" "), c)),
                 // An invalid combination (a rule across fields) is skipped, and counted.
                 Err(Error::Field { field, msg, .. }) => skipped.push((lab.join(" "), format!("{field}: {msg}"))),
@@ -198,6 +203,11 @@ impl Space {
             eprintln!(
                 "note: {file}: {} of {total} grid points are invalid combinations and skipped (the first, {lab}: {why})",
                 skipped.len()
+            );
+        }
+        if merged > 0 {
+            eprintln!(
+                "note: {file}: {merged} of {total} grid points repeat another's design (a field their other values leave unused) and are measured once"
             );
         }
         if out.is_empty() {

@@ -37,7 +37,7 @@ pub fn rom_files(
     let cmd = format!(
         "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
         config_args,
-        out.display()
+        crate::cli::quoted(&out.display().to_string())
     )
     .replace("  ", " ");
     let hash = &cfg.hash()[..8];

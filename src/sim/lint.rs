@@ -22,7 +22,11 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str, say: &mut dyn Fn
     let dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
     let super::rtl_files::Rtl {
         sources: v, waivers: vlt, ..
-    } = super::rtl_files::write_rtl(cfg, &dir, &format!("gbump rtl {pick_args} --out {}", dir.display()))?;
+    } = super::rtl_files::write_rtl(
+        cfg,
+        &dir,
+        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&dir.display().to_string())),
+    )?;
     let files: Vec<String> = v.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let waivers: Vec<String> = vlt.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let mut problems = Vec::new();

@@ -197,7 +197,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
         let (m, dir) = verify(manifest)?;
         if m.config_hash != cfg.hash() {
             return Err(Error::Other(format!(
-                "{}: vectors are for config {} but the RTL is config {}\n  fix: regenerate the vectors for this configuration, or run the set alone (without --config or --scene its manifest's configuration is used), or pass the same --config/--scene the set was made with",
+                "{}: vectors are for config {} but the RTL is config {}\n  fix: sets of different configurations run in separate invocations: run each as `gbump regress --vectors MANIFEST` alone (without --config or --scene its manifest's configuration is used), pass the --config/--scene the set was made with, or regenerate the vectors for this configuration",
                 manifest.display(),
                 m.config_hash,
                 cfg.hash()

@@ -64,7 +64,11 @@ pub fn regress(
         given
     };
     let rtl_dir = o.work.join(format!("rtl_{h}"));
-    let rtl = write_rtl(cfg, &rtl_dir, &format!("gbump rtl {pick_args} --out {}", rtl_dir.display()))?;
+    let rtl = write_rtl(
+        cfg,
+        &rtl_dir,
+        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&rtl_dir.display().to_string())),
+    )?;
     let results = run_checked(cfg, &sets, &rtl, o)?;
     let t = super::summary::table(&results, say)?;
     if let Some(j) = junit {

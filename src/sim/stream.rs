@@ -387,7 +387,11 @@ pub fn regress_stream(
 /// its RTL in `work/rtl_HASH`, the build cached under `work/build`.
 pub fn regress_harness(cfg: &PipelineConfig, pick_args: &str, work: &Path) -> Result<PathBuf> {
     let rtl_dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
-    let rtl = write_rtl(cfg, &rtl_dir, &format!("gbump rtl {pick_args} --out {}", rtl_dir.display()))?;
+    let rtl = write_rtl(
+        cfg,
+        &rtl_dir,
+        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&rtl_dir.display().to_string())),
+    )?;
     build(cfg, work, &rtl)
 }
 

@@ -142,9 +142,13 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     let file = manifest.display().to_string();
-    let dir = manifest.parent().unwrap_or(Path::new("."));
-    let regen = format!("regenerate the set with: {}", regenerate_into(&m.command, dir));
-    m.config.validate(&file)?;
+    let dir = folder_of(manifest);
+    let regen = format!("regenerate the set with: {}", regenerate_into(&m.command, &dir));
+    // A configuration refused by today's rules (a set from an older gbump, an edited manifest)
+    // is fixed by regenerating the set, not by editing the manifest.
+    m.config
+        .validate(&file)
+        .map_err(|e| Error::field(&file, "config", e.to_string(), &regen))?;
     if m.config.hash() != m.config_hash {
         return Err(Error::field(
             &file,
@@ -209,7 +213,14 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
 
 /// Load a manifest and check every file it names: present, right size, same sha256.
 pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
-    let dir = manifest.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let dir = folder_of(manifest);
+    let m = read_fields(manifest)?;
+    check_files(manifest, m, dir)
+}
+
+/// A manifest read and its fields checked against each other (not its data files: see
+/// [`verify`]), for a caller that only needs its configuration before the files are read.
+pub fn read_fields(manifest: &Path) -> Result<Manifest> {
     let text = crate::limits::read_text_as(
         manifest,
         "a gbump vector manifest",
@@ -223,6 +234,15 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         fix: "regenerate the set with `gbump vectors`".into(),
     })?;
     check_fields(manifest, &m)?;
+    // A manifest names files beside itself, never elsewhere.
+    for f in [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)].into_iter().flatten() {
+        crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
+    }
+    Ok(m)
+}
+
+/// The data files of a manifest whose fields were checked: names, sizes, checksums, records.
+fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, PathBuf)> {
     if m.count == 0 {
         return Err(Error::Other(format!(
             "{}: the set holds no vectors\n  fix: a regression over zero vectors proves nothing; regenerate with a non-empty source",
@@ -230,10 +250,6 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
         )));
     }
     let files = [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)];
-    // A manifest names files beside itself, never elsewhere.
-    for f in files.into_iter().flatten() {
-        crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
-    }
     let regen = regenerate_into(&m.command, &dir);
     let mut padding = PaddingCheck::new(&m);
     for f in files.into_iter().flatten() {
@@ -279,18 +295,30 @@ pub fn verify(manifest: &Path) -> Result<(Manifest, PathBuf)> {
     Ok((m, dir))
 }
 
-/// `command` (the one that wrote a set) writing into `dir` instead of its own `--out`, so
-/// the fix a failed check prints regenerates the set it found wherever it now lies.
+/// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
+/// its own `--out`, so the fix a failed check prints regenerates the set it found wherever it
+/// now lies. Words are split and re-quoted as a POSIX shell would, so a quoted `--out 'my dir'`
+/// is one word; a command that does not split (an edited manifest) gets `--out` appended.
 pub fn regenerate_into(command: &str, dir: &Path) -> String {
     let d = dir.display().to_string();
-    let d = if d.contains(char::is_whitespace) { format!("'{d}'") } else { d };
-    let mut words: Vec<String> = command.split_whitespace().map(str::to_string).collect();
+    let d = if d.is_empty() { ".".to_string() } else { d };
+    let Ok(mut words) = shell_words::split(command) else {
+        return format!("{command} --out {}", crate::cli::quoted(&d));
+    };
     match words.iter().position(|w| w == "--out" || w.starts_with("--out=")) {
         Some(i) if words[i] == "--out" && i + 1 < words.len() => words[i + 1] = d,
         Some(i) => words[i] = format!("--out={d}"),
         None => words.extend(["--out".to_string(), d]),
     }
-    words.join(" ")
+    words.iter().map(|w| crate::cli::quoted(w)).collect::<Vec<_>>().join(" ")
+}
+
+/// The folder a manifest's files lie in: its parent, `.` for a bare file name.
+fn folder_of(manifest: &Path) -> PathBuf {
+    match manifest.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
 }
 
 /// Every line of a set's text records: `m.count` lines of `hex_digits` hex digits whose
