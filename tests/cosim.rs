@@ -34,6 +34,17 @@ fn rtl(config: Option<&str>, dir: &Path) {
     assert!(cmd.output().unwrap().status.success());
 }
 
+/// The most recently built file called `name` under `dir`.
+fn newest(dir: &Path, name: &str) -> PathBuf {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path().join(name))
+        .filter(|p| p.is_file())
+        .max_by_key(|p| p.metadata().unwrap().modified().unwrap())
+        .unwrap_or_else(|| panic!("no {name} under {}", dir.display()))
+}
+
 /// A work folder per test, so the two tests (and their Verilator builds) run side by side.
 fn work(name: &str) -> PathBuf {
     let w = root().join("target/test-cosim").join(name);
@@ -101,6 +112,17 @@ fn cosim_catches_mutants() {
         !ok && log.contains("MISMATCH fragment") && log.contains("replay the seed"),
         "mutant passed:\n{log}"
     );
+    // The lockstep binary run alone, as a user's script would, exits 1 on the mismatch.
+    let exe = newest(&w.join("builds"), "tb_cosim");
+    let cfg_file = w.join(format!("cosim_config_{}.toml", gbump::PipelineConfig::default().hash()));
+    let o = std::process::Command::new(&exe)
+        .args([format!("+config={}", cfg_file.display()), "+seed=1".into(), "+count=2000".into()])
+        .current_dir(&w)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{}:\n{out}", exe.display());
+    assert!(out.contains(gbump::rtlgen::testbench::EXIT_MARK), "{out}");
 
     // Another configuration's RTL with the same ports (truncating where the model rounds) is
     // refused by its interface's hash before anything is built.

@@ -216,10 +216,12 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
     }
     // Without the table the pipeline runs on its power-up contents (n = 16, INIT_FILE found
     // in the simulator's folder): the n = 40 vectors must fail there, and fusesoc with them.
-    let (ok, log) = fusesoc_run(&cwd, Path::new("../cores"), "sim_icarus", &core, &[format!("--vectors={hex}")]);
-    let (_, failed) = passed_failed(&log);
-    assert!(failed > 0, "n = 40 vectors passed on the n = 16 power-up table:\n{log}");
-    assert!(!ok, "fusesoc exited 0 on a failing simulation:\n{log}");
+    for target in ["sim_icarus", "sim_verilator"] {
+        let (ok, log) = fusesoc_run(&cwd, Path::new("../cores"), target, &core, &[format!("--vectors={hex}")]);
+        let (_, failed) = passed_failed(&log);
+        assert!(failed > 0, "{target}: n = 40 vectors passed on the n = 16 power-up table:\n{log}");
+        assert!(!ok, "{target}: fusesoc exited 0 on a failing simulation:\n{log}");
+    }
     // ... and the power-up table's own shininess passes with nothing loaded.
     top_vectors(None, "random:100", cfg.shininess, &tmp.path().join("v16"));
     let log = fusesoc(

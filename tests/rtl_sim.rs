@@ -776,44 +776,65 @@ fn the_testbench_exit_code_is_its_verdict() {
     let cfg = gbump::PipelineConfig::default();
     let work = std::path::absolute(root().join("target/test-regress/exit_code")).unwrap();
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let exe = Icarus
-        .build(
-            &work.join("build"),
-            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
-            &rtl,
-        )
-        .unwrap();
     let table = root().join(format!("rtl/power_table_{}.hex", &cfg.hash()[..8]));
     let good = std::fs::read_to_string(root().join("vectors/corners_top.hex")).unwrap();
-    let run = |name: &str, text: &str| {
-        let f = work.join(name);
-        std::fs::write(&f, text).unwrap();
-        let plus = [format!("+vectors={}", f.display()), format!("+table={}", table.display())];
-        let st = std::process::Command::new("vvp").arg("-n").arg(&exe).args(&plus).output().unwrap();
-        (st.status.code(), Icarus.run(&exe, &plus, None, &work, name))
-    };
-    let (code, v) = run("good.hex", &good);
-    assert_eq!(code, Some(0));
-    assert_eq!(v.unwrap().failed, 0);
-    let mut lines: Vec<String> = good.lines().map(str::to_string).collect();
-    // One bit of the expected colour flipped is one mismatch.
-    let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").lsb as usize;
-    let at = lines[2].len() - 1 - out / 4;
-    let d = lines[2].as_bytes()[at] as char;
-    let flipped = char::from_digit(d.to_digit(16).unwrap() ^ (1 << (out % 4)), 16).unwrap();
-    lines[2].replace_range(at..at + 1, &flipped.to_string());
-    let (code, v) = run("mismatch.hex", &(lines.join("\n") + "\n"));
-    assert_eq!(code, Some(1));
-    assert_eq!(v.unwrap().failed, 1, "the verdict reads past the exit line");
-    lines[2] = good.lines().nth(2).unwrap().to_string();
-    lines[4].replace_range(3..4, "g");
-    let (code, v) = run("malformed.hex", &(lines.join("\n") + "\n"));
-    assert_eq!(code, Some(1));
-    let e = v.unwrap_err().to_string();
-    assert!(e.contains("not a hex digit, in or after record 5"), "{e}");
-    let plus = [format!("+vectors={}", work.join("absent.hex").display())];
-    let st = std::process::Command::new("vvp").arg("-n").arg(&exe).args(&plus).output().unwrap();
-    assert_eq!(st.status.code(), Some(1), "{}", String::from_utf8_lossy(&st.stdout));
+    let sims: [(&dyn Simulator, &str); 2] = [(&Icarus, "icarus"), (&Verilator, "verilator")];
+    for (sim, name) in sims {
+        let work = work.join(name);
+        let exe = sim
+            .build(
+                &work.join("build"),
+                &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+                &rtl,
+            )
+            .unwrap();
+        // The binary as a script or FuseSoC runs it, outside gbump.
+        let direct = |plus: &[String]| {
+            let mut c = if name == "icarus" {
+                let mut c = std::process::Command::new("vvp");
+                c.arg("-n").arg(&exe);
+                c
+            } else {
+                std::process::Command::new(&exe)
+            };
+            let o = c.args(plus).current_dir(&work).output().unwrap();
+            (o.status.code(), String::from_utf8_lossy(&o.stdout).to_string())
+        };
+        let run = |file: &str, text: &str| {
+            let f = work.join(file);
+            std::fs::write(&f, text).unwrap();
+            let plus = [format!("+vectors={}", f.display()), format!("+table={}", table.display())];
+            (direct(&plus), sim.run(&exe, &plus, None, &work, file))
+        };
+        let ((code, _), v) = run("good.hex", &good);
+        assert_eq!(code, Some(0), "{name}");
+        assert_eq!(v.unwrap().failed, 0);
+        let mut lines: Vec<String> = good.lines().map(str::to_string).collect();
+        // One bit of the expected colour flipped is one mismatch.
+        let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").lsb as usize;
+        let at = lines[2].len() - 1 - out / 4;
+        let d = lines[2].as_bytes()[at] as char;
+        let flipped = char::from_digit(d.to_digit(16).unwrap() ^ (1 << (out % 4)), 16).unwrap();
+        lines[2].replace_range(at..at + 1, &flipped.to_string());
+        let ((code, log), v) = run("mismatch.hex", &(lines.join("\n") + "\n"));
+        assert_eq!(code, Some(1), "{name}: a mismatch exits 1:\n{log}");
+        assert_eq!(v.unwrap().failed, 1, "{name}: the verdict reads past the exit line");
+        lines[2] = good.lines().nth(2).unwrap().to_string();
+        lines[4].replace_range(3..4, "g");
+        let ((code, log), v) = run("malformed.hex", &(lines.join("\n") + "\n"));
+        assert_eq!(code, Some(1), "{name}:\n{log}");
+        let e = v.unwrap_err().to_string();
+        assert!(e.contains("not a hex digit, in or after record 5"), "{name}: {e}");
+        let (code, log) = direct(&[format!("+vectors={}", work.join("absent.hex").display())]);
+        assert_eq!(code, Some(1), "{name}: {log}");
+        assert!(log.contains(gbump::rtlgen::testbench::EXIT_MARK), "{name}: {log}");
+    }
+    // The README quotes the last line a failed run prints.
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    assert!(
+        readme.contains(gbump::rtlgen::testbench::EXIT_MARK),
+        "the README does not quote the exit line"
+    );
 }
 
 fn readback(hex: &Path, width: u32, depth: usize) -> Vec<u64> {

@@ -150,6 +150,7 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
     let print = format!("{}\n{}", get("PRINT", "\n"), get("PRINT_OUT", "\n"));
     let subs: Vec<(&str, String)> = vec![
         ("INIT_FILE", verilog_string(&init.display().to_string())),
+        ("EXIT_MARK", crate::rtlgen::testbench::EXIT_MARK.to_string()),
         ("LATENCY", num(j, &["latency_cycles"], file)?.to_string()),
         ("II", num(j, &["initiation_interval"], file)?.to_string()),
         ("POWER_TABLE_WORDS", num(j, &["power_table", "words"], file)?.to_string()),
