@@ -199,7 +199,8 @@ module tb_top;
             tri_valid = 1'b0;
         end
         code = $fscanf(fin, "%h\n", stim);
-        while (code == 1) begin
+        // %h also reads x, z, ? and _ digits: a record holding one is refused, not driven.
+        while (code == 1 && (^stim) !== 1'bx) begin
             if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin
                 in_valid = 1'b0;
                 for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
@@ -231,7 +232,8 @@ module tb_top;
         end
         // The loop stops at the end of the file or at a character that is not a hex digit (the
         // part of its line before it was read as a record).
-        if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n_in); gave_up = 1'b1; end
+        if (code == 1) begin $display("FATAL: %0s: record %0d holds an x, z or ? digit", vec_file, n_in + 1); gave_up = 1'b1; end
+        else if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n_in); gave_up = 1'b1; end
         in_valid = 1'b0;
         cycles = 0;
         while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end

@@ -64,7 +64,8 @@ module tb_units;
         power_table_we = 1'b0;
         n = 0;
         code = $fscanf(fin, "%h\n", rec);
-        while (code == 1) begin
+        // %h also reads x, z, ? and _ digits: a record holding one is refused, not driven.
+        while (code == 1 && (^rec) !== 1'bx) begin
             ok = 1'b1;
             lat = 1;
 {{DRIVE}}
@@ -83,7 +84,8 @@ module tb_units;
         end
         // The loop stops at the end of the file or at a character that is not a hex digit (the
         // part of its line before it was read as a record).
-        if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n); gave_up = 1'b1; end
+        if (code == 1) begin $display("FATAL: %0s: record %0d holds an x, z or ? digit", vec_file, n + 1); gave_up = 1'b1; end
+        else if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n); gave_up = 1'b1; end
         finish_run;
     end
 endmodule

@@ -130,8 +130,8 @@ pub struct TopEncoder<'a> {
     k: Lanes<'a>,
     out: Lanes<'a>,
     /// Where the fragment's stimulus columns start, when they follow one another in
-    /// [`fill_fragment`](Self::fill_fragment)'s order within 128 bits (every layout
-    /// `top_layout` makes): they are then packed in one word pair instead of lane by lane.
+    /// [`fill_fragment`](Self::fill_fragment)'s order within 120 bits (the default layout
+    /// and most others): they are then packed in one word pair instead of lane by lane.
     packed_from: Option<u32>,
 }
 
