@@ -765,7 +765,7 @@ fn a_set_run_alone_is_regressed_under_its_manifests_configuration() {
         .assert()
         .failure();
     let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
-    assert!(err.contains("run the set alone"), "{err}");
+    assert!(err.contains("run each as `gbump regress --vectors MANIFEST` alone"), "{err}");
 }
 
 /// The generated testbench, run by hand as FuseSoC or a script would: exit code 0 only when
