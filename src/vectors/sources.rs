@@ -5,7 +5,7 @@ use super::rng::SplitMix64;
 use super::targets::{TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot};
+use crate::model::{BumpState, BumpTexel, FragmentIn, LightSlot, MAX_LIGHTS};
 
 /// A parsed `--source`.
 #[derive(Clone, Debug, PartialEq)]
@@ -79,13 +79,7 @@ fn three<T>(mut f: impl FnMut() -> T) -> [T; 3] {
     [a, b, f()]
 }
 
-fn q_vec(cfg: &PipelineConfig, v: [f64; 3]) -> [i64; 3] {
-    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|c| round_half_away(c / len * one(cfg) as f64))
-        .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
-}
-
-/// `x.round() as i64` for the |x| ≤ 2^52 (and NaN, as 0) that `q_vec` makes, without the
+/// `x.round() as i64` for the |x| ≤ 2^52 (and NaN, as 0) that `unit_codes` makes, without the
 /// library call `round` is on a baseline CPU: the truncation and the remainder are exact there.
 #[inline(always)]
 fn round_half_away(x: f64) -> i64 {
@@ -131,6 +125,10 @@ unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 }
 
 /// [`random_state`]'s draws, a light's ten fixed ones (L, H, Lc and k's coin) as one block.
+/// The draws are sequential (k's second draw moves the stream); the unit vectors are then
+/// made for every light at once, lane by lane, so the square roots and divisions of all of
+/// them run side by side. Each lane is the same IEEE operations in the same order as one
+/// vector alone, so the codes do not depend on how many lanes run at once.
 #[inline(always)]
 fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     use super::rng::{range_of, unit_of};
@@ -138,25 +136,56 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
+    let n = cfg.lights as usize;
     let mut state = BumpState::default();
-    for s in state.lights.iter_mut().take(cfg.lights as usize) {
-        let x = rng.next_block::<10>();
-        let vec = |at: usize| {
-            if raw {
-                [0, 1, 2].map(|i| range_of(x[at + i], lh.min_raw(), lh.max_raw()))
-            } else {
-                let u = |i: usize| unit_of(x[at + i]);
-                q_vec(cfg, [u(0) * 2.0 - 1.0, u(1) * 2.0 - 1.0, u(2) * 1.2 - 0.2])
-            }
-        };
-        *s = LightSlot {
-            l: vec(0),
-            h: vec(3),
-            lc: [6, 7, 8].map(|i| range_of(x[i], 0, cmax) as u32),
-            k: if unit_of(x[9]) < 0.5 { kone } else { rng.range(0, kone) },
-        };
+    // Each light's L and H draws: vector 2i is light i's L, 2i + 1 its H.
+    let mut x = [[0u64; 3]; 2 * MAX_LIGHTS];
+    for (i, s) in state.lights.iter_mut().take(n).enumerate() {
+        let b = rng.next_block::<10>();
+        x[2 * i] = [b[0], b[1], b[2]];
+        x[2 * i + 1] = [b[3], b[4], b[5]];
+        s.lc = [6, 7, 8].map(|j| range_of(b[j], 0, cmax) as u32);
+        s.k = if unit_of(b[9]) < 0.5 { kone } else { rng.range(0, kone) };
+    }
+    let mut v = [[0i64; 3]; 2 * MAX_LIGHTS];
+    if raw {
+        for (v, x) in v.iter_mut().zip(&x).take(2 * n) {
+            *v = x.map(|x| range_of(x, lh.min_raw(), lh.max_raw()));
+        }
+    } else {
+        unit_codes(cfg, &x, &mut v);
+    }
+    for (i, s) in state.lights.iter_mut().take(n).enumerate() {
+        s.l = v[2 * i];
+        s.h = v[2 * i + 1];
     }
     state
+}
+
+/// Every drawn vector (`u(0)·2 − 1, u(1)·2 − 1, u(2)·1.2 − 0.2`) scaled to unit length and
+/// rounded to L/H codes (half away from zero, clamped), a component a lane: straight-line arithmetic over fixed-size arrays, which the compiler runs in vector
+/// registers where the caller is compiled for them.
+#[inline(always)]
+fn unit_codes(cfg: &PipelineConfig, x: &[[u64; 3]; 2 * MAX_LIGHTS], out: &mut [[i64; 3]; 2 * MAX_LIGHTS]) {
+    use super::rng::unit_of;
+    const V: usize = 2 * MAX_LIGHTS;
+    let mut c = [[0f64; V]; 3];
+    for (k, x) in x.iter().enumerate() {
+        c[0][k] = unit_of(x[0]) * 2.0 - 1.0;
+        c[1][k] = unit_of(x[1]) * 2.0 - 1.0;
+        c[2][k] = unit_of(x[2]) * 1.2 - 0.2;
+    }
+    let mut len = [0f64; V];
+    for k in 0..V {
+        len[k] = (c[0][k] * c[0][k] + c[1][k] * c[1][k] + c[2][k] * c[2][k]).sqrt();
+    }
+    let one = one(cfg) as f64;
+    let (lo, hi) = (cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw());
+    for (i, c) in c.iter().enumerate() {
+        for k in 0..V {
+            out[k][i] = round_half_away(c[k] / len[k] * one).clamp(lo, hi);
+        }
+    }
 }
 
 /// A random fragment: raw codes over the whole of every format, blends mostly enabled.
@@ -164,18 +193,7 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn {
     if !cfg.palette {
         // The same draws in the same order, made as one block.
-        use super::rng::{range_of, unit_of};
-        let x = rng.next_block::<11>();
-        let (cmax, nmax) = (cfg.colour_max() as i64, (1i64 << cfg.normal_bits) - 1);
-        let code = |i: usize| range_of(x[i], 0, nmax) as u32;
-        let colour = |i: usize| range_of(x[i], 0, cmax) as u32;
-        return FragmentIn {
-            bump: BumpTexel::Rgb([code(0), code(1), code(2)]),
-            c_src: [colour(3), colour(4), colour(5)],
-            tex: [colour(6), colour(7), colour(8)],
-            diffuse_en: unit_of(x[9]) < 0.85,
-            specular_en: unit_of(x[10]) < 0.85,
-        };
+        return rgb_fragment(cfg, &rng.next_block::<FRAGMENT_DRAWS>());
     }
     let cmax = cfg.colour_max() as i64;
     let nmax = (1i64 << cfg.normal_bits) - 1;
@@ -191,6 +209,26 @@ pub fn random_fragment(cfg: &PipelineConfig, rng: &mut SplitMix64) -> FragmentIn
         tex: three(|| rng.range(0, cmax) as u32),
         diffuse_en: rng.chance(0.85),
         specular_en: rng.chance(0.85),
+    }
+}
+
+/// Draws of one RGB-bump fragment.
+const FRAGMENT_DRAWS: usize = 11;
+
+/// The RGB-bump fragment of its eleven draws: three normal codes, the source and texture
+/// colours, the two blend enables.
+#[inline(always)]
+fn rgb_fragment(cfg: &PipelineConfig, x: &[u64]) -> FragmentIn {
+    use super::rng::{range_of, unit_of};
+    let (cmax, nmax) = (cfg.colour_max() as i64, (1i64 << cfg.normal_bits) - 1);
+    let code = |i: usize| range_of(x[i], 0, nmax) as u32;
+    let colour = |i: usize| range_of(x[i], 0, cmax) as u32;
+    FragmentIn {
+        bump: BumpTexel::Rgb([code(0), code(1), code(2)]),
+        c_src: [colour(3), colour(4), colour(5)],
+        tex: [colour(6), colour(7), colour(8)],
+        diffuse_en: unit_of(x[9]) < 0.85,
+        specular_en: unit_of(x[10]) < 0.85,
     }
 }
 
@@ -299,7 +337,21 @@ impl RandomTriangles {
 /// the vector variants below run side by side).
 #[inline(always)]
 fn fragments(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
-    frags.extend((0..k).map(|_| random_fragment(cfg, rng)));
+    if cfg.palette {
+        frags.extend((0..k).map(|_| random_fragment(cfg, rng)));
+        return;
+    }
+    // Eight fragments' draws at a time, one fixed-size block (the last block is drawn whole
+    // and only its fragments' part taken): the same values as one fragment at a time.
+    const AT_ONCE: usize = 8;
+    let mut left = k;
+    while left > 0 {
+        let m = left.min(AT_ONCE);
+        let x = rng.peek_block::<{ AT_ONCE * FRAGMENT_DRAWS }>();
+        rng.skip((m * FRAGMENT_DRAWS) as u64);
+        frags.extend(x.chunks_exact(FRAGMENT_DRAWS).take(m).map(|x| rgb_fragment(cfg, x)));
+        left -= m;
+    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -719,5 +771,61 @@ mod triangle_tests {
         assert!((ones - want_ones).abs() < 0.01, "{ones} against {want_ones}");
         assert!((mean / want_mean - 1.0).abs() < 0.02, "{mean} against {want_mean}");
         assert!(lens.windows(2).any(|w| w == [1, 1]));
+    }
+}
+
+#[cfg(test)]
+mod state_tests {
+    use super::*;
+    use crate::vectors::rng::{range_of, unit_of};
+
+    /// The state one light at a time, as gbump drew it before the lanes: a seed's records
+    /// must not change between versions.
+    fn one_light_at_a_time(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+        let q_vec = |v: [f64; 3]| {
+            let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|c| round_half_away(c / len * one(cfg) as f64))
+                .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
+        };
+        let (cmax, kone) = (cfg.colour_max() as i64, 1i64 << cfg.k_frac_bits);
+        let raw = rng.chance(0.5);
+        let lh = cfg.lh_fmt();
+        let mut state = BumpState::default();
+        for s in state.lights.iter_mut().take(cfg.lights as usize) {
+            let x = rng.next_block::<10>();
+            let vec = |at: usize| {
+                if raw {
+                    [0, 1, 2].map(|i| range_of(x[at + i], lh.min_raw(), lh.max_raw()))
+                } else {
+                    let u = |i: usize| unit_of(x[at + i]);
+                    q_vec([u(0) * 2.0 - 1.0, u(1) * 2.0 - 1.0, u(2) * 1.2 - 0.2])
+                }
+            };
+            *s = LightSlot {
+                l: vec(0),
+                h: vec(3),
+                lc: [6, 7, 8].map(|i| range_of(x[i], 0, cmax) as u32),
+                k: if unit_of(x[9]) < 0.5 { kone } else { rng.range(0, kone) },
+            };
+        }
+        state
+    }
+
+    #[test]
+    fn lanes_draw_the_states_one_light_at_a_time_drew() {
+        for (lights, lh_bits, k_frac_bits) in [(1, 16, 8), (4, 16, 8), (8, 24, 3), (3, 6, 0), (8, 4, 12)] {
+            let cfg = PipelineConfig {
+                lights,
+                lh_bits,
+                k_frac_bits,
+                ..PipelineConfig::default()
+            };
+            let (mut a, mut b) = (SplitMix64(lights as u64), SplitMix64(lights as u64));
+            for _ in 0..20_000 {
+                let (x, y) = (random_state(&cfg, &mut a), one_light_at_a_time(&cfg, &mut b));
+                assert_eq!(x.lights, y.lights, "{lights} lights, lh_bits {lh_bits}");
+            }
+            assert_eq!(a.next_u64(), b.next_u64());
+        }
     }
 }
