@@ -631,9 +631,9 @@ pub fn run() -> anyhow::Result<()> {
             let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty()) {
                 (None, None, false) => {
                     let first = crate::sim::regress_cmd::given_manifests(&vectors)?.remove(0);
-                    // Its fields checked before anything is written or said; its files are
-                    // read once, by check_sets with every other set.
-                    let m = crate::vectors::manifest::read_fields(&first)?;
+                    // Checked whole (fields and files) before anything is written or said;
+                    // check_sets reads its files again with every other set's.
+                    let (m, _) = crate::vectors::verify(&first)?;
                     let dir = std::path::absolute(&work).map_err(|e| Error::io(&work, e))?;
                     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
                     let file = dir.join(format!("config_{}.toml", m.config.hash()));

@@ -141,3 +141,37 @@ fn a_binary_record_with_a_bit_above_its_width_is_refused() {
     let err = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     assert!(err.contains("record 3 sets a bit above the record's"), "{err}");
 }
+
+/// The text and binary files of one set hold the same records: a text record edited (and
+/// the manifest made to agree) would pass Verilator, which reads the binary, and fail Icarus.
+#[test]
+fn a_sets_text_and_binary_records_must_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let text = std::fs::read_to_string(dir.path().join("corners_top.hex")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    // The last digit of record 5: bits 0-3, byte 0 of the binary record.
+    let last = lines[4].pop().unwrap();
+    lines[4].push(if last == '0' { '1' } else { '0' });
+    edit(&manifest, &lines.iter().map(|l| format!("{l}\n")).collect::<String>());
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    assert!(
+        e.contains("corners_top.hex:5:") && e.contains("not the binary file's record 5") && e.contains("byte 0"),
+        "{e}"
+    );
+}
+
+/// A manifest whose shininess was edited names a table its power-table file does not hold.
+#[test]
+fn the_power_table_is_the_manifests_shininess() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    m.shininess += 24;
+    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    assert!(
+        e.contains("corners_top_power_table.hex") && e.contains(&format!("shininess {}", m.shininess)),
+        "{e}"
+    );
+}

@@ -288,10 +288,13 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     // A checksum proves only that the file is the one the manifest names; a manifest edited
     // beside an edited file proves nothing, so the text records are read as the simulators
     // will read them: as many lines as the set's count, each one record's digits, no bit
-    // above the record.
+    // above the record. Where the set has both files (Icarus reads the text, Verilator the
+    // binary), they must hold the same records, or the two simulators judge different sets.
     if let Some(h) = &m.hex {
-        check_hex_records(&dir.join(&h.name), &m, &regen)?;
+        let bin = m.bin.as_ref().map(|b| dir.join(&b.name));
+        check_hex_records(&dir.join(&h.name), bin.as_deref(), &m, &regen)?;
     }
+    check_power_table(&dir.join(&m.power_table.name), &m, &regen)?;
     Ok((m, dir))
 }
 
@@ -322,8 +325,8 @@ fn folder_of(manifest: &Path) -> PathBuf {
 }
 
 /// Every line of a set's text records: `m.count` lines of `hex_digits` hex digits whose
-/// value fits `record_bits`.
-fn check_hex_records(p: &Path, m: &Manifest, regen: &str) -> Result<()> {
+/// value fits `record_bits`, each the same record as the binary file's (`bin`), if any.
+fn check_hex_records(p: &Path, bin: Option<&Path>, m: &Manifest, regen: &str) -> Result<()> {
     use std::io::BufRead;
     let digits = (m.record_bits as usize).div_ceil(4);
     // The top digit holds this many of the record's bits.
@@ -336,6 +339,15 @@ fn check_hex_records(p: &Path, m: &Manifest, regen: &str) -> Result<()> {
         fix: format!("the set is not as `gbump vectors` wrote it; regenerate with: {regen}"),
     };
     let f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
+    let mut bin = match bin {
+        Some(b) => Some((
+            b,
+            std::io::BufReader::with_capacity(1 << 20, std::fs::File::open(b).map_err(|e| Error::io(b, e))?),
+        )),
+        None => None,
+    };
+    let mut record = vec![0u8; m.record_bytes as usize];
+    let mut first_differing = None;
     let mut n = 0u64;
     for line in std::io::BufReader::with_capacity(1 << 20, f).split(b'\n') {
         let line = line.map_err(|e| Error::io(p, e))?;
@@ -366,9 +378,57 @@ fn check_hex_records(p: &Path, m: &Manifest, regen: &str) -> Result<()> {
                 ),
             ));
         }
+        if let Some((b, r)) = &mut bin {
+            use std::io::Read;
+            r.read_exact(&mut record).map_err(|e| Error::io(*b, e))?;
+            // Byte j of the little-endian binary record is the text's digit pair j from the end.
+            let digit = |i: usize| (line[i] as char).to_digit(16).unwrap_or(0) as u8;
+            let differs = record.iter().enumerate().position(|(j, &byte)| {
+                let lo = digits - 1 - 2 * j;
+                let hi = if lo > 0 { digit(lo - 1) } else { 0 };
+                byte != hi << 4 | digit(lo)
+            });
+            // Said after the whole file is read: a line missing or added shows as every
+            // later record differing, and the count says it better.
+            if let (Some(j), None) = (differs, &first_differing) {
+                first_differing = Some(bad(
+                    n,
+                    format!(
+                        "record {n} is not the binary file's record {n} ({}, byte {j} differs): Icarus reads the text and Verilator the binary, so the two would judge different vectors",
+                        b.display()
+                    ),
+                ));
+            }
+        }
     }
     if n != m.count {
         return Err(bad(n, format!("{n} records; the manifest counts {}", m.count)));
+    }
+    first_differing.map_or(Ok(()), Err)
+}
+
+/// The set's power table holds the words of the manifest's shininess under its configuration
+/// (a manifest whose `shininess` was edited would otherwise load one table and expect
+/// another's results, and drop the power-up run it thinks does not apply).
+fn check_power_table(p: &Path, m: &Manifest, regen: &str) -> Result<()> {
+    let data = |text: &str| -> Vec<String> {
+        text.lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty() && !l.starts_with("//"))
+            .map(str::to_ascii_lowercase)
+            .collect()
+    };
+    let rom = crate::rtlgen::rom::power_rom(&m.config, m.shininess);
+    let want = data(&crate::rtlgen::rom::write(&rom, crate::rtlgen::rom::RomFormat::Hex, &[]));
+    let got = data(&crate::limits::read_text(p)?);
+    if let Some(i) = (0..want.len().max(got.len())).find(|&i| want.get(i) != got.get(i)) {
+        return Err(Error::Other(format!(
+            "{}: word {i} of the power table is {}, but the table of shininess {} (the manifest's) under this configuration has {}: the manifest or the table was edited\n  fix: regenerate with: {regen}",
+            p.display(),
+            got.get(i).map_or("missing", String::as_str),
+            m.shininess,
+            want.get(i).map_or("no such word", String::as_str),
+        )));
     }
     Ok(())
 }
