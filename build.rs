@@ -1,4 +1,5 @@
-//! The source fingerprint: a hash of every file under src/ and of Cargo.toml, as
+//! The source fingerprint: a hash of every file under src/, testbench/ and tests/area_model/
+//! and of Cargo.toml, as
 //! `GBUMP_SOURCE_HASH`. The CLI prints it with `--version`, the Python module and the C
 //! library carry it, so a module or library built from other sources than the gbump beside
 //! it is told apart (their version numbers are the same).
@@ -19,7 +20,11 @@ fn files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 fn main() {
     let mut all = Vec::new();
-    files(Path::new("src"), &mut all);
+    // Everything the library compiles in: its sources, the testbench templates and the
+    // area model's samples (include_str!), the manifest.
+    for d in ["src", "testbench", "tests/area_model"] {
+        files(Path::new(d), &mut all);
+    }
     all.push(PathBuf::from("Cargo.toml"));
     all.sort();
     // FNV-1a over each path and its bytes: no dependency, stable across platforms.
@@ -32,6 +37,8 @@ fn main() {
         }
     }
     println!("cargo:rustc-env=GBUMP_SOURCE_HASH={h:016x}");
-    println!("cargo:rerun-if-changed=src");
+    for d in ["src", "testbench", "tests/area_model"] {
+        println!("cargo:rerun-if-changed={d}");
+    }
     println!("cargo:rerun-if-changed=Cargo.toml");
 }

@@ -794,6 +794,13 @@ fn cases() -> Vec<Case> {
             vec!["lib.so", "not a shared library", "fix:"],
         ),
         (
+            // An ELF file without this gbump's source hash: a library of another build.
+            "cosim --lib of another build",
+            vec![("lib.so", "\u{7f}ELF a library of other sources".into())],
+            vec!["cosim", "--lib", "lib.so", "--work", "w"],
+            vec!["lib.so", "built from other sources than this gbump", "gbump --version", "fix:"],
+        ),
+        (
             "an engine named twice",
             vec![],
             vec!["engines", "--engine", "blinn", "--engine", "blinn", "--out", "out"],

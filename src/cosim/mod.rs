@@ -30,15 +30,30 @@ pub struct CosimOptions {
 
 /// The C library cargo builds with the gbump executable `exe`: `libgbump.so` beside it
 /// (`cargo build`), or in `deps/` beside it (`cargo test` builds it there without copying it
-/// up); the newer of the two when both exist, so a stale copy never wins.
+/// up). The one built from the running gbump's sources wins (a build of only an example or a
+/// test rewrites `deps/` alone); failing that the newer, which [`check_library`] refuses.
 pub fn library_beside(exe: &Path) -> Option<PathBuf> {
     let name = format!("{}gbump{}", std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
     let dir = exe.parent()?;
-    [dir.join(&name), dir.join("deps").join(&name)]
+    let found: Vec<PathBuf> = [dir.join(&name), dir.join("deps").join(&name)]
+        .into_iter()
+        .filter(|p| p.is_file())
+        .collect();
+    if let Some(p) = found.iter().find(|p| built_from_these_sources(p)) {
+        return Some(p.clone());
+    }
+    found
         .into_iter()
         .filter_map(|p| Some((std::fs::metadata(&p).ok()?.modified().ok()?, p)))
         .max()
         .map(|(_, p)| p)
+}
+
+/// Whether `lib` carries the running gbump's source hash (`gbump_source()` returns it, so it
+/// is in the file as a NUL-terminated string): the model it holds is this gbump's.
+pub fn built_from_these_sources(lib: &Path) -> bool {
+    let needle = format!("{}\0", crate::SOURCE_HASH);
+    std::fs::read(lib).is_ok_and(|b| b.windows(needle.len()).any(|w| w == needle.as_bytes()))
 }
 
 /// The C library of the running gbump (see [`library_beside`]).
@@ -71,6 +86,13 @@ pub fn check_library(lib: &Path) -> Result<()> {
         return Err(Error::Other(format!(
             "{}: not a shared library (no ELF header), so not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
             lib.display()
+        )));
+    }
+    if !built_from_these_sources(lib) {
+        return Err(Error::Other(format!(
+            "{}: built from other sources than this gbump (source {}, `gbump --version`), so its model is not the one this gbump generates RTL for\n  fix: cargo build --release -j 1 (it rebuilds the library with the gbump executable), or pass --lib with the library of this build",
+            lib.display(),
+            crate::SOURCE_HASH
         )));
     }
     Ok(())
