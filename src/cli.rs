@@ -508,7 +508,40 @@ fn say(line: &str) -> Result<()> {
     Ok(())
 }
 
+/// Refuse an empty argument (`--out ""`, `--out=`): every value gbump takes names something,
+/// and an empty path would quietly mean the working folder.
+fn refuse_empty_arguments() -> Result<()> {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    for (i, a) in args.iter().enumerate() {
+        let a = a.to_string_lossy();
+        let flag = if a.is_empty() {
+            Some(
+                i.checked_sub(1)
+                    .map_or("an argument".into(), |j| args[j].to_string_lossy().into_owned()),
+            )
+        } else if a.starts_with("--") && a.ends_with('=') {
+            Some(a.trim_end_matches('=').to_string())
+        } else {
+            None
+        };
+        if let Some(flag) = flag {
+            return Err(Error::Other(format!(
+                "{flag}: an empty value\n  fix: give {flag} a value (`gbump help` lists what each flag takes)"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// An output folder whose files the simulators, make and the filelists will name: refused
+/// when its path holds what they would split or misread (the rule `--work` and
+/// `regress --vectors` follow), before anything is written.
+fn check_out(out: &Path) -> Result<()> {
+    crate::sim::check_tool_path(out, "--out")
+}
+
 pub fn run() -> anyhow::Result<()> {
+    refuse_empty_arguments()?;
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
@@ -529,6 +562,7 @@ pub fn run() -> anyhow::Result<()> {
             crate::render::report::render(&r, || lock_work(Path::new(crate::sim::rtl_image::RENDER_WORK)), &mut say)?
         }
         Cmd::Rtl { pick, out } => {
+            check_out(&out)?;
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), quoted(&out.display().to_string())).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
@@ -549,6 +583,7 @@ pub fn run() -> anyhow::Result<()> {
             cube_size,
         } => {
             let cfg = pick.resolve()?;
+            check_out(&out)?;
             let files = crate::rtlgen::rom_files::rom_files(&cfg, pick.scene.as_deref(), &pick.args(), shininess, cube_size, &out)?;
             crate::render::output::write_files(&out, &files)?;
             outln!("wrote {} ROM files to {}", files.len(), out.display());
@@ -564,6 +599,7 @@ pub fn run() -> anyhow::Result<()> {
             level,
             shininess,
         } => {
+            check_out(&out)?;
             let r = crate::vectors_command::VectorsRequest {
                 source: &source,
                 targets: &target,

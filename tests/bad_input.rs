@@ -794,6 +794,24 @@ fn cases() -> Vec<Case> {
             vec!["lib.so", "not a shared library", "fix:"],
         ),
         (
+            "rtl into an empty path (the working folder, unasked)",
+            vec![],
+            vec!["rtl", "--out", ""],
+            vec!["--out: an empty value", "fix:"],
+        ),
+        (
+            "vectors into --out= with no value",
+            vec![],
+            vec!["vectors", "--out="],
+            vec!["--out: an empty value", "fix:"],
+        ),
+        (
+            "rtl into a folder whose path the filelists would split",
+            vec![],
+            vec!["rtl", "--out", "sp ace/rtl"],
+            vec!["--out sp ace/rtl", "' '", "fix:"],
+        ),
+        (
             // An ELF file without this gbump's source hash: a library of another build.
             "cosim --lib of another build",
             vec![("lib.so", "\u{7f}ELF a library of other sources".into())],
@@ -838,6 +856,13 @@ fn every_bad_input_is_refused_cleanly() {
     let cases = cases();
     assert!(cases.len() >= 89, "{} cases", cases.len());
     let mut failures = Vec::new();
+    // The README's claims table counts these cases.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    assert!(
+        readme.contains(&format!("`tests/bad_input.rs`: {} table-driven cases", cases.len())),
+        "the README does not say `tests/bad_input.rs`: {} table-driven cases",
+        cases.len()
+    );
     for (name, files, args, needles) in cases {
         let dir = tempfile::tempdir().unwrap();
         // The case's folder is the parent of `out`: anything new beside `out` escaped it.
