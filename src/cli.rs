@@ -526,7 +526,7 @@ fn refuse_empty_arguments() -> Result<()> {
         };
         if let Some(flag) = flag {
             return Err(Error::Other(format!(
-                "{flag}: an empty value\n  fix: give {flag} a value (`gbump help` lists what each flag takes)"
+                "{flag}: an empty value\n  fix: give {flag} a value (`gbump --help` lists what each command takes)"
             )));
         }
     }

@@ -63,6 +63,9 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         }
         _ => crate::scene::pick_config(r.config, r.scene)?,
     };
+    if let Source::Exhaustive(u) = &src {
+        crate::vectors::writer::exhaustive_unit_present(&cfg, u)?;
+    }
     let targets = crate::vectors::targets::resolve(&cfg, r.targets)?;
     if let Source::Exhaustive(u) = &src {
         // An exhaustive source sweeps one unit's inputs: it writes that unit's set only.

@@ -130,3 +130,48 @@ fn every_checked_in_configuration_loads() {
     assert!(loaded > 40, "{loaded} configurations found");
     assert!(bad.is_empty(), "checked-in configurations refused:\n{}", bad.join("\n"));
 }
+
+/// A unit the configuration lacks, asked for as an exhaustive sweep: the fix names every
+/// setting the sweep needs, and a configuration with exactly those sweeps it.
+#[test]
+fn following_the_exhaustive_sweeps_fix_is_enough() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        assert_cmd::Command::cargo_bin("gbump")
+            .unwrap()
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let o = run(&["vectors", "--source", "exhaustive:normalise", "--target", "normalise", "--out", "v"]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let fix = err.split("fix:").nth(1).unwrap_or_else(|| panic!("{err}"));
+    let settings = fix.split("set ").nth(1).unwrap_or_else(|| panic!("{err}"));
+    let mut toml = String::new();
+    for part in settings.split(" and ") {
+        let part = part.trim_start_matches("for the sweep ");
+        let part = part.split(" in the configuration").next().unwrap().trim();
+        let part = part.split(" (").next().unwrap();
+        if let Some((k, v)) = part.split_once(" <= ") {
+            toml += &format!("{k} = {v}\n");
+        } else if let Some((k, v)) = part.split_once(" = ") {
+            toml += &format!("{k} = {v}\n");
+        }
+    }
+    assert!(toml.contains("lh_bits = 6"), "the fix leaves out the sweep's width: {err}");
+    std::fs::write(dir.path().join("c.toml"), &toml).unwrap();
+    let o = run(&[
+        "vectors",
+        "--source",
+        "exhaustive:normalise",
+        "--target",
+        "normalise",
+        "--config",
+        "c.toml",
+        "--out",
+        "v",
+    ]);
+    assert!(o.status.success(), "{toml}\n{}", String::from_utf8_lossy(&o.stderr));
+}

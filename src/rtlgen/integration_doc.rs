@@ -35,9 +35,12 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         "Holding `rst` high for {RESET_CYCLES} rising edge(s) brings the top from any power-up state to idle: every valid bit is cleared, `out_valid` is low and `out_c` is 0 (no X leaves the top after reset). "
     );
     s += "While `rst` is high no fragment is accepted, whatever `in_valid` and `in_ready` show";
-    s += match cfg.light_mode {
-        LightMode::Parallel => " (`in_ready` is tied high). ",
-        LightMode::Serial => " (`in_ready` is high from the first reset edge on). ",
+    // A parallel top without back-pressure ties `in_ready` high; any other top drives it
+    // from state that reset defines (a serial top's light counter, the output buffer's credit).
+    s += if cfg.light_mode == LightMode::Parallel && !cfg.backpressure {
+        " (`in_ready` is tied high). "
+    } else {
+        " (`in_ready` is undefined before the first reset edge, and high from it on while `rst` stays high). "
     };
     s += &format!(
         "`rst` does **not** restore the power table: it keeps what was last written; its power-up contents come from the `INIT_FILE` parameter (default `{}`, a `$readmemh` file; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere).\n\n",
@@ -53,6 +56,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         None => "There is no output back-pressure (`backpressure = false`): every result is taken when offered, one per `out_valid` cycle. ".to_string(),
     };
     s += &match cfg.light_mode {
+        LightMode::Parallel if cfg.backpressure => "Initiation interval **1**: `in_ready` is high except while the output buffer is full, so a fragment can enter at every edge while results are taken.\n\n".to_string(),
         LightMode::Parallel => "Initiation interval **1**: `in_ready` is always high, so a fragment can enter at every edge.\n\n".to_string(),
         LightMode::Serial => format!(
             "Initiation interval **{ii}** (one light per clock, paper §4.2): after an accept, `in_ready` is low for {} edge(s) and high at the next, so fragments offered back to back enter every {ii} edges.\n\n",

@@ -240,6 +240,18 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
 }
 
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
+/// Refuse `exhaustive:unit` for a configuration without the unit, the sweep's own condition
+/// in the same fix, so following it is enough (checked before the targets are).
+pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
+    match crate::units::unit(unit) {
+        Some(u) if !unit_present(cfg, unit) => {
+            let also = u.exhaustive_when().map_or(String::new(), |w| format!(", and for the sweep {w}"));
+            Err(Error::Other(format!("exhaustive:{unit}: {}{also}", crate::units::absence(u, cfg))))
+        }
+        _ => Ok(()),
+    }
+}
+
 fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
     if cfg.palette && matches!(src, Source::Scene(_)) {
         return Err(Error::Other(
@@ -251,11 +263,10 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
         crate::limits::check_count("--shininess", n.into(), 0, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
     }
     match src {
-        Source::Exhaustive(unit) if crate::units::unit(unit).is_some() && !unit_present(cfg, unit) => Err(Error::Other(format!(
-            "exhaustive:{unit}: {}",
-            crate::units::absence(crate::units::unit(unit).expect("unit"), cfg)
-        ))),
-        Source::Exhaustive(unit) => exhaustive_count(cfg, unit).map(|_| ()),
+        Source::Exhaustive(unit) => {
+            exhaustive_unit_present(cfg, unit)?;
+            exhaustive_count(cfg, unit).map(|_| ())
+        }
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, "pipeline config")?;
