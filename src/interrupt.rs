@@ -46,16 +46,19 @@ pub fn install() {
         })
         .collect();
     let _ = ctrlc::set_handler(|| {
-        if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
-            // The handler runs on a thread of its own, not in signal context: it may print
-            // and signal the tools gbump started.
-            #[cfg(unix)]
-            for pid in CHILDREN.lock().map(|c| c.clone()).unwrap_or_default() {
-                // SAFETY: a plain kill(2) of a process this run started and still waits for.
-                unsafe {
-                    libc::kill(pid as libc::pid_t, libc::SIGTERM);
-                }
+        // The handler runs on a thread of its own, not in signal context: it may print and
+        // signal the tools gbump started. Each runs in its own process group (`tool::run_cmd`),
+        // out of reach of a terminal's Ctrl-C, so it is ended here on the first signal too: a
+        // run stopping through its error path must not wait for a half-hour build.
+        #[cfg(unix)]
+        for pid in CHILDREN.lock().map(|c| c.clone()).unwrap_or_default() {
+            // SAFETY: a plain kill(2) of the process group of a tool this run started and
+            // still waits for.
+            unsafe {
+                libc::kill(-(pid as libc::pid_t), libc::SIGTERM);
             }
+        }
+        if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
             std::process::exit(130);
         }

@@ -226,6 +226,8 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     if r.stall > 0 {
         cmd.args(["--stall", &r.stall.to_string()]);
     }
+    #[cfg(unix)]
+    std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
     let mut child = cmd
         .current_dir(r.cwd)
         .stdin(Stdio::piped())
@@ -233,6 +235,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| Error::Other(format!("{what}: cannot start {}: {e}", r.exe.display())))?;
+    let _registered = crate::interrupt::child(child.id());
     let mut stdin = child.stdin.take().expect("piped");
     let mut stdout = child.stdout.take().expect("piped");
     let mut stderr = child.stderr.take().expect("piped");
