@@ -671,7 +671,7 @@ pub fn run() -> anyhow::Result<()> {
                     // check_sets reads its files again with every other set's.
                     let (m, _) = crate::vectors::verify(&first)?;
                     let dir = std::path::absolute(&work).map_err(|e| Error::io(&work, e))?;
-                    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+                    crate::render::output::make_folder(&dir)?;
                     let file = dir.join(format!("config_{}.toml", m.config.hash()));
                     crate::render::output::write_atomic(&file, m.config.to_toml().as_bytes())?;
                     say(&format!("configuration {} from {}", m.config.hash(), first.display()))?;

@@ -447,7 +447,23 @@ impl PipelineConfig {
     /// Load from a file.
     pub fn load(path: &std::path::Path) -> Result<PipelineConfig> {
         let text = crate::limits::read_text(path)?;
-        Self::from_toml(&path.display().to_string(), &text)
+        // A value out of range, or at odds with another, is refused at its own line.
+        Self::from_toml(&path.display().to_string(), &text).map_err(|e| match e {
+            Error::Field { file, field, msg, fix } => {
+                let line = text.lines().position(|l| {
+                    l.trim_start()
+                        .strip_prefix(field.as_str())
+                        .is_some_and(|r| r.trim_start().starts_with('='))
+                });
+                Error::Field {
+                    file: line.map_or(file.clone(), |i| format!("{file}:{}:1", i + 1)),
+                    field,
+                    msg,
+                    fix,
+                }
+            }
+            e => e,
+        })
     }
 
     /// Canonical TOML (field order fixed by the struct), the input of [`Self::hash`].

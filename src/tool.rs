@@ -27,7 +27,7 @@ pub fn missing(prog: &str) -> Error {
         p => p,
     };
     Error::Other(format!(
-        "{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh, or apt-get update && apt-get install -y {pkg}"
+        "{prog} is not installed (or not on PATH)\n  fix: run scripts/install-tools.sh from gbump's repository, or apt-get update && apt-get install -y {pkg}"
     ))
 }
 

@@ -19,7 +19,7 @@ pub struct WorkLock {
 impl WorkLock {
     /// Lock `dir` (created if missing) for the command `what`; waits while another run holds it.
     pub fn acquire(dir: &Path, what: &str) -> Result<WorkLock> {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        crate::render::output::make_folder(dir)?;
         let path = dir.join(LOCK_NAME);
         let mut file = std::fs::OpenOptions::new()
             .read(true)

@@ -794,6 +794,18 @@ fn cases() -> Vec<Case> {
             vec!["lib.so", "not a shared library", "fix:"],
         ),
         (
+            "vectors into a folder that cannot be made",
+            vec![],
+            vec!["vectors", "--source", "corners", "--out", "/proc/gbump_out"],
+            vec!["/proc/gbump_out: cannot create this folder in /proc", "fix:"],
+        ),
+        (
+            "a configuration value out of range, at its line",
+            vec![("c.toml", "normal_bits = 8\nlights = 99\n".into())],
+            vec!["rtl", "--config", "c.toml", "--out", "out"],
+            vec!["c.toml:2:1: field `lights`", "99 is out of range", "fix:"],
+        ),
+        (
             "rtl into an empty path (the working folder, unasked)",
             vec![],
             vec!["rtl", "--out", ""],

@@ -175,3 +175,24 @@ fn the_power_table_is_the_manifests_shininess() {
         "{e}"
     );
 }
+
+/// A manifest copied without its data files, or with a column moved, says which and how to
+/// regenerate.
+#[test]
+fn a_missing_file_or_a_moved_column_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    std::fs::remove_file(dir.path().join(&m.bin.as_ref().unwrap().name)).unwrap();
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    assert!(
+        e.contains("corners_top.bin: named by its manifest") && e.contains("regenerate with: gbump vectors"),
+        "{e}"
+    );
+    let _ = corner_set(dir.path());
+    m.columns[2].lsb += 1;
+    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    let name = &m.columns[2].name;
+    assert!(e.contains(&format!("column 2 is `{name}` at lsb {}", m.columns[2].lsb)), "{e}");
+}

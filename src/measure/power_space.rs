@@ -116,7 +116,7 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
 fn write_design(d: &PowerUnitDesign, fm: PowerFormats, n: u32, dir: &std::path::Path) -> crate::Result<(String, Vec<std::path::PathBuf>)> {
     use crate::error::Error;
     use crate::rtlgen::power_units::{name, rom, rom_depth, unit};
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    crate::render::output::make_folder(dir)?;
     let m = name(d, fm);
     let mut files = vec![dir.join(format!("{m}.v"))];
     std::fs::write(&files[0], unit(d, fm, n)).map_err(|e| Error::io(dir, e))?;

@@ -26,7 +26,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .file_name()
         .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
     // A result file's folder is made as the output folders of every command are.
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    make_folder(dir)?;
     let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
     let res = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
     if let Err(e) = res {
@@ -111,9 +111,29 @@ pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
         .collect()
 }
 
+/// Make output folder `dir` and its parents, or say which part could not be made and why
+/// (`--out /proc/x` reads as "no such file" in the OS's words).
+pub fn make_folder(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        // The deepest part that exists: where the creation failed.
+        let existing = dir.ancestors().skip(1).find(|a| a.as_os_str().is_empty() || a.exists());
+        let at = existing.map_or(".".into(), |a| {
+            if a.as_os_str().is_empty() {
+                ".".into()
+            } else {
+                a.display().to_string()
+            }
+        });
+        Error::Other(format!(
+            "{}: cannot create this folder in {at} ({e})\n  fix: give an output folder under one you can write to",
+            dir.display()
+        ))
+    })
+}
+
 /// Write every file into `dir` atomically; on any failure remove what this call wrote.
 pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    make_folder(dir)?;
     for (i, (name, text)) in files.iter().enumerate() {
         if let Err(e) = write_atomic(&dir.join(name), text.as_ref()) {
             for (n, _) in &files[..i] {

@@ -251,7 +251,7 @@ pub fn vectors_for(cfg: &PipelineConfig, random: u64) -> u64 {
 pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -> Result<u64> {
     let h = &cfg.hash()[..8];
     let dir = work.join(format!("cfg_{h}"));
-    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, e))?;
+    crate::render::output::make_folder(&dir)?;
     std::fs::write(dir.join("config.toml"), cfg.to_toml()).map_err(|e| Error::io(&dir, e))?;
     let progress = crate::progress::Progress::new(&format!("fuzz config {h}"), 3);
     progress.start("generate and lint");

@@ -162,17 +162,43 @@ enum Bench {
 }
 
 /// The bench a set runs on, or why it cannot run on `sim` (checked before anything is built).
+/// The command that wrote set `set` (its manifest's path), into the set's own folder and
+/// without its `--format`, for a fix that adds one.
+fn again(m: &crate::vectors::manifest::Manifest, set: &str) -> String {
+    let dir = Path::new(set)
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let cmd = crate::vectors::manifest::regenerate_into(&m.command, dir);
+    let words = shell_words::split(&cmd).unwrap_or_default();
+    let mut out: Vec<String> = Vec::new();
+    let mut skip = false;
+    for w in words {
+        if std::mem::take(&mut skip) {
+            continue;
+        }
+        if w == "--format" {
+            skip = true;
+        } else if !w.starts_with("--format=") {
+            out.push(crate::cli::quoted(&w));
+        }
+    }
+    out.join(" ")
+}
+
 fn bench_for(sim: Sim, m: &crate::vectors::manifest::Manifest, set: &str, waves: bool) -> Result<Bench> {
     let top = m.target == "top";
     match (sim, top) {
         (Sim::Verilator, true) if m.bin.is_some() && !waves => Ok(Bench::Harness),
         _ if m.hex.is_some() => Ok(if top { Bench::TopTb } else { Bench::Units }),
         (Sim::Verilator, true) => Err(Error::Other(format!(
-            "{set}: --waves needs text records (the Verilog testbench), and this set has only binary ones\n  fix: dump it again with `gbump vectors ... --format both`, or run without --waves"
+            "{set}: --waves needs text records (the Verilog testbench), and this set has only binary ones\n  fix: dump it again with: {} --format both, or run without --waves",
+            again(m, set)
         ))),
         _ => Err(Error::Other(format!(
-            "{set}: the {} testbench reads text records, and this set has only binary ones\n  fix: dump it again with `gbump vectors ... --format hex` (or `both`){}",
+            "{set}: the {} testbench reads text records, and this set has only binary ones\n  fix: dump it again with: {} --format both{}",
             sim.name(),
+            again(m, set),
             if top { ", or run it with --sim verilator (its C++ harness reads binary records)" } else { "" }
         ))),
     }
@@ -247,7 +273,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                 continue;
             }
             let set = manifest.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-            let bench = bench_for(sim, m, &set, o.waves)?;
+            let bench = bench_for(sim, m, &manifest.display().to_string(), o.waves)?;
             let exe = match exes.iter().find(|e| e.0 == bench) {
                 Some(e) => e.1.clone(),
                 None => {

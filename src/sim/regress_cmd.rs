@@ -28,9 +28,14 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
         }
     }
     if !vectors.is_empty() && given.is_empty() {
-        return Err(Error::Other(
-            "--vectors: no manifests found\n  fix: point at .json manifests written by `gbump vectors`".into(),
-        ));
+        return Err(Error::Other(format!(
+            "--vectors {}: no .json manifests there\n  fix: point at a folder or the .json manifests `gbump vectors --out DIR` wrote",
+            vectors
+                .iter()
+                .map(|p| crate::cli::quoted(&p.display().to_string()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        )));
     }
     Ok(given)
 }

@@ -408,7 +408,7 @@ pub fn build(cfg: &PipelineConfig, work: &Path, rtl: &super::rtl_files::Rtl) -> 
 /// through the load port as a file-based run does).
 pub fn power_table(cfg: &PipelineConfig, dir: &Path, n: u32, command: &str) -> Result<PathBuf> {
     use crate::rtlgen::rom;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    crate::render::output::make_folder(dir)?;
     let p = dir.join(format!("power_table_n{n}.hex"));
     let r = rom::power_rom(cfg, n);
     let text = rom::write(

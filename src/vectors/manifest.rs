@@ -192,18 +192,34 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     }
     let want = columns(&l);
     if m.record_bits != l.bits || m.record_bytes as usize != l.bytes() || m.columns != want {
+        // The first column that differs, by place: what an edit or a reorder changed.
+        let differs = (0..want.len().max(m.columns.len()))
+            .find(|&i| m.columns.get(i) != want.get(i))
+            .map(|i| {
+                let say = |c: Option<&ColumnEntry>| {
+                    c.map_or("nothing".to_string(), |c| {
+                        format!("`{}` at lsb {}, {} bits x {} lanes", c.name, c.lsb, c.width, c.lanes)
+                    })
+                };
+                format!(
+                    "; column {i} is {} where the layout has {}",
+                    say(m.columns.get(i)),
+                    say(want.get(i))
+                )
+            });
         return Err(Error::field(
             &file,
             "columns",
             format!(
-                "the record layout ({} bits, {} bytes, {} columns) is not the {} layout of this configuration ({} bits, {} bytes, {} columns)",
+                "the record layout ({} bits, {} bytes, {} columns) is not the {} layout of this configuration ({} bits, {} bytes, {} columns){}",
                 m.record_bits,
                 m.record_bytes,
                 m.columns.len(),
                 m.target,
                 l.bits,
                 l.bytes(),
-                want.len()
+                want.len(),
+                differs.unwrap_or_default()
             ),
             regen,
         ));
@@ -254,6 +270,13 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     let mut padding = PaddingCheck::new(&m);
     for f in files.into_iter().flatten() {
         let p = dir.join(&f.name);
+        if !p.exists() {
+            return Err(Error::Other(format!(
+                "{}: named by its manifest {} but not there (moved, deleted, or the manifest copied without it)\n  fix: copy the set's files together, or regenerate with: {regen}",
+                p.display(),
+                manifest.display()
+            )));
+        }
         let is_bin = m.bin.as_ref().is_some_and(|b| std::ptr::eq(b, f));
         let (bytes, sha) = sha256_visit(&p, |at, block| {
             if is_bin {

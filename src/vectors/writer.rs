@@ -282,7 +282,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
     // A signal stops the dump through its error path, which removes the temporary files.
     let _cleanup = crate::interrupt::cleanup();
     check(cfg, src, o)?;
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    crate::render::output::make_folder(dir)?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
     let mut out = Vec::new();
     match src {

@@ -26,7 +26,7 @@ pub fn version() -> String {
 /// is relative to `cwd`): (success, log). Every file of `outputs` (relative to `cwd`) is
 /// removed first, so a report an earlier run left there never stands in for this one.
 pub fn run(script: &str, file: &Path, cwd: &Path, outputs: &[&str]) -> Result<(bool, String)> {
-    std::fs::create_dir_all(cwd).map_err(|e| Error::io(cwd, e))?;
+    crate::render::output::make_folder(cwd)?;
     let path = cwd.join(file);
     std::fs::write(&path, script).map_err(|e| Error::io(&path, e))?;
     for o in outputs {
