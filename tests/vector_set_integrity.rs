@@ -114,9 +114,19 @@ fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
         // A manifest named without a folder lies in the working folder.
         ("gbump vectors --out v", "", vec!["gbump", "vectors", "--out", "."]),
     ] {
-        let r = gbump::vectors::manifest::regenerate_into(cmd, Path::new(dir));
-        assert_eq!(shell_words::split(&r).unwrap(), want, "{cmd} into {dir:?} gave {r}");
+        let w = gbump::vectors::manifest::regenerate_words(cmd, Path::new(dir));
+        assert_eq!(w, want, "{cmd} into {dir:?}");
+        let q = gbump::vectors::manifest::quoted_words(&w);
+        assert_eq!(shell_words::split(&q).unwrap(), want, "{q} does not split back");
     }
+    // A relative configuration file is found only from where the set was made: said.
+    let r = gbump::vectors::manifest::regenerate_into("gbump vectors --config c/x.toml --scene teapot_hat", Path::new("/s"));
+    assert!(
+        r.ends_with("--out /s (from the folder the set was made in: `c/x.toml` is relative to it)"),
+        "{r}"
+    );
+    let r = gbump::vectors::manifest::regenerate_into("gbump vectors --config=/abs/x.toml", Path::new("/s"));
+    assert_eq!(r, "gbump vectors --config=/abs/x.toml --out /s");
 }
 
 #[test]

@@ -169,21 +169,21 @@ fn again(m: &crate::vectors::manifest::Manifest, set: &str) -> String {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let cmd = crate::vectors::manifest::regenerate_into(&m.command, dir);
-    let words = shell_words::split(&cmd).unwrap_or_default();
+    use crate::vectors::manifest::{quoted_words, regenerate_words, relative_note};
+    let words = regenerate_words(&m.command, dir);
     let mut out: Vec<String> = Vec::new();
     let mut skip = false;
-    for w in words {
+    for w in &words {
         if std::mem::take(&mut skip) {
             continue;
         }
         if w == "--format" {
             skip = true;
         } else if !w.starts_with("--format=") {
-            out.push(crate::cli::quoted(&w));
+            out.push(w.clone());
         }
     }
-    out.join(" ")
+    quoted_words(&out) + &relative_note(&words)
 }
 
 fn bench_for(sim: Sim, m: &crate::vectors::manifest::Manifest, set: &str, waves: bool) -> Result<Bench> {

@@ -323,20 +323,54 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
 
 /// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
 /// its own `--out`, so the fix a failed check prints regenerates the set it found wherever it
-/// now lies. Words are split and re-quoted as a POSIX shell would, so a quoted `--out 'my dir'`
-/// is one word; a command that does not split (an edited manifest) gets `--out` appended.
+/// now lies: [`regenerate_words`] quoted for a shell, and [`relative_note`].
 pub fn regenerate_into(command: &str, dir: &Path) -> String {
+    let words = regenerate_words(command, dir);
+    quoted_words(&words) + &relative_note(&words)
+}
+
+/// The words of `command` with its `--out` set to `dir`. Words are split as a POSIX shell
+/// would, so a quoted `--out 'my dir'` is one word; a command that does not split (an edited
+/// manifest) is one word with `--out` appended.
+pub fn regenerate_words(command: &str, dir: &Path) -> Vec<String> {
     let d = dir.display().to_string();
     let d = if d.is_empty() { ".".to_string() } else { d };
     let Ok(mut words) = shell_words::split(command) else {
-        return format!("{command} --out {}", crate::cli::quoted(&d));
+        return vec![command.to_string(), "--out".into(), d];
     };
     match words.iter().position(|w| w == "--out" || w.starts_with("--out=")) {
         Some(i) if words[i] == "--out" && i + 1 < words.len() => words[i + 1] = d,
         Some(i) => words[i] = format!("--out={d}"),
         None => words.extend(["--out".to_string(), d]),
     }
+    words
+}
+
+/// Words quoted for a POSIX shell, joined.
+pub fn quoted_words(words: &[String]) -> String {
     words.iter().map(|w| crate::cli::quoted(w)).collect::<Vec<_>>().join(" ")
+}
+
+/// A configuration or scene file named relative to where the set was made is found only from
+/// there (the manifest does not record that folder): a note saying so, or nothing.
+pub fn relative_note(words: &[String]) -> String {
+    let relative: Vec<&str> = words
+        .iter()
+        .enumerate()
+        .filter_map(|(i, w)| match w.split_once('=') {
+            Some((f, v)) if f == "--config" || f == "--scene" => Some(v),
+            _ if (w == "--config" || w == "--scene") && i + 1 < words.len() => Some(words[i + 1].as_str()),
+            _ => None,
+        })
+        .filter(|v| v.ends_with(".toml") && Path::new(v).is_relative())
+        .collect();
+    if relative.is_empty() {
+        return String::new();
+    }
+    format!(
+        " (from the folder the set was made in: {} relative to it)",
+        relative.iter().map(|f| format!("`{f}` is")).collect::<Vec<_>>().join(", ")
+    )
 }
 
 /// The folder a manifest's files lie in: its parent, `.` for a bare file name.
