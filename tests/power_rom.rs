@@ -80,8 +80,10 @@ fn a_top_set_for_another_shininess_is_refused() {
         .arg(dir.path().join("w"))
         .assert()
         .failure();
+    // Its table file holds shininess 24's words, which the set check reads before the ROM's
+    // own check (left as a second line of defence) could.
     let t = stderr(o.get_output());
-    assert!(t.contains("a ROM holding shininess 24") && t.contains("fix:"), "{t}");
+    assert!(t.contains("table of shininess 32 (the manifest's)") && t.contains("fix:"), "{t}");
 }
 
 #[test]
