@@ -809,33 +809,31 @@ fn the_testbench_exit_code_is_its_verdict() {
         let ((code, _), v) = run("good.hex", &good);
         assert_eq!(code, Some(0), "{name}");
         assert_eq!(v.unwrap().failed, 0);
-        let mut lines: Vec<String> = good.lines().map(str::to_string).collect();
+        // The good set with record `r`'s digit `at` replaced by `d`, run: its exit code must
+        // be 1; the verdict.
+        let edited = |file: &str, r: usize, at: usize, d: char| {
+            let mut lines: Vec<String> = good.lines().map(str::to_string).collect();
+            lines[r].replace_range(at..at + 1, &d.to_string());
+            let ((code, log), v) = run(file, &(lines.join("\n") + "\n"));
+            assert_eq!(code, Some(1), "{name}: {file} exits 1:\n{log}");
+            v
+        };
         // One bit of the expected colour flipped is one mismatch.
         let out = gbump::vectors::targets::top_layout(&cfg).column("out_c").lsb as usize;
-        let at = lines[2].len() - 1 - out / 4;
-        let d = lines[2].as_bytes()[at] as char;
+        let line2 = good.lines().nth(2).unwrap();
+        let at = line2.len() - 1 - out / 4;
+        let d = line2.as_bytes()[at] as char;
         let flipped = char::from_digit(d.to_digit(16).unwrap() ^ (1 << (out % 4)), 16).unwrap();
-        lines[2].replace_range(at..at + 1, &flipped.to_string());
-        let ((code, log), v) = run("mismatch.hex", &(lines.join("\n") + "\n"));
-        assert_eq!(code, Some(1), "{name}: a mismatch exits 1:\n{log}");
+        let v = edited("mismatch.hex", 2, at, flipped);
         assert_eq!(v.unwrap().failed, 1, "{name}: the verdict reads past the exit line");
-        lines[2] = good.lines().nth(2).unwrap().to_string();
-        lines[4].replace_range(3..4, "g");
-        let ((code, log), v) = run("malformed.hex", &(lines.join("\n") + "\n"));
-        assert_eq!(code, Some(1), "{name}:\n{log}");
-        let e = v.unwrap_err().to_string();
+        let e = edited("malformed.hex", 4, 3, 'g').unwrap_err().to_string();
         assert!(e.contains("not a hex digit, in or after record 5"), "{name}: {e}");
         // Icarus's %h reads x and z digits as unknown bits: such a record is refused, not
         // driven. (Verilator is two-state: there the digit reads as 0, and `gbump regress`
         // refuses the set before either simulator runs.)
-        lines[4] = good.lines().nth(4).unwrap().to_string();
         if name == "icarus" {
-            lines[6].replace_range(2..3, "x");
-            let ((code, log), v) = run("unknown.hex", &(lines.join("\n") + "\n"));
-            assert_eq!(code, Some(1), "{name}:\n{log}");
-            let e = v.unwrap_err().to_string();
+            let e = edited("unknown.hex", 6, 2, 'x').unwrap_err().to_string();
             assert!(e.contains("record 7 holds an x, z or ? digit"), "{name}: {e}");
-            lines[6] = good.lines().nth(6).unwrap().to_string();
         }
         let (code, log) = direct(&[format!("+vectors={}", work.join("absent.hex").display())]);
         assert_eq!(code, Some(1), "{name}: {log}");

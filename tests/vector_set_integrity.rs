@@ -20,14 +20,22 @@ fn corner_set(dir: &Path) -> PathBuf {
     dir.join("corners_top.json")
 }
 
+fn read_manifest(p: &Path) -> Manifest {
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+fn write_manifest(p: &Path, m: &Manifest) {
+    std::fs::write(p, serde_json::to_string_pretty(m).unwrap()).unwrap();
+}
+
 /// Replace the set's text records with `text` and make the manifest agree with it.
 fn edit(manifest: &Path, text: &str) {
     let dir = manifest.parent().unwrap();
-    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(manifest).unwrap()).unwrap();
+    let mut m: Manifest = read_manifest(manifest);
     let hex = m.hex.as_mut().unwrap();
     std::fs::write(dir.join(&hex.name), text).unwrap();
     (hex.bytes, hex.sha256) = sha256_file(&dir.join(&hex.name)).unwrap();
-    std::fs::write(manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    write_manifest(manifest, &m);
 }
 
 #[test]
@@ -133,7 +141,7 @@ fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
 fn a_binary_record_with_a_bit_above_its_width_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = corner_set(dir.path());
-    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    let mut m: Manifest = read_manifest(&manifest);
     assert!(
         m.record_bits % 8 != 0,
         "the default record has padding bits ({} bits)",
@@ -147,7 +155,7 @@ fn a_binary_record_with_a_bit_above_its_width_is_refused() {
     std::fs::write(&bin, &b).unwrap();
     let e = m.bin.as_mut().unwrap();
     (e.bytes, e.sha256) = sha256_file(&bin).unwrap();
-    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    write_manifest(&manifest, &m);
     let err = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     assert!(err.contains("record 3 sets a bit above the record's"), "{err}");
 }
@@ -176,9 +184,9 @@ fn a_sets_text_and_binary_records_must_agree() {
 fn the_power_table_is_the_manifests_shininess() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = corner_set(dir.path());
-    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    let mut m: Manifest = read_manifest(&manifest);
     m.shininess += 24;
-    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    write_manifest(&manifest, &m);
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     assert!(
         e.contains("corners_top_power_table.hex") && e.contains(&format!("shininess {}", m.shininess)),
@@ -192,7 +200,7 @@ fn the_power_table_is_the_manifests_shininess() {
 fn a_missing_file_or_a_moved_column_is_named() {
     let dir = tempfile::tempdir().unwrap();
     let manifest = corner_set(dir.path());
-    let mut m: Manifest = serde_json::from_str(&std::fs::read_to_string(&manifest).unwrap()).unwrap();
+    let mut m: Manifest = read_manifest(&manifest);
     std::fs::remove_file(dir.path().join(&m.bin.as_ref().unwrap().name)).unwrap();
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     assert!(
@@ -201,7 +209,7 @@ fn a_missing_file_or_a_moved_column_is_named() {
     );
     let _ = corner_set(dir.path());
     m.columns[2].lsb += 1;
-    std::fs::write(&manifest, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    write_manifest(&manifest, &m);
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     let name = &m.columns[2].name;
     assert!(e.contains(&format!("column 2 is `{name}` at lsb {}", m.columns[2].lsb)), "{e}");
