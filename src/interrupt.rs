@@ -24,6 +24,52 @@ pub fn child(pid: u32) -> Child {
     Child(pid)
 }
 
+/// End every process this one started, children and theirs (Verilator's make and compiler),
+/// with SIGTERM. The tools share gbump's process group, so a terminal's Ctrl-C or a runner
+/// killing the group reaches them anyway; a signal sent to gbump alone (`kill`, a runner's
+/// timeout) reaches them only through this.
+#[cfg(target_os = "linux")]
+fn end_descendants() {
+    let me = std::process::id();
+    // (pid, parent) of every process, from /proc/PID/stat ("pid (comm) state ppid ...";
+    // comm may hold spaces and parentheses, so the fields are read after its last `)`).
+    let procs: Vec<(u32, u32)> = std::fs::read_dir("/proc")
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| {
+            let pid: u32 = e.file_name().to_str()?.parse().ok()?;
+            let stat = std::fs::read_to_string(e.path().join("stat")).ok()?;
+            let ppid = stat.rsplit_once(')')?.1.split_whitespace().nth(1)?.parse().ok()?;
+            Some((pid, ppid))
+        })
+        .collect();
+    let mut found = vec![me];
+    let mut i = 0;
+    while i < found.len() {
+        let parent = found[i];
+        found.extend(procs.iter().filter(|p| p.1 == parent).map(|p| p.0));
+        i += 1;
+    }
+    for &pid in &found[1..] {
+        // SAFETY: a plain kill(2) of a process this run started (directly or through a tool).
+        unsafe {
+            libc::kill(pid as libc::pid_t, libc::SIGTERM);
+        }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn end_descendants() {
+    #[cfg(unix)]
+    for pid in CHILDREN.lock().map(|c| c.clone()).unwrap_or_default() {
+        // SAFETY: a plain kill(2) of a tool this run started and still waits for.
+        unsafe {
+            libc::kill(pid as libc::pid_t, libc::SIGTERM);
+        }
+    }
+}
+
 impl Drop for Child {
     fn drop(&mut self) {
         if let Ok(mut c) = CHILDREN.lock() {
@@ -46,18 +92,10 @@ pub fn install() {
         })
         .collect();
     let _ = ctrlc::set_handler(|| {
-        // The handler runs on a thread of its own, not in signal context: it may print and
-        // signal the tools gbump started. Each runs in its own process group (`tool::run_cmd`),
-        // out of reach of a terminal's Ctrl-C, so it is ended here on the first signal too: a
-        // run stopping through its error path must not wait for a half-hour build.
-        #[cfg(unix)]
-        for pid in CHILDREN.lock().map(|c| c.clone()).unwrap_or_default() {
-            // SAFETY: a plain kill(2) of the process group of a tool this run started and
-            // still waits for.
-            unsafe {
-                libc::kill(-(pid as libc::pid_t), libc::SIGTERM);
-            }
-        }
+        // The handler runs on a thread of its own, not in signal context: it may read /proc,
+        // print and signal. The tools end on the first signal too: a run stopping through its
+        // error path must not wait for a whole build first.
+        end_descendants();
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
             std::process::exit(130);

@@ -43,10 +43,6 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
             Error::Other(format!("{what}: cannot start {prog}: {e}"))
         }
     };
-    // Its own process group, so a signal that ends gbump ends everything the tool started
-    // (make, the compiler under Verilator), not the tool alone.
-    #[cfg(unix)]
-    std::os::unix::process::CommandExt::process_group(cmd, 0);
     let child = cmd
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())

@@ -57,7 +57,7 @@ module tb_cosim;
     task automatic end_run(input bit bad);
         if (bad) begin
             $display("{{EXIT_MARK}}");
-            $c("std::exit(1);");
+            $c("Verilated::runFlushCallbacks(); Verilated::runExitCallbacks(); std::exit(1);");
         end
         $finish;
     endtask

@@ -29,9 +29,10 @@ module tb_units;
     reg gave_up = 1'b0;
     task end_run(input bad);
         begin
-            // Under Verilator $fatal aborts (SIGABRT, a core file): the binary exits through C++.
+            // Under Verilator $fatal aborts (SIGABRT, a core file): the binary exits through C++,
+            // after what $finish would run (a waveform closed, buffers flushed).
 `ifdef VERILATOR
-            if (bad) begin $display("{{EXIT_MARK}}"); $c("std::exit(1);"); end
+            if (bad) begin $display("{{EXIT_MARK}}"); $c("Verilated::runFlushCallbacks(); Verilated::runExitCallbacks(); std::exit(1);"); end
 `else
             if (bad) $fatal(1, "{{EXIT_MARK}}");
 `endif
@@ -64,7 +65,8 @@ module tb_units;
         power_table_we = 1'b0;
         n = 0;
         code = $fscanf(fin, "%h\n", rec);
-        // %h also reads x, z, ? and _ digits: a record holding one is refused, not driven.
+        // %h also reads x, z and ? digits (unknown bits): a record holding one is refused, not
+        // driven. (It reads `_` as a separator; `gbump regress` refuses such a set first.)
         while (code == 1 && (^rec) !== 1'bx) begin
             ok = 1'b1;
             lat = 1;
@@ -83,9 +85,9 @@ module tb_units;
             code = $fscanf(fin, "%h\n", rec);
         end
         // The loop stops at the end of the file or at a character that is not a hex digit (the
-        // part of its line before it was read as a record).
-        if (code == 1) begin $display("FATAL: %0s: record %0d holds an x, z or ? digit", vec_file, n + 1); gave_up = 1'b1; end
-        else if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, in or after record %0d", vec_file, n); gave_up = 1'b1; end
+        // part of its line before it, if any, was read as a record: the line is n or n + 1).
+        if (code == 1) begin $display("FATAL: %0s: record %0d (line %0d) holds an x, z or ? digit", vec_file, n, n + 1); gave_up = 1'b1; end
+        else if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, on line %0d or %0d", vec_file, n, n + 1); gave_up = 1'b1; end
         finish_run;
     end
 endmodule

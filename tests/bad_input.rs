@@ -1217,59 +1217,74 @@ fn a_sweep_for_cmos_measures_gate_equivalents() {
     assert!(dir.path().join("so/sp.csv").is_file());
 }
 
-/// A signal to gbump alone (a CI runner's timeout, `kill`), not to its process group, while a
-/// simulator build runs: the build's whole process tree (Verilator, make, the compiler) ends
-/// with gbump, nothing left writing into the work folder.
+/// While a simulator build runs: SIGINT to gbump alone (a runner's timeout, `kill`), or
+/// SIGKILL to gbump's process group (a CI runner cancelling; gbump cannot handle SIGKILL, so
+/// its tools must share its group): the build's whole process tree (Verilator, make, the
+/// compiler) ends with gbump, nothing left writing into the work folder.
 #[test]
 fn a_signal_during_a_build_ends_the_builds_processes() {
     if !gbump::tool::have("verilator") {
         panic!("verilator is not installed: scripts/install-tools.sh installs it");
     }
-    let dir = tempfile::tempdir().unwrap();
-    let work = std::fs::canonicalize(dir.path()).unwrap().join("work");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
-        .args(["regress", "--sim", "verilator", "--random", "100", "--no-scenes", "--work"])
-        .arg(&work)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    // Wait for a build in progress: a temporary build folder under the work folder.
-    let building =
-        || std::fs::read_dir(work.join("build")).is_ok_and(|d| d.flatten().any(|e| e.file_name().to_string_lossy().contains(".tmp")));
-    let t = std::time::Instant::now();
-    while !building() {
-        assert!(child.try_wait().unwrap().is_none(), "gbump ended before its build started");
-        assert!(t.elapsed().as_secs() < 120, "no build started in 120 s");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    send("INT", child.id());
-    let st = child.wait().unwrap();
-    assert!(!st.success());
-    // Every process still working in the work folder (the build's cwd) after a grace period
-    // (a compiler left orphaned would go on for seconds, until its file is done).
-    let mut left = Vec::new();
-    for _ in 0..10 {
-        std::thread::sleep(std::time::Duration::from_millis(100));
-        left = std::fs::read_dir("/proc")
-            .unwrap()
-            .flatten()
-            .filter_map(|e| {
-                let cwd = std::fs::read_link(e.path().join("cwd")).ok()?;
-                let cmd = std::fs::read_to_string(e.path().join("cmdline")).unwrap_or_default();
-                cwd.starts_with(&work)
-                    .then(|| format!("{}: {}", e.file_name().to_string_lossy(), cmd.replace('\0', " ")))
-            })
-            .collect();
-        if left.is_empty() {
-            break;
+    for signal in ["INT", "KILL"] {
+        let dir = tempfile::tempdir().unwrap();
+        let work = std::fs::canonicalize(dir.path()).unwrap().join("work");
+        use std::os::unix::process::CommandExt;
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+            .args(["regress", "--sim", "verilator", "--random", "100", "--no-scenes", "--work"])
+            .arg(&work)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            // Its own group, as a shell job or a runner's step is.
+            .process_group(0)
+            .spawn()
+            .unwrap();
+        // Wait for a build in progress: a temporary build folder under the work folder.
+        let building =
+            || std::fs::read_dir(work.join("build")).is_ok_and(|d| d.flatten().any(|e| e.file_name().to_string_lossy().contains(".tmp")));
+        let t = std::time::Instant::now();
+        while !building() {
+            assert!(child.try_wait().unwrap().is_none(), "gbump ended before its build started");
+            assert!(t.elapsed().as_secs() < 120, "no build started in 120 s");
+            std::thread::sleep(std::time::Duration::from_millis(50));
         }
+        std::thread::sleep(std::time::Duration::from_millis(1500));
+        // SIGKILL goes to the group, as a runner's cancel does; SIGINT to gbump alone.
+        let target = if signal == "KILL" {
+            format!("-{}", child.id())
+        } else {
+            child.id().to_string()
+        };
+        std::process::Command::new("kill")
+            .args([&format!("-{signal}"), "--", &target])
+            .status()
+            .unwrap();
+        let st = child.wait().unwrap();
+        assert!(!st.success());
+        // Every process still working in the work folder (the build's cwd) after a grace period
+        // (a compiler left orphaned would go on for seconds, until its file is done).
+        let mut left = Vec::new();
+        for _ in 0..10 {
+            std::thread::sleep(std::time::Duration::from_millis(100));
+            left = std::fs::read_dir("/proc")
+                .unwrap()
+                .flatten()
+                .filter_map(|e| {
+                    let cwd = std::fs::read_link(e.path().join("cwd")).ok()?;
+                    let cmd = std::fs::read_to_string(e.path().join("cmdline")).unwrap_or_default();
+                    cwd.starts_with(&work)
+                        .then(|| format!("{}: {}", e.file_name().to_string_lossy(), cmd.replace('\0', " ")))
+                })
+                .collect();
+            if left.is_empty() {
+                break;
+            }
+        }
+        assert!(
+            left.is_empty(),
+            "SIG{signal}: processes left running in {}:\n{}",
+            work.display(),
+            left.join("\n")
+        );
     }
-    assert!(
-        left.is_empty(),
-        "processes left running in {}:\n{}",
-        work.display(),
-        left.join("\n")
-    );
 }

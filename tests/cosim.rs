@@ -34,15 +34,20 @@ fn rtl(config: Option<&str>, dir: &Path) {
     assert!(cmd.output().unwrap().status.success());
 }
 
-/// The most recently built file called `name` under `dir`.
-fn newest(dir: &Path, name: &str) -> PathBuf {
-    std::fs::read_dir(dir)
+/// The lockstep binary built under `builds` for the RTL folder `rtl`: the build whose source
+/// is the one this gbump fills for it (a kept work folder holds builds of older sources for
+/// the same folder too).
+fn build_for(builds: &Path, rtl: &Path) -> PathBuf {
+    let jf = gbump::cosim::interface_file(rtl).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&jf).unwrap()).unwrap();
+    let source = format!("{}\n{}", gbump::capi::DPI_PACKAGE, gbump::cosim::tb::fill(&j, &jf, rtl).unwrap());
+    std::fs::read_dir(builds)
         .unwrap()
         .flatten()
-        .map(|e| e.path().join(name))
-        .filter(|p| p.is_file())
-        .max_by_key(|p| p.metadata().unwrap().modified().unwrap())
-        .unwrap_or_else(|| panic!("no {name} under {}", dir.display()))
+        .map(|e| e.path())
+        .find(|d| std::fs::read_to_string(d.join("tb_cosim.sv")).is_ok_and(|t| t == source))
+        .map(|d| d.join("tb_cosim"))
+        .unwrap_or_else(|| panic!("no build of this source under {}", builds.display()))
 }
 
 /// A work folder per test, so the two tests (and their Verilator builds) run side by side.
@@ -113,7 +118,7 @@ fn cosim_catches_mutants() {
         "mutant passed:\n{log}"
     );
     // The lockstep binary run alone, as a user's script would, exits 1 on the mismatch.
-    let exe = newest(&w.join("builds"), "tb_cosim");
+    let exe = build_for(&w.join("builds"), &std::path::absolute(&mutant).unwrap());
     let cfg_file = w.join(format!("cosim_config_{}.toml", gbump::PipelineConfig::default().hash()));
     let o = std::process::Command::new(&exe)
         .args([format!("+config={}", cfg_file.display()), "+seed=1".into(), "+count=2000".into()])

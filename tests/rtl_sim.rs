@@ -784,7 +784,10 @@ fn the_testbench_exit_code_is_its_verdict() {
         let exe = sim
             .build(
                 &work.join("build"),
-                &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+                &Testbench {
+                    waves: true,
+                    ..Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl))
+                },
                 &rtl,
             )
             .unwrap();
@@ -826,14 +829,24 @@ fn the_testbench_exit_code_is_its_verdict() {
         let flipped = char::from_digit(d.to_digit(16).unwrap() ^ (1 << (out % 4)), 16).unwrap();
         let v = edited("mismatch.hex", 2, at, flipped);
         assert_eq!(v.unwrap().failed, 1, "{name}: the verdict reads past the exit line");
+        // The failing run's waveform is whole: the exit closes it as $finish would.
+        let fst = work.join("mismatch.fst");
+        let _ = std::fs::remove_file(&fst);
+        let plus = [
+            format!("+vectors={}", work.join("mismatch.hex").display()),
+            format!("+table={}", table.display()),
+        ];
+        let (ok, log, _) = sim.run_log(&exe, &plus, Some(&fst), &work, "waves").unwrap();
+        let bytes = std::fs::metadata(&fst).map_or(0, |m| m.len());
+        assert!(!ok && bytes > 4000, "{name}: a failing run's waveform is {bytes} bytes:\n{log}");
         let e = edited("malformed.hex", 4, 3, 'g').unwrap_err().to_string();
-        assert!(e.contains("not a hex digit, in or after record 5"), "{name}: {e}");
+        assert!(e.contains("not a hex digit, on line 5 or 6"), "{name}: {e}");
         // Icarus's %h reads x and z digits as unknown bits: such a record is refused, not
         // driven. (Verilator is two-state: there the digit reads as 0, and `gbump regress`
         // refuses the set before either simulator runs.)
         if name == "icarus" {
             let e = edited("unknown.hex", 6, 2, 'x').unwrap_err().to_string();
-            assert!(e.contains("record 7 holds an x, z or ? digit"), "{name}: {e}");
+            assert!(e.contains("record 6 (line 7) holds an x, z or ? digit"), "{name}: {e}");
         }
         let (code, log) = direct(&[format!("+vectors={}", work.join("absent.hex").display())]);
         assert_eq!(code, Some(1), "{name}: {log}");

@@ -168,13 +168,13 @@ fn a_sets_text_and_binary_records_must_agree() {
     let manifest = corner_set(dir.path());
     let text = std::fs::read_to_string(dir.path().join("corners_top.hex")).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
-    // The last digit of record 5: bits 0-3, byte 0 of the binary record.
+    // The last digit of record 4 (line 5): bits 0-3, byte 0 of the binary record.
     let last = lines[4].pop().unwrap();
     lines[4].push(if last == '0' { '1' } else { '0' });
     edit(&manifest, &lines.iter().map(|l| format!("{l}\n")).collect::<String>());
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     assert!(
-        e.contains("corners_top.hex:5:") && e.contains("not the binary file's record 5") && e.contains("byte 0"),
+        e.contains("corners_top.hex:5:") && e.contains("record 4 is not the binary file's record 4") && e.contains("byte 0"),
         "{e}"
     );
 }

@@ -161,9 +161,8 @@ enum Bench {
     Units,
 }
 
-/// The bench a set runs on, or why it cannot run on `sim` (checked before anything is built).
-/// The command that wrote set `set` (its manifest's path), into the set's own folder and
-/// without its `--format`, for a fix that adds one.
+/// The command that wrote set `set` (its manifest's path), into the set's own folder, with
+/// `--format both` in place of its own.
 fn again(m: &crate::vectors::manifest::Manifest, set: &str) -> String {
     let dir = Path::new(set)
         .parent()
@@ -183,23 +182,25 @@ fn again(m: &crate::vectors::manifest::Manifest, set: &str) -> String {
             out.push(w.clone());
         }
     }
+    out.extend(["--format".to_string(), "both".to_string()]);
     quoted_words(&out) + &relative_note(&words)
 }
 
+/// The bench a set runs on, or why it cannot run on `sim` (checked before anything is built).
 fn bench_for(sim: Sim, m: &crate::vectors::manifest::Manifest, set: &str, waves: bool) -> Result<Bench> {
     let top = m.target == "top";
     match (sim, top) {
         (Sim::Verilator, true) if m.bin.is_some() && !waves => Ok(Bench::Harness),
         _ if m.hex.is_some() => Ok(if top { Bench::TopTb } else { Bench::Units }),
         (Sim::Verilator, true) => Err(Error::Other(format!(
-            "{set}: --waves needs text records (the Verilog testbench), and this set has only binary ones\n  fix: dump it again with: {} --format both, or run without --waves",
+            "{set}: --waves needs text records (the Verilog testbench), and this set has only binary ones\n  fix: dump it again with: {}; or run without --waves",
             again(m, set)
         ))),
         _ => Err(Error::Other(format!(
-            "{set}: the {} testbench reads text records, and this set has only binary ones\n  fix: dump it again with: {} --format both{}",
+            "{set}: the {} testbench reads text records, and this set has only binary ones\n  fix: dump it again with: {}{}",
             sim.name(),
             again(m, set),
-            if top { ", or run it with --sim verilator (its C++ harness reads binary records)" } else { "" }
+            if top { "; or run it with --sim verilator (its C++ harness reads binary records)" } else { "" }
         ))),
     }
 }

@@ -226,8 +226,6 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     if r.stall > 0 {
         cmd.args(["--stall", &r.stall.to_string()]);
     }
-    #[cfg(unix)]
-    std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
     let mut child = cmd
         .current_dir(r.cwd)
         .stdin(Stdio::piped())

@@ -313,11 +313,11 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     // will read them: as many lines as the set's count, each one record's digits, no bit
     // above the record. Where the set has both files (Icarus reads the text, Verilator the
     // binary), they must hold the same records, or the two simulators judge different sets.
+    check_power_table(&dir.join(&m.power_table.name), &m, &regen)?;
     if let Some(h) = &m.hex {
         let bin = m.bin.as_ref().map(|b| dir.join(&b.name));
         check_hex_records(&dir.join(&h.name), bin.as_deref(), &m, &regen)?;
     }
-    check_power_table(&dir.join(&m.power_table.name), &m, &regen)?;
     Ok((m, dir))
 }
 
@@ -330,14 +330,12 @@ pub fn regenerate_into(command: &str, dir: &Path) -> String {
 }
 
 /// The words of `command` with its `--out` set to `dir`. Words are split as a POSIX shell
-/// would, so a quoted `--out 'my dir'` is one word; a command that does not split (an edited
-/// manifest) is one word with `--out` appended.
+/// would, so a quoted `--out 'my dir'` is one word.
 pub fn regenerate_words(command: &str, dir: &Path) -> Vec<String> {
     let d = dir.display().to_string();
     let d = if d.is_empty() { ".".to_string() } else { d };
-    let Ok(mut words) = shell_words::split(command) else {
-        return vec![command.to_string(), "--out".into(), d];
-    };
+    // A command that does not split as shell words (an edited manifest) splits at spaces.
+    let mut words = shell_words::split(command).unwrap_or_else(|_| command.split_whitespace().map(str::to_string).collect());
     match words.iter().position(|w| w == "--out" || w.starts_with("--out=")) {
         Some(i) if words[i] == "--out" && i + 1 < words.len() => words[i + 1] = d,
         Some(i) => words[i] = format!("--out={d}"),
@@ -451,7 +449,9 @@ fn check_hex_records(p: &Path, bin: Option<&Path>, m: &Manifest, regen: &str) ->
                 first_differing = Some(bad(
                     n,
                     format!(
-                        "record {n} is not the binary file's record {n} ({}, byte {j} differs): Icarus reads the text and Verilator the binary, so the two would judge different vectors",
+                        "record {} is not the binary file's record {} ({}, byte {j} differs): Icarus reads the text and Verilator the binary, so the two would judge different vectors",
+                        n - 1,
+                        n - 1,
                         b.display()
                     ),
                 ));

@@ -239,7 +239,6 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -
     })
 }
 
-/// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
 /// Refuse `exhaustive:unit` for a configuration without the unit, the sweep's own condition
 /// in the same fix, so following it is enough (checked before the targets are).
 pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
@@ -252,6 +251,7 @@ pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
     }
 }
 
+/// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
 fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
     if cfg.palette && matches!(src, Source::Scene(_)) {
         return Err(Error::Other(
