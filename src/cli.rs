@@ -533,28 +533,6 @@ fn refuse_empty_arguments() -> Result<()> {
     Ok(())
 }
 
-/// An output folder whose files a filelist (`-F`, `-c`) or a plusarg will name: refused when
-/// its path holds white space or a quote, which those split or misread, before anything is
-/// written. (Other characters, non-ASCII letters among them, go through; `regress` checks
-/// the paths it hands to make itself.)
-fn check_out(out: &Path) -> Result<()> {
-    let abs = std::path::absolute(out).map_err(|e| Error::io(out, e))?;
-    let text = abs.to_string_lossy();
-    let bad: Vec<String> = text
-        .chars()
-        .filter(|c| c.is_whitespace() || "\"'`".contains(*c))
-        .map(|c| format!("{c:?}"))
-        .collect();
-    if bad.is_empty() {
-        return Ok(());
-    }
-    Err(Error::Other(format!(
-        "--out {}: the path holds {} (in {text}), which Verilator and Icarus filelists and plusargs split or misread\n  fix: give a folder whose path has no spaces or quotes",
-        out.display(),
-        bad.join(" ")
-    )))
-}
-
 pub fn run() -> anyhow::Result<()> {
     refuse_empty_arguments()?;
     let cli = Cli::parse();
@@ -577,7 +555,7 @@ pub fn run() -> anyhow::Result<()> {
             crate::render::report::render(&r, || lock_work(Path::new(crate::sim::rtl_image::RENDER_WORK)), &mut say)?
         }
         Cmd::Rtl { pick, out } => {
-            check_out(&out)?;
+            crate::sim::check_out_path(&out)?;
             let cfg = pick.resolve()?;
             let cmd = format!("gbump rtl {} --out {}", pick.args(), quoted(&out.display().to_string())).replace("  ", " ");
             let files = crate::rtlgen::generate(&cfg, &cmd);
@@ -613,7 +591,7 @@ pub fn run() -> anyhow::Result<()> {
             level,
             shininess,
         } => {
-            check_out(&out)?;
+            crate::sim::check_out_path(&out)?;
             let r = crate::vectors_command::VectorsRequest {
                 source: &source,
                 targets: &target,
@@ -1197,15 +1175,7 @@ pub fn invocation() -> String {
         .join(" ")
 }
 
-/// `a` as a POSIX shell reads it back: as is when it holds only safe characters, else in
-/// single quotes, so a regeneration command in a file header pastes back whole.
-pub fn quoted(a: &str) -> String {
-    if !a.is_empty() && a.chars().all(|c| c.is_ascii_alphanumeric() || "-_./+,:@=%^".contains(c)) {
-        a.to_string()
-    } else {
-        format!("'{}'", a.replace('\'', "'\\''"))
-    }
-}
+pub use crate::shell::quoted;
 
 #[allow(clippy::too_many_arguments)]
 fn cosim(

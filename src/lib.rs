@@ -24,6 +24,7 @@ pub mod renamed;
 pub mod render;
 pub mod rtlgen;
 pub mod scene;
+pub mod shell;
 pub mod sim;
 pub mod simd;
 pub mod temp_files;

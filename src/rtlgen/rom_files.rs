@@ -37,7 +37,7 @@ pub fn rom_files(
     let cmd = format!(
         "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
         config_args,
-        crate::cli::quoted(&out.display().to_string())
+        crate::shell::quoted(&out.display().to_string())
     )
     .replace("  ", " ");
     let hash = &cfg.hash()[..8];

@@ -25,7 +25,7 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str, say: &mut dyn Fn
     } = super::rtl_files::write_rtl(
         cfg,
         &dir,
-        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&dir.display().to_string())),
+        &format!("gbump rtl {pick_args} --out {}", crate::shell::quoted(&dir.display().to_string())),
     )?;
     let files: Vec<String> = v.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
     let waivers: Vec<String> = vlt.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();

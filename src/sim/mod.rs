@@ -65,19 +65,39 @@ pub fn require(sim: Sim) -> Result<()> {
 /// Verilator's makefiles split paths at spaces, Verilog string literals end at quotes, and
 /// plusargs end at whitespace. `flag` names the option in the message.
 pub fn check_tool_path(p: &Path, flag: &str) -> Result<()> {
+    refuse_chars(
+        p,
+        flag,
+        |c| !c.is_ascii() || c.is_ascii_whitespace() || c.is_ascii_control() || "\"'\\$`;&|<>*?#%!{}()[]=:".contains(c),
+        "make (a `:` is its rule separator), Verilator or a plusarg would split or misread\n  fix: use a folder whose absolute path has only letters, digits and - _ . / + , @ ~",
+    )
+}
+
+/// Refuse an output folder whose files a filelist (`-F`, `-c`) or a plusarg will name when
+/// its path holds white space or a quote, which those split or misread, before anything is
+/// written. (Other characters, non-ASCII letters among them, go through; `regress` checks
+/// the paths it hands to make with [`check_tool_path`].)
+pub fn check_out_path(p: &Path) -> Result<()> {
+    refuse_chars(
+        p,
+        "--out",
+        |c| c.is_whitespace() || "\"'`".contains(c),
+        "Verilator and Icarus filelists and plusargs split or misread\n  fix: give a folder whose path has no spaces or quotes",
+    )
+}
+
+/// Refuse `p` when its absolute path holds a character `bad` names; the message says which,
+/// then `why` (the tools that would misread it, and the fix).
+fn refuse_chars(p: &Path, flag: &str, bad: impl Fn(char) -> bool, why: &str) -> Result<()> {
     let abs = std::path::absolute(p).map_err(|e| Error::io(p, e))?;
     let text = abs.to_string_lossy();
-    let bad: Vec<char> = text
-        .chars()
-        .filter(|c| !c.is_ascii() || c.is_ascii_whitespace() || c.is_ascii_control() || "\"'\\$`;&|<>*?#%!{}()[]=:".contains(*c))
-        .collect();
-    if bad.is_empty() {
+    let found: Vec<String> = text.chars().filter(|&c| bad(c)).map(|c| format!("{c:?}")).collect();
+    if found.is_empty() {
         return Ok(());
     }
     Err(Error::Other(format!(
-        "{flag} {}: the path holds {} (in {}), which make (a `:` is its rule separator), Verilator or a plusarg would split or misread\n  fix: use a folder whose absolute path has only letters, digits and - _ . / + , @ ~",
+        "{flag} {}: the path holds {} (in {text}), which {why}",
         p.display(),
-        bad.iter().map(|c| format!("{c:?}")).collect::<Vec<_>>().join(" "),
-        text
+        found.join(" ")
     )))
 }

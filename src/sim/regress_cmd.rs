@@ -32,7 +32,7 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
             "--vectors {}: no .json manifests there\n  fix: point at a folder or the .json manifests `gbump vectors --out DIR` wrote",
             vectors
                 .iter()
-                .map(|p| crate::cli::quoted(&p.display().to_string()))
+                .map(|p| crate::shell::quoted(&p.display().to_string()))
                 .collect::<Vec<_>>()
                 .join(" ")
         )));
@@ -72,7 +72,10 @@ pub fn regress(
     let rtl = write_rtl(
         cfg,
         &rtl_dir,
-        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&rtl_dir.display().to_string())),
+        &format!(
+            "gbump rtl {pick_args} --out {}",
+            crate::shell::quoted(&rtl_dir.display().to_string())
+        ),
     )?;
     let results = run_checked(cfg, &sets, &rtl, o)?;
     let t = super::summary::table(&results, say)?;

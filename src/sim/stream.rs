@@ -391,7 +391,10 @@ pub fn regress_harness(cfg: &PipelineConfig, pick_args: &str, work: &Path) -> Re
     let rtl = write_rtl(
         cfg,
         &rtl_dir,
-        &format!("gbump rtl {pick_args} --out {}", crate::cli::quoted(&rtl_dir.display().to_string())),
+        &format!(
+            "gbump rtl {pick_args} --out {}",
+            crate::shell::quoted(&rtl_dir.display().to_string())
+        ),
     )?;
     build(cfg, work, &rtl)
 }

@@ -344,10 +344,7 @@ pub fn regenerate_words(command: &str, dir: &Path) -> Vec<String> {
     words
 }
 
-/// Words quoted for a POSIX shell, joined.
-pub fn quoted_words(words: &[String]) -> String {
-    words.iter().map(|w| crate::cli::quoted(w)).collect::<Vec<_>>().join(" ")
-}
+pub use crate::shell::quoted_words;
 
 /// A configuration or scene file named relative to where the set was made is found only from
 /// there (the manifest does not record that folder): a note saying so, or nothing.
