@@ -36,6 +36,28 @@ pub enum PowerUnitKind {
     /// `power_segments` segments halving towards x = 1, `power_entries` interpolated
     /// entries each: dense where x^n changes fastest.
     Segmented,
+    /// No table: the Cg Tutorial's specular power (§8.3), x^e by successive squarings, e the
+    /// power of two nearest the shininess (`model::power_unit::squarings_exponent`: three
+    /// squarings for 8, four for 20), each product rounded on u1.(power_frac_bits +
+    /// SQUARING_GUARD_BITS). The exponent is fixed when the hardware is built, so the top
+    /// serves one shininess, as a ROM table does; its table load port stays, unused.
+    Squaring,
+}
+
+/// Guard bits of the squaring power unit's products: with 4 the result of x^n stays within
+/// an LSB of exact for every n the paper's scenes use (`gbump power-space` measures every
+/// guard).
+pub const SQUARING_GUARD_BITS: u32 = 4;
+
+/// Hardware that holds one shininess, fixed when it is built (a ROM table, or a squaring
+/// power unit): what to say when a scene, a vector set or a caller asks for another.
+pub struct FixedShininess {
+    /// The field that fixes it.
+    pub field: &'static str,
+    /// "the power table is a ROM holding shininess 16", or the squaring unit's equivalent.
+    pub what: String,
+    /// The setting that would lift the restriction.
+    pub release: &'static str,
 }
 
 /// One light per clock (paper §4.2: "n light sources are blended in n clock cycles") or all at once.
@@ -219,6 +241,21 @@ pub struct PipelineConfig {
     /// of the TOML when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub renormalise_bump: bool,
+    /// Texels along a face edge of the normalisation cube map (Cg Tutorial §8.2) that the
+    /// `normalise_cube` units read instead of computing 1/|v| (0: the `normalise` unit's table
+    /// and Newton steps). The six faces are one face turned, so the unit holds a quarter of one
+    /// face and finds the texel by dividing the two minor components by the major one. Needs
+    /// `renormalise`. Left out of the TOML when 0, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub cube_map_face: u32,
+    /// Geometric self-shadowing (Cg Tutorial §8.5.3): a light whose direction L (as the dot
+    /// products see it) points below the surface, L_z <= 0 in bump space, adds nothing, and
+    /// its highlight is cut where the bump normal faces away from it (B·L clamped to 0), so
+    /// no highlight shows on a bump the light cannot reach. Gates on each light's factors;
+    /// needs the diffuse path (its B·L). Left out of the TOML when false, so older hashes
+    /// are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub self_shadow: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -234,6 +271,13 @@ pub struct PerFragment {
     pub interpolate_k: bool,
     /// Whether the pipeline renormalises the fetched bump normal (the `normalise_b` unit).
     pub renormalise_bump: bool,
+    /// Texels along a face edge of the cube map that renormalises L and H (0: computed).
+    pub cube_map_face: u32,
+    /// Whether the specular power comes from successive squarings (`power_unit =
+    /// "squaring"`) rather than the scene's table.
+    pub squaring: bool,
+    /// Whether the pipeline self-shadows (`self_shadow`) where the scene asks for it.
+    pub self_shadow: bool,
 }
 
 impl std::fmt::Display for PerFragment {
@@ -248,7 +292,17 @@ impl std::fmt::Display for PerFragment {
             f,
             "interpolate = \"{i}\", renormalise = {}, interpolate_k = {}, renormalise_bump = {}",
             self.renormalise, self.interpolate_k, self.renormalise_bump
-        )
+        )?;
+        if self.cube_map_face > 0 {
+            write!(f, ", cube_map_face = {}", self.cube_map_face)?;
+        }
+        if self.squaring {
+            write!(f, ", power_unit = \"squaring\"")?;
+        }
+        if self.self_shadow {
+            write!(f, ", self_shadow as the scene asks")?;
+        }
+        Ok(())
     }
 }
 
@@ -260,6 +314,9 @@ impl PipelineConfig {
             renormalise: self.renormalise,
             interpolate_k: self.interpolate_k,
             renormalise_bump: self.renormalise_bump,
+            cube_map_face: self.cube_map_face,
+            squaring: self.power_unit == PowerUnitKind::Squaring,
+            self_shadow: self.self_shadow,
         }
     }
 }
@@ -299,6 +356,8 @@ impl Default for PipelineConfig {
             renormalise: false,
             interpolate_k: false,
             renormalise_bump: false,
+            cube_map_face: 0,
+            self_shadow: false,
         }
     }
 }
@@ -362,6 +421,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
         2,
         16,
         "two let a setup load while the previous triangle drains; a bank tag wider than 4 bits buys nothing at these latencies",
+    ),
+    (
+        "cube_map_face",
+        0,
+        128,
+        "a power of two, texels along a cube-map face edge (0: no cube map); 128 keeps the quarter face at 4096 words",
     ),
     (
         "pipeline_depth",
@@ -506,6 +571,12 @@ impl PipelineConfig {
         if self.power_unit != PowerUnitKind::Segmented && self.power_segments != d.power_segments {
             return Some(("power_segments", "only power_unit = \"segmented\" has segments"));
         }
+        if !self.renormalise && self.cube_map_face != d.cube_map_face {
+            return Some((
+                "cube_map_face",
+                "with renormalise = false there is no normalise unit to read a cube map",
+            ));
+        }
         None
     }
 
@@ -519,6 +590,9 @@ impl PipelineConfig {
         }
         if self.power_unit != PowerUnitKind::Segmented {
             self.power_segments = d.power_segments;
+        }
+        if !self.renormalise {
+            self.cube_map_face = d.cube_map_face;
         }
         self
     }
@@ -535,6 +609,14 @@ impl PipelineConfig {
                     format!("use {lo}..={hi} ({why})"),
                 ));
             }
+        }
+        if self.cube_map_face != 0 && !(self.cube_map_face >= 4 && self.cube_map_face.is_power_of_two()) {
+            return Err(Error::field(
+                file,
+                "cube_map_face",
+                format!("{} is not a power of two of at least 4", self.cube_map_face),
+                "use 4, 8, 16, 32 (the Cg Tutorial's size), 64 or 128, or 0 for the normalise unit's arithmetic",
+            ));
         }
         if !self.power_entries.is_power_of_two() {
             return Err(Error::field(
@@ -646,6 +728,22 @@ impl PipelineConfig {
                 "set specular = true, or interpolate = \"hl\" with diffuse = true, or drop renormalise",
             ));
         }
+        if self.self_shadow && !self.diffuse {
+            return Err(Error::field(
+                file,
+                "self_shadow",
+                "self_shadow = true with diffuse = false: the highlight's cut reads each light's B·L, which only the diffuse path computes",
+                "set diffuse = true, or drop self_shadow",
+            ));
+        }
+        if self.power_rom && self.power_unit == PowerUnitKind::Squaring {
+            return Err(Error::field(
+                file,
+                "power_rom",
+                "power_rom = true with power_unit = \"squaring\": a squaring unit reads no table to make a ROM of (its exponent is built in already)",
+                "drop power_rom",
+            ));
+        }
         if self.power_rom && !self.specular {
             return Err(Error::field(
                 file,
@@ -693,6 +791,7 @@ impl PipelineConfig {
             "lights" => self.lights,
             "triangle_banks" => self.triangle_banks,
             "pipeline_depth" => self.pipeline_depth,
+            "cube_map_face" => self.cube_map_face,
             _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
         }
     }
@@ -782,6 +881,50 @@ impl PipelineConfig {
                 per_segment: self.power_entries,
                 lerp: true,
             },
+            PowerUnitKind::Squaring => PowerUnitDesign::Squaring {
+                guard: SQUARING_GUARD_BITS,
+            },
+        }
+    }
+
+    /// Why the top's power-table load port is unused, when it is: the table is a ROM
+    /// (`power_rom = true`), or there is no table (`power_unit = "squaring"`).
+    pub fn power_table_unused(&self) -> Option<&'static str> {
+        if self.power_unit == PowerUnitKind::Squaring {
+            Some("power_unit = \"squaring\"")
+        } else if self.power_rom {
+            Some("power_rom = true")
+        } else {
+            None
+        }
+    }
+
+    /// The exponent the power unit raises to for shininess `n`: n, or for a squaring unit the
+    /// power of two its successive squarings reach.
+    pub fn power_exponent(&self, n: u32) -> u32 {
+        match self.power_unit {
+            PowerUnitKind::Squaring => crate::model::power_unit::squarings_exponent(n),
+            _ => n,
+        }
+    }
+
+    /// Whether the hardware serves one shininess only, and which: `power_rom` (the table is a
+    /// ROM) or `power_unit = "squaring"` (the exponent is built in).
+    pub fn fixed_shininess(&self) -> Option<FixedShininess> {
+        if self.power_unit == PowerUnitKind::Squaring {
+            Some(FixedShininess {
+                field: "power_unit",
+                what: format!("power unit squares for shininess {} (power_unit = \"squaring\")", self.shininess),
+                release: "power_unit = \"table\"",
+            })
+        } else if self.power_rom {
+            Some(FixedShininess {
+                field: "power_rom",
+                what: format!("power table is a ROM holding shininess {}", self.shininess),
+                release: "power_rom = false",
+            })
+        } else {
+            None
         }
     }
     /// Input and output fraction bits of the power unit.
@@ -793,7 +936,19 @@ impl PipelineConfig {
     }
     /// Words of the power unit's loadable memory.
     pub fn power_depth(&self) -> u32 {
-        (self.power_unit_design().rom_bits(self.power_formats()) / (self.power_frac_bits as u64 + 1)) as u32
+        (self.power_table_design().rom_bits(self.power_formats()) / (self.power_frac_bits as u64 + 1)) as u32
+    }
+    /// The design whose table the power table memory holds: the power unit's own, or for a
+    /// squaring unit (which reads none) the plain table of `power_entries`, so the load port,
+    /// its init file and every bench's table load keep their shape.
+    pub fn power_table_design(&self) -> crate::model::power_unit::PowerUnitDesign {
+        match self.power_unit {
+            PowerUnitKind::Squaring => crate::model::power_unit::PowerUnitDesign::Table {
+                entries: self.power_entries,
+                nearest: self.power_index == PowerIndex::Nearest,
+            },
+            _ => self.power_unit_design(),
+        }
     }
     /// Address bits of the power unit's memory (its load port).
     pub fn power_addr_bits(&self) -> u32 {
@@ -924,6 +1079,7 @@ mod tests {
             ("bump_state = \"fragment\"\ntriangle_banks = 4\n", "triangle_banks"),
             ("power_unit = \"lerp\"\npower_segments = 4\n", "power_segments"),
             ("power_segments = 4\n", "power_segments"),
+            ("cube_map_face = 32\n", "cube_map_face"),
         ] {
             let e = PipelineConfig::from_toml("cfg.toml", text).unwrap_err().to_string();
             assert!(
@@ -939,5 +1095,49 @@ mod tests {
         PipelineConfig::from_toml("cfg.toml", "power_unit = \"segmented\"\npower_segments = 4\n").unwrap();
         let d = PipelineConfig::default();
         assert_eq!(d.clone().canonical().hash(), d.hash());
+    }
+
+    /// A cube map needs normalise units to read it and a face of a power of two from 4 texels;
+    /// at 0 it is left out of the TOML, so every older hash is unchanged.
+    #[test]
+    fn cube_map_face_is_checked_and_keeps_old_hashes() {
+        let base = "bump_state = \"fragment\"\ninterpolate = \"hl\"\nrenormalise = true\nlight_mode = \"parallel\"\n";
+        let plain = PipelineConfig::from_toml("c.toml", base).unwrap();
+        assert!(!plain.to_toml().contains("cube_map_face"));
+        let cube = PipelineConfig::from_toml("c.toml", &format!("{base}cube_map_face = 32\n")).unwrap();
+        assert_ne!(cube.hash(), plain.hash());
+        for bad in [2, 3, 48, 256] {
+            let e = PipelineConfig::from_toml("c.toml", &format!("{base}cube_map_face = {bad}\n"))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("c.toml") && e.contains("cube_map_face") && e.contains("fix"),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    /// A squaring unit has no table to make a ROM of, self-shadowing reads the diffuse path's
+    /// B·L, and both leave older hashes alone when off.
+    #[test]
+    fn squaring_and_self_shadow_are_checked_and_keep_old_hashes() {
+        let d = PipelineConfig::default();
+        assert!(!d.to_toml().contains("self_shadow"));
+        let e = PipelineConfig::from_toml("c.toml", "power_unit = \"squaring\"\npower_rom = true\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("c.toml") && e.contains("power_rom") && e.contains("squaring"), "{e}");
+        let e = PipelineConfig::from_toml("c.toml", "self_shadow = true\ndiffuse = false\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("self_shadow") && e.contains("diffuse = true"), "{e}");
+        let sq = PipelineConfig::from_toml("c.toml", "power_unit = \"squaring\"\nshininess = 20\nself_shadow = true\n").unwrap();
+        assert_ne!(sq.hash(), d.hash());
+        // Successive squarings reach the power of two nearest the shininess.
+        assert_eq!(sq.power_exponent(20), 16);
+        assert_eq!(d.power_exponent(20), 20);
+        assert!(sq.fixed_shininess().unwrap().what.contains("squares for shininess 20"));
+        // The unused load port keeps a plain table's shape.
+        assert_eq!(sq.power_depth(), d.power_depth());
     }
 }

@@ -77,12 +77,14 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         }
     }
     let writes_top = !matches!(src, Source::Exhaustive(_)) && targets.iter().any(|t| t == "top");
-    if let Some(n) = r.shininess.filter(|&n| cfg.power_rom && n != cfg.shininess && writes_top) {
-        // The set would be refused by every regression of this configuration: refuse it now.
-        return Err(Error::Other(format!(
-            "--shininess {n}: the configuration's power table is a ROM holding shininess {}\n  fix: drop --shininess, or use a configuration with power_rom = false",
-            cfg.shininess
-        )));
+    if let (Some(n), Some(fixed)) = (r.shininess, cfg.fixed_shininess()) {
+        if n != cfg.shininess && writes_top {
+            // The set would be refused by every regression of this configuration: refuse it now.
+            return Err(Error::Other(format!(
+                "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
+                fixed.what, fixed.release
+            )));
+        }
     }
     if r.size.is_some() && !matches!(src, Source::Scene(_)) {
         return Err(Error::Other(format!(

@@ -259,7 +259,10 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
         .filter(|(_, f)| f.is_some())
         .map(|(e, _)| e.name)
         .collect();
-    assert_eq!(with, ["sgi", "gouraud", "gouraud_h", "gouraud_hl", "gouraud_hn", "gouraud_hln"]);
+    assert_eq!(
+        with,
+        ["sgi", "gouraud", "gouraud_h", "gouraud_hl", "gouraud_hn", "gouraud_hln", "cg"]
+    );
     for (e, f) in t.engines.iter().zip(&t.fixed[0]) {
         assert_eq!(e.fixed.is_some(), f.is_some(), "{}", e.name);
     }
@@ -288,13 +291,17 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
             f.error
         );
     }
+    // Cg's path reads a cube map and squares: print it beside its f64 model.
+    let cg = row("cg");
+    let cg_f64 = &t.errors[0][t.engines.iter().position(|e| e.name == "cg").unwrap()];
+    println!("cg on the plane: bit-accurate {:?}, f64 {cg_f64:?}", cg.error);
     let rows = [row("gouraud"), row("gouraud_h")];
     assert_ne!(rows[0].config_hash, rows[1].config_hash, "per-triangle and per-fragment tops");
     // The figures come from the configuration the table names, as `gbump area` would size it.
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("plane.toml"), PLANE).unwrap();
     let s = Scene::load(&dir.path().join("plane.toml").display().to_string()).unwrap();
-    let cfg = engine("gouraud_h").unwrap().fixed_config(&s.derive_config().unwrap()).unwrap();
+    let cfg = engine("gouraud_h").unwrap().fixed_config(&s).unwrap().unwrap();
     let area = gbump::measure::area_model::model_area(&cfg);
     assert_eq!(rows[1].config_hash, cfg.hash()[..8]);
     assert_eq!((rows[1].area_ge, rows[1].memory_bits), (area.top_ge, area.memory_bits));
@@ -305,5 +312,5 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     assert!(csv.lines().all(|l| l.split(',').count() == fields), "{csv}");
     assert!(t
         .markdown()
-        .contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `texram`"));
+        .contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `texram`, `visa`, `visa_quaternion`, `embm`, `harmony`."));
 }

@@ -2,7 +2,8 @@
 //! draws reach only now and then: all eight light slots serial and parallel, the widest dot
 //! product with the largest table, the widest segmented unit, every width at its top and at
 //! its bottom. Each is generated, linted (Verilator -Wall) and simulated on Verilator against
-//! the model, exactly as `gbump fuzz` does; two carry the `normalise_b` unit.
+//! the model, exactly as `gbump fuzz` does; two carry the `normalise_b` unit,
+//! one the largest `normalise_cube` map.
 
 use gbump::sim::fuzz::{check_config, corner_configs};
 use std::time::Instant;

@@ -34,6 +34,17 @@ fn renormalised(how: Interpolate) -> PipelineConfig {
     }
 }
 
+/// The Cg Tutorial's size of normalisation cube map (§8.2) in place of the normalise unit.
+const CUBE: u32 = 32;
+
+/// Renormalised by reading a normalisation cube map of `CUBE` texels a face edge.
+fn cube_mapped(how: Interpolate) -> PipelineConfig {
+    PipelineConfig {
+        cube_map_face: CUBE,
+        ..renormalised(how)
+    }
+}
+
 #[test]
 fn renormalise_needs_interpolated_vectors_and_parallel_lights_and_keeps_old_hashes() {
     let e = PipelineConfig::from_toml("x.toml", "renormalise = true\n").unwrap_err().to_string();
@@ -86,16 +97,21 @@ fn interpolated_golden_images_match_their_pngs() {
             panic!("{diff}");
         }
     }
-    let img = render(&s, &renormalised(Interpolate::Hl), W, H, false).unwrap();
-    let px = codes_to_u8(&img.golden, img.colour_max);
-    if let Some(diff) = golden_png::check("flat_artifact_renormalise_hl", W, H, &px) {
-        panic!("{diff}");
+    for (cfg, name) in [
+        (renormalised(Interpolate::Hl), "renormalise_hl"),
+        (cube_mapped(Interpolate::Hl), "cube_map_hl"),
+    ] {
+        let img = render(&s, &cfg, W, H, false).unwrap();
+        let px = codes_to_u8(&img.golden, img.colour_max);
+        if let Some(diff) = golden_png::check(&format!("flat_artifact_{name}"), W, H, &px) {
+            panic!("{diff}");
+        }
     }
 }
 
 /// The golden image stays within quantisation of its own f64 equations, and interpolating
-/// brings it closer to Blinn, H a little, H and L much, renormalised H and L more (measured,
-/// printed).
+/// brings it closer to Blinn, H a little, H and L much, renormalised H and L more, by the
+/// normalise unit or, within the map's resolution, by a cube map (measured, printed).
 #[test]
 fn interpolation_removes_the_flat_shading_and_tracks_its_equations() {
     let s = Scene::load("flat_artifact").unwrap();
@@ -106,6 +122,7 @@ fn interpolation_removes_the_flat_shading_and_tracks_its_equations() {
         ("H", config(Interpolate::H)),
         ("Hl", config(Interpolate::Hl)),
         ("Hl renormalised", renormalised(Interpolate::Hl)),
+        ("Hl cube-mapped", cube_mapped(Interpolate::Hl)),
     ];
     for (name, cfg) in cfgs {
         let img = render(&s, &cfg, 192, 192, false).unwrap();
@@ -120,11 +137,15 @@ fn interpolation_removes_the_flat_shading_and_tracks_its_equations() {
     }
     assert!(to_blinn[1] < to_blinn[0] && to_blinn[2] < to_blinn[0] / 1.5, "{to_blinn:?}");
     assert!(to_blinn[3] < to_blinn[2] / 1.5, "{to_blinn:?}");
+    // The map's directions are off by up to half a texel's diagonal: between the two.
+    assert!(to_blinn[3] < to_blinn[4] && to_blinn[4] < to_blinn[2] / 1.5, "{to_blinn:?}");
     // The README states the figures measured here.
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
     let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
     let want = format!("falls from {:.1} to {:.1} LSB with `hl`", to_blinn[0], to_blinn[2]);
     assert!(flat.contains(&want), "README should say: {want}");
     let want = format!("and to {:.1} LSB with `renormalise = true`", to_blinn[3]);
+    assert!(flat.contains(&want), "README should say: {want}");
+    let want = format!("{:.1} LSB with a {CUBE}-texel normalisation cube map", to_blinn[4]);
     assert!(flat.contains(&want), "README should say: {want}");
 }

@@ -54,6 +54,12 @@ const FULL: (u64, u64) = (100_000, 1_000_000);
 const SHORT: (u64, u64) = (10_000, 200_000);
 
 fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
+    check_suite_with(text, min_scenes, counts, 6);
+}
+
+/// [`check_suite`] with `power_sets` exhaustive power-unit sets (one for a squaring unit,
+/// whose exponent is built in).
+fn check_suite_with(text: &str, min_scenes: usize, counts: (u64, u64), power_sets: usize) {
     let r = runs(text);
     for sim in ["icarus", "verilator"] {
         let mine: Vec<_> = r.iter().filter(|x| x.0 == sim).collect();
@@ -75,7 +81,7 @@ fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
             .iter()
             .filter(|x| x.1.starts_with("exhaustive_power_unit_n") && x.2 > 256)
             .collect();
-        assert!(power.len() >= 6, "{sim}: exhaustive power-table sets: {power:?}");
+        assert!(power.len() >= power_sets, "{sim}: exhaustive power-table sets: {power:?}");
         assert!(
             mine.iter().filter(|x| x.1.starts_with("scene_")).count() >= min_scenes,
             "{sim}: scene sets"
@@ -280,6 +286,41 @@ fn regress_renormalised_h_and_l() {
 }
 
 #[test]
+fn regress_the_cg_tutorials_per_fragment_pipeline() {
+    // The `cg` engine's path: normalise_cube units (Cg §8.2's normalisation cube map, 32
+    // texels a face) in place of normalise, the squaring power unit (§8.3) and
+    // self-shadowing (§8.5.3), on both simulators, with the cube unit's own corner and
+    // random sets and the scenes of the power unit's shininess.
+    let counts = (3_000u64, 100_000u64);
+    let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
+    let args = [
+        "--sim",
+        "both",
+        "--config",
+        "tests/configs/cg_per_fragment.toml",
+        "--random-icarus",
+        &icarus,
+        "--random",
+        &verilator,
+        "--scene-size",
+        "32x24",
+    ];
+    let t = regress(&args, "cg_per_fragment");
+    check_suite_with(&t, 4, counts, 1);
+    let r = runs(&t);
+    for sim in ["icarus", "verilator"] {
+        for set in ["corners", "random"] {
+            assert!(
+                r.iter()
+                    .any(|x| x.0 == sim && x.1.starts_with(set) && x.1.ends_with("_normalise_cube")),
+                "{sim}: no {set} normalise_cube set in\n{t}"
+            );
+        }
+        assert!(!r.iter().any(|x| x.1.ends_with("_normalise")), "{t}");
+    }
+}
+
+#[test]
 fn regress_interpolated_h_and_l() {
     // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
     // port; scenes with more than two bump lights do not fit the two slots.
@@ -452,6 +493,7 @@ fn lint_is_clean_for_the_renormalising_configuration() {
             Some("tests/configs/renormalise_hl.toml"),
             Some("tests/configs/renormalise_bump.toml"),
             Some("tests/configs/renormalise_bump_symmetric.toml"),
+            Some("tests/configs/cube_map_hl.toml"),
         ],
     );
 }

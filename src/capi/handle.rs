@@ -96,10 +96,10 @@ impl GbumpConfig {
             )));
         }
         // The top's table is a ROM: its load port is tied off, so no other table can be loaded.
-        if self.cfg.power_rom && n != self.cfg.shininess as i64 {
+        if let Some(fixed) = self.cfg.fixed_shininess().filter(|_| n != self.cfg.shininess as i64) {
             return Err(Error::Other(format!(
-                "shininess {n}: the configuration's power table is a ROM holding shininess {}\n  fix: keep shininess {}, or use a configuration with power_rom = false",
-                self.cfg.shininess, self.cfg.shininess
+                "shininess {n}: the configuration's {}\n  fix: keep shininess {}, or use a configuration with {}",
+                fixed.what, self.cfg.shininess, fixed.release
             )));
         }
         self.mem.table = PowerTable::build(&self.cfg, n as u32);

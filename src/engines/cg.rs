@@ -9,9 +9,21 @@
 //! times for 8); no scene has a gloss map, so the gloss is 1; the normal map's sample is
 //! range-expanded and used as the filter leaves it, not renormalised (Example 8-2's
 //! `expand(tex2D(normalMap, …))`).
+//!
+//! The bit-accurate path is `gouraud_hl`'s datapath with the Cg pieces in hardware: L and H
+//! interpolated per fragment and read through a `CUBE_FACE`-texel normalisation cube map
+//! (`cube_map_face`, the `normalise_cube` unit), the specular power by successive squarings
+//! (`power_unit = "squaring"`), and self-shadowing where the scene asks (`self_shadow`).
+//! Where it departs from the f64 model above: each light's k (its spot factor) is taken at
+//! the vertices and interpolated, as SGI's path does, not at the pixel, and the non-bump
+//! colour C_src is interpolated from the vertices by the rasteriser rather than formed per
+//! pixel; the map is always `CUBE_FACE` texels (`gbump engines --cg-cube` changes the f64
+//! model's only).
 
 use super::common::{corners, finish, map_normal, mix, tangent_factors, Base};
-use super::{Cost, Ctx, Engine};
+use super::{Cost, Ctx, Engine, PerFragment};
+use crate::config::Interpolate;
+use crate::model::power_unit::squarings_exponent;
 use crate::raster::{Hit, PixelGeom};
 use crate::scene::lighting::spot_factor;
 use glam::DVec3;
@@ -29,7 +41,15 @@ pub const CG: Engine = Engine {
     },
     shade,
     scene_blend: false,
-    fixed: None,
+    fixed: Some(PerFragment {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+        interpolate_k: true,
+        renormalise_bump: false,
+        cube_map_face: CUBE_FACE,
+        squaring: true,
+        self_shadow: true,
+    }),
 };
 
 /// Texels along a cube-map face edge by default (`gbump engines --cg-cube` changes it).
@@ -62,14 +82,6 @@ pub fn cube_normalise(v: DVec3, face: u32) -> DVec3 {
         _ => DVec3::new(cu, cw, s),
     };
     d.normalize()
-}
-
-/// The exponent successive squarings reach nearest `n`: 2^round(log2 n) (1 for n ≤ 1).
-pub fn squarings_exponent(n: u32) -> u32 {
-    if n <= 1 {
-        return n;
-    }
-    1 << (n as f64).log2().round() as u32
 }
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

@@ -31,6 +31,9 @@ pub const GOURAUD: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 
@@ -52,6 +55,9 @@ pub const GOURAUD_H: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 
@@ -73,6 +79,9 @@ pub const GOURAUD_HL: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 
@@ -94,6 +103,9 @@ pub const GOURAUD_HN: Engine = Engine {
         renormalise: true,
         interpolate_k: false,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 
@@ -115,6 +127,9 @@ pub const GOURAUD_HLN: Engine = Engine {
         renormalise: true,
         interpolate_k: false,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 

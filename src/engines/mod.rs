@@ -58,11 +58,22 @@ pub struct Engine {
 }
 
 impl Engine {
-    /// The configuration of the engine's bit-accurate path on a scene whose own
-    /// configuration is `scene_cfg` (None: the engine has none yet).
-    pub fn fixed_config(&self, scene_cfg: &crate::config::PipelineConfig) -> Option<crate::config::PipelineConfig> {
-        use crate::config::{BumpStateAt, Interpolate, LightMode};
-        let v = self.fixed?;
+    /// The configuration of the engine's bit-accurate path on `scene` (None: the engine has
+    /// none yet): the scene's own configuration (`Scene::derive_config`) with the engine's
+    /// per-fragment choices.
+    pub fn fixed_config(&self, scene: &crate::scene::Scene) -> crate::error::Result<Option<crate::config::PipelineConfig>> {
+        let Some(v) = self.fixed else {
+            return Ok(None);
+        };
+        let mut cfg = self.fixed_config_of(&scene.derive_config()?, v);
+        // Self-shadowing where the scene asks for it (its per-pixel reference applies it).
+        cfg.self_shadow = v.self_shadow && scene.self_shadowing && cfg.diffuse;
+        Ok(Some(cfg))
+    }
+
+    /// [`fixed_config`](Self::fixed_config) from the scene's configuration `scene_cfg`.
+    fn fixed_config_of(&self, scene_cfg: &crate::config::PipelineConfig, v: PerFragment) -> crate::config::PipelineConfig {
+        use crate::config::{BumpStateAt, Interpolate, LightMode, PowerUnitKind};
         let mut cfg = scene_cfg.clone();
         if !self.scene_blend {
             cfg.blend_order = crate::config::BlendOrder::DiffuseTextureSpecular;
@@ -73,6 +84,12 @@ impl Engine {
         cfg.renormalise = v.renormalise;
         cfg.interpolate_k = v.interpolate_k;
         cfg.renormalise_bump = v.renormalise_bump;
+        cfg.cube_map_face = v.cube_map_face;
+        if v.squaring {
+            // Successive squarings: no table, so none to make a ROM of.
+            cfg.power_unit = PowerUnitKind::Squaring;
+            cfg.power_rom = false;
+        }
         if v.interpolate != Interpolate::None || v.interpolate_k {
             // An interpolated vector or k reaches the pipeline per fragment.
             cfg.bump_state = BumpStateAt::Fragment;
@@ -87,7 +104,7 @@ impl Engine {
             cfg.light_mode = LightMode::Parallel;
         }
         // Per-fragment state has no triangle banks, whatever the scene's configuration held.
-        Some(cfg.canonical())
+        cfg.canonical()
     }
 }
 

@@ -153,7 +153,7 @@ pub fn golden_image(scene: &Scene, cfg: &crate::config::PipelineConfig, referenc
 
 /// The bit-accurate path of `e` on `scene` at `reference`'s size against it, when it has one.
 fn fixed(scene: &Scene, e: &Engine, reference: &EngineImage) -> Result<Option<Fixed>> {
-    let Some(cfg) = e.fixed_config(&scene.derive_config()?) else {
+    let Some(cfg) = e.fixed_config(scene)? else {
         return Ok(None);
     };
     cfg.validate(&format!("{} (engine {})", scene.file, e.name))?;

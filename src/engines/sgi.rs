@@ -37,6 +37,9 @@ pub const SGI: Engine = Engine {
         renormalise: false,
         interpolate_k: true,
         renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
     }),
 };
 

@@ -110,7 +110,7 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
                 dif[ch] += dot(l) * k * lc[ch] as f64;
             }
             if s_on {
-                spe[ch] += powi_exact(dot(h), n) * k * lc[ch] as f64;
+                spe[ch] += powi_exact(dot(h), cfg.power_exponent(n)) * k * lc[ch] as f64;
             }
         }
     }
@@ -145,17 +145,34 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     // v·unit/|v|: `normalise` on L and H, `normalise_b` on the fetched bump normal.
     use crate::model::normalise::Shape;
     let (lh_shape, b_shape) = (Shape::lh(cfg), Shape::bump(cfg));
-    let mut norm = ErrorStats::new("normalise", "corners + random");
+    // Under `cube_map_face` the L and H unit is `normalise_cube`, measured against the
+    // direction through the texel's centre (its rounding alone; the map's resolution is the
+    // engines' comparison).
+    let lh_unit = crate::model::normalise::lh_unit(cfg);
+    let mut norm = ErrorStats::new(lh_unit, "corners + random");
     let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
     let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
-    for (on, name, shape, stats) in [
-        (cfg.renormalise, "normalise", &lh_shape, &mut norm),
-        (cfg.renormalise_bump, "normalise_b", &b_shape, &mut norm_b),
-    ] {
-        if let Some(u) = crate::units::unit(name).filter(|_| on) {
-            for (_, c) in u.corners(cfg) {
-                normalise_error(stats, shape, [c[0][0], c[0][1], c[0][2]]);
-            }
+    let lh_error = |stats: &mut ErrorStats, v: [i64; 3]| {
+        normalise_error(
+            stats,
+            &lh_shape,
+            v,
+            crate::model::normalise::normalise(cfg, v),
+            crate::model::normalise::normalise_exact(cfg, v),
+        )
+    };
+    let b_error = |stats: &mut ErrorStats, v: [i64; 3]| {
+        use crate::model::normalise::{normalise_exact_shape, normalise_shape};
+        normalise_error(stats, &b_shape, v, normalise_shape(&b_shape, v), normalise_exact_shape(&b_shape, v))
+    };
+    if let Some(u) = crate::units::unit(lh_unit).filter(|_| cfg.renormalise) {
+        for (_, c) in u.corners(cfg) {
+            lh_error(&mut norm, [c[0][0], c[0][1], c[0][2]]);
+        }
+    }
+    if let Some(u) = crate::units::unit("normalise_b").filter(|_| cfg.renormalise_bump) {
+        for (_, c) in u.corners(cfg) {
+            b_error(&mut norm_b, [c[0][0], c[0][1], c[0][2]]);
         }
     }
     for (_, s) in &stims {
@@ -163,16 +180,16 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         let fetched = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
         // dot_clamp sees B as the pipeline hands it on.
         let b = if cfg.renormalise_bump {
-            normalise_error(&mut norm_b, &b_shape, fetched)
+            b_error(&mut norm_b, fetched)
         } else {
             fetched
         };
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             if norm_l {
-                normalise_error(&mut norm, &lh_shape, ls.l);
+                lh_error(&mut norm, ls.l);
             }
             if norm_h {
-                normalise_error(&mut norm, &lh_shape, ls.h);
+                lh_error(&mut norm, ls.h);
             }
             // dot_clamp sees the vectors as the pipeline hands them on.
             let (l, h) = crate::model::pipeline::dot_vectors(cfg, ls);
@@ -193,7 +210,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let mut pw = ErrorStats::new("power_unit", &format!("exhaustive, n = {n}"));
     let ps = (1u64 << cfg.power_frac_bits) as f64;
     for fd in 0..=(1i64 << cfg.dot_frac_bits) {
-        let exact = powi_exact(fd as f64 / one, n) * ps;
+        let exact = powi_exact(fd as f64 / one, cfg.power_exponent(n)) * ps;
         pw.add(crate::model::power_unit::power_unit(cfg, &table, fd) as f64 - exact, || {
             format!("x = {fd}/2^{}", cfg.dot_frac_bits)
         });
@@ -311,9 +328,9 @@ fn unit_vector(rng: &mut SplitMix64, upper: bool) -> glam::DVec3 {
 
 /// One normalise unit's error on `v` (of `shape`) against `v·unit/|v|`, clamped to the format
 /// as the unit saturates, added to `stats`; the unit's result.
-fn normalise_error(stats: &mut ErrorStats, shape: &crate::model::normalise::Shape, v: [i64; 3]) -> [i64; 3] {
-    let got = crate::model::normalise::normalise_shape(shape, v);
-    let want = crate::model::normalise::normalise_exact_shape(shape, v);
+/// One normalise unit's result `got` for `v` against its exact `want`, clamped to the format
+/// as the unit saturates.
+fn normalise_error(stats: &mut ErrorStats, shape: &crate::model::normalise::Shape, v: [i64; 3], got: [i64; 3], want: [f64; 3]) -> [i64; 3] {
     let f = shape.fmt();
     for i in 0..3 {
         stats.add(got[i] as f64 - want[i].clamp(f.min_raw() as f64, f.max_raw() as f64), || {

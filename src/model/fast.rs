@@ -90,6 +90,9 @@ pub struct FastModel {
     /// The bump normal's shape, when the pipeline renormalises it after the fetch
     /// (`renormalise_bump`: `normalise_b`, the same integer steps as the readable model).
     renorm_b: Option<super::normalise::Shape>,
+    /// `self_shadow`: a light below the surface is dropped per triangle (its k·Lc is zero),
+    /// and a highlight is masked where B·L clamps to 0.
+    self_shadow: bool,
 }
 
 impl FastModel {
@@ -124,6 +127,7 @@ impl FastModel {
             white: cfg.white_lights.then(|| cfg.colour_max()),
             renorm: cfg.renormalise.then(|| cfg.clone()),
             renorm_b: cfg.renormalise_bump.then(|| super::normalise::Shape::bump(cfg)),
+            self_shadow: cfg.self_shadow,
         }
     }
 
@@ -164,14 +168,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white), frags, out),
-                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white), frags, out),
-                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white), frags, out),
-                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white), frags, out),
-                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white), frags, out),
-                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white), frags, out),
-                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white), frags, out),
-                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white), frags, out),
+                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), frags, out),
+                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), frags, out),
+                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), frags, out),
+                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), frags, out),
+                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), frags, out),
+                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), frags, out),
+                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), frags, out),
+                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -258,12 +262,15 @@ impl FastModel {
         let top = self.specular_factor.len() as i64 - 1;
         for s in lights {
             let mut dh = [0i64; LANES];
+            let mut lmask = [0i64; LANES];
             for i in 0..LANES {
                 let dl = self
                     .dot
                     .apply(b[0][i] * s.l[0] + b[1][i] * s.l[1] + b[2][i] * s.l[2])
                     .clamp(0, self.dot_max);
                 let fd = (dl << self.diffuse_align) & dmask[i];
+                // Self-shadowing: no highlight where B·L clamps to 0.
+                lmask[i] = -i64::from(!self.self_shadow | (dl > 0));
                 dh[i] = self.dot.apply(b[0][i] * s.h[0] + b[1][i] * s.h[1] + b[2][i] * s.h[2]).clamp(0, top);
                 for ch in 0..3 {
                     dacc[ch][i] += fd * s.klc[ch];
@@ -272,7 +279,7 @@ impl FastModel {
             let mut fs = [0i64; LANES];
             for i in 0..LANES {
                 // SAFETY: `dh` is clamped to 0..=top, the table's last index.
-                fs[i] = unsafe { *self.specular_factor.get_unchecked(dh[i] as usize) } & smask[i];
+                fs[i] = unsafe { *self.specular_factor.get_unchecked(dh[i] as usize) } & smask[i] & lmask[i];
             }
             for ch in 0..3 {
                 for i in 0..LANES {
@@ -340,8 +347,8 @@ impl FastModel {
         for (it, o) in items.iter().zip(out.iter_mut()) {
             let (state, frag) = get(it);
             let l = match &self.renorm {
-                Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white),
-                None => lights::<N>(state, self.white),
+                Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white, self.self_shadow),
+                None => lights::<N>(state, self.white, self.self_shadow),
             };
             *o = self.one::<N, TEXTURE_LAST>(&l, frag);
         }
@@ -413,8 +420,10 @@ impl FastModel {
         let b = self.dot_normal(b);
         let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
         for s in lights {
-            let fd = (self.dot(b, s.l) << self.diffuse_align) & dmask;
-            let fs = self.specular_factor[self.dot(b, s.h) as usize] & smask;
+            let dl = self.dot(b, s.l);
+            let fd = (dl << self.diffuse_align) & dmask;
+            let lmask = -i64::from(!self.self_shadow | (dl > 0));
+            let fs = self.specular_factor[self.dot(b, s.h) as usize] & smask & lmask;
             for ch in 0..3 {
                 dacc[ch] += fd * s.klc[ch];
                 sacc[ch] += fs * s.klc[ch];
@@ -445,10 +454,15 @@ struct Light {
 }
 
 #[inline(always)]
-fn lights<const N: usize>(state: &BumpState, white: Option<u32>) -> [Light; N] {
+fn lights<const N: usize>(state: &BumpState, white: Option<u32>, self_shadow: bool) -> [Light; N] {
     std::array::from_fn(|i| {
         let s = &state.lights[i];
-        let lc = white.map_or(s.lc, |m| [m; 3]);
+        // A light below the surface adds nothing under self-shadowing.
+        let lc = if self_shadow && !super::pipeline::self_shadow_lit(s.l) {
+            [0; 3]
+        } else {
+            white.map_or(s.lc, |m| [m; 3])
+        };
         Light {
             l: s.l,
             h: s.h,

@@ -10,6 +10,7 @@
 
 pub mod blend;
 pub mod bump_fetch;
+pub mod cube_normalise;
 pub mod dot_clamp;
 pub mod fast;
 pub mod normalise;

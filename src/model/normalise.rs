@@ -224,8 +224,22 @@ pub fn renormalised(cfg: &PipelineConfig) -> (bool, bool) {
     )
 }
 
-/// The normalised L or H, raw `s1.F` components.
+/// The unit that renormalises L and H under `cfg`: `normalise`, or `normalise_cube` when the
+/// configuration reads a cube map.
+pub fn lh_unit(cfg: &PipelineConfig) -> &'static str {
+    if cfg.cube_map_face > 0 {
+        "normalise_cube"
+    } else {
+        "normalise"
+    }
+}
+
+/// The normalised L or H, raw `s1.F` components: the `normalise` unit's arithmetic, or the
+/// `normalise_cube` unit's map when `cube_map_face` is set.
 pub fn normalise(cfg: &PipelineConfig, v: [i64; 3]) -> [i64; 3] {
+    if cfg.cube_map_face > 0 {
+        return super::cube_normalise::cube_normalise(cfg, v);
+    }
     normalise_shape(&Shape::lh(cfg), v)
 }
 
@@ -252,8 +266,12 @@ pub fn normalise_shape(shape: &Shape, v: [i64; 3]) -> [i64; 3] {
     })
 }
 
-/// The same in f64, without roundings: `v · scale / |v|` in output LSBs (0 for a zero vector).
+/// The same in f64, without roundings: `v · scale / |v|` in output LSBs (0 for a zero vector);
+/// with `cube_map_face`, the direction through the texel's centre that the map rounds.
 pub fn normalise_exact(cfg: &PipelineConfig, v: [i64; 3]) -> [f64; 3] {
+    if cfg.cube_map_face > 0 {
+        return super::cube_normalise::cube_normalise_exact(cfg, v);
+    }
     normalise_exact_shape(&Shape::lh(cfg), v)
 }
 

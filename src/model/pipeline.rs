@@ -103,6 +103,13 @@ pub fn renormalised(cfg: &PipelineConfig, state: &BumpState) -> BumpState {
     st
 }
 
+/// Whether light direction `l` (as the dot products see it) is above the surface, L_z > 0:
+/// under `self_shadow` a light below it adds nothing.
+#[inline]
+pub fn self_shadow_lit(l: [i64; 3]) -> bool {
+    l[2] > 0
+}
+
 /// Shade one fragment. `palette` must be given when `cfg.palette` is set.
 pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>, state: &BumpState, frag: &FragmentIn) -> Shaded {
     let n = cfg.lights as usize;
@@ -148,6 +155,17 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
             out.fs[i] = power_unit(cfg, table, out.xh[i]);
             if specular_on {
                 sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);
+            }
+        }
+        if cfg.self_shadow {
+            // Cg §8.5.3: a light below the surface adds nothing; a bump facing away from it
+            // gets no highlight.
+            let lit = self_shadow_lit(out.l[i]);
+            if !lit {
+                dfac[i] = 0;
+            }
+            if !lit || out.fd[i] == 0 {
+                sfac[i] = 0;
             }
         }
     }
@@ -288,5 +306,44 @@ mod tests {
         for c in [0, 100, 255] {
             assert_eq!(shade(&a, &t, None, &st, &frag(c, 200)), shade(&b, &t, None, &st, &frag(c, 200)));
         }
+    }
+
+    /// Cg §8.5.3: a light below the surface (L_z <= 0) adds nothing, and a bump facing away
+    /// from a light above it (B·L clamped to 0) gets no highlight from it.
+    #[test]
+    fn self_shadowing_cuts_lights_below_the_surface_and_highlights_facing_away() {
+        let base = PipelineConfig {
+            lights: 1,
+            light_mode: crate::config::LightMode::Parallel,
+            ..Default::default()
+        };
+        let cfg = PipelineConfig {
+            self_shadow: true,
+            ..base.clone()
+        };
+        let t = PowerTable::build(&cfg, 1);
+        let one = one(&cfg);
+        let mut st = BumpState::default();
+        // L grazing below the surface, H straight up: without the cut both terms add.
+        st.lights[0] = LightSlot {
+            l: [one, 0, -one / 8],
+            h: [0, 0, one],
+            lc: [255; 3],
+            k: 256,
+        };
+        let mut f = frag(40, 255);
+        // A bump tilted towards the light, so B·L > 0 although L is below the surface.
+        f.bump = BumpTexel::Rgb([200, 128, 220]);
+        let plain = shade(&base, &t, None, &st, &f);
+        assert!(plain.fd[0] > 0 && plain.colour()[0] > 40, "{plain:?}");
+        assert_eq!(shade(&cfg, &t, None, &st, &f).colour(), [40; 3]);
+        // L above the surface, the bump facing away: diffuse 0, and the highlight cut.
+        st.lights[0].l = [-one, 0, one / 8];
+        let plain = shade(&base, &t, None, &st, &f);
+        assert!(plain.fd[0] == 0 && plain.colour()[0] > 40, "{plain:?}");
+        assert_eq!(shade(&cfg, &t, None, &st, &f).colour(), [40; 3]);
+        // L above, facing it: unchanged.
+        st.lights[0].l = [one / 2, 0, one / 2];
+        assert_eq!(shade(&cfg, &t, None, &st, &f), shade(&base, &t, None, &st, &f));
     }
 }

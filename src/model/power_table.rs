@@ -36,7 +36,7 @@ impl PowerTable {
     pub fn build(cfg: &PipelineConfig, n: u32) -> PowerTable {
         PowerTable {
             n,
-            entries: cfg.power_unit_design().table(cfg.power_formats(), n),
+            entries: cfg.power_table_design().table(cfg.power_formats(), n),
         }
     }
 

@@ -14,12 +14,24 @@ use crate::fixed::{shift_round, Rounding};
 use crate::model::power_table::{powi_exact, PowerTable};
 use serde::Serialize;
 
+/// The exponent successive squarings reach nearest `n`: 2^round(log2 n) (n for n <= 1), the
+/// Cg Tutorial's specular power (§8.3 squares three times for 8).
+pub fn squarings_exponent(n: u32) -> u32 {
+    if n <= 1 {
+        return n;
+    }
+    1 << (n as f64).log2().round() as u32
+}
+
 /// The power unit of the pipeline (`cfg.power_unit` selects its design): fs for the clamped
 /// dot product `x` (`u1.F`), read from the power table `table`.
 #[inline]
 pub fn power_unit(cfg: &PipelineConfig, table: &PowerTable, x: i64) -> i64 {
     match cfg.power_unit {
         PowerUnitKind::Table => table.entries[PowerTable::index(cfg, x)],
+        PowerUnitKind::Squaring => cfg
+            .power_unit_design()
+            .eval(cfg.power_formats(), &[], cfg.power_exponent(table.n), x),
         _ => cfg.power_unit_design().eval(cfg.power_formats(), &table.entries, table.n, x),
     }
 }

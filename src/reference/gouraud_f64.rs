@@ -32,7 +32,8 @@ pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
 
 /// The equations with L, H and k per triangle or interpolated as `how` says (the engines ask
 /// for each variant whatever the configuration); `how.renormalise` scales each interpolated
-/// vector back to unit length (H, and L when it is interpolated), as the `normalise` unit does.
+/// vector back to unit length (H, and L when it is interpolated), as the `normalise` unit does
+/// (or to its cube-map texel's direction, as `normalise_cube` does).
 pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragment) -> DVec3 {
     use crate::raster::tri_state::{k_at, lh_at, vertex_k, vertex_vectors};
     let o = &p.objects[hit.obj as usize];
@@ -51,10 +52,15 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
     shade_with(p, hit, g, how.renormalise_bump, |i| {
         let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);
         let k = k_at(ts, &vk, hit.bary, how.interpolate_k, i);
+        // The cube map's texel direction where the configuration reads one.
+        let unit = |v: DVec3| match how.cube_map_face {
+            0 => v.normalize_or_zero(),
+            face => crate::engines::cg::cube_normalise(v, face),
+        };
         let (l, h) = match (how.renormalise, how.interpolate) {
             (false, _) | (_, Interpolate::None) => (l, h),
-            (true, Interpolate::H) => (l, h.normalize_or_zero()),
-            (true, Interpolate::Hl) => (l.normalize_or_zero(), h.normalize_or_zero()),
+            (true, Interpolate::H) => (l, unit(h)),
+            (true, Interpolate::Hl) => (unit(l), unit(h)),
         };
         (l, h, k)
     })
@@ -78,11 +84,17 @@ pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, renormalise_bump: bool
     for (i, l) in p.scene.bump_lights().enumerate() {
         let (lv, hv, k) = lhk(i);
         let lc = DVec3::from_array(l.colour) * k;
+        // Self-shadowing (Cg §8.5.3): nothing from a light below the surface, no highlight
+        // where the bump faces away from it.
+        let (lit, faces) = (lv.z > 0.0, bn.dot(lv) > 0.0);
+        if cfg.self_shadow && !lit {
+            continue;
+        }
         if dif_on {
             diff += lc * bn.dot(lv).clamp(0.0, 1.0);
         }
-        if spe_on {
-            spec += lc * powi_exact(bn.dot(hv).clamp(0.0, 1.0), so.shininess);
+        if spe_on && (faces || !cfg.self_shadow) {
+            spec += lc * powi_exact(bn.dot(hv).clamp(0.0, 1.0), cfg.power_exponent(so.shininess));
         }
     }
     let tex = crate::raster::assets::texture_at(so, g.uv);

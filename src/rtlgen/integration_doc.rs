@@ -73,7 +73,12 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             }
         );
     }
-    if cfg.power_rom {
+    if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+        s += &format!(
+            "**No power table** (`power_unit = \"squaring\"`): the power unit computes x^{} by squaring and multiplying; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused, and INIT_FILE is not read. A top vector set for another shininess is refused.\n\n",
+            cfg.shininess
+        );
+    } else if cfg.power_rom {
         s += &format!(
             "**The power table is a ROM** (`power_rom = true`): it holds x^{} from its INIT_FILE and is never written; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused. A top vector set for another shininess is refused.\n\n",
             cfg.shininess

@@ -9,6 +9,7 @@ pub mod integration_doc;
 pub mod interface;
 pub mod kit;
 pub mod module;
+pub mod normalise_cube_v;
 pub mod normalise_v;
 pub mod power_units;
 pub mod ram;
@@ -123,7 +124,10 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
         s += "// colour_round keeps the integer bits of the rounded stage colour and drops its guard bits.\n";
         s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*colour_round_{h}.v\" -match \"Bits of signal are not used: 'r*\"\n");
     }
-    for (on, unit) in [(cfg.renormalise, "normalise"), (cfg.renormalise_bump, "normalise_b")] {
+    for (on, unit) in [
+        (cfg.renormalise && cfg.cube_map_face == 0, "normalise"),
+        (cfg.renormalise_bump, "normalise_b"),
+    ] {
         if on {
             s += &format!("// {unit} reads the top bits of the shifted squared length (the table index, m) and keeps\n");
             s += "// the high bits of each Newton product, truncating the rest by design.\n";
@@ -132,7 +136,10 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             }
         }
     }
-    if cfg.power_unit != crate::config::PowerUnitKind::Table {
+    if !matches!(
+        cfg.power_unit,
+        crate::config::PowerUnitKind::Table | crate::config::PowerUnitKind::Squaring
+    ) {
         s += "// The power unit's core keeps the high bits of its rounded interpolation step and of the scaled\n";
         s += "// index and drops the rest by design; an entry index never reaches its top bits.\n";
         for sig in ["step", "scaled", "j", "off", "prod"] {
@@ -140,8 +147,15 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                 &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_core_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
         }
     }
-    if cfg.power_rom {
-        s += "// power_rom: the power table is a ROM; its load port stays on the interface, unused.\n";
+    if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+        s += "// The squaring power unit keeps the high bits of each rounded product and reads no table.\n";
+        for sig in ["xw_r", "sq*_r", "mu*_r", "fin"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*power_unit_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+        }
+        s += &format!("lint_off -rule UNUSEDPARAM -file \"*power_unit_{h}.v\" -match \"Parameter is not used: 'INIT_FILE'\"\n");
+    }
+    if let Some(why) = cfg.power_table_unused() {
+        s += &format!("// {why}: the power table's load port stays on the interface, unused.\n");
         for sig in ["power_table_we", "power_table_waddr", "power_table_wdata"] {
             s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Signal is not used: '{sig}'\"\n");
         }

@@ -256,49 +256,61 @@ fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, port
                 "k0".into()
             }
         }
-        PowerUnitDesign::Squaring { guard } => {
-            let wd = p + guard;
-            w.line(format!(
-                "// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."
-            ));
-            let bits = 32 - n.leading_zeros();
-            w.line(format!(
-                "wire [{wd}:0] xw = ({{x, {wd}'d0}} + {}'d{}) >> {f};",
-                f + wd + 1,
-                1u64 << (f - 1)
-            ));
-            // name = round_half_up(a * b) on u1.wd.
-            let product = |w: &mut VWriter, name: String, a: &str, b: &str| {
-                // A chain of up to sixteen products: functions (see `booth::Form`).
-                let e = sum_of_products(
-                    w,
-                    Form::Function,
-                    &format!("{name}_m"),
-                    &[(Factor::unsigned(a, wd + 1), Factor::unsigned(b, wd + 1))],
-                    0,
-                    2 * wd + 2,
-                );
-                w.line(format!("wire [{}:0] {name}_p = {e};", 2 * wd + 1));
-                w.line(format!(
-                    "wire [{wd}:0] {name} = ({name}_p + {}'d{}) >> {wd};",
-                    2 * wd + 2,
-                    1u64 << (wd - 1)
-                ));
-                name
-            };
-            let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
-            for (k, bit) in (0..bits).rev().enumerate() {
-                acc = product(w, format!("sq{k}"), &acc, &acc);
-                if (n >> bit) & 1 == 1 {
-                    acc = product(w, format!("mu{k}"), &acc, "xw");
-                }
-            }
-            if guard == 0 {
-                acc
-            } else {
-                w.line(format!("wire [{}:0] fin = {acc} + {}'d{};", wd + 1, wd + 2, 1u64 << (guard - 1)));
-                format!("fin[{}:{guard}]", wd)
-            }
+        PowerUnitDesign::Squaring { guard } => squaring(w, fm, guard, n, "x", Form::Function),
+    }
+}
+
+/// Square-and-multiply for x^n (n built in) on u1.(P+guard), each product rounded half up,
+/// its products written in `form` (a chain of up to sixteen products: Booth rows in
+/// functions, or `*`) from input `x` (u1.F); returns the expression of the u1.P result. The pipeline's squaring
+/// power unit and `gbump power-space`'s standalone unit both emit it here.
+pub fn squaring(w: &mut VWriter, fm: PowerFormats, guard: u32, n: u32, x: &str, form: Form) -> String {
+    let (f, p) = (fm.f, fm.p);
+    let wd = p + guard;
+    w.line(format!(
+        "// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."
+    ));
+    let bits = 32 - n.leading_zeros();
+    // x <= 1.0, so the rounded sum fits f + wd + 1 bits; its low f bits are the rounding.
+    w.line(format!(
+        "wire [{}:0] xw_r = {{{x}, {wd}'d0}} + {}'d{};",
+        f + wd,
+        f + wd + 1,
+        1u64 << (f - 1)
+    ));
+    w.line(format!("wire [{wd}:0] xw = xw_r[{}:{f}];", f + wd));
+    // name = round_half_up(a * b) on u1.wd.
+    let product = |w: &mut VWriter, name: String, a: &str, b: &str| {
+        let e = sum_of_products(
+            w,
+            form,
+            &format!("{name}_m"),
+            &[(Factor::unsigned(a, wd + 1), Factor::unsigned(b, wd + 1))],
+            0,
+            2 * wd + 2,
+        );
+        w.line(format!("wire [{}:0] {name}_p = {e};", 2 * wd + 1));
+        // Both factors are at most 1.0: the rounded product stays below 2^(2wd+1).
+        w.line(format!(
+            "wire [{}:0] {name}_r = {name}_p + {}'d{};",
+            2 * wd + 1,
+            2 * wd + 2,
+            1u64 << (wd - 1)
+        ));
+        w.line(format!("wire [{wd}:0] {name} = {name}_r[{}:{wd}];", 2 * wd));
+        name
+    };
+    let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
+    for (k, bit) in (0..bits).rev().enumerate() {
+        acc = product(w, format!("sq{k}"), &acc, &acc);
+        if (n >> bit) & 1 == 1 {
+            acc = product(w, format!("mu{k}"), &acc, "xw");
         }
+    }
+    if guard == 0 {
+        acc
+    } else {
+        w.line(format!("wire [{}:0] fin = {acc} + {}'d{};", wd + 1, wd + 2, 1u64 << (guard - 1)));
+        format!("fin[{}:{guard}]", wd)
     }
 }

@@ -153,6 +153,12 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
         width: cfg.power_frac_bits + 1,
         words: t.entries.iter().map(|&e| e as u64).collect(),
         layout: match cfg.power_unit {
+            crate::config::PowerUnitKind::Squaring => format!(
+                "unused by the squaring power unit (the load port's shape): entry i = round((i/{})^{n} * 2^{}), u1.{}",
+                cfg.power_entries - 1,
+                cfg.power_frac_bits,
+                cfg.power_frac_bits
+            ),
             crate::config::PowerUnitKind::Table => format!(
                 "entry i = round((i/{})^{n} * 2^{}), u1.{}",
                 cfg.power_entries - 1,

@@ -69,8 +69,7 @@ pub fn fetch_unit(cfg: &PipelineConfig) -> &'static dyn Unit {
 /// every top: a configuration without the specular path leaves it unused, so every top of one
 /// light count has the same ports), then the other units' memories.
 pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
-    let pt = units::unit("power_unit").and_then(|u| u.memory(cfg)).expect("power table memory");
-    let mut v = vec![pt];
+    let mut v = vec![units::table_memory(cfg)];
     v.extend(
         units::included(cfg)
             .iter()
@@ -122,17 +121,23 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         ),
     ];
     for m in memories(cfg) {
-        let rom = cfg.power_rom && m.prefix == "power_table";
+        let unused = cfg.power_table_unused().filter(|_| m.prefix == "power_table");
+        let why = |short: &'static str| -> &'static str {
+            match unused {
+                Some("power_rom = true") => short,
+                Some(_) => "unused: power_unit = \"squaring\" (no table: x^n is squared out)",
+                None => short,
+            }
+        };
         v.push(tp(
             &format!("{}_we", m.prefix),
             Dir::In,
             PortKind::Load,
             bit,
             1,
-            if rom {
-                "unused: power_rom = true (the table is a ROM holding its INIT_FILE; writes are ignored)"
-            } else {
-                "write enable of the load port"
+            match unused {
+                Some(_) => why("unused: power_rom = true (the table is a ROM holding its INIT_FILE; writes are ignored)"),
+                None => "write enable of the load port",
             },
         ));
         v.push(tp(
@@ -141,7 +146,11 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.addr_bits, 0),
             1,
-            if rom { "unused: power_rom = true" } else { "write address" },
+            if unused.is_some() {
+                why("unused: power_rom = true")
+            } else {
+                "write address"
+            },
         ));
         v.push(tp(
             &format!("{}_wdata", m.prefix),
@@ -149,7 +158,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.data_bits, 0),
             1,
-            if rom { "unused: power_rom = true" } else { m.doc },
+            if unused.is_some() { why("unused: power_rom = true") } else { m.doc },
         ));
     }
     let fetch_in = units::inputs(fetch_unit(cfg), cfg).remove(0);
@@ -378,6 +387,25 @@ fn lane(i: u32, w: u32) -> String {
 }
 
 /// The aligned, enable-gated blend factor of a dot product or power (`src_frac` fraction bits).
+/// Whether light direction `l` (a template of three `lh_bits` lanes, z on top) is above the
+/// surface, z > 0: self-shadowing's test (`model::pipeline::self_shadow_lit`).
+fn above(cfg: &PipelineConfig, l: &str) -> String {
+    let lh = cfg.lh_bits;
+    format!("!{l}[{}] && ({l}[{}:{}] != {lh}'d0)", 3 * lh - 1, 3 * lh - 1, 2 * lh)
+}
+
+/// Light `i`'s enable `en` of the parallel top, under `self_shadow` also gated by the light
+/// being above the surface and, for a highlight (`fd`: its B·L), by B·L above 0.
+fn shadowed(cfg: &PipelineConfig, en: &str, i: u32, fd: Option<&str>) -> String {
+    if !cfg.self_shadow {
+        return en.to_string();
+    }
+    match fd {
+        Some(fd) => format!("{en} & {{lit{i}}} & ({fd} != 0)"),
+        None => format!("{en} & {{lit{i}}}"),
+    }
+}
+
 fn factor(cfg: &PipelineConfig, src: &str, src_frac: u32, en: &str) -> String {
     let pad = cfg.factor_frac() - src_frac;
     let aligned = if pad > 0 { format!("{{{src}, {pad}'d0}}") } else { src.to_string() };
@@ -502,7 +530,7 @@ fn mem_params(cfg: &PipelineConfig, unit: &dyn Unit) -> Vec<(&'static str, Strin
 /// read port, so the instance is written as a helper with its `R` parameter).
 fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
     let pu = units::unit("power_unit").expect("unit");
-    let mem = pu.memory(cfg).expect("the power unit's table");
+    let mem = units::table_memory(cfg);
     s.m.wire("fs", r * (cfg.power_frac_bits + 1), None);
     let st = s.stage_of(&["{xh}"]);
     let x = s.fill("{xh}", st);
@@ -513,8 +541,16 @@ fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
         &format!("#(.R({r}), .INIT_FILE(INIT_FILE)) u_power_unit"),
         &[
             ("clk", "clk".into()),
-            // A ROM (power_rom): the write port tied off, the contents its INIT_FILE.
-            ("we", if cfg.power_rom { "1'b0".into() } else { "power_table_we".into() }),
+            // A ROM (power_rom): the write port tied off, the contents its INIT_FILE; a squaring
+            // unit has no table to write.
+            (
+                "we",
+                if cfg.power_table_unused().is_some() {
+                    "1'b0".into()
+                } else {
+                    "power_table_we".into()
+                },
+            ),
             ("waddr", rom_tie(cfg, "power_table_waddr", mem.addr_bits)),
             ("wdata", rom_tie(cfg, "power_table_wdata", mem.data_bits)),
             ("x", x),
@@ -524,9 +560,10 @@ fn power_unit(s: &mut Scheduler, cfg: &PipelineConfig, r: u32) {
     s.source("fs", st + pu.latency(cfg));
 }
 
-/// A load-port input of the power table: the top's port, or zeros when the table is a ROM.
+/// A load-port input of the power table: the top's port, or zeros when the table is a ROM
+/// or there is none.
 fn rom_tie(cfg: &PipelineConfig, port: &str, width: u32) -> String {
-    if cfg.power_rom {
+    if cfg.power_table_unused().is_some() {
         format!("{width}'d0")
     } else {
         port.to_string()
@@ -832,7 +869,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     fetch(s, cfg, "{in_bump}", false);
     let bn = dot_normal(s, cfg);
     let dot = units::unit("dot_clamp").expect("unit");
-    let norm = units::unit("normalise").expect("unit");
+    let norm = units::unit(crate::model::normalise::lh_unit(cfg)).expect("unit");
     // Which vectors are renormalised before their dot products: H, and L when interpolated.
     let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
     let renormalised = |v: &str| if v == "l" { norm_l } else { norm_h };
@@ -858,9 +895,21 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     if cfg.diffuse {
         s.comb("de", 1, &enable(cfg, true, "in_diffuse_en"));
         dots(s, "l", "fd");
+        if cfg.self_shadow {
+            // Light i is above the surface where its L, as its dot product sees it, has z > 0.
+            for i in 0..n {
+                let l = if norm_l {
+                    format!("{{nl{i}}}")
+                } else {
+                    format!("{{{pre}_l}}{}", lane(i, lh3))
+                };
+                s.comb(&format!("lv{i}"), lh3, &l);
+                s.comb(&format!("lit{i}"), 1, &above(cfg, &format!("{{lv{i}}}")));
+            }
+        }
         let parts: Vec<String> = (0..n)
             .rev()
-            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_frac_bits, "{de}"))
+            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_frac_bits, &shadowed(cfg, "{de}", i, None)))
             .collect();
         s.comb("dfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
@@ -873,7 +922,15 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         power_unit(s, cfg, n);
         let parts: Vec<String> = (0..n)
             .rev()
-            .map(|i| factor(cfg, &format!("{{fs}}{}", lane(i, p1)), cfg.power_frac_bits, "{se}"))
+            .map(|i| {
+                let fd = format!("{{fd{i}}}");
+                factor(
+                    cfg,
+                    &format!("{{fs}}{}", lane(i, p1)),
+                    cfg.power_frac_bits,
+                    &shadowed(cfg, "{se}", i, Some(&fd)),
+                )
+            })
             .collect();
         s.comb("sfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
@@ -989,7 +1046,11 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("de", 1, &enable(cfg, true, "fr_diffuse_en"));
         s.comb("l_sel", lh3, &slot("l", lh3));
         s.unit(cfg, dot, "u_dot_l", &[("b", bn), ("v", "{l_sel}")], &[("f", "fd")], &[]);
-        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, "{de}"));
+        if cfg.self_shadow {
+            s.comb("lit", 1, &above(cfg, "{l_sel}"));
+        }
+        let de = if cfg.self_shadow { "{de} & {lit}" } else { "{de}" };
+        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, de));
         accumulate(s, "dacc", "{dfac}", cfg.dot_frac_bits);
     }
     if cfg.specular {
@@ -997,7 +1058,8 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("h_sel", lh3, &slot("h", lh3));
         s.unit(cfg, dot, "u_dot_h", &[("b", bn), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
-        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, "{se}"));
+        let se = if cfg.self_shadow { "{se} & {lit} & ({fd} != 0)" } else { "{se}" };
+        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, se));
         accumulate(s, "sacc", "{sfac}", cfg.power_frac_bits);
     }
     if !s.m.has("done") {

@@ -119,8 +119,10 @@ pub fn dot_clamp(cfg: &PipelineConfig) -> String {
 /// read register is the output register (latency 1), or the `power_unit_core` datapath of an
 /// interpolated/segmented unit around its two knot reads (latency 2).
 pub fn power_unit(cfg: &PipelineConfig) -> String {
-    if cfg.power_unit != crate::config::PowerUnitKind::Table {
-        return power_unit_with_core(cfg);
+    match cfg.power_unit {
+        crate::config::PowerUnitKind::Table => {}
+        crate::config::PowerUnitKind::Squaring => return power_unit_squaring(cfg),
+        _ => return power_unit_with_core(cfg),
     }
     let (f, p, n) = (cfg.dot_frac_bits, cfg.power_frac_bits, cfg.power_entries);
     let ib = cfg.power_index_bits();
@@ -185,6 +187,45 @@ fn power_unit_shell(w: &mut VWriter, cfg: &PipelineConfig) {
         p + 1
     ));
     w.line("genvar r;");
+}
+
+/// No table: each read port squares and multiplies x up to the shininess the unit is built
+/// for (the Cg Tutorial's specular power), registered. The load port stays (every top of a
+/// light count has the same ports) and is ignored.
+fn power_unit_squaring(cfg: &PipelineConfig) -> String {
+    use super::booth::Form;
+    let (f, p) = (cfg.dot_frac_bits, cfg.power_frac_bits);
+    let mut w = VWriter::new();
+    preamble(&mut w);
+    w.line(format!(
+        "// power_unit (Cg Tutorial sec. 8.3): fs = x^{} by successive squarings (shininess {}), no table; {} guard bits.",
+        cfg.power_exponent(cfg.shininess),
+        cfg.shininess,
+        crate::config::SQUARING_GUARD_BITS
+    ));
+    w.line("// The load port and INIT_FILE are kept for the top's interface and ignored.");
+    power_unit_shell(&mut w, cfg);
+    w.line("wire unused_load = ^{1'b0, we, waddr, wdata};");
+    // A chain of products: Booth rows in functions (see `booth::Form`), or `*`.
+    let form = match Form::of(cfg) {
+        Form::Wires => Form::Function,
+        other => other,
+    };
+    w.block("generate for (r = 0; r < R; r = r + 1) begin : port", "end endgenerate", |w| {
+        w.line(format!("wire [{f}:0] xr = x[r*{} +: {}];", f + 1, f + 1));
+        let y = super::power_units::squaring(
+            w,
+            cfg.power_formats(),
+            crate::config::SQUARING_GUARD_BITS,
+            cfg.power_exponent(cfg.shininess),
+            "xr",
+            form,
+        );
+        w.line(format!("always @(posedge clk) fs[r*{} +: {}] <= {y};", p + 1, p + 1));
+    });
+    w.line("endmodule");
+    postamble(&mut w);
+    w.finish()
 }
 
 /// A loadable table of `power_depth()` words read through two RAM copies per lookup (the

@@ -373,18 +373,18 @@ impl Scene {
                 format!("set lights = {n} or more"),
             ));
         }
-        if cfg.power_rom {
+        if let Some(fixed) = cfg.fixed_shininess() {
             if let Some(o) = self.objects.iter().find(|o| o.specular && o.shininess != cfg.shininess) {
                 return Err(Error::field(
                     cfg_file,
-                    "power_rom",
+                    fixed.field,
                     format!(
-                        "scene `{}` ({}) has a specular object of shininess {} but the power table is a ROM holding shininess {}",
-                        self.name, self.file, o.shininess, cfg.shininess
+                        "scene `{}` ({}) has a specular object of shininess {} but the {}",
+                        self.name, self.file, o.shininess, fixed.what
                     ),
                     format!(
-                        "set shininess = {} (when every specular object shares it), or power_rom = false",
-                        o.shininess
+                        "set shininess = {} (when every specular object shares it), or {}",
+                        o.shininess, fixed.release
                     ),
                 ));
             }

@@ -57,6 +57,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             // As interpolate: the rasteriser's choice, no RTL of its own.
             interpolate_k: false,
             renormalise_bump: false,
+            cube_map_face: 0,
+            self_shadow: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -69,6 +71,17 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         // Drawn last, so every draw before it is what it was; valid without a palette, and
         // the normalise_b unit changes the RTL.
         cfg.renormalise_bump = !cfg.palette && pick(rng, &[false, true]);
+        // Drawn after it, and only where there are normalise units to read a map.
+        if cfg.renormalise && pick(rng, &[false, true]) {
+            cfg.cube_map_face = 1 << rng.range(2, 7);
+        }
+        // Drawn last, where valid: self-shadowing reads the diffuse path's B·L; a squaring
+        // power unit in place of the drawn one (no table to make a ROM of).
+        cfg.self_shadow = cfg.diffuse && pick(rng, &[false, true]);
+        if cfg.specular && pick(rng, &[false, false, false, true]) {
+            cfg.power_unit = PowerUnitKind::Squaring;
+            cfg.power_rom = false;
+        }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
         let cfg = cfg.canonical();
@@ -90,10 +103,12 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 }
 
 /// Fixed configurations at the edges of the space, which uniform draws reach only now and
-/// then: every light slot (serial, and parallel on a palettised map), the widest dot product
+/// then: every light slot (serial with self-shadowing, and parallel on a palettised map with
+/// the squaring power unit), the widest dot product
 /// and table, the widest segmented unit, and every width at its top and at its bottom;
 /// `normalise_b` on two of them (the widest normals with the flat bypass, the narrowest
-/// normals in its table-alone regime with inferred multipliers).
+/// normals in its table-alone regime with inferred multipliers), and the largest
+/// normalisation cube map (`normalise_cube`) at the widest L and H.
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
@@ -106,19 +121,21 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     };
     vec![
         (
-            "all light slots, serial",
+            "all light slots, serial, self-shadowing",
             PipelineConfig {
                 lights: hi("lights"),
                 light_mode: LightMode::Serial,
+                self_shadow: true,
                 ..d.clone()
             },
         ),
         (
-            "all light slots, parallel, palette",
+            "all light slots, parallel, palette, squaring power unit",
             PipelineConfig {
                 lights: hi("lights"),
                 light_mode: LightMode::Parallel,
                 palette: true,
+                power_unit: PowerUnitKind::Squaring,
                 ..d.clone()
             },
         ),
@@ -172,6 +189,22 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 // left to synthesis.
                 renormalise_bump: true,
                 multipliers: Multipliers::Inferred,
+                ..d.clone()
+            },
+        ),
+        (
+            "the largest normalisation cube map, widest L and H",
+            PipelineConfig {
+                lh_bits: hi("lh_bits"),
+                normal_bits: hi("normal_bits"),
+                normal_range: NormalRange::Symmetric,
+                bump_state: BumpStateAt::Fragment,
+                interpolate: crate::config::Interpolate::Hl,
+                renormalise: true,
+                cube_map_face: hi("cube_map_face"),
+                light_mode: LightMode::Parallel,
+                lights: 1,
+                pipeline_depth: hi("pipeline_depth"),
                 ..d
             },
         ),
@@ -209,6 +242,29 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
                 multipliers: if depth == 2 { Multipliers::Inferred } else { Multipliers::Booth },
                 // The bump normal's unit beside them on every other depth.
                 renormalise_bump: depth % 2 == 0,
+                ..PipelineConfig::default()
+            });
+        }
+    }
+    // normalise_cube in place of normalise: the smallest map at the narrowest words (its
+    // exhaustive regime), the Cg Tutorial's 32 texels at the default words, the largest map at
+    // the widest symmetric words, at every depth.
+    for (lh, range, face) in [
+        (6, NormalRange::Binary, 4),
+        (16, NormalRange::Binary, 32),
+        (24, NormalRange::Symmetric, 128),
+    ] {
+        for depth in 1..=crate::limits::MAX_PIPELINE_DEPTH {
+            out.push(PipelineConfig {
+                lh_bits: lh,
+                normal_range: range,
+                bump_state: BumpStateAt::Fragment,
+                interpolate: crate::config::Interpolate::Hl,
+                renormalise: true,
+                cube_map_face: face,
+                light_mode: LightMode::Parallel,
+                lights: 2,
+                pipeline_depth: depth,
                 ..PipelineConfig::default()
             });
         }
@@ -429,6 +485,7 @@ mod tests {
             "power_rom",
             "renormalise",
             "renormalise_bump",
+            "self_shadow",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> = draws
@@ -436,7 +493,8 @@ mod tests {
                 .map(|t| t.get(f).map_or("false".to_string(), |v| v.to_string()))
                 .collect();
             let want = match f {
-                "power_unit" | "rounding" => 3,
+                "power_unit" => 4,
+                "rounding" => 3,
                 _ => 2,
             };
             assert_eq!(distinct.len(), want, "{f}: {distinct:?}");

@@ -129,6 +129,10 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     // loading its own table through the load port.
     if cfg.specular {
         let mut ns = vec![cfg.shininess, 0, 1, 2, 254, 255, 1024];
+        if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+            // Its exponent is built in: no table to load for another.
+            ns.truncate(1);
+        }
         ns.dedup();
         for n in ns {
             let sub = dir.join(format!("power_n{n}"));
@@ -231,13 +235,14 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
             )));
         }
         // A ROM power table holds one shininess: a top set for another cannot load its table.
-        if cfg.power_rom && m.target == "top" && m.shininess != cfg.shininess {
+        if let Some(fixed) = cfg.fixed_shininess().filter(|_| m.target == "top" && m.shininess != cfg.shininess) {
             return Err(Error::Other(format!(
-                "{}: vectors for shininess {} but the configuration's power table is a ROM holding shininess {}\n  fix: regenerate the vectors at shininess {} (a scene's specular objects must all have it), or set power_rom = false",
+                "{}: vectors for shininess {} but the configuration's {}\n  fix: regenerate the vectors at shininess {} (a scene's specular objects must all have it), or set {}",
                 manifest.display(),
                 m.shininess,
+                fixed.what,
                 cfg.shininess,
-                cfg.shininess
+                fixed.release
             )));
         }
         for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {

@@ -14,6 +14,7 @@ mod bump_fetch;
 mod colour_round;
 mod dot_clamp;
 mod normalise;
+mod normalise_cube;
 mod palette_fetch;
 mod power_unit;
 pub mod resources;
@@ -27,7 +28,7 @@ use crate::model::{Palette, PowerTable};
 
 pub use blend::{DIFFUSE_BLEND, SPECULAR_BLEND};
 pub use palette_fetch::PALETTE_ENTRIES;
-pub use power_unit::POWER_TABLE;
+pub use power_unit::{table_memory, POWER_TABLE};
 pub use serial_blend::{accumulate, finish};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -171,6 +172,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &bump_fetch::BumpFetch,
     &palette_fetch::PaletteFetch,
     &normalise::NORMALISE,
+    &normalise_cube::NormaliseCube,
     &normalise::NORMALISE_B,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,

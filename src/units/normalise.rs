@@ -30,7 +30,7 @@ pub static NORMALISE: Normalise = Normalise {
     name: "normalise",
     source: "per-pixel renormalisation of interpolated vectors (paper §2 N'/|N'|, §6; Cg §8.2 normalisation cube map), by a reciprocal-square-root table and Newton steps",
     shape: Shape::lh,
-    included: |cfg| cfg.renormalise,
+    included: |cfg| cfg.renormalise && cfg.cube_map_face == 0,
     requires: |cfg| {
         let interpolate = match cfg.interpolate {
             crate::config::Interpolate::Hl => "\"hl\"",
@@ -41,6 +41,7 @@ pub static NORMALISE: Normalise = Normalise {
             ("interpolate", interpolate),
             ("bump_state", "\"fragment\""),
             ("light_mode", "\"parallel\""),
+            ("cube_map_face", "0"),
         ]
     },
     v_doc: "an interpolated L or H, any length",
@@ -117,7 +118,7 @@ fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Re
     r + Resources::regs(3 * lh)
 }
 
-fn exhaustive_input(shape: &Shape, i: u64) -> Lanes {
+pub(super) fn exhaustive_input(shape: &Shape, i: u64) -> Lanes {
     let w = shape.width;
     let f = shape.fmt();
     let lane = |k: u32| crate::fixed::fit(((i >> (k * w)) & ((1 << w) - 1)) as i128, f, crate::fixed::Overflow::Wrap);

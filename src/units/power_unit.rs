@@ -1,6 +1,8 @@
 //! power_unit: fs = (B·H)^n read from the power table, a memory loaded like a colour LUT
 //! (paper §4.2): the paper's plain lookup, or one of the interpolating designs of
-//! `model::power_unit` (`power_unit = "lerp" | "segmented"`) reading the same memory.
+//! `model::power_unit` (`power_unit = "lerp" | "segmented"`) reading the same memory, or no
+//! memory at all: `power_unit = "squaring"` squares and multiplies up to the shininess it is
+//! built for (the Cg Tutorial's specular power, §8.3).
 
 use super::{p, Dir, Lanes, Memories, Memory, Port, Unit};
 use crate::config::{PipelineConfig, PowerUnitKind};
@@ -10,6 +12,20 @@ use crate::model::power_table::powi_exact;
 pub const POWER_TABLE: &str = "power_table";
 
 pub struct PowerUnit;
+
+/// The power table's memory: its load port is on every top, whether a table is behind it or
+/// not (a configuration without the specular path, or with a squaring unit, leaves it unused).
+pub fn table_memory(cfg: &PipelineConfig) -> Memory {
+    Memory {
+        prefix: POWER_TABLE,
+        init_param: "INIT_FILE",
+        init_stem: POWER_TABLE,
+        depth: cfg.power_depth(),
+        addr_bits: cfg.power_addr_bits(),
+        data_bits: cfg.power_frac_bits + 1,
+        doc: "power table entries, u1.P (the shininess is whatever was loaded)",
+    }
+}
 
 impl Unit for PowerUnit {
     fn name(&self) -> &'static str {
@@ -32,33 +48,40 @@ impl Unit for PowerUnit {
     }
     /// The table's read register is its output register; an interpolating unit adds the
     /// interpolation after it.
+    /// A squaring unit's products are combinational before its output register.
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
-        if cfg.power_unit == PowerUnitKind::Table {
-            1
-        } else {
-            2
+        match cfg.power_unit {
+            PowerUnitKind::Table | PowerUnitKind::Squaring => 1,
+            _ => 2,
         }
     }
+    /// The table a squaring unit does without (its load port stays on the top: [`table_memory`]).
     fn memory(&self, cfg: &PipelineConfig) -> Option<Memory> {
-        Some(Memory {
-            prefix: POWER_TABLE,
-            init_param: "INIT_FILE",
-            init_stem: POWER_TABLE,
-            depth: cfg.power_depth(),
-            addr_bits: cfg.power_addr_bits(),
-            data_bits: cfg.power_frac_bits + 1,
-            doc: "power table entries, u1.P (the shininess is whatever was loaded)",
-        })
+        (cfg.power_unit != PowerUnitKind::Squaring).then(|| table_memory(cfg))
     }
     fn eval(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Lanes {
         vec![vec![crate::model::power_unit::power_unit(cfg, m.table, i[0][0])]]
     }
     fn exact(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let x = i[0][0] as f64 / (1u64 << cfg.dot_frac_bits) as f64;
-        vec![vec![powi_exact(x, m.table.n) * (1u64 << cfg.power_frac_bits) as f64]]
+        vec![vec![
+            powi_exact(x, cfg.power_exponent(m.table.n)) * (1u64 << cfg.power_frac_bits) as f64,
+        ]]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        use crate::units::resources::{power_datapath, Resources};
+        use crate::units::resources::{power_datapath, sum_of_products, unsigned, Resources};
+        if cfg.power_unit == PowerUnitKind::Squaring {
+            // As `rtlgen::power_units::squaring` emits it: x widened, a rounded product per
+            // squaring and per set bit of n, the guard bits rounded off, the output register.
+            let (f, p, g) = (cfg.dot_frac_bits, cfg.power_frac_bits, crate::config::SQUARING_GUARD_BITS);
+            let wd = p + g;
+            let n = cfg.power_exponent(cfg.shininess);
+            let products = (32 - n.leading_zeros()) + n.count_ones();
+            let product = sum_of_products(cfg.multipliers, &[(unsigned(wd + 1), unsigned(wd + 1))], false, 2 * wd + 2)
+                + Resources::adders(2 * wd + 2);
+            let fin = if g > 0 { Resources::adders(wd + 2) } else { Resources::default() };
+            return Resources::adders(f + wd + 1) + product.scaled(products as f64) + fin + Resources::regs(p + 1);
+        }
         let core = power_datapath(&cfg.power_unit_design(), cfg.power_formats());
         if cfg.power_unit == PowerUnitKind::Table {
             // The RAM's read register is the output register.
@@ -73,7 +96,7 @@ impl Unit for PowerUnit {
             ("power_unit", crate::rtlgen::units_v::power_unit(cfg)),
             (crate::rtlgen::ram::RAM, crate::rtlgen::ram::ram(cfg)),
         ];
-        if cfg.power_unit != PowerUnitKind::Table {
+        if !matches!(cfg.power_unit, PowerUnitKind::Table | PowerUnitKind::Squaring) {
             let name = crate::rtlgen::units_v::module_name(cfg, "power_unit_core");
             v.push((
                 "power_unit_core",

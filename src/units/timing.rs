@@ -26,6 +26,10 @@ pub const NORMALISE: &[&str] = &[
     "after the products x r",
 ];
 
+/// normalise_cube: the face choice (magnitudes, the major axis, the minors picked); the texel
+/// divisions (the map read, its signs and the axes' order stay before the output register).
+pub const NORMALISE_CUBE: &[&str] = &["after the face choice", "after the texel divisions"];
+
 /// How many of `cuts` are in place at the configuration's depth.
 pub fn cuts_in_place(cfg: &PipelineConfig, cuts: &[&str]) -> u32 {
     (cfg.pipeline_depth.saturating_sub(1)).min(cuts.len() as u32)
@@ -67,9 +71,10 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 13] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 14] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
         ("normalise", false, Table, false, ""),
+        ("normalise_cube", false, Table, false, ""),
         ("normalise_b", true, Table, false, ""),
         ("palette_fetch", true, Table, true, "none (the RAM's read register is the output)"),
         ("dot_clamp", true, Table, false, ""),
@@ -102,10 +107,13 @@ pub fn markdown() -> String {
             if name == "colour_round" {
                 cfg.colour_guard_bits = 2;
             }
-            if name == "normalise" {
+            if name == "normalise" || name == "normalise_cube" {
                 cfg.bump_state = crate::config::BumpStateAt::Fragment;
                 cfg.interpolate = crate::config::Interpolate::H;
                 cfg.renormalise = true;
+            }
+            if name == "normalise_cube" {
+                cfg.cube_map_face = 32;
             }
             cfg.renormalise_bump = name == "normalise_b";
             s += &format!(" {} |", u.latency(&cfg));
@@ -116,6 +124,7 @@ pub fn markdown() -> String {
             "light_accumulate" => ACCUMULATE,
             "texture_modulate" => TEXTURE,
             "normalise" | "normalise_b" => NORMALISE,
+            "normalise_cube" => NORMALISE_CUBE,
             _ => &[],
         };
         let text = if cuts.is_empty() { note.to_string() } else { cuts.join("; ") };

@@ -381,9 +381,14 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
     for f in frags {
         let o = &s.objects[f.obj as usize];
-        // A ROM table holds one shininess: an object without the specular blend reads no
-        // table, so its fragments go with the ROM's (a loadable table keeps each object's).
-        let n = if cfg.power_rom && !o.specular { cfg.shininess } else { o.shininess };
+        // Hardware of one shininess (a ROM table, a squaring unit): an object without the
+        // specular blend reads no power, so its fragments go with the built-in one (a
+        // loadable table keeps each object's).
+        let n = if cfg.fixed_shininess().is_some() && !o.specular {
+            cfg.shininess
+        } else {
+            o.shininess
+        };
         let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
         groups.entry(n).or_default().push(TopStim {
             frag: f.frag,

@@ -513,7 +513,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
         for (on, v_in) in [(cfg.diffuse && norm_l, ls.l), (cfg.specular && norm_h, ls.h)] {
             if on {
                 v.push(UnitStim {
-                    unit: "normalise",
+                    unit: crate::model::normalise::lh_unit(cfg),
                     inputs: vec![v_in.to_vec()],
                 });
             }
