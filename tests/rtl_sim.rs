@@ -672,6 +672,60 @@ fn a_normalise_with_a_newton_step_fewer_is_caught() {
     }
 }
 
+/// The Cg path's three pieces, each broken alone, are caught on Icarus: the cube unit's
+/// last-texel clamp by its corner set (a minor equal to the major; random draws almost never
+/// land there), the self-shadowing gate by the top's random set (lights below the surface and
+/// bumps facing away are among its draws), one squaring fewer by the power unit's exhaustive
+/// set and the top's random set.
+#[test]
+fn the_cg_paths_mutants_are_caught() {
+    use gbump::sim::regress::run_sets;
+    use gbump::vectors::Source;
+    let cases: [(&str, &str, Mutant, Vec<(&str, Source)>); 3] = [
+        (
+            "mutant_cube",
+            "normalise_cube",
+            mutants::cube_unclamped,
+            vec![("normalise_cube", Source::Corners(1))],
+        ),
+        (
+            "mutant_shadow",
+            "gbump_pipeline",
+            mutants::self_shadow_open,
+            vec![("top", Source::Random(3_000))],
+        ),
+        (
+            "mutant_squaring",
+            "power_unit",
+            mutants::squaring_one_fewer,
+            vec![
+                ("power_unit", Source::Exhaustive("power_unit".into())),
+                ("top", Source::Random(3_000)),
+            ],
+        ),
+    ];
+    for (work, file, mutant, targets) in cases {
+        let (cfg, work, rtl) = mutant_rtl(Some("tests/configs/cg_per_fragment.toml"), work, &[(file, mutant)]);
+        let vec_dir = work.join("vectors");
+        let o = mutant_dump_options();
+        let mut sets = Vec::new();
+        for (t, src) in &targets {
+            let got = gbump::vectors::dump(&cfg, src, &[t.to_string()], &vec_dir, &o).unwrap();
+            sets.push((got[0].manifest.clone(), None));
+        }
+        let opts = gbump::sim::regress::RegressOptions {
+            sims: vec![gbump::sim::Sim::Icarus],
+            ..mutant_run_options(&work)
+        };
+        let res = run_sets(&cfg, &sets, &rtl, &opts).unwrap();
+        assert_eq!(res.len(), targets.len());
+        for r in res {
+            let out = r.outcome.unwrap();
+            assert!(out.failed >= 1, "{file} mutant, {} set: it passed", r.set);
+        }
+    }
+}
+
 /// The output buffer reads its RAM one entry ahead; an entry that is the head at the edge that
 /// writes it must come from the bypass register. Stalled top runs on both simulators see the
 /// difference (Icarus and Verilator both return the RAM's old word).

@@ -386,12 +386,11 @@ fn lane(i: u32, w: u32) -> String {
     format!("[{}:{}]", i * w + w - 1, i * w)
 }
 
-/// The aligned, enable-gated blend factor of a dot product or power (`src_frac` fraction bits).
-/// Whether light direction `l` (a template of three `lh_bits` lanes, z on top) is above the
+/// Whether a light direction whose z lane is `z` (a template of `lh_bits` bits) is above the
 /// surface, z > 0: self-shadowing's test (`model::pipeline::self_shadow_lit`).
-fn above(cfg: &PipelineConfig, l: &str) -> String {
+fn above_z(cfg: &PipelineConfig, z: &str) -> String {
     let lh = cfg.lh_bits;
-    format!("!{l}[{}] && ({l}[{}:{}] != {lh}'d0)", 3 * lh - 1, 3 * lh - 1, 2 * lh)
+    format!("!{z}[{}] && ({z} != {lh}'d0)", lh - 1)
 }
 
 /// Light `i`'s enable `en` of the parallel top, under `self_shadow` also gated by the light
@@ -406,6 +405,7 @@ fn shadowed(cfg: &PipelineConfig, en: &str, i: u32, fd: Option<&str>) -> String 
     }
 }
 
+/// The aligned, enable-gated blend factor of a dot product or power (`src_frac` fraction bits).
 fn factor(cfg: &PipelineConfig, src: &str, src_frac: u32, en: &str) -> String {
     let pad = cfg.factor_frac() - src_frac;
     let aligned = if pad > 0 { format!("{{{src}, {pad}'d0}}") } else { src.to_string() };
@@ -897,14 +897,16 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         dots(s, "l", "fd");
         if cfg.self_shadow {
             // Light i is above the surface where its L, as its dot product sees it, has z > 0.
+            let lh = cfg.lh_bits;
             for i in 0..n {
-                let l = if norm_l {
-                    format!("{{nl{i}}}")
+                // L's z lane alone: the top lh bits of the light's three.
+                let z = if norm_l {
+                    format!("{{nl{i}}}[{}:{}]", 3 * lh - 1, 2 * lh)
                 } else {
-                    format!("{{{pre}_l}}{}", lane(i, lh3))
+                    format!("{{{pre}_l}}[{}:{}]", i * lh3 + 3 * lh - 1, i * lh3 + 2 * lh)
                 };
-                s.comb(&format!("lv{i}"), lh3, &l);
-                s.comb(&format!("lit{i}"), 1, &above(cfg, &format!("{{lv{i}}}")));
+                s.comb(&format!("lz{i}"), lh, &z);
+                s.comb(&format!("lit{i}"), 1, &above_z(cfg, &format!("{{lz{i}}}")));
             }
         }
         let parts: Vec<String> = (0..n)
@@ -1047,7 +1049,8 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("l_sel", lh3, &slot("l", lh3));
         s.unit(cfg, dot, "u_dot_l", &[("b", bn), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         if cfg.self_shadow {
-            s.comb("lit", 1, &above(cfg, "{l_sel}"));
+            let lh = cfg.lh_bits;
+            s.comb("lit", 1, &above_z(cfg, &format!("{{l_sel}}[{}:{}]", 3 * lh - 1, 2 * lh)));
         }
         let de = if cfg.self_shadow { "{de} & {lit}" } else { "{de}" };
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, de));

@@ -61,3 +61,32 @@ pub fn normalise_step_fewer(text: &str) -> Option<String> {
     let line = text.lines().find(|l| l.contains("r_s2") && (l.ends_with(&format!(" {last};"))))?;
     Some(text.replacen(line, &line.replace(&format!(" {last};"), &format!(" {before};")), 1))
 }
+
+/// normalise_cube without its last-texel clamp on the first minor: a minor equal to the
+/// major (quotient `face`) wraps to texel 0 instead of staying in the last one. None when the
+/// unit has no such line.
+pub fn cube_unclamped(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.contains(" i_t = i_q["))?;
+    let (head, tail) = line.split_once(" ? ")?;
+    let select = tail.split_once(" : ")?.1;
+    let bit = head.rsplit_once(" = ")?;
+    Some(text.replacen(line, &format!("{} = {select}", bit.0), 1))
+}
+
+/// The top's self-shadowing gate always open for light 0: `lit0` tied high. None when the
+/// top does not self-shadow.
+pub fn self_shadow_open(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.contains(" lit0 = "))?;
+    let (head, _) = line.split_once(" = ")?;
+    Some(text.replacen(line, &format!("{head} = 1'b1;"), 1))
+}
+
+/// The squaring power unit with its last squaring skipped: the result rounds the product
+/// before it. None when the unit has no such chain.
+pub fn squaring_one_fewer(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.contains(" fin = sq"))?;
+    let at = line.find(" fin = sq")? + " fin = sq".len();
+    let end = at + line[at..].find(|c: char| !c.is_ascii_digit())?;
+    let k: u32 = line[at..end].parse().ok()?;
+    (k > 0).then(|| text.replacen(line, &format!("{}{}{}", &line[..at], k - 1, &line[end..]), 1))
+}
