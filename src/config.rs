@@ -44,9 +44,9 @@ pub enum PowerUnitKind {
     Squaring,
 }
 
-/// Guard bits of the squaring power unit's products: with 4 the result of x^n stays within
-/// an LSB of exact for every n the paper's scenes use (`gbump power-space` measures every
-/// guard).
+/// Guard bits of the squaring power unit's products: with 4 the result stays within an LSB
+/// of x^e for every exponent the unit can be built for at the default formats
+/// (`model::power_unit`'s test: 0.993 at worst); `gbump power-space` measures other guards.
 pub const SQUARING_GUARD_BITS: u32 = 4;
 
 /// Hardware that holds one shininess, fixed when it is built (a ROM table, or a squaring

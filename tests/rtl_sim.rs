@@ -254,12 +254,20 @@ fn regress_renormalised_h_and_l() {
     // scenes with more than two bump lights do not fit the two slots. Icarus evaluates the
     // Newton step's Booth rows slowly (about 2 ms a vector), so it runs 1,000 random vectors.
     let counts = (1_000u64, 100_000u64);
+    let t = regress_small_scenes("tests/configs/renormalise_hl.toml", "renormalise_hl", counts);
+    check_suite(&t, 10, counts);
+    assert_unit_sets_ran(&t, "normalise");
+}
+
+/// `gbump regress --sim both --config CONFIG` with `counts` random top vectors (Icarus,
+/// Verilator) and the scenes at 32x24, in work folder `work`.
+fn regress_small_scenes(config: &str, work: &str, counts: (u64, u64)) -> String {
     let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
     let args = [
         "--sim",
         "both",
         "--config",
-        "tests/configs/renormalise_hl.toml",
+        config,
         "--random-icarus",
         &icarus,
         "--random",
@@ -267,21 +275,20 @@ fn regress_renormalised_h_and_l() {
         "--scene-size",
         "32x24",
     ];
-    let t = regress(&args, "renormalise_hl");
-    check_suite(&t, 10, counts);
-    // The unit's own sets ran on both simulators.
-    let r = runs(&t);
+    regress(&args, work)
+}
+
+/// `unit`'s own corner and random sets ran on both simulators.
+fn assert_unit_sets_ran(t: &str, unit: &str) {
+    let r = runs(t);
     for sim in ["icarus", "verilator"] {
-        assert!(
-            r.iter()
-                .any(|x| x.0 == sim && x.1.starts_with("corners") && x.1.ends_with("_normalise")),
-            "{t}"
-        );
-        assert!(
-            r.iter()
-                .any(|x| x.0 == sim && x.1.starts_with("random") && x.1.ends_with("_normalise")),
-            "{t}"
-        );
+        for set in ["corners", "random"] {
+            assert!(
+                r.iter()
+                    .any(|x| x.0 == sim && x.1.starts_with(set) && x.1.ends_with(&format!("_{unit}"))),
+                "{sim}: no {set} {unit} set in\n{t}"
+            );
+        }
     }
 }
 
@@ -292,32 +299,10 @@ fn regress_the_cg_tutorials_per_fragment_pipeline() {
     // self-shadowing (§8.5.3), on both simulators, with the cube unit's own corner and
     // random sets and the scenes of the power unit's shininess.
     let counts = (3_000u64, 100_000u64);
-    let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
-    let args = [
-        "--sim",
-        "both",
-        "--config",
-        "tests/configs/cg_per_fragment.toml",
-        "--random-icarus",
-        &icarus,
-        "--random",
-        &verilator,
-        "--scene-size",
-        "32x24",
-    ];
-    let t = regress(&args, "cg_per_fragment");
+    let t = regress_small_scenes("tests/configs/cg_per_fragment.toml", "cg_per_fragment", counts);
     check_suite_with(&t, 4, counts, 1);
-    let r = runs(&t);
-    for sim in ["icarus", "verilator"] {
-        for set in ["corners", "random"] {
-            assert!(
-                r.iter()
-                    .any(|x| x.0 == sim && x.1.starts_with(set) && x.1.ends_with("_normalise_cube")),
-                "{sim}: no {set} normalise_cube set in\n{t}"
-            );
-        }
-        assert!(!r.iter().any(|x| x.1.ends_with("_normalise")), "{t}");
-    }
+    assert_unit_sets_ran(&t, "normalise_cube");
+    assert!(!runs(&t).iter().any(|x| x.1.ends_with("_normalise")), "{t}");
 }
 
 #[test]

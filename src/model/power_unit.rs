@@ -281,4 +281,20 @@ mod tests {
         // x^2 is rounded to P+G bits, then to P: at most 1/2 + 2^-G LSB.
         assert!(w1 <= 0.5 + 1e-9 && w2 <= 0.5 + 1.0 / 16.0 + 1e-9, "{w1} {w2}");
     }
+
+    /// The pipeline's squaring unit (`SQUARING_GUARD_BITS`) at the default formats: within
+    /// an LSB of x^e for every power-of-two exponent it can be built for, printed.
+    #[test]
+    fn the_pipelines_squaring_unit_stays_within_an_lsb() {
+        let fm = PowerFormats { f: 8, p: 8 };
+        let d = PowerUnitDesign::Squaring {
+            guard: crate::config::SQUARING_GUARD_BITS,
+        };
+        let (worst, n, x, mean) = d.worst_error(fm, (0..=10).map(|k| 1u32 << k));
+        println!(
+            "squaring, {} guard bits: worst {worst:.3} LSB at n = {n}, x = {x}; mean {mean:.4}",
+            crate::config::SQUARING_GUARD_BITS
+        );
+        assert!(worst <= 1.0, "{worst} at n = {n}, x = {x}");
+    }
 }
