@@ -54,6 +54,8 @@ pub const SQUARING_GUARD_BITS: u32 = 4;
 pub struct FixedShininess {
     /// The field that fixes it.
     pub field: &'static str,
+    /// The setting that fixes it (`power_rom = true`, `power_unit = "squaring"`).
+    pub setting: &'static str,
     /// "the power table is a ROM holding shininess 16", or the squaring unit's equivalent.
     pub what: String,
     /// The setting that would lift the restriction.
@@ -278,6 +280,20 @@ pub struct PerFragment {
     pub squaring: bool,
     /// Whether the pipeline self-shadows (`self_shadow`) where the scene asks for it.
     pub self_shadow: bool,
+}
+
+impl PerFragment {
+    /// The paper's engine: nothing per fragment beyond its fetch (the base the engines'
+    /// choices are written over).
+    pub const PER_TRIANGLE: PerFragment = PerFragment {
+        interpolate: Interpolate::None,
+        renormalise: false,
+        interpolate_k: false,
+        renormalise_bump: false,
+        cube_map_face: 0,
+        squaring: false,
+        self_shadow: false,
+    };
 }
 
 impl std::fmt::Display for PerFragment {
@@ -888,15 +904,10 @@ impl PipelineConfig {
     }
 
     /// Why the top's power-table load port is unused, when it is: the table is a ROM
-    /// (`power_rom = true`), or there is no table (`power_unit = "squaring"`).
+    /// (`power_rom = true`), or there is no table (`power_unit = "squaring"`): exactly the
+    /// hardware of one shininess.
     pub fn power_table_unused(&self) -> Option<&'static str> {
-        if self.power_unit == PowerUnitKind::Squaring {
-            Some("power_unit = \"squaring\"")
-        } else if self.power_rom {
-            Some("power_rom = true")
-        } else {
-            None
-        }
+        self.fixed_shininess().map(|f| f.setting)
     }
 
     /// The exponent the power unit raises to for shininess `n`: n, or for a squaring unit the
@@ -914,12 +925,14 @@ impl PipelineConfig {
         if self.power_unit == PowerUnitKind::Squaring {
             Some(FixedShininess {
                 field: "power_unit",
+                setting: "power_unit = \"squaring\"",
                 what: format!("power unit squares for shininess {} (power_unit = \"squaring\")", self.shininess),
                 release: "power_unit = \"table\"",
             })
         } else if self.power_rom {
             Some(FixedShininess {
                 field: "power_rom",
+                setting: "power_rom = true",
                 what: format!("power table is a ROM holding shininess {}", self.shininess),
                 release: "power_rom = false",
             })

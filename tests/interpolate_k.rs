@@ -222,9 +222,7 @@ fn sgi_f64_model_is_the_datapath_it_generates() {
         renormalise: false,
         interpolate_k: true,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     };
     let mut names: Vec<String> = gbump::scene::builtin::ALL.iter().map(|(n, _)| n.to_string()).collect();
     names.push(SPOT.into());

@@ -31,9 +31,7 @@ pub const GOURAUD: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 
@@ -55,9 +53,7 @@ pub const GOURAUD_H: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 
@@ -79,9 +75,7 @@ pub const GOURAUD_HL: Engine = Engine {
         renormalise: false,
         interpolate_k: false,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 
@@ -103,9 +97,7 @@ pub const GOURAUD_HN: Engine = Engine {
         renormalise: true,
         interpolate_k: false,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 
@@ -127,9 +119,7 @@ pub const GOURAUD_HLN: Engine = Engine {
         renormalise: true,
         interpolate_k: false,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 

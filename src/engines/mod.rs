@@ -62,19 +62,11 @@ impl Engine {
     /// none yet): the scene's own configuration (`Scene::derive_config`) with the engine's
     /// per-fragment choices.
     pub fn fixed_config(&self, scene: &crate::scene::Scene) -> crate::error::Result<Option<crate::config::PipelineConfig>> {
+        use crate::config::{BumpStateAt, Interpolate, LightMode, PowerUnitKind};
         let Some(v) = self.fixed else {
             return Ok(None);
         };
-        let mut cfg = self.fixed_config_of(&scene.derive_config()?, v);
-        // Self-shadowing where the scene asks for it (its per-pixel reference applies it).
-        cfg.self_shadow = v.self_shadow && scene.self_shadowing && cfg.diffuse;
-        Ok(Some(cfg))
-    }
-
-    /// [`fixed_config`](Self::fixed_config) from the scene's configuration `scene_cfg`.
-    fn fixed_config_of(&self, scene_cfg: &crate::config::PipelineConfig, v: PerFragment) -> crate::config::PipelineConfig {
-        use crate::config::{BumpStateAt, Interpolate, LightMode, PowerUnitKind};
-        let mut cfg = scene_cfg.clone();
+        let mut cfg = scene.derive_config()?;
         if !self.scene_blend {
             cfg.blend_order = crate::config::BlendOrder::DiffuseTextureSpecular;
             cfg.skip_flat = false;
@@ -90,6 +82,8 @@ impl Engine {
             cfg.power_unit = PowerUnitKind::Squaring;
             cfg.power_rom = false;
         }
+        // Self-shadowing where the scene asks for it (its per-pixel reference applies it).
+        cfg.self_shadow = v.self_shadow && scene.self_shadowing && cfg.diffuse;
         if v.interpolate != Interpolate::None || v.interpolate_k {
             // An interpolated vector or k reaches the pipeline per fragment.
             cfg.bump_state = BumpStateAt::Fragment;
@@ -104,7 +98,7 @@ impl Engine {
             cfg.light_mode = LightMode::Parallel;
         }
         // Per-fragment state has no triangle banks, whatever the scene's configuration held.
-        cfg.canonical()
+        Ok(Some(cfg.canonical()))
     }
 }
 

@@ -37,9 +37,7 @@ pub const SGI: Engine = Engine {
         renormalise: false,
         interpolate_k: true,
         renormalise_bump: false,
-        cube_map_face: 0,
-        squaring: false,
-        self_shadow: false,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 

@@ -29,10 +29,11 @@ pub fn squarings_exponent(n: u32) -> u32 {
 pub fn power_unit(cfg: &PipelineConfig, table: &PowerTable, x: i64) -> i64 {
     match cfg.power_unit {
         PowerUnitKind::Table => table.entries[PowerTable::index(cfg, x)],
-        PowerUnitKind::Squaring => cfg
+        // A squaring unit reads no table (its entries are the unused load port's) and raises
+        // to the power of two its squarings reach.
+        _ => cfg
             .power_unit_design()
-            .eval(cfg.power_formats(), &[], cfg.power_exponent(table.n), x),
-        _ => cfg.power_unit_design().eval(cfg.power_formats(), &table.entries, table.n, x),
+            .eval(cfg.power_formats(), &table.entries, cfg.power_exponent(table.n), x),
     }
 }
 

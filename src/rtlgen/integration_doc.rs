@@ -75,7 +75,8 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     }
     if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
         s += &format!(
-            "**No power table** (`power_unit = \"squaring\"`): the power unit computes x^{} by squaring and multiplying; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused, and INIT_FILE is not read. A top vector set for another shininess is refused.\n\n",
+            "**No power table** (`power_unit = \"squaring\"`): the power unit computes x^{} (shininess {}) by successive squarings; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused, and INIT_FILE is not read. A top vector set for another shininess is refused.\n\n",
+            cfg.power_exponent(cfg.shininess),
             cfg.shininess
         );
     } else if cfg.power_rom {

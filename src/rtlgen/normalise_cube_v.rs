@@ -67,14 +67,14 @@ pub fn normalise_cube(cfg: &PipelineConfig) -> String {
     // The quarter face: a constant, so a case in logic. Word = {major, minor 2, minor 1}.
     let ww = 3 * cw;
     w.block(format!("function [{}:0] map;", ww - 1), "endfunction", |w| {
-        w.line(format!("input [{}:0] ab;", (2 * qb).max(1) - 1));
+        w.line(format!("input [{}:0] ab;", 2 * qb - 1));
         w.block("case (ab)", "endcase", |w| {
             for a in 0..face / 2 {
                 for b in 0..face / 2 {
                     let x = word(&shape, face, a, b);
                     w.line(format!(
                         "{}'d{}: map = {{{cw}'d{}, {cw}'d{}, {cw}'d{}}};",
-                        (2 * qb).max(1),
+                        2 * qb,
                         (b << qb) | a,
                         x[2],
                         x[1],
@@ -158,13 +158,8 @@ pub fn normalise_cube(cfg: &PipelineConfig) -> String {
     w.stage(c1, "", "neg2", "neg1");
     w.stage(c1, "", "zero2", "m1 == 0");
     // Output: the word, its signs, the axes in order.
-    let quarter = |t: &str| {
-        if qb == 0 {
-            "1'b0".to_string()
-        } else {
-            format!("({t}2[{}] ? {t}2[{}:0] : ~{t}2[{}:0])", c - 1, qb - 1, qb - 1)
-        }
-    };
+    // Faces of at least 4 texels (the configuration's rule): a quarter index of qb >= 1 bits.
+    let quarter = |t: &str| format!("({t}2[{}] ? {t}2[{}:0] : ~{t}2[{}:0])", c - 1, qb - 1, qb - 1);
     w.line(format!("wire [{}:0] wd = map({{{}, {}}});", ww - 1, quarter("j"), quarter("i")));
     let signed = |name: &str, lo: u32, neg: &str| {
         format!(

@@ -97,6 +97,22 @@ pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
         .collect()
 }
 
+/// The power table's load-port docs where the port is unused: (write enable, address and
+/// data).
+fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {
+    if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+        let doc = "unused: power_unit = \"squaring\" (no table: x^n is squared out)";
+        Some((doc, doc))
+    } else if cfg.power_rom {
+        Some((
+            "unused: power_rom = true (the table is a ROM holding its INIT_FILE; writes are ignored)",
+            "unused: power_rom = true",
+        ))
+    } else {
+        None
+    }
+}
+
 /// Every port of the top, in order.
 pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     let n = cfg.lights;
@@ -121,24 +137,15 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         ),
     ];
     for m in memories(cfg) {
-        let unused = cfg.power_table_unused().filter(|_| m.prefix == "power_table");
-        let why = |short: &'static str| -> &'static str {
-            match unused {
-                Some("power_rom = true") => short,
-                Some(_) => "unused: power_unit = \"squaring\" (no table: x^n is squared out)",
-                None => short,
-            }
-        };
+        // (the write enable's doc, the address's and data's) where the load port is unused.
+        let unused = (m.prefix == "power_table").then(|| unused_load_docs(cfg)).flatten();
         v.push(tp(
             &format!("{}_we", m.prefix),
             Dir::In,
             PortKind::Load,
             bit,
             1,
-            match unused {
-                Some(_) => why("unused: power_rom = true (the table is a ROM holding its INIT_FILE; writes are ignored)"),
-                None => "write enable of the load port",
-            },
+            unused.map_or("write enable of the load port", |u| u.0),
         ));
         v.push(tp(
             &format!("{}_waddr", m.prefix),
@@ -146,11 +153,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.addr_bits, 0),
             1,
-            if unused.is_some() {
-                why("unused: power_rom = true")
-            } else {
-                "write address"
-            },
+            unused.map_or("write address", |u| u.1),
         ));
         v.push(tp(
             &format!("{}_wdata", m.prefix),
@@ -158,7 +161,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Load,
             Format::u(m.data_bits, 0),
             1,
-            if unused.is_some() { why("unused: power_rom = true") } else { m.doc },
+            unused.map_or(m.doc, |u| u.1),
         ));
     }
     let fetch_in = units::inputs(fetch_unit(cfg), cfg).remove(0);
@@ -393,15 +396,15 @@ fn above_z(cfg: &PipelineConfig, z: &str) -> String {
     format!("!{z}[{}] && ({z} != {lh}'d0)", lh - 1)
 }
 
-/// Light `i`'s enable `en` of the parallel top, under `self_shadow` also gated by the light
-/// being above the surface and, for a highlight (`fd`: its B·L), by B·L above 0.
-fn shadowed(cfg: &PipelineConfig, en: &str, i: u32, fd: Option<&str>) -> String {
+/// A light's blend enable `en`, under `self_shadow` also gated by `lit` (the light is above
+/// the surface) and, for a highlight (`fd`: its B·L), by B·L above 0.
+fn shadowed(cfg: &PipelineConfig, en: &str, lit: &str, fd: Option<&str>) -> String {
     if !cfg.self_shadow {
         return en.to_string();
     }
     match fd {
-        Some(fd) => format!("{en} & {{lit{i}}} & ({fd} != 0)"),
-        None => format!("{en} & {{lit{i}}}"),
+        Some(fd) => format!("{en} & {lit} & ({fd} != 0)"),
+        None => format!("{en} & {lit}"),
     }
 }
 
@@ -911,7 +914,14 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         }
         let parts: Vec<String> = (0..n)
             .rev()
-            .map(|i| factor(cfg, &format!("{{fd{i}}}"), cfg.dot_frac_bits, &shadowed(cfg, "{de}", i, None)))
+            .map(|i| {
+                factor(
+                    cfg,
+                    &format!("{{fd{i}}}"),
+                    cfg.dot_frac_bits,
+                    &shadowed(cfg, "{de}", &format!("{{lit{i}}}"), None),
+                )
+            })
             .collect();
         s.comb("dfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
@@ -930,7 +940,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
                     cfg,
                     &format!("{{fs}}{}", lane(i, p1)),
                     cfg.power_frac_bits,
-                    &shadowed(cfg, "{se}", i, Some(&fd)),
+                    &shadowed(cfg, "{se}", &format!("{{lit{i}}}"), Some(&fd)),
                 )
             })
             .collect();
@@ -1052,8 +1062,8 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             let lh = cfg.lh_bits;
             s.comb("lit", 1, &above_z(cfg, &format!("{{l_sel}}[{}:{}]", 3 * lh - 1, 2 * lh)));
         }
-        let de = if cfg.self_shadow { "{de} & {lit}" } else { "{de}" };
-        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, de));
+        let de = shadowed(cfg, "{de}", "{lit}", None);
+        s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, &de));
         accumulate(s, "dacc", "{dfac}", cfg.dot_frac_bits);
     }
     if cfg.specular {
@@ -1061,8 +1071,8 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("h_sel", lh3, &slot("h", lh3));
         s.unit(cfg, dot, "u_dot_h", &[("b", bn), ("v", "{h_sel}")], &[("f", "xh")], &[]);
         power_unit(s, cfg, 1);
-        let se = if cfg.self_shadow { "{se} & {lit} & ({fd} != 0)" } else { "{se}" };
-        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, se));
+        let se = shadowed(cfg, "{se}", "{lit}", Some("{fd}"));
+        s.comb("sfac", cfg.factor_frac() + 1, &factor(cfg, "{fs}", cfg.power_frac_bits, &se));
         accumulate(s, "sacc", "{sfac}", cfg.power_frac_bits);
     }
     if !s.m.has("done") {
