@@ -44,6 +44,12 @@ fn the_cg_path_is_the_cube_map_squarings_and_self_shadowing() {
     for line in ["power_unit = \"squaring\"", "cube_map_face = 32", "self_shadow = true"] {
         assert!(text.contains(line), "{line}: {text}");
     }
+    // The README states the squaring unit's latency from the unit's description.
+    let lat = gbump::units::unit("power_unit").unwrap().latency(&cfg);
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!("the unit's output register (latency {lat})");
+    assert!(flat.contains(&want), "README should say: {want}");
 }
 
 #[test]
