@@ -48,7 +48,12 @@ fn the_cg_path_is_the_cube_map_squarings_and_self_shadowing() {
     let lat = gbump::units::unit("power_unit").unwrap().latency(&cfg);
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
     let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
-    let want = format!("the unit's output register (latency {lat})");
+    let want = format!(
+        "at the Cg path's depth {} the chain is cut in {}, the unit's output register and {} cuts (latency {lat})",
+        cfg.pipeline_depth,
+        ["one", "two", "three", "four"][lat as usize - 1],
+        ["no", "one", "two", "three"][lat as usize - 1],
+    );
     assert!(flat.contains(&want), "README should say: {want}");
 }
 

@@ -68,11 +68,14 @@ fn every_units_register_count_is_its_verilogs() {
     let mut cfgs: Vec<PipelineConfig> = gbump::sim::fuzz::corner_configs().into_iter().map(|c| c.1).collect();
     cfgs.push(PipelineConfig::default());
     cfgs.extend(gbump::sim::fuzz::normalise_configs());
-    for power_unit in [gbump::config::PowerUnitKind::Lerp, gbump::config::PowerUnitKind::Segmented] {
+    use gbump::config::PowerUnitKind::{Lerp, Segmented, Squaring};
+    // A squaring unit's cuts at every depth, for exponents of no product (x^1), one, and many.
+    for (power_unit, shininess) in [(Lerp, 16), (Segmented, 16), (Squaring, 1), (Squaring, 2), (Squaring, 64)] {
         for pipeline_depth in 1..=4 {
             for light_mode in [gbump::config::LightMode::Serial, gbump::config::LightMode::Parallel] {
                 cfgs.push(PipelineConfig {
                     power_unit,
+                    shininess,
                     pipeline_depth,
                     light_mode,
                     lights: 2,

@@ -117,7 +117,7 @@ impl PowerUnitDesign {
         match *self {
             PowerUnitDesign::Table { .. } | PowerUnitDesign::Segmented { lerp: false, .. } => (0, 0),
             PowerUnitDesign::Lerp { .. } | PowerUnitDesign::Segmented { lerp: true, .. } => (1, fm.p + 1),
-            PowerUnitDesign::Squaring { guard } => (15, fm.p + guard + 1),
+            PowerUnitDesign::Squaring { guard } => (14, fm.p + guard + 1),
         }
     }
 

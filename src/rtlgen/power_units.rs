@@ -256,21 +256,42 @@ fn datapath(w: &mut VWriter, d: &PowerUnitDesign, fm: PowerFormats, n: u32, port
                 "k0".into()
             }
         }
-        PowerUnitDesign::Squaring { guard } => squaring(w, fm, guard, n, "x", Form::Function),
+        PowerUnitDesign::Squaring { guard } => squaring(w, fm, guard, n, "x", Form::Function, 0),
     }
+}
+
+/// The products square-and-multiply forms for x^n (n >= 1) once the top bit of n has made
+/// the running power x (1·1 and 1·x are exact, so no product forms them), in order: a
+/// squaring per lower bit of n, each followed by a multiply by x where the bit is set (true:
+/// a multiply). None for n = 0 (x^0 = 1).
+pub fn squaring_products(n: u32) -> Vec<bool> {
+    let bits = 32 - n.leading_zeros();
+    (0..bits.saturating_sub(1))
+        .rev()
+        .flat_map(|bit| std::iter::once(false).chain(((n >> bit) & 1 == 1).then_some(true)))
+        .collect()
+}
+
+/// Where `cuts` registers split a chain of `products` into `cuts + 1` parts as equal as the
+/// products allow: register j sits before product `ceil(products · j / (cuts + 1))` (at the
+/// chain's end when that is `products`; two registers at one place follow each other).
+pub fn squaring_cut_positions(products: usize, cuts: u32) -> Vec<usize> {
+    let parts = cuts as usize + 1;
+    (1..parts).map(|j| (products * j).div_ceil(parts)).collect()
 }
 
 /// Square-and-multiply for x^n (n built in) on u1.(P+guard), each product rounded half up,
 /// its products written in `form` (a chain of up to sixteen products: Booth rows in
-/// functions, or `*`) from input `x` (u1.F); returns the expression of the u1.P result. The pipeline's squaring
-/// power unit and `gbump power-space`'s standalone unit both emit it here.
-pub fn squaring(w: &mut VWriter, fm: PowerFormats, guard: u32, n: u32, x: &str, form: Form) -> String {
+/// functions, or `*`) from input `x` (u1.F), with `cuts` registers along the chain (on
+/// `clk`, where [`squaring_cut_positions`] puts them); returns the expression of the u1.P
+/// result. The pipeline's squaring power unit and `gbump power-space`'s standalone unit both
+/// emit it here.
+pub fn squaring(w: &mut VWriter, fm: PowerFormats, guard: u32, n: u32, x: &str, form: Form, cuts: u32) -> String {
     let (f, p) = (fm.f, fm.p);
     let wd = p + guard;
     w.line(format!(
         "// Built for n = {n}: square-and-multiply on u1.{wd}, each product rounded half-up."
     ));
-    let bits = 32 - n.leading_zeros();
     // x <= 1.0, so the rounded sum fits f + wd + 1 bits; its low f bits are the rounding.
     w.line(format!(
         "wire [{}:0] xw_r = {{{x}, {wd}'d0}} + {}'d{};",
@@ -300,13 +321,42 @@ pub fn squaring(w: &mut VWriter, fm: PowerFormats, guard: u32, n: u32, x: &str, 
         w.line(format!("wire [{wd}:0] {name} = {name}_r[{}:{wd}];", 2 * wd));
         name
     };
-    let mut acc = format!("{}'d{}", wd + 1, 1u64 << wd);
-    for (k, bit) in (0..bits).rev().enumerate() {
-        acc = product(w, format!("sq{k}"), &acc, &acc);
-        if (n >> bit) & 1 == 1 {
-            acc = product(w, format!("mu{k}"), &acc, "xw");
+    let steps = squaring_products(n);
+    let at = squaring_cut_positions(steps.len(), cuts);
+    let mut acc = match n {
+        0 => format!("{}'d{}", wd + 1, 1u64 << wd),
+        _ => "xw".to_string(),
+    };
+    let mut xc = "xw".to_string();
+    let mut stage = 0;
+    // Register the running power, and x while a multiply by it remains, at every cut before
+    // product `i` (`i = steps.len()`: after the last).
+    let mut registers = |w: &mut VWriter, i: usize, acc: &mut String, xc: &mut String| {
+        for _ in at.iter().filter(|&&p| p == i) {
+            w.line(format!("reg [{wd}:0] cut{stage}_acc;"));
+            w.line(format!("always @(posedge clk) cut{stage}_acc <= {acc};"));
+            *acc = format!("cut{stage}_acc");
+            if steps[i..].contains(&true) {
+                w.line(format!("reg [{wd}:0] cut{stage}_x;"));
+                w.line(format!("always @(posedge clk) cut{stage}_x <= {xc};"));
+                *xc = format!("cut{stage}_x");
+            }
+            stage += 1;
         }
+    };
+    // Products are named after their bit of n, counted from the top (sqK, then muK; the
+    // top bit's, sq0 and mu0, are exact and not formed).
+    let mut k = 1;
+    for (i, &multiply) in steps.iter().enumerate() {
+        registers(w, i, &mut acc, &mut xc);
+        acc = if multiply {
+            product(w, format!("mu{}", k - 1), &acc, &xc)
+        } else {
+            k += 1;
+            product(w, format!("sq{}", k - 1), &acc, &acc)
+        };
     }
+    registers(w, steps.len(), &mut acc, &mut xc);
     if guard == 0 {
         acc
     } else {

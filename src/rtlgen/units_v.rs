@@ -220,6 +220,7 @@ fn power_unit_squaring(cfg: &PipelineConfig) -> String {
             cfg.power_exponent(cfg.shininess),
             "xr",
             form,
+            crate::units::timing::cuts_in_place(cfg, crate::units::timing::SQUARING),
         );
         w.line(format!("always @(posedge clk) fs[r*{} +: {}] <= {y};", p + 1, p + 1));
     });

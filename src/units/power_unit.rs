@@ -47,11 +47,12 @@ impl Unit for PowerUnit {
         ]
     }
     /// The table's read register is its output register; an interpolating unit adds the
-    /// interpolation after it.
-    /// A squaring unit's products are combinational before its output register.
+    /// interpolation after it; a squaring unit's chain of products is cut by
+    /// `pipeline_depth` ([`crate::units::timing::SQUARING`]).
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
         match cfg.power_unit {
-            PowerUnitKind::Table | PowerUnitKind::Squaring => 1,
+            PowerUnitKind::Table => 1,
+            PowerUnitKind::Squaring => crate::units::timing::latency(cfg, crate::units::timing::SQUARING),
             _ => 2,
         }
     }
@@ -72,15 +73,21 @@ impl Unit for PowerUnit {
         use crate::units::resources::{power_datapath, sum_of_products, unsigned, Resources};
         if cfg.power_unit == PowerUnitKind::Squaring {
             // As `rtlgen::power_units::squaring` emits it: x widened, a rounded product per
-            // squaring and per set bit of n, the guard bits rounded off, the output register.
+            // squaring and per set bit of n, the running power (and x while a multiply
+            // remains) at each cut, the guard bits rounded off, the output register.
+            use crate::rtlgen::power_units::{squaring_cut_positions, squaring_products};
             let (f, p, g) = (cfg.dot_frac_bits, cfg.power_frac_bits, crate::config::SQUARING_GUARD_BITS);
             let wd = p + g;
-            let n = cfg.power_exponent(cfg.shininess);
-            let products = (32 - n.leading_zeros()) + n.count_ones();
+            let steps = squaring_products(cfg.power_exponent(cfg.shininess));
+            let cuts = crate::units::timing::cuts_in_place(cfg, crate::units::timing::SQUARING);
+            let stages: u32 = squaring_cut_positions(steps.len(), cuts)
+                .into_iter()
+                .map(|at| if steps[at..].contains(&true) { 2 * (wd + 1) } else { wd + 1 })
+                .sum();
             let product = sum_of_products(cfg.multipliers, &[(unsigned(wd + 1), unsigned(wd + 1))], false, 2 * wd + 2)
                 + Resources::adders(2 * wd + 2);
             let fin = if g > 0 { Resources::adders(wd + 2) } else { Resources::default() };
-            return Resources::adders(f + wd + 1) + product.scaled(products as f64) + fin + Resources::regs(p + 1);
+            return Resources::adders(f + wd + 1) + product.scaled(steps.len() as f64) + fin + Resources::regs(stages + p + 1);
         }
         let core = power_datapath(&cfg.power_unit_design(), cfg.power_formats());
         if cfg.power_unit == PowerUnitKind::Table {

@@ -30,6 +30,11 @@ pub const NORMALISE: &[&str] = &[
 /// divisions (the map read, its signs and the axes' order stay before the output register).
 pub const NORMALISE_CUBE: &[&str] = &["after the face choice", "after the texel divisions"];
 
+/// power_unit, squaring: the chain of rounded products split into equal parts (each cut
+/// registers the running power, and x while a multiply by it remains;
+/// `rtlgen::power_units::squaring_cut_positions`).
+pub const SQUARING: &[&str] = &["the products cut in two", "in three", "in four"];
+
 /// How many of `cuts` are in place at the configuration's depth.
 pub fn cuts_in_place(cfg: &PipelineConfig, cuts: &[&str]) -> u32 {
     (cfg.pipeline_depth.saturating_sub(1)).min(cuts.len() as u32)
@@ -70,8 +75,8 @@ pub fn markdown() -> String {
         palette,
         ..PipelineConfig::default()
     };
-    use crate::config::PowerUnitKind::{Lerp, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 14] = [
+    use crate::config::PowerUnitKind::{Lerp, Squaring, Table};
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 15] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
         ("normalise", false, Table, false, ""),
         ("normalise_cube", false, Table, false, ""),
@@ -92,6 +97,7 @@ pub fn markdown() -> String {
             false,
             "lerp, segmented: the RAM's read register, then the interpolation",
         ),
+        ("power_unit", true, Squaring, false, ""),
         ("diffuse_blend", false, Table, false, ""),
         ("light_accumulate", true, Table, false, ""),
         ("blend_finish", true, Table, false, "none"),
@@ -125,9 +131,14 @@ pub fn markdown() -> String {
             "texture_modulate" => TEXTURE,
             "normalise" | "normalise_b" => NORMALISE,
             "normalise_cube" => NORMALISE_CUBE,
+            "power_unit" if kind == Squaring => SQUARING,
             _ => &[],
         };
-        let text = if cuts.is_empty() { note.to_string() } else { cuts.join("; ") };
+        let text = match (cuts.is_empty(), kind) {
+            (true, _) => note.to_string(),
+            (false, Squaring) => format!("squaring: {}", cuts.join("; ")),
+            (false, _) => cuts.join("; "),
+        };
         s += &format!(" {text} |\n");
     }
     // The tops: the scheduler's latency (what every bench checks per vector).
@@ -161,7 +172,7 @@ mod tests {
         assert_eq!(latency(&at(4), BLEND), 4);
         assert_eq!(latency(&at(4), TEXTURE), 2);
         // The deepest unit's cuts end at the limit: one more stage would cut nothing.
-        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE]
+        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE, NORMALISE_CUBE, SQUARING]
             .iter()
             .map(|c| c.len())
             .max()
