@@ -258,6 +258,15 @@ pub struct PipelineConfig {
     /// are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub self_shadow: bool,
+    /// The bump normal placed in a frame that enters with every fragment (Harmony, paper
+    /// §3.5): the `frame_transform` unit forms `T b_x + B b_y + N b_z` from the fetched
+    /// normal and the fragment's frame (`in_frame`: the rasteriser's interpolated vertex
+    /// frames, not re-orthonormalised), so L and H are given in the frame's space (eye space)
+    /// instead of bump space. Needs `bump_state = "fragment"`; not with `self_shadow` (its
+    /// gate reads L_z in bump space). Left out of the TOML when false, so older hashes are
+    /// unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub frame_transform: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -280,6 +289,9 @@ pub struct PerFragment {
     pub squaring: bool,
     /// Whether the pipeline self-shadows (`self_shadow`) where the scene asks for it.
     pub self_shadow: bool,
+    /// Whether the bump normal is placed in the fragment's interpolated frame
+    /// (`frame_transform`), L and H interpolated in eye space.
+    pub frame_transform: bool,
 }
 
 impl PerFragment {
@@ -293,6 +305,7 @@ impl PerFragment {
         cube_map_face: 0,
         squaring: false,
         self_shadow: false,
+        frame_transform: false,
     };
 }
 
@@ -318,6 +331,9 @@ impl std::fmt::Display for PerFragment {
         if self.self_shadow {
             write!(f, ", self_shadow as the scene asks")?;
         }
+        if self.frame_transform {
+            write!(f, ", frame_transform = true")?;
+        }
         Ok(())
     }
 }
@@ -333,6 +349,7 @@ impl PipelineConfig {
             cube_map_face: self.cube_map_face,
             squaring: self.power_unit == PowerUnitKind::Squaring,
             self_shadow: self.self_shadow,
+            frame_transform: self.frame_transform,
         }
     }
 }
@@ -374,6 +391,7 @@ impl Default for PipelineConfig {
             renormalise_bump: false,
             cube_map_face: 0,
             self_shadow: false,
+            frame_transform: false,
         }
     }
 }
@@ -750,6 +768,22 @@ impl PipelineConfig {
                 "self_shadow",
                 "self_shadow = true with diffuse = false: the highlight's cut reads each light's B·L, which only the diffuse path computes",
                 "set diffuse = true, or drop self_shadow",
+            ));
+        }
+        if self.frame_transform && self.per_triangle() {
+            return Err(Error::field(
+                file,
+                "frame_transform",
+                "frame_transform = true places the bump normal in a frame that enters with every fragment, which a per-triangle top cannot take",
+                "set bump_state = \"fragment\" (the fragment port carries the frame with L and H), or drop frame_transform",
+            ));
+        }
+        if self.frame_transform && self.self_shadow {
+            return Err(Error::field(
+                file,
+                "frame_transform",
+                "frame_transform = true with self_shadow = true: the self-shadow gate reads L_z in bump space, and with a frame L is in the frame's space",
+                "drop self_shadow, or drop frame_transform",
             ));
         }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {

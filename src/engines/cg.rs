@@ -49,6 +49,7 @@ pub const CG: Engine = Engine {
         cube_map_face: CUBE_FACE,
         squaring: true,
         self_shadow: true,
+        ..PerFragment::PER_TRIANGLE
     }),
 };
 

@@ -12,6 +12,7 @@
 //! (`vectors::check`), and `tests` below does so over random configurations and corners.
 
 use super::bump_fetch::Palette;
+use super::frame_transform::{framed_exact, Frame};
 use super::pipeline::{BumpState, BumpTexel, FragmentIn};
 use super::power_table::PowerTable;
 use crate::config::{BlendOrder, PipelineConfig};
@@ -90,6 +91,9 @@ pub struct FastModel {
     /// The bump normal's shape, when the pipeline renormalises it after the fetch
     /// (`renormalise_bump`: `normalise_b`, the same integer steps as the readable model).
     renorm_b: Option<super::normalise::Shape>,
+    /// `frame_transform`: the fetched normal placed in the state's frame, rounded as
+    /// `model::frame_transform` rounds it and clamped to the normal's range (min, max).
+    frame: Option<(Requant, i64, i64)>,
     /// `self_shadow`: a light below the surface is dropped per triangle (its k·Lc is zero),
     /// and a highlight is masked where B·L clamps to 0.
     self_shadow: bool,
@@ -127,13 +131,26 @@ impl FastModel {
             white: cfg.white_lights.then(|| cfg.colour_max()),
             renorm: cfg.renormalise.then(|| cfg.clone()),
             renorm_b: cfg.renormalise_bump.then(|| super::normalise::Shape::bump(cfg)),
+            frame: cfg.frame_transform.then(|| {
+                let nf = cfg.normal_fmt();
+                (
+                    Requant::new(cfg.dot_exact_fmt().frac, nf.frac, cfg.rounding),
+                    nf.min_raw(),
+                    nf.max_raw(),
+                )
+            }),
             self_shadow: cfg.self_shadow,
         }
     }
 
-    /// The fetched bump normal as the dot products see it.
+    /// The fetched bump normal as the dot products see it (`frame`: the fragment's, read
+    /// under `frame_transform`).
     #[inline(always)]
-    fn dot_normal(&self, v: [i64; 3]) -> [i64; 3] {
+    fn dot_normal(&self, v: [i64; 3], frame: &Frame) -> [i64; 3] {
+        let v = match self.frame {
+            Some((q, lo, hi)) => std::array::from_fn(|c| q.apply(framed_exact(v, frame, c)).clamp(lo, hi)),
+            None => v,
+        };
         match &self.renorm_b {
             Some(shape) => super::normalise::normalise_shape(shape, v),
             None => v,
@@ -168,14 +185,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), frags, out),
-                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), frags, out),
-                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), frags, out),
-                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), frags, out),
-                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), frags, out),
-                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), frags, out),
-                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), frags, out),
-                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), frags, out),
+                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), &state.frame, frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -193,6 +210,7 @@ impl FastModel {
         &self,
         level: Level,
         lights: &[Light; N],
+        frame: &Frame,
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
@@ -200,44 +218,44 @@ impl FastModel {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU has every feature the function is compiled for (the caller's
             // contract).
-            Level::Avx512 => unsafe { self.run_avx512::<N, TEXTURE_LAST>(lights, frags, out) },
+            Level::Avx512 => unsafe { self.run_avx512::<N, TEXTURE_LAST>(lights, frame, frags, out) },
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above.
-            Level::Avx2 => unsafe { self.run_avx2::<N, TEXTURE_LAST>(lights, frags, out) },
-            _ => self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out),
+            Level::Avx2 => unsafe { self.run_avx2::<N, TEXTURE_LAST>(lights, frame, frags, out) },
+            _ => self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out),
         }
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out)
+    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
-        self.run_blocks::<N, TEXTURE_LAST>(lights, frags, out)
+    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+        self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     /// One triangle's fragments a block of [`LANES`] at a time, each value of the block in
     /// its own array so that every step is one vector operation across the block.
     #[inline(always)]
-    fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
             if f.len() <= SCALAR_MAX {
                 // Too few to fill a block: each alone costs less than a block of padding.
                 for (f, o) in f.iter().zip(o.iter_mut()) {
-                    *o = self.one::<N, TEXTURE_LAST>(lights, f);
+                    *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
                 }
             } else {
-                self.block::<N, TEXTURE_LAST>(lights, f, o);
+                self.block::<N, TEXTURE_LAST>(lights, frame, f, o);
             }
         }
     }
 
     #[inline(always)]
-    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         let mut b = [[0i64; LANES]; 3];
         let (mut dmask, mut smask) = ([0i64; LANES], [0i64; LANES]);
         let (mut c_src, mut tex) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
@@ -251,7 +269,7 @@ impl FastModel {
             let bypass = self.skip_flat & (v[0] == self.flat[0]) & (v[1] == self.flat[1]) & (v[2] == self.flat[2]);
             dmask[i] = -i64::from(self.diffuse & f.diffuse_en & !bypass);
             smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
-            let v = self.dot_normal(v);
+            let v = self.dot_normal(v, frame);
             for ch in 0..3 {
                 b[ch][i] = v[ch];
                 c_src[ch][i] = (f.c_src[ch] as i64) << self.guard;
@@ -350,7 +368,7 @@ impl FastModel {
                 Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white, self.self_shadow),
                 None => lights::<N>(state, self.white, self.self_shadow),
             };
-            *o = self.one::<N, TEXTURE_LAST>(&l, frag);
+            *o = self.one::<N, TEXTURE_LAST>(&l, &state.frame, frag);
         }
     }
 
@@ -408,7 +426,7 @@ impl FastModel {
     }
 
     #[inline(always)]
-    fn one<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frag: &FragmentIn) -> [u32; 3] {
+    fn one<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frag: &FragmentIn) -> [u32; 3] {
         let b = match frag.bump {
             BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
             BumpTexel::Index(i) => self.palette[i as usize],
@@ -417,7 +435,7 @@ impl FastModel {
         // All ones where the blend adds, zero where it is off: the factors are masked.
         let dmask = -i64::from(self.diffuse & frag.diffuse_en & !bypass);
         let smask = -i64::from(self.specular & frag.specular_en & !bypass);
-        let b = self.dot_normal(b);
+        let b = self.dot_normal(b, frame);
         let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
         for s in lights {
             let dl = self.dot(b, s.l);

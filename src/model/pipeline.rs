@@ -26,10 +26,13 @@ pub struct LightSlot {
     pub k: i64,
 }
 
-/// The bump state of one triangle: every light slot.
+/// The bump state of one triangle (or, with `bump_state = "fragment"`, of one fragment):
+/// every light slot, and under `frame_transform` the frame the bump normal is placed in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BumpState {
     pub lights: [LightSlot; MAX_LIGHTS],
+    /// T, B and N, raw `s1.(lh-2)` components (`frame_transform`; unread otherwise).
+    pub frame: super::frame_transform::Frame,
 }
 
 /// A fetched bump texel: stored RGB codes, or a palette index.
@@ -56,6 +59,9 @@ pub struct FragmentIn {
 pub struct Shaded {
     /// The bump normal as the fetch hands it on.
     pub fetched: [i64; 3],
+    /// The fetched normal placed in the fragment's frame (`frame_transform`; the fetched
+    /// normal otherwise): what `normalise_b` reads.
+    pub framed: [i64; 3],
     /// The bump normal as the dot products see it (`normalise_b`d under `renormalise_bump`).
     pub b: [i64; 3],
     /// L_i and H_i as the dot products see them (`normalise`d under `renormalise`).
@@ -123,14 +129,20 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
     let specular_on = cfg.specular && frag.specular_en && !bypass;
     let fetched = b;
-    let b = if cfg.renormalise_bump {
-        super::normalise::normalise_bump(cfg, b)
+    let framed = if cfg.frame_transform {
+        super::frame_transform::frame_transform(cfg, b, &state.frame)
     } else {
         b
+    };
+    let b = if cfg.renormalise_bump {
+        super::normalise::normalise_bump(cfg, framed)
+    } else {
+        framed
     };
 
     let mut out = Shaded {
         fetched,
+        framed,
         b,
         flat,
         ..Default::default()

@@ -231,6 +231,8 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             )
         }
     };
+    // Under `frame_transform` L and H are in the frame's space, where the bump normal is placed.
+    let space = if cfg.frame_transform { "the frame's space (in_frame)" } else { "bump space" };
     v.extend([
         tp(
             &format!("{pre}_l"),
@@ -238,7 +240,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: L_j in bump space{scaled}"),
+            &format!("light j, component c (x, y, z) at lane 3j + c: L_j in {space}{scaled}"),
         ),
         tp(
             &format!("{pre}_h"),
@@ -246,7 +248,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: H_j in bump space{scaled}"),
+            &format!("light j, component c (x, y, z) at lane 3j + c: H_j in {space}{scaled}"),
         ),
         tp(
             &format!("{pre}_lc"),
@@ -269,6 +271,16 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             "light j at lane j: the light's weight k_j",
         ),
     ]);
+    if cfg.frame_transform {
+        v.push(tp(
+            "in_frame",
+            Dir::In,
+            PortKind::Fragment,
+            cfg.lh_fmt(),
+            9,
+            "vector i (T, B, N), component c at lane 3i + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)",
+        ));
+    }
     v.extend([tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result")]);
     if cfg.backpressure {
         v.push(tp(
@@ -596,15 +608,24 @@ fn fetch(s: &mut Scheduler, cfg: &PipelineConfig, bump: &str, combinational: boo
     }
 }
 
-/// The bump normal the dot products read: the fetch's `b`, or under `renormalise_bump` the
-/// `normalise_b` unit's `bn` after it (the flat bypass keeps comparing `b`).
-fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig) -> &'static str {
-    if !cfg.renormalise_bump {
-        return "{b}";
+/// The bump normal the dot products read: the fetch's `b`, under `frame_transform` placed in
+/// the fragment's frame (`{pre}_frame`) by the `frame_transform` unit (`bf`), and under
+/// `renormalise_bump` the `normalise_b` unit's `bn` after that (the flat bypass keeps
+/// comparing `b`).
+fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str) -> String {
+    let mut b = "{b}".to_string();
+    if cfg.frame_transform {
+        let u = units::unit("frame_transform").expect("unit");
+        let frame = format!("{{{pre}_frame}}");
+        s.unit(cfg, u, "u_frame", &[("b", &b), ("frame", &frame)], &[("v", "bf")], &[]);
+        b = "{bf}".into();
     }
-    let u = units::unit("normalise_b").expect("unit");
-    s.unit(cfg, u, "u_norm_b", &[("v", "{b}")], &[("n", "bn")], &[]);
-    "{bn}"
+    if cfg.renormalise_bump {
+        let u = units::unit("normalise_b").expect("unit");
+        s.unit(cfg, u, "u_norm_b", &[("v", &b)], &[("n", "bn")], &[]);
+        b = "{bn}".into();
+    }
+    b
 }
 
 /// Which blend a colour stage runs.
@@ -870,7 +891,7 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let pre = state_pre(cfg, false);
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_bump}", false);
-    let bn = dot_normal(s, cfg);
+    let bn = &dot_normal(s, cfg, pre);
     let dot = units::unit("dot_clamp").expect("unit");
     let norm = units::unit(crate::model::normalise::lh_unit(cfg)).expect("unit");
     // Which vectors are renormalised before their dot products: H, and L when interpolated.
@@ -1015,7 +1036,7 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     });
     let pre = state_pre(cfg, true);
     fetch(s, cfg, "{fr_bump}", true);
-    let bn = dot_normal(s, cfg);
+    let bn = &dot_normal(s, cfg, pre);
     let k1 = cfg.k_frac_bits + 1;
     // The held fragment's state is every slot, indexed by j; a bank RAM word is one slot.
     let slot = |f: &str, w: u32| {

@@ -15,13 +15,13 @@ pub fn module_name(cfg: &PipelineConfig, unit: &str) -> String {
     format!("{unit}_{}", &cfg.hash()[..8])
 }
 
-fn preamble(w: &mut VWriter) {
+pub(super) fn preamble(w: &mut VWriter) {
     w.line("`timescale 1ns / 1ps");
     w.line("`default_nettype none");
     w.line("");
 }
 
-fn postamble(w: &mut VWriter) {
+pub(super) fn postamble(w: &mut VWriter) {
     w.line("`default_nettype wire");
 }
 

@@ -59,6 +59,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             renormalise_bump: false,
             cube_map_face: 0,
             self_shadow: false,
+            frame_transform: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -81,6 +82,10 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         if cfg.specular && pick(rng, &[false, false, false, true]) {
             cfg.power_unit = PowerUnitKind::Squaring;
             cfg.power_rom = false;
+        }
+        // Drawn last, where valid: a frame with per-fragment state, without self-shadowing.
+        if cfg.bump_state == BumpStateAt::Fragment && !cfg.self_shadow && pick(rng, &[false, true]) {
+            cfg.frame_transform = true;
         }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
@@ -486,6 +491,7 @@ mod tests {
             "renormalise",
             "renormalise_bump",
             "self_shadow",
+            "frame_transform",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> = draws

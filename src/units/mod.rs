@@ -13,6 +13,7 @@ mod blend;
 mod bump_fetch;
 mod colour_round;
 mod dot_clamp;
+mod frame_transform;
 mod normalise;
 mod normalise_cube;
 mod palette_fetch;
@@ -173,6 +174,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &palette_fetch::PaletteFetch,
     &normalise::NORMALISE,
     &normalise_cube::NormaliseCube,
+    &frame_transform::FrameTransform,
     &normalise::NORMALISE_B,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,

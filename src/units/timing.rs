@@ -30,6 +30,10 @@ pub const NORMALISE: &[&str] = &[
 /// divisions (the map read, its signs and the axes' order stay before the output register).
 pub const NORMALISE_CUBE: &[&str] = &["after the face choice", "after the texel divisions"];
 
+/// frame_transform: per component three products, their sum, one rounding and the clamp
+/// (a dot_clamp's shape, three times).
+pub const FRAME_TRANSFORM: &[&str] = &["after the nine products b_i F_i", "after the three sums"];
+
 /// power_unit, squaring: the chain of rounded products split into equal parts (each cut
 /// registers the running power, and x while a multiply by it remains;
 /// `rtlgen::power_units::squaring_cut_positions`).

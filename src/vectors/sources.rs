@@ -159,7 +159,36 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         s.l = v[2 * i];
         s.h = v[2 * i + 1];
     }
+    if cfg.frame_transform {
+        // Drawn after the lights, so a configuration without a frame draws what it drew.
+        state.frame = random_frame(cfg, rng, raw);
+    }
     state
+}
+
+/// A random frame (`frame_transform`): raw codes over the whole L/H format, or an
+/// orthonormal frame with each axis shortened to 70–100 % of unit length, as interpolating
+/// unit vectors between vertices shortens them.
+fn random_frame(cfg: &PipelineConfig, rng: &mut SplitMix64, raw: bool) -> crate::model::frame_transform::Frame {
+    use super::rng::{range_of, unit_of};
+    use glam::DVec3;
+    let lh = cfg.lh_fmt();
+    let x = rng.next_block::<9>();
+    if raw {
+        return std::array::from_fn(|i| std::array::from_fn(|c| range_of(x[3 * i + c], lh.min_raw(), lh.max_raw())));
+    }
+    let v = |k: usize| DVec3::new(unit_of(x[k]) * 2.0 - 1.0, unit_of(x[k + 1]) * 2.0 - 1.0, unit_of(x[k + 2]) * 2.0 - 1.0);
+    let n = v(0).try_normalize().unwrap_or(DVec3::Z);
+    let t = (v(3) - n * n.dot(v(3))).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
+    let b = n.cross(t);
+    let one = one(cfg) as f64;
+    [t, b, n]
+        .iter()
+        .enumerate()
+        .map(|(i, a)| (*a * (0.7 + 0.3 * unit_of(x[6 + i]))).to_array().map(|c| round_half_away(c * one).clamp(lh.min_raw(), lh.max_raw())))
+        .collect::<Vec<_>>()
+        .try_into()
+        .expect("three axes")
 }
 
 /// Every drawn vector (`u(0)·2 − 1, u(1)·2 − 1, u(2)·1.2 − 0.2`) scaled to unit length and
@@ -418,6 +447,11 @@ fn corner_stim(cfg: &PipelineConfig, codes: [u32; 3], l: [i64; 3], h: [i64; 3], 
             lc: [lc; 3],
             k,
         };
+    }
+    if cfg.frame_transform {
+        // The identity frame: a corner means in the frame's space what it means in bump space.
+        let one = one(cfg);
+        state.frame = [[one, 0, 0], [0, one, 0], [0, 0, one]];
     }
     let frag = FragmentIn {
         bump: bump_of(cfg, codes),

@@ -46,6 +46,10 @@ pub fn top_layout(cfg: &PipelineConfig) -> Layout {
     l
 }
 
+/// The frame column of a top with `frame_transform` (a per-fragment top: it enters with the
+/// fragment's state).
+pub const FRAME: &str = "in_frame";
+
 /// The name of bump-state field `f` (`l`, `h`, `lc`, `k`) on the top's ports and in its vectors.
 pub fn state_column(cfg: &PipelineConfig, f: &str) -> String {
     format!("{}_{f}", if cfg.per_triangle() { "tri" } else { "in" })
@@ -63,6 +67,8 @@ struct TopColumns<'a> {
     h: &'a Column,
     lc: &'a Column,
     k: &'a Column,
+    /// `in_frame` (`frame_transform`).
+    frame: Option<&'a Column>,
     out: &'a Column,
 }
 
@@ -80,6 +86,7 @@ impl<'a> TopColumns<'a> {
             h: st("h"),
             lc: st("lc"),
             k: st("k"),
+            frame: l.columns.iter().find(|c| c.name == FRAME),
             out: l.column("out_c"),
         }
     }
@@ -128,6 +135,7 @@ pub struct TopEncoder<'a> {
     h: Lanes<'a>,
     lc: Lanes<'a>,
     k: Lanes<'a>,
+    frame: Option<Lanes<'a>>,
     out: Lanes<'a>,
     /// Where the fragment's stimulus columns start, when they follow one another in
     /// [`fill_fragment`](Self::fill_fragment)'s order within 120 bits (the default layout
@@ -220,6 +228,7 @@ impl<'a> TopEncoder<'a> {
             h: Lanes::of(c.h),
             lc: Lanes::of(c.lc),
             k: Lanes::of(c.k),
+            frame: c.frame.map(Lanes::of),
             out: Lanes::of(c.out),
             packed_from: packed_from(&c),
         }
@@ -254,6 +263,11 @@ impl<'a> TopEncoder<'a> {
             self.h.set3(r, lane, ls.h);
             self.lc.set3(r, lane, ls.lc.map(i64::from));
             self.k.set(r, j as u32, ls.k);
+        }
+        if let Some(f) = &self.frame {
+            for (i, v) in state.frame.iter().enumerate() {
+                f.set3(r, 3 * i as u32, *v);
+            }
         }
     }
 
@@ -419,6 +433,7 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
         h: c_h,
         lc: c_lc,
         k: c_k,
+        frame: c_frame,
         ..
     } = TopColumns::of(cfg, l);
     let lane3 = |c, base: u32| [0, 1, 2].map(|i| r.lane_value(c, base + i));
@@ -430,6 +445,9 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
         s.h = lane3(c_h, b);
         s.lc = lane3(c_lc, b).map(|v| v as u32);
         s.k = r.lane_value(c_k, j as u32);
+    }
+    if let Some(c) = c_frame {
+        state.frame = std::array::from_fn(|i| lane3(c, 3 * i as u32));
     }
     TopStim {
         frag: FragmentIn {
@@ -494,10 +512,16 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![vec![i as i64]],
         }),
     }
+    if cfg.frame_transform {
+        v.push(UnitStim {
+            unit: "frame_transform",
+            inputs: vec![t.fetched.to_vec(), s.state.frame.concat()],
+        });
+    }
     if cfg.renormalise_bump {
         v.push(UnitStim {
             unit: "normalise_b",
-            inputs: vec![t.fetched.to_vec()],
+            inputs: vec![t.framed.to_vec()],
         });
     }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
@@ -674,6 +698,9 @@ mod tests {
             &st.iter().flat_map(|x| x.lc.map(i64::from)).collect::<Vec<_>>(),
         );
         put(&state_column(cfg, "k"), &st.iter().map(|x| x.k).collect::<Vec<_>>());
+        if cfg.frame_transform {
+            put(FRAME, &s.state.frame.concat());
+        }
         put("out_c", &colour.map(i64::from));
         r
     }
