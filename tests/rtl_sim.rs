@@ -306,6 +306,20 @@ fn regress_the_cg_tutorials_per_fragment_pipeline() {
 }
 
 #[test]
+fn regress_harmonys_interpolated_frame_pipeline() {
+    // The `harmony` engine's path: the frame_transform unit places the fetched normal in the
+    // fragment's frame (in_frame), normalise_b and normalise scale the normal, L and H; on
+    // both simulators, with the frame unit's own corner and random sets and every scene
+    // that fits two lights, its frames and eye-space vectors from the rasteriser.
+    let counts = (3_000u64, 100_000u64);
+    let t = regress_small_scenes("tests/configs/harmony_frame.toml", "harmony_frame", counts);
+    check_suite_with(&t, 4, counts, 1);
+    for unit in ["frame_transform", "normalise_b", "normalise"] {
+        assert_unit_sets_ran(&t, unit);
+    }
+}
+
+#[test]
 fn regress_interpolated_h_and_l() {
     // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
     // port; scenes with more than two bump lights do not fit the two slots.
@@ -708,6 +722,37 @@ fn the_cg_paths_mutants_are_caught() {
             let out = r.outcome.unwrap();
             assert!(out.failed >= 1, "{file} mutant, {} set: it passed", r.set);
         }
+    }
+}
+
+/// Harmony's frame transposed in one pair of elements (T_y read where B_x belongs): the
+/// frame unit's random set and the top's random set both catch it; the identity-frame
+/// corners could not.
+#[test]
+fn a_transposed_frame_is_caught() {
+    use gbump::sim::regress::run_sets;
+    use gbump::vectors::Source;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/harmony_frame.toml"),
+        "mutant_frame",
+        &[("frame_transform", mutants::frame_transposed)],
+    );
+    let vec_dir = work.join("vectors");
+    let o = mutant_dump_options();
+    let mut sets = Vec::new();
+    for (t, src) in [("frame_transform", Source::Random(2_000)), ("top", Source::Random(3_000))] {
+        let got = gbump::vectors::dump(&cfg, &src, &[t.to_string()], &vec_dir, &o).unwrap();
+        sets.push((got[0].manifest.clone(), None));
+    }
+    let opts = gbump::sim::regress::RegressOptions {
+        sims: vec![gbump::sim::Sim::Icarus],
+        ..mutant_run_options(&work)
+    };
+    let res = run_sets(&cfg, &sets, &rtl, &opts).unwrap();
+    assert_eq!(res.len(), 2);
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 1, "frame mutant, {} set: it passed", r.set);
     }
 }
 

@@ -5,9 +5,18 @@
 //! re-orthonormalised (the text interpolates the axes and says no more), the perturbed normal
 //! and the interpolated L and H are normalised before the dot products, and each light's k
 //! and spot factor is interpolated from the vertices.
+//!
+//! The bit-accurate path: the rasteriser sends the interpolated frame (`in_frame`) and each
+//! light's L and H in eye space per fragment; the `frame_transform` unit places the fetched
+//! normal in the frame, `normalise_b` scales it to unit length, the `normalise` units scale
+//! L and H, and the rest is the Gouraud bump pipeline's. It differs from this model where
+//! the text leaves the hardware open: C_src is interpolated from the vertices (a Gouraud
+//! rasteriser's) rather than evaluated at the pixel, and there is no self-shadowing gate
+//! (the pipeline's reads L_z in bump space; this model's reads the geometric normal).
 
 use super::common::{bump_normal, corners, finish, mix, Base};
-use super::{Cost, Ctx, Engine};
+use super::{Cost, Ctx, Engine, PerFragment};
+use crate::config::Interpolate;
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom};
 use crate::reference::perpixel::light_factors;
@@ -27,7 +36,14 @@ pub const HARMONY: Engine = Engine {
     },
     shade,
     scene_blend: false,
-    fixed: None,
+    fixed: Some(PerFragment {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+        interpolate_k: true,
+        renormalise_bump: true,
+        frame_transform: true,
+        ..PerFragment::PER_TRIANGLE
+    }),
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

@@ -77,6 +77,7 @@ impl Engine {
         cfg.interpolate_k = v.interpolate_k;
         cfg.renormalise_bump = v.renormalise_bump;
         cfg.cube_map_face = v.cube_map_face;
+        cfg.frame_transform = v.frame_transform;
         if v.squaring {
             // Successive squarings: no table, so none to make a ROM of.
             cfg.power_unit = PowerUnitKind::Squaring;

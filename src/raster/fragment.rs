@@ -74,14 +74,19 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
 pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
-    if p.cfg.interpolate.is_none() && !p.cfg.interpolate_k {
+    if p.cfg.interpolate.is_none() && !p.cfg.interpolate_k && !p.cfg.frame_transform {
         return ts.fixed;
     }
     let corners = o.mesh.corners(hit.tri);
-    let vv = super::tri_state::vertex_vectors(p.scene, &p.camera, &corners);
+    let vv = super::tri_state::vertex_vectors_in(p.scene, &p.camera, &corners, p.cfg.frame_transform);
     let vk = super::tri_state::vertex_k(p.scene, &corners);
     // Interpolated unit vectors stay within the unit ball, so every component is finite.
-    super::tri_state::fragment_state(p.cfg, ts, &vv, &vk, hit.bary).expect("finite interpolated vectors")
+    let mut st = super::tri_state::fragment_state(p.cfg, ts, &vv, &vk, hit.bary).expect("finite interpolated vectors");
+    if p.cfg.frame_transform {
+        let f = super::tri_state::frame_at(&corners, hit.bary);
+        st.frame = super::tri_state::send_frame(p.cfg, f).expect("finite interpolated frame");
+    }
+    st
 }
 
 /// Every covered pixel's fragment record, triangle by triangle (pixel order within one).

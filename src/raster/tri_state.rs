@@ -44,7 +44,12 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
         let v = t.map(|i| mesh.verts[i as usize]);
         let centroid = (v[0].p + v[1].p + v[2].p) / 3.0;
         let (n, tg, bn) = triangle_frame(&v);
-        let to_bump = |w: DVec3| DVec3::new(w.dot(tg), w.dot(bn), w.dot(n));
+        // Under `frame_transform` the pipeline places the bump normal in the fragment's
+        // frame, so L and H stay in eye space.
+        let to_bump = |w: DVec3| match cfg.frame_transform {
+            true => w,
+            false => DVec3::new(w.dot(tg), w.dot(bn), w.dot(n)),
+        };
         let mut st = TriState {
             l: [DVec3::ZERO; MAX_LIGHTS],
             h: [DVec3::ZERO; MAX_LIGHTS],
@@ -74,17 +79,41 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
 /// Each bump light's L and H at each vertex of a triangle, each in that vertex's own frame
 /// (what paper §6's interpolating variants send per vertex): `[light][vertex] = (L, H)`.
 pub fn vertex_vectors(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3]) -> Vec<[(DVec3, DVec3); 3]> {
+    vertex_vectors_in(scene, cam, v, false)
+}
+
+/// [`vertex_vectors`], or with `eye` in eye space (Harmony's, `frame_transform`: the bump
+/// normal is placed in the interpolated frame instead).
+pub fn vertex_vectors_in(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3], eye: bool) -> Vec<[(DVec3, DVec3); 3]> {
     scene
         .bump_lights()
         .map(|l| {
             std::array::from_fn(|j| {
                 let (n, t, b) = frame(v[j].n, v[j].t, v[j].b);
-                let to_bump = |w: DVec3| DVec3::new(w.dot(t), w.dot(b), w.dot(n));
+                let to_bump = |w: DVec3| if eye { w } else { DVec3::new(w.dot(t), w.dot(b), w.dot(n)) };
                 let ld = light_dir(l, v[j].p, n);
                 (to_bump(ld), to_bump(half_vector(ld, cam.to_viewer)))
             })
         })
         .collect()
+}
+
+/// The vertex frames (T, B, N) interpolated at barycentric weights `w`, not
+/// re-orthonormalised: Harmony's per-fragment frame (`frame_transform`).
+pub fn frame_at(v: &[crate::scene::mesh::Vertex; 3], w: [f64; 3]) -> [DVec3; 3] {
+    let mix = |f: &dyn Fn(&crate::scene::mesh::Vertex) -> DVec3| f(&v[0]) * w[0] + f(&v[1]) * w[1] + f(&v[2]) * w[2];
+    [mix(&|x| x.t), mix(&|x| x.b), mix(&|x| x.n)]
+}
+
+/// A frame as the rasteriser sends it (`in_frame`): each component rounded to the L/H word
+/// (a rotation: no normal-range scale). None when not finite.
+pub fn send_frame(cfg: &PipelineConfig, f: [DVec3; 3]) -> Option<crate::model::frame_transform::Frame> {
+    let q = |x: f64| from_f64(x, cfg.lh_fmt(), Rounding::HalfUp, Overflow::Saturate);
+    Some([
+        [q(f[0].x)?, q(f[0].y)?, q(f[0].z)?],
+        [q(f[1].x)?, q(f[1].y)?, q(f[1].z)?],
+        [q(f[2].x)?, q(f[2].y)?, q(f[2].z)?],
+    ])
 }
 
 /// Each bump light's k (intensity times spot factor) at each vertex of a triangle:

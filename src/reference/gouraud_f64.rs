@@ -35,21 +35,25 @@ pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
 /// vector back to unit length (H, and L when it is interpolated), as the `normalise` unit does
 /// (or to its cube-map texel's direction, as `normalise_cube` does).
 pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragment) -> DVec3 {
-    use crate::raster::tri_state::{k_at, lh_at, vertex_k, vertex_vectors};
+    use crate::raster::tri_state::{frame_at, k_at, lh_at, vertex_k, vertex_vectors_in};
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
     let corners = o.mesh.corners(hit.tri);
     let vv = if how.interpolate.is_none() {
         Vec::new()
     } else {
-        vertex_vectors(p.scene, &p.camera, &corners)
+        vertex_vectors_in(p.scene, &p.camera, &corners, how.frame_transform)
     };
     let vk = if how.interpolate_k {
         vertex_k(p.scene, &corners)
     } else {
         Vec::new()
     };
-    shade_with(p, hit, g, how.renormalise_bump, |i| {
+    // With a frame, a per-triangle L and H are the triangle's in eye space only where the
+    // scene was prepared for a frame.
+    debug_assert!(!how.interpolate.is_none() || how.frame_transform == p.cfg.frame_transform);
+    let frame = how.frame_transform.then(|| frame_at(&corners, hit.bary));
+    shade_with(p, hit, g, how.renormalise_bump, frame, |i| {
         let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);
         let k = k_at(ts, &vk, hit.bary, how.interpolate_k, i);
         // The cube map's texel direction where the configuration reads one.
@@ -68,8 +72,17 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
 
 /// The Gouraud bump equations with light `i`'s bump-space L, H and k from `lhk(i)`: the
 /// paper's per-triangle values, or (the §6 variants and SGI, `engines`) interpolated ones;
-/// `renormalise_bump` scales the filtered bump normal back to unit length (`normalise_b`).
-pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, renormalise_bump: bool, lhk: impl Fn(usize) -> (DVec3, DVec3, f64)) -> DVec3 {
+/// `frame` (T, B, N: `frame_transform`) places the filtered bump normal in it, L and H then
+/// being in the frame's space; `renormalise_bump` scales the normal back to unit length
+/// (`normalise_b`).
+pub fn shade_with(
+    p: &Prepared,
+    hit: &Hit,
+    g: &PixelGeom,
+    renormalise_bump: bool,
+    frame: Option<[DVec3; 3]>,
+    lhk: impl Fn(usize) -> (DVec3, DVec3, f64),
+) -> DVec3 {
     let cfg = p.cfg;
     let so = &p.scene.objects[hit.obj as usize];
     let o = &p.objects[hit.obj as usize];
@@ -77,6 +90,10 @@ pub fn shade_with(p: &Prepared, hit: &Hit, g: &PixelGeom, renormalise_bump: bool
     // The flat test reads the filtered normal, as the pipeline's bypass reads the fetched
     // codes; normalise_b then scales it back to unit length.
     let bypass = cfg.skip_flat && (bn - DVec3::Z).length() < 1e-9;
+    let bn = match frame {
+        Some([t, b, n]) => t * bn.x + b * bn.y + n * bn.z,
+        None => bn,
+    };
     let bn = if renormalise_bump { bn.normalize_or_zero() } else { bn };
     let dif_on = cfg.diffuse && so.diffuse && !bypass;
     let spe_on = cfg.specular && so.specular && !bypass;

@@ -90,3 +90,17 @@ pub fn squaring_one_fewer(text: &str) -> Option<String> {
     let k: u32 = line[at..end].parse().ok()?;
     (k > 0).then(|| text.replacen(line, &format!("{}{}{}", &line[..at], k - 1, &line[end..]), 1))
 }
+
+/// frame_transform with one pair of frame elements transposed: the product that should read
+/// B_x (lane 3) reads T_y (lane 1) and the one that should read T_y reads B_x. None when the
+/// unit has no such products.
+pub fn frame_transposed(text: &str) -> Option<String> {
+    // The frame slices in the emitter's order: component 0's b_x T_x, b_y B_x, b_z N_x, then
+    // component 1's b_x T_y, ...
+    let slices: Vec<&str> = text
+        .lines()
+        .filter_map(|l| l.split_once("= frame[").map(|(_, r)| r.split(']').next().unwrap_or("")))
+        .collect();
+    let (bx, ty) = (format!("frame[{}]", slices.get(1)?), format!("frame[{}]", slices.get(3)?));
+    Some(text.replace(&bx, "@SWAP@").replace(&ty, &bx).replace("@SWAP@", &ty))
+}
