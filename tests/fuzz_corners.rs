@@ -3,7 +3,8 @@
 //! product with the largest table, the widest segmented unit, every width at its top and at
 //! its bottom. Each is generated, linted (Verilator -Wall) and simulated on Verilator against
 //! the model, exactly as `gbump fuzz` does; two carry the `normalise_b` unit,
-//! one the largest `normalise_cube` map.
+//! one the largest `normalise_cube` map, two the `frame_transform` unit (the serial top, and
+//! the widest words).
 
 use gbump::sim::fuzz::{check_config, corner_configs};
 use std::time::Instant;

@@ -43,3 +43,45 @@ mod tests {
         assert_eq!(frame_transform(&cfg, [-128, -128, -128], &lean), [-128; 3]);
     }
 }
+
+#[cfg(test)]
+mod identity {
+    use crate::config::{BumpStateAt, PipelineConfig};
+    use crate::model::{shade, PowerTable};
+
+    /// With the identity frame a top with the unit shades every fragment as the same top
+    /// without it, over random configurations and stimuli (the integration notes say so).
+    #[test]
+    fn the_identity_frame_is_the_bump_space_pipeline() {
+        let mut rng = crate::vectors::rng::SplitMix64(0xF8A3E);
+        let mut checked = 0;
+        for _ in 0..40 {
+            let mut cfg = crate::sim::fuzz::random_config(&mut rng);
+            cfg.bump_state = BumpStateAt::Fragment;
+            cfg.self_shadow = false;
+            let plain = PipelineConfig {
+                frame_transform: false,
+                ..cfg.clone().canonical()
+            };
+            let framed = PipelineConfig {
+                frame_transform: true,
+                ..plain.clone()
+            };
+            if framed.validate("t").is_err() {
+                continue;
+            }
+            let table = PowerTable::build(&plain, plain.shininess);
+            let palette = crate::rtlgen::rom::default_palette(&plain);
+            let one = 1i64 << (plain.lh_bits - 2);
+            for s in crate::vectors::sources::random_chunk(&plain, 0, 0, 300) {
+                let mut st = s.state;
+                st.frame = [[one, 0, 0], [0, one, 0], [0, 0, one]];
+                let a = shade(&plain, &table, Some(&palette), &s.state, &s.frag).colour();
+                let b = shade(&framed, &table, Some(&palette), &st, &s.frag).colour();
+                assert_eq!(a, b, "{}", framed.to_toml());
+                checked += 1;
+            }
+        }
+        assert!(checked > 3000, "{checked}");
+    }
+}

@@ -99,6 +99,14 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     } else {
         "\n\n"
     };
+    if cfg.frame_transform {
+        let one = 1u64 << (cfg.lh_bits - 2);
+        s += &format!(
+            "**A frame per fragment** (`frame_transform`, Harmony, paper §3.5). `in_frame` carries the fragment's frame T, B, N ({} each, so {one} is 1.0; the identity frame is T = ({one}, 0, 0), B = (0, {one}, 0), N = (0, 0, {one})), and the top places the fetched bump normal in it, T b_x + B b_y + N b_z, rounded to the normal's format and clamped to its range (`frame_transform`){}. `in_l` and `in_h` are then in the frame's space (the rasteriser sends eye-space vectors and the interpolated vertex frames); with the identity frame the top is the bump-space pipeline. The flat bypass compares the fetched code.\n\n",
+            cfg.lh_fmt().name(),
+            if cfg.renormalise_bump { ", then scales it back to unit length (`normalise_b`)" } else { "" }
+        );
+    }
     if cfg.renormalise_bump || cfg.renormalise {
         s += &renormalising(cfg);
     }
@@ -159,7 +167,7 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         let digits = (c.width / c.lanes).div_ceil(4) as usize;
         let hex = raw.iter().map(|v| format!("{v:0digits$x}")).collect::<Vec<_>>().join(" ");
         let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
-        let fmt = if c.name == st("l") || c.name == st("h") {
+        let fmt = if c.name == st("l") || c.name == st("h") || c.name == crate::vectors::targets::FRAME {
             Some(cfg.lh_fmt())
         } else if c.name == st("k") {
             Some(cfg.k_fmt())

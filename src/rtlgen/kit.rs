@@ -246,10 +246,13 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         s += &format!("    }} {what}_record_t;\n");
     }
     s += "    // Lane helpers for the top ports: lane 0 in the low bits; per light x, y, z (or R, G, B).\n";
+    // lanes_per_light: 3 (per light x, y, z or R, G, B), 9 (the frame: vector T, B, N, then
+    // x, y, z), else one index.
     let lane = |s: &mut String, port: &str, lb: &str, lanes_per_light: u32| {
         let w = format!("{}_BITS", port.to_uppercase());
         let (args, idx) = match lanes_per_light {
             3 => ("input int light, input int axis", "3 * light + axis"),
+            9 => ("input int vector, input int axis", "3 * vector + axis"),
             _ => ("input int i", "i"),
         };
         *s += &format!(
@@ -264,6 +267,9 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
     lane(&mut s, &st("h"), "LH_BITS", 3);
     lane(&mut s, &st("lc"), "COLOUR_BITS", 3);
     lane(&mut s, &st("k"), "K_BITS", 1);
+    if cfg.frame_transform {
+        lane(&mut s, crate::vectors::targets::FRAME, "LH_BITS", 9);
+    }
     lane(&mut s, "out_c", "COLOUR_BITS", 1);
     s += "endpackage\n// verilator lint_on UNUSEDPARAM\n`default_nettype wire\n";
     s

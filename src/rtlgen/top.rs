@@ -278,7 +278,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Fragment,
             cfg.lh_fmt(),
             9,
-            "vector i (T, B, N), component c at lane 3i + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)",
+            "vector v (T, B, N), component c at lane 3v + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)",
         ));
     }
     v.extend([tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result")]);

@@ -112,8 +112,9 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 /// the squaring power unit), the widest dot product
 /// and table, the widest segmented unit, and every width at its top and at its bottom;
 /// `normalise_b` on two of them (the widest normals with the flat bypass, the narrowest
-/// normals in its table-alone regime with inferred multipliers), and the largest
-/// normalisation cube map (`normalise_cube`) at the widest L and H.
+/// normals in its table-alone regime with inferred multipliers), the largest
+/// normalisation cube map (`normalise_cube`) at the widest L and H, and a frame per fragment
+/// (`frame_transform`) on the serial top and at the widest words.
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
@@ -146,12 +147,13 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
         ),
         ("widest dot product and table", widest_dot.clone()),
         (
-            "widest segmented unit",
+            "widest segmented unit, serial, a frame per fragment",
             PipelineConfig {
                 power_unit: PowerUnitKind::Segmented,
                 power_segments: hi("power_segments"),
                 power_entries: 16,
                 bump_state: BumpStateAt::Fragment,
+                frame_transform: true,
                 ..widest_dot.clone()
             },
         ),
@@ -198,12 +200,13 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             },
         ),
         (
-            "the largest normalisation cube map, widest L and H",
+            "the largest normalisation cube map, widest L, H and frame",
             PipelineConfig {
                 lh_bits: hi("lh_bits"),
                 normal_bits: hi("normal_bits"),
                 normal_range: NormalRange::Symmetric,
                 bump_state: BumpStateAt::Fragment,
+                frame_transform: true,
                 interpolate: crate::config::Interpolate::Hl,
                 renormalise: true,
                 cube_map_face: hi("cube_map_face"),

@@ -35,7 +35,7 @@ impl Unit for FrameTransform {
                 Dir::In,
                 cfg.lh_fmt(),
                 9,
-                "the fragment's frame: T, B, N, vector i's component c at lane 3i + c",
+                "the fragment's frame: T, B, N, vector v's component c at lane 3v + c",
             ),
             p(
                 "v",
