@@ -111,9 +111,10 @@ const char *gbump_config_hash(const struct GbumpConfig *h);
 
 /**
  * The configuration as canonical TOML (the input of the hash): every field, except that
- * colour_guard_bits, white_lights, power_rom, renormalise, interpolate_k, renormalise_bump and interpolate are left
- * out at their defaults (0, false, false, false, false, false, "none"), so hashes made before they
- * existed stay.
+ * the fields added after the first release (interpolate, colour_guard_bits, white_lights,
+ * power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face, self_shadow,
+ * frame_transform) are left out at their defaults ("none", 0 or false), so hashes made
+ * before they existed stay.
  *
  * # Safety
  * `h` is a live handle.

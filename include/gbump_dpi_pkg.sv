@@ -30,10 +30,11 @@ package gbump_dpi_pkg;
     import "DPI-C" function void gbump_config_free(input chandle h);
     // The configuration's 16-hex-digit hash (as in every generated file's header).
     import "DPI-C" function string gbump_config_hash(input chandle h);
-    // The configuration as canonical TOML (the input of the hash): every field, except that
-    // colour_guard_bits, white_lights, power_rom, renormalise, interpolate_k, renormalise_bump and
-    // interpolate are left out at their defaults (0, false, false, false, false, false, "none"),
-    // so hashes made before they existed stay.
+    // The configuration as canonical TOML (the input of the hash): every field, except that the
+    // fields added after the first release (interpolate, colour_guard_bits, white_lights,
+    // power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face, self_shadow,
+    // frame_transform) are left out at their defaults ("none", 0 or false), so hashes made before
+    // they existed stay.
     import "DPI-C" function string gbump_config_toml(input chandle h);
     // The generated top module's name (`gbump_pipeline_<hash8>`).
     import "DPI-C" function string gbump_module_name(input chandle h);
