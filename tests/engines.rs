@@ -261,7 +261,16 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
         .collect();
     assert_eq!(
         with,
-        ["sgi", "harmony", "gouraud", "gouraud_h", "gouraud_hl", "gouraud_hn", "gouraud_hln", "cg"]
+        [
+            "sgi",
+            "harmony",
+            "gouraud",
+            "gouraud_h",
+            "gouraud_hl",
+            "gouraud_hn",
+            "gouraud_hln",
+            "cg"
+        ]
     );
     for (e, f) in t.engines.iter().zip(&t.fixed[0]) {
         assert_eq!(e.fixed.is_some(), f.is_some(), "{}", e.name);

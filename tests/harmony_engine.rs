@@ -96,6 +96,12 @@ fn on_a_plane_the_frame_path_is_the_bump_space_path() {
     let diff = |x: &[u32; 3], y: &[u32; 3]| (0..3).map(|c| x[c].abs_diff(y[c])).max().unwrap();
     let worst = a.golden.iter().zip(&b.golden).map(|(x, y)| diff(x, y)).max().unwrap();
     let differ = a.golden.iter().zip(&b.golden).filter(|(x, y)| x != y).count();
-    println!("frame path vs bump-space path on a plane: {differ} of {} pixels differ, by {worst} LSB at most", a.golden.len());
-    assert!(worst <= 1 && differ * 100 <= a.golden.len(), "{differ} pixels differ, by up to {worst} LSB");
+    println!(
+        "frame path vs bump-space path on a plane: {differ} of {} pixels differ, by {worst} LSB at most",
+        a.golden.len()
+    );
+    assert!(
+        worst <= 1 && differ * 100 <= a.golden.len(),
+        "{differ} pixels differ, by up to {worst} LSB"
+    );
 }

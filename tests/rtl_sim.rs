@@ -570,6 +570,41 @@ fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
     }
 }
 
+/// `mutant` applied to `file` of `config`'s RTL, run on Icarus against one vector set per
+/// `(target, source)`: every set must fail at least `min_failed` times. Returns the runs.
+fn assert_mutant_caught(
+    config: &str,
+    work: &str,
+    file: &str,
+    mutant: Mutant,
+    targets: &[(&str, gbump::vectors::Source)],
+    min_failed: u64,
+) -> Vec<gbump::sim::regress::RunResult> {
+    let (cfg, work, rtl) = mutant_rtl(Some(config), work, &[(file, mutant)]);
+    let vec_dir = work.join("vectors");
+    let o = mutant_dump_options();
+    let sets: Vec<_> = targets
+        .iter()
+        .map(|(t, src)| {
+            let got = gbump::vectors::dump(&cfg, src, &[t.to_string()], &vec_dir, &o).unwrap();
+            (got[0].manifest.clone(), None)
+        })
+        .collect();
+    // Icarus only: building the mutant's Verilator models would take most of the test, and
+    // the regressions run the real units on both.
+    let opts = gbump::sim::regress::RegressOptions {
+        sims: vec![gbump::sim::Sim::Icarus],
+        ..mutant_run_options(&work)
+    };
+    let res = gbump::sim::regress::run_sets(&cfg, &sets, &rtl, &opts).unwrap();
+    assert_eq!(res.len(), targets.len());
+    for r in &res {
+        let out = r.outcome.as_ref().unwrap();
+        assert!(out.failed >= min_failed, "{file} mutant, {} set: it passed", r.set);
+    }
+    res
+}
+
 #[test]
 fn a_wrong_rounding_constant_in_the_rtl_is_caught_and_reported() {
     use gbump::sim::regress::run_sets;
@@ -642,30 +677,17 @@ fn guard_bit_mutants_are_caught_by_their_unit_sets_and_the_top() {
 /// random set (the table alone is within a few LSB, so only a bit-exact bench sees it).
 #[test]
 fn a_normalise_with_a_newton_step_fewer_is_caught() {
-    use gbump::sim::regress::run_sets;
-    let (cfg, work, rtl) = mutant_rtl(
-        Some("tests/configs/renormalise_hl.toml"),
+    use gbump::vectors::Source;
+    let res = assert_mutant_caught(
+        "tests/configs/renormalise_hl.toml",
         "mutant_newton",
-        &[("normalise", mutants::normalise_step_fewer)],
+        "normalise",
+        mutants::normalise_step_fewer,
+        &[("normalise", Source::Random(500)), ("top", Source::Random(500))],
+        5,
     );
-    let vec_dir = work.join("vectors");
-    let o = mutant_dump_options();
-    let mut sets = Vec::new();
-    let units = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(500), &["normalise".into()], &vec_dir, &o).unwrap();
-    sets.push((units[0].manifest.clone(), None));
-    let tops = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(500), &["top".into()], &vec_dir, &o).unwrap();
-    sets.push((tops[0].manifest.clone(), None));
-    // Icarus only: building the mutant's Verilator models would take most of the test, and
-    // the regression above runs the real unit on both.
-    let opts = gbump::sim::regress::RegressOptions {
-        sims: vec![gbump::sim::Sim::Icarus],
-        ..mutant_run_options(&work)
-    };
-    let res = run_sets(&cfg, &sets, &rtl, &opts).unwrap();
-    assert_eq!(res.len(), 2);
     for r in res {
         let out = r.outcome.unwrap();
-        assert!(out.failed >= 5, "{:?} {}: the mutant passed", r.sim, r.set);
         let unit = if r.target == "top" { "gbump_pipeline" } else { "normalise" };
         assert!(out.log.contains(&format!("MISMATCH unit {unit}")), "{}", out.log);
     }
@@ -678,7 +700,6 @@ fn a_normalise_with_a_newton_step_fewer_is_caught() {
 /// set and the top's random set.
 #[test]
 fn the_cg_paths_mutants_are_caught() {
-    use gbump::sim::regress::run_sets;
     use gbump::vectors::Source;
     let cases: [(&str, &str, Mutant, Vec<(&str, Source)>); 3] = [
         (
@@ -704,24 +725,7 @@ fn the_cg_paths_mutants_are_caught() {
         ),
     ];
     for (work, file, mutant, targets) in cases {
-        let (cfg, work, rtl) = mutant_rtl(Some("tests/configs/cg_per_fragment.toml"), work, &[(file, mutant)]);
-        let vec_dir = work.join("vectors");
-        let o = mutant_dump_options();
-        let mut sets = Vec::new();
-        for (t, src) in &targets {
-            let got = gbump::vectors::dump(&cfg, src, &[t.to_string()], &vec_dir, &o).unwrap();
-            sets.push((got[0].manifest.clone(), None));
-        }
-        let opts = gbump::sim::regress::RegressOptions {
-            sims: vec![gbump::sim::Sim::Icarus],
-            ..mutant_run_options(&work)
-        };
-        let res = run_sets(&cfg, &sets, &rtl, &opts).unwrap();
-        assert_eq!(res.len(), targets.len());
-        for r in res {
-            let out = r.outcome.unwrap();
-            assert!(out.failed >= 1, "{file} mutant, {} set: it passed", r.set);
-        }
+        assert_mutant_caught("tests/configs/cg_per_fragment.toml", work, file, mutant, &targets, 1);
     }
 }
 
@@ -730,30 +734,15 @@ fn the_cg_paths_mutants_are_caught() {
 /// corners could not.
 #[test]
 fn a_transposed_frame_is_caught() {
-    use gbump::sim::regress::run_sets;
     use gbump::vectors::Source;
-    let (cfg, work, rtl) = mutant_rtl(
-        Some("tests/configs/harmony_frame.toml"),
+    assert_mutant_caught(
+        "tests/configs/harmony_frame.toml",
         "mutant_frame",
-        &[("frame_transform", mutants::frame_transposed)],
+        "frame_transform",
+        mutants::frame_transposed,
+        &[("frame_transform", Source::Random(2_000)), ("top", Source::Random(3_000))],
+        1,
     );
-    let vec_dir = work.join("vectors");
-    let o = mutant_dump_options();
-    let mut sets = Vec::new();
-    for (t, src) in [("frame_transform", Source::Random(2_000)), ("top", Source::Random(3_000))] {
-        let got = gbump::vectors::dump(&cfg, &src, &[t.to_string()], &vec_dir, &o).unwrap();
-        sets.push((got[0].manifest.clone(), None));
-    }
-    let opts = gbump::sim::regress::RegressOptions {
-        sims: vec![gbump::sim::Sim::Icarus],
-        ..mutant_run_options(&work)
-    };
-    let res = run_sets(&cfg, &sets, &rtl, &opts).unwrap();
-    assert_eq!(res.len(), 2);
-    for r in res {
-        let out = r.outcome.unwrap();
-        assert!(out.failed >= 1, "frame mutant, {} set: it passed", r.set);
-    }
 }
 
 /// The output buffer reads its RAM one entry ahead; an entry that is the head at the edge that

@@ -185,14 +185,62 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), &state.frame, frags, out),
-                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), &state.frame, frags, out),
+                    1 => self.run_at::<1, $tl>(
+                        level,
+                        &lights::<1>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    2 => self.run_at::<2, $tl>(
+                        level,
+                        &lights::<2>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    3 => self.run_at::<3, $tl>(
+                        level,
+                        &lights::<3>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    4 => self.run_at::<4, $tl>(
+                        level,
+                        &lights::<4>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    5 => self.run_at::<5, $tl>(
+                        level,
+                        &lights::<5>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    6 => self.run_at::<6, $tl>(
+                        level,
+                        &lights::<6>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    7 => self.run_at::<7, $tl>(
+                        level,
+                        &lights::<7>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
+                    8 => self.run_at::<8, $tl>(
+                        level,
+                        &lights::<8>(state, self.white, self.self_shadow),
+                        &state.frame,
+                        frags,
+                        out,
+                    ),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -228,20 +276,38 @@ impl FastModel {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
         self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
         self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     /// One triangle's fragments a block of [`LANES`] at a time, each value of the block in
     /// its own array so that every step is one vector operation across the block.
     #[inline(always)]
-    fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    fn run_blocks<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
         for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
             if f.len() <= SCALAR_MAX {
                 // Too few to fill a block: each alone costs less than a block of padding.
@@ -255,7 +321,13 @@ impl FastModel {
     }
 
     #[inline(always)]
-    fn block<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
+    fn block<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
         let mut b = [[0i64; LANES]; 3];
         let (mut dmask, mut smask) = ([0i64; LANES], [0i64; LANES]);
         let (mut c_src, mut tex) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);

@@ -51,7 +51,12 @@ pub fn frame_transform(cfg: &PipelineConfig) -> String {
                 let e = sum_of_products(&mut w, Form::of(cfg), &format!("p{c}{i}m"), &[product(i, c)], 0, ex.width);
                 w.stage(true, &decl, &format!("p{c}{i}"), &e);
             }
-            w.stage(cut(cfg, FRAME_TRANSFORM, 1), &decl, &format!("s{c}"), &format!("p{c}0 + p{c}1 + p{c}2"));
+            w.stage(
+                cut(cfg, FRAME_TRANSFORM, 1),
+                &decl,
+                &format!("s{c}"),
+                &format!("p{c}0 + p{c}1 + p{c}2"),
+            );
         } else {
             // No register between the products and their sum: one tree of all the rows.
             let e = sum_of_products(

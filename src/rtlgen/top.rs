@@ -232,7 +232,11 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
         }
     };
     // Under `frame_transform` L and H are in the frame's space, where the bump normal is placed.
-    let space = if cfg.frame_transform { "the frame's space (in_frame)" } else { "bump space" };
+    let space = if cfg.frame_transform {
+        "the frame's space (in_frame)"
+    } else {
+        "bump space"
+    };
     v.extend([
         tp(
             &format!("{pre}_l"),

@@ -177,15 +177,27 @@ fn random_frame(cfg: &PipelineConfig, rng: &mut SplitMix64, raw: bool) -> crate:
     if raw {
         return std::array::from_fn(|i| std::array::from_fn(|c| range_of(x[3 * i + c], lh.min_raw(), lh.max_raw())));
     }
-    let v = |k: usize| DVec3::new(unit_of(x[k]) * 2.0 - 1.0, unit_of(x[k + 1]) * 2.0 - 1.0, unit_of(x[k + 2]) * 2.0 - 1.0);
+    let v = |k: usize| {
+        DVec3::new(
+            unit_of(x[k]) * 2.0 - 1.0,
+            unit_of(x[k + 1]) * 2.0 - 1.0,
+            unit_of(x[k + 2]) * 2.0 - 1.0,
+        )
+    };
     let n = v(0).try_normalize().unwrap_or(DVec3::Z);
-    let t = (v(3) - n * n.dot(v(3))).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
+    let t = (v(3) - n * n.dot(v(3)))
+        .try_normalize()
+        .unwrap_or_else(|| n.any_orthonormal_vector());
     let b = n.cross(t);
     let one = one(cfg) as f64;
     [t, b, n]
         .iter()
         .enumerate()
-        .map(|(i, a)| (*a * (0.7 + 0.3 * unit_of(x[6 + i]))).to_array().map(|c| round_half_away(c * one).clamp(lh.min_raw(), lh.max_raw())))
+        .map(|(i, a)| {
+            (*a * (0.7 + 0.3 * unit_of(x[6 + i])))
+                .to_array()
+                .map(|c| round_half_away(c * one).clamp(lh.min_raw(), lh.max_raw()))
+        })
         .collect::<Vec<_>>()
         .try_into()
         .expect("three axes")
