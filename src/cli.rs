@@ -655,18 +655,16 @@ pub fn run() -> anyhow::Result<()> {
             };
             // Sets run alone carry their configuration: with no --config or --scene it is
             // the first manifest's (written to the work folder, so generated headers can
-            // name it), and check_sets refuses any set of another.
+            // name it), and check_sets refuses any set of another. Nothing is written or
+            // said until every given set has been checked whole (`regress`'s `announce`).
+            let mut from_manifest = None;
             let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty()) {
                 (None, None, false) => {
                     let first = crate::sim::regress_cmd::given_manifests(&vectors)?.remove(0);
-                    // Checked whole (fields and files) before anything is written or said;
-                    // check_sets reads its files again with every other set's.
-                    let (m, _) = crate::vectors::verify(&first)?;
+                    let m = crate::vectors::manifest::read_fields(&first)?;
                     let dir = std::path::absolute(&work).map_err(|e| Error::io(&work, e))?;
-                    crate::render::output::make_folder(&dir)?;
                     let file = dir.join(format!("config_{}.toml", m.config.hash()));
-                    crate::render::output::write_atomic(&file, m.config.to_toml().as_bytes())?;
-                    say(&format!("configuration {} from {}", m.config.hash(), first.display()))?;
+                    from_manifest = Some((file.clone(), first));
                     (
                         m.config,
                         ConfigPick {
@@ -696,6 +694,14 @@ pub fn run() -> anyhow::Result<()> {
                 )?;
                 return Ok(());
             }
+            let announce = |say: &mut dyn FnMut(&str) -> Result<()>| -> Result<()> {
+                if let Some((file, first)) = &from_manifest {
+                    crate::render::output::make_folder(&opts.work)?;
+                    crate::render::output::write_atomic(file, cfg.to_toml().as_bytes())?;
+                    say(&format!("configuration {} from {}", cfg.hash(), first.display()))?;
+                }
+                Ok(())
+            };
             crate::sim::regress_cmd::regress(
                 &cfg,
                 &pick.args(),
@@ -703,6 +709,7 @@ pub fn run() -> anyhow::Result<()> {
                 &opts,
                 junit.as_deref(),
                 || lock_work(&opts.work),
+                announce,
                 &mut say,
             )?
         }
@@ -947,6 +954,7 @@ pub fn run() -> anyhow::Result<()> {
                     &opts,
                     None,
                     || lock_work(&work.join("regress")),
+                    |_| Ok(()),
                     &mut |l| {
                         outln!("{l}");
                         Ok(())

@@ -1093,6 +1093,31 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
             "{what}: ran before refusing"
         );
     }
+    // A good set first and a broken one second, with no --config: the configuration comes
+    // from the first, and nothing is said or written (its copy in the work folder) before
+    // the second is refused.
+    let o = gbump()
+        .args([
+            "regress",
+            "--sim",
+            "icarus",
+            "--vectors",
+            "v/random20_top.json",
+            "--vectors",
+            "v/edited.json",
+            "--work",
+            "w",
+        ])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("edited.json"), "{err}");
+    assert!(o.stdout.is_empty(), "said before refusing: {}", String::from_utf8_lossy(&o.stdout));
+    assert!(
+        !dir.path().join("w").exists() || std::fs::read_dir(dir.path().join("w")).unwrap().next().is_none(),
+        "wrote before refusing the second set"
+    );
     std::fs::write(dir.path().join("big.json"), vec![b' '; 2 << 20]).unwrap();
     for (file, needle) in [("big.json", "MAX_INPUT_BYTES"), ("v/random20_top.bin", "not UTF-8")] {
         let o = gbump()

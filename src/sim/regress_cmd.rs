@@ -41,8 +41,9 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
 }
 
 /// Regress `cfg` (selected by `pick_args`, for the RTL's header) on `vectors`, or on the
-/// default suite when there are none. `lock` takes `o.work` once every given set is checked;
-/// the table and totals go to `say`, the XML to `junit`.
+/// default suite when there are none. `lock` takes `o.work` once every given set is checked,
+/// then `announce` writes or says what the caller held back until then; the table and totals
+/// go to `say`, the XML to `junit`.
 pub fn regress(
     cfg: &PipelineConfig,
     pick_args: &str,
@@ -50,16 +51,19 @@ pub fn regress(
     o: &RegressOptions,
     junit: Option<&Path>,
     lock: impl FnOnce() -> Result<WorkLock>,
+    announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
     for s in &o.sims {
         super::require(*s)?;
     }
     let h = &cfg.hash()[..8];
-    // Given sets are checked (paths, completeness, sha256) before the work folder is taken.
+    // Given sets are checked (paths, completeness, sha256, configuration) before the work
+    // folder is taken, and before `announce` writes or says anything.
     let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
     let given = check_sets(cfg, &given, o)?;
     let _lock = lock()?;
+    announce(say)?;
     let sets = if vectors.is_empty() {
         let t0 = std::time::Instant::now();
         let s = suite(cfg, o, &o.work.join(format!("vectors_{h}")))?;
