@@ -78,6 +78,11 @@ impl Engine {
         cfg.renormalise_bump = v.renormalise_bump;
         cfg.cube_map_face = v.cube_map_face;
         cfg.frame_transform = v.frame_transform;
+        if v.renormalise_bump {
+            // The fetched normal is renormalised, which a palette (unfiltered, loaded as
+            // given) refuses: the engine's path fetches the stored codes instead.
+            cfg.palette = false;
+        }
         if v.squaring {
             // Successive squarings: no table, so none to make a ROM of.
             cfg.power_unit = PowerUnitKind::Squaring;
@@ -85,8 +90,8 @@ impl Engine {
         }
         // Self-shadowing where the scene asks for it (its per-pixel reference applies it).
         cfg.self_shadow = v.self_shadow && scene.self_shadowing && cfg.diffuse;
-        if v.interpolate != Interpolate::None || v.interpolate_k {
-            // An interpolated vector or k reaches the pipeline per fragment.
+        if v.interpolate != Interpolate::None || v.interpolate_k || v.frame_transform {
+            // An interpolated vector, k or frame reaches the pipeline per fragment.
             cfg.bump_state = BumpStateAt::Fragment;
         }
         if v.interpolate_k && cfg.k_frac_bits == 0 {

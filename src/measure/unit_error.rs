@@ -72,18 +72,32 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let max = cfg.colour_max() as f64;
     let t = stored_codes(palette, s.frag.bump);
     let codes = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
+    // Under `frame_transform` B is placed in the fragment's frame exactly, clamped to the
+    // normal's range as the unit saturates.
+    let placed: [f64; 3] = if cfg.frame_transform {
+        let f = &s.state.frame;
+        let (lo, hi) = (nf.to_f64(nf.min_raw()), nf.to_f64(nf.max_raw()));
+        std::array::from_fn(|c| (0..3).map(|i| nf.to_f64(codes[i]) * lf.to_f64(f[i][c])).sum::<f64>().clamp(lo, hi))
+    } else {
+        codes.map(|c| nf.to_f64(c))
+    };
     // Renormalised, B enters the dot products at exactly its unit length, as normalise_b's
-    // equation says; otherwise as its codes.
+    // equation says; otherwise as it is.
     let b: Vec<f64> = if cfg.renormalise_bump {
         // Clamped to the format, as the unit saturates: under binary normals +1.0 is one code
         // beyond it, which is the format's, not the arithmetic's, error.
         let shape = crate::model::normalise::Shape::bump(cfg);
-        let f = shape.fmt();
-        crate::model::normalise::normalise_exact_shape(&shape, codes)
-            .map(|x| x.clamp(f.min_raw() as f64, f.max_raw() as f64) / (1u64 << shape.frac) as f64)
-            .to_vec()
+        let (f, one) = (shape.fmt(), (1u64 << shape.frac) as f64);
+        let len = placed.iter().map(|x| x * x).sum::<f64>().sqrt();
+        placed
+            .iter()
+            .map(|x| match len {
+                0.0 => 0.0,
+                _ => (x * shape.scale() / len).clamp(f.min_raw() as f64 / one, f.max_raw() as f64 / one),
+            })
+            .collect()
     } else {
-        codes.iter().map(|&c| nf.to_f64(c)).collect()
+        placed.to_vec()
     };
     let flat = codes == cfg.flat_normal();
     let bypass = cfg.skip_flat && flat;
@@ -151,6 +165,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let lh_unit = crate::model::normalise::lh_unit(cfg);
     let mut norm = ErrorStats::new(lh_unit, "corners + random");
     let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
+    let mut frame = ErrorStats::new("frame_transform", "corners + random");
     let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
     let lh_error = |stats: &mut ErrorStats, v: [i64; 3]| {
         normalise_error(
@@ -178,11 +193,23 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     for (_, s) in &stims {
         let t = stored_codes(&palette, s.frag.bump);
         let fetched = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
-        // dot_clamp sees B as the pipeline hands it on.
-        let b = if cfg.renormalise_bump {
-            b_error(&mut norm_b, fetched)
+        // normalise_b and dot_clamp see B as the pipeline hands it on: placed in the
+        // fragment's frame under `frame_transform`, then renormalised.
+        let framed = if cfg.frame_transform {
+            let f = &s.state.frame;
+            let got = crate::model::frame_transform::frame_transform(cfg, fetched, f);
+            let exact = crate::model::frame_transform::frame_transform_exact(cfg, fetched, f);
+            for c in 0..3 {
+                frame.add(got[c] as f64 - exact[c], || format!("B={fetched:?} frame={f:?}"));
+            }
+            got
         } else {
             fetched
+        };
+        let b = if cfg.renormalise_bump {
+            b_error(&mut norm_b, framed)
+        } else {
+            framed
         };
         for ls in s.state.lights.iter().take(cfg.lights as usize) {
             if norm_l {
@@ -198,6 +225,9 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
                 dot.add(dot_clamp(cfg, b, v) as f64 - exact, || format!("B={b:?} V={v:?}"));
             }
         }
+    }
+    if cfg.frame_transform {
+        out.push(frame);
     }
     if cfg.renormalise_bump {
         out.push(norm_b);

@@ -22,6 +22,14 @@ pub fn frame_transform(cfg: &PipelineConfig, b: [i64; 3], frame: &Frame) -> [i64
     std::array::from_fn(|c| requant(framed_exact(b, frame, c), from, to, cfg.rounding, Overflow::Saturate))
 }
 
+/// [`frame_transform`] without its rounding, in the normal's LSBs (clamped as the unit
+/// saturates).
+pub fn frame_transform_exact(cfg: &PipelineConfig, b: [i64; 3], frame: &Frame) -> [f64; 3] {
+    let (from, to) = (cfg.dot_exact_fmt(), cfg.normal_fmt());
+    let scale = 2f64.powi((from.frac - to.frac) as i32);
+    std::array::from_fn(|c| (framed_exact(b, frame, c) as f64 / scale).clamp(to.min_raw() as f64, to.max_raw() as f64))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

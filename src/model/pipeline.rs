@@ -13,7 +13,8 @@ use crate::config::{BlendOrder, PipelineConfig};
 /// Light slots the model can hold (the config's upper limit).
 pub const MAX_LIGHTS: usize = 8;
 
-/// One bump light's state, in bump space, as the geometry engine loads it per triangle.
+/// One bump light's state, in bump space (in the frame's space under `frame_transform`), as
+/// the geometry engine loads it per triangle or the rasteriser sends it per fragment.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LightSlot {
     /// Light direction L_i, raw `s1.(lh-2)` components.

@@ -1,5 +1,6 @@
 //! From scene to fragments: per-object assets (stored bump map, texture), per-triangle bump
-//! state (L_i and H_i in bump space, paper §4.1), a z-buffered rasteriser, and the fragment
+//! state (L_i and H_i in bump space, paper §4.1; in eye space with a frame per fragment under
+//! `frame_transform`), a z-buffered rasteriser, and the fragment
 //! records that feed the golden model, the vectors and the f64 renderers.
 
 pub mod assets;

@@ -1,6 +1,7 @@
 //! Per-triangle bump state: the triangle's tangent frame (the average of its vertex frames,
-//! re-orthonormalised), and each bump light's L_i and H_i in that frame, in f64 and
-//! quantised to the pipeline's L/H words. Parallel viewer and per-triangle parallel lights
+//! re-orthonormalised), and each bump light's L_i and H_i in that frame (in eye space under
+//! `frame_transform`, whose frame enters per fragment), in f64 and quantised to the
+//! pipeline's L/H words. Parallel viewer and per-triangle parallel lights
 //! are the paper's simplifications (§5.4, items 2 and 3).
 
 use crate::config::{Interpolate, PipelineConfig};
@@ -14,7 +15,8 @@ use glam::DVec3;
 
 #[derive(Clone, Copy, Debug)]
 pub struct TriState {
-    /// Bump-space light and half vectors, light colour and k, per slot (f64).
+    /// Light and half vectors (bump space, or eye space under `frame_transform`), light
+    /// colour and k, per slot (f64).
     pub l: [DVec3; MAX_LIGHTS],
     pub h: [DVec3; MAX_LIGHTS],
     pub k: [f64; MAX_LIGHTS],

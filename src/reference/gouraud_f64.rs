@@ -51,7 +51,7 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
     };
     // With a frame, a per-triangle L and H are the triangle's in eye space only where the
     // scene was prepared for a frame.
-    debug_assert!(!how.interpolate.is_none() || how.frame_transform == p.cfg.frame_transform);
+    debug_assert!(how.interpolate == Interpolate::Hl || how.frame_transform == p.cfg.frame_transform);
     let frame = how.frame_transform.then(|| frame_at(&corners, hit.bary));
     shade_with(p, hit, g, how.renormalise_bump, frame, |i| {
         let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);

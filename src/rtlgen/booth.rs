@@ -54,7 +54,7 @@ impl Factor {
 /// operations, twenty times faster than a function's loop (measured: texture_modulate, 2^18
 /// inputs), but a chain of products in wires re-evaluates every product downstream once per
 /// row of the one before: forty times slower than a function on the squaring power unit
-/// (square-and-multiply, up to sixteen products in a chain).
+/// (square-and-multiply, up to fourteen products in a chain for exponents below 256).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Form {
     /// A wire per row, summed in one expression: for a product or two in a row.

@@ -40,7 +40,14 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "bump_state": if cfg.per_triangle() {
             json!({"at": "triangle", "banks": cfg.triangle_banks, "bank_hold_cycles": super::top::bank_hold(cfg), "setup_edges": super::top::setup_edges(cfg), "setup_edges_definition": "the fewest rising edges a setup spans, from the first edge at which tri_valid offers it to the edge that accepts it, both counted, whether its bank is free yet or not (the serial top writes one light slot per edge into its bank RAM): a setup is accepted at the later of first offer + setup_edges - 1 and last use of its bank + bank_hold_cycles, where tri_ready is high; hold tri_* while tri_valid && !tri_ready, as valid/ready requires", "bank_hold_definition": "rising edges from the edge that accepts the last fragment using a bank to the first edge at which a setup may load that bank again; setup m after reset loads bank m mod banks", "setup": "a triangle's bump state (ports of kind `triangle`) is accepted at a rising edge at which tri_valid && tri_ready are high; every fragment accepted after that edge, up to the next setup, uses it; a fragment accepted at the same edge belongs to the previous triangle; no fragment may come before the first setup after reset", "vectors": "a record whose tri_start column is 1 starts a triangle: drive a setup beat from its tri_* columns (in_valid low) before its fragment"})
         } else {
-            json!({"at": "fragment", "setup": "none: the bump state enters with every fragment on the in_l, in_h, in_lc, in_k ports"})
+            // Every state port the top has (in_frame too, under frame_transform).
+            let ports: Vec<String> = super::top::port_list(cfg)
+                .into_iter()
+                .filter(|p| p.kind == super::top::PortKind::Fragment)
+                .map(|p| p.name)
+                .filter(|n| ["l", "h", "lc", "k"].iter().any(|f| *n == crate::vectors::targets::state_column(cfg, f)) || n == crate::vectors::targets::FRAME)
+                .collect();
+            json!({"at": "fragment", "setup": format!("none: the bump state enters with every fragment on the {} ports", ports.join(", "))})
         },
         "output_buffer_results": super::top::output_depth(cfg),
         "backpressure": if cfg.backpressure { "out_ready: a result on out_c is taken at a rising edge at which out_valid && out_ready are high; it is offered from latency_cycles edges after its accept on and stays offered until taken; in_ready is low while output_buffer_results accepted results are untaken (and as the interval says); no pipeline register stalls" } else { "none: every result is taken when offered; the top has no out_ready" },

@@ -281,7 +281,7 @@ pub fn squaring_cut_positions(products: usize, cuts: u32) -> Vec<usize> {
 }
 
 /// Square-and-multiply for x^n (n built in) on u1.(P+guard), each product rounded half up,
-/// its products written in `form` (a chain of up to sixteen products: Booth rows in
+/// its products written in `form` (a chain of up to fourteen products for n < 256: Booth rows in
 /// functions, or `*`) from input `x` (u1.F), with `cuts` registers along the chain (on
 /// `clk`, where [`squaring_cut_positions`] puts them); returns the expression of the u1.P
 /// result. The pipeline's squaring power unit and `gbump power-space`'s standalone unit both

@@ -21,7 +21,13 @@ impl Unit for DotClamp {
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p("b", Dir::In, cfg.normal_fmt(), 3, "bump normal B"),
-            p("v", Dir::In, cfg.lh_fmt(), 3, "L_i or H_i in bump space"),
+            p(
+                "v",
+                Dir::In,
+                cfg.lh_fmt(),
+                3,
+                "L_i or H_i in bump space (the frame's space under frame_transform)",
+            ),
             p("f", Dir::Out, cfg.dot_fmt(), 1, "max(0, B·V) rounded, clamped to 1"),
         ]
     }

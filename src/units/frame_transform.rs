@@ -5,7 +5,7 @@
 
 use super::{p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
-use crate::model::frame_transform::{frame_transform, framed_exact, Frame};
+use crate::model::frame_transform::{frame_transform, frame_transform_exact, Frame};
 use crate::units::timing::{cut, FRAME_TRANSFORM};
 
 pub struct FrameTransform;
@@ -53,16 +53,7 @@ impl Unit for FrameTransform {
         vec![frame_transform(cfg, [i[0][0], i[0][1], i[0][2]], &frame_of(&i[1])).to_vec()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        let (from, to) = (cfg.dot_exact_fmt(), cfg.normal_fmt());
-        let frame = frame_of(&i[1]);
-        let b = [i[0][0], i[0][1], i[0][2]];
-        let scale = (from.frac - to.frac) as i32;
-        vec![(0..3)
-            .map(|c| {
-                let v = framed_exact(b, &frame, c) as f64 / 2f64.powi(scale);
-                v.clamp(to.min_raw() as f64, to.max_raw() as f64)
-            })
-            .collect()]
+        vec![frame_transform_exact(cfg, [i[0][0], i[0][1], i[0][2]], &frame_of(&i[1])).to_vec()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         use crate::units::resources::{requant_clamp, signed, sum_of_products, Resources};
@@ -91,6 +82,9 @@ impl Unit for FrameTransform {
         let one = 1i64 << (cfg.lh_bits - 2);
         let flat = cfg.flat_normal().to_vec();
         let id = vec![one, 0, 0, 0, one, 0, 0, 0, one];
+        // A tilted normal in the format's own codes (every normal width).
+        let hi = nf.max_raw();
+        let tilted = vec![hi / 3, -(hi / 2), hi];
         vec![
             (
                 "the identity frame: the normal unchanged".into(),
@@ -102,7 +96,7 @@ impl Unit for FrameTransform {
             ),
             (
                 "a mirrored frame (B = -y): the y component negated".into(),
-                vec![vec![40, -70, 90], vec![one, 0, 0, 0, -one, 0, 0, 0, one]],
+                vec![tilted, vec![one, 0, 0, 0, -one, 0, 0, 0, one]],
             ),
             (
                 "an interpolated frame at 70 % length: the normal shortened".into(),

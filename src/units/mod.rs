@@ -286,6 +286,20 @@ mod tests {
             ..Default::default()
         });
         cfgs.extend(crate::sim::fuzz::normalise_configs());
+        // Each of them with a frame per fragment, where that is valid: the frame unit's
+        // corners at every width.
+        let framed: Vec<PipelineConfig> = cfgs
+            .iter()
+            .map(|c| PipelineConfig {
+                bump_state: crate::config::BumpStateAt::Fragment,
+                frame_transform: true,
+                self_shadow: false,
+                ..c.clone()
+            })
+            .filter(|c| c.validate("t").is_ok())
+            .collect();
+        assert!(framed.len() > 5, "{} framed configurations", framed.len());
+        cfgs.extend(framed);
         for cfg in cfgs {
             let table = PowerTable::build(&cfg, cfg.shininess);
             let palette = crate::rtlgen::rom::default_palette(&cfg);

@@ -80,8 +80,9 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Squaring, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 15] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 16] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
+        ("frame_transform", true, Table, false, ""),
         ("normalise", false, Table, false, ""),
         ("normalise_cube", false, Table, false, ""),
         ("normalise_b", true, Table, false, ""),
@@ -126,6 +127,10 @@ pub fn markdown() -> String {
                 cfg.cube_map_face = 32;
             }
             cfg.renormalise_bump = name == "normalise_b";
+            if name == "frame_transform" {
+                cfg.bump_state = crate::config::BumpStateAt::Fragment;
+                cfg.frame_transform = true;
+            }
             s += &format!(" {} |", u.latency(&cfg));
         }
         let cuts = match name {
@@ -135,6 +140,7 @@ pub fn markdown() -> String {
             "texture_modulate" => TEXTURE,
             "normalise" | "normalise_b" => NORMALISE,
             "normalise_cube" => NORMALISE_CUBE,
+            "frame_transform" => FRAME_TRANSFORM,
             "power_unit" if kind == Squaring => SQUARING,
             _ => &[],
         };
@@ -176,11 +182,20 @@ mod tests {
         assert_eq!(latency(&at(4), BLEND), 4);
         assert_eq!(latency(&at(4), TEXTURE), 2);
         // The deepest unit's cuts end at the limit: one more stage would cut nothing.
-        let deepest = [DOT_CLAMP, BLEND, ACCUMULATE, TEXTURE, NORMALISE, NORMALISE_CUBE, SQUARING]
-            .iter()
-            .map(|c| c.len())
-            .max()
-            .unwrap() as u32;
+        let deepest = [
+            DOT_CLAMP,
+            BLEND,
+            ACCUMULATE,
+            TEXTURE,
+            NORMALISE,
+            NORMALISE_CUBE,
+            SQUARING,
+            FRAME_TRANSFORM,
+        ]
+        .iter()
+        .map(|c| c.len())
+        .max()
+        .unwrap() as u32;
         assert_eq!(deepest + 1, crate::limits::MAX_PIPELINE_DEPTH);
     }
 }
