@@ -75,9 +75,7 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     // Under `frame_transform` B is placed in the fragment's frame exactly, clamped to the
     // normal's range as the unit saturates.
     let placed: [f64; 3] = if cfg.frame_transform {
-        let f = &s.state.frame;
-        let (lo, hi) = (nf.to_f64(nf.min_raw()), nf.to_f64(nf.max_raw()));
-        std::array::from_fn(|c| (0..3).map(|i| nf.to_f64(codes[i]) * lf.to_f64(f[i][c])).sum::<f64>().clamp(lo, hi))
+        crate::model::frame_transform::frame_transform_exact(cfg, codes, &s.state.frame).map(|x| x / (1u64 << nf.frac) as f64)
     } else {
         codes.map(|c| nf.to_f64(c))
     };

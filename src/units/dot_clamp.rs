@@ -43,17 +43,10 @@ impl Unit for DotClamp {
         vec![vec![dot.clamp(0.0, 1.0) * (1u64 << cfg.dot_frac_bits) as f64]]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        use crate::units::resources::{requant_clamp, signed, sum_of_products, Resources};
+        use crate::units::resources::{normal_dot_sum, requant_clamp, Resources};
         use crate::units::timing::{cut, DOT_CLAMP};
         let ex = cfg.dot_exact_fmt();
-        let product = (signed(cfg.normal_bits), signed(cfg.lh_bits));
-        let sum = if cut(cfg, DOT_CLAMP, 0) {
-            (sum_of_products(cfg.multipliers, &[product], false, ex.width) + Resources::regs(ex.width)).scaled(3.0)
-                + Resources::adders(2 * ex.width)
-        } else {
-            sum_of_products(cfg.multipliers, &[product; 3], false, ex.width)
-        };
-        sum + Resources::stage(cut(cfg, DOT_CLAMP, 1), ex.width)
+        normal_dot_sum(cfg, cut(cfg, DOT_CLAMP, 0), cut(cfg, DOT_CLAMP, 1))
             + requant_clamp(ex, cfg.dot_frac_bits, cfg.rounding, cfg.dot_frac_bits + 1)
             + Resources::regs(cfg.dot_frac_bits + 1)
     }

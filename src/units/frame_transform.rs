@@ -56,20 +56,11 @@ impl Unit for FrameTransform {
         vec![frame_transform_exact(cfg, [i[0][0], i[0][1], i[0][2]], &frame_of(&i[1])).to_vec()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        use crate::units::resources::{requant_clamp, signed, sum_of_products, Resources};
+        use crate::units::resources::{normal_dot_sum, requant_clamp, Resources};
         let ex = cfg.dot_exact_fmt();
-        let product = (signed(cfg.normal_bits), signed(cfg.lh_bits));
-        // As `rtlgen::frame_transform_v` builds it, per component: three products summed
-        // (each registered under the first cut), the sum (the second), the rounding and
-        // clamp, the output register.
-        let sum = if cut(cfg, FRAME_TRANSFORM, 0) {
-            (sum_of_products(cfg.multipliers, &[product], false, ex.width) + Resources::regs(ex.width)).scaled(3.0)
-                + Resources::adders(2 * ex.width)
-        } else {
-            sum_of_products(cfg.multipliers, &[product; 3], false, ex.width)
-        };
-        let one = sum
-            + Resources::stage(cut(cfg, FRAME_TRANSFORM, 1), ex.width)
+        // As `rtlgen::frame_transform_v` builds it, per component: a dot_clamp's sum of
+        // three products, the rounding and clamp, the output register.
+        let one = normal_dot_sum(cfg, cut(cfg, FRAME_TRANSFORM, 0), cut(cfg, FRAME_TRANSFORM, 1))
             + requant_clamp(ex, cfg.normal_bits - 1, cfg.rounding, cfg.normal_bits)
             + Resources::regs(cfg.normal_bits);
         one.scaled(3.0)

@@ -330,3 +330,18 @@ mod tests {
         assert_eq!((g.pp, g.mux, g.add), (0.0, 9.0, 0.0));
     }
 }
+
+/// Three products of a normal component and an L/H component summed exactly into
+/// `dot_exact_fmt` (`dot_clamp`'s B·V, and each component of `frame_transform`'s): each
+/// product registered when `products_cut`, the sum when `sum_cut`.
+pub fn normal_dot_sum(cfg: &PipelineConfig, products_cut: bool, sum_cut: bool) -> Resources {
+    let ex = cfg.dot_exact_fmt();
+    let product = (signed(cfg.normal_bits), signed(cfg.lh_bits));
+    let sum = if products_cut {
+        (sum_of_products(cfg.multipliers, &[product], false, ex.width) + Resources::regs(ex.width)).scaled(3.0)
+            + Resources::adders(2 * ex.width)
+    } else {
+        sum_of_products(cfg.multipliers, &[product; 3], false, ex.width)
+    };
+    sum + Resources::stage(sum_cut, ex.width)
+}
