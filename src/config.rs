@@ -267,6 +267,14 @@ pub struct PipelineConfig {
     /// unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub frame_transform: bool,
+    /// The frame built per fragment from two interpolated vectors (TexRam, paper §3.1):
+    /// `in_frame` carries the main direction m (the T lanes) and the interpolated normal N_i
+    /// (the N lanes; the B lanes are not read), and the `frame_build` unit forms
+    /// N = N_i/|N_i|, B = N×m/|N×m| and T = B×N (the paper's e2 and −e1) for the
+    /// `frame_transform` unit. Needs `frame_transform`. Left out of the TOML when false, so
+    /// older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub frame_build: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -292,6 +300,9 @@ pub struct PerFragment {
     /// Whether the bump normal is placed in the fragment's interpolated frame
     /// (`frame_transform`), L and H interpolated in eye space.
     pub frame_transform: bool,
+    /// Whether that frame is built per fragment from the interpolated normal and main
+    /// direction (`frame_build`, TexRam) rather than interpolated whole (Harmony).
+    pub frame_build: bool,
 }
 
 impl PerFragment {
@@ -306,6 +317,7 @@ impl PerFragment {
         squaring: false,
         self_shadow: false,
         frame_transform: false,
+        frame_build: false,
     };
 }
 
@@ -334,6 +346,9 @@ impl std::fmt::Display for PerFragment {
         if self.frame_transform {
             write!(f, ", frame_transform = true")?;
         }
+        if self.frame_build {
+            write!(f, ", frame_build = true")?;
+        }
         Ok(())
     }
 }
@@ -350,6 +365,7 @@ impl PipelineConfig {
             squaring: self.power_unit == PowerUnitKind::Squaring,
             self_shadow: self.self_shadow,
             frame_transform: self.frame_transform,
+            frame_build: self.frame_build,
         }
     }
 }
@@ -392,6 +408,7 @@ impl Default for PipelineConfig {
             cube_map_face: 0,
             self_shadow: false,
             frame_transform: false,
+            frame_build: false,
         }
     }
 }
@@ -784,6 +801,14 @@ impl PipelineConfig {
                 "frame_transform",
                 "frame_transform = true with self_shadow = true: the self-shadow gate reads L_z in bump space, and with a frame L is in the frame's space",
                 "drop self_shadow, or drop frame_transform",
+            ));
+        }
+        if self.frame_build && !self.frame_transform {
+            return Err(Error::field(
+                file,
+                "frame_build",
+                "frame_build = true builds a frame per fragment for the frame_transform unit, which this configuration does not have",
+                "set frame_transform = true (and bump_state = \"fragment\"), or drop frame_build",
             ));
         }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {

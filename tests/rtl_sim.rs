@@ -311,10 +311,25 @@ fn regress_harmonys_interpolated_frame_pipeline() {
     // fragment's frame (in_frame), normalise_b and normalise scale the normal, L and H; on
     // both simulators, with the frame unit's own corner and random sets and every scene
     // that fits two lights, its frames and eye-space vectors from the rasteriser.
-    let counts = (3_000u64, 100_000u64);
+    let counts = (2_000u64, 30_000u64);
     let t = regress_small_scenes("tests/configs/harmony_frame.toml", "harmony_frame", counts);
     check_suite_with(&t, 4, counts, 1);
     for unit in ["frame_transform", "normalise_b", "normalise"] {
+        assert_unit_sets_ran(&t, unit);
+    }
+}
+
+#[test]
+fn regress_texrams_built_frame_pipeline() {
+    // The `texram` engine's path: the frame_build unit forms the frame from the main
+    // direction and the interpolated normal (in_frame's T and N lanes; the random sets drive
+    // the B lanes too, which the top must not read), then Harmony's units; on both
+    // simulators, with the unit's own corner and random sets and every scene that fits two
+    // lights.
+    let counts = (2_000u64, 30_000u64);
+    let t = regress_small_scenes("tests/configs/texram_frame.toml", "texram_frame", counts);
+    check_suite_with(&t, 4, counts, 1);
+    for unit in ["frame_build", "frame_transform", "normalise_b", "normalise"] {
         assert_unit_sets_ran(&t, unit);
     }
 }
@@ -741,6 +756,19 @@ fn a_transposed_frame_is_caught() {
         "frame_transform",
         mutants::frame_transposed,
         &[("frame_transform", Source::Random(2_000)), ("top", Source::Random(3_000))],
+        1,
+    );
+}
+
+#[test]
+fn a_reversed_frame_cross_product_is_caught() {
+    use gbump::vectors::Source;
+    assert_mutant_caught(
+        "tests/configs/texram_frame.toml",
+        "mutant_frame_build",
+        "frame_build",
+        mutants::frame_cross_reversed,
+        &[("frame_build", Source::Random(2_000)), ("top", Source::Random(3_000))],
         1,
     );
 }

@@ -78,6 +78,7 @@ impl Engine {
         cfg.renormalise_bump = v.renormalise_bump;
         cfg.cube_map_face = v.cube_map_face;
         cfg.frame_transform = v.frame_transform;
+        cfg.frame_build = v.frame_build;
         if v.renormalise_bump {
             // The fetched normal is renormalised, which a palette (unfiltered, loaded as
             // given) refuses: the engine's path fetches the stored codes instead.

@@ -5,9 +5,21 @@
 //! along −B, so the map's (x, y, z) land on (e2, −e1, N), with B's handedness kept. The
 //! unnormalised, widened variant (everything times ‖N_i‖) is the same vector up to its length,
 //! so it differs only in fixed point.
+//!
+//! The bit-accurate path builds the normalised frame (the paper's first formulae; the
+//! shared `normalise` arithmetic makes the widened variant's norm no cheaper): the
+//! rasteriser sends the interpolated tangent as m and the interpolated normal as N_i on
+//! `in_frame` (six words), the `frame_build` unit forms N, B = N × m/|N × m| (−e1) and
+//! T = B × N (e2), and the rest is Harmony's path (`frame_transform`, `normalise_b`, a
+//! `normalise` unit per interpolated L and H). It differs from this model where the text
+//! leaves the hardware open, as Harmony's does: each light's L, H and k are interpolated from
+//! the vertices rather than formed at the pixel, C_src is interpolated, and there is no
+//! self-shadowing gate; and a mirrored uv mapping is refused (the unit's frame is
+//! right-handed, where this model takes B's side from the mesh).
 
 use super::common::{bump_normal, finish, per_pixel_lights, Base};
-use super::{Cost, Ctx, Engine};
+use super::{Cost, Ctx, Engine, PerFragment};
+use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
 
@@ -24,7 +36,15 @@ pub const TEXRAM: Engine = Engine {
     },
     shade,
     scene_blend: false,
-    fixed: None,
+    fixed: Some(PerFragment {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+        interpolate_k: true,
+        renormalise_bump: true,
+        frame_transform: true,
+        frame_build: true,
+        ..PerFragment::PER_TRIANGLE
+    }),
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

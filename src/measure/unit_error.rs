@@ -74,7 +74,14 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let codes = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
     // Under `frame_transform` B is placed in the fragment's frame exactly, clamped to the
     // normal's range as the unit saturates.
-    let placed: [f64; 3] = if cfg.frame_transform {
+    let placed: [f64; 3] = if cfg.frame_build {
+        // TexRam's frame built exactly from the same m and N_i, then B placed in it.
+        let f = &s.state.frame;
+        let fe = crate::model::frame_build::frame_build_exact(cfg, f[0], f[2]);
+        let unit = (1u64 << (cfg.lh_bits - 2)) as f64;
+        let (lo, hi) = (nf.to_f64(nf.min_raw()), nf.to_f64(nf.max_raw()));
+        std::array::from_fn(|c| ((0..3).map(|i| nf.to_f64(codes[i]) * fe[i][c]).sum::<f64>() / unit).clamp(lo, hi))
+    } else if cfg.frame_transform {
         crate::model::frame_transform::frame_transform_exact(cfg, codes, &s.state.frame).map(|x| x / (1u64 << nf.frac) as f64)
     } else {
         codes.map(|c| nf.to_f64(c))
@@ -164,6 +171,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let mut norm = ErrorStats::new(lh_unit, "corners + random");
     let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
     let mut frame = ErrorStats::new("frame_transform", "corners + random");
+    let mut build = ErrorStats::new("frame_build", "random");
     let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
     let lh_error = |stats: &mut ErrorStats, v: [i64; 3]| {
         normalise_error(
@@ -194,7 +202,16 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         // normalise_b and dot_clamp see B as the pipeline hands it on: placed in the
         // fragment's frame under `frame_transform`, then renormalised.
         let framed = if cfg.frame_transform {
-            let f = &s.state.frame;
+            let f = &crate::model::frame_build::fragment_frame(cfg, &s.state.frame);
+            if cfg.frame_build {
+                let (m, n_i) = (s.state.frame[0], s.state.frame[2]);
+                let exact = crate::model::frame_build::frame_build_exact(cfg, m, n_i);
+                for v in 0..3 {
+                    for c in 0..3 {
+                        build.add(f[v][c] as f64 - exact[v][c], || format!("m={m:?} N_i={n_i:?}"));
+                    }
+                }
+            }
             let got = crate::model::frame_transform::frame_transform(cfg, fetched, f);
             let exact = crate::model::frame_transform::frame_transform_exact(cfg, fetched, f);
             for c in 0..3 {
@@ -223,6 +240,9 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
                 dot.add(dot_clamp(cfg, b, v) as f64 - exact, || format!("B={b:?} V={v:?}"));
             }
         }
+    }
+    if cfg.frame_build {
+        out.push(build);
     }
     if cfg.frame_transform {
         out.push(frame);

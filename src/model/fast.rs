@@ -97,6 +97,8 @@ pub struct FastModel {
     /// `self_shadow`: a light below the surface is dropped per triangle (its k·Lc is zero),
     /// and a highlight is masked where B·L clamps to 0.
     self_shadow: bool,
+    /// `frame_build`: the configuration its frame is built in.
+    built: Option<PipelineConfig>,
 }
 
 impl FastModel {
@@ -140,6 +142,17 @@ impl FastModel {
                 )
             }),
             self_shadow: cfg.self_shadow,
+            built: cfg.frame_build.then(|| cfg.clone()),
+        }
+    }
+
+    /// The frame a state's fragments are placed in: its own, or the one `frame_build`
+    /// forms from it (once per state: a run's fragments share one state).
+    #[inline(always)]
+    fn fragment_frame(&self, frame: &Frame) -> Frame {
+        match &self.built {
+            Some(cfg) => super::frame_build::frame_build(cfg, frame[0], frame[2]),
+            None => *frame,
         }
     }
 
@@ -182,62 +195,63 @@ impl FastModel {
             }
             None => state,
         };
+        let frame = self.fragment_frame(&state.frame);
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
                     1 => self.run_at::<1, $tl>(
                         level,
                         &lights::<1>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     2 => self.run_at::<2, $tl>(
                         level,
                         &lights::<2>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     3 => self.run_at::<3, $tl>(
                         level,
                         &lights::<3>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     4 => self.run_at::<4, $tl>(
                         level,
                         &lights::<4>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     5 => self.run_at::<5, $tl>(
                         level,
                         &lights::<5>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     6 => self.run_at::<6, $tl>(
                         level,
                         &lights::<6>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     7 => self.run_at::<7, $tl>(
                         level,
                         &lights::<7>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
                     8 => self.run_at::<8, $tl>(
                         level,
                         &lights::<8>(state, self.white, self.self_shadow),
-                        &state.frame,
+                        &frame,
                         frags,
                         out,
                     ),
@@ -440,7 +454,7 @@ impl FastModel {
                 Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white, self.self_shadow),
                 None => lights::<N>(state, self.white, self.self_shadow),
             };
-            *o = self.one::<N, TEXTURE_LAST>(&l, &state.frame, frag);
+            *o = self.one::<N, TEXTURE_LAST>(&l, &self.fragment_frame(&state.frame), frag);
         }
     }
 

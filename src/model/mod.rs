@@ -13,6 +13,7 @@ pub mod bump_fetch;
 pub mod cube_normalise;
 pub mod dot_clamp;
 pub mod fast;
+pub mod frame_build;
 pub mod frame_transform;
 pub mod normalise;
 pub mod pipeline;

@@ -68,6 +68,16 @@ impl Shape {
             post_bits: 0,
         }
     }
+    /// An axis of a frame built per fragment (`frame_build`): `s1.(lh-2)` at plain unit
+    /// length, the scale `in_frame` gives 1.0 whatever the normals' range.
+    pub fn frame(cfg: &PipelineConfig) -> Shape {
+        Shape {
+            width: cfg.lh_bits,
+            frac: cfg.lh_bits - 2,
+            pre_bits: 0,
+            post_bits: 0,
+        }
+    }
     /// A fetched bump normal B: `s0.(nb-1)`, whose unit is 2^(nb-1) (binary) or 2^(nb-1) - 1
     /// (symmetric) codes.
     pub fn bump(cfg: &PipelineConfig) -> Shape {

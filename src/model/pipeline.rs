@@ -63,6 +63,9 @@ pub struct Shaded {
     /// The fetched normal placed in the fragment's frame (`frame_transform`; the fetched
     /// normal otherwise): what `normalise_b` reads.
     pub framed: [i64; 3],
+    /// The frame the fetched normal is placed in: the state's, or under `frame_build` the
+    /// one built from its main direction and normal (`frame_transform`; zero otherwise).
+    pub frame: super::frame_transform::Frame,
     /// The bump normal as the dot products see it (`normalise_b`d under `renormalise_bump`).
     pub b: [i64; 3],
     /// L_i and H_i as the dot products see them (`normalise`d under `renormalise`).
@@ -130,8 +133,13 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
     let specular_on = cfg.specular && frag.specular_en && !bypass;
     let fetched = b;
+    let frame = if cfg.frame_transform {
+        super::frame_build::fragment_frame(cfg, &state.frame)
+    } else {
+        Default::default()
+    };
     let framed = if cfg.frame_transform {
-        super::frame_transform::frame_transform(cfg, b, &state.frame)
+        super::frame_transform::frame_transform(cfg, b, &frame)
     } else {
         b
     };
@@ -144,6 +152,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     let mut out = Shaded {
         fetched,
         framed,
+        frame,
         b,
         flat,
         ..Default::default()

@@ -83,7 +83,11 @@ pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
     // Interpolated unit vectors stay within the unit ball, so every component is finite.
     let mut st = super::tri_state::fragment_state(p.cfg, ts, &vv, &vk, hit.bary).expect("finite interpolated vectors");
     if p.cfg.frame_transform {
-        let f = super::tri_state::frame_at(&corners, hit.bary);
+        let mut f = super::tri_state::frame_at(&corners, hit.bary);
+        if p.cfg.frame_build {
+            // TexRam sends the main direction (T lanes) and the normal (N lanes) alone.
+            f[1] = glam::DVec3::ZERO;
+        }
         st.frame = super::tri_state::send_frame(p.cfg, f).expect("finite interpolated frame");
     }
     st

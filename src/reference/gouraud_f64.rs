@@ -52,7 +52,14 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
     // With a frame, a per-triangle L and H are the triangle's in eye space only where the
     // scene was prepared for a frame.
     debug_assert!(how.interpolate == Interpolate::Hl || how.frame_transform == p.cfg.frame_transform);
-    let frame = how.frame_transform.then(|| frame_at(&corners, hit.bary));
+    let frame = how.frame_transform.then(|| {
+        let f = frame_at(&corners, hit.bary);
+        if how.frame_build {
+            built_frame(f[0], f[2])
+        } else {
+            f
+        }
+    });
     shade_with(p, hit, g, how.renormalise_bump, frame, |i| {
         let (l, h) = lh_at(ts, &vv, hit.bary, how.interpolate, i);
         let k = k_at(ts, &vk, hit.bary, how.interpolate_k, i);
@@ -68,6 +75,15 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
         };
         (l, h, k)
     })
+}
+
+/// TexRam's frame (paper §3.1) from the main direction `m` and the interpolated normal
+/// `n_i`, exactly: N = N_i/|N_i|, B = N × m/|N × m| (−e1), T = B × N (e2); zero axes where
+/// the unit's would be zero (`model::frame_build`).
+pub fn built_frame(m: DVec3, n_i: DVec3) -> [DVec3; 3] {
+    let n = n_i.normalize_or_zero();
+    let b = n.cross(m).normalize_or_zero();
+    [b.cross(n), b, n]
 }
 
 /// The Gouraud bump equations with light `i`'s bump-space L, H and k from `lhk(i)`: the

@@ -107,6 +107,12 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             if cfg.renormalise_bump { ", then scales it back to unit length (`normalise_b`)" } else { "" }
         );
     }
+    if cfg.frame_build {
+        s += &format!(
+            "**The frame built per fragment** (`frame_build`, TexRam, paper §3.1). `in_frame`'s T lanes carry the main direction m (the interpolated tangent) and its N lanes the interpolated normal N_i, any length; its B lanes are not read (drive zero). The `frame_build` unit forms N = N_i/|N_i|, B = N × m/|N × m| and T = B × N, each at unit length ({} is 1.0), with the `normalise` arithmetic and two cross products each rounded once, and the bump normal is placed in that frame. The frame is right-handed, so a mirrored uv mapping must be handled before the top (the rasteriser refuses one). An m along N_i, or a zero m, gives T = B = 0 (the normal lands on N b_z); a zero N_i gives a zero frame.\n\n",
+            1u64 << (cfg.lh_bits - 2)
+        );
+    }
     if cfg.renormalise_bump || cfg.renormalise {
         s += &renormalising(cfg);
     }

@@ -5,6 +5,7 @@
 pub mod booth;
 pub mod fixed_ops;
 pub mod fpga_shell;
+pub mod frame_build_v;
 pub mod frame_transform_v;
 pub mod integration_doc;
 pub mod interface;

@@ -282,7 +282,11 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Fragment,
             cfg.lh_fmt(),
             9,
-            "vector v (T, B, N), component c at lane 3v + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)",
+            if cfg.frame_build {
+                "vector v (T, B, N), component c at lane 3v + c: the main direction m in the T lanes and the interpolated normal N_i in the N lanes (any length; the B lanes are not read), in the space L and H are given in; frame_build forms the frame from them (N = N_i/|N_i|, B = N x m/|N x m|, T = B x N) and the bump normal is placed in it (frame_transform)"
+            } else {
+                "vector v (T, B, N), component c at lane 3v + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)"
+            },
         ));
     }
     v.extend([tp("out_valid", Dir::Out, PortKind::Control, bit, 1, "out_c holds a result")]);
@@ -620,7 +624,16 @@ fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str) -> String {
     let mut b = "{b}".to_string();
     if cfg.frame_transform {
         let u = units::unit("frame_transform").expect("unit");
-        let frame = format!("{{{pre}_frame}}");
+        let mut frame = format!("{{{pre}_frame}}");
+        if cfg.frame_build {
+            // m from the T lanes, N_i from the N lanes (the B lanes are not read).
+            let lh = cfg.lh_bits;
+            let u = units::unit("frame_build").expect("unit");
+            let m = format!("{{{pre}_frame}}[{}:0]", 3 * lh - 1);
+            let n_i = format!("{{{pre}_frame}}[{}:{}]", 9 * lh - 1, 6 * lh);
+            s.unit(cfg, u, "u_frame_build", &[("m", &m), ("n_i", &n_i)], &[("frame", "fb")], &[]);
+            frame = "{fb}".into();
+        }
         s.unit(cfg, u, "u_frame", &[("b", &b), ("frame", &frame)], &[("v", "bf")], &[]);
         b = "{bf}".into();
     }

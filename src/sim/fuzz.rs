@@ -60,6 +60,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             cube_map_face: 0,
             self_shadow: false,
             frame_transform: false,
+            frame_build: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -86,6 +87,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         // Drawn last, where valid: a frame with per-fragment state, without self-shadowing.
         if cfg.bump_state == BumpStateAt::Fragment && !cfg.self_shadow && pick(rng, &[false, true]) {
             cfg.frame_transform = true;
+            // Drawn after it: the frame built per fragment (TexRam) or interpolated whole.
+            cfg.frame_build = pick(rng, &[false, true]);
         }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
@@ -113,8 +116,9 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 /// and table, the widest segmented unit, and every width at its top and at its bottom;
 /// `normalise_b` on two of them (the widest normals with the flat bypass, the narrowest
 /// normals in its table-alone regime with inferred multipliers), the largest
-/// normalisation cube map (`normalise_cube`) at the widest L and H, and a frame per fragment
-/// (`frame_transform`) on the serial top and at the widest words.
+/// normalisation cube map (`normalise_cube`) at the widest L and H with a frame built per
+/// fragment (`frame_build`), and an interpolated frame per fragment (`frame_transform`) on
+/// the serial top.
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
     let d = PipelineConfig::default();
@@ -200,13 +204,14 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
             },
         ),
         (
-            "the largest normalisation cube map, widest L, H and frame",
+            "the largest normalisation cube map, widest L and H, a frame built per fragment",
             PipelineConfig {
                 lh_bits: hi("lh_bits"),
                 normal_bits: hi("normal_bits"),
                 normal_range: NormalRange::Symmetric,
                 bump_state: BumpStateAt::Fragment,
                 frame_transform: true,
+                frame_build: true,
                 interpolate: crate::config::Interpolate::Hl,
                 renormalise: true,
                 cube_map_face: hi("cube_map_face"),

@@ -13,6 +13,7 @@ mod blend;
 mod bump_fetch;
 mod colour_round;
 mod dot_clamp;
+mod frame_build;
 mod frame_transform;
 mod normalise;
 mod normalise_cube;
@@ -174,6 +175,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &palette_fetch::PaletteFetch,
     &normalise::NORMALISE,
     &normalise_cube::NormaliseCube,
+    &frame_build::FrameBuild,
     &frame_transform::FrameTransform,
     &normalise::NORMALISE_B,
     &dot_clamp::DotClamp,
@@ -299,7 +301,16 @@ mod tests {
             .filter(|c| c.validate("t").is_ok())
             .collect();
         assert!(framed.len() > 5, "{} framed configurations", framed.len());
+        // And each of those with the frame built per fragment (TexRam).
+        let built: Vec<PipelineConfig> = framed
+            .iter()
+            .map(|c| PipelineConfig {
+                frame_build: true,
+                ..c.clone()
+            })
+            .collect();
         cfgs.extend(framed);
+        cfgs.extend(built);
         for cfg in cfgs {
             let table = PowerTable::build(&cfg, cfg.shininess);
             let palette = crate::rtlgen::rom::default_palette(&cfg);

@@ -79,7 +79,7 @@ fn ports(shape: &Shape, what: &'static str) -> Vec<Port> {
     ]
 }
 
-fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Resources {
+pub(super) fn resources(cfg: &PipelineConfig, shape: &Shape) -> crate::units::resources::Resources {
     use crate::units::resources::{requant_clamp, signed, sum_of_products, unsigned, Resources};
     let pr = params_of(shape);
     let (lh, rw, mb, l) = (shape.width, pr.word_bits(), pr.m_bits, pr.window);

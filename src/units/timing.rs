@@ -80,8 +80,15 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Squaring, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 16] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 17] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
+        (
+            "frame_build",
+            true,
+            Table,
+            false,
+            "two normalise units in a row (N, then B), each followed by a registered cross product: twice the normalise latency plus 2",
+        ),
         ("frame_transform", true, Table, false, ""),
         ("normalise", false, Table, false, ""),
         ("normalise_cube", false, Table, false, ""),
@@ -127,9 +134,10 @@ pub fn markdown() -> String {
                 cfg.cube_map_face = 32;
             }
             cfg.renormalise_bump = name == "normalise_b";
-            if name == "frame_transform" {
+            if name == "frame_transform" || name == "frame_build" {
                 cfg.bump_state = crate::config::BumpStateAt::Fragment;
                 cfg.frame_transform = true;
+                cfg.frame_build = name == "frame_build";
             }
             s += &format!(" {} |", u.latency(&cfg));
         }

@@ -512,10 +512,16 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![vec![i as i64]],
         }),
     }
+    if cfg.frame_build {
+        v.push(UnitStim {
+            unit: "frame_build",
+            inputs: vec![s.state.frame[0].to_vec(), s.state.frame[2].to_vec()],
+        });
+    }
     if cfg.frame_transform {
         v.push(UnitStim {
             unit: "frame_transform",
-            inputs: vec![t.fetched.to_vec(), s.state.frame.concat()],
+            inputs: vec![t.fetched.to_vec(), t.frame.concat()],
         });
     }
     if cfg.renormalise_bump {

@@ -104,3 +104,17 @@ pub fn frame_transposed(text: &str) -> Option<String> {
     let (bx, ty) = (format!("frame[{}]", slices.get(1)?), format!("frame[{}]", slices.get(3)?));
     Some(text.replace(&bx, "@SWAP@").replace(&ty, &bx).replace("@SWAP@", &ty))
 }
+
+/// frame_build: the first cross product turned round, m × N for N × m, so B and T point the
+/// other way (a left-handed reading of the paper's e1).
+pub fn frame_cross_reversed(text: &str) -> Option<String> {
+    let mut out = text.to_string();
+    for c in 0..3 {
+        let (from, to) = (format!("c{c}_d = c{c}_p - c{c}_n;"), format!("c{c}_d = c{c}_n - c{c}_p;"));
+        if !out.contains(&from) {
+            return None;
+        }
+        out = out.replace(&from, &to);
+    }
+    Some(out)
+}
