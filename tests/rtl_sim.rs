@@ -765,7 +765,7 @@ fn a_reversed_frame_cross_product_is_caught() {
     use gbump::vectors::Source;
     assert_mutant_caught(
         "tests/configs/texram_frame.toml",
-        "mutant_frame_build",
+        "mutant_texram",
         "frame_build",
         mutants::frame_cross_reversed,
         &[("frame_build", Source::Random(2_000)), ("top", Source::Random(3_000))],

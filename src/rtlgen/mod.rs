@@ -129,6 +129,7 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
     for (on, unit) in [
         (cfg.renormalise && cfg.cube_map_face == 0, "normalise"),
         (cfg.renormalise_bump, "normalise_b"),
+        (cfg.frame_build, crate::rtlgen::frame_build_v::NORMALISE),
     ] {
         if on {
             s += &format!("// {unit} reads the top bits of the shifted squared length (the table index, m) and keeps\n");
@@ -137,6 +138,10 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
                 s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*{unit}_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
             }
         }
+    }
+    if cfg.frame_build {
+        s += "// frame_build reads in_frame's T and N lanes (m and N_i); its B lanes stay on the port, unread.\n";
+        s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: 'in_frame'*\"\n");
     }
     if !matches!(
         cfg.power_unit,
