@@ -275,6 +275,14 @@ pub struct PipelineConfig {
     /// older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub frame_build: bool,
+    /// The frame's T and B held per triangle (VISA+'s alignment matrix, paper §3.2): the
+    /// rasteriser sends the triangle's plane T and B with the interpolated normal N_i, so
+    /// the `frame_transform` unit forms `T b_x + B b_y + N_i b_z` = b_z (N_i + A·V) with V
+    /// the map's offsets (b_x/b_z, b_y/b_z). A rasteriser choice: no RTL changes. Needs
+    /// `frame_transform`, not with `frame_build`. Left out of the TOML when false, so older
+    /// hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub triangle_frame: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -303,6 +311,8 @@ pub struct PerFragment {
     /// Whether that frame is built per fragment from the interpolated normal and main
     /// direction (`frame_build`, TexRam) rather than interpolated whole (Harmony).
     pub frame_build: bool,
+    /// Whether the frame's T and B are the triangle's (`triangle_frame`, VISA+).
+    pub triangle_frame: bool,
 }
 
 impl PerFragment {
@@ -318,6 +328,7 @@ impl PerFragment {
         self_shadow: false,
         frame_transform: false,
         frame_build: false,
+        triangle_frame: false,
     };
 }
 
@@ -349,6 +360,9 @@ impl std::fmt::Display for PerFragment {
         if self.frame_build {
             write!(f, ", frame_build = true")?;
         }
+        if self.triangle_frame {
+            write!(f, ", triangle_frame = true")?;
+        }
         Ok(())
     }
 }
@@ -366,6 +380,7 @@ impl PipelineConfig {
             self_shadow: self.self_shadow,
             frame_transform: self.frame_transform,
             frame_build: self.frame_build,
+            triangle_frame: self.triangle_frame,
         }
     }
 }
@@ -409,6 +424,7 @@ impl Default for PipelineConfig {
             self_shadow: false,
             frame_transform: false,
             frame_build: false,
+            triangle_frame: false,
         }
     }
 }
@@ -809,6 +825,14 @@ impl PipelineConfig {
                 "frame_build",
                 "frame_build = true builds a frame per fragment for the frame_transform unit, which this configuration does not have",
                 "set frame_transform = true (and bump_state = \"fragment\"), or drop frame_build",
+            ));
+        }
+        if self.triangle_frame && (!self.frame_transform || self.frame_build) {
+            return Err(Error::field(
+                file,
+                "triangle_frame",
+                "triangle_frame = true has the rasteriser send the triangle's T and B as the frame_transform unit's frame, which needs frame_transform = true and leaves no frame for frame_build to build",
+                "set frame_transform = true and frame_build = false, or drop triangle_frame",
             ));
         }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {

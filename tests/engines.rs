@@ -263,6 +263,7 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
         with,
         [
             "texram",
+            "visa",
             "sgi",
             "harmony",
             "gouraud",
@@ -292,9 +293,9 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     }
     // Renormalising a quantised unit vector moves it by at most an LSB of L and H, which the
     // dot products' rounding may pass on: within a colour LSB of the others. Harmony's path
-    // renormalises the fetched normal as well (on a plane its frame is every vertex's), and
-    // TexRam's builds that frame again from its T and N.
-    for name in ["gouraud_hn", "gouraud_hln", "harmony", "texram"] {
+    // renormalises the fetched normal as well (on a plane its frame is every vertex's),
+    // TexRam's builds that frame again from its T and N, and VISA+'s is the triangle's.
+    for name in ["gouraud_hn", "gouraud_hln", "harmony", "texram", "visa"] {
         let f = row(name);
         println!("renormalised on the plane: {:?}", f.error);
         assert!(
@@ -324,5 +325,5 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     assert!(csv.lines().all(|l| l.split(',').count() == fields), "{csv}");
     assert!(t
         .markdown()
-        .contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `visa`, `visa_quaternion`, `embm`."));
+        .contains("No bit-accurate path or RTL yet (f64 only): `blinn`, `visa_quaternion`, `embm`."));
 }

@@ -5,7 +5,7 @@ use super::Ctx;
 use crate::model::power_table::powi_exact;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use crate::scene::lighting::{gouraud_colour, half_vector, light_dir, spot_factor};
-use crate::scene::mesh::{frame, Vertex};
+use crate::scene::mesh::Vertex;
 use glam::DVec3;
 
 /// The three vertices of the hit's triangle.
@@ -18,16 +18,7 @@ pub fn mix(hit: &Hit, f: impl Fn(usize) -> DVec3) -> DVec3 {
     f(0) * hit.bary[0] + f(1) * hit.bary[1] + f(2) * hit.bary[2]
 }
 
-/// The triangle's plane frame (N, T, B): its geometric normal (turned to the vertex normals'
-/// side) and the vertex tangents made orthogonal to it, the "tangent plane system" VISA+'s
-/// alignment matrix is built from, the same on both triangles of a flat quad.
-pub fn plane_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
-    let mut n = (v[1].p - v[0].p).cross(v[2].p - v[0].p);
-    if n.dot(v[0].n + v[1].n + v[2].n) < 0.0 {
-        n = -n;
-    }
-    frame(n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b)
-}
+pub use crate::scene::mesh::plane_frame;
 
 /// The bump map's unit normal at the pixel, in tangent space.
 pub fn bump_normal(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {

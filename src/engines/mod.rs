@@ -79,6 +79,7 @@ impl Engine {
         cfg.cube_map_face = v.cube_map_face;
         cfg.frame_transform = v.frame_transform;
         cfg.frame_build = v.frame_build;
+        cfg.triangle_frame = v.triangle_frame;
         if v.renormalise_bump {
             // The fetched normal is renormalised, which a palette (unfiltered, loaded as
             // given) refuses: the engine's path fetches the stored codes instead.

@@ -5,9 +5,20 @@
 //! edge, the discontinuity that grows with the angle between them. The quaternion variant
 //! (the paper's [5]) holds a rotation per vertex and interpolates it (normalised linear
 //! interpolation of the vertex quaternions, signs aligned to the first), which removes it.
+//!
+//! The per-triangle variant's bit-accurate path is Harmony's top fed another frame
+//! (`triangle_frame`): the rasteriser sends the triangle's plane T and B (A's columns) with
+//! the interpolated normal N_i, and `frame_transform` forms T b_x + B b_y + N_i b_z, which is
+//! b_z (N_i + A·V) with V = (b_x/b_z, b_y/b_z) the map's offsets; `normalise_b` removes the
+//! b_z. It differs from this model where the text leaves the hardware open: N_i is added as
+//! interpolated (|N_i| < 1 inside a triangle of a curved mesh, so the offsets weigh a little
+//! more) where this model normalises N first; each light's L, H and k are interpolated from
+//! the vertices rather than formed at the pixel; C_src is interpolated. The quaternion
+//! variant has no bit-accurate path yet (it needs a quaternion-to-matrix unit).
 
 use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, plane_frame, Base};
-use super::{Cost, Ctx, Engine};
+use super::{Cost, Ctx, Engine, PerFragment};
+use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DMat3, DQuat, DVec3};
 
@@ -24,7 +35,15 @@ pub const VISA: Engine = Engine {
     },
     shade: shade_matrix,
     scene_blend: false,
-    fixed: None,
+    fixed: Some(PerFragment {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+        interpolate_k: true,
+        renormalise_bump: true,
+        frame_transform: true,
+        triangle_frame: true,
+        ..PerFragment::PER_TRIANGLE
+    }),
 };
 
 pub const VISA_QUATERNION: Engine = Engine {

@@ -88,6 +88,11 @@ pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
             // TexRam sends the main direction (T lanes) and the normal (N lanes) alone.
             f[1] = glam::DVec3::ZERO;
         }
+        if p.cfg.triangle_frame {
+            // VISA+: the triangle's alignment matrix with the interpolated normal.
+            let (_, t, b) = crate::scene::mesh::plane_frame(&corners);
+            (f[0], f[1]) = (t, b);
+        }
         st.frame = super::tri_state::send_frame(p.cfg, f).expect("finite interpolated frame");
     }
     st

@@ -56,6 +56,9 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
         let f = frame_at(&corners, hit.bary);
         if how.frame_build {
             built_frame(f[0], f[2])
+        } else if how.triangle_frame {
+            let (_, t, b) = crate::scene::mesh::plane_frame(&corners);
+            [t, b, f[2]]
         } else {
             f
         }

@@ -38,6 +38,17 @@ pub fn triangle_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
     frame(v[0].n + v[1].n + v[2].n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b)
 }
 
+/// The triangle's plane frame (N, T, B): its geometric normal (turned to the vertex normals'
+/// side) and the vertex tangents made orthogonal to it, the "tangent plane system" VISA+'s
+/// alignment matrix is built from, the same on both triangles of a flat quad.
+pub fn plane_frame(v: &[Vertex; 3]) -> (DVec3, DVec3, DVec3) {
+    let mut n = (v[1].p - v[0].p).cross(v[2].p - v[0].p);
+    if n.dot(v[0].n + v[1].n + v[2].n) < 0.0 {
+        n = -n;
+    }
+    frame(n, v[0].t + v[1].t + v[2].t, v[0].b + v[1].b + v[2].b)
+}
+
 /// Orthonormal frame from a normal and raw partial derivatives; zero-length inputs (poles,
 /// degenerate patches) fall back to a frame built from whatever is left, documented in
 /// ARCHITECTURE.md.

@@ -61,6 +61,8 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             self_shadow: false,
             frame_transform: false,
             frame_build: false,
+            // As interpolate: the rasteriser's choice, no RTL of its own.
+            triangle_frame: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
