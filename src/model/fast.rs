@@ -199,62 +199,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(
-                        level,
-                        &lights::<1>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    2 => self.run_at::<2, $tl>(
-                        level,
-                        &lights::<2>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    3 => self.run_at::<3, $tl>(
-                        level,
-                        &lights::<3>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    4 => self.run_at::<4, $tl>(
-                        level,
-                        &lights::<4>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    5 => self.run_at::<5, $tl>(
-                        level,
-                        &lights::<5>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    6 => self.run_at::<6, $tl>(
-                        level,
-                        &lights::<6>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    7 => self.run_at::<7, $tl>(
-                        level,
-                        &lights::<7>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
-                    8 => self.run_at::<8, $tl>(
-                        level,
-                        &lights::<8>(state, self.white, self.self_shadow),
-                        &frame,
-                        frags,
-                        out,
-                    ),
+                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), &frame, frags, out),
+                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), &frame, frags, out),
+                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), &frame, frags, out),
+                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), &frame, frags, out),
+                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), &frame, frags, out),
+                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), &frame, frags, out),
+                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), &frame, frags, out),
+                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), &frame, frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };

@@ -117,7 +117,11 @@ mod tests {
                     worst = worst.max((got[v][c] as f64 - want[v][c]).abs() * nm.min(1.0));
                 }
             }
-            let tb = [cross_exact(got[0], got[1], 0), cross_exact(got[0], got[1], 1), cross_exact(got[0], got[1], 2)];
+            let tb = [
+                cross_exact(got[0], got[1], 0),
+                cross_exact(got[0], got[1], 1),
+                cross_exact(got[0], got[1], 2),
+            ];
             for c in 0..3 {
                 let off = (tb[c] as f64 / one as f64 - got[2][c] as f64).abs() * nm.min(1.0);
                 assert!(off < 8.0, "T×B = N: {tb:?} {got:?}");

@@ -121,6 +121,9 @@ mod tests {
         mirrored_refused(&scene, 0, &mesh).unwrap();
         mesh.verts[2].b = -DVec3::Y;
         let e = mirrored_refused(&scene, 3, &mesh).unwrap_err().to_string();
-        assert!(e.contains("objects[3]") && e.contains("vertex 2") && e.contains("frame_build = false"), "{e}");
+        assert!(
+            e.contains("objects[3]") && e.contains("vertex 2") && e.contains("frame_build = false"),
+            "{e}"
+        );
     }
 }

@@ -113,6 +113,9 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             1u64 << (cfg.lh_bits - 2)
         );
     }
+    if cfg.triangle_frame {
+        s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z).\n\n";
+    }
     if cfg.renormalise_bump || cfg.renormalise {
         s += &renormalising(cfg);
     }

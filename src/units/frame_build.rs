@@ -23,19 +23,27 @@ impl Unit for FrameBuild {
         "paper §3.1 (TexRam): the frame built per pixel from the interpolated normal and a main direction, N = N_i/|N_i|, e1 = m×N/|m×N|, e2 = N×e1 (T = e2, B = −e1)"
     }
     fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        vec![
-            ("frame_build", "true"),
-            ("frame_transform", "true"),
-            ("bump_state", "\"fragment\""),
-        ]
+        vec![("frame_build", "true"), ("frame_transform", "true"), ("bump_state", "\"fragment\"")]
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
         cfg.frame_build
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
-            p("m", Dir::In, cfg.lh_fmt(), 3, "the main direction m (in_frame's T lanes), any length"),
-            p("n_i", Dir::In, cfg.lh_fmt(), 3, "the interpolated normal N_i (in_frame's N lanes), any length"),
+            p(
+                "m",
+                Dir::In,
+                cfg.lh_fmt(),
+                3,
+                "the main direction m (in_frame's T lanes), any length",
+            ),
+            p(
+                "n_i",
+                Dir::In,
+                cfg.lh_fmt(),
+                3,
+                "the interpolated normal N_i (in_frame's N lanes), any length",
+            ),
             p(
                 "frame",
                 Dir::Out,
