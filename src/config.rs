@@ -283,6 +283,14 @@ pub struct PipelineConfig {
     /// hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub triangle_frame: bool,
+    /// The frame from an interpolated vertex quaternion (VISA+ with quaternions, paper §3.2
+    /// and its [5]): `in_frame`'s lanes 0 to 3 carry q = (w, x, y, z), any length (the
+    /// others are not read), and the `quat_frame` unit forms the rotation's T, B, N in the
+    /// homogeneous form, |q|² times the rotation of q/|q|, for `frame_transform`. Needs
+    /// `frame_transform`; not with `frame_build` or `triangle_frame`. Left out of the TOML
+    /// when false, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub frame_quaternion: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -313,6 +321,9 @@ pub struct PerFragment {
     pub frame_build: bool,
     /// Whether the frame's T and B are the triangle's (`triangle_frame`, VISA+).
     pub triangle_frame: bool,
+    /// Whether the frame comes from an interpolated quaternion (`frame_quaternion`, VISA+
+    /// with quaternions).
+    pub frame_quaternion: bool,
 }
 
 impl PerFragment {
@@ -329,6 +340,7 @@ impl PerFragment {
         frame_transform: false,
         frame_build: false,
         triangle_frame: false,
+        frame_quaternion: false,
     };
 }
 
@@ -363,6 +375,9 @@ impl std::fmt::Display for PerFragment {
         if self.triangle_frame {
             write!(f, ", triangle_frame = true")?;
         }
+        if self.frame_quaternion {
+            write!(f, ", frame_quaternion = true")?;
+        }
         Ok(())
     }
 }
@@ -381,6 +396,7 @@ impl PipelineConfig {
             frame_transform: self.frame_transform,
             frame_build: self.frame_build,
             triangle_frame: self.triangle_frame,
+            frame_quaternion: self.frame_quaternion,
         }
     }
 }
@@ -425,6 +441,7 @@ impl Default for PipelineConfig {
             frame_transform: false,
             frame_build: false,
             triangle_frame: false,
+            frame_quaternion: false,
         }
     }
 }
@@ -833,6 +850,14 @@ impl PipelineConfig {
                 "triangle_frame",
                 "triangle_frame = true has the rasteriser send the triangle's T and B as the frame_transform unit's frame, which needs frame_transform = true and leaves no frame for frame_build to build",
                 "set frame_transform = true and frame_build = false, or drop triangle_frame",
+            ));
+        }
+        if self.frame_quaternion && (!self.frame_transform || self.frame_build || self.triangle_frame) {
+            return Err(Error::field(
+                file,
+                "frame_quaternion",
+                "frame_quaternion = true forms the frame_transform unit's frame from a quaternion, which needs frame_transform = true and is a third source of the frame beside frame_build and triangle_frame",
+                "set frame_transform = true with frame_build = false and triangle_frame = false, or drop frame_quaternion",
             ));
         }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {

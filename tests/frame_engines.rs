@@ -18,7 +18,7 @@ use gbump::scene::Scene;
 #[path = "common/golden_png.rs"]
 mod golden_png;
 
-const ENGINES: [&str; 3] = ["harmony", "texram", "visa"];
+const ENGINES: [&str; 4] = ["harmony", "texram", "visa", "visa_quaternion"];
 
 /// Scenes whose paths the PNGs hold: a curved, tessellated surface whose frames turn across
 /// every triangle, and a textured one.

@@ -3,8 +3,9 @@
 //! product with the largest table, the widest segmented unit, every width at its top and at
 //! its bottom. Each is generated, linted (Verilator -Wall) and simulated on Verilator against
 //! the model, exactly as `gbump fuzz` does; two carry the `normalise_b` unit,
-//! one the largest `normalise_cube` map, two the `frame_transform` unit (the serial top, and
-//! the widest words).
+//! one the largest `normalise_cube` map, two the `frame_transform` unit: the serial top with
+//! a frame from a quaternion (`quat_frame`), and the widest L and H with a frame built per
+//! fragment (`frame_build`).
 
 use gbump::sim::fuzz::{check_config, corner_configs};
 use std::time::Instant;

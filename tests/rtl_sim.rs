@@ -311,7 +311,7 @@ fn regress_harmonys_interpolated_frame_pipeline() {
     // fragment's frame (in_frame), normalise_b and normalise scale the normal, L and H; on
     // both simulators, with the frame unit's own corner and random sets and every scene
     // that fits two lights, its frames and eye-space vectors from the rasteriser.
-    let counts = (2_000u64, 30_000u64);
+    let counts = (3_000u64, 100_000u64);
     let t = regress_small_scenes("tests/configs/harmony_frame.toml", "harmony_frame", counts);
     check_suite_with(&t, 4, counts, 1);
     for unit in ["frame_transform", "normalise_b", "normalise"] {

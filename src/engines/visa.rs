@@ -13,14 +13,21 @@
 //! b_z. It differs from this model where the text leaves the hardware open: N_i is added as
 //! interpolated (|N_i| < 1 inside a triangle of a curved mesh, so the offsets weigh a little
 //! more) where this model normalises N first; each light's L, H and k are interpolated from
-//! the vertices rather than formed at the pixel; C_src is interpolated. The quaternion
-//! variant has no bit-accurate path yet (it needs a quaternion-to-matrix unit).
+//! the vertices rather than formed at the pixel; C_src is interpolated.
+//!
+//! The quaternion variant's path (`frame_quaternion`): the rasteriser interpolates the vertex
+//! quaternions (signs aligned, not normalised) and sends them on `in_frame`'s first four
+//! lanes, and the `quat_frame` unit forms the rotation's T, B, N in the homogeneous form
+//! (|q|² times the rotation of q/|q|, ten products, no division) for `frame_transform`;
+//! `normalise_b` removes the |q|² with the b_z. Beyond the per-triangle path's differences it
+//! adds one: the frame's N is the rotation's (the vertex normals interpolated as rotations)
+//! where this model adds the interpolated normal.
 
 use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, plane_frame, Base};
 use super::{Cost, Ctx, Engine, PerFragment};
 use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom, Prepared};
-use glam::{DMat3, DQuat, DVec3};
+use glam::{DMat3, DVec3};
 
 pub const VISA: Engine = Engine {
     name: "visa",
@@ -59,7 +66,15 @@ pub const VISA_QUATERNION: Engine = Engine {
     },
     shade: shade_quaternion,
     scene_blend: false,
-    fixed: None,
+    fixed: Some(PerFragment {
+        interpolate: Interpolate::Hl,
+        renormalise: true,
+        interpolate_k: true,
+        renormalise_bump: true,
+        frame_transform: true,
+        frame_quaternion: true,
+        ..PerFragment::PER_TRIANGLE
+    }),
 };
 
 fn perturbed(p: &Prepared, hit: &Hit, g: &PixelGeom, t: DVec3, b: DVec3) -> DVec3 {
@@ -78,22 +93,10 @@ fn shade_matrix(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
 
 fn shade_quaternion(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let p = c.p;
-    let v = corners(p, hit);
-    let q: Vec<DQuat> = v
-        .iter()
-        .map(|x| {
-            let (n, t, _) = crate::scene::mesh::frame(x.n, x.t, x.b);
-            // A mirrored frame is a rotation of (t, −b, n); the sign comes back below.
-            DQuat::from_mat3(&DMat3::from_cols(t, n.cross(t), n))
-        })
-        .collect();
-    let mut sum = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
-    for (i, qi) in q.iter().enumerate() {
-        let qi = if qi.dot(q[0]) < 0.0 { -*qi } else { *qi };
-        sum = sum + qi * hit.bary[i];
-    }
-    let r = DMat3::from_quat(sum.normalize());
+    let q = crate::raster::tri_state::quaternion_at(&corners(p, hit), hit.bary);
+    let r = DMat3::from_quat(q.normalize());
     let (t, b) = (r.x_axis, r.y_axis);
+    // A mirrored frame is a rotation of (t, −b, n); the sign comes back here.
     let b = if b.dot(g.b) < 0.0 { -b } else { b };
     perturbed(p, hit, g, t, b)
 }

@@ -74,10 +74,9 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
     let codes = t.map(|c| crate::model::bump_fetch::expand(cfg, c));
     // Under `frame_transform` B is placed in the fragment's frame exactly, clamped to the
     // normal's range as the unit saturates.
-    let placed: [f64; 3] = if cfg.frame_build {
-        // TexRam's frame built exactly from the same m and N_i, then B placed in it.
-        let f = &s.state.frame;
-        let fe = crate::model::frame_build::frame_build_exact(cfg, f[0], f[2]);
+    let placed: [f64; 3] = if let Some(fe) = crate::model::frame_build::fragment_frame_exact(cfg, &s.state.frame) {
+        // A frame a unit forms (TexRam's, VISA+'s quaternion) formed exactly from the same
+        // lanes, then B placed in it.
         let unit = (1u64 << (cfg.lh_bits - 2)) as f64;
         let (lo, hi) = (nf.to_f64(nf.min_raw()), nf.to_f64(nf.max_raw()));
         std::array::from_fn(|c| ((0..3).map(|i| nf.to_f64(codes[i]) * fe[i][c]).sum::<f64>() / unit).clamp(lo, hi))
@@ -171,7 +170,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
     let mut norm = ErrorStats::new(lh_unit, "corners + random");
     let mut norm_b = ErrorStats::new("normalise_b", "corners + random");
     let mut frame = ErrorStats::new("frame_transform", "corners + random");
-    let mut build = ErrorStats::new("frame_build", "random");
+    let mut build = ErrorStats::new(if cfg.frame_quaternion { "quat_frame" } else { "frame_build" }, "random");
     let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
     let lh_error = |stats: &mut ErrorStats, v: [i64; 3]| {
         normalise_error(
@@ -203,12 +202,11 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
         // fragment's frame under `frame_transform`, then renormalised.
         let framed = if cfg.frame_transform {
             let f = &crate::model::frame_build::fragment_frame(cfg, &s.state.frame);
-            if cfg.frame_build {
-                let (m, n_i) = (s.state.frame[0], s.state.frame[2]);
-                let exact = crate::model::frame_build::frame_build_exact(cfg, m, n_i);
+            if let Some(exact) = crate::model::frame_build::fragment_frame_exact(cfg, &s.state.frame) {
+                let lanes = s.state.frame;
                 for v in 0..3 {
                     for c in 0..3 {
-                        build.add(f[v][c] as f64 - exact[v][c], || format!("m={m:?} N_i={n_i:?}"));
+                        build.add(f[v][c] as f64 - exact[v][c], || format!("in_frame={lanes:?}"));
                     }
                 }
             }
@@ -241,7 +239,7 @@ pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorSta
             }
         }
     }
-    if cfg.frame_build {
+    if cfg.frame_build || cfg.frame_quaternion {
         out.push(build);
     }
     if cfg.frame_transform {

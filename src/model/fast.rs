@@ -97,7 +97,7 @@ pub struct FastModel {
     /// `self_shadow`: a light below the surface is dropped per triangle (its k·Lc is zero),
     /// and a highlight is masked where B·L clamps to 0.
     self_shadow: bool,
-    /// `frame_build`: the configuration its frame is built in.
+    /// `frame_build` or `frame_quaternion`: the configuration its frame is formed in.
     built: Option<PipelineConfig>,
 }
 
@@ -142,16 +142,16 @@ impl FastModel {
                 )
             }),
             self_shadow: cfg.self_shadow,
-            built: cfg.frame_build.then(|| cfg.clone()),
+            built: (cfg.frame_build || cfg.frame_quaternion).then(|| cfg.clone()),
         }
     }
 
-    /// The frame a state's fragments are placed in: its own, or the one `frame_build`
-    /// forms from it (once per state: a run's fragments share one state).
+    /// The frame a state's fragments are placed in: its own, or the one `frame_build` or
+    /// `quat_frame` forms from it (once per state: a run's fragments share one state).
     #[inline(always)]
     fn fragment_frame(&self, frame: &Frame) -> Frame {
         match &self.built {
-            Some(cfg) => super::frame_build::frame_build(cfg, frame[0], frame[2]),
+            Some(cfg) => super::frame_build::fragment_frame(cfg, frame),
             None => *frame,
         }
     }

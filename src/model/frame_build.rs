@@ -63,18 +63,38 @@ pub fn frame_build_exact(cfg: &PipelineConfig, m: [i64; 3], n_i: [i64; 3]) -> [[
         })
     };
     let n = normalise_exact_shape(&shape, n_i).map(|x| x / one);
-    let b = unit(cross(n, m.map(|x| x as f64)));
+    // N × m clamped to the format's range, as the unit's rounding saturates (an m longer
+    // than 2 can leave it).
+    let f = cfg.lh_fmt();
+    let b = unit(cross(n, m.map(|x| x as f64 / one)).map(|x| x.clamp(f.min_raw() as f64 / one, f.max_raw() as f64 / one)));
     let t = cross(b, n);
     [t, b, n].map(|v| v.map(|x| x * one))
 }
 
 /// The frame a fragment's state carries into `frame_transform`: built from its T and N lanes
-/// under `frame_build`, else the state's own.
+/// under `frame_build`, from its quaternion and normal lanes under `frame_quaternion`, else
+/// the state's own.
 pub fn fragment_frame(cfg: &PipelineConfig, state: &Frame) -> Frame {
     if cfg.frame_build {
         frame_build(cfg, state[0], state[2])
+    } else if cfg.frame_quaternion {
+        let (q, n_i) = super::quat_frame::lanes(state);
+        super::quat_frame::quat_frame(cfg, q, n_i)
     } else {
         *state
+    }
+}
+
+/// [`fragment_frame`] without the roundings of a unit that forms it, in `s1.(lh-2)` LSBs:
+/// None when the state's frame enters as it is.
+pub fn fragment_frame_exact(cfg: &PipelineConfig, state: &Frame) -> Option<[[f64; 3]; 3]> {
+    if cfg.frame_build {
+        Some(frame_build_exact(cfg, state[0], state[2]))
+    } else if cfg.frame_quaternion {
+        let (q, n_i) = super::quat_frame::lanes(state);
+        Some(super::quat_frame::quat_frame_exact(cfg, q, n_i))
+    } else {
+        None
     }
 }
 

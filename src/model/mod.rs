@@ -19,6 +19,7 @@ pub mod normalise;
 pub mod pipeline;
 pub mod power_table;
 pub mod power_unit;
+pub mod quat_frame;
 pub mod texture_modulate;
 
 pub use bump_fetch::Palette;

@@ -88,6 +88,12 @@ pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
             // TexRam sends the main direction (T lanes) and the normal (N lanes) alone.
             f[1] = glam::DVec3::ZERO;
         }
+        if p.cfg.frame_quaternion {
+            // VISA+ with quaternions: (w, x, y, z) in lanes 0 to 3, the interpolated normal in
+            // lanes 6 to 8, the rest zero.
+            let q = super::tri_state::quaternion_at(&corners, hit.bary);
+            f = [glam::DVec3::new(q.w, q.x, q.y), glam::DVec3::new(q.z, 0.0, 0.0), f[2]];
+        }
         if p.cfg.triangle_frame {
             // VISA+: the triangle's alignment matrix with the interpolated normal.
             let (_, t, b) = crate::scene::mesh::plane_frame(&corners);

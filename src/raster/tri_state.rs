@@ -107,6 +107,25 @@ pub fn frame_at(v: &[crate::scene::mesh::Vertex; 3], w: [f64; 3]) -> [DVec3; 3] 
     [mix(&|x| x.t), mix(&|x| x.b), mix(&|x| x.n)]
 }
 
+/// The vertex frames as rotations (quaternions of (T, N × T, N), a mirrored frame taken as
+/// its rotation) interpolated at barycentric weights `w`, each sign aligned to the first
+/// vertex's, not normalised: VISA+'s quaternion variant (`frame_quaternion`).
+pub fn quaternion_at(v: &[crate::scene::mesh::Vertex; 3], w: [f64; 3]) -> glam::DQuat {
+    let q: Vec<glam::DQuat> = v
+        .iter()
+        .map(|x| {
+            let (n, t, _) = crate::scene::mesh::frame(x.n, x.t, x.b);
+            glam::DQuat::from_mat3(&glam::DMat3::from_cols(t, n.cross(t), n))
+        })
+        .collect();
+    let mut sum = glam::DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+    for (i, qi) in q.iter().enumerate() {
+        let qi = if qi.dot(q[0]) < 0.0 { -*qi } else { *qi };
+        sum = sum + qi * w[i];
+    }
+    sum
+}
+
 /// A frame as the rasteriser sends it (`in_frame`): each component rounded to the L/H word
 /// (a rotation: no normal-range scale). None when not finite.
 pub fn send_frame(cfg: &PipelineConfig, f: [DVec3; 3]) -> Option<crate::model::frame_transform::Frame> {

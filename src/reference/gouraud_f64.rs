@@ -56,6 +56,11 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
         let f = frame_at(&corners, hit.bary);
         if how.frame_build {
             built_frame(f[0], f[2])
+        } else if how.frame_quaternion {
+            // T and B of the rotation and the interpolated normal, all times |q|².
+            let q = crate::raster::tri_state::quaternion_at(&corners, hit.bary);
+            let h = crate::model::quat_frame::homogeneous([q.w, q.x, q.y, q.z]).map(DVec3::from_array);
+            [h[0], h[1], f[2] * q.length_squared()]
         } else if how.triangle_frame {
             let (_, t, b) = crate::scene::mesh::plane_frame(&corners);
             [t, b, f[2]]

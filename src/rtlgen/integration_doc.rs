@@ -102,14 +102,31 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     if cfg.frame_transform {
         let one = 1u64 << (cfg.lh_bits - 2);
         s += &format!(
-            "**A frame per fragment** (`frame_transform`, Harmony, paper §3.5). `in_frame` carries the fragment's frame T, B, N ({} each, so {one} is 1.0; the identity frame is T = ({one}, 0, 0), B = (0, {one}, 0), N = (0, 0, {one})), and the top places the fetched bump normal in it, T b_x + B b_y + N b_z, rounded to the normal's format and clamped to its range (`frame_transform`){}. `in_l` and `in_h` are then in the frame's space (the rasteriser sends eye-space vectors and the interpolated vertex frames); with the identity frame the top is the bump-space pipeline. The flat bypass compares the fetched code.\n\n",
+            "**A frame per fragment** (`frame_transform`, Harmony, paper §3.5). {} ({} each, so {one} is 1.0), and the top places the fetched bump normal in the fragment's frame T, B, N, T b_x + B b_y + N b_z, rounded to the normal's format and clamped to its range (`frame_transform`){}. `in_l` and `in_h` are then in the frame's space (the rasteriser sends eye-space vectors); with the identity frame (T = ({one}, 0, 0), B = (0, {one}, 0), N = (0, 0, {one}){}) the top is the bump-space pipeline. The flat bypass compares the fetched code.\n\n",
+            if cfg.frame_build || cfg.frame_quaternion {
+                "`in_frame` carries what the frame is formed from (below)"
+            } else {
+                "`in_frame` carries the fragment's frame T, B, N, vector v's component c at lane 3v + c (the rasteriser's interpolated vertex frames, or under `triangle_frame` the triangle's T and B with the interpolated normal)"
+            },
             cfg.lh_fmt().name(),
-            if cfg.renormalise_bump { ", then scales it back to unit length (`normalise_b`)" } else { "" }
+            if cfg.renormalise_bump { ", then scales it back to unit length (`normalise_b`)" } else { "" },
+            if cfg.frame_build || cfg.frame_quaternion {
+                " on in_frame's lanes, which the unit that forms the frame turns into the identity too"
+            } else {
+                ""
+            }
         );
     }
     if cfg.frame_build {
         s += &format!(
-            "**The frame built per fragment** (`frame_build`, TexRam, paper §3.1). `in_frame`'s T lanes carry the main direction m (the interpolated tangent) and its N lanes the interpolated normal N_i, any length; its B lanes are not read (drive zero). The `frame_build` unit forms N = N_i/|N_i|, B = N × m/|N × m| and T = B × N, each at unit length ({} is 1.0), with the `normalise` arithmetic and two cross products each rounded once, and the bump normal is placed in that frame. The frame is right-handed, so a mirrored uv mapping must be handled before the top (the rasteriser refuses one). An m along N_i, or a zero m, gives T = B = 0 (the normal lands on N b_z); a zero N_i gives a zero frame.\n\n",
+            "**The frame built per fragment** (`frame_build`, TexRam, paper §3.1). `in_frame`'s T lanes carry the main direction m (the interpolated tangent) and its N lanes the interpolated normal N_i, any length (an m under 2 long keeps N × m inside the format; a longer one is clamped per component); its B lanes are not read (drive zero). The `frame_build` unit forms N = N_i/|N_i|, B = N × m/|N × m| and T = B × N, each at unit length ({} is 1.0), with the `normalise` arithmetic and two cross products each rounded once, and the bump normal is placed in that frame. The frame is right-handed, so a mirrored uv mapping must be handled before the top (the rasteriser refuses one). An m along N_i, or a zero m, gives T = B = 0 (the normal lands on N b_z); a zero N_i gives a zero frame.\n\n",
+            1u64 << (cfg.lh_bits - 2)
+        );
+    }
+    if cfg.frame_quaternion {
+        s += &format!(
+            "**The frame from a quaternion** (`frame_quaternion`, VISA+ with quaternions, paper §3.2 and its [5]). `in_frame`'s lanes 0 to 3 carry the interpolated vertex quaternion q = (w, x, y, z) ({} is 1.0; the identity is ({}, 0, 0, 0)), any length, signs aligned between a triangle's vertices before interpolating; lanes 4 to 8 are not read (drive zero). The `quat_frame` unit forms the rotation's T, B, N in the homogeneous form, |q|² times the rotation of q/|q| (T = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy)) and so on), each entry rounded once and clamped, and the bump normal is placed in it; `normalise_b` removes the |q|².\n\n",
+            1u64 << (cfg.lh_bits - 2),
             1u64 << (cfg.lh_bits - 2)
         );
     }

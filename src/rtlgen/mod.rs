@@ -14,6 +14,7 @@ pub mod module;
 pub mod normalise_cube_v;
 pub mod normalise_v;
 pub mod power_units;
+pub mod quat_frame_v;
 pub mod ram;
 pub mod rom;
 pub mod rom_files;
@@ -139,9 +140,12 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             }
         }
     }
-    if cfg.frame_build {
-        s += "// frame_build reads in_frame's T and N lanes (m and N_i); its B lanes stay on the port, unread.\n";
-        s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: 'in_frame'*\"\n");
+    if cfg.frame_build || cfg.frame_quaternion {
+        s += "// frame_build reads in_frame's T and N lanes (m and N_i), quat_frame its lanes 0 to 3 (q); the others stay on the port, unread.\n";
+        // The serial top registers the fragment port first (fr_frame).
+        for sig in ["in_frame", "fr_frame"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+        }
     }
     if !matches!(
         cfg.power_unit,

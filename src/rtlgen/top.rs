@@ -282,8 +282,10 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             PortKind::Fragment,
             cfg.lh_fmt(),
             9,
-            if cfg.frame_build {
-                "vector v (T, B, N), component c at lane 3v + c: the main direction m in the T lanes and the interpolated normal N_i in the N lanes (any length; the B lanes are not read), in the space L and H are given in; frame_build forms the frame from them (N = N_i/|N_i|, B = N x m/|N x m|, T = B x N) and the bump normal is placed in it (frame_transform)"
+            if cfg.frame_quaternion {
+                "lanes 0 to 3: the interpolated vertex quaternion q = (w, x, y, z), any length; lanes 6 to 8: the interpolated normal N_i (lanes 4 and 5 are not read); in the space L and H are given in; quat_frame forms the frame from them (T and B the rotation's of q/|q|, N = N_i, all times |q|^2) and the bump normal is placed in it (frame_transform)"
+            } else if cfg.frame_build {
+                "vector v (T, B, N), component c at lane 3v + c: the main direction m in the T lanes (under 2 long: N x m is clamped per component) and the interpolated normal N_i in the N lanes (any length; the B lanes are not read), in the space L and H are given in; frame_build forms the frame from them (N = N_i/|N_i|, B = N x m/|N x m|, T = B x N) and the bump normal is placed in it (frame_transform)"
             } else {
                 "vector v (T, B, N), component c at lane 3v + c: the fragment's frame, in the space L and H are given in; the bump normal is placed in it (frame_transform)"
             },
@@ -632,6 +634,15 @@ fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str) -> String {
             let m = format!("{{{pre}_frame}}[{}:0]", 3 * lh - 1);
             let n_i = format!("{{{pre}_frame}}[{}:{}]", 9 * lh - 1, 6 * lh);
             s.unit(cfg, u, "u_frame_build", &[("m", &m), ("n_i", &n_i)], &[("frame", "fb")], &[]);
+            frame = "{fb}".into();
+        }
+        if cfg.frame_quaternion {
+            // q from lanes 0 to 3, N_i from lanes 6 to 8 (lanes 4 and 5 are not read).
+            let lh = cfg.lh_bits;
+            let u = units::unit("quat_frame").expect("unit");
+            let q = format!("{{{pre}_frame}}[{}:0]", 4 * lh - 1);
+            let n_i = format!("{{{pre}_frame}}[{}:{}]", 9 * lh - 1, 6 * lh);
+            s.unit(cfg, u, "u_quat_frame", &[("q", &q), ("n_i", &n_i)], &[("frame", "fb")], &[]);
             frame = "{fb}".into();
         }
         s.unit(cfg, u, "u_frame", &[("b", &b), ("frame", &frame)], &[("v", "bf")], &[]);

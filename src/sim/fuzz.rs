@@ -63,6 +63,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             frame_build: false,
             // As interpolate: the rasteriser's choice, no RTL of its own.
             triangle_frame: false,
+            frame_quaternion: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -89,8 +90,13 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
         // Drawn last, where valid: a frame with per-fragment state, without self-shadowing.
         if cfg.bump_state == BumpStateAt::Fragment && !cfg.self_shadow && pick(rng, &[false, true]) {
             cfg.frame_transform = true;
-            // Drawn after it: the frame built per fragment (TexRam) or interpolated whole.
-            cfg.frame_build = pick(rng, &[false, true]);
+            // Drawn after it: the frame interpolated whole (Harmony), built per fragment
+            // (TexRam) or formed from a quaternion (VISA+).
+            match pick(rng, &[0, 1, 2]) {
+                1 => cfg.frame_build = true,
+                2 => cfg.frame_quaternion = true,
+                _ => {}
+            }
         }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
@@ -119,7 +125,7 @@ fn pick<T: Copy>(rng: &mut SplitMix64, options: &[T]) -> T {
 /// `normalise_b` on two of them (the widest normals with the flat bypass, the narrowest
 /// normals in its table-alone regime with inferred multipliers), the largest
 /// normalisation cube map (`normalise_cube`) at the widest L and H with a frame built per
-/// fragment (`frame_build`), and an interpolated frame per fragment (`frame_transform`) on
+/// fragment (`frame_build`), and a frame from a quaternion per fragment (`quat_frame`) on
 /// the serial top.
 pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
     let (lo, hi) = (|n| limit(n).0, |n| limit(n).1);
@@ -153,13 +159,14 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
         ),
         ("widest dot product and table", widest_dot.clone()),
         (
-            "widest segmented unit, serial, a frame per fragment",
+            "widest segmented unit, serial, a frame from a quaternion per fragment",
             PipelineConfig {
                 power_unit: PowerUnitKind::Segmented,
                 power_segments: hi("power_segments"),
                 power_entries: 16,
                 bump_state: BumpStateAt::Fragment,
                 frame_transform: true,
+                frame_quaternion: true,
                 ..widest_dot.clone()
             },
         ),
@@ -502,6 +509,8 @@ mod tests {
             "renormalise_bump",
             "self_shadow",
             "frame_transform",
+            "frame_build",
+            "frame_quaternion",
         ] {
             // A choice left out of the TOML at its default (white_lights = false) reads as that.
             let distinct: std::collections::BTreeSet<String> = draws

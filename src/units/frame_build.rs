@@ -35,7 +35,7 @@ impl Unit for FrameBuild {
                 Dir::In,
                 cfg.lh_fmt(),
                 3,
-                "the main direction m (in_frame's T lanes), any length",
+                "the main direction m (in_frame's T lanes), under 2 long (N × m is clamped per component to the format)",
             ),
             p(
                 "n_i",

@@ -19,6 +19,7 @@ mod normalise;
 mod normalise_cube;
 mod palette_fetch;
 mod power_unit;
+mod quat_frame;
 pub mod resources;
 mod serial_blend;
 mod texture_modulate;
@@ -176,6 +177,7 @@ pub static UNITS: &[&dyn Unit] = &[
     &normalise::NORMALISE,
     &normalise_cube::NormaliseCube,
     &frame_build::FrameBuild,
+    &quat_frame::QuatFrame,
     &frame_transform::FrameTransform,
     &normalise::NORMALISE_B,
     &dot_clamp::DotClamp,
@@ -301,12 +303,20 @@ mod tests {
             .filter(|c| c.validate("t").is_ok())
             .collect();
         assert!(framed.len() > 5, "{} framed configurations", framed.len());
-        // And each of those with the frame built per fragment (TexRam).
+        // And each of those with the frame built per fragment (TexRam), or from a quaternion.
         let built: Vec<PipelineConfig> = framed
             .iter()
-            .map(|c| PipelineConfig {
-                frame_build: true,
-                ..c.clone()
+            .flat_map(|c| {
+                [
+                    PipelineConfig {
+                        frame_build: true,
+                        ..c.clone()
+                    },
+                    PipelineConfig {
+                        frame_quaternion: true,
+                        ..c.clone()
+                    },
+                ]
             })
             .collect();
         cfgs.extend(framed);

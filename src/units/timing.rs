@@ -34,6 +34,9 @@ pub const NORMALISE_CUBE: &[&str] = &["after the face choice", "after the texel 
 /// (a dot_clamp's shape, three times).
 pub const FRAME_TRANSFORM: &[&str] = &["after the nine products b_i F_i", "after the three sums"];
 
+/// quat_frame: the quaternion's ten products, then the nine entries' sums, rounding and clamp.
+pub const QUAT_FRAME: &[&str] = &["after the ten products"];
+
 /// power_unit, squaring: the chain of rounded products split into equal parts (each cut
 /// registers the running power, and x while a multiply by it remains;
 /// `rtlgen::power_units::squaring_cut_positions`).
@@ -80,7 +83,7 @@ pub fn markdown() -> String {
         ..PipelineConfig::default()
     };
     use crate::config::PowerUnitKind::{Lerp, Squaring, Table};
-    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 17] = [
+    let rows: [(&str, bool, crate::config::PowerUnitKind, bool, &str); 18] = [
         ("bump_fetch", true, Table, false, "none (an inversion)"),
         (
             "frame_build",
@@ -89,6 +92,7 @@ pub fn markdown() -> String {
             false,
             "two normalise units in a row (N, then B), each followed by a registered cross product: twice the normalise latency plus 2",
         ),
+        ("quat_frame", true, Table, false, ""),
         ("frame_transform", true, Table, false, ""),
         ("normalise", false, Table, false, ""),
         ("normalise_cube", false, Table, false, ""),
@@ -134,10 +138,11 @@ pub fn markdown() -> String {
                 cfg.cube_map_face = 32;
             }
             cfg.renormalise_bump = name == "normalise_b";
-            if name == "frame_transform" || name == "frame_build" {
+            if name == "frame_transform" || name == "frame_build" || name == "quat_frame" {
                 cfg.bump_state = crate::config::BumpStateAt::Fragment;
                 cfg.frame_transform = true;
                 cfg.frame_build = name == "frame_build";
+                cfg.frame_quaternion = name == "quat_frame";
             }
             s += &format!(" {} |", u.latency(&cfg));
         }
@@ -149,6 +154,7 @@ pub fn markdown() -> String {
             "normalise" | "normalise_b" => NORMALISE,
             "normalise_cube" => NORMALISE_CUBE,
             "frame_transform" => FRAME_TRANSFORM,
+            "quat_frame" => QUAT_FRAME,
             "power_unit" if kind == Squaring => SQUARING,
             _ => &[],
         };
@@ -199,6 +205,7 @@ mod tests {
             NORMALISE_CUBE,
             SQUARING,
             FRAME_TRANSFORM,
+            QUAT_FRAME,
         ]
         .iter()
         .map(|c| c.len())

@@ -518,6 +518,15 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![s.state.frame[0].to_vec(), s.state.frame[2].to_vec()],
         });
     }
+    if cfg.frame_quaternion {
+        v.push(UnitStim {
+            unit: "quat_frame",
+            inputs: {
+                let (q, n_i) = crate::model::quat_frame::lanes(&s.state.frame);
+                vec![q.to_vec(), n_i.to_vec()]
+            },
+        });
+    }
     if cfg.frame_transform {
         v.push(UnitStim {
             unit: "frame_transform",
