@@ -335,6 +335,19 @@ fn regress_texrams_built_frame_pipeline() {
 }
 
 #[test]
+fn regress_visa_quaternion_frame_pipeline() {
+    // The `visa_quaternion` engine's path: the quat_frame unit forms the frame from the
+    // interpolated quaternion (lanes 0 to 3) and normal (lanes 6 to 8); on both simulators,
+    // with the unit's own corner and random sets and every scene that fits two lights.
+    let counts = (1_000u64, 20_000u64);
+    let t = regress_small_scenes("tests/configs/visa_quaternion_frame.toml", "visa_quaternion_frame", counts);
+    check_suite_with(&t, 4, counts, 1);
+    for unit in ["quat_frame", "frame_transform", "normalise_b"] {
+        assert_unit_sets_ran(&t, unit);
+    }
+}
+
+#[test]
 fn regress_interpolated_h_and_l() {
     // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
     // port; scenes with more than two bump lights do not fit the two slots.
