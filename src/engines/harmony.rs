@@ -36,14 +36,19 @@ pub const HARMONY: Engine = Engine {
     },
     shade,
     scene_blend: false,
-    fixed: Some(PerFragment {
-        interpolate: Interpolate::Hl,
-        renormalise: true,
-        interpolate_k: true,
-        renormalise_bump: true,
-        frame_transform: true,
-        ..PerFragment::PER_TRIANGLE
-    }),
+    fixed: Some(FRAME_PATH),
+};
+
+/// Harmony's per-fragment choices, which every engine that places the bump normal in a frame
+/// per fragment shares (TexRam's and VISA+'s paths add where the frame comes from): L, H
+/// and k interpolated, L, H and the placed normal renormalised.
+pub const FRAME_PATH: PerFragment = PerFragment {
+    interpolate: Interpolate::Hl,
+    renormalise: true,
+    interpolate_k: true,
+    renormalise_bump: true,
+    frame_transform: true,
+    ..PerFragment::PER_TRIANGLE
 };
 
 fn shade(c: &Ctx, hit: &Hit, g: &PixelGeom) -> DVec3 {

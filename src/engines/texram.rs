@@ -19,7 +19,6 @@
 
 use super::common::{bump_normal, finish, per_pixel_lights, Base};
 use super::{Cost, Ctx, Engine, PerFragment};
-use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom};
 use glam::DVec3;
 
@@ -37,13 +36,8 @@ pub const TEXRAM: Engine = Engine {
     shade,
     scene_blend: false,
     fixed: Some(PerFragment {
-        interpolate: Interpolate::Hl,
-        renormalise: true,
-        interpolate_k: true,
-        renormalise_bump: true,
-        frame_transform: true,
         frame_build: true,
-        ..PerFragment::PER_TRIANGLE
+        ..super::harmony::FRAME_PATH
     }),
 };
 

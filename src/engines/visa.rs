@@ -25,7 +25,6 @@
 
 use super::common::{bump_normal, corners, finish, offsets, per_pixel_lights, plane_frame, Base};
 use super::{Cost, Ctx, Engine, PerFragment};
-use crate::config::Interpolate;
 use crate::raster::{Hit, PixelGeom, Prepared};
 use glam::{DMat3, DVec3};
 
@@ -43,13 +42,8 @@ pub const VISA: Engine = Engine {
     shade: shade_matrix,
     scene_blend: false,
     fixed: Some(PerFragment {
-        interpolate: Interpolate::Hl,
-        renormalise: true,
-        interpolate_k: true,
-        renormalise_bump: true,
-        frame_transform: true,
         triangle_frame: true,
-        ..PerFragment::PER_TRIANGLE
+        ..super::harmony::FRAME_PATH
     }),
 };
 
@@ -67,13 +61,8 @@ pub const VISA_QUATERNION: Engine = Engine {
     shade: shade_quaternion,
     scene_blend: false,
     fixed: Some(PerFragment {
-        interpolate: Interpolate::Hl,
-        renormalise: true,
-        interpolate_k: true,
-        renormalise_bump: true,
-        frame_transform: true,
         frame_quaternion: true,
-        ..PerFragment::PER_TRIANGLE
+        ..super::harmony::FRAME_PATH
     }),
 };
 

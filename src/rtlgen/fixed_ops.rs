@@ -15,6 +15,11 @@ pub fn slit(w: u32, v: i64) -> String {
     }
 }
 
+/// [`requant_clamp`] to format `to`: its fraction bits, clamped to its range, its width.
+pub fn requant_to(w: &mut VWriter, name: &str, x: &str, from: Format, to: Format, rnd: Rounding) {
+    requant_clamp(w, name, x, from, to.frac, rnd, to.min_raw(), to.max_raw(), to.width);
+}
+
 /// Declare `name`: `x` (a wire of format `from`) requantised to `to_frac` fraction bits with
 /// `rnd`, then clamped to `[lo, hi]` and truncated to `out_w` bits (unsigned output when
 /// `lo >= 0`, else its two's-complement bits). Mirrors `fixed::requant(.., Overflow::Saturate)` followed by a clamp.

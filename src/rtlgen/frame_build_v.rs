@@ -4,7 +4,7 @@
 //! clamp, registered; m and N wait in delay registers for the normaliser they skip.
 
 use super::booth::{sum_of_products, Factor, Form};
-use super::fixed_ops::requant_clamp;
+use super::fixed_ops::requant_to;
 use super::units_v::{module_name, postamble, preamble};
 use super::writer::VWriter;
 use crate::config::PipelineConfig;
@@ -58,17 +58,7 @@ pub fn frame_build(cfg: &PipelineConfig) -> String {
             w.line(format!("wire signed [{}:0] {name}{c}_p = {pos};", ex.width - 1));
             w.line(format!("wire signed [{}:0] {name}{c}_n = {neg};", ex.width - 1));
             w.line(format!("wire signed [{}:0] {name}{c}_d = {name}{c}_p - {name}{c}_n;", ex.width - 1));
-            requant_clamp(
-                w,
-                &format!("{name}{c}"),
-                &format!("{name}{c}_d"),
-                ex,
-                lf.frac,
-                cfg.rounding,
-                lf.min_raw(),
-                lf.max_raw(),
-                lh,
-            );
+            requant_to(w, &format!("{name}{c}"), &format!("{name}{c}_d"), ex, lf, cfg.rounding);
         }
     };
     w.line(format!("wire {v3} n;"));

@@ -4,7 +4,7 @@
 //! puts in place.
 
 use super::booth::{sum_of_products, Factor, Form};
-use super::fixed_ops::requant_clamp;
+use super::fixed_ops::requant_to;
 use super::units_v::{module_name, postamble, preamble};
 use super::writer::VWriter;
 use crate::config::PipelineConfig;
@@ -93,17 +93,7 @@ pub fn quat_frame(cfg: &PipelineConfig) -> String {
             let name = format!("e{v}{c}");
             let body = if *doubled { format!("({sum}) <<< 1") } else { sum };
             w.line(format!("wire signed [{}:0] {name}_s = {body};", ex.width - 1));
-            requant_clamp(
-                &mut w,
-                &name,
-                &format!("{name}_s"),
-                ex,
-                lf.frac,
-                cfg.rounding,
-                lf.min_raw(),
-                lf.max_raw(),
-                lh,
-            );
+            requant_to(&mut w, &name, &format!("{name}_s"), ex, lf, cfg.rounding);
             outs.push(name);
         }
     }
@@ -114,7 +104,7 @@ pub fn quat_frame(cfg: &PipelineConfig) -> String {
         ex.width - 1,
         ["ww", "xx", "yy", "zz"].map(|p| format!("$signed({})", ext(p))).join(" + ")
     ));
-    requant_clamp(&mut w, "s", "s_s", ex, l2.frac, cfg.rounding, l2.min_raw(), l2.max_raw(), l2.width);
+    requant_to(&mut w, "s", "s_s", ex, l2, cfg.rounding);
     for c in 0..3u32 {
         let e = sum_of_products(
             &mut w,
@@ -128,17 +118,7 @@ pub fn quat_frame(cfg: &PipelineConfig) -> String {
             sc.width,
         );
         w.line(format!("wire signed [{}:0] n{c}_p = {e};", sc.width - 1));
-        requant_clamp(
-            &mut w,
-            &format!("e2{c}"),
-            &format!("n{c}_p"),
-            sc,
-            lf.frac,
-            cfg.rounding,
-            lf.min_raw(),
-            lf.max_raw(),
-            lh,
-        );
+        requant_to(&mut w, &format!("e2{c}"), &format!("n{c}_p"), sc, lf, cfg.rounding);
         outs.push(format!("e2{c}"));
     }
     outs.reverse();
