@@ -627,22 +627,26 @@ fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str) -> String {
     if cfg.frame_transform {
         let u = units::unit("frame_transform").expect("unit");
         let mut frame = format!("{{{pre}_frame}}");
-        if cfg.frame_build {
-            // m from the T lanes, N_i from the N lanes (the B lanes are not read).
+        // A unit that forms the frame reads its source from the port's first lanes (m: the T
+        // lanes, or q: lanes 0 to 3) and N_i from the N lanes; the lanes between are unread.
+        let former = match (cfg.frame_build, cfg.frame_quaternion) {
+            (true, _) => Some(("frame_build", "m", 3)),
+            (_, true) => Some(("quat_frame", "q", 4)),
+            _ => None,
+        };
+        if let Some((name, source, lanes)) = former {
             let lh = cfg.lh_bits;
-            let u = units::unit("frame_build").expect("unit");
-            let m = format!("{{{pre}_frame}}[{}:0]", 3 * lh - 1);
+            let u = units::unit(name).expect("unit");
+            let src = format!("{{{pre}_frame}}[{}:0]", lanes * lh - 1);
             let n_i = format!("{{{pre}_frame}}[{}:{}]", 9 * lh - 1, 6 * lh);
-            s.unit(cfg, u, "u_frame_build", &[("m", &m), ("n_i", &n_i)], &[("frame", "fb")], &[]);
-            frame = "{fb}".into();
-        }
-        if cfg.frame_quaternion {
-            // q from lanes 0 to 3, N_i from lanes 6 to 8 (lanes 4 and 5 are not read).
-            let lh = cfg.lh_bits;
-            let u = units::unit("quat_frame").expect("unit");
-            let q = format!("{{{pre}_frame}}[{}:0]", 4 * lh - 1);
-            let n_i = format!("{{{pre}_frame}}[{}:{}]", 9 * lh - 1, 6 * lh);
-            s.unit(cfg, u, "u_quat_frame", &[("q", &q), ("n_i", &n_i)], &[("frame", "fb")], &[]);
+            s.unit(
+                cfg,
+                u,
+                &format!("u_{name}"),
+                &[(source, &src), ("n_i", &n_i)],
+                &[("frame", "fb")],
+                &[],
+            );
             frame = "{fb}".into();
         }
         s.unit(cfg, u, "u_frame", &[("b", &b), ("frame", &frame)], &[("v", "bf")], &[]);

@@ -1,15 +1,11 @@
 //! dot_clamp: f = max(0, B·V) rounded to u1.F and clamped to 1 (paper §4.2: fd_i = B·L_i,
 //! and B·H_i, the power unit's input).
 
-use super::{p, Dir, Lanes, Memories, Port, Unit};
+use super::{lanes, p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
 use crate::model::dot_clamp::dot_clamp;
 
 pub struct DotClamp;
-
-fn v3(v: &[i64]) -> [i64; 3] {
-    [v[0], v[1], v[2]]
-}
 
 impl Unit for DotClamp {
     fn name(&self) -> &'static str {
@@ -35,7 +31,7 @@ impl Unit for DotClamp {
         super::timing::latency(cfg, super::timing::DOT_CLAMP)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![vec![dot_clamp(cfg, v3(&i[0]), v3(&i[1]))]]
+        vec![vec![dot_clamp(cfg, lanes(&i[0]), lanes(&i[1]))]]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
         let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());

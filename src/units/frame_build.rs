@@ -3,17 +3,13 @@
 //! `in_frame`'s T and N lanes. Present with `frame_build = true`, one instance before
 //! `frame_transform`, beside the fetch.
 
-use super::{p, Dir, Lanes, Memories, Port, Unit};
+use super::{lanes, p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
 use crate::model::frame_build::{frame_build, frame_build_exact};
 use crate::model::normalise::Shape;
 use crate::units::timing::{latency, NORMALISE};
 
 pub struct FrameBuild;
-
-fn vec3(i: &[i64]) -> [i64; 3] {
-    [i[0], i[1], i[2]]
-}
 
 impl Unit for FrameBuild {
     fn name(&self) -> &'static str {
@@ -57,10 +53,10 @@ impl Unit for FrameBuild {
         2 * latency(cfg, NORMALISE) + 2
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![frame_build(cfg, vec3(&i[0]), vec3(&i[1])).concat()]
+        vec![frame_build(cfg, lanes(&i[0]), lanes(&i[1])).concat()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![frame_build_exact(cfg, vec3(&i[0]), vec3(&i[1])).concat()]
+        vec![frame_build_exact(cfg, lanes(&i[0]), lanes(&i[1])).concat()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         use crate::units::resources::{requant_clamp, signed, sum_of_products, Resources};

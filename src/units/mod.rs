@@ -116,6 +116,11 @@ impl MemoryContents {
 /// Every input port's lanes (raw codes), in port order.
 pub type Lanes = Vec<Vec<i64>>;
 
+/// The first `N` lanes of one port, as an array (a vector's components, a quaternion's).
+pub(crate) fn lanes<const N: usize>(port: &[i64]) -> [i64; N] {
+    std::array::from_fn(|k| port[k])
+}
+
 /// A hardware unit.
 pub trait Unit: Sync {
     fn name(&self) -> &'static str;

@@ -4,7 +4,7 @@
 //! between the fragment port and the dot products. normalise_b: the same arithmetic on the
 //! fetched bump normal (`renormalise_bump = true`), one instance after the fetch.
 
-use super::{p, Dir, Lanes, Memories, Port, Unit};
+use super::{lanes, p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
 use crate::model::normalise::{normalise_exact_shape, normalise_shape, params_of, Shape};
 use crate::units::timing::{cut, NORMALISE as NORMALISE_CUTS};
@@ -60,10 +60,6 @@ pub static NORMALISE_B: Normalise = Normalise {
     interpolated: false,
     exhaustive_when: "normal_bits <= 6 (2^18 inputs at most)",
 };
-
-fn vec3(i: &[i64]) -> [i64; 3] {
-    [i[0], i[1], i[2]]
-}
 
 /// What both units share, given the vector's shape.
 fn ports(shape: &Shape, what: &'static str) -> Vec<Port> {
@@ -183,10 +179,10 @@ impl Unit for Normalise {
         crate::units::timing::latency(cfg, NORMALISE_CUTS)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![normalise_shape(&(self.shape)(cfg), vec3(&i[0])).to_vec()]
+        vec![normalise_shape(&(self.shape)(cfg), lanes(&i[0])).to_vec()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![normalise_exact_shape(&(self.shape)(cfg), vec3(&i[0])).to_vec()]
+        vec![normalise_exact_shape(&(self.shape)(cfg), lanes(&i[0])).to_vec()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         resources(cfg, &(self.shape)(cfg))

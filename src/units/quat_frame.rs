@@ -3,20 +3,12 @@
 //! Present with `frame_quaternion = true`, one instance before `frame_transform`, beside the
 //! fetch.
 
-use super::{p, Dir, Lanes, Memories, Port, Unit};
+use super::{lanes, p, Dir, Lanes, Memories, Port, Unit};
 use crate::config::PipelineConfig;
 use crate::model::quat_frame::{entry_exact_fmt, quat_frame, quat_frame_exact};
 use crate::units::timing::{cut, latency, QUAT_FRAME};
 
 pub struct QuatFrame;
-
-fn q4(i: &[i64]) -> [i64; 4] {
-    [i[0], i[1], i[2], i[3]]
-}
-
-fn v3(i: &[i64]) -> [i64; 3] {
-    [i[0], i[1], i[2]]
-}
 
 impl Unit for QuatFrame {
     fn name(&self) -> &'static str {
@@ -64,10 +56,10 @@ impl Unit for QuatFrame {
         latency(cfg, QUAT_FRAME)
     }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
-        vec![quat_frame(cfg, q4(&i[0]), v3(&i[1])).concat()]
+        vec![quat_frame(cfg, lanes(&i[0]), lanes(&i[1])).concat()]
     }
     fn exact(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Vec<Vec<f64>> {
-        vec![quat_frame_exact(cfg, q4(&i[0]), v3(&i[1])).concat()]
+        vec![quat_frame_exact(cfg, lanes(&i[0]), lanes(&i[1])).concat()]
     }
     fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
         use crate::model::quat_frame::{length2_fmt, scaled_exact_fmt};
