@@ -14,6 +14,9 @@ fn scene(edit: impl Fn(&str) -> String) -> Vec<(&'static str, Vec<u8>)> {
     vec![("s.toml", edit(WALL).into())]
 }
 
+/// A configuration with the frame_transform unit, to which a frame source is added.
+const FRAME: &str = "bump_state = \"fragment\"\nlight_mode = \"parallel\"\ninterpolate = \"hl\"\nrenormalise = true\nrenormalise_bump = true\nframe_transform = true\n";
+
 fn cfg(text: &str) -> Vec<(&'static str, Vec<u8>)> {
     vec![("c.toml", text.into())]
 }
@@ -317,6 +320,30 @@ fn cases() -> Vec<Case> {
             cfg("bump_state = \"fragment\"\ntriangle_banks = 4\n"),
             render_cfg(),
             vec!["c.toml", "`triangle_banks`", "does nothing here", "leave"],
+        ),
+        (
+            "a built frame with no frame_transform unit to use it",
+            cfg("bump_state = \"fragment\"\nframe_build = true\n"),
+            render_cfg(),
+            vec!["c.toml", "`frame_build`", "frame_transform", "drop frame_build"],
+        ),
+        (
+            "a triangle's frame beside a built one",
+            cfg(&format!("{FRAME}frame_build = true\ntriangle_frame = true\n")),
+            render_cfg(),
+            vec!["c.toml", "`triangle_frame`", "frame_build = false", "drop triangle_frame"],
+        ),
+        (
+            "a quaternion frame with no frame_transform unit",
+            cfg("bump_state = \"fragment\"\nframe_quaternion = true\n"),
+            render_cfg(),
+            vec!["c.toml", "`frame_quaternion`", "frame_transform = true", "drop frame_quaternion"],
+        ),
+        (
+            "a quaternion frame beside a triangle's frame",
+            cfg(&format!("{FRAME}triangle_frame = true\nframe_quaternion = true\n")),
+            render_cfg(),
+            vec!["c.toml", "`frame_quaternion`", "third source", "drop frame_quaternion"],
         ),
         (
             "segments of a power table",

@@ -475,6 +475,39 @@ fn lint_clean(work: &str, configs: &[Option<&str>]) {
     }
 }
 
+/// The lint's Yosys check on one module: whether it passes, and Yosys's log.
+fn yosys_check(verilog: &str) -> (bool, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("m.v"), verilog).unwrap();
+    let script = gbump::yosys::scripts::check(&["m.v".to_string()], "m");
+    gbump::yosys::run(&script, Path::new("lint.ys"), dir.path(), &[]).unwrap()
+}
+
+#[test]
+fn the_synthesis_check_catches_latches_multiple_drivers_loops_and_passes_clean_logic() {
+    let clean = "module m(input clk, input [3:0] a, input s, output reg [3:0] q);\n  always @(posedge clk) q <= s ? a : ~a;\nendmodule\n";
+    let (ok, log) = yosys_check(clean);
+    assert!(ok, "clean logic refused:\n{log}");
+    let defects = [
+        (
+            "latch",
+            "module m(input [3:0] a, input s, output reg [3:0] q);\n  always @* if (s) q = a;\nendmodule\n",
+        ),
+        (
+            "two drivers",
+            "module m(input [3:0] a, input [3:0] b, output [3:0] q);\n  assign q = a;\n  assign q = b;\nendmodule\n",
+        ),
+        (
+            "combinational loop",
+            "module m(input [3:0] a, output [3:0] q);\n  wire [3:0] x;\n  assign x = q + a;\n  assign q = x ^ 4'd1;\nendmodule\n",
+        ),
+    ];
+    for (what, v) in defects {
+        let (ok, log) = yosys_check(v);
+        assert!(!ok, "{what} passed the synthesis check:\n{log}");
+    }
+}
+
 #[test]
 fn lint_is_clean_for_every_test_configuration() {
     lint_clean(
