@@ -50,8 +50,12 @@ fn runs(text: &str) -> Vec<(String, String, u64, u64)> {
 const FULL: (u64, u64) = (100_000, 1_000_000);
 /// The other configurations' regressions: fewer random vectors and smaller scene images (every
 /// scene still runs), so the suite stays within its time; `gbump regress --sim both` with the
-/// config runs the full counts and image size.
-const SHORT: (u64, u64) = (10_000, 200_000);
+/// config runs the full counts and image size. Icarus, a hundred times slower, is the second
+/// opinion on the same kinds of sets: 3,000 random vectors per target (10,000 took a quarter
+/// of these tests' time) where Verilator runs 200,000.
+const SHORT: (u64, u64) = (3_000, 200_000);
+/// The scene image of the short regressions: every scene, about 300 fragments each.
+const SHORT_SCENES: &str = "32x24";
 
 fn check_suite(text: &str, min_scenes: usize, counts: (u64, u64)) {
     check_suite_with(text, min_scenes, counts, 6);
@@ -96,7 +100,10 @@ fn regress_default_config_on_both_simulators() {
     // the suite; `scripts/run.sh` runs it whole), the scenes at a smaller image (every scene
     // still runs).
     let icarus = SHORT.0.to_string();
-    let t = regress(&["--sim", "both", "--scene-size", "64x48", "--random-icarus", &icarus], "default");
+    let t = regress(
+        &["--sim", "both", "--scene-size", SHORT_SCENES, "--random-icarus", &icarus],
+        "default",
+    );
     check_suite(&t, 12, (SHORT.0, FULL.1));
     // The defaults `scripts/run.sh` runs are FULL's.
     let help = gbump().args(["regress", "--help"]).output().unwrap();
@@ -123,7 +130,7 @@ fn regress_short(config: &str, work: &str, min_scenes: usize) {
         "--random",
         &verilator,
         "--scene-size",
-        "64x48",
+        SHORT_SCENES,
     ];
     let t = regress(&args, work);
     check_suite(&t, min_scenes, SHORT);
@@ -178,7 +185,7 @@ fn regress_renormalised_bump_normal_on_both_tops() {
             "--random",
             "100000",
             "--scene-size",
-            "32x24",
+            SHORT_SCENES,
         ],
         "renormalise_bump",
     );
@@ -273,7 +280,7 @@ fn regress_small_scenes(config: &str, work: &str, counts: (u64, u64)) -> String 
         "--random",
         &verilator,
         "--scene-size",
-        "32x24",
+        SHORT_SCENES,
     ];
     regress(&args, work)
 }
@@ -390,7 +397,7 @@ fn regress_white_lights_on_their_scene_and_a_per_fragment_top() {
             "--random",
             "20000",
             "--scene-size",
-            "64x48",
+            SHORT_SCENES,
         ],
         "white_lights",
     );
@@ -450,7 +457,7 @@ fn regress_power_table_as_a_rom() {
             "--random",
             "20000",
             "--scene-size",
-            "64x48",
+            SHORT_SCENES,
         ],
         "power_rom",
     );
