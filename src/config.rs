@@ -284,9 +284,10 @@ pub struct PipelineConfig {
     #[serde(skip_serializing_if = "is_false")]
     pub triangle_frame: bool,
     /// The frame from an interpolated vertex quaternion (VISA+ with quaternions, paper §3.2
-    /// and its [5]): `in_frame`'s lanes 0 to 3 carry q = (w, x, y, z), any length (the
-    /// others are not read), and the `quat_frame` unit forms the rotation's T, B, N in the
-    /// homogeneous form, |q|² times the rotation of q/|q|, for `frame_transform`. Needs
+    /// and its [5]): `in_frame`'s lanes 0 to 3 carry q = (w, x, y, z), any length, lanes 6
+    /// to 8 the interpolated normal N_i (lanes 4 and 5 are not read), and the `quat_frame`
+    /// unit forms T and B as the rotation's columns in the homogeneous form, |q|² times the
+    /// rotation of q/|q|, and N = |q|² N_i, for `frame_transform`. Needs
     /// `frame_transform`; not with `frame_build` or `triangle_frame`. Left out of the TOML
     /// when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
@@ -844,20 +845,43 @@ impl PipelineConfig {
                 "set frame_transform = true (and bump_state = \"fragment\"), or drop frame_build",
             ));
         }
-        if self.triangle_frame && (!self.frame_transform || self.frame_build) {
-            return Err(Error::field(
-                file,
+        // A frame source needs the unit that places the normal in the frame, and one source
+        // at a time: each rule names the one this configuration breaks.
+        for (on, field, what) in [
+            (
+                self.triangle_frame,
                 "triangle_frame",
-                "triangle_frame = true has the rasteriser send the triangle's T and B as the frame_transform unit's frame, which needs frame_transform = true and leaves no frame for frame_build to build",
-                "set frame_transform = true and frame_build = false, or drop triangle_frame",
-            ));
+                "has the rasteriser send the triangle's T and B as the frame",
+            ),
+            (self.frame_quaternion, "frame_quaternion", "forms the frame from a quaternion"),
+        ] {
+            if on && !self.frame_transform {
+                return Err(Error::field(
+                    file,
+                    field,
+                    format!("{field} = true {what} for the frame_transform unit, which this configuration does not have"),
+                    format!("set frame_transform = true (and bump_state = \"fragment\"), or drop {field}"),
+                ));
+            }
         }
-        if self.frame_quaternion && (!self.frame_transform || self.frame_build || self.triangle_frame) {
+        let sources: Vec<&str> = [
+            (self.frame_build, "frame_build"),
+            (self.triangle_frame, "triangle_frame"),
+            (self.frame_quaternion, "frame_quaternion"),
+        ]
+        .into_iter()
+        .filter_map(|(on, f)| on.then_some(f))
+        .collect();
+        if sources.len() > 1 {
+            let last = sources[sources.len() - 1];
             return Err(Error::field(
                 file,
-                "frame_quaternion",
-                "frame_quaternion = true forms the frame_transform unit's frame from a quaternion, which needs frame_transform = true and is a third source of the frame beside frame_build and triangle_frame",
-                "set frame_transform = true with frame_build = false and triangle_frame = false, or drop frame_quaternion",
+                last,
+                format!(
+                    "{} are each a source of the frame_transform unit's frame (built from m and N_i, the triangle's T and B, a quaternion): a configuration takes one",
+                    sources.join(" and ")
+                ),
+                format!("keep one of {} = true and set the other(s) false", sources.join(", ")),
             ));
         }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {

@@ -322,6 +322,12 @@ fn cases() -> Vec<Case> {
             vec!["c.toml", "`triangle_banks`", "does nothing here", "leave"],
         ),
         (
+            "render --rtl of a palette configuration",
+            cfg("palette = true\n"),
+            vec!["render", "--scene", "torus_caps", "--size", "16x12", "--rtl", "--config", "c.toml", "--out", "out"],
+            vec!["c.toml", "palette", "drop --rtl"],
+        ),
+        (
             "a built frame with no frame_transform unit to use it",
             cfg("bump_state = \"fragment\"\nframe_build = true\n"),
             render_cfg(),
@@ -331,7 +337,7 @@ fn cases() -> Vec<Case> {
             "a triangle's frame beside a built one",
             cfg(&format!("{FRAME}frame_build = true\ntriangle_frame = true\n")),
             render_cfg(),
-            vec!["c.toml", "`triangle_frame`", "frame_build = false", "drop triangle_frame"],
+            vec!["c.toml", "`triangle_frame`", "frame_build and triangle_frame", "keep one"],
         ),
         (
             "a quaternion frame with no frame_transform unit",
@@ -343,7 +349,7 @@ fn cases() -> Vec<Case> {
             "a quaternion frame beside a triangle's frame",
             cfg(&format!("{FRAME}triangle_frame = true\nframe_quaternion = true\n")),
             render_cfg(),
-            vec!["c.toml", "`frame_quaternion`", "third source", "drop frame_quaternion"],
+            vec!["c.toml", "`frame_quaternion`", "triangle_frame and frame_quaternion", "keep one"],
         ),
         (
             "segments of a power table",

@@ -125,13 +125,24 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     }
     if cfg.frame_quaternion {
         s += &format!(
-            "**The frame from a quaternion** (`frame_quaternion`, VISA+ with quaternions, paper §3.2 and its [5]). `in_frame`'s lanes 0 to 3 carry the interpolated vertex quaternion q = (w, x, y, z) ({} is 1.0; the identity is ({}, 0, 0, 0)), any length, signs aligned between a triangle's vertices before interpolating; lanes 4 to 8 are not read (drive zero). The `quat_frame` unit forms the rotation's T, B, N in the homogeneous form, |q|² times the rotation of q/|q| (T = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy)) and so on), each entry rounded once and clamped, and the bump normal is placed in it; `normalise_b` removes the |q|².\n\n",
+            "**The frame from a quaternion** (`frame_quaternion`, VISA+ with quaternions, paper §3.2 and its [5]). `in_frame`'s lanes 0 to 3 carry the interpolated vertex quaternion q = (w, x, y, z) ({} is 1.0; the identity is ({}, 0, 0, 0)), any length, signs aligned between a triangle's vertices before interpolating; lanes 6 to 8 carry the interpolated normal N_i ({} is 1.0 too); lanes 4 and 5 are not read (drive zero). The `quat_frame` unit forms T and B as the rotation's first two columns in the homogeneous form, |q|² times the rotation of q/|q| (T = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy)) and so on), and N = |q|² N_i, each entry rounded once and clamped, and the bump normal is placed in that frame; {}.\n\n",
             1u64 << (cfg.lh_bits - 2),
-            1u64 << (cfg.lh_bits - 2)
+            1u64 << (cfg.lh_bits - 2),
+            1u64 << (cfg.lh_bits - 2),
+            if cfg.renormalise_bump {
+                "`normalise_b` removes the common |q|²"
+            } else {
+                "this configuration has no `normalise_b` (`renormalise_bump = false`), so the placed normal keeps the factor |q|² (1 at the vertices, less between them) into the dot products"
+            }
         );
     }
     if cfg.triangle_frame {
-        s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z).\n\n";
+        s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z)";
+        s += if cfg.renormalise_bump {
+            ", which `normalise_b` scales to unit length.\n\n"
+        } else {
+            "; this configuration has no `normalise_b` (`renormalise_bump = false`), so that vector, not unit length, reaches the dot products.\n\n"
+        };
     }
     if cfg.renormalise_bump || cfg.renormalise {
         s += &renormalising(cfg);

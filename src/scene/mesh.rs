@@ -56,7 +56,8 @@ pub fn frame(n: DVec3, pu: DVec3, pv: DVec3) -> (DVec3, DVec3, DVec3) {
     let n = n.try_normalize().or_else(|| pu.cross(pv).try_normalize()).unwrap_or(DVec3::Z);
     let mut t = (pu - n * n.dot(pu)).try_normalize().unwrap_or(DVec3::ZERO);
     if t == DVec3::ZERO {
-        t = (n.cross(pv)).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
+        // (T, ∂P/∂v, N) right-handed: T = ∂P/∂v × N, as ∂P/∂u would point.
+        t = pv.cross(n).try_normalize().unwrap_or_else(|| n.any_orthonormal_vector());
     }
     let mut b = n.cross(t);
     if pv.length_squared() > 0.0 && b.dot(pv) < 0.0 {
@@ -126,9 +127,11 @@ pub fn tessellate(o: &Object) -> Mesh {
                 let p = DVec3::new(ph.cos() * th.cos(), ph.cos() * th.sin(), ph.sin()) * *r;
                 let pu = DVec3::new(-ph.cos() * th.sin(), ph.cos() * th.cos(), 0.0) * r * TAU;
                 let pv = DVec3::new(-ph.sin() * th.cos(), -ph.sin() * th.sin(), ph.cos()) * r * PI;
-                // At the poles ∂P/∂u vanishes; the outward radial direction is still the normal.
+                // At the poles ∂P/∂u vanishes; it is replaced by ∂P/∂v × N, the direction it
+                // takes beside the pole, so ∂P/∂u × ∂P/∂v stays the outward normal (N × ∂P/∂v
+                // pointed it into the sphere: a dark disc at each pole).
                 let n = p.normalize();
-                (p, if pu.length() < 1e-9 { n.cross(pv) } else { pu }, pv)
+                (p, if pu.length() < 1e-9 { pv.cross(n) } else { pu }, pv)
             },
             &mut m,
         ),
@@ -234,6 +237,26 @@ mod tests {
                     assert!(v.n.is_finite() && v.t.is_finite() && v.b.is_finite());
                     assert!((v.n.length() - 1.0).abs() < 1e-9 && (v.t.length() - 1.0).abs() < 1e-9);
                     assert!(v.n.dot(v.t).abs() < 1e-9 && v.n.dot(v.b).abs() < 1e-9);
+                }
+            }
+        }
+    }
+
+    /// Every vertex normal of a closed round shape points away from its centre (a pole's
+    /// normal once pointed in), and every frame is right-handed (no built-in shape mirrors
+    /// its uv mapping).
+    #[test]
+    fn normals_point_outward_and_frames_are_right_handed() {
+        for text in super::super::builtin::ALL.iter().map(|(_, t)| *t) {
+            let s = super::super::Scene::from_toml("t", text, std::path::Path::new("scenes")).unwrap();
+            for o in &s.objects {
+                let m = tessellate(o);
+                let centre = m.verts.iter().map(|v| v.p).sum::<DVec3>() / m.verts.len() as f64;
+                for v in &m.verts {
+                    assert!(v.t.cross(v.b).dot(v.n) > 0.5, "{:?}: left-handed frame at {:?}", o.shape, v.p);
+                    if matches!(o.shape, Shape::Sphere { .. }) {
+                        assert!(v.n.dot(v.p - centre) > 0.0, "{:?}: inward normal at {:?}", o.shape, v.p);
+                    }
                 }
             }
         }
