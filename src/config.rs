@@ -878,7 +878,7 @@ impl PipelineConfig {
                 file,
                 last,
                 format!(
-                    "{} are each a source of the frame_transform unit's frame (built from m and N_i, the triangle's T and B, a quaternion): a configuration takes one",
+                    "{} each give the frame_transform unit its frame: a configuration takes one source",
                     sources.join(" and ")
                 ),
                 format!("keep one of {} = true and set the other(s) false", sources.join(", ")),

@@ -24,7 +24,7 @@ fn frames_survive_every_degenerate_input() {
     let z = DVec3::ZERO;
     for (n, pu, pv) in [
         (z, z, z),                       // nothing at all: falls back to +Z and any tangent
-        (DVec3::Z, z, DVec3::Y),         // zero ∂P/∂u (a pole): tangent from N × ∂P/∂v
+        (DVec3::Z, z, DVec3::Y),         // zero ∂P/∂u (a pole): tangent from ∂P/∂v × N
         (DVec3::Z, DVec3::Z, z),         // tangent parallel to the normal
         (z, DVec3::X, DVec3::Y),         // zero normal: from ∂P/∂u × ∂P/∂v
         (DVec3::Z, DVec3::X, -DVec3::Y), // mirrored uv: the binormal follows ∂P/∂v

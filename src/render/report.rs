@@ -1,7 +1,8 @@
 //! `gbump render`: a scene's golden, f64 Gouraud and per-pixel reference images, the heat map
 //! of golden against reference and the metrics JSON, written together; with `rtl`, also the
-//! image the Verilated pipeline renders, which must equal the golden one. Lines for the user
-//! go to `say` as they are known (the RTL image takes a while).
+//! image the Verilated pipeline renders, which must equal the golden one. The files are written
+//! together once every image exists (an RTL build or simulation that fails leaves nothing),
+//! then the lines for the user go to `say`.
 
 use super::output::{codes_to_u8, encode_png, f64_to_u8, heat_map, quantise, write_files};
 use crate::config::PipelineConfig;

@@ -227,36 +227,40 @@ fn place(m: &mut Mesh, o: &Object) {
 mod tests {
     use super::*;
 
-    #[test]
-    fn frames_are_orthonormal_everywhere() {
+    /// Every object of every built-in scene with its mesh.
+    fn builtin_meshes() -> Vec<(Object, Mesh)> {
+        let mut v = Vec::new();
         for text in super::super::builtin::ALL.iter().map(|(_, t)| *t) {
             let s = super::super::Scene::from_toml("t", text, std::path::Path::new("scenes")).unwrap();
-            for o in &s.objects {
-                let m = tessellate(o);
-                for v in &m.verts {
-                    assert!(v.n.is_finite() && v.t.is_finite() && v.b.is_finite());
-                    assert!((v.n.length() - 1.0).abs() < 1e-9 && (v.t.length() - 1.0).abs() < 1e-9);
-                    assert!(v.n.dot(v.t).abs() < 1e-9 && v.n.dot(v.b).abs() < 1e-9);
-                }
+            v.extend(s.objects.into_iter().map(|o| {
+                let m = tessellate(&o);
+                (o, m)
+            }));
+        }
+        v
+    }
+
+    #[test]
+    fn frames_are_orthonormal_everywhere() {
+        for (_, m) in builtin_meshes() {
+            for v in &m.verts {
+                assert!(v.n.is_finite() && v.t.is_finite() && v.b.is_finite());
+                assert!((v.n.length() - 1.0).abs() < 1e-9 && (v.t.length() - 1.0).abs() < 1e-9);
+                assert!(v.n.dot(v.t).abs() < 1e-9 && v.n.dot(v.b).abs() < 1e-9);
             }
         }
     }
 
-    /// Every vertex normal of a closed round shape points away from its centre (a pole's
-    /// normal once pointed in), and every frame is right-handed (no built-in shape mirrors
-    /// its uv mapping).
+    /// Every vertex normal of a sphere points away from its centre (a pole's normal once
+    /// pointed in), and every frame is right-handed (no built-in shape mirrors its uv mapping).
     #[test]
     fn normals_point_outward_and_frames_are_right_handed() {
-        for text in super::super::builtin::ALL.iter().map(|(_, t)| *t) {
-            let s = super::super::Scene::from_toml("t", text, std::path::Path::new("scenes")).unwrap();
-            for o in &s.objects {
-                let m = tessellate(o);
-                let centre = m.verts.iter().map(|v| v.p).sum::<DVec3>() / m.verts.len() as f64;
-                for v in &m.verts {
-                    assert!(v.t.cross(v.b).dot(v.n) > 0.5, "{:?}: left-handed frame at {:?}", o.shape, v.p);
-                    if matches!(o.shape, Shape::Sphere { .. }) {
-                        assert!(v.n.dot(v.p - centre) > 0.0, "{:?}: inward normal at {:?}", o.shape, v.p);
-                    }
+        for (o, m) in builtin_meshes() {
+            let centre = m.verts.iter().map(|v| v.p).sum::<DVec3>() / m.verts.len() as f64;
+            for v in &m.verts {
+                assert!(v.t.cross(v.b).dot(v.n) > 0.5, "{:?}: left-handed frame at {:?}", o.shape, v.p);
+                if matches!(o.shape, Shape::Sphere { .. }) {
+                    assert!(v.n.dot(v.p - centre) > 0.0, "{:?}: inward normal at {:?}", o.shape, v.p);
                 }
             }
         }

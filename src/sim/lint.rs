@@ -1,7 +1,7 @@
 //! `gbump lint`: the three tools' opinions of the generated RTL. Verilator `--lint-only -Wall`
 //! (with the checked-in waivers) on every module as top and `iverilog -Wall` (both through
-//! `Simulator::lint`); Yosys synthesises the pipeline and fails on latches, undriven nets or
-//! combinational loops (`yosys::scripts::check`).
+//! `Simulator::lint`); Yosys elaborates the pipeline and fails on latches, undriven nets,
+//! multiple drivers or combinational loops (`yosys::scripts::check`).
 
 use super::{Icarus, Simulator, Verilator};
 use crate::config::PipelineConfig;

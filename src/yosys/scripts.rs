@@ -5,8 +5,8 @@ use super::target::Target;
 use std::path::Path;
 
 /// The lint's synthesis check: elaborate, fail on latches (`proc` infers them), undriven nets,
-/// multiple drivers or combinational loops (`check -assert`), and on memories Yosys cannot
-/// infer (`memory -nomap`). Synthesis's other word-level passes (`opt`, `wreduce`, `alumacc`,
+/// multiple drivers or combinational loops (`check -assert`, run again after memory inference,
+/// `memory -nomap`, so it sees the inferred memories). Synthesis's other word-level passes (`opt`, `wreduce`, `alumacc`,
 /// `share`, `fsm`) and gate mapping rewrite a netlist these checks already passed and add
 /// none of those defects; they took two thirds of the lint (the renormalising top: 20 s
 /// against 6.5 s), and `gbump area` and the FPGA flows run them.
