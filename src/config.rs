@@ -591,7 +591,14 @@ impl PipelineConfig {
             )));
         }
         let text = &upgrade_names(file, text);
-        toml::from_str(text).map_err(|e| toml_error(file, text, &e, "`gbump config` prints every field with its default"))
+        toml::from_str(text).map_err(|e| {
+            toml_error(
+                file,
+                text,
+                &e,
+                "`gbump config` prints every field with its default (the optional ones as `#` comments)",
+            )
+        })
     }
 
     /// Load from a file.

@@ -20,6 +20,9 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
             .arg(&work)
             .assert()
             .success();
+        // The skipped points are noted once (the space's check on loading once printed it too).
+        let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+        assert_eq!(err.matches("2 of 4 grid points are invalid combinations").count(), 1, "{err}");
         String::from_utf8_lossy(&o.get_output().stdout).into_owned()
     };
     let t0 = std::time::Instant::now();

@@ -147,15 +147,26 @@ impl Space {
             Err(e) => return Err(e),
             Ok(_) => {}
         }
-        s.configs(&file)?;
+        // Refused here if no point is valid; the notes on skipped points wait for the sweep.
+        s.expand(&file)?;
         if let Some(t) = s.target {
             super::fpga::require(t)?;
         }
         Ok(s)
     }
 
-    /// Every valid configuration of the grid, with a label naming the varied fields.
+    /// Every valid configuration of the grid, with a label naming the varied fields; notes on
+    /// the points skipped or merged go to stderr.
     pub fn configs(&self, file: &str) -> Result<Vec<(String, PipelineConfig)>> {
+        let (out, notes) = self.expand(file)?;
+        for n in notes {
+            eprintln!("{n}");
+        }
+        Ok(out)
+    }
+
+    /// [`Space::configs`] with its notes returned rather than printed.
+    fn expand(&self, file: &str) -> Result<(Vec<(String, PipelineConfig)>, Vec<String>)> {
         let mut combos: Vec<(Vec<String>, toml::Table)> = vec![(Vec::new(), self.base.clone())];
         for (k, v) in &self.grid {
             let vals = v.as_array().ok_or_else(|| {
@@ -199,23 +210,24 @@ impl Space {
                 Err(e) => return Err(e),
             }
         }
+        let mut notes = Vec::new();
         if let Some((lab, why)) = skipped.first() {
-            eprintln!(
+            notes.push(format!(
                 "note: {file}: {} of {total} grid points are invalid combinations and skipped (the first, {lab}: {why})",
                 skipped.len()
-            );
+            ));
         }
         if merged > 0 {
-            eprintln!(
+            notes.push(format!(
                 "note: {file}: {merged} of {total} grid points repeat another's design (a field their other values leave unused) and are measured once"
-            );
+            ));
         }
         if out.is_empty() {
             return Err(Error::Other(format!(
                 "{file}: no valid configuration in the grid\n  fix: check the ranges with `gbump config`"
             )));
         }
-        Ok(out)
+        Ok((out, notes))
     }
 }
 
