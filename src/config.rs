@@ -844,17 +844,10 @@ impl PipelineConfig {
                 "drop self_shadow, or drop frame_transform",
             ));
         }
-        if self.frame_build && !self.frame_transform {
-            return Err(Error::field(
-                file,
-                "frame_build",
-                "frame_build = true builds a frame per fragment for the frame_transform unit, which this configuration does not have",
-                "set frame_transform = true (and bump_state = \"fragment\"), or drop frame_build",
-            ));
-        }
         // A frame source needs the unit that places the normal in the frame, and one source
         // at a time: each rule names the one this configuration breaks.
         for (on, field, what) in [
+            (self.frame_build, "frame_build", "builds a frame per fragment"),
             (
                 self.triangle_frame,
                 "triangle_frame",
