@@ -607,13 +607,11 @@ impl PipelineConfig {
         // A value out of range, or at odds with another, is refused at its own line.
         Self::from_toml(&path.display().to_string(), &text).map_err(|e| match e {
             Error::Field { file, field, msg, fix } => {
-                let line = text.lines().position(|l| {
-                    l.trim_start()
-                        .strip_prefix(field.as_str())
-                        .is_some_and(|r| r.trim_start().starts_with('='))
-                });
+                // A field read under its old name is written under that name.
+                let old = RENAMED_FIELDS.iter().find(|(_, new)| *new == field).map(|(old, _)| *old);
+                let place = crate::toml_line::place(&text, &field).or_else(|| crate::toml_line::place(&text, old?));
                 Error::Field {
-                    file: line.map_or(file.clone(), |i| format!("{file}:{}:1", i + 1)),
+                    file: place.map_or(file.clone(), |(l, c)| format!("{file}:{l}:{c}")),
                     field,
                     msg,
                     fix,

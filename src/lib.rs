@@ -29,6 +29,7 @@ pub mod sim;
 pub mod simd;
 pub mod temp_files;
 pub mod tool;
+pub mod toml_line;
 pub mod units;
 pub mod vectors;
 pub mod vectors_command;

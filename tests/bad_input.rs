@@ -222,6 +222,30 @@ fn cases() -> Vec<Case> {
             vec!["objects[0].segments[0]", "1..=1024"],
         ),
         (
+            "sphere of one segment around",
+            scene(|t: &str| r("kind = \"plane\", size = [4.0, 2.0]", "kind = \"sphere\", radius = 1.0")(t).replace("segments = [16, 8]", "segments = [1, 8]")),
+            render(&[]),
+            vec!["s.toml:23:1", "objects[0].segments[0]", "for a sphere", "3..=1024"],
+        ),
+        (
+            "quoted keys keep their line",
+            scene(r("shape = { kind = \"plane\", size = [4.0, 2.0] }", "\"shape\" = { \"kind\" = \"plane\", \"size\" = [4.0, -2.0] }")),
+            render(&[]),
+            vec!["s.toml:22:", "objects[0].shape.size", "out of range"],
+        ),
+        (
+            "object smaller than a pixel",
+            scene(r("size = [4.0, 2.0]", "size = [4e-6, 2e-6]")),
+            render(&[]),
+            vec!["s.toml", "`objects`", "no object covers a pixel centre at 32×16", "fix:", "camera.target"],
+        ),
+        (
+            "object behind the camera's view as a vector source",
+            vec![("far.toml", r("target = [0.0, 0.0, 0.0]", "target = [50.0, 0.0, 0.0]")(WALL).into())],
+            vec!["vectors", "--source", "scene:far.toml", "--target", "top", "--out", "out"],
+            vec!["far.toml", "no object covers a pixel centre", "fix:"],
+        ),
+        (
             "prism with two sides",
             scene(r(
                 "shape = { kind = \"plane\", size = [4.0, 2.0] }",

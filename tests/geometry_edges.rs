@@ -122,7 +122,7 @@ fn zero_area_coincident_and_mirrored_triangles_leave_no_nan() {
     }
     p.objects[0].mesh = mesh;
     p.objects[0].tris = tris;
-    let gb = rasterise(&p);
+    let gb = rasterise(&p).unwrap();
     let frags = fragments(&p, &gb);
     assert!(!frags.is_empty());
     assert!(frags.iter().all(|f| f.tri == 0 || f.tri == 3), "degenerate triangles cover nothing");

@@ -88,7 +88,7 @@ fn each_fragment_carries_k_interpolated_from_its_vertices() {
     };
     let p = Prepared::new(&s, &cfg, 128, 64).unwrap();
     let pt = Prepared::new(&s, &per_tri, 128, 64).unwrap();
-    let gb = rasterise(&p);
+    let gb = rasterise(&p).unwrap();
     let (mut n, mut differ) = (0, 0);
     for hit in gb.hits.iter().flatten() {
         let v = p.objects[hit.obj as usize].mesh.corners(hit.tri);
@@ -237,7 +237,7 @@ fn sgi_f64_model_is_the_datapath_it_generates() {
         let ctx = gbump::engines::Ctx::new(&p, Maps::default());
         let sgi = engine("sgi").unwrap();
         let mut worst = 0.0f64;
-        for hit in rasterise(&p).hits.iter().flatten() {
+        for hit in rasterise(&p).unwrap().hits.iter().flatten() {
             let g = pixel_geom(&p, hit);
             let a = (sgi.shade)(&ctx, hit, &g);
             let b = gbump::reference::gouraud_f64::shade_interpolating(&p, hit, &g, how);

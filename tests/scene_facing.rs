@@ -22,7 +22,7 @@ fn every_builtin_surface_faces_the_camera_and_a_light() {
         let s = Scene::load(name).unwrap();
         let cfg = s.derive_config().unwrap();
         let p = Prepared::new(&s, &cfg, W, H).unwrap();
-        let gb = rasterise(&p);
+        let gb = rasterise(&p).unwrap();
         for obj in 0..s.objects.len() {
             let geoms: Vec<_> = gb
                 .hits

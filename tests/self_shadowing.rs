@@ -30,7 +30,7 @@ fn self_shadowing_cuts_light_exactly_where_the_geometric_normal_faces_away() {
     );
 
     let p = Prepared::new(&s, &cfg, W, H).unwrap();
-    let gb = rasterise(&p);
+    let gb = rasterise(&p).unwrap();
     let (mut cut, mut equal, mut unexpected) = (0, 0, Vec::new());
     for (i, hit) in gb.hits.iter().enumerate() {
         let Some(hit) = hit else { continue };

@@ -27,7 +27,7 @@ pub fn render(scene: &Scene, engines: &[&Engine], w: u32, h: u32, maps: Maps) ->
     let cfg = scene.derive_config()?;
     let p = Prepared::new(scene, &cfg, w, h)?;
     let ctx = Ctx::new(&p, maps);
-    let gb = rasterise(&p);
+    let gb = rasterise(&p)?;
     let owner: std::sync::Arc<Vec<Option<(u32, u32)>>> = std::sync::Arc::new(gb.hits.iter().map(|h| h.map(|h| (h.obj, h.tri))).collect());
     let bg = scene.camera.background;
     Ok(engines

@@ -34,7 +34,7 @@ pub fn model_rate(lights: usize, side: u32) -> (f64, f64, usize) {
     let s = bench_scene(lights);
     let cfg = s.derive_config().expect("config");
     let p = Prepared::new(&s, &cfg, side, side).expect("prepare");
-    let gb = rasterise(&p);
+    let gb = rasterise(&p).expect("the bench scene covers pixels");
     let frags = fragments(&p, &gb);
     let bar = indicatif::ProgressBar::hidden();
     let best = |f: &dyn Fn()| {

@@ -4,6 +4,7 @@
 //! Zero-area triangles cover nothing.
 
 use super::Prepared;
+use crate::error::{Error, Result};
 use glam::DVec2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,7 +25,10 @@ fn edge(a: DVec2, b: DVec2, p: DVec2) -> f64 {
     (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
 }
 
-pub fn rasterise(p: &Prepared) -> GBuffer {
+/// The pixels each object covers, or an error when no object covers a pixel centre: every
+/// measure of such an image (PSNR, error, a regression over its fragments) would pass
+/// without testing anything.
+pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
     let (w, h) = (p.camera.width, p.camera.height);
     let mut hits = vec![None; (w * h) as usize];
     let mut depth = vec![f64::INFINITY; (w * h) as usize];
@@ -63,5 +67,13 @@ pub fn rasterise(p: &Prepared) -> GBuffer {
             }
         }
     }
-    GBuffer { w, h, hits }
+    if hits.iter().all(Option::is_none) {
+        return Err(Error::field(
+            &p.scene.file,
+            "objects",
+            format!("no object covers a pixel centre at {w}×{h}: the image is background only, so no fragment reaches the pipeline"),
+            "point camera.target at the objects, lower camera.height (the view's height in world units), or make the objects larger than a pixel",
+        ));
+    }
+    Ok(GBuffer { w, h, hits })
 }

@@ -55,7 +55,7 @@ pub fn golden_image(p: &Prepared, frags: &[FragmentRecord], bar: &ProgressBar) -
 /// many times against one f64 image (the f64 images do not depend on widths).
 pub fn golden(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32) -> Result<(Vec<[u32; 3]>, Vec<bool>)> {
     let p = Prepared::new(scene, cfg, w, h)?;
-    let gb = rasterise(&p);
+    let gb = rasterise(&p)?;
     let frags = fragments(&p, &gb);
     let img = golden_image(&p, &frags, &ProgressBar::hidden());
     Ok((img, gb.hits.iter().map(Option::is_some).collect()))
@@ -64,7 +64,7 @@ pub fn golden(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32) -> Result<(Ve
 /// Render all three images. `progress` shows a bar on stderr.
 pub fn render(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32, progress: bool) -> Result<Images> {
     let p = Prepared::new(scene, cfg, w, h)?;
-    let gb = rasterise(&p);
+    let gb = rasterise(&p)?;
     let frags = fragments(&p, &gb);
     let bar = if progress {
         ProgressBar::new(frags.len() as u64 * 2)

@@ -94,6 +94,18 @@ fn grid(segs: [u32; 2], uv_scale: [f64; 2], f: impl Fn(f64, f64) -> (DVec3, DVec
     }
 }
 
+/// The fewest segments (around u, along v) that give `shape` a solid of non-zero area: a
+/// closed shape needs three sides around a circle (two make a flat double-sided sliver, one a
+/// line), and a sphere two bands from pole to pole; a prism's sides replace `segments[0]`.
+pub fn min_segments(shape: &Shape) -> [u32; 2] {
+    match shape {
+        Shape::Sphere { .. } => [3, 2],
+        Shape::Torus { .. } => [3, 3],
+        Shape::Cylinder { sides: 0, .. } => [3, 1],
+        Shape::Cylinder { .. } | Shape::Plane { .. } | Shape::Teapot => [1, 1],
+    }
+}
+
 /// Triangles `tessellate` makes of `o`, counted before any is built (see `limits.rs`).
 pub fn triangle_count(o: &Object) -> u64 {
     let [su, sv] = o.segments.map(u64::from);

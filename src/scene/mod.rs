@@ -153,11 +153,26 @@ pub enum Shape {
     Teapot,
 }
 
+impl Shape {
+    /// The shape as a person names it (its `kind`; a cylinder with `sides = 0` is smooth).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Plane { .. } => "plane",
+            Shape::Sphere { .. } => "sphere",
+            Shape::Cylinder { sides: 0, .. } => "smooth cylinder",
+            Shape::Cylinder { .. } => "cylinder",
+            Shape::Torus { .. } => "torus",
+            Shape::Teapot => "teapot",
+        }
+    }
+}
+
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Object {
     pub shape: Shape,
-    /// Tessellation [u, v] (per patch for the teapot).
+    /// Tessellation [u, v] (per patch for the teapot), at least `mesh::min_segments` of the
+    /// shape: 3 around a sphere, torus or smooth cylinder, 2 along a sphere, 3 along a torus.
     #[serde(default = "default_segments")]
     pub segments: [u32; 2],
     #[serde(default)]

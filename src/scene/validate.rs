@@ -4,27 +4,6 @@ use super::{LightKind, Scene, Shape, Texture};
 use crate::error::{Error, Result};
 use crate::limits::{MAX_BUMP_SIDE, MAX_CYLINDER_SIDES, MAX_IMAGE_SIDE, MAX_SEGMENTS, MAX_SHININESS, MAX_TRIANGLES};
 
-/// Line (1-based) where `key` is assigned inside the `index`-th `[[array]]` table, if found.
-fn locate(text: &str, array: Option<(&str, usize)>, key: &str) -> Option<usize> {
-    let lines: Vec<&str> = text.lines().collect();
-    let mut start = 0;
-    if let Some((name, idx)) = array {
-        let header = format!("[[{name}]]");
-        start = lines.iter().enumerate().filter(|(_, l)| l.trim() == header).nth(idx)?.0;
-    }
-    lines
-        .iter()
-        .enumerate()
-        .skip(start)
-        .find(|(_, l)| {
-            let t = l.trim_start();
-            t.starts_with(key) && t[key.len()..].trim_start().starts_with('=')
-                || t.contains(&format!(" {key} ="))
-                || t.contains(&format!("{{ {key} ="))
-        })
-        .map(|(i, _)| i + 1)
-}
-
 /// A number as a person reads it: 1e300 as `1e300`, not as 301 digits.
 fn short(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) {
@@ -40,19 +19,17 @@ struct Checker<'a> {
 }
 
 impl Checker<'_> {
-    fn fail(&self, array: Option<(&str, usize)>, key: &str, path: &str, msg: String, fix: &str) -> Error {
-        let at = locate(self.text, array, key).map_or(String::new(), |l| format!(":{l}"));
+    fn fail(&self, path: &str, msg: String, fix: &str) -> Error {
+        let at = crate::toml_line::suffix(self.text, path);
         Error::field(&format!("{}{at}", self.s.file), path, msg, fix)
     }
 
-    fn num(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
+    fn num(&self, path: &str, v: f64, lo: f64, hi: f64) -> Result<()> {
         if !v.is_finite() {
-            return Err(self.fail(array, key, path, format!("{v} is not a finite number"), "give a finite number"));
+            return Err(self.fail(path, format!("{v} is not a finite number"), "give a finite number"));
         }
         if v < lo || v > hi {
             return Err(self.fail(
-                array,
-                key,
                 path,
                 format!("{} is out of range", short(v)),
                 &format!("use a value in [{lo}, {hi}]"),
@@ -61,17 +38,17 @@ impl Checker<'_> {
         Ok(())
     }
 
-    fn vec3(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: [f64; 3], lo: f64, hi: f64) -> Result<()> {
+    fn vec3(&self, path: &str, v: [f64; 3], lo: f64, hi: f64) -> Result<()> {
         for (i, c) in v.iter().enumerate() {
-            self.num(array, key, &format!("{path}[{i}]"), *c, lo, hi)?;
+            self.num(&format!("{path}[{i}]"), *c, lo, hi)?;
         }
         Ok(())
     }
 
-    fn dir(&self, array: Option<(&str, usize)>, key: &str, path: &str, v: [f64; 3]) -> Result<()> {
-        self.vec3(array, key, path, v, -1e6, 1e6)?;
+    fn dir(&self, path: &str, v: [f64; 3]) -> Result<()> {
+        self.vec3(path, v, -1e6, 1e6)?;
         if v.iter().map(|c| c * c).sum::<f64>() < 1e-24 {
-            return Err(self.fail(array, key, path, "zero-length direction".into(), "give a non-zero vector"));
+            return Err(self.fail(path, "zero-length direction".into(), "give a non-zero vector"));
         }
         Ok(())
     }
@@ -85,33 +62,17 @@ fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
         given: &toml::Value,
         read: &toml::Value,
         path: &str,
-        key: &str,
-        array: Option<(&str, usize)>,
-    ) -> Option<(String, String, Option<(String, usize)>, usize, usize)> {
+    ) -> Option<(String, usize, usize)> {
         match (given, read) {
             (toml::Value::Table(g), toml::Value::Table(r)) => g.iter().find_map(|(k, gv)| {
                 let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
-                r.get(k).and_then(|rv| walk(gv, rv, &p, k, array))
+                r.get(k).and_then(|rv| walk(gv, rv, &p))
             }),
             (toml::Value::Array(g), toml::Value::Array(r)) => {
                 if g.len() > r.len() {
-                    return Some((
-                        path.to_string(),
-                        key.to_string(),
-                        array.map(|(a, i)| (a.to_string(), i)),
-                        g.len(),
-                        r.len(),
-                    ));
+                    return Some((path.to_string(), g.len(), r.len()));
                 }
-                g.iter().zip(r).enumerate().find_map(|(i, (gv, rv))| {
-                    // An array of tables ([[lights]]) is where a key's line is searched from.
-                    let inner = if gv.is_table() && path.split('.').count() == 1 {
-                        Some((key, i))
-                    } else {
-                        array
-                    };
-                    walk(gv, rv, &format!("{path}[{i}]"), key, inner)
-                })
+                g.iter().zip(r).enumerate().find_map(|(i, (gv, rv))| walk(gv, rv, &format!("{path}[{i}]")))
             }
             _ => None,
         }
@@ -119,13 +80,11 @@ fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
     let (Ok(given), Ok(read)) = (toml::from_str::<toml::Value>(text), toml::Value::try_from(s)) else {
         return Ok(());
     };
-    match walk(&given, &read, "", "", None) {
+    match walk(&given, &read, "") {
         None => Ok(()),
-        Some((path, key, array, got, takes)) => {
+        Some((path, got, takes)) => {
             let c = Checker { s, text };
             Err(c.fail(
-                array.as_ref().map(|(a, i)| (a.as_str(), *i)),
-                &key,
                 &path,
                 format!("{got} values where the field takes {takes}"),
                 &format!("give exactly {takes} values"),
@@ -141,8 +100,6 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     let max_lights = crate::config::limit("lights").1;
     if bump as u32 > max_lights {
         return Err(c.fail(
-            None,
-            "lights",
             "lights",
             format!("{bump} lights act on the bump map; the pipeline has at most {max_lights} light slots"),
             &format!("set bump = false on all but {max_lights} of them (they then light the Gouraud colour only)"),
@@ -150,14 +107,12 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     }
     // The name becomes part of every output file's name.
     if !crate::names::is_safe(&s.name) {
-        let at = locate(text, None, "name").map_or(String::new(), |l| format!(":{l}"));
+        let at = crate::toml_line::suffix(text, "name");
         return crate::names::check(&format!("{}{at}", s.file), "name", &s.name);
     }
     for (i, v) in s.size.iter().enumerate() {
         if *v == 0 || *v > MAX_IMAGE_SIDE {
             return Err(c.fail(
-                None,
-                "size",
                 &format!("size[{i}]"),
                 format!("{v} is out of range"),
                 &format!("use 1..={MAX_IMAGE_SIDE} pixels (MAX_IMAGE_SIDE)"),
@@ -165,55 +120,49 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         }
     }
     let cam = &s.camera;
-    c.vec3(None, "eye", "camera.eye", cam.eye, -1e6, 1e6)?;
-    c.vec3(None, "target", "camera.target", cam.target, -1e6, 1e6)?;
-    c.dir(None, "up", "camera.up", cam.up)?;
+    c.vec3("camera.eye", cam.eye, -1e6, 1e6)?;
+    c.vec3("camera.target", cam.target, -1e6, 1e6)?;
+    c.dir("camera.up", cam.up)?;
     let view: Vec<f64> = (0..3).map(|i| cam.target[i] - cam.eye[i]).collect();
     if view.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
         return Err(c.fail(
-            None,
-            "eye",
             "camera.eye",
             "eye and target coincide".into(),
             "move the eye away from the target",
         ));
     }
-    c.num(None, "height", "camera.height", cam.height, 1e-6, 1e6)?;
-    c.vec3(None, "background", "camera.background", cam.background, 0.0, 1.0)?;
-    c.vec3(None, "ambient", "ambient", s.ambient, 0.0, 1.0)?;
+    c.num("camera.height", cam.height, 1e-6, 1e6)?;
+    c.vec3("camera.background", cam.background, 0.0, 1.0)?;
+    c.vec3("ambient", s.ambient, 0.0, 1.0)?;
     for (i, l) in s.lights.iter().enumerate() {
-        let a = Some(("lights", i));
         let p = format!("lights[{i}]");
-        c.vec3(a, "colour", &format!("{p}.colour"), l.colour, 0.0, 1.0)?;
-        c.num(a, "k", &format!("{p}.k"), l.k, 0.0, 1.0)?;
+        c.vec3(&format!("{p}.colour"), l.colour, 0.0, 1.0)?;
+        c.num(&format!("{p}.k"), l.k, 0.0, 1.0)?;
         match l.kind {
-            LightKind::Directional => c.dir(a, "direction", &format!("{p}.direction"), l.direction)?,
-            LightKind::Point => c.vec3(a, "position", &format!("{p}.position"), l.position, -1e6, 1e6)?,
+            LightKind::Directional => c.dir(&format!("{p}.direction"), l.direction)?,
+            LightKind::Point => c.vec3(&format!("{p}.position"), l.position, -1e6, 1e6)?,
             LightKind::Spot => {
-                c.vec3(a, "position", &format!("{p}.position"), l.position, -1e6, 1e6)?;
-                c.dir(a, "direction", &format!("{p}.direction"), l.direction)?;
-                c.num(a, "cutoff_deg", &format!("{p}.cutoff_deg"), l.cutoff_deg, 0.0, 90.0)?;
-                c.num(a, "exponent", &format!("{p}.exponent"), l.exponent, 0.0, 1024.0)?;
+                c.vec3(&format!("{p}.position"), l.position, -1e6, 1e6)?;
+                c.dir(&format!("{p}.direction"), l.direction)?;
+                c.num(&format!("{p}.cutoff_deg"), l.cutoff_deg, 0.0, 90.0)?;
+                c.num(&format!("{p}.exponent"), l.exponent, 0.0, 1024.0)?;
             }
         }
     }
     if s.objects.is_empty() {
         return Err(c.fail(
-            None,
-            "objects",
             "objects",
             "the scene has no objects".into(),
             "add an [[objects]] table",
         ));
     }
     for (i, o) in s.objects.iter().enumerate() {
-        let a = Some(("objects", i));
         let p = format!("objects[{i}]");
-        let pos = |k: &str, v: f64| c.num(a, k, &format!("{p}.shape.{k}"), v, 1e-6, 1e6);
+        let pos = |k: &str, v: f64| c.num(&format!("{p}.shape.{k}"), v, 1e-6, 1e6);
         match &o.shape {
             Shape::Plane { size } => {
-                pos("size", size[0])?;
-                pos("size", size[1])?;
+                pos("size[0]", size[0])?;
+                pos("size[1]", size[1])?;
             }
             Shape::Sphere { radius } => pos("radius", *radius)?,
             Shape::Cylinder { radius, height, sides } => {
@@ -221,8 +170,6 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 pos("height", *height)?;
                 if *sides == 1 || *sides == 2 || *sides > MAX_CYLINDER_SIDES {
                     return Err(c.fail(
-                        a,
-                        "sides",
                         &format!("{p}.shape.sides"),
                         format!("{sides} sides"),
                         &format!("use 0 (smooth) or 3..={MAX_CYLINDER_SIDES} (MAX_CYLINDER_SIDES)"),
@@ -235,56 +182,50 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             }
             Shape::Teapot => {}
         }
+        let least = super::mesh::min_segments(&o.shape);
         for (k, v) in o.segments.iter().enumerate() {
-            if *v == 0 || *v > MAX_SEGMENTS {
+            if *v < least[k] || *v > MAX_SEGMENTS {
+                let why = if least[k] > 1 { ": fewer tessellate the shape into slivers of no area" } else { "" };
                 return Err(c.fail(
-                    a,
-                    "segments",
                     &format!("{p}.segments[{k}]"),
-                    format!("{v} is out of range"),
-                    &format!("use 1..={MAX_SEGMENTS} (MAX_SEGMENTS)"),
+                    format!("{v} is out of range for a {}{why}", o.shape.kind()),
+                    &format!("use {}..={MAX_SEGMENTS} (MAX_SEGMENTS)", least[k]),
                 ));
             }
         }
-        c.vec3(a, "translate", &format!("{p}.translate"), o.translate, -1e6, 1e6)?;
-        c.vec3(a, "rotate_deg", &format!("{p}.rotate_deg"), o.rotate_deg, -3600.0, 3600.0)?;
-        c.num(a, "scale", &format!("{p}.scale"), o.scale, 1e-6, 1e6)?;
-        c.num(a, "uv_scale", &format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
-        c.num(a, "uv_scale", &format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
+        c.vec3(&format!("{p}.translate"), o.translate, -1e6, 1e6)?;
+        c.vec3(&format!("{p}.rotate_deg"), o.rotate_deg, -3600.0, 3600.0)?;
+        c.num(&format!("{p}.scale"), o.scale, 1e-6, 1e6)?;
+        c.num(&format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
+        c.num(&format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
         if o.shininess > MAX_SHININESS {
             return Err(c.fail(
-                a,
-                "shininess",
                 &format!("{p}.shininess"),
                 format!("{} is out of range", o.shininess),
                 &format!("use 0..={MAX_SHININESS} (MAX_SHININESS)"),
             ));
         }
         match &o.texture {
-            Texture::Constant { colour } => c.vec3(a, "colour", &format!("{p}.texture.colour"), *colour, 0.0, 1.0)?,
+            Texture::Constant { colour } => c.vec3(&format!("{p}.texture.colour"), *colour, 0.0, 1.0)?,
             Texture::Checker { cells, a: ca, b: cb } => {
                 if *cells == 0 {
-                    return Err(c.fail(a, "cells", &format!("{p}.texture.cells"), "0 cells".into(), "use 1 or more"));
+                    return Err(c.fail(&format!("{p}.texture.cells"), "0 cells".into(), "use 1 or more"));
                 }
-                c.vec3(a, "a", &format!("{p}.texture.a"), *ca, 0.0, 1.0)?;
-                c.vec3(a, "b", &format!("{p}.texture.b"), *cb, 0.0, 1.0)?;
+                c.vec3(&format!("{p}.texture.a"), *ca, 0.0, 1.0)?;
+                c.vec3(&format!("{p}.texture.b"), *cb, 0.0, 1.0)?;
             }
         }
         let b = &o.bump;
         if b.size < 2 || b.size > MAX_BUMP_SIDE {
             return Err(c.fail(
-                a,
-                "size",
                 &format!("{p}.bump.size"),
                 format!("{} is out of range", b.size),
                 &format!("use 2..={MAX_BUMP_SIDE} texels (MAX_BUMP_SIDE)"),
             ));
         }
-        c.num(a, "strength", &format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
+        c.num(&format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
         if b.cylinder_sides == 1 || b.cylinder_sides == 2 {
             return Err(c.fail(
-                a,
-                "cylinder_sides",
                 &format!("{p}.bump.cylinder_sides"),
                 "fewer than 3 sides".into(),
                 "use 0 or 3 and more",
@@ -295,26 +236,24 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             H::Bricks { rows, cols, mortar } => {
                 if *rows == 0 || *cols == 0 {
                     return Err(c.fail(
-                        a,
-                        "rows",
                         &format!("{p}.bump.source"),
                         "zero rows or columns".into(),
                         "use 1 or more",
                     ));
                 }
-                c.num(a, "mortar", &format!("{p}.bump.source.mortar"), *mortar, 1e-3, 0.45)?;
+                c.num(&format!("{p}.bump.source.mortar"), *mortar, 1e-3, 0.45)?;
             }
             H::SphereCaps { cells, radius } => {
                 if *cells == 0 {
-                    return Err(c.fail(a, "cells", &format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
+                    return Err(c.fail(&format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
                 }
-                c.num(a, "radius", &format!("{p}.bump.source.radius"), *radius, 1e-3, 0.5)?;
+                c.num(&format!("{p}.bump.source.radius"), *radius, 1e-3, 0.5)?;
             }
             H::MexicanHat { cells, sigma } => {
                 if *cells == 0 {
-                    return Err(c.fail(a, "cells", &format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
+                    return Err(c.fail(&format!("{p}.bump.source.cells"), "0 cells".into(), "use 1 or more"));
                 }
-                c.num(a, "sigma", &format!("{p}.bump.source.sigma"), *sigma, 1e-3, 1.0)?;
+                c.num(&format!("{p}.bump.source.sigma"), *sigma, 1e-3, 1.0)?;
             }
             H::Png { path } => {
                 // The image is decoded later (its size checked from its header); that it is a
@@ -325,8 +264,6 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 if !full.is_file() {
                     let what = if full.exists() { "is not a file" } else { "is not there" };
                     return Err(c.fail(
-                        a,
-                        "path",
                         &at,
                         format!("{} {what}", full.display()),
                         "give the path of a greyscale or RGB PNG, relative to the scene file's folder",
@@ -339,8 +276,6 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
     if tris > MAX_TRIANGLES {
         return Err(c.fail(
-            None,
-            "segments",
             "objects[*].segments",
             format!("the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}"),
             "lower `segments` (the teapot makes 64 triangles per segment pair: 32 patches)",

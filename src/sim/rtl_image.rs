@@ -39,7 +39,7 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     )?;
     // The same fragments in the same order as the dump, to know where each colour goes.
     let p = Prepared::new(&scene, cfg, w, h)?;
-    let frags = fragments(&p, &rasterise(&p));
+    let frags = fragments(&p, &rasterise(&p)?);
     let bg = crate::raster::fragment::colour_codes(glam::DVec3::from_array(scene.camera.background), cfg.colour_max());
     let mut img = vec![bg; (w * h) as usize];
     for set in sets {

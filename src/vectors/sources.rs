@@ -415,7 +415,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
     crate::limits::check_render(&s.file, w, h, s.triangles())?;
     let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
-    let gb = crate::raster::rasterise::rasterise(&p);
+    let gb = crate::raster::rasterise::rasterise(&p)?;
     let frags = crate::raster::fragment::fragments(&p, &gb);
     let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
     // `fragments` gives each triangle's fragments together: a setup starts each run.
