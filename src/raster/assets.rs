@@ -48,9 +48,7 @@ impl<'a> Prepared<'a> {
             let normals = normal_map(scene, o)?;
             let stored = StoredMap::store(cfg, &normals);
             let mesh = tessellate(o);
-            if cfg.frame_build {
-                mirrored_refused(scene, objects.len(), &mesh)?;
-            }
+            mirrored_refused(scene, cfg, objects.len(), &mesh)?;
             let tris = tri_states(scene, cfg, &camera, &mesh)?;
             tables.entry(o.shininess).or_insert_with(|| PowerTable::build(cfg, o.shininess));
             objects.push(ObjectAssets {
@@ -70,17 +68,23 @@ impl<'a> Prepared<'a> {
     }
 }
 
-/// `frame_build` forms B as N × T, a right-handed frame: a vertex whose uv mapping is
-/// mirrored (its binormal along −N × T) would have its bumps' v slope turned over, so such a
-/// mesh is refused rather than rendered wrong.
-fn mirrored_refused(scene: &Scene, obj: usize, mesh: &Mesh) -> Result<()> {
+/// `frame_build` forms B as N × m and `frame_quaternion` sends the rotation of (T, N × T, N):
+/// both right-handed, so a vertex whose uv mapping is mirrored (its binormal along −N × T)
+/// would have its bumps' v slope turned over. Such a mesh is refused rather than rendered
+/// wrong; the interpolated frame (Harmony) and the per-triangle frame carry B as it is.
+fn mirrored_refused(scene: &Scene, cfg: &PipelineConfig, obj: usize, mesh: &Mesh) -> Result<()> {
+    let field = match (cfg.frame_build, cfg.frame_quaternion) {
+        (true, _) => "frame_build = true builds right-handed frames (B = N x m)",
+        (_, true) => "frame_quaternion = true sends each vertex frame as a rotation (B = N x T)",
+        _ => return Ok(()),
+    };
     match mesh.verts.iter().position(|v| v.b.dot(v.n.cross(v.t)) < 0.0) {
         None => Ok(()),
         Some(i) => Err(crate::error::Error::field(
             &scene.file,
             &format!("objects[{obj}]"),
-            format!("vertex {i} has a mirrored uv mapping (its binormal is -N x T), and frame_build = true builds right-handed frames (B = N x m)"),
-            "map the object's texture without mirroring, or use the interpolated frame (frame_build = false; the harmony engine)",
+            format!("vertex {i} has a mirrored uv mapping (its binormal is -N x T), and {field}"),
+            "map the object's texture without mirroring, or use a frame that keeps B as it is (frame_transform with the interpolated frame: the harmony engine; or triangle_frame = true)",
         )),
     }
 }
@@ -105,7 +109,7 @@ mod tests {
     /// Scene files cannot mirror a mapping (uv scales are positive and the binormal follows
     /// ∂P/∂v), so a mesh is built here: one vertex with B = −N × T is refused, by index.
     #[test]
-    fn a_mirrored_vertex_is_refused_with_its_object_and_the_fix() {
+    fn a_mirrored_vertex_is_refused_by_the_right_handed_frame_sources_with_its_object_and_the_fix() {
         let scene = Scene::load("cg_wall_front").unwrap();
         let v = |b: DVec3| Vertex {
             p: DVec3::ZERO,
@@ -118,12 +122,18 @@ mod tests {
             verts: vec![v(DVec3::Y), v(DVec3::Y), v(DVec3::Y)],
             tris: vec![[0, 1, 2]],
         };
-        mirrored_refused(&scene, 0, &mesh).unwrap();
+        let build = PipelineConfig { frame_build: true, ..Default::default() };
+        let quaternion = PipelineConfig { frame_quaternion: true, ..Default::default() };
+        let harmony = PipelineConfig { frame_transform: true, ..Default::default() };
+        for cfg in [&build, &quaternion, &harmony] {
+            mirrored_refused(&scene, cfg, 0, &mesh).unwrap();
+        }
         mesh.verts[2].b = -DVec3::Y;
-        let e = mirrored_refused(&scene, 3, &mesh).unwrap_err().to_string();
-        assert!(
-            e.contains("objects[3]") && e.contains("vertex 2") && e.contains("frame_build = false"),
-            "{e}"
-        );
+        for (cfg, field) in [(&build, "frame_build = true"), (&quaternion, "frame_quaternion = true")] {
+            let e = mirrored_refused(&scene, cfg, 3, &mesh).unwrap_err().to_string();
+            assert!(e.contains("objects[3]") && e.contains("vertex 2") && e.contains(field) && e.contains("harmony"), "{e}");
+        }
+        // The interpolated frame carries B as it is: nothing to refuse.
+        mirrored_refused(&scene, &harmony, 3, &mesh).unwrap();
     }
 }

@@ -107,8 +107,8 @@ pub fn frame_at(v: &[crate::scene::mesh::Vertex; 3], w: [f64; 3]) -> [DVec3; 3] 
     [mix(&|x| x.t), mix(&|x| x.b), mix(&|x| x.n)]
 }
 
-/// The vertex frames as rotations (quaternions of (T, N × T, N), a mirrored frame taken as
-/// its rotation) interpolated at barycentric weights `w`, each sign aligned to the first
+/// The vertex frames as rotations (quaternions of (T, N × T, N); `Prepared::new` refuses a
+/// mirrored mapping under `frame_quaternion`, whose B this would turn over) interpolated at barycentric weights `w`, each sign aligned to the first
 /// vertex's, not normalised: VISA+'s quaternion variant (`frame_quaternion`).
 pub fn quaternion_at(v: &[crate::scene::mesh::Vertex; 3], w: [f64; 3]) -> glam::DQuat {
     let q: Vec<glam::DQuat> = v
