@@ -251,20 +251,21 @@ pub struct PipelineConfig {
     #[serde(skip_serializing_if = "is_zero")]
     pub cube_map_face: u32,
     /// Geometric self-shadowing (Cg Tutorial §8.5.3): a light whose direction L (as the dot
-    /// products see it) points below the surface, L_z <= 0 in bump space, adds nothing, and
-    /// its highlight is cut where the bump normal faces away from it (B·L clamped to 0), so
-    /// no highlight shows on a bump the light cannot reach. Gates on each light's factors;
-    /// needs the diffuse path (its B·L). Left out of the TOML when false, so older hashes
-    /// are unchanged.
+    /// products see it) points below the surface adds nothing, and its highlight is cut where
+    /// the bump normal faces away from it (B·L clamped to 0), so no highlight shows on a bump
+    /// the light cannot reach. Below the surface is L_z <= 0 in bump space; under
+    /// `frame_transform` it is N·L clamped to 0, N the unperturbed normal (0, 0, 1) placed in
+    /// the fragment's frame by a second `frame_transform` instance and N·L one more
+    /// `dot_clamp` per light. Gates on each light's factors; needs the diffuse path (its B·L).
+    /// Left out of the TOML when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub self_shadow: bool,
     /// The bump normal placed in a frame that enters with every fragment (Harmony, paper
     /// §3.5): the `frame_transform` unit forms `T b_x + B b_y + N b_z` from the fetched
     /// normal and the fragment's frame (`in_frame`: the rasteriser's interpolated vertex
     /// frames, not re-orthonormalised), so L and H are given in the frame's space (eye space)
-    /// instead of bump space. Needs `bump_state = "fragment"`; not with `self_shadow` (its
-    /// gate reads L_z in bump space). Left out of the TOML when false, so older hashes are
-    /// unchanged.
+    /// instead of bump space. Needs `bump_state = "fragment"`. Left out of the TOML when
+    /// false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub frame_transform: bool,
     /// The frame built per fragment from two interpolated vectors (TexRam, paper §3.1):
@@ -832,14 +833,6 @@ impl PipelineConfig {
                 "frame_transform",
                 "frame_transform = true places the bump normal in a frame that enters with every fragment, which a per-triangle top cannot take",
                 "set bump_state = \"fragment\" (the fragment port carries the frame with L and H), or drop frame_transform",
-            ));
-        }
-        if self.frame_transform && self.self_shadow {
-            return Err(Error::field(
-                file,
-                "frame_transform",
-                "frame_transform = true with self_shadow = true: the self-shadow gate reads L_z in bump space, and with a frame L is in the frame's space",
-                "drop self_shadow, or drop frame_transform",
             ));
         }
         // A frame source needs the unit that places the normal in the frame, and one source

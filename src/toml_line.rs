@@ -114,9 +114,17 @@ segments = [4, 4]
         assert_eq!(line_of(TEXT, "camera.eye"), Some(6), "a dotted key");
         assert_eq!(line_of(TEXT, "objects[0].shape.radius"), Some(9), "inside an inline table");
         assert_eq!(place(TEXT, "objects[0].shape.radius"), Some((9, 28)), "the key's own column");
-        assert_eq!(line_of(TEXT, "objects[1].shape.size[1]"), Some(14), "an inline table's array over lines");
+        assert_eq!(
+            line_of(TEXT, "objects[1].shape.size[1]"),
+            Some(14),
+            "an inline table's array over lines"
+        );
         assert_eq!(line_of(TEXT, "objects[1].segments[0]"), Some(15));
-        assert_eq!(line_of(TEXT, "objects[*].segments"), Some(8), "any element: the array's first table");
+        assert_eq!(
+            line_of(TEXT, "objects[*].segments"),
+            Some(8),
+            "any element: the array's first table"
+        );
     }
 
     #[test]
@@ -127,4 +135,3 @@ segments = [4, 4]
         assert_eq!(line_of("not = [toml", "not"), None);
     }
 }
-

@@ -820,6 +820,24 @@ fn a_transposed_frame_is_caught() {
     );
 }
 
+/// Harmony's self-shadowing gate in the frame (N·L through a second frame_transform and a
+/// dot_clamp per light) left open: the top's random set catches it (random frames and
+/// lights put L below the frame's surface often).
+#[test]
+fn an_open_self_shadow_gate_in_a_frame_is_caught() {
+    use gbump::vectors::Source;
+    let cfg = gbump::config::PipelineConfig::load(std::path::Path::new("tests/configs/harmony_frame.toml")).unwrap();
+    assert!(cfg.self_shadow && cfg.frame_transform, "the configuration gates in a frame");
+    assert_mutant_caught(
+        "tests/configs/harmony_frame.toml",
+        "mutant_frame_gate",
+        "gbump_pipeline",
+        mutants::self_shadow_open,
+        &[("top", Source::Random(3_000))],
+        1,
+    );
+}
+
 #[test]
 fn a_reversed_frame_cross_product_is_caught() {
     use gbump::vectors::Source;

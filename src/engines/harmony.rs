@@ -41,13 +41,15 @@ pub const HARMONY: Engine = Engine {
 
 /// Harmony's per-fragment choices, which every engine that places the bump normal in a frame
 /// per fragment shares (TexRam's and VISA+'s paths add where the frame comes from): L, H
-/// and k interpolated, L, H and the placed normal renormalised.
+/// and k interpolated, L, H and the placed normal renormalised, and where the scene
+/// self-shadows (as the engines' f64 models do there) the gate on N·L with the frame's N.
 pub const FRAME_PATH: PerFragment = PerFragment {
     interpolate: Interpolate::Hl,
     renormalise: true,
     interpolate_k: true,
     renormalise_bump: true,
     frame_transform: true,
+    self_shadow: true,
     ..PerFragment::PER_TRIANGLE
 };
 

@@ -94,8 +94,8 @@ pub struct FastModel {
     /// `frame_transform`: the fetched normal placed in the state's frame, rounded as
     /// `model::frame_transform` rounds it and clamped to the normal's range (min, max).
     frame: Option<(Requant, i64, i64)>,
-    /// `self_shadow`: a light below the surface is dropped per triangle (its k·Lc is zero),
-    /// and a highlight is masked where B·L clamps to 0.
+    /// `self_shadow`: a light below the surface is dropped per run (its k·Lc is zero), and a
+    /// highlight is masked where B·L clamps to 0.
     self_shadow: bool,
     /// `frame_build` or `frame_quaternion`: the configuration its frame is formed in.
     built: Option<PipelineConfig>,
@@ -199,14 +199,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &lights::<1>(state, self.white, self.self_shadow), &frame, frags, out),
-                    2 => self.run_at::<2, $tl>(level, &lights::<2>(state, self.white, self.self_shadow), &frame, frags, out),
-                    3 => self.run_at::<3, $tl>(level, &lights::<3>(state, self.white, self.self_shadow), &frame, frags, out),
-                    4 => self.run_at::<4, $tl>(level, &lights::<4>(state, self.white, self.self_shadow), &frame, frags, out),
-                    5 => self.run_at::<5, $tl>(level, &lights::<5>(state, self.white, self.self_shadow), &frame, frags, out),
-                    6 => self.run_at::<6, $tl>(level, &lights::<6>(state, self.white, self.self_shadow), &frame, frags, out),
-                    7 => self.run_at::<7, $tl>(level, &lights::<7>(state, self.white, self.self_shadow), &frame, frags, out),
-                    8 => self.run_at::<8, $tl>(level, &lights::<8>(state, self.white, self.self_shadow), &frame, frags, out),
+                    1 => self.run_at::<1, $tl>(level, &self.lights::<1>(state, &frame), &frame, frags, out),
+                    2 => self.run_at::<2, $tl>(level, &self.lights::<2>(state, &frame), &frame, frags, out),
+                    3 => self.run_at::<3, $tl>(level, &self.lights::<3>(state, &frame), &frame, frags, out),
+                    4 => self.run_at::<4, $tl>(level, &self.lights::<4>(state, &frame), &frame, frags, out),
+                    5 => self.run_at::<5, $tl>(level, &self.lights::<5>(state, &frame), &frame, frags, out),
+                    6 => self.run_at::<6, $tl>(level, &self.lights::<6>(state, &frame), &frame, frags, out),
+                    7 => self.run_at::<7, $tl>(level, &self.lights::<7>(state, &frame), &frame, frags, out),
+                    8 => self.run_at::<8, $tl>(level, &self.lights::<8>(state, &frame), &frame, frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -402,11 +402,12 @@ impl FastModel {
     ) {
         for (it, o) in items.iter().zip(out.iter_mut()) {
             let (state, frag) = get(it);
+            let frame = self.fragment_frame(&state.frame);
             let l = match &self.renorm {
-                Some(cfg) => lights::<N>(&super::pipeline::renormalised(cfg, state), self.white, self.self_shadow),
-                None => lights::<N>(state, self.white, self.self_shadow),
+                Some(cfg) => self.lights::<N>(&super::pipeline::renormalised(cfg, state), &frame),
+                None => self.lights::<N>(state, &frame),
             };
-            *o = self.one::<N, TEXTURE_LAST>(&l, &self.fragment_frame(&state.frame), frag);
+            *o = self.one::<N, TEXTURE_LAST>(&l, &frame, frag);
         }
     }
 
@@ -509,22 +510,36 @@ struct Light {
     klc: [i64; 3],
 }
 
-#[inline(always)]
-fn lights<const N: usize>(state: &BumpState, white: Option<u32>, self_shadow: bool) -> [Light; N] {
-    std::array::from_fn(|i| {
-        let s = &state.lights[i];
-        // A light below the surface adds nothing under self-shadowing.
-        let lc = if self_shadow && !super::pipeline::self_shadow_lit(s.l) {
-            [0; 3]
-        } else {
-            white.map_or(s.lc, |m| [m; 3])
+impl FastModel {
+    /// Each light's vectors and k·Lc for a run; a light below the surface adds nothing under
+    /// self-shadowing (`pipeline::lit`: L_z in bump space, N·L in a frame, whose N is the
+    /// unperturbed normal placed in `frame`).
+    #[inline(always)]
+    fn lights<const N: usize>(&self, state: &BumpState, frame: &Frame) -> [Light; N] {
+        let surface = match self.frame {
+            Some((q, lo, hi)) if self.self_shadow => {
+                Some(std::array::from_fn(|c| q.apply(framed_exact(self.flat, frame, c)).clamp(lo, hi)))
+            }
+            _ => None,
         };
-        Light {
-            l: s.l,
-            h: s.h,
-            klc: [s.k * lc[0] as i64, s.k * lc[1] as i64, s.k * lc[2] as i64],
-        }
-    })
+        std::array::from_fn(|i| {
+            let s = &state.lights[i];
+            let lit = match surface {
+                Some(n) => self.dot(n, s.l) > 0,
+                None => super::pipeline::self_shadow_lit(s.l),
+            };
+            let lc = if self.self_shadow && !lit {
+                [0; 3]
+            } else {
+                self.white.map_or(s.lc, |m| [m; 3])
+            };
+            Light {
+                l: s.l,
+                h: s.h,
+                klc: [s.k * lc[0] as i64, s.k * lc[1] as i64, s.k * lc[2] as i64],
+            }
+        })
+    }
 }
 
 #[cfg(test)]

@@ -120,6 +120,25 @@ pub fn self_shadow_lit(l: [i64; 3]) -> bool {
     l[2] > 0
 }
 
+/// The surface normal in the space L is given in, under `frame_transform` with `self_shadow`:
+/// the unperturbed normal (0, 0, 1) placed in the fragment's frame by the same
+/// `frame_transform` unit the bump normal goes through (its N column, in the normal's
+/// format). None when L is in bump space, where the surface normal is z itself.
+pub fn surface_normal(cfg: &PipelineConfig, frame: &super::frame_transform::Frame) -> Option<[i64; 3]> {
+    (cfg.self_shadow && cfg.frame_transform).then(|| super::frame_transform::frame_transform(cfg, cfg.flat_normal(), frame))
+}
+
+/// Whether light direction `l` (as the dot products see it) is above the surface: L_z > 0 in
+/// bump space ([`self_shadow_lit`]); with a frame, N·L above 0 as the `dot_clamp` unit
+/// forms it from the [`surface_normal`] (a product that rounds to 0 is below).
+#[inline]
+pub fn lit(cfg: &PipelineConfig, surface: Option<[i64; 3]>, l: [i64; 3]) -> bool {
+    match surface {
+        Some(n) => dot_clamp(cfg, n, l) > 0,
+        None => self_shadow_lit(l),
+    }
+}
+
 /// Shade one fragment. `palette` must be given when `cfg.palette` is set.
 pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>, state: &BumpState, frag: &FragmentIn) -> Shaded {
     let n = cfg.lights as usize;
@@ -157,6 +176,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         flat,
         ..Default::default()
     };
+    let surface = surface_normal(cfg, &frame);
     let mut kd = [0i64; MAX_LIGHTS];
     let mut lc = [[0u32; 3]; MAX_LIGHTS];
     let mut dfac = [0i64; MAX_LIGHTS];
@@ -182,7 +202,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         if cfg.self_shadow {
             // Cg §8.5.3: a light below the surface adds nothing; a bump facing away from it
             // gets no highlight.
-            let lit = self_shadow_lit(out.l[i]);
+            let lit = lit(cfg, surface, out.l[i]);
             if !lit {
                 dfac[i] = 0;
             }

@@ -122,16 +122,28 @@ mod tests {
             verts: vec![v(DVec3::Y), v(DVec3::Y), v(DVec3::Y)],
             tris: vec![[0, 1, 2]],
         };
-        let build = PipelineConfig { frame_build: true, ..Default::default() };
-        let quaternion = PipelineConfig { frame_quaternion: true, ..Default::default() };
-        let harmony = PipelineConfig { frame_transform: true, ..Default::default() };
+        let build = PipelineConfig {
+            frame_build: true,
+            ..Default::default()
+        };
+        let quaternion = PipelineConfig {
+            frame_quaternion: true,
+            ..Default::default()
+        };
+        let harmony = PipelineConfig {
+            frame_transform: true,
+            ..Default::default()
+        };
         for cfg in [&build, &quaternion, &harmony] {
             mirrored_refused(&scene, cfg, 0, &mesh).unwrap();
         }
         mesh.verts[2].b = -DVec3::Y;
         for (cfg, field) in [(&build, "frame_build = true"), (&quaternion, "frame_quaternion = true")] {
             let e = mirrored_refused(&scene, cfg, 3, &mesh).unwrap_err().to_string();
-            assert!(e.contains("objects[3]") && e.contains("vertex 2") && e.contains(field) && e.contains("harmony"), "{e}");
+            assert!(
+                e.contains("objects[3]") && e.contains("vertex 2") && e.contains(field) && e.contains("harmony"),
+                "{e}"
+            );
         }
         // The interpolated frame carries B as it is: nothing to refuse.
         mirrored_refused(&scene, &harmony, 3, &mesh).unwrap();

@@ -118,6 +118,8 @@ pub fn shade_with(
         Some([t, b, n]) => t * bn.x + b * bn.y + n * bn.z,
         None => bn,
     };
+    // The surface normal in L's space: z in bump space, the frame's N in a frame.
+    let surface = frame.map_or(DVec3::Z, |[_, _, n]| n);
     let bn = if renormalise_bump { bn.normalize_or_zero() } else { bn };
     let dif_on = cfg.diffuse && so.diffuse && !bypass;
     let spe_on = cfg.specular && so.specular && !bypass;
@@ -127,7 +129,7 @@ pub fn shade_with(
         let lc = DVec3::from_array(l.colour) * k;
         // Self-shadowing (Cg §8.5.3): nothing from a light below the surface, no highlight
         // where the bump faces away from it.
-        let (lit, faces) = (lv.z > 0.0, bn.dot(lv) > 0.0);
+        let (lit, faces) = (surface.dot(lv) > 0.0, bn.dot(lv) > 0.0);
         if cfg.self_shadow && !lit {
             continue;
         }

@@ -650,6 +650,13 @@ fn dot_normal(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str) -> String {
             frame = "{fb}".into();
         }
         s.unit(cfg, u, "u_frame", &[("b", &b), ("frame", &frame)], &[("v", "bf")], &[]);
+        if cfg.self_shadow {
+            // The self-shadow gate's surface normal (`model::pipeline::surface_normal`): the
+            // unperturbed normal placed in the same frame, its constant products folding away.
+            let nb = cfg.normal_bits;
+            let flat = format!("{{{nb}'d{}, {nb}'d0, {nb}'d0}}", cfg.normal_fmt().max_raw());
+            s.unit(cfg, u, "u_frame_n", &[("b", &flat), ("frame", &frame)], &[("v", "nf")], &[]);
+        }
         b = "{bf}".into();
     }
     if cfg.renormalise_bump {
@@ -952,17 +959,35 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.comb("de", 1, &enable(cfg, true, "in_diffuse_en"));
         dots(s, "l", "fd");
         if cfg.self_shadow {
-            // Light i is above the surface where its L, as its dot product sees it, has z > 0.
+            // Light i is above the surface where its L, as its dot product sees it, has z > 0
+            // in bump space, or makes N·L > 0 with the frame's surface normal.
             let lh = cfg.lh_bits;
             for i in 0..n {
-                // L's z lane alone: the top lh bits of the light's three.
-                let z = if norm_l {
-                    format!("{{nl{i}}}[{}:{}]", 3 * lh - 1, 2 * lh)
+                let l = if norm_l {
+                    format!("{{nl{i}}}")
                 } else {
-                    format!("{{{pre}_l}}[{}:{}]", i * lh3 + 3 * lh - 1, i * lh3 + 2 * lh)
+                    format!("{{{pre}_l}}{}", lane(i, lh3))
                 };
-                s.comb(&format!("lz{i}"), lh, &z);
-                s.comb(&format!("lit{i}"), 1, &above_z(cfg, &format!("{{lz{i}}}")));
+                if cfg.frame_transform {
+                    s.unit(
+                        cfg,
+                        dot,
+                        &format!("u_dot_n{i}"),
+                        &[("b", "{nf}"), ("v", &l)],
+                        &[("f", &format!("ln{i}"))],
+                        &[],
+                    );
+                    s.comb(&format!("lit{i}"), 1, &format!("{{ln{i}}} != 0"));
+                } else {
+                    // L's z lane alone: the top lh bits of the light's three.
+                    let z = if norm_l {
+                        format!("{{nl{i}}}[{}:{}]", 3 * lh - 1, 2 * lh)
+                    } else {
+                        format!("{{{pre}_l}}[{}:{}]", i * lh3 + 3 * lh - 1, i * lh3 + 2 * lh)
+                    };
+                    s.comb(&format!("lz{i}"), lh, &z);
+                    s.comb(&format!("lit{i}"), 1, &above_z(cfg, &format!("{{lz{i}}}")));
+                }
             }
         }
         let parts: Vec<String> = (0..n)
@@ -1113,7 +1138,12 @@ fn serial(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
         s.unit(cfg, dot, "u_dot_l", &[("b", bn), ("v", "{l_sel}")], &[("f", "fd")], &[]);
         if cfg.self_shadow {
             let lh = cfg.lh_bits;
-            s.comb("lit", 1, &above_z(cfg, &format!("{{l_sel}}[{}:{}]", 3 * lh - 1, 2 * lh)));
+            if cfg.frame_transform {
+                s.unit(cfg, dot, "u_dot_n", &[("b", "{nf}"), ("v", "{l_sel}")], &[("f", "ln")], &[]);
+                s.comb("lit", 1, "{ln} != 0");
+            } else {
+                s.comb("lit", 1, &above_z(cfg, &format!("{{l_sel}}[{}:{}]", 3 * lh - 1, 2 * lh)));
+            }
         }
         let de = shadowed(cfg, "{de}", "{lit}", None);
         s.comb("dfac", cfg.factor_frac() + 1, &factor(cfg, "{fd}", cfg.dot_frac_bits, &de));

@@ -58,11 +58,7 @@ impl Checker<'_> {
 /// first values and drops the rest, so `size = [32, 24, 3]` would render 32×24 silently):
 /// the scene as read, serialised again, is walked beside the file's own values.
 fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
-    fn walk(
-        given: &toml::Value,
-        read: &toml::Value,
-        path: &str,
-    ) -> Option<(String, usize, usize)> {
+    fn walk(given: &toml::Value, read: &toml::Value, path: &str) -> Option<(String, usize, usize)> {
         match (given, read) {
             (toml::Value::Table(g), toml::Value::Table(r)) => g.iter().find_map(|(k, gv)| {
                 let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
@@ -72,7 +68,10 @@ fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
                 if g.len() > r.len() {
                     return Some((path.to_string(), g.len(), r.len()));
                 }
-                g.iter().zip(r).enumerate().find_map(|(i, (gv, rv))| walk(gv, rv, &format!("{path}[{i}]")))
+                g.iter()
+                    .zip(r)
+                    .enumerate()
+                    .find_map(|(i, (gv, rv))| walk(gv, rv, &format!("{path}[{i}]")))
             }
             _ => None,
         }
@@ -125,11 +124,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     c.dir("camera.up", cam.up)?;
     let view: Vec<f64> = (0..3).map(|i| cam.target[i] - cam.eye[i]).collect();
     if view.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
-        return Err(c.fail(
-            "camera.eye",
-            "eye and target coincide".into(),
-            "move the eye away from the target",
-        ));
+        return Err(c.fail("camera.eye", "eye and target coincide".into(), "move the eye away from the target"));
     }
     c.num("camera.height", cam.height, 1e-6, 1e6)?;
     c.vec3("camera.background", cam.background, 0.0, 1.0)?;
@@ -150,11 +145,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         }
     }
     if s.objects.is_empty() {
-        return Err(c.fail(
-            "objects",
-            "the scene has no objects".into(),
-            "add an [[objects]] table",
-        ));
+        return Err(c.fail("objects", "the scene has no objects".into(), "add an [[objects]] table"));
     }
     for (i, o) in s.objects.iter().enumerate() {
         let p = format!("objects[{i}]");
@@ -185,7 +176,11 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         let least = super::mesh::min_segments(&o.shape);
         for (k, v) in o.segments.iter().enumerate() {
             if *v < least[k] || *v > MAX_SEGMENTS {
-                let why = if least[k] > 1 { ": fewer tessellate the shape into slivers of no area" } else { "" };
+                let why = if least[k] > 1 {
+                    ": fewer tessellate the shape into slivers of no area"
+                } else {
+                    ""
+                };
                 return Err(c.fail(
                     &format!("{p}.segments[{k}]"),
                     format!("{v} is out of range for a {}{why}", o.shape.kind()),
@@ -235,11 +230,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         match &b.source {
             H::Bricks { rows, cols, mortar } => {
                 if *rows == 0 || *cols == 0 {
-                    return Err(c.fail(
-                        &format!("{p}.bump.source"),
-                        "zero rows or columns".into(),
-                        "use 1 or more",
-                    ));
+                    return Err(c.fail(&format!("{p}.bump.source"), "zero rows or columns".into(), "use 1 or more"));
                 }
                 c.num(&format!("{p}.bump.source.mortar"), *mortar, 1e-3, 0.45)?;
             }

@@ -87,8 +87,9 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             cfg.power_unit = PowerUnitKind::Squaring;
             cfg.power_rom = false;
         }
-        // Drawn last, where valid: a frame with per-fragment state, without self-shadowing.
-        if cfg.bump_state == BumpStateAt::Fragment && !cfg.self_shadow && pick(rng, &[false, true]) {
+        // Drawn last, where valid: a frame with per-fragment state (self-shadowing then gates
+        // on N·L with the frame's normal).
+        if cfg.bump_state == BumpStateAt::Fragment && pick(rng, &[false, true]) {
             cfg.frame_transform = true;
             // Drawn after it: the frame interpolated whole (Harmony), built per fragment
             // (TexRam) or formed from a quaternion (VISA+).
@@ -159,7 +160,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
         ),
         ("widest dot product and table", widest_dot.clone()),
         (
-            "widest segmented unit, serial, a frame from a quaternion per fragment",
+            "widest segmented unit, serial, a frame from a quaternion per fragment, self-shadowing",
             PipelineConfig {
                 power_unit: PowerUnitKind::Segmented,
                 power_segments: hi("power_segments"),
@@ -167,6 +168,7 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
                 bump_state: BumpStateAt::Fragment,
                 frame_transform: true,
                 frame_quaternion: true,
+                self_shadow: true,
                 ..widest_dot.clone()
             },
         ),
