@@ -15,7 +15,7 @@ enum Step<'a> {
 fn steps(path: &str) -> Vec<Step<'_>> {
     let mut out = Vec::new();
     for part in path.split('.') {
-        let (key, rest) = part.split_once('[').map_or((part, ""), |(k, r)| (k, r));
+        let (key, rest) = part.split_once('[').unwrap_or((part, ""));
         if !key.is_empty() {
             out.push(Step::Key(key));
         }
@@ -66,9 +66,10 @@ impl<'a> Node<'a> {
     }
 }
 
-/// Line and column (1-based) where the field `path` is written in `text`; when the field itself is absent
-/// (a default), the line of the nearest enclosing element written there (an `[[objects]]`
-/// header), and `None` when not even the first step is written or `text` does not parse.
+/// Line and column (1-based) where the field `path` is written in `text`; when the field
+/// itself is absent (a default), those of the nearest enclosing element written there (an
+/// `[[objects]]` header), and `None` when not even the first step is written or `text` does
+/// not parse.
 pub fn place(text: &str, path: &str) -> Option<(usize, usize)> {
     let doc = ImDocument::parse(text).ok()?;
     let mut node = Node::Table(doc.as_table());
