@@ -153,10 +153,12 @@ pub struct PipelineConfig {
     /// Bits per L or H component word (paper: 16).
     pub lh_bits: u32,
     /// Fraction bits of the clamped dot products fd and of the power-table index.
+    #[serde(alias = "dot_bits")]
     pub dot_frac_bits: u32,
     /// Power-table entries (a power of two; paper: 256, the size of a colour LUT).
     pub power_entries: u32,
     /// Fraction bits of a power-table entry (u1.P, so x^n = 1 is exact).
+    #[serde(alias = "power_bits")]
     pub power_frac_bits: u32,
     pub power_index: PowerIndex,
     pub power_unit: PowerUnitKind,
@@ -174,6 +176,7 @@ pub struct PipelineConfig {
     #[serde(skip_serializing_if = "is_zero")]
     pub colour_guard_bits: u32,
     /// Fraction bits of the per-light modulation k_i (u1.K).
+    #[serde(alias = "k_bits")]
     pub k_frac_bits: u32,
     /// Light slots in hardware (1–8; paper: "usually two to four").
     pub lights: u32,
@@ -542,25 +545,32 @@ pub const RENAMED_FIELDS: &[(&str, &str)] = &[
     ("k_bits", "k_frac_bits"),
 ];
 
-/// `text` with every renamed key (`old = ...` at the start of a line) under its new name,
-/// line for line, so errors still point at the user's lines; each one is warned about.
-fn upgrade_names(file: &str, text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        let t = line.trim_start();
-        let renamed = RENAMED_FIELDS.iter().find_map(|&(old, new)| {
-            let rest = t.strip_prefix(old)?;
-            rest.trim_start().starts_with('=').then(|| {
-                eprintln!(
-                    "warning: {file}:{}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)",
-                    i + 1
-                );
-                line.replacen(old, new, 1)
-            })
-        });
-        out += renamed.as_deref().unwrap_or(line);
+/// Warn about every renamed key `text` holds under its old name, however it is written
+/// (quoted, bare), at its own line; refuse one written under both names. The parser reads
+/// the old names as the new ones (each field's `serde(alias)`, which
+/// `old_field_names_read_as_the_new_ones` ties to this list).
+fn check_renamed(file: &str, text: &str) -> Result<()> {
+    // Text that does not parse is reported by the parse that follows.
+    let Ok(table) = text.parse::<toml::Table>() else {
+        return Ok(());
+    };
+    let at = |key: &str| crate::toml_line::place(text, key).map_or(String::new(), |(l, c)| format!(":{l}:{c}"));
+    for &(old, new) in RENAMED_FIELDS {
+        if !table.contains_key(old) {
+            continue;
+        }
+        if table.contains_key(new) {
+            return Err(Error::Other(format!(
+                "{file}{}: `{old}` and `{new}` are one field (`{old}` is its old name), given twice\n  fix: keep `{new}` only",
+                at(old)
+            )));
+        }
+        eprintln!(
+            "warning: {file}{}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)",
+            at(old)
+        );
     }
-    out
+    Ok(())
 }
 
 impl PipelineConfig {
@@ -591,7 +601,7 @@ impl PipelineConfig {
                 crate::limits::MAX_INPUT_BYTES
             )));
         }
-        let text = &upgrade_names(file, text);
+        check_renamed(file, text)?;
         toml::from_str(text).map_err(|e| {
             toml_error(
                 file,
@@ -1174,6 +1184,12 @@ mod tests {
         let new = PipelineConfig::from_toml("n.toml", "lights = 2\ndot_frac_bits = 10\npower_frac_bits = 9\nk_frac_bits = 7\n").unwrap();
         assert_eq!(old, new);
         assert_eq!((new.dot_frac_bits, new.power_frac_bits, new.k_frac_bits), (10, 9, 7));
+        // However the key is written: quoted, or the list's every entry as a quoted key.
+        let quoted: String = RENAMED_FIELDS.iter().zip([10, 9, 7]).map(|((o, _), v)| format!("\"{o}\" = {v}\n")).collect();
+        assert_eq!(PipelineConfig::from_toml("q.toml", &format!("lights = 2\n{quoted}")).unwrap(), new);
+        // Both names at once is one field twice.
+        let e = PipelineConfig::from_toml("b.toml", "dot_bits = 10\ndot_frac_bits = 9\n").unwrap_err().to_string();
+        assert!(e.contains("given twice") && e.starts_with("b.toml:1:1:"), "{e}");
         // Lines are kept, so an error after a renamed key still names its own line.
         let e = PipelineConfig::from_toml("o.toml", "dot_bits = 10\nlights = \"x\"\n")
             .unwrap_err()

@@ -328,6 +328,12 @@ fn cases() -> Vec<Case> {
         ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
         (
+            "a renamed field under both names",
+            cfg("lights = 1\n\"dot_bits\" = 9\ndot_frac_bits = 8\n"),
+            render_cfg(),
+            vec!["c.toml:2:1", "given twice", "keep `dot_frac_bits`"],
+        ),
+        (
             "a key with no value at the end of the file",
             cfg("lh_bits = 16\nshininess = "),
             render_cfg(),
