@@ -699,7 +699,19 @@ fn cases() -> Vec<Case> {
             "out-of-range value in a scene's [pipeline]",
             scene(r("[camera]", "[pipeline]\nshininess = 8\ndot_bits = 99\n\n[camera]")),
             render(&[]),
-            vec![after_camera(2), "pipeline.dot_frac_bits", "2..=16"],
+            vec![after_camera(2), "pipeline.dot_bits", "2..=16"],
+        ),
+        (
+            "a renamed field under both names in a scene's [pipeline]",
+            scene(r("[camera]", "[pipeline]\ndot_frac_bits = 8\n\"dot_bits\" = 6\n\n[camera]")),
+            render(&[]),
+            vec![after_camera(2), "given twice", "keep `dot_frac_bits`"],
+        ),
+        (
+            "a dotted [pipeline] key out of range",
+            scene(r("[camera]", "pipeline.lights = 9\n\n[camera]")),
+            render(&[]),
+            vec![after_camera(0), "pipeline.lights", "1..=8"],
         ),
         (
             "[pipeline] lights below the scene's bump lights",

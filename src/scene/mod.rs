@@ -50,17 +50,13 @@ pub struct Scene {
     /// Where the scene came from, for error messages.
     #[serde(skip)]
     pub file: String,
-    /// Line of each `[pipeline]` key (and of the table, under ""), for error messages.
+    /// `LINE:COL` of each `[pipeline]` key (and of the table, under ""), for error messages;
+    /// a renamed field's under its new name.
     #[serde(skip)]
-    pub pipeline_lines: std::collections::BTreeMap<String, usize>,
-}
-
-/// The `[pipeline]` table with spans: its overrides are checked after parsing, so their
-/// errors must be mapped back to the scene file's own lines.
-#[derive(Deserialize)]
-struct PipelineSpans {
-    #[serde(default)]
-    pipeline: Option<toml::Spanned<std::collections::BTreeMap<String, toml::Spanned<toml::Value>>>>,
+    pub pipeline_lines: std::collections::BTreeMap<String, String>,
+    /// Renamed fields written under their old names: new name to old.
+    #[serde(skip)]
+    pub pipeline_old_names: std::collections::BTreeMap<String, String>,
 }
 
 fn default_size() -> [u32; 2] {
@@ -257,24 +253,37 @@ impl Scene {
             toml::from_str(text).map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
         s.base = base.to_path_buf();
         s.file = file.to_string();
-        if let Ok(PipelineSpans { pipeline: Some(t) }) = toml::from_str(text) {
-            let line = |at: usize| crate::error::line_col(text, at).0;
-            s.pipeline_lines.insert(String::new(), line(t.span().start));
-            for (k, v) in t.get_ref() {
-                s.pipeline_lines.insert(k.clone(), line(v.span().start));
+        // Each override's place, however it is written (a `[pipeline]` table, dotted keys,
+        // an inline table), from the parser's own spans.
+        let place = |path: &str| crate::toml_line::place(text, path).map(|(l, c)| format!("{l}:{c}"));
+        if let Some(over) = s.pipeline.as_ref() {
+            if let Some(at) = place("pipeline") {
+                s.pipeline_lines.insert(String::new(), at);
+            }
+            for k in over.keys() {
+                if let Some(at) = place(&format!("pipeline.{k}")) {
+                    s.pipeline_lines.insert(k.clone(), at);
+                }
             }
         }
-        // A renamed configuration field under its old name: read as the new one, with a warning.
+        // A renamed configuration field under its old name: read as the new one, with a
+        // warning; under both names, refused.
         if let Some(over) = s.pipeline.as_mut() {
             for &(old, new) in crate::config::RENAMED_FIELDS {
-                if let Some(v) = over.remove(old) {
-                    let at = s.pipeline_lines.remove(old).unwrap_or(0);
-                    eprintln!(
-                        "warning: {file}:{at}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)"
-                    );
-                    over.insert(new.to_string(), v);
-                    s.pipeline_lines.insert(new.to_string(), at);
+                let Some(v) = over.remove(old) else { continue };
+                let pos = s.pipeline_lines.remove(old);
+                let at = pos.as_ref().map_or(file.to_string(), |p| format!("{file}:{p}"));
+                if over.contains_key(new) {
+                    return Err(Error::Other(format!(
+                        "{at}: pipeline.{old} and pipeline.{new} are one field (`{old}` is its old name), given twice\n  fix: keep `{new}` only"
+                    )));
                 }
+                eprintln!("warning: {at}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)");
+                over.insert(new.to_string(), v);
+                if let Some(p) = pos {
+                    s.pipeline_lines.insert(new.to_string(), p);
+                }
+                s.pipeline_old_names.insert(new.to_string(), old.to_string());
             }
         }
         validate::validate(&s, text)?;
@@ -333,10 +342,18 @@ impl Scene {
         Ok(cfg)
     }
 
-    /// `file:line` of `key` in `[pipeline]` (of the table when the key is not there).
+    /// `file:LINE:COL` of `key` in `[pipeline]` (of the table when the key is not there).
     fn pipeline_at(&self, key: &str) -> String {
         let line = self.pipeline_lines.get(key).or_else(|| self.pipeline_lines.get(""));
         line.map_or(self.file.clone(), |l| format!("{}:{l}", self.file))
+    }
+
+    /// `pipeline.FIELD` as the scene writes it (a renamed field under its old name), and
+    /// whether the scene writes it at all.
+    fn pipeline_field(&self, field: &str) -> (String, bool) {
+        let written = self.pipeline.as_ref().is_some_and(|p| p.contains_key(field));
+        let name = self.pipeline_old_names.get(field).map_or(field, String::as_str);
+        (format!("pipeline.{name}"), written)
     }
 
     /// An override's error, which names a line of the merged table, moved to the scene's line.
@@ -364,12 +381,21 @@ impl Scene {
                     fix,
                 }
             }
-            Error::Field { field, msg, fix, .. } => Error::Field {
-                file: self.pipeline_at(&field),
-                field: format!("pipeline.{field}"),
-                msg,
-                fix,
-            },
+            Error::Field { field, msg, fix, .. } => {
+                let (name, written) = self.pipeline_field(&field);
+                Error::Field {
+                    file: self.pipeline_at(&field),
+                    field: name,
+                    // A field [pipeline] does not write has the value the scene derives; an
+                    // override beside it is what conflicts.
+                    msg: if written {
+                        msg
+                    } else {
+                        format!("{msg} (`{field}` is not written in [pipeline]: its value is the one the scene derives, `gbump config --scene` prints it, and an override in [pipeline] conflicts with it)")
+                    },
+                    fix,
+                }
+            }
             e => e,
         }
     }
