@@ -237,10 +237,16 @@ fn cases() -> Vec<Case> {
             "object smaller than a pixel",
             scene(r("size = [4.0, 2.0]", "size = [4e-6, 2e-6]")),
             render(&[]),
-            vec!["s.toml", "`objects`", "no object covers a pixel centre at 32×16", "fix:", "camera.target"],
+            vec!["s.toml", "`objects`", "no object covers a pixel centre in front of camera.eye at 32×16", "fix:", "camera.target"],
         ),
         (
-            "object behind the camera's view as a vector source",
+            "every object behind the eye (the camera looks away from them)",
+            scene(r("target = [0.0, 0.0, 0.0]", "target = [0.0, 0.0, 12.0]")),
+            render(&[]),
+            vec!["s.toml", "no object covers a pixel centre in front of camera.eye", "move camera.eye back"],
+        ),
+        (
+            "object beside the camera's view as a vector source",
             vec![("far.toml", r("target = [0.0, 0.0, 0.0]", "target = [50.0, 0.0, 0.0]")(WALL).into())],
             vec!["vectors", "--source", "scene:far.toml", "--target", "top", "--out", "out"],
             vec!["far.toml", "no object covers a pixel centre", "fix:"],

@@ -1,6 +1,8 @@
 //! The z-buffered triangle rasteriser. Pixel centres are sampled; a pixel belongs to a
 //! triangle when all three edge functions are ≥ 0 (either winding: closed and open shapes
 //! alike are drawn without culling); nearer depth wins, ties keep the first triangle drawn.
+//! The eye is the near plane: a pixel whose point lies behind it (depth below 0) is not
+//! drawn, so an object behind the camera neither shows nor hides what is in front.
 //! Zero-area triangles cover nothing.
 
 use super::Prepared;
@@ -55,7 +57,7 @@ pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
                     }
                     let z = wa * a.1 + wb * b.1 + wc * c.1;
                     let i = (y * w + x) as usize;
-                    if z < depth[i] {
+                    if z >= 0.0 && z < depth[i] {
                         depth[i] = z;
                         hits[i] = Some(Hit {
                             obj: oi as u32,
@@ -71,9 +73,36 @@ pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
         return Err(Error::field(
             &p.scene.file,
             "objects",
-            format!("no object covers a pixel centre at {w}×{h}: the image is background only, so no fragment reaches the pipeline"),
-            "point camera.target at the objects, lower camera.height (the view's height in world units), or make the objects larger than a pixel",
+            format!("no object covers a pixel centre in front of camera.eye at {w}×{h}: the image is background only, so no fragment reaches the pipeline"),
+            "point camera.target at the objects, move camera.eye back so they lie in front of it (the eye is the near plane), lower camera.height (the view's height in world units), or make the objects larger than a pixel",
         ));
     }
     Ok(GBuffer { w, h, hits })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// The hits of `text` (a scene) at 32×16.
+    fn hits(text: &str) -> Vec<Option<(u32, u32)>> {
+        let s = Scene::from_toml("t.toml", text, std::path::Path::new("scenes")).unwrap();
+        let cfg = s.derive_config().unwrap();
+        let p = Prepared::new(&s, &cfg, 32, 16).unwrap();
+        rasterise(&p).unwrap().hits.iter().map(|h| h.map(|h| (h.obj, h.tri))).collect()
+    }
+
+    #[test]
+    fn an_object_behind_the_eye_neither_shows_nor_hides() {
+        let wall = crate::scene::builtin::get("cg_wall_front").unwrap();
+        // A sphere behind the eye (z = 6), over the wall's centre.
+        let behind = format!("{wall}\n[[objects]]\nshape = {{ kind = \"sphere\", radius = 1.5 }}\ntranslate = [0.0, 0.0, 9.0]\nsegments = [16, 8]\nshininess = 8\nbump = {{ source = {{ kind = \"bricks\", rows = 8, cols = 4, mortar = 0.08 }}, size = 64, strength = 1.0 }}\n");
+        let (alone, with) = (hits(wall), hits(&behind));
+        assert!(with.iter().flatten().all(|&(o, _)| o == 0), "the sphere behind the eye was drawn");
+        assert_eq!(alone, with);
+        // In front of the eye the same sphere hides the wall's centre.
+        let front = behind.replace("translate = [0.0, 0.0, 9.0]", "translate = [0.0, 0.0, 3.0]");
+        assert!(hits(&front).iter().flatten().any(|&(o, _)| o == 1));
+    }
 }

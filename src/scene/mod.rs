@@ -66,6 +66,8 @@ fn default_size() -> [u32; 2] {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
+    /// Where the viewer stands: the near plane, so only what lies in front of it (towards
+    /// `target`) is drawn.
     pub eye: [f64; 3],
     pub target: [f64; 3],
     #[serde(default = "default_up")]
