@@ -136,6 +136,9 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             }
         );
     }
+    if cfg.self_shadow {
+        s += &self_shadowing(cfg);
+    }
     if cfg.triangle_frame {
         s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z)";
         s += if cfg.renormalise_bump {
@@ -155,6 +158,25 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     }
     s += &vector_layout(cfg);
     s
+}
+
+/// How the top gates each light under `self_shadow`, in the space L is given in.
+fn self_shadowing(cfg: &PipelineConfig) -> String {
+    let l = if crate::model::normalise::renormalised(cfg).0 {
+        "L_i as its dot product sees it (after its `normalise` unit)"
+    } else {
+        "L_i as sent"
+    };
+    let dots = match cfg.light_mode {
+        LightMode::Parallel => "a `dot_clamp` instance per light (`u_dot_n<i>`, i = 0 to lights − 1)",
+        LightMode::Serial => "one `dot_clamp` instance the light slots share (`u_dot_n`)",
+    };
+    let test = if cfg.frame_transform {
+        format!("N·L_i > 0, with N the unperturbed normal (0, 0, 1) placed in the fragment's frame by a second `frame_transform` instance (`u_frame_n`: the frame's N as the frame source gives it, rounded to the normal's format) and the product formed by {dots} from {l}, so a product that rounds to 0 in the dot format counts as below")
+    } else {
+        format!("the z lane of {l} is above 0 (bump space: z is the surface normal)")
+    };
+    format!("**Self-shadowing** (`self_shadow`, Cg Tutorial §8.5.3). Light i is above the surface where {test}. A light below it gives the fragment neither a diffuse nor a specular term; a light above it gives no specular term where its diffuse product B·L_i clamps to 0 (the bump faces away from it). No port is added: the test reads what the fragment already carries.\n\n")
 }
 
 /// The vector record layout and one record decoded field by field.
@@ -252,4 +274,44 @@ fn renormalising(cfg: &PipelineConfig) -> String {
         );
     }
     s + "The vectors' expected colours include these units' roundings.\n\n"
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{BumpStateAt, Interpolate};
+
+    /// Every self-shadowing top's notes say how it gates, and name instances its Verilog has.
+    #[test]
+    fn self_shadowing_is_described_with_the_tops_own_instances() {
+        let frame = |light_mode| PipelineConfig {
+            self_shadow: true,
+            bump_state: BumpStateAt::Fragment,
+            frame_transform: true,
+            light_mode,
+            lights: 2,
+            ..Default::default()
+        };
+        let renorm = PipelineConfig {
+            interpolate: Interpolate::Hl,
+            renormalise: true,
+            ..frame(LightMode::Parallel)
+        };
+        let plain = PipelineConfig {
+            self_shadow: true,
+            ..Default::default()
+        };
+        for cfg in [frame(LightMode::Parallel), frame(LightMode::Serial), renorm, plain] {
+            cfg.validate("t").unwrap();
+            let doc = markdown(&cfg);
+            let para = doc.split("\n\n").find(|p| p.starts_with("**Self-shadowing**")).expect("a self-shadowing paragraph");
+            let top = crate::rtlgen::top::top(&cfg);
+            for name in para.split('`').skip(1).step_by(2).filter(|w| w.starts_with("u_")) {
+                let name = name.replace("<i>", "0");
+                assert!(top.contains(&format!(" {name} ")) || top.contains(&format!(" {name}(")), "{name} is not in the top of {}", cfg.hash());
+            }
+            assert_eq!(para.contains("N·L_i"), cfg.frame_transform);
+        }
+        assert!(!markdown(&PipelineConfig::default()).contains("**Self-shadowing**"));
+    }
 }
