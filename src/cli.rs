@@ -76,9 +76,9 @@ pub enum Cmd {
         /// Shininess of the power table (default: the config's).
         #[arg(long)]
         shininess: Option<u32>,
-        /// Side of each normalisation cube-map face.
-        #[arg(long, default_value_t = 32)]
-        cube_size: usize,
+        /// Side of each normalisation cube-map face (default: the config's cube_map_face, else 32).
+        #[arg(long)]
+        cube_size: Option<usize>,
     },
     /// Dump stimulus/response vectors from the golden model (text, binary and a manifest).
     Vectors {

@@ -29,7 +29,7 @@ fn checked_in_rtl_and_roms_are_current() {
         .map(|(n, t)| (n, t.into_bytes()))
         .collect();
     let mut stale = compare(&root().join("rtl"), &rtl);
-    let roms = gbump::rtlgen::rom_files::rom_files(&cfg, None, "", Some(16), 32, Path::new("rtl/rom")).unwrap();
+    let roms = gbump::rtlgen::rom_files::rom_files(&cfg, None, "", Some(16), Some(32), Path::new("rtl/rom")).unwrap();
     stale.extend(compare(
         &root().join("rtl/rom"),
         &roms.into_iter().map(|(n, t)| (n, t.into_bytes())).collect::<Vec<_>>(),

@@ -128,5 +128,45 @@ fn rom_files(
     cube: usize,
     out: &std::path::Path,
 ) -> gbump::Result<Vec<(String, String)>> {
-    gbump::rtlgen::rom_files::rom_files(cfg, pick.scene.as_deref(), &pick.args(), n, cube, out)
+    gbump::rtlgen::rom_files::rom_files(cfg, pick.scene.as_deref(), &pick.args(), n, Some(cube), out)
+}
+
+/// `gbump rom` writes what the configuration's hardware reads and refuses what it cannot:
+/// no power table for a squaring unit, the configuration's own shininess for a power ROM or
+/// squaring unit, its own cube map size.
+#[test]
+fn rom_files_follow_the_configurations_memories() {
+    use gbump::config::PowerUnitKind;
+    let pick = ConfigPick { config: None, scene: None };
+    let rom = PipelineConfig {
+        power_rom: true,
+        shininess: 24,
+        ..Default::default()
+    };
+    let squaring = PipelineConfig {
+        power_unit: PowerUnitKind::Squaring,
+        ..Default::default()
+    };
+    for cfg in [&rom, &squaring] {
+        let e = rom_files(cfg, &pick, Some(cfg.shininess + 1), 32, Path::new("rom")).unwrap_err().to_string();
+        assert!(e.contains(&format!("--shininess {}", cfg.shininess + 1)) && e.contains("fix:"), "{e}");
+    }
+    let names = |cfg: &PipelineConfig, cube: Option<usize>| -> Vec<String> {
+        gbump::rtlgen::rom_files::rom_files(cfg, None, "", None, cube, Path::new("rom")).unwrap().into_iter().map(|f| f.0).collect()
+    };
+    assert!(names(&rom, None).iter().any(|n| n.starts_with("power_table_n24_")));
+    assert!(!names(&squaring, None).iter().any(|n| n.starts_with("power_table")), "a squaring unit has no table");
+    let cube = PipelineConfig {
+        bump_state: gbump::config::BumpStateAt::Fragment,
+        light_mode: gbump::config::LightMode::Parallel,
+        interpolate: gbump::config::Interpolate::Hl,
+        renormalise: true,
+        cube_map_face: 16,
+        ..Default::default()
+    };
+    cube.validate("t").unwrap();
+    assert!(names(&cube, None).iter().any(|n| n.starts_with("cube_map_16x16x6")), "the config's own size by default");
+    assert!(names(&PipelineConfig::default(), None).iter().any(|n| n.starts_with("cube_map_32x32x6")));
+    let e = gbump::rtlgen::rom_files::rom_files(&cube, None, "", None, Some(32), Path::new("rom")).unwrap_err().to_string();
+    assert!(e.contains("cube_map_face = 16") && e.contains("fix:"), "{e}");
 }

@@ -6,21 +6,45 @@ use crate::error::Result;
 use crate::scene::Scene;
 use std::path::Path;
 
-/// Every ROM of `cfg` in every format: the power table for `shininess` (default the config's),
-/// the bump palette (of `scene`'s maps, or the default spiral) and the normalisation cube map.
+/// The cube map's side when neither the configuration nor `--cube-size` gives one (the Cg
+/// Tutorial's size).
+pub const DEFAULT_CUBE: usize = 32;
+
+/// The ROMs of `cfg` in every format: the power table for `shininess` (default the config's;
+/// none for a squaring power unit, which has no memory), the bump palette (of `scene`'s maps,
+/// or the default spiral) and the normalisation cube map of `cube` texels a face edge
+/// (default the config's `cube_map_face`, else [`DEFAULT_CUBE`]). A shininess or cube size the
+/// configuration's hardware cannot take (a power ROM or squaring unit built for another
+/// shininess, another cube map) is refused, as every consumer of the files would refuse it.
 /// `config_args` and `out` go into the regeneration command in each header.
 pub fn rom_files(
     cfg: &PipelineConfig,
     scene: Option<&str>,
     config_args: &str,
     shininess: Option<u32>,
-    cube: usize,
+    cube: Option<usize>,
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
     use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, rom_header, write, RomFormat, DEFAULT_PALETTE};
     let n = shininess.unwrap_or(cfg.shininess);
     check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
+    if let Some(fixed) = cfg.fixed_shininess().filter(|_| n != cfg.shininess) {
+        return Err(crate::error::Error::Other(format!(
+            "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
+            fixed.what, fixed.release
+        )));
+    }
+    let cube = match (cube, cfg.cube_map_face as usize) {
+        (Some(c), face) if face != 0 && c != face => {
+            return Err(crate::error::Error::Other(format!(
+                "--cube-size {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop --cube-size, or use a configuration with cube_map_face = {c}"
+            )))
+        }
+        (Some(c), _) => c,
+        (None, 0) => DEFAULT_CUBE,
+        (None, face) => face,
+    };
     check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
     let (palette, source) = match scene {
         Some(s) => {
@@ -44,15 +68,19 @@ pub fn rom_files(
     let mut files = Vec::new();
     // A name carries what the contents depend on: the exponent, the palette's source, the
     // cube size; the config hash stands for the widths.
+    let table = cfg.power_unit != crate::config::PowerUnitKind::Squaring;
     for (stem, rom, of) in [
-        (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg)),
-        (
+        table.then(|| (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg))),
+        Some((
             format!("bump_palette_{source}_{hash}"),
             palette_rom(cfg, &palette, &source),
             Some(cfg),
-        ),
-        (format!("cube_map_{cube}x{cube}x6_rgb8"), cube_map_rom(cube), None),
-    ] {
+        )),
+        Some((format!("cube_map_{cube}x{cube}x6_rgb8"), cube_map_rom(cube), None)),
+    ]
+    .into_iter()
+    .flatten()
+    {
         let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {
             files.push((format!("{stem}.{}", f.ext()), write(&rom, f, &hl)));
