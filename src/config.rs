@@ -620,7 +620,12 @@ impl PipelineConfig {
             Error::Field { file, field, msg, fix } => {
                 // A field read under its old name is written under that name.
                 let old = RENAMED_FIELDS.iter().find(|(_, new)| *new == field).map(|(old, _)| *old);
-                let place = crate::toml_line::place(&text, &field).or_else(|| crate::toml_line::place(&text, old?));
+                let (place, field) = match (crate::toml_line::place(&text, &field), old) {
+                    (None, Some(old)) if crate::toml_line::place(&text, old).is_some() => {
+                        (crate::toml_line::place(&text, old), old.to_string())
+                    }
+                    (place, _) => (place, field),
+                };
                 Error::Field {
                     file: place.map_or(file.clone(), |(l, c)| format!("{file}:{l}:{c}")),
                     field,

@@ -334,6 +334,12 @@ fn cases() -> Vec<Case> {
         ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
         (
+            "a renamed field out of range, under its old name",
+            cfg("lights = 1\ndot_bits = 99\n"),
+            render_cfg(),
+            vec!["c.toml:2:1", "field `dot_bits`", "2..=16"],
+        ),
+        (
             "a renamed field under both names",
             cfg("lights = 1\n\"dot_bits\" = 9\ndot_frac_bits = 8\n"),
             render_cfg(),
@@ -515,6 +521,12 @@ fn cases() -> Vec<Case> {
             vec![("m.json", "{ not json".into())],
             vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "out"],
             vec!["m.json", "manifest"],
+        ),
+        (
+            "a set's .hex data file given as its manifest",
+            vec![("set.hex", "0123456789abcdef\n".into())],
+            vec!["regress", "--sim", "icarus", "--vectors", "set.hex", "--work", "out"],
+            vec!["set.hex:1:", "give the set's manifest", "set.json (the .hex file"],
         ),
         (
             "fuzz for -1 minutes",

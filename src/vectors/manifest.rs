@@ -242,12 +242,24 @@ pub fn read_fields(manifest: &Path) -> Result<Manifest> {
         "a gbump vector manifest",
         "give the set's .json manifest (`gbump vectors` writes it beside the .hex and .bin files)",
     )?;
-    let m: Manifest = serde_json::from_str(&text).map_err(|e| Error::Input {
-        file: manifest.display().to_string(),
-        line: e.line(),
-        col: e.column(),
-        msg: format!("not a gbump vector manifest: {e}"),
-        fix: "regenerate the set with `gbump vectors`".into(),
+    let m: Manifest = serde_json::from_str(&text).map_err(|e| {
+        // A data file of a set given in place of its manifest: name the manifest beside it.
+        let data = manifest.extension().and_then(|x| x.to_str()).filter(|x| ["hex", "bin"].contains(x));
+        let fix = match data {
+            Some(x) => format!(
+                "give the set's manifest, {} (the .{x} file is one of the data files it lists)",
+                manifest.with_extension("json").display()
+            ),
+            None => "give a set's .json manifest as `gbump vectors` writes it, or regenerate the set with `gbump vectors`".into(),
+        };
+        Error::Input {
+            file: manifest.display().to_string(),
+            line: e.line(),
+            // serde_json counts columns from 1, and says 0 before a line's first character.
+            col: e.column().max(1),
+            msg: format!("not a gbump vector manifest: {e}"),
+            fix,
+        }
     })?;
     check_fields(manifest, &m)?;
     // A manifest names files beside itself, never elsewhere.
