@@ -33,8 +33,8 @@ package gbump_dpi_pkg;
     // The configuration as canonical TOML (the input of the hash): every field, except that the
     // fields added after the first release (interpolate, colour_guard_bits, white_lights,
     // power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face, self_shadow,
-    // frame_transform, frame_build, triangle_frame, frame_quaternion) are left out at their
-    // defaults ("none", 0 or false), so hashes made before they existed stay.
+    // frame_transform, frame_build, triangle_frame, frame_quaternion, pixel_lh) are left out at
+    // their defaults ("none", 0 or false), so hashes made before they existed stay.
     import "DPI-C" function string gbump_config_toml(input chandle h);
     // The generated top module's name (`gbump_pipeline_<hash8>`).
     import "DPI-C" function string gbump_module_name(input chandle h);

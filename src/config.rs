@@ -296,6 +296,16 @@ pub struct PipelineConfig {
     /// when false, so older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub frame_quaternion: bool,
+    /// L and H formed at the pixel (Blinn, paper §2, lit per pixel): the rasteriser sends on
+    /// each light's L lanes its vector to the light unnormalised (a directional light's
+    /// direction), scaled per triangle so the longest is unit, which interpolates exactly; and
+    /// on its H lanes the viewer direction V. The `normalise` unit turns L into the pixel's
+    /// unit L, and H = normalise((L + V)/2) is a second `normalise` in series fed the halved
+    /// sum (the sum rounded down one bit). Needs `frame_transform` (V is constant only in eye
+    /// space), `interpolate = "hl"` and `renormalise`. Left out of the TOML when false, so
+    /// older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_false")]
+    pub pixel_lh: bool,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -329,6 +339,9 @@ pub struct PerFragment {
     /// Whether the frame comes from an interpolated quaternion (`frame_quaternion`, VISA+
     /// with quaternions).
     pub frame_quaternion: bool,
+    /// Whether L is formed at the pixel from the interpolated vector to the light and H from
+    /// it and the viewer direction (`pixel_lh`, Blinn's per-pixel lighting).
+    pub pixel_lh: bool,
 }
 
 impl PerFragment {
@@ -346,6 +359,7 @@ impl PerFragment {
         frame_build: false,
         triangle_frame: false,
         frame_quaternion: false,
+        pixel_lh: false,
     };
 }
 
@@ -383,6 +397,9 @@ impl std::fmt::Display for PerFragment {
         if self.frame_quaternion {
             write!(f, ", frame_quaternion = true")?;
         }
+        if self.pixel_lh {
+            write!(f, ", pixel_lh = true")?;
+        }
         Ok(())
     }
 }
@@ -402,6 +419,7 @@ impl PipelineConfig {
             frame_build: self.frame_build,
             triangle_frame: self.triangle_frame,
             frame_quaternion: self.frame_quaternion,
+            pixel_lh: self.pixel_lh,
         }
     }
 }
@@ -447,6 +465,7 @@ impl Default for PipelineConfig {
             frame_build: false,
             triangle_frame: false,
             frame_quaternion: false,
+            pixel_lh: false,
         }
     }
 }
@@ -890,6 +909,22 @@ impl PipelineConfig {
                 format!("keep one of {} = true and set the other(s) false", sources.join(", ")),
             ));
         }
+        if self.pixel_lh && !self.frame_transform {
+            return Err(Error::field(
+                file,
+                "pixel_lh",
+                "pixel_lh = true sends the viewer direction V on the H lanes, which is one constant vector only in eye space, where a frame_transform unit places the bump normal",
+                "set frame_transform = true (and bump_state = \"fragment\"), or drop pixel_lh",
+            ));
+        }
+        if self.pixel_lh && !(self.renormalise && self.interpolate == Interpolate::Hl) {
+            return Err(Error::field(
+                file,
+                "pixel_lh",
+                "pixel_lh = true forms L and H at the pixel with normalise units from the interpolated vector to the light, which needs interpolate = \"hl\" and renormalise = true",
+                "set interpolate = \"hl\" and renormalise = true (with light_mode = \"parallel\"), or drop pixel_lh",
+            ));
+        }
         if self.power_rom && self.power_unit == PowerUnitKind::Squaring {
             return Err(Error::field(
                 file,
@@ -1190,10 +1225,16 @@ mod tests {
         assert_eq!(old, new);
         assert_eq!((new.dot_frac_bits, new.power_frac_bits, new.k_frac_bits), (10, 9, 7));
         // However the key is written: quoted, or the list's every entry as a quoted key.
-        let quoted: String = RENAMED_FIELDS.iter().zip([10, 9, 7]).map(|((o, _), v)| format!("\"{o}\" = {v}\n")).collect();
+        let quoted: String = RENAMED_FIELDS
+            .iter()
+            .zip([10, 9, 7])
+            .map(|((o, _), v)| format!("\"{o}\" = {v}\n"))
+            .collect();
         assert_eq!(PipelineConfig::from_toml("q.toml", &format!("lights = 2\n{quoted}")).unwrap(), new);
         // Both names at once is one field twice.
-        let e = PipelineConfig::from_toml("b.toml", "dot_bits = 10\ndot_frac_bits = 9\n").unwrap_err().to_string();
+        let e = PipelineConfig::from_toml("b.toml", "dot_bits = 10\ndot_frac_bits = 9\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("given twice") && e.starts_with("b.toml:1:1:"), "{e}");
         // Lines are kept, so an error after a renamed key still names its own line.
         let e = PipelineConfig::from_toml("o.toml", "dot_bits = 10\nlights = \"x\"\n")

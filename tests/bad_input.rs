@@ -376,6 +376,18 @@ fn cases() -> Vec<Case> {
             vec!["c.toml", "`frame_build`", "frame_transform", "drop frame_build"],
         ),
         (
+            "L and H at the pixel without a frame (V is constant only in eye space)",
+            cfg("bump_state = \"fragment\"\nlight_mode = \"parallel\"\ninterpolate = \"hl\"\nrenormalise = true\npixel_lh = true\n"),
+            render_cfg(),
+            vec!["c.toml:5:1", "`pixel_lh`", "eye space", "drop pixel_lh"],
+        ),
+        (
+            "L and H at the pixel with H alone interpolated",
+            cfg(&format!("{FRAME}pixel_lh = true\n").replace("interpolate = \"hl\"", "interpolate = \"h\"")),
+            render_cfg(),
+            vec!["c.toml:7:1", "`pixel_lh`", "interpolate = \"hl\" and renormalise = true"],
+        ),
+        (
             "a triangle's frame beside a built one",
             cfg(&format!("{FRAME}frame_build = true\ntriangle_frame = true\n")),
             render_cfg(),

@@ -4,7 +4,8 @@
 //! - TexRam (paper §3.1): the frame built per fragment from the interpolated normal and main
 //!   direction by the `frame_build` unit;
 //! - VISA+ (paper §3.2): the triangle's alignment matrix with the interpolated normal
-//!   (`triangle_frame`, a rasteriser choice on Harmony's top).
+//!   (`triangle_frame`, a rasteriser choice on Harmony's top);
+//! - Blinn (paper §2): TexRam's frame with L and H formed at the pixel (`pixel_lh`).
 //!
 //! Each renormalises the placed normal and the interpolated L and H. Their golden images are
 //! exact (checked-in PNGs); each tracks its own f64 equations and its engine's f64 model; on
@@ -18,7 +19,7 @@ use gbump::scene::Scene;
 #[path = "common/golden_png.rs"]
 mod golden_png;
 
-const ENGINES: [&str; 4] = ["harmony", "texram", "visa", "visa_quaternion"];
+const ENGINES: [&str; 5] = ["harmony", "texram", "visa", "visa_quaternion", "blinn"];
 
 /// Scenes whose paths the PNGs hold: a curved, tessellated surface whose frames turn across
 /// every triangle, and a textured one.
@@ -73,6 +74,20 @@ fn the_frame_paths_differ_by_where_the_frame_comes_from() {
     let names = |c: &PipelineConfig| -> Vec<&str> { gbump::units::included(c).iter().map(|u| u.name()).collect() };
     assert_eq!(names(&visa), names(&harmony));
     assert_eq!(gbump::rtlgen::top::latency(&visa), gbump::rtlgen::top::latency(&harmony));
+    // Blinn's is TexRam's with L and H formed at the pixel: the same units, H's normalise fed
+    // from L's, which the frame's longer path hides (the same latency).
+    let blinn = path_config("blinn", &s);
+    assert_eq!(
+        blinn,
+        PipelineConfig {
+            pixel_lh: true,
+            ..texram.clone()
+        }
+    );
+    assert_eq!(names(&blinn), names(&texram));
+    assert_eq!(gbump::rtlgen::top::latency(&blinn), gbump::rtlgen::top::latency(&texram));
+    let top = gbump::rtlgen::top::top(&blinn);
+    assert!(top.contains("u_norm_h0 (.clk(clk), .v(hh0)"), "H's normalise reads the halved sum");
 }
 
 #[test]
@@ -130,7 +145,8 @@ fn on_a_plane_every_frame_path_is_the_bump_space_path() {
         ..path_config("harmony", &s)
     };
     let b = gbump::render::render(&s, &bump_space, w, h, false).unwrap();
-    for e in ENGINES {
+    // Blinn's path lights with the pixel's own L and H, not the interpolated ones: below.
+    for e in ENGINES.into_iter().filter(|&e| e != "blinn") {
         let a = gbump::render::render(&s, &path_config(e, &s), w, h, false).unwrap();
         let diff = |x: &[u32; 3], y: &[u32; 3]| (0..3).map(|c| x[c].abs_diff(y[c])).max().unwrap();
         let worst = a.golden.iter().zip(&b.golden).map(|(x, y)| diff(x, y)).max().unwrap();
@@ -143,5 +159,40 @@ fn on_a_plane_every_frame_path_is_the_bump_space_path() {
             worst <= 1 && differ * 100 <= a.golden.len(),
             "{e}: {differ} pixels differ, by up to {worst} LSB"
         );
+    }
+}
+
+/// Blinn's path forms L and H at the pixel. Its f64 equations are Blinn's reference up to
+/// what the pipeline interpolates (k under a spot light, C_src) and never further from it
+/// than TexRam's (the same frame, L and H interpolated from the vertices) on the scenes lit
+/// by point and spot lights; on the wall lit by a point light in front of it
+/// (`cg_wall_front`: no spot, a constant C_src) they are the reference. Both golden images
+/// against Blinn's f64 model are printed beside each other: the fixed point's own rounding
+/// is what they show there.
+#[test]
+fn blinns_path_lights_at_the_pixel() {
+    for name in ["cg_wall_front", "cg_wall_lower_left", "sphere_bricks_spots"] {
+        let s = Scene::load(name).unwrap();
+        let (w, h) = (s.size[0] / 2, s.size[1] / 2);
+        let blinn_f64 = render(&s, &[engine("blinn").unwrap()], w, h, Maps::default()).unwrap().remove(0);
+        let mut equations = Vec::new();
+        for e in ["blinn", "texram"] {
+            let cfg = path_config(e, &s);
+            let img = gbump::render::render(&s, &cfg, w, h, false).unwrap();
+            let max = cfg.colour_max() as f64;
+            let diffs = img.gouraud.iter().zip(&img.reference).zip(&img.covered).filter(|(_, c)| **c);
+            let eq = gbump::measure::image_metrics::stats(diffs.map(|((a, b), _)| [0, 1, 2].map(|i| (a[i] - b[i]) * max)), max);
+            let fixed = compare(&golden_image(&s, &cfg, &blinn_f64).unwrap(), &blinn_f64);
+            println!(
+                "{e} on {name}: its f64 equations against Blinn's reference mean {:.4} LSB, max {:.3}; its golden image against Blinn's f64 model {:.2} dB, mean {:.3} LSB",
+                eq.mean_lsb, eq.max_lsb, fixed.psnr_db, fixed.mean_lsb
+            );
+            assert!(fixed.psnr_db > 30.0, "{e} {name}: {fixed:?}");
+            equations.push(eq);
+        }
+        assert!(equations[0].mean_lsb <= equations[1].mean_lsb + 1e-9, "{name}: {equations:?}");
+        if name == "cg_wall_front" {
+            assert!(equations[0].max_lsb < 1e-6, "{name}: {:?}", equations[0]);
+        }
     }
 }

@@ -148,14 +148,26 @@ fn rom_files_follow_the_configurations_memories() {
         ..Default::default()
     };
     for cfg in [&rom, &squaring] {
-        let e = rom_files(cfg, &pick, Some(cfg.shininess + 1), 32, Path::new("rom")).unwrap_err().to_string();
-        assert!(e.contains(&format!("--shininess {}", cfg.shininess + 1)) && e.contains("fix:"), "{e}");
+        let e = rom_files(cfg, &pick, Some(cfg.shininess + 1), 32, Path::new("rom"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("--shininess {}", cfg.shininess + 1)) && e.contains("fix:"),
+            "{e}"
+        );
     }
     let names = |cfg: &PipelineConfig, cube: Option<usize>| -> Vec<String> {
-        gbump::rtlgen::rom_files::rom_files(cfg, None, "", None, cube, Path::new("rom")).unwrap().into_iter().map(|f| f.0).collect()
+        gbump::rtlgen::rom_files::rom_files(cfg, None, "", None, cube, Path::new("rom"))
+            .unwrap()
+            .into_iter()
+            .map(|f| f.0)
+            .collect()
     };
     assert!(names(&rom, None).iter().any(|n| n.starts_with("power_table_n24_")));
-    assert!(!names(&squaring, None).iter().any(|n| n.starts_with("power_table")), "a squaring unit has no table");
+    assert!(
+        !names(&squaring, None).iter().any(|n| n.starts_with("power_table")),
+        "a squaring unit has no table"
+    );
     let cube = PipelineConfig {
         bump_state: gbump::config::BumpStateAt::Fragment,
         light_mode: gbump::config::LightMode::Parallel,
@@ -165,8 +177,15 @@ fn rom_files_follow_the_configurations_memories() {
         ..Default::default()
     };
     cube.validate("t").unwrap();
-    assert!(names(&cube, None).iter().any(|n| n.starts_with("cube_map_16x16x6")), "the config's own size by default");
-    assert!(names(&PipelineConfig::default(), None).iter().any(|n| n.starts_with("cube_map_32x32x6")));
-    let e = gbump::rtlgen::rom_files::rom_files(&cube, None, "", None, Some(32), Path::new("rom")).unwrap_err().to_string();
+    assert!(
+        names(&cube, None).iter().any(|n| n.starts_with("cube_map_16x16x6")),
+        "the config's own size by default"
+    );
+    assert!(names(&PipelineConfig::default(), None)
+        .iter()
+        .any(|n| n.starts_with("cube_map_32x32x6")));
+    let e = gbump::rtlgen::rom_files::rom_files(&cube, None, "", None, Some(32), Path::new("rom"))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("cube_map_face = 16") && e.contains("fix:"), "{e}");
 }

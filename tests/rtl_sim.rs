@@ -342,6 +342,21 @@ fn regress_texrams_built_frame_pipeline() {
 }
 
 #[test]
+fn regress_blinns_per_pixel_lighting() {
+    // The `blinn` engine's path: TexRam's frame with L and H formed at the pixel
+    // (`pixel_lh`): H's normalise fed the halved sum of L's normalised output and the viewer
+    // direction on the H lanes; on both simulators, with every scene that fits two lights
+    // (the rasteriser sends each light's vector to the light unnormalised) and self-shadowing
+    // on N·L.
+    let counts = (1_000u64, 10_000u64);
+    let t = regress_small_scenes("tests/configs/blinn_pixel.toml", "blinn_pixel", counts);
+    check_suite_with(&t, 4, counts, 1);
+    for unit in ["frame_build", "frame_transform", "normalise_b", "normalise"] {
+        assert_unit_sets_ran(&t, unit);
+    }
+}
+
+#[test]
 fn regress_visa_quaternion_frame_pipeline() {
     // The `visa_quaternion` engine's path: the quat_frame unit forms the frame from the
     // interpolated quaternion (lanes 0 to 3) and normal (lanes 6 to 8); on both simulators,
@@ -834,6 +849,21 @@ fn an_open_self_shadow_gate_in_a_frame_is_caught() {
         "gbump_pipeline",
         mutants::self_shadow_open,
         &[("top", Source::Random(3_000))],
+        1,
+    );
+}
+
+/// Blinn's path with light 0's half sum not halved (H's normalise reads the low bits of
+/// L + V): the top's random set catches it.
+#[test]
+fn an_unhalved_pixel_half_vector_is_caught() {
+    use gbump::vectors::Source;
+    assert_mutant_caught(
+        "tests/configs/blinn_pixel.toml",
+        "mutant_pixel_lh",
+        "gbump_pipeline",
+        mutants::half_sum_not_halved,
+        &[("top", Source::Random(2_000))],
         1,
     );
 }

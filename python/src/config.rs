@@ -103,7 +103,7 @@ impl Config {
     /// Canonical TOML of the configuration (the input of the hash): every field, except that
     /// the fields added after the first release (interpolate, colour_guard_bits,
     /// white_lights, power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face,
-    /// self_shadow, frame_transform, frame_build, triangle_frame, frame_quaternion) are left out at their defaults ("none", 0 or false), so
+    /// self_shadow, frame_transform, frame_build, triangle_frame, frame_quaternion, pixel_lh) are left out at their defaults ("none", 0 or false), so
     /// hashes made before they existed stay.
     #[getter]
     fn toml(&self) -> String {

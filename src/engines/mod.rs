@@ -81,6 +81,7 @@ impl Engine {
         cfg.frame_build = v.frame_build;
         cfg.triangle_frame = v.triangle_frame;
         cfg.frame_quaternion = v.frame_quaternion;
+        cfg.pixel_lh = v.pixel_lh;
         if v.renormalise_bump {
             // The fetched normal is renormalised, which a palette (unfiltered, loaded as
             // given) refuses: the engine's path fetches the stored codes instead.

@@ -96,12 +96,25 @@ impl Shaded {
 
 /// Light slot `s`'s L and H as the dot products see them: the slot's own, or under
 /// `renormalise` each interpolated one through the `normalise` unit (H, and L with
-/// `interpolate = "hl"`; a per-triangle L is a unit vector already).
+/// `interpolate = "hl"`; a per-triangle L is a unit vector already). Under `pixel_lh` the
+/// H lanes carry the viewer direction V, and H is the `normalise` of the normalised L and V
+/// halved ([`half_sum`]).
 pub fn dot_vectors(cfg: &PipelineConfig, s: &LightSlot) -> ([i64; 3], [i64; 3]) {
     use super::normalise::{normalise, renormalised};
     let (nl, nh) = renormalised(cfg);
     let pick = |on: bool, v: [i64; 3]| if on { normalise(cfg, v) } else { v };
-    (pick(nl, s.l), pick(nh, s.h))
+    let l = pick(nl, s.l);
+    if cfg.pixel_lh {
+        return (l, normalise(cfg, half_sum(l, s.h)));
+    }
+    (l, pick(nh, s.h))
+}
+
+/// (a + b)/2 per component, rounded down (the sum one bit wider, its low bit dropped): the
+/// halved sum of two vectors of at most unit length stays inside the L/H word.
+#[inline]
+pub fn half_sum(a: [i64; 3], b: [i64; 3]) -> [i64; 3] {
+    std::array::from_fn(|c| (a[c] + b[c]) >> 1)
 }
 
 /// `state` with every slot's L and H as the dot products see them ([`dot_vectors`]).

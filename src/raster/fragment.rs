@@ -78,7 +78,7 @@ pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
         return ts.fixed;
     }
     let corners = o.mesh.corners(hit.tri);
-    let vv = super::tri_state::vertex_vectors_in(p.scene, &p.camera, &corners, p.cfg.frame_transform);
+    let vv = super::tri_state::vertex_vectors_in(p.scene, &p.camera, &corners, p.cfg.frame_transform, p.cfg.pixel_lh);
     let vk = super::tri_state::vertex_k(p.scene, &corners);
     // Interpolated unit vectors stay within the unit ball, so every component is finite.
     let mut st = super::tri_state::fragment_state(p.cfg, ts, &vv, &vk, hit.bary).expect("finite interpolated vectors");

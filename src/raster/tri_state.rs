@@ -81,12 +81,36 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
 /// Each bump light's L and H at each vertex of a triangle, each in that vertex's own frame
 /// (what paper §6's interpolating variants send per vertex): `[light][vertex] = (L, H)`.
 pub fn vertex_vectors(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3]) -> Vec<[(DVec3, DVec3); 3]> {
-    vertex_vectors_in(scene, cam, v, false)
+    vertex_vectors_in(scene, cam, v, false, false)
 }
 
 /// [`vertex_vectors`], or with `eye` in eye space (Harmony's, `frame_transform`: the bump
-/// normal is placed in the interpolated frame instead).
-pub fn vertex_vectors_in(scene: &Scene, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3], eye: bool) -> Vec<[(DVec3, DVec3); 3]> {
+/// normal is placed in the interpolated frame instead); with `pixel` (`pixel_lh`, eye space)
+/// what Blinn's per-pixel lighting interpolates instead: each light's vector from the vertex
+/// to the light, unnormalised (so it interpolates to the pixel's own, exactly) and scaled by
+/// one factor per triangle that makes the longest unit (a directional light's direction), and
+/// the viewer direction V in place of H.
+pub fn vertex_vectors_in(
+    scene: &Scene,
+    cam: &Camera,
+    v: &[crate::scene::mesh::Vertex; 3],
+    eye: bool,
+    pixel: bool,
+) -> Vec<[(DVec3, DVec3); 3]> {
+    if pixel {
+        return scene
+            .bump_lights()
+            .map(|l| {
+                let to = |j: usize| match l.kind {
+                    crate::scene::LightKind::Directional => DVec3::from_array(l.direction).normalize(),
+                    _ => DVec3::from_array(l.position) - v[j].p,
+                };
+                let longest = (0..3).map(|j| to(j).length()).fold(0.0, f64::max);
+                let scale = if longest > 0.0 { 1.0 / longest } else { 0.0 };
+                std::array::from_fn(|j| (to(j) * scale, cam.to_viewer))
+            })
+            .collect();
+    }
     scene
         .bump_lights()
         .map(|l| {

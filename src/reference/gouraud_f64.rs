@@ -42,7 +42,7 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
     let vv = if how.interpolate.is_none() {
         Vec::new()
     } else {
-        vertex_vectors_in(p.scene, &p.camera, &corners, how.frame_transform)
+        vertex_vectors_in(p.scene, &p.camera, &corners, how.frame_transform, how.pixel_lh)
     };
     let vk = if how.interpolate_k {
         vertex_k(p.scene, &corners)
@@ -79,6 +79,8 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
         let (l, h) = match (how.renormalise, how.interpolate) {
             (false, _) | (_, Interpolate::None) => (l, h),
             (true, Interpolate::H) => (l, unit(h)),
+            // Blinn's per-pixel vectors: the pixel's own L, and H from it and V (the H lanes).
+            (true, Interpolate::Hl) if how.pixel_lh => (unit(l), unit(unit(l) + h)),
             (true, Interpolate::Hl) => (unit(l), unit(h)),
         };
         (l, h, k)

@@ -139,6 +139,9 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     if cfg.self_shadow {
         s += &self_shadowing(cfg);
     }
+    if cfg.pixel_lh {
+        s += "**L and H at the pixel** (`pixel_lh`, Blinn's per-pixel lighting, paper §2). `in_l`'s lanes for light i carry its vector from the surface to the light, any length up to unit (the rasteriser interpolates it unnormalised, scaled by one factor per triangle so the longest is unit, which is exact per pixel; a directional light's direction), and `in_h`'s lanes the viewer direction V, in the same L/H format. The top normalises L_i (`u_norm_l<i>`) and forms H_i by a second `normalise` (`u_norm_h<i>`) of (L_i + V)/2, the sum of the normalised L_i and V one bit wider with its low bit dropped.\n\n";
+    }
     if cfg.triangle_frame {
         s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z)";
         s += if cfg.renormalise_bump {
@@ -304,11 +307,18 @@ mod tests {
         for cfg in [frame(LightMode::Parallel), frame(LightMode::Serial), renorm, plain] {
             cfg.validate("t").unwrap();
             let doc = markdown(&cfg);
-            let para = doc.split("\n\n").find(|p| p.starts_with("**Self-shadowing**")).expect("a self-shadowing paragraph");
+            let para = doc
+                .split("\n\n")
+                .find(|p| p.starts_with("**Self-shadowing**"))
+                .expect("a self-shadowing paragraph");
             let top = crate::rtlgen::top::top(&cfg);
             for name in para.split('`').skip(1).step_by(2).filter(|w| w.starts_with("u_")) {
                 let name = name.replace("<i>", "0");
-                assert!(top.contains(&format!(" {name} ")) || top.contains(&format!(" {name}(")), "{name} is not in the top of {}", cfg.hash());
+                assert!(
+                    top.contains(&format!(" {name} ")) || top.contains(&format!(" {name}(")),
+                    "{name} is not in the top of {}",
+                    cfg.hash()
+                );
             }
             assert_eq!(para.contains("N·L_i"), cfg.frame_transform);
         }

@@ -140,6 +140,10 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             }
         }
     }
+    if cfg.pixel_lh {
+        s += "// pixel_lh halves the sum of the normalised L and V: each component's low bit is dropped by design.\n";
+        s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: 'hs*\"\n");
+    }
     if cfg.frame_build || cfg.frame_quaternion {
         s += "// frame_build reads in_frame's T and N lanes (m and N_i), quat_frame its lanes 0 to 3 (q) and 6 to 8 (N_i); the others stay on the port, unread.\n";
         // The serial top registers the fragment port first (fr_frame).

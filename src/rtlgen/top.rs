@@ -411,6 +411,34 @@ fn lane(i: u32, w: u32) -> String {
     format!("[{}:{}]", i * w + w - 1, i * w)
 }
 
+/// Under `pixel_lh`, the input of light `i`'s H `normalise`: its normalised L (`nl<i>`, from
+/// `u_norm_l<i>`, instantiated here when the diffuse path has not) and the viewer direction on
+/// its H lanes, added one bit wider and halved (`model::pipeline::half_sum`). The template
+/// of the three halved lanes.
+fn half_sum(s: &mut Scheduler, cfg: &PipelineConfig, norm: &dyn units::Unit, pre: &str, i: u32) -> String {
+    let lh = cfg.lh_bits;
+    let nl = format!("nl{i}");
+    if !s.m.has(&nl) {
+        let l = format!("{{{pre}_l}}{}", lane(i, 3 * lh));
+        s.unit(cfg, norm, &format!("u_norm_l{i}"), &[("v", &l)], &[("n", &nl)], &[]);
+    }
+    let mut halves = Vec::new();
+    for c in (0..3).rev() {
+        let (lo, hi) = (c * lh, c * lh + lh - 1);
+        let (vlo, vhi) = (i * 3 * lh + lo, i * 3 * lh + hi);
+        let sum = format!("hs{i}_{c}");
+        s.comb(
+            &sum,
+            lh + 1,
+            &format!("{{{{{nl}}}[{hi}], {{{nl}}}[{hi}:{lo}]}} + {{{{{pre}_h}}[{vhi}], {{{pre}_h}}[{vhi}:{vlo}]}}"),
+        );
+        halves.push(format!("{{{sum}}}[{lh}:1]"));
+    }
+    let h = format!("hh{i}");
+    s.comb(&h, 3 * lh, &format!("{{{}}}", halves.join(", ")));
+    format!("{{{h}}}")
+}
+
 /// Whether a light direction whose z lane is `z` (a template of `lh_bits` bits) is above the
 /// surface, z > 0: self-shadowing's test (`model::pipeline::self_shadow_lit`).
 fn above_z(cfg: &PipelineConfig, z: &str) -> String {
@@ -940,6 +968,9 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     let dots = |s: &mut Scheduler, v: &str, out: &str| {
         for i in 0..n {
             let mut lanes = format!("{{{pre}_{v}}}{}", lane(i, lh3));
+            if v == "h" && cfg.pixel_lh {
+                lanes = half_sum(s, cfg, norm, pre, i);
+            }
             if renormalised(v) {
                 let nv = format!("n{v}{i}");
                 s.unit(cfg, norm, &format!("u_norm_{v}{i}"), &[("v", &lanes)], &[("n", &nv)], &[]);

@@ -64,6 +64,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             // As interpolate: the rasteriser's choice, no RTL of its own.
             triangle_frame: false,
             frame_quaternion: false,
+            pixel_lh: false,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any
@@ -98,6 +99,9 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
                 2 => cfg.frame_quaternion = true,
                 _ => {}
             }
+            // Drawn after it, where valid: L and H formed at the pixel (Blinn), the H
+            // normalise fed the halved sum of the normalised L and V.
+            cfg.pixel_lh = cfg.renormalise && cfg.interpolate == crate::config::Interpolate::Hl && pick(rng, &[false, true]);
         }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
@@ -266,6 +270,28 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
                 multipliers: if depth == 2 { Multipliers::Inferred } else { Multipliers::Booth },
                 // The bump normal's unit beside them on every other depth.
                 renormalise_bump: depth % 2 == 0,
+                ..PipelineConfig::default()
+            });
+        }
+    }
+    // L and H formed at the pixel (`pixel_lh`): H's normalise fed the half sum of L's output
+    // and V, in a frame (interpolated whole, or built), at the narrowest symmetric, the
+    // default and the widest words, at the shallowest and the deepest pipeline.
+    for (lh, range) in [(7, NormalRange::Symmetric), (16, NormalRange::Binary), (24, NormalRange::Symmetric)] {
+        for depth in [1, crate::limits::MAX_PIPELINE_DEPTH] {
+            out.push(PipelineConfig {
+                lh_bits: lh,
+                normal_range: range,
+                bump_state: BumpStateAt::Fragment,
+                interpolate: crate::config::Interpolate::Hl,
+                renormalise: true,
+                frame_transform: true,
+                frame_build: depth == 1,
+                pixel_lh: true,
+                self_shadow: lh == 16,
+                light_mode: LightMode::Parallel,
+                lights: 2,
+                pipeline_depth: depth,
                 ..PipelineConfig::default()
             });
         }
@@ -466,6 +492,15 @@ pub fn run_for(
 mod tests {
     use super::*;
     use crate::config::LIMITS;
+
+    #[test]
+    fn normalise_configs_are_valid_and_form_h_at_the_pixel() {
+        let cs = normalise_configs();
+        for c in &cs {
+            c.validate("normalise_configs").unwrap();
+        }
+        assert!(cs.iter().any(|c| c.pixel_lh && c.frame_build) && cs.iter().any(|c| c.pixel_lh && !c.frame_build));
+    }
 
     #[test]
     fn corner_configs_are_valid_and_reach_every_limit() {

@@ -118,3 +118,26 @@ pub fn frame_cross_reversed(text: &str) -> Option<String> {
     }
     Some(out)
 }
+
+/// `pixel_lh`'s half sum for light 0 not halved: H's normalise reads the low bits of L + V.
+/// None when the top forms no H at the pixel.
+pub fn half_sum_not_halved(text: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.contains(" hh0 = "))?;
+    // Each lane is `hs0_<c>[W:1]`; the mutant takes `[W-1:0]`.
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(at) = rest.find('[') {
+        let end = at + rest[at..].find(']')?;
+        let (hi, lo) = rest[at + 1..end].split_once(':')?;
+        let hi: u32 = hi.parse().ok()?;
+        out += &rest[..at];
+        out += &if lo == "1" {
+            format!("[{}:0]", hi - 1)
+        } else {
+            rest[at..=end].to_string()
+        };
+        rest = &rest[end + 1..];
+    }
+    out += rest;
+    (out != line).then(|| text.replacen(line, &out, 1))
+}
