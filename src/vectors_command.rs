@@ -51,6 +51,13 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         ));
     }
     let seed = r.seed.unwrap_or(1);
+    if r.size.is_some() && !matches!(src, Source::Scene(_)) {
+        return Err(Error::Other(format!(
+            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
+        )));
+    }
+    // Every flag is checked before anything is loaded or said.
+    let size = r.size.map(|s| crate::limits::parse_size("--size", s)).transpose()?;
     // A scene source renders under the scene's own configuration unless one is given, and says so.
     let cfg = match (&src, r.config, r.scene) {
         (Source::Scene(name), None, None) => {
@@ -86,16 +93,11 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
             )));
         }
     }
-    if r.size.is_some() && !matches!(src, Source::Scene(_)) {
-        return Err(Error::Other(format!(
-            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
-        )));
-    }
     let opts = DumpOptions {
         text: r.text,
         binary: r.binary,
         seed,
-        size: r.size.map(|s| crate::limits::parse_size("--size", s)).transpose()?,
+        size,
         command: r.command.clone(),
         shininess: r.shininess,
     };
