@@ -246,6 +246,18 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
 /// unit-level tests read them; the simulated corners above leave them out, since synthesis of
 /// the two-step unit is slow.
 pub fn normalise_configs() -> Vec<PipelineConfig> {
+    // Two parallel lights whose L and H are interpolated and renormalised: the base of each.
+    let renormalising = |lh: u32, range: NormalRange, depth: u32| PipelineConfig {
+        lh_bits: lh,
+        normal_range: range,
+        bump_state: BumpStateAt::Fragment,
+        interpolate: crate::config::Interpolate::Hl,
+        renormalise: true,
+        light_mode: LightMode::Parallel,
+        lights: 2,
+        pipeline_depth: depth,
+        ..PipelineConfig::default()
+    };
     let mut out = Vec::new();
     for (lh, range, nb) in [
         (4, NormalRange::Binary, 8),
@@ -257,20 +269,12 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
         for depth in 1..=crate::limits::MAX_PIPELINE_DEPTH {
             let rounding = [Rounding::Truncate, Rounding::HalfUp, Rounding::NearestEven][depth as usize % 3];
             out.push(PipelineConfig {
-                lh_bits: lh,
-                normal_range: range,
                 normal_bits: nb,
-                bump_state: BumpStateAt::Fragment,
-                interpolate: crate::config::Interpolate::Hl,
-                renormalise: true,
-                light_mode: LightMode::Parallel,
-                lights: 2,
                 rounding,
-                pipeline_depth: depth,
                 multipliers: if depth == 2 { Multipliers::Inferred } else { Multipliers::Booth },
                 // The bump normal's unit beside them on every other depth.
                 renormalise_bump: depth % 2 == 0,
-                ..PipelineConfig::default()
+                ..renormalising(lh, range, depth)
             });
         }
     }
@@ -280,19 +284,11 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
     for (lh, range) in [(7, NormalRange::Symmetric), (16, NormalRange::Binary), (24, NormalRange::Symmetric)] {
         for depth in [1, crate::limits::MAX_PIPELINE_DEPTH] {
             out.push(PipelineConfig {
-                lh_bits: lh,
-                normal_range: range,
-                bump_state: BumpStateAt::Fragment,
-                interpolate: crate::config::Interpolate::Hl,
-                renormalise: true,
                 frame_transform: true,
                 frame_build: depth == 1,
                 pixel_lh: true,
                 self_shadow: lh == 16,
-                light_mode: LightMode::Parallel,
-                lights: 2,
-                pipeline_depth: depth,
-                ..PipelineConfig::default()
+                ..renormalising(lh, range, depth)
             });
         }
     }
@@ -306,16 +302,8 @@ pub fn normalise_configs() -> Vec<PipelineConfig> {
     ] {
         for depth in 1..=crate::limits::MAX_PIPELINE_DEPTH {
             out.push(PipelineConfig {
-                lh_bits: lh,
-                normal_range: range,
-                bump_state: BumpStateAt::Fragment,
-                interpolate: crate::config::Interpolate::Hl,
-                renormalise: true,
                 cube_map_face: face,
-                light_mode: LightMode::Parallel,
-                lights: 2,
-                pipeline_depth: depth,
-                ..PipelineConfig::default()
+                ..renormalising(lh, range, depth)
             });
         }
     }
