@@ -429,7 +429,7 @@ fn rom_names_carry_their_parameters_and_the_config_hash() {
         scene: Some("torus_caps".into()),
     };
     let cfg = scene.resolve().unwrap();
-    let files = rom_files(&cfg, &scene, None, Some(8), Path::new("x")).unwrap();
+    let files = rom_files(&cfg, &scene, None, 8, Path::new("x")).unwrap();
     let h = &cfg.hash()[..8];
     assert!(
         files.iter().any(|f| f.0 == format!("bump_palette_torus_caps_{h}.hex")),
