@@ -199,12 +199,12 @@ fn the_config_command_prints_an_engines_path() {
     let out = Command::cargo_bin("gbump")
         .unwrap()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["config", "--scene", SPOT, "--engine", "blinn"])
+        .args(["config", "--scene", SPOT, "--engine", "embm"])
         .assert()
         .failure();
     let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(
-        err.contains("--engine blinn") && err.contains("f64 only") && err.contains("sgi"),
+        err.contains("--engine embm") && err.contains("f64 only") && err.contains("sgi"),
         "{err}"
     );
 }
