@@ -62,6 +62,16 @@ pub struct FixedShininess {
     pub release: &'static str,
 }
 
+impl FixedShininess {
+    /// The refusal of `--shininess n` for another shininess than the one the hardware serves.
+    pub fn refuse_flag(&self, n: u32) -> Error {
+        Error::Other(format!(
+            "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
+            self.what, self.release
+        ))
+    }
+}
+
 /// One light per clock (paper §4.2: "n light sources are blended in n clock cycles") or all at once.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -578,18 +588,27 @@ fn check_renamed(file: &str, text: &str) -> Result<()> {
         if !table.contains_key(old) {
             continue;
         }
+        let at = format!("{file}{}", at(old));
         if table.contains_key(new) {
-            return Err(Error::Other(format!(
-                "{file}{}: `{old}` and `{new}` are one field (`{old}` is its old name), given twice\n  fix: keep `{new}` only",
-                at(old)
-            )));
+            return Err(renamed_twice(&at, old, new));
         }
-        eprintln!(
-            "warning: {file}{}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)",
-            at(old)
-        );
+        eprintln!("{}", renamed_warning(&at, old, new));
     }
     Ok(())
+}
+
+/// The warning for renamed field `old` read as `new`, written at `at` (`file:LINE:COL`).
+pub fn renamed_warning(at: &str, old: &str, new: &str) -> String {
+    format!(
+        "warning: {at}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)"
+    )
+}
+
+/// The refusal of a renamed field written under both its names, the old one at `at`.
+pub fn renamed_twice(at: &str, old: &str, new: &str) -> Error {
+    Error::Other(format!(
+        "{at}: `{old}` and `{new}` are one field (`{old}` is its old name), given twice\n  fix: keep `{new}` only"
+    ))
 }
 
 impl PipelineConfig {
@@ -639,10 +658,9 @@ impl PipelineConfig {
             Error::Field { file, field, msg, fix } => {
                 // A field read under its old name is written under that name.
                 let old = RENAMED_FIELDS.iter().find(|(_, new)| *new == field).map(|(old, _)| *old);
-                let (place, field) = match (crate::toml_line::place(&text, &field), old) {
-                    (None, Some(old)) if crate::toml_line::place(&text, old).is_some() => {
-                        (crate::toml_line::place(&text, old), old.to_string())
-                    }
+                let written_old = old.and_then(|o| Some((crate::toml_line::place(&text, o)?, o)));
+                let (place, field) = match (crate::toml_line::place(&text, &field), written_old) {
+                    (None, Some((at, old))) => (Some(at), old.to_string()),
                     (place, _) => (place, field),
                 };
                 Error::Field {

@@ -87,10 +87,7 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     if let (Some(n), Some(fixed)) = (r.shininess, cfg.fixed_shininess()) {
         if n != cfg.shininess && writes_top {
             // The set would be refused by every regression of this configuration: refuse it now.
-            return Err(Error::Other(format!(
-                "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
-                fixed.what, fixed.release
-            )));
+            return Err(fixed.refuse_flag(n));
         }
     }
     let opts = DumpOptions {

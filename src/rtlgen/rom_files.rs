@@ -30,10 +30,7 @@ pub fn rom_files(
     let n = shininess.unwrap_or(cfg.shininess);
     check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
     if let Some(fixed) = cfg.fixed_shininess().filter(|_| n != cfg.shininess) {
-        return Err(crate::error::Error::Other(format!(
-            "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
-            fixed.what, fixed.release
-        )));
+        return Err(fixed.refuse_flag(n));
     }
     let cube = match (cube, cfg.cube_map_face as usize) {
         (Some(c), face) if face != 0 && c != face => {

@@ -276,11 +276,9 @@ impl Scene {
                 let pos = s.pipeline_lines.remove(old);
                 let at = pos.as_ref().map_or(file.to_string(), |p| format!("{file}:{p}"));
                 if over.contains_key(new) {
-                    return Err(Error::Other(format!(
-                        "{at}: pipeline.{old} and pipeline.{new} are one field (`{old}` is its old name), given twice\n  fix: keep `{new}` only"
-                    )));
+                    return Err(crate::config::renamed_twice(&at, old, new));
                 }
-                eprintln!("warning: {at}: `{old}` is deprecated: it counts fraction bits, not a width\n  fix: write `{new}` (the old name will be removed)");
+                eprintln!("{}", crate::config::renamed_warning(&at, old, new));
                 over.insert(new.to_string(), v);
                 if let Some(p) = pos {
                     s.pipeline_lines.insert(new.to_string(), p);
