@@ -132,6 +132,10 @@ pub enum Cmd {
         /// Skip the built-in scenes' fragments.
         #[arg(long, conflicts_with_all = ["vectors", "stream"])]
         no_scenes: bool,
+        /// The default suite's sets for `all`, `top` or a unit name only (repeatable): the
+        /// scene sets and the power-up run are top sets, the exhaustive sweeps their unit's.
+        #[arg(long, default_value = "all", conflicts_with_all = ["vectors", "stream"])]
+        target: Vec<String>,
         /// Scene image size for fragment vectors.
         #[arg(long, value_name = "WxH", conflicts_with = "vectors")]
         scene_size: Option<String>,
@@ -617,6 +621,7 @@ pub fn run() -> anyhow::Result<()> {
             random_icarus,
             seed,
             no_scenes,
+            target,
             scene_size,
             work,
             junit,
@@ -652,6 +657,7 @@ pub fn run() -> anyhow::Result<()> {
                 bubbles: 29,
                 stall: 13,
                 power_up: true,
+                targets: target,
             };
             // Sets run alone carry their configuration: with no --config or --scene it is
             // the first manifest's (written to the work folder, so generated headers can
@@ -675,6 +681,8 @@ pub fn run() -> anyhow::Result<()> {
                 }
                 _ => (pick.resolve()?, pick),
             };
+            // A target the configuration lacks is refused before the work folder is touched.
+            crate::vectors::targets::resolve(&cfg, &opts.targets)?;
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
                 if matches!(sim, SimChoice::Icarus) {

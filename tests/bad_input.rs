@@ -713,6 +713,18 @@ fn cases() -> Vec<Case> {
             vec!["--random", "0 is below 1"],
         ),
         (
+            "regress --target of a unit the configuration lacks",
+            vec![],
+            vec!["regress", "--target", "normalise", "--work", "w"],
+            vec!["--target normalise", "the configuration has no normalise", "fix:"],
+        ),
+        (
+            "regress --target unknown",
+            vec![],
+            vec!["regress", "--target", "top", "--target", "bogus", "--work", "w"],
+            vec!["--target bogus: unknown", "fix:"],
+        ),
+        (
             "regress --max-errors 0",
             vec![],
             vec!["regress", "--max-errors", "0", "--work", "w"],

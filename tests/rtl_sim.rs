@@ -316,14 +316,12 @@ fn regress_the_cg_tutorials_per_fragment_pipeline() {
 fn regress_harmonys_interpolated_frame_pipeline() {
     // The `harmony` engine's path: the frame_transform unit places the fetched normal in the
     // fragment's frame (in_frame), normalise_b and normalise scale the normal, L and H; on
-    // both simulators, with the frame unit's own corner and random sets and every scene
-    // that fits two lights, its frames and eye-space vectors from the rasteriser.
-    let counts = (3_000u64, 100_000u64);
-    let t = regress_small_scenes("tests/configs/harmony_frame.toml", "harmony_frame", counts);
-    check_suite_with(&t, 4, counts, 1);
-    for unit in ["frame_transform", "normalise_b", "normalise"] {
-        assert_unit_sets_ran(&t, unit);
-    }
+    // both simulators, the top's sets only (`--target top`: random, corners, power-up and
+    // every scene that fits two lights, its frames and eye-space vectors from the
+    // rasteriser). Its units are Blinn's, whose regression runs their own sets
+    // (`frame_engine_units_are_blinns`).
+    let t = regress_frame_top("tests/configs/harmony_frame.toml", "harmony_frame");
+    assert!(t.contains("scene_cg_wall_front_top"), "{t}");
 }
 
 #[test]
@@ -331,13 +329,60 @@ fn regress_texrams_built_frame_pipeline() {
     // The `texram` engine's path: the frame_build unit forms the frame from the main
     // direction and the interpolated normal (in_frame's T and N lanes; the random sets drive
     // the B lanes too, which the top must not read), then Harmony's units; on both
-    // simulators, with the unit's own corner and random sets and every scene that fits two
-    // lights.
-    let counts = (2_000u64, 30_000u64);
-    let t = regress_small_scenes("tests/configs/texram_frame.toml", "texram_frame", counts);
-    check_suite_with(&t, 4, counts, 1);
-    for unit in ["frame_build", "frame_transform", "normalise_b", "normalise"] {
-        assert_unit_sets_ran(&t, unit);
+    // simulators, the top's sets only, its units being Blinn's (see Harmony's above).
+    regress_frame_top("tests/configs/texram_frame.toml", "texram_frame");
+}
+
+/// `gbump regress --target top` on a frame engine's top, both simulators, with every scene
+/// that fits two lights: only top sets run, none of them fails.
+fn regress_frame_top(config: &str, work: &str) -> String {
+    let counts = (1_000u64, 20_000u64);
+    let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
+    let args = [
+        "--sim",
+        "both",
+        "--config",
+        config,
+        "--target",
+        "top",
+        "--random-icarus",
+        &icarus,
+        "--random",
+        &verilator,
+        "--scene-size",
+        SHORT_SCENES,
+    ];
+    let t = regress(&args, work);
+    check_suite_with(&t, 4, counts, 0);
+    let r = runs(&t);
+    assert!(
+        r.iter().all(|x| x.1.ends_with("_top") || x.1.ends_with("_top+power-up")),
+        "a unit set ran:\n{t}"
+    );
+    t
+}
+
+/// The frame engines whose regressions run only their top's sets (Harmony's, TexRam's) have
+/// Blinn's units, Verilog for Verilog but the configuration hash in the module names: the
+/// unit sets of `regress_blinns_per_pixel_lighting` check the same logic.
+#[test]
+fn frame_engine_units_are_blinns() {
+    use gbump::units::included;
+    let load = |f: &str| gbump::PipelineConfig::load(&root().join(f)).unwrap();
+    let blinn = load("tests/configs/blinn_pixel.toml");
+    let bh = blinn.hash()[..8].to_string();
+    for f in ["tests/configs/texram_frame.toml", "tests/configs/harmony_frame.toml"] {
+        let cfg = load(f);
+        let h = cfg.hash()[..8].to_string();
+        for u in included(&cfg) {
+            assert!(
+                included(&blinn).iter().any(|b| b.name() == u.name()),
+                "{f}: {} is not Blinn's",
+                u.name()
+            );
+            let mine: Vec<(&str, String)> = u.verilog(&cfg).into_iter().map(|(n, v)| (n, v.replace(&h, &bh))).collect();
+            assert_eq!(mine, u.verilog(&blinn), "{f}: {} differs from Blinn's", u.name());
+        }
     }
 }
 
@@ -657,6 +702,7 @@ fn mutant_run_options(work: &Path) -> gbump::sim::regress::RegressOptions {
         bubbles: 7,
         stall: 13,
         power_up: false,
+        targets: vec!["all".into()],
     }
 }
 

@@ -116,6 +116,7 @@ pub fn regress_options(work: &std::path::Path, command: String, scenes: &[String
         bubbles: 29,
         stall: 13,
         power_up: true,
+        targets: vec!["all".into()],
     })
 }
 

@@ -393,6 +393,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         bubbles: 29,
         stall: 13,
         power_up: true,
+        targets: vec!["all".into()],
     };
     let mut checked = 0;
     for r in run_sets(cfg, &sets, &rtl, &opts)? {

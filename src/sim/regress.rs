@@ -48,11 +48,15 @@ pub struct RegressOptions {
     pub stall: u32,
     /// Also run one top set on the power table's power-up contents.
     pub power_up: bool,
+    /// What the default suite checks: `all`, `top` or unit names, as `gbump vectors
+    /// --target` takes them (resolved against the configuration by `targets::resolve`).
+    pub targets: Vec<String>,
 }
 
 /// The default suite: corners, random, every compatible built-in scene, exhaustive sweeps.
 pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec<(PathBuf, Option<Sim>)>> {
-    let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
+    let all = crate::vectors::targets::resolve(cfg, &o.targets)?;
+    let has = |t: &str| all.iter().any(|a| a == t);
     let mut sets = Vec::new();
     let dopt = |seed| DumpOptions {
         text: true,
@@ -76,8 +80,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             continue;
         }
         let sub = dir.join(format!("random_{}", sim.name()));
-        let targets: Vec<String> = all.clone();
-        for s in dump(cfg, &Source::Random(n), &targets, &sub, &dopt(o.seed))? {
+        for s in dump(cfg, &Source::Random(n), &all, &sub, &dopt(o.seed))? {
             sets.push((s.manifest, Some(sim)));
         }
     }
@@ -87,7 +90,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             "regress: the built-in scene sets are skipped: a palette configuration's scenes need a palette per object (random, corner and unit sets still run)"
         );
     }
-    if o.scenes && !cfg.palette {
+    if o.scenes && !cfg.palette && has("top") {
         for (name, _) in crate::scene::builtin::ALL {
             let scene = crate::scene::Scene::load(name)?;
             if scene.check_config(cfg, "").is_err() {
@@ -101,7 +104,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     // The user's own scene (`--scene FILE`) runs even with --no-scenes, which skips the
     // built-in ones; it must fit, and a palette configuration's scene sets are refused by the
     // dump with the reason: a misfit is an error, not a silent skip.
-    for file in &o.own_scenes {
+    for file in o.own_scenes.iter().filter(|_| has("top")) {
         crate::scene::Scene::load(file)?.check_config(cfg, "pipeline config")?;
         for s in dump(
             cfg,
@@ -117,7 +120,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     // w = 9; beyond, the random sets and the identity's proof in fixed.rs stand in); the power
     // unit is swept per shininess below.
     for u in crate::units::included(cfg) {
-        if u.name() == "power_unit" || u.exhaustive_count(cfg).is_none_or(|c| c > 1 << 18) {
+        if !has(u.name()) || u.name() == "power_unit" || u.exhaustive_count(cfg).is_none_or(|c| c > 1 << 18) {
             continue;
         }
         let unit = u.name().to_string();
@@ -127,7 +130,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     }
     // The power unit exhaustively for its reset shininess and for the extremes, each set
     // loading its own table through the load port.
-    if cfg.specular {
+    if cfg.specular && has("power_unit") {
         let mut ns = vec![cfg.shininess, 0, 1, 2, 254, 255, 1024];
         if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
             // Its exponent is built in: no table to load for another.
