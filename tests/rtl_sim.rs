@@ -320,7 +320,7 @@ fn regress_harmonys_interpolated_frame_pipeline() {
     // every scene that fits two lights, its frames and eye-space vectors from the
     // rasteriser). Its units are Blinn's, whose regression runs their own sets
     // (`frame_engine_units_are_blinns`).
-    let t = regress_frame_top("tests/configs/harmony_frame.toml", "harmony_frame");
+    let t = regress_frame_top("tests/configs/harmony_frame.toml", "harmony_frame", &[]);
     assert!(t.contains("scene_cg_wall_front_top"), "{t}");
 }
 
@@ -330,15 +330,16 @@ fn regress_texrams_built_frame_pipeline() {
     // direction and the interpolated normal (in_frame's T and N lanes; the random sets drive
     // the B lanes too, which the top must not read), then Harmony's units; on both
     // simulators, the top's sets only, its units being Blinn's (see Harmony's above).
-    regress_frame_top("tests/configs/texram_frame.toml", "texram_frame");
+    regress_frame_top("tests/configs/texram_frame.toml", "texram_frame", &[]);
 }
 
-/// `gbump regress --target top` on a frame engine's top, both simulators, with every scene
-/// that fits two lights: only top sets run, none of them fails.
-fn regress_frame_top(config: &str, work: &str) -> String {
+/// `gbump regress --target top` (and `--target U` for each of the engine's `own` units) on a
+/// frame engine's top, both simulators, with every scene that fits two lights: only those
+/// targets' sets run, none of them fails.
+fn regress_frame_top(config: &str, work: &str, own: &[&str]) -> String {
     let counts = (1_000u64, 20_000u64);
     let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
-    let args = [
+    let mut args = vec![
         "--sim",
         "both",
         "--config",
@@ -352,29 +353,36 @@ fn regress_frame_top(config: &str, work: &str) -> String {
         "--scene-size",
         SHORT_SCENES,
     ];
+    for u in own {
+        args.extend(["--target", u]);
+    }
     let t = regress(&args, work);
     check_suite_with(&t, 4, counts, 0);
     let r = runs(&t);
-    assert!(
-        r.iter().all(|x| x.1.ends_with("_top") || x.1.ends_with("_top+power-up")),
-        "a unit set ran:\n{t}"
-    );
+    let allowed =
+        |set: &str| set.ends_with("_top") || set.ends_with("_top+power-up") || own.iter().any(|u| set.ends_with(&format!("_{u}")));
+    assert!(r.iter().all(|x| allowed(&x.1)), "a set of another target ran:\n{t}");
     t
 }
 
-/// The frame engines whose regressions run only their top's sets (Harmony's, TexRam's) have
-/// Blinn's units, Verilog for Verilog but the configuration hash in the module names: the
-/// unit sets of `regress_blinns_per_pixel_lighting` check the same logic.
+/// The frame engines whose regressions run only their top's sets and their own units'
+/// (Harmony's, TexRam's, VISA+'s with quaternions) have Blinn's other units, Verilog for
+/// Verilog but the configuration hash in the module names: the unit sets of
+/// `regress_blinns_per_pixel_lighting` check the same logic.
 #[test]
 fn frame_engine_units_are_blinns() {
     use gbump::units::included;
     let load = |f: &str| gbump::PipelineConfig::load(&root().join(f)).unwrap();
     let blinn = load("tests/configs/blinn_pixel.toml");
     let bh = blinn.hash()[..8].to_string();
-    for f in ["tests/configs/texram_frame.toml", "tests/configs/harmony_frame.toml"] {
+    for (f, own) in [
+        ("tests/configs/texram_frame.toml", &[][..]),
+        ("tests/configs/harmony_frame.toml", &[][..]),
+        ("tests/configs/visa_quaternion_frame.toml", &["quat_frame"][..]),
+    ] {
         let cfg = load(f);
         let h = cfg.hash()[..8].to_string();
-        for u in included(&cfg) {
+        for u in included(&cfg).into_iter().filter(|u| !own.contains(&u.name())) {
             assert!(
                 included(&blinn).iter().any(|b| b.name() == u.name()),
                 "{f}: {} is not Blinn's",
@@ -405,13 +413,10 @@ fn regress_blinns_per_pixel_lighting() {
 fn regress_visa_quaternion_frame_pipeline() {
     // The `visa_quaternion` engine's path: the quat_frame unit forms the frame from the
     // interpolated quaternion (lanes 0 to 3) and normal (lanes 6 to 8); on both simulators,
-    // with the unit's own corner and random sets and every scene that fits two lights.
-    let counts = (1_000u64, 20_000u64);
-    let t = regress_small_scenes("tests/configs/visa_quaternion_frame.toml", "visa_quaternion_frame", counts);
-    check_suite_with(&t, 4, counts, 1);
-    for unit in ["quat_frame", "frame_transform", "normalise_b"] {
-        assert_unit_sets_ran(&t, unit);
-    }
+    // the top's sets and the quat_frame unit's own corner and random sets, with every scene
+    // that fits two lights; its other units are Blinn's (`frame_engine_units_are_blinns`).
+    let t = regress_frame_top("tests/configs/visa_quaternion_frame.toml", "visa_quaternion_frame", &["quat_frame"]);
+    assert_unit_sets_ran(&t, "quat_frame");
 }
 
 #[test]
