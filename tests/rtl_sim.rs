@@ -119,20 +119,7 @@ fn regress_default_config_on_both_simulators() {
 
 /// Short regressions of the other configurations (see [`SHORT`]).
 fn regress_short(config: &str, work: &str, min_scenes: usize) {
-    let (icarus, verilator) = (SHORT.0.to_string(), SHORT.1.to_string());
-    let args = [
-        "--sim",
-        "both",
-        "--config",
-        config,
-        "--random-icarus",
-        &icarus,
-        "--random",
-        &verilator,
-        "--scene-size",
-        SHORT_SCENES,
-    ];
-    let t = regress(&args, work);
+    let t = regress_small_scenes(config, work, SHORT, &[]);
     check_suite(&t, min_scenes, SHORT);
 }
 
@@ -261,16 +248,16 @@ fn regress_renormalised_h_and_l() {
     // scenes with more than two bump lights do not fit the two slots. Icarus evaluates the
     // Newton step's Booth rows slowly (about 2 ms a vector), so it runs 1,000 random vectors.
     let counts = (1_000u64, 100_000u64);
-    let t = regress_small_scenes("tests/configs/renormalise_hl.toml", "renormalise_hl", counts);
+    let t = regress_small_scenes("tests/configs/renormalise_hl.toml", "renormalise_hl", counts, &[]);
     check_suite(&t, 10, counts);
     assert_unit_sets_ran(&t, "normalise");
 }
 
 /// `gbump regress --sim both --config CONFIG` with `counts` random top vectors (Icarus,
-/// Verilator) and the scenes at 32x24, in work folder `work`.
-fn regress_small_scenes(config: &str, work: &str, counts: (u64, u64)) -> String {
+/// Verilator) and the scenes at 32x24, in work folder `work`, with `extra` arguments.
+fn regress_small_scenes(config: &str, work: &str, counts: (u64, u64), extra: &[&str]) -> String {
     let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
-    let args = [
+    let mut args = vec![
         "--sim",
         "both",
         "--config",
@@ -282,6 +269,7 @@ fn regress_small_scenes(config: &str, work: &str, counts: (u64, u64)) -> String 
         "--scene-size",
         SHORT_SCENES,
     ];
+    args.extend(extra);
     regress(&args, work)
 }
 
@@ -306,7 +294,7 @@ fn regress_the_cg_tutorials_per_fragment_pipeline() {
     // self-shadowing (§8.5.3), on both simulators, with the cube unit's own corner and
     // random sets and the scenes of the power unit's shininess.
     let counts = (3_000u64, 100_000u64);
-    let t = regress_small_scenes("tests/configs/cg_per_fragment.toml", "cg_per_fragment", counts);
+    let t = regress_small_scenes("tests/configs/cg_per_fragment.toml", "cg_per_fragment", counts, &[]);
     check_suite_with(&t, 4, counts, 1);
     assert_unit_sets_ran(&t, "normalise_cube");
     assert!(!runs(&t).iter().any(|x| x.1.ends_with("_normalise")), "{t}");
@@ -338,25 +326,11 @@ fn regress_texrams_built_frame_pipeline() {
 /// targets' sets run, none of them fails.
 fn regress_frame_top(config: &str, work: &str, own: &[&str]) -> String {
     let counts = (1_000u64, 20_000u64);
-    let (icarus, verilator) = (counts.0.to_string(), counts.1.to_string());
-    let mut args = vec![
-        "--sim",
-        "both",
-        "--config",
-        config,
-        "--target",
-        "top",
-        "--random-icarus",
-        &icarus,
-        "--random",
-        &verilator,
-        "--scene-size",
-        SHORT_SCENES,
-    ];
+    let mut targets = vec!["--target", "top"];
     for u in own {
-        args.extend(["--target", u]);
+        targets.extend(["--target", u]);
     }
-    let t = regress(&args, work);
+    let t = regress_small_scenes(config, work, counts, &targets);
     check_suite_with(&t, 4, counts, 0);
     let r = runs(&t);
     let allowed =
@@ -402,7 +376,7 @@ fn regress_blinns_per_pixel_lighting() {
     // (the rasteriser sends each light's vector to the light unnormalised) and self-shadowing
     // on N·L.
     let counts = (1_000u64, 10_000u64);
-    let t = regress_small_scenes("tests/configs/blinn_pixel.toml", "blinn_pixel", counts);
+    let t = regress_small_scenes("tests/configs/blinn_pixel.toml", "blinn_pixel", counts, &[]);
     check_suite_with(&t, 4, counts, 1);
     for unit in ["frame_build", "frame_transform", "normalise_b", "normalise"] {
         assert_unit_sets_ran(&t, unit);
