@@ -135,6 +135,16 @@ fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
     );
     let r = gbump::vectors::manifest::regenerate_into("gbump vectors --config=/abs/x.toml", Path::new("/s"));
     assert_eq!(r, "gbump vectors --config=/abs/x.toml --out /s");
+    // So is a scene file given as the source, in either spelling; a built-in scene is not a file.
+    for cmd in ["gbump vectors --source scene:sc/w.toml", "gbump vectors --source=scene:sc/w.toml"] {
+        let r = gbump::vectors::manifest::regenerate_into(cmd, Path::new("/s"));
+        assert!(
+            r.ends_with("(from the folder the set was made in: `sc/w.toml` is relative to it)"),
+            "{r}"
+        );
+    }
+    let r = gbump::vectors::manifest::regenerate_into("gbump vectors --source scene:teapot_hat", Path::new("/s"));
+    assert_eq!(r, "gbump vectors --source scene:teapot_hat --out /s");
 }
 
 #[test]

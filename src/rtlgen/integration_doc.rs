@@ -119,13 +119,13 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     }
     if cfg.frame_build {
         s += &format!(
-            "**The frame built per fragment** (`frame_build`, TexRam, paper §3.1). `in_frame`'s T lanes carry the main direction m (the interpolated tangent) and its N lanes the interpolated normal N_i, any length (an m under 2 long keeps N × m inside the format; a longer one is clamped per component); its B lanes are not read (drive zero). The `frame_build` unit forms N = N_i/|N_i|, B = N × m/|N × m| and T = B × N, each at unit length ({} is 1.0), with the `normalise` arithmetic and two cross products each rounded once, and the bump normal is placed in that frame. The frame is right-handed, so a mirrored uv mapping must be handled before the top (the rasteriser refuses one). An m along N_i, or a zero m, gives T = B = 0 (the normal lands on N b_z); a zero N_i gives a zero frame.\n\n",
+            "**The frame built per fragment** (`frame_build`, TexRam, paper §3.1). `in_frame`'s T lanes carry the main direction m (the interpolated tangent) and its N lanes the interpolated normal N_i, any length (an m under 2 long keeps N × m inside the format; a longer one is clamped per component); its B lanes are not read (any value: the corner vectors carry the identity frame's there). The `frame_build` unit forms N = N_i/|N_i|, B = N × m/|N × m| and T = B × N, each at unit length ({} is 1.0), with the `normalise` arithmetic and two cross products each rounded once, and the bump normal is placed in that frame. The frame is right-handed, so a mirrored uv mapping must be handled before the top (the rasteriser refuses one). An m along N_i, or a zero m, gives T = B = 0 (the normal lands on N b_z); a zero N_i gives a zero frame.\n\n",
             1u64 << (cfg.lh_bits - 2)
         );
     }
     if cfg.frame_quaternion {
         s += &format!(
-            "**The frame from a quaternion** (`frame_quaternion`, VISA+ with quaternions, paper §3.2 and its [5]). `in_frame`'s lanes 0 to 3 carry the interpolated vertex quaternion q = (w, x, y, z) ({} is 1.0; the identity is ({}, 0, 0, 0)), any length, signs aligned between a triangle's vertices before interpolating; lanes 6 to 8 carry the interpolated normal N_i ({} is 1.0 too); lanes 4 and 5 are not read (drive zero). The `quat_frame` unit forms T and B as the rotation's first two columns in the homogeneous form, |q|² times the rotation of q/|q| (T = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy)) and so on), and N = |q|² N_i, each entry rounded once and clamped, and the bump normal is placed in that frame; {}. A rotation has no mirror: a vertex whose uv mapping is mirrored must be handled before the top (the rasteriser refuses one).\n\n",
+            "**The frame from a quaternion** (`frame_quaternion`, VISA+ with quaternions, paper §3.2 and its [5]). `in_frame`'s lanes 0 to 3 carry the interpolated vertex quaternion q = (w, x, y, z) ({} is 1.0; the identity is ({}, 0, 0, 0)), any length, signs aligned between a triangle's vertices before interpolating; lanes 6 to 8 carry the interpolated normal N_i ({} is 1.0 too); lanes 4 and 5 are not read (any value). The `quat_frame` unit forms T and B as the rotation's first two columns in the homogeneous form, |q|² times the rotation of q/|q| (T = (w²+x²−y²−z², 2(xy+wz), 2(xz−wy)) and so on), and N = |q|² N_i, each entry rounded once and clamped, and the bump normal is placed in that frame; {}. A rotation has no mirror: a vertex whose uv mapping is mirrored must be handled before the top (the rasteriser refuses one).\n\n",
             1u64 << (cfg.lh_bits - 2),
             1u64 << (cfg.lh_bits - 2),
             1u64 << (cfg.lh_bits - 2),
@@ -140,7 +140,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         s += &self_shadowing(cfg);
     }
     if cfg.pixel_lh {
-        s += "**L and H at the pixel** (`pixel_lh`, Blinn's per-pixel lighting, paper §2). `in_l`'s lanes for light i carry its vector from the surface to the light, any length up to unit (the rasteriser interpolates it unnormalised, scaled by one factor per triangle so the longest is unit, which is exact per pixel; a directional light's direction), and `in_h`'s lanes the viewer direction V, in the same L/H format. The top normalises L_i (`u_norm_l<i>`) and forms H_i by a second `normalise` (`u_norm_h<i>`) of (L_i + V)/2, the sum of the normalised L_i and V one bit wider with its low bit dropped.\n\n";
+        s += "**L and H at the pixel** (`pixel_lh`, Blinn's per-pixel lighting, paper §2). `in_l`'s lanes for light i carry its vector from the surface to the light, any length up to unit (the rasteriser interpolates it unnormalised, scaled by one factor per triangle so the longest is unit, which is exact per pixel; a directional light's direction), and `in_h`'s lanes the viewer direction V, in the same L/H format. The top normalises L_i (`u_norm_l<i>`) and forms H_i by a second `normalise` (`u_norm_h<i>`) of (L_i + V)/2, the sum of the normalised L_i and V one bit wider with its low bit dropped. V must be at unit length: the top does not normalise it, and a shorter V leans H towards L. Random vector sets draw these lanes over their whole format, outside this contract (the model and the RTL agree there too); scene sets keep it.\n\n";
     }
     if cfg.triangle_frame {
         s += "**The triangle's T and B** (`triangle_frame`, VISA+'s alignment matrix, paper §3.2). The top is the one above; what differs is what the rasteriser sends on `in_frame`: the triangle's plane T and B, the same for every fragment of a triangle, with the interpolated normal N_i in the N lanes, so the top forms b_z (N_i + A·V) with V the map's offsets (b_x/b_z, b_y/b_z)";
@@ -268,7 +268,12 @@ fn renormalising(cfg: &PipelineConfig) -> String {
             }
         );
     }
-    if cfg.renormalise {
+    if cfg.pixel_lh {
+        s += &format!(
+            "The interpolated vector to each light may be any length up to unit: a `normalise` unit scales it to unit length, and another the half sum it forms with V (within {} LSB each); V itself is not normalised. ",
+            crate::model::normalise::ERROR_BOUND_LSB
+        );
+    } else if cfg.renormalise {
         let (l, _) = crate::model::normalise::renormalised(cfg);
         s += &format!(
             "The interpolated {} may be any length: a `normalise` unit scales each back to the length L and H carry before its dot product (within {} LSB). ",
@@ -283,6 +288,40 @@ fn renormalising(cfg: &PipelineConfig) -> String {
 mod tests {
     use super::*;
     use crate::config::{BumpStateAt, Interpolate};
+
+    /// A top that forms L and H at the pixel says, in its port docs and its notes, that the H
+    /// lanes carry V, which must be unit length, and only L may be any length.
+    #[test]
+    fn a_pixel_lh_top_says_its_h_lanes_carry_a_unit_viewer_direction() {
+        let cfg = PipelineConfig {
+            bump_state: BumpStateAt::Fragment,
+            frame_transform: true,
+            frame_build: true,
+            interpolate: Interpolate::Hl,
+            renormalise: true,
+            pixel_lh: true,
+            light_mode: LightMode::Parallel,
+            lights: 2,
+            ..Default::default()
+        };
+        cfg.validate("t").unwrap();
+        let ports = crate::rtlgen::top::port_list(&cfg);
+        let doc = |name: &str| ports.iter().find(|p| p.name == name).expect(name).doc.clone();
+        assert!(
+            doc("in_h").contains("viewer direction V, at unit length") && doc("in_h").contains("does not normalise"),
+            "{}",
+            doc("in_h")
+        );
+        assert!(doc("in_l").contains("any length up to unit"), "{}", doc("in_l"));
+        let notes = markdown(&cfg);
+        assert!(notes.contains("V must be at unit length"), "{notes}");
+        assert!(!notes.contains("L and H may be any length"), "{notes}");
+        // Without pixel_lh the lanes are L and H themselves.
+        let plain = PipelineConfig { pixel_lh: false, ..cfg };
+        let ports = crate::rtlgen::top::port_list(&plain);
+        let h = &ports.iter().find(|p| p.name == "in_h").unwrap().doc;
+        assert!(h.contains("H_j in") && !h.contains("viewer"), "{h}");
+    }
 
     /// Every self-shadowing top's notes say how it gates, and name instances its Verilog has.
     #[test]

@@ -237,6 +237,16 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     } else {
         "bump space"
     };
+    // What the L and H lanes carry: under `pixel_lh` the vector to the light (normalised by
+    // the top) and the viewer direction V (not normalised: the half sum needs it unit).
+    let (l_is, h_is) = if cfg.pixel_lh {
+        (
+            "the vector from the surface to light j, any length up to unit (the top normalises it)",
+            "the viewer direction V, at unit length (the top does not normalise it; H_j = normalise((normalise(L_j) + V)/2))",
+        )
+    } else {
+        ("L_j", "H_j")
+    };
     v.extend([
         tp(
             &format!("{pre}_l"),
@@ -244,7 +254,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: L_j in {space}{scaled}"),
+            &format!("light j, component c (x, y, z) at lane 3j + c: {l_is} in {space}{scaled}"),
         ),
         tp(
             &format!("{pre}_h"),
@@ -252,7 +262,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             kind,
             cfg.lh_fmt(),
             3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: H_j in {space}{scaled}"),
+            &format!("light j, component c (x, y, z) at lane 3j + c: {h_is} in {space}{scaled}"),
         ),
         tp(
             &format!("{pre}_lc"),

@@ -358,16 +358,24 @@ pub fn regenerate_words(command: &str, dir: &Path) -> Vec<String> {
 
 pub use crate::shell::quoted_words;
 
-/// A configuration or scene file named relative to where the set was made is found only from
-/// there (the manifest does not record that folder): a note saying so, or nothing.
+/// A configuration or scene file named relative to where the set was made (`--config F`,
+/// `--scene F`, `--source scene:F`) is found only from there (the manifest does not record
+/// that folder): a note saying so, or nothing.
 pub fn relative_note(words: &[String]) -> String {
     let relative: Vec<&str> = words
         .iter()
         .enumerate()
-        .filter_map(|(i, w)| match w.split_once('=') {
-            Some((f, v)) if f == "--config" || f == "--scene" => Some(v),
-            _ if (w == "--config" || w == "--scene") && i + 1 < words.len() => Some(words[i + 1].as_str()),
-            _ => None,
+        .filter_map(|(i, w)| {
+            let (flag, v) = match w.split_once('=') {
+                Some((f, v)) if f.starts_with("--") => (f, v),
+                _ if i + 1 < words.len() => (w.as_str(), words[i + 1].as_str()),
+                _ => return None,
+            };
+            match flag {
+                "--config" | "--scene" => Some(v),
+                "--source" => v.strip_prefix("scene:"),
+                _ => None,
+            }
         })
         .filter(|v| v.ends_with(".toml") && Path::new(v).is_relative())
         .collect();
