@@ -768,6 +768,18 @@ fn cases() -> Vec<Case> {
             vec!["sp.toml:5", "grid.normal_bits", "invalid type"],
         ),
         (
+            "a sweep grid none of whose points can render its scene",
+            space("scene = \"torus_caps\"\n\n[grid]\nlights = [1]\n"),
+            sweep(),
+            vec!["sp.toml", "no grid point can render the scene torus_caps", "2 bump lights", "fix: widen the grid"],
+        ),
+        (
+            "a sweep grid whose every point is an invalid combination",
+            space("[grid]\npalette = [true]\nrenormalise_bump = [true]\n"),
+            sweep(),
+            vec!["sp.toml", "every point is an invalid combination", "palette=true renormalise_bump=true", "fix:"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),

@@ -137,3 +137,32 @@ fn grid_points_differing_only_in_an_unused_field_are_one_design() {
         assert_eq!(c.clone().canonical().hash(), c.hash(), "{lab} is not canonical");
     }
 }
+
+/// A grid point with fewer light slots than the scene's bump lights cannot render it (`gbump
+/// render` refuses it): skipped with a note that names it, never measured with its area
+/// beside another design's image.
+#[test]
+fn points_that_cannot_render_the_scene_are_skipped_and_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let space = dir.path().join("sp.toml");
+    std::fs::write(&space, "scene = \"torus_caps\"\n[grid]\nlights = [1, 2]\n").unwrap();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["sweep", "--space"])
+        .arg(&space)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .arg("--work")
+        .arg(dir.path().join("work"))
+        .assert()
+        .success();
+    let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+    assert!(
+        err.contains("1 of 2 grid points cannot render the scene torus_caps and are skipped (the first, lights=1:")
+            && err.contains("2 bump lights"),
+        "{err}"
+    );
+    let pts: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.path().join("out/sp.json")).unwrap()).unwrap();
+    let labels: Vec<&str> = pts.as_array().unwrap().iter().map(|p| p["label"].as_str().unwrap()).collect();
+    assert_eq!(labels, ["lights=2"]);
+}

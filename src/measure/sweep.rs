@@ -223,10 +223,16 @@ impl Space {
             ));
         }
         if out.is_empty() {
+            let first = skipped
+                .first()
+                .map(|(lab, why)| format!(": every point is an invalid combination (the first, {lab}: {why})"))
+                .unwrap_or_default();
             return Err(Error::Other(format!(
-                "{file}: no valid configuration in the grid\n  fix: check the ranges with `gbump config`"
+                "{file}: no valid configuration in the grid{first}\n  fix: change the grid or [base] so the fields named agree"
             )));
         }
+        let (out, note) = fitting(out, &self.scene, file)?;
+        notes.extend(note);
         Ok((out, notes))
     }
 }
@@ -384,9 +390,7 @@ pub fn measure(
         .iter()
         .find(|e| e.unit == "gbump_pipeline" && e.source == "random")
         .expect("pipeline error");
-    let mut scfg = cfg.clone();
-    scfg.lights = scfg.lights.max(s.bump_lights().count() as u32);
-    let img = crate::render::render(&s, &scfg, IMAGE.0, IMAGE.1, false)?;
+    let img = crate::render::render(&s, cfg, IMAGE.0, IMAGE.1, false)?;
     let psnr = super::image_metrics::compare(&img.golden, &img.reference, &img.covered, img.colour_max).psnr_db;
     let p = Point {
         config_hash: cfg.hash(),
@@ -441,6 +445,39 @@ pub fn sweep(space: &Space, file: &str, work: &Path, progress: bool, yosys: bool
     drop(bar);
     mark_pareto(&mut points);
     Ok(points)
+}
+
+/// The grid points that can render `scene` (`gbump render` refuses the others: too few light
+/// slots for its bump lights, say), and a note naming the first skipped and why; refused when
+/// none is left, so no point's image is of another design than its area.
+fn fitting(configs: Vec<(String, PipelineConfig)>, scene: &str, file: &str) -> Result<(Vec<(String, PipelineConfig)>, Option<String>)> {
+    let s = crate::scene::Scene::load(scene)?;
+    let total = configs.len();
+    let mut why = None;
+    let out: Vec<_> = configs
+        .into_iter()
+        .filter(|(label, cfg)| match s.check_config(cfg, file) {
+            Ok(()) => true,
+            Err(e) => {
+                why.get_or_insert_with(|| (label.clone(), e.to_string()));
+                false
+            }
+        })
+        .collect();
+    let Some((label, e)) = why else {
+        return Ok((out, None));
+    };
+    let first = e.lines().next().unwrap_or_default().to_string();
+    if out.is_empty() {
+        return Err(Error::Other(format!(
+            "{file}: no grid point can render the scene {scene} (the first, {label}: {first})\n  fix: widen the grid (more light slots than the scene's bump lights, say), or sweep another scene"
+        )));
+    }
+    let note = format!(
+        "note: {file}: {} of {total} grid points cannot render the scene {scene} and are skipped (the first, {label}: {first})",
+        total - out.len()
+    );
+    Ok((out, Some(note)))
 }
 
 /// Whether any point was measured on an FPGA (the CSV and the report then add its columns).
