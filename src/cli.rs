@@ -140,7 +140,7 @@ pub enum Cmd {
         #[arg(long, value_name = "WxH", conflicts_with = "vectors")]
         scene_size: Option<String>,
         /// Work folder: generated RTL, vectors and cached builds.
-        #[arg(long, default_value = "target/gbump-regress")]
+        #[arg(long, default_value = "target/gbump-regress", value_parser = output_dir)]
         work: PathBuf,
         /// Write JUnit XML here.
         #[arg(long, value_name = "FILE", value_parser = output_file)]
@@ -155,7 +155,7 @@ pub enum Cmd {
     Lint {
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, default_value = "target/gbump-lint")]
+        #[arg(long, default_value = "target/gbump-lint", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Draw random valid configurations; generate, lint and simulate each on Verilator.
@@ -171,7 +171,7 @@ pub enum Cmd {
         /// Random top vectors per configuration (unit sets get as many each).
         #[arg(long, default_value_t = 2000)]
         random: u64,
-        #[arg(long, default_value = "target/gbump-fuzz")]
+        #[arg(long, default_value = "target/gbump-fuzz", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Yosys area per unit and in total: gate equivalents, flip-flops, logic depth, ROM bits;
@@ -179,7 +179,7 @@ pub enum Cmd {
     Area {
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, default_value = "target/gbump-area")]
+        #[arg(long, default_value = "target/gbump-area", value_parser = output_dir)]
         work: PathBuf,
         /// cmos: NAND2 gate equivalents; ice40, ecp5, xilinx: LUTs, flip-flops, carry, DSP, RAM.
         #[arg(long, value_enum, default_value = "cmos")]
@@ -219,7 +219,7 @@ pub enum Cmd {
         /// Also synthesise the plain tables and every design within 1 LSB with Yosys.
         #[arg(long)]
         area: bool,
-        #[arg(long, default_value = "target/gbump-power")]
+        #[arg(long, default_value = "target/gbump-power", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Sweep a grid of configurations: CSV, JSON and an SVG of error against area with the Pareto front.
@@ -230,7 +230,7 @@ pub enum Cmd {
         #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Cache of finished configurations (a re-run resumes from it).
-        #[arg(long, default_value = "target/gbump-sweep")]
+        #[arg(long, default_value = "target/gbump-sweep", value_parser = output_dir)]
         work: PathBuf,
         /// Size every point with Yosys (about 30 s a configuration) instead of the area model.
         #[arg(long)]
@@ -264,7 +264,7 @@ pub enum Cmd {
         /// The iCE40 device of --min-fmax (hx1k, hx4k, hx8k, lp1k, lp8k, up5k; default hx8k).
         #[arg(long, requires = "min_fmax")]
         device: Option<String>,
-        #[arg(long, default_value = "target/gbump-fit")]
+        #[arg(long, default_value = "target/gbump-fit", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Every built-in scene under max<=2, psnr>=50 and exact<=1: the scene's default
@@ -281,7 +281,7 @@ pub enum Cmd {
         /// Write every sample (config, Yosys GE, estimate) here, one JSON object a line.
         #[arg(long, value_name = "FILE", value_parser = output_file)]
         write: Option<PathBuf>,
-        #[arg(long, default_value = "target/gbump-areamodel")]
+        #[arg(long, default_value = "target/gbump-areamodel", value_parser = output_dir)]
         work: PathBuf,
     },
     /// The survey's bump engines (paper §2-3, §6; Cg §8) in f64 on the same scenes, against the
@@ -324,7 +324,7 @@ pub enum Cmd {
     Bench {
         #[command(flatten)]
         pick: ConfigPick,
-        #[arg(long, default_value = "target/gbump-bench")]
+        #[arg(long, default_value = "target/gbump-bench", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Write docs/REPORT.md: area, error, the power unit's design space, a sweep and speed.
@@ -333,7 +333,7 @@ pub enum Cmd {
         out: PathBuf,
         #[arg(long, default_value = "sweeps/small.toml", value_name = "FILE")]
         space: PathBuf,
-        #[arg(long, default_value = "target/gbump-report")]
+        #[arg(long, default_value = "target/gbump-report", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Lockstep co-simulation on Verilator: the generated top against the golden model through
@@ -358,7 +358,7 @@ pub enum Cmd {
         #[arg(long, value_name = "FILE")]
         lib: Option<PathBuf>,
         /// Work folder: generated RTL and the cached Verilator build.
-        #[arg(long, default_value = "target/gbump-cosim")]
+        #[arg(long, default_value = "target/gbump-cosim", value_parser = output_dir)]
         work: PathBuf,
     },
     /// Print the interface table (every unit's ports, formats and latency) as Markdown.
@@ -434,22 +434,46 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     under_folders(p)
 }
 
-/// `p` when its nearest existing ancestor is a folder (what is missing is made on writing).
+/// `p` when its nearest existing ancestor is a folder this run can write in (what is missing
+/// is made on writing): tried with a file made and removed there, so a folder of /proc, a
+/// read-only mount or a folder without write permission fails now, not after the run.
 fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
     let mut up = p.parent();
-    while let Some(a) = up {
-        if a.as_os_str().is_empty() || a.is_dir() {
-            break;
+    let folder = loop {
+        match up {
+            Some(a) if a.as_os_str().is_empty() => break Path::new("."),
+            Some(a) if a.is_dir() => break a,
+            Some(a) if a.exists() => {
+                return Err(format!(
+                    "{} is a file, not a folder (fix: give a path through folders)",
+                    a.display()
+                ))
+            }
+            Some(a) => up = a.parent(),
+            None => break Path::new("/"),
         }
-        if a.exists() {
-            return Err(format!(
-                "{} is a file, not a folder (fix: give a path through folders)",
-                a.display()
-            ));
-        }
-        up = a.parent();
+    };
+    // A device or pipe named as the output (/dev/stdout) is written in place, not beside.
+    if std::fs::metadata(&p).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+        return Ok(p);
     }
-    Ok(p)
+    let probe = folder.join(format!(".gbump-write-check{}", std::process::id()));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(p)
+        }
+        Err(e) => Err(format!(
+            "cannot write in {}: {e} (fix: give a path under a folder you can write to)",
+            folder.display()
+        )),
+    }
+}
+
+/// Refuse an output file that is one of the inputs this run has read (checked as soon as the
+/// inputs are, before any work; `write_atomic` checks again when it writes).
+fn not_inputs(outputs: &[Option<&Path>]) -> Result<()> {
+    outputs.iter().flatten().try_for_each(|o| crate::limits::check_not_input(o))
 }
 
 /// Refuse a repeatable option naming one value twice (the run would do its work twice).
@@ -683,6 +707,7 @@ pub fn run() -> anyhow::Result<()> {
             };
             // A target the configuration lacks is refused before the work folder is touched.
             crate::vectors::targets::resolve(&cfg, &opts.targets)?;
+            not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
                 if matches!(sim, SimChoice::Icarus) {
@@ -743,6 +768,7 @@ pub fn run() -> anyhow::Result<()> {
         } if target != crate::measure::fpga::Target::Cmos => {
             let device = device_for(target, device)?;
             let cfg = pick.resolve()?;
+            not_inputs(&[json.as_deref()])?;
             crate::measure::fpga::ice40_package(&device)?;
             crate::measure::fpga::require(target)?;
             let _lock = lock_work(&work)?;
@@ -761,6 +787,7 @@ pub fn run() -> anyhow::Result<()> {
         } => {
             device_for(target, device)?;
             let cfg = pick.resolve()?;
+            not_inputs(&[json.as_deref()])?;
             let _lock = lock_work(&work)?;
             let r = crate::measure::area::area(&cfg, &work, &format!("gbump rtl {}", pick.args()))?;
             if let Some(j) = json {
@@ -776,6 +803,7 @@ pub fn run() -> anyhow::Result<()> {
             json,
         } => {
             let cfg = pick.resolve()?;
+            not_inputs(&[json.as_deref()])?;
             let (w, h) = crate::limits::parse_size("--size", &size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
             crate::measure::scene_error::check_builtin_renders(w, h)?;
@@ -800,6 +828,7 @@ pub fn run() -> anyhow::Result<()> {
             work,
         } => {
             let cfg = pick.resolve()?;
+            not_inputs(&[json.as_deref()])?;
             crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
             if area {
                 crate::yosys::require()?;
@@ -839,6 +868,7 @@ pub fn run() -> anyhow::Result<()> {
             for f in &files {
                 PipelineConfig::load(f)?;
             }
+            not_inputs(&[write.as_deref()])?;
             crate::yosys::require()?;
             let _lock = lock_work(&work)?;
             let (coef, samples) =
@@ -982,6 +1012,10 @@ pub fn run() -> anyhow::Result<()> {
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());
             crate::names::check(&space.display().to_string(), "file name", &name)?;
             let sp = crate::measure::sweep::Space::load(&space)?;
+            // The results are named after the space: none may be the space itself.
+            for ext in ["csv", "json", "svg"] {
+                not_inputs(&[Some(&out.join(format!("{name}.{ext}")))])?;
+            }
             let _lock = lock_work(&work)?;
             let t0 = std::time::Instant::now();
             let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true, yosys)?;

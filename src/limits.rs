@@ -241,10 +241,36 @@ pub fn check_not_pipe(path: &Path, fix: &str) -> Result<()> {
     Ok(())
 }
 
+/// The files this run has read as inputs (canonical paths): a result written over one of them
+/// would destroy the input it came from (`--json` naming the `--config`, say).
+static INPUTS: std::sync::Mutex<Vec<std::path::PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Record `path` as an input of this run.
+pub fn note_input(path: &Path) {
+    if let Ok(p) = std::fs::canonicalize(path) {
+        INPUTS.lock().unwrap_or_else(|e| e.into_inner()).push(p);
+    }
+}
+
+/// Refuse to write a result at `path` when it is an input this run has read.
+pub fn check_not_input(path: &Path) -> Result<()> {
+    let Ok(p) = std::fs::canonicalize(path) else {
+        return Ok(());
+    };
+    if INPUTS.lock().unwrap_or_else(|e| e.into_inner()).contains(&p) {
+        return Err(Error::Other(format!(
+            "{}: an input of this run; writing a result there would replace it\n  fix: give the output another path",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
 /// [`read_text`] for an input that is `what`, with `fix` when it is not text or too large.
 pub fn read_text_as(path: &Path, what: &str, fix: &str) -> Result<String> {
     check_not_pipe(path, fix)?;
     let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    note_input(path);
     let mut buf = Vec::new();
     f.take(MAX_INPUT_BYTES + 1).read_to_end(&mut buf).map_err(|e| Error::io(path, e))?;
     if buf.len() as u64 > MAX_INPUT_BYTES {

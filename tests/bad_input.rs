@@ -780,6 +780,30 @@ fn cases() -> Vec<Case> {
             vec!["sp.toml", "every point is an invalid combination", "palette=true renormalise_bump=true", "fix:"],
         ),
         (
+            "--json naming the --config it reads",
+            vec![("c.toml", "lights = 2\n".into())],
+            vec!["error", "--config", "c.toml", "--json", "c.toml", "--random", "10", "--size", "32x24"],
+            vec!["c.toml: an input of this run", "fix: give the output another path"],
+        ),
+        (
+            "a sweep whose results would be written over its space file",
+            vec![("pts.json", "scene = \"torus_caps\"\n[grid]\nlights = [2]\n".into())],
+            vec!["sweep", "--space", "pts.json", "--out", ".", "--work", "w"],
+            vec!["pts.json: an input of this run"],
+        ),
+        (
+            "an output file in a folder nothing can be written in",
+            vec![],
+            vec!["area", "--json", "/proc/gbump.json", "--work", "w"],
+            vec!["--json", "cannot write in /proc", "fix: give a path under a folder you can write to"],
+        ),
+        (
+            "a --work folder that is a file",
+            vec![("afile", "x".into())],
+            vec!["bench", "--work", "afile"],
+            vec!["--work", "afile is a file, not a folder"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),
@@ -926,7 +950,7 @@ fn cases() -> Vec<Case> {
             "vectors into a folder that cannot be made",
             vec![],
             vec!["vectors", "--source", "corners", "--out", "/proc/gbump_out"],
-            vec!["/proc/gbump_out: cannot create this folder in /proc", "fix:"],
+            vec!["/proc/gbump_out", "--out", "cannot write in /proc", "fix:"],
         ),
         (
             "a configuration value out of range, at its line",

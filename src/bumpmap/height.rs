@@ -125,6 +125,7 @@ fn read_png(p: &std::path::Path) -> Result<image::DynamicImage> {
         msg,
     };
     crate::limits::check_not_pipe(p, "give a PNG file")?;
+    crate::limits::note_input(p);
     let open = || {
         image::ImageReader::open(p)
             .and_then(|r| r.with_guessed_format())

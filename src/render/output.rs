@@ -8,6 +8,7 @@ use std::path::Path;
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let _cleanup = crate::interrupt::cleanup();
     crate::interrupt::check()?;
+    crate::limits::check_not_input(path)?;
     // A device or FIFO (e.g. /dev/full, /dev/stdout) is written in place: renaming over it
     // would replace the device node.
     if let Ok(meta) = std::fs::metadata(path) {

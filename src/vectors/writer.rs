@@ -46,6 +46,7 @@ struct Sink {
 
 impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
+        crate::limits::check_not_input(&path)?;
         let tmp = path.with_extension(format!(
             "{}.tmp{}",
             path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
