@@ -199,7 +199,7 @@ fn a_killed_sweep_resumes_to_the_same_table() {
     // Diffuse only: a smaller top for Yosys, the same resume path.
     std::fs::write(
         &space,
-        "[base]\nlights = 1\nlight_mode = \"parallel\"\nspecular = false\n[grid]\nnormal_bits = [8]\n",
+        "[base]\nlights = 2\nlight_mode = \"parallel\"\nspecular = false\n[grid]\nnormal_bits = [8]\n",
     )
     .unwrap();
     let args = |dir: &Path| {

@@ -85,7 +85,7 @@ fn power_space_finds_designs_within_one_lsb() {
 #[test]
 fn one_work_folder_never_serves_one_scenes_results_for_another() {
     let dir = tempfile::tempdir().unwrap();
-    let grid = "[base]\nlights = 1\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [8]\n";
+    let grid = "[base]\nlights = 2\nlight_mode = \"parallel\"\n[grid]\nnormal_bits = [8]\n";
     let run = |scene: &str, work: &str| -> String {
         let space = dir.path().join(format!("{scene}.toml"));
         std::fs::write(&space, format!("scene = \"{scene}\"\n{grid}")).unwrap();
