@@ -470,6 +470,34 @@ fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
     }
 }
 
+/// The scene's reasons (`# FIELD = VALUE: why`) under an engine's path: a field the engine
+/// sets otherwise says so and keeps the scene's value beside it, so no comment contradicts the
+/// TOML below it; under a squaring power unit the shininess has no table.
+fn engine_why(why: &str, scene: &PipelineConfig, fixed: &PipelineConfig) -> String {
+    let (st, ft) = (scene.to_toml(), fixed.to_toml());
+    why.lines()
+        .map(|l| {
+            let field = l.strip_prefix("# ").and_then(|r| r.split_once(" = ")).map(|(f, _)| f);
+            match field {
+                Some(f)
+                    if f.chars().all(|c| c.is_ascii_lowercase() || c == '_') && scene.field_text(&st, f) != fixed.field_text(&ft, f) =>
+                {
+                    format!(
+                        "# {f} = {}: set by the engine's path (the scene alone: {f} = {})\n",
+                        fixed.field_text(&ft, f),
+                        scene.field_text(&st, f)
+                    )
+                }
+                Some("shininess") if fixed.power_unit == crate::config::PowerUnitKind::Squaring => format!(
+                    "# shininess = {0}: the scene's; the engine's squaring power unit computes x^{0} by successive squarings (no table)\n",
+                    fixed.shininess
+                ),
+                _ => format!("{l}\n"),
+            }
+        })
+        .collect()
+}
+
 /// Refuse an output file that is one of the inputs this run has read (checked as soon as the
 /// inputs are, before any work; `write_atomic` checks again when it writes).
 fn not_inputs(outputs: &[Option<&Path>]) -> Result<()> {
@@ -1126,6 +1154,7 @@ pub fn run() -> anyhow::Result<()> {
                         let e = crate::engines::fixed_engine(&name)?;
                         let fixed = e.fixed_config(&scene)?.expect("fixed_engine has a bit-accurate path");
                         fixed.validate(&format!("{} (engine {name})", scene.file))?;
+                        let why = engine_why(&why, &cfg, &fixed);
                         out!(
                             "{why}# engine {name}'s bit-accurate path on this scene: {}\n# config hash {}\n{}",
                             e.fixed.expect("a bit-accurate path"),

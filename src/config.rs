@@ -983,6 +983,23 @@ impl PipelineConfig {
     }
 
     /// The numeric field `name` of [`LIMITS`].
+    /// Field `field`'s value as its TOML writes it, `toml` being this configuration's
+    /// [`to_toml`](Self::to_toml); a field at its default is left out of the TOML
+    /// (colour_guard_bits = 0, white_lights = false, interpolate = "none"): that default.
+    pub fn field_text(&self, toml: &str, field: &str) -> String {
+        toml.lines()
+            .find_map(|l| {
+                l.split_once('=')
+                    .filter(|(k, _)| k.trim() == field)
+                    .map(|(_, v)| v.trim().to_string())
+            })
+            .unwrap_or_else(|| match LIMITS.iter().any(|l| l.0 == field) {
+                true => self.get(field).to_string(),
+                false if field == "interpolate" => "\"none\"".into(),
+                false => "false".into(),
+            })
+    }
+
     pub fn get(&self, name: &str) -> u32 {
         match name {
             "normal_bits" => self.normal_bits,

@@ -340,3 +340,38 @@ fn the_bit_accurate_paths_are_the_generated_engines_and_agree_on_the_plane() {
     assert!(csv.lines().all(|l| l.split(',').count() == fields), "{csv}");
     assert!(t.markdown().contains("No bit-accurate path or RTL yet (f64 only): `embm`."));
 }
+
+/// `gbump config --engine E --scene S`: every reason line `# FIELD = VALUE: …` above the TOML
+/// gives the value the TOML below it holds (a field the engine's path sets says so), for every
+/// engine with a bit-accurate path on scenes with graded and on-off k, one and several lights.
+#[test]
+fn an_engines_config_comments_agree_with_its_values() {
+    for scene in ["cg_wall_front", "torus_caps", "sphere_bricks_spots"] {
+        for e in ENGINES.iter().filter(|e| e.fixed.is_some()) {
+            let o = Command::cargo_bin("gbump")
+                .unwrap()
+                .args(["config", "--engine", e.name, "--scene", scene])
+                .assert()
+                .success();
+            let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+            let toml_text: String = text.lines().filter(|l| !l.starts_with('#')).map(|l| format!("{l}\n")).collect();
+            let cfg: gbump::PipelineConfig = toml::from_str(&toml_text).unwrap();
+            let mut checked = 0;
+            for l in text.lines() {
+                let Some((field, rest)) = l.strip_prefix("# ").and_then(|r| r.split_once(" = ")) else {
+                    continue;
+                };
+                if !field.chars().all(|c| c.is_ascii_lowercase() || c == '_') {
+                    continue;
+                }
+                let value = rest.split(':').next().unwrap();
+                assert_eq!(value, cfg.field_text(&toml_text, field), "{} on {scene}: {l}", e.name);
+                checked += 1;
+            }
+            assert!(checked >= 4, "{} on {scene}: only {checked} reason lines in\n{text}", e.name);
+            if cfg.power_unit == gbump::config::PowerUnitKind::Squaring {
+                assert!(!text.contains("the table need never be reloaded"), "{} on {scene}:\n{text}", e.name);
+            }
+        }
+    }
+}

@@ -209,21 +209,7 @@ pub fn included(cfg: &PipelineConfig) -> Vec<&'static dyn Unit> {
 /// the configuration's value and the one the unit needs.
 pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
     let toml = cfg.to_toml();
-    let current = |field: &str| {
-        toml.lines()
-            .find_map(|l| {
-                l.split_once('=')
-                    .filter(|(k, _)| k.trim() == field)
-                    .map(|(_, v)| v.trim().to_string())
-            })
-            // A field at its default is left out of the TOML (colour_guard_bits = 0, white_lights
-            // = false, interpolate = none): name that default.
-            .unwrap_or_else(|| match crate::config::LIMITS.iter().any(|l| l.0 == field) {
-                true => cfg.get(field).to_string(),
-                false if field == "interpolate" => "\"none\"".into(),
-                false => "false".into(),
-            })
-    };
+    let current = |field: &str| cfg.field_text(&toml, field);
     // (what the configuration has, what the unit needs) for every unmet setting.
     let (has, want): (Vec<String>, Vec<String>) = u
         .requires(cfg)
