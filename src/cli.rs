@@ -299,7 +299,8 @@ pub enum Cmd {
         /// Texels along a side of EMBM's environment maps.
         #[arg(long, default_value_t = crate::engines::embm::EMBM_MAP)]
         embm_map: u32,
-        /// Texels along a face edge of the Cg engine's normalisation cube map.
+        /// Texels along a face edge of the Cg engine's f64 normalisation cube map (its
+        /// bit-accurate path's cube is its configuration's cube_map_face).
         #[arg(long, default_value_t = crate::engines::cg::CUBE_FACE)]
         cg_cube: u32,
         /// What-if: the engines that light with the map's filtered normal directly (SGI, Cg)
@@ -308,6 +309,10 @@ pub enum Cmd {
         renormalise_map: bool,
         #[arg(long, default_value = "out/engines", value_parser = output_dir)]
         out: PathBuf,
+        /// Print every engine's name, whether it has a bit-accurate path (`gbump config
+        /// --engine`), and its source, and stop.
+        #[arg(long, conflicts_with_all = ["scenes", "engines", "size", "out"])]
+        list: bool,
     },
     /// One of the paper's claims about the engines, measured: NAME.md and NAME.svg (the
     /// sections of docs/REPORT.md). `--list` names them.
@@ -315,6 +320,7 @@ pub enum Cmd {
         /// visa-seams, flat-shading, embm-resolution or map-filter.
         #[arg(required_unless_present = "list")]
         name: Option<String>,
+        /// Print the claims' names and what each measures, and stop.
         #[arg(long, conflicts_with_all = ["name", "out"])]
         list: bool,
         #[arg(long, default_value = "out/claims", value_parser = output_dir)]
@@ -377,7 +383,7 @@ pub enum Cmd {
     Config {
         #[arg(long)]
         scene: Option<String>,
-        /// An engine with a bit-accurate path (`gbump engines` lists them); needs --scene.
+        /// An engine with a bit-accurate path (`gbump engines --list` names them); needs --scene.
         #[arg(long, requires = "scene")]
         engine: Option<String>,
     },
@@ -835,18 +841,26 @@ pub fn run() -> anyhow::Result<()> {
             let (w, h) = crate::limits::parse_size("--size", &size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
             crate::measure::scene_error::check_builtin_renders(w, h)?;
+            // Everything is measured and written before anything is printed: a run that fails
+            // prints no report. A built-in scene that covers no pixel at this size is the
+            // size's fault, not the scene file's.
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
-            out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
-            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h)?;
-            out!(
-                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
-                crate::measure::scene_error::scene_error_table(&scenes)
-            );
+            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| {
+                let first = e.to_string().lines().next().unwrap_or_default().to_string();
+                Error::Other(format!(
+                    "--size {w}x{h}: {first}\n  fix: give a larger --size (the default is 192x144)"
+                ))
+            })?;
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
                     "scenes": scenes.iter().map(|(n, g, r)| serde_json::json!({"scene": n, "vs_gouraud_f64": g, "vs_reference": r})).collect::<Vec<_>>()});
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
+            out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
+            out!(
+                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
+                crate::measure::scene_error::scene_error_table(&scenes)
+            );
         }
         Cmd::PowerSpace {
             pick,
@@ -867,14 +881,14 @@ pub fn run() -> anyhow::Result<()> {
                 p: cfg.power_frac_bits,
             };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
+            if let Some(j) = &json {
+                write_atomic(j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
+            }
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
             let _lock = area.then(|| lock_work(&work)).transpose()?;
             if area {
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
                 out!("{}", crate::measure::power_space::area_rows(fm, &rs, &work)?);
-            }
-            if let Some(j) = json {
-                write_atomic(&j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
             }
         }
         Cmd::AreaModel {
@@ -1080,6 +1094,12 @@ pub fn run() -> anyhow::Result<()> {
                 out.display()
             );
         }
+        Cmd::Engines { list: true, .. } => {
+            for e in crate::engines::ENGINES {
+                let path = if e.fixed.is_some() { "bit-accurate path" } else { "f64 only" };
+                outln!("{:16} {path:17} {}", e.name, e.source);
+            }
+        }
         Cmd::Engines {
             scenes,
             engines,
@@ -1088,6 +1108,7 @@ pub fn run() -> anyhow::Result<()> {
             cg_cube,
             renormalise_map,
             out,
+            list: false,
         } => engines_command(
             &scenes,
             &engines,

@@ -771,7 +771,7 @@ fn cases() -> Vec<Case> {
             "a sweep grid none of whose points can render its scene",
             space("scene = \"torus_caps\"\n\n[grid]\nlights = [1]\n"),
             sweep(),
-            vec!["sp.toml", "no grid point can render the scene torus_caps", "2 bump lights", "fix: widen the grid"],
+            vec!["sp.toml", "no grid point can render the scene torus_caps", "2 bump lights", "fix: change the grid"],
         ),
         (
             "a sweep grid whose every point is an invalid combination",
@@ -802,6 +802,12 @@ fn cases() -> Vec<Case> {
             vec![("afile", "x".into())],
             vec!["bench", "--work", "afile"],
             vec!["--work", "afile is a file, not a folder"],
+        ),
+        (
+            "error at a size no built-in scene covers a pixel of",
+            vec![],
+            vec!["error", "--size", "1x1", "--random", "10"],
+            vec!["--size 1x1", "no object covers a pixel", "fix: give a larger --size"],
         ),
         (
             "unknown field in a sweep base",

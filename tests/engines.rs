@@ -375,3 +375,27 @@ fn an_engines_config_comments_agree_with_its_values() {
         }
     }
 }
+
+/// `gbump engines --list` names every engine, with whether `gbump config --engine` takes it.
+#[test]
+fn the_engine_list_names_every_engine_and_its_path() {
+    let o = Command::cargo_bin("gbump").unwrap().args(["engines", "--list"]).assert().success();
+    let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert_eq!(text.lines().count(), ENGINES.len(), "{text}");
+    for (l, e) in text.lines().zip(ENGINES) {
+        let words: Vec<&str> = l.split_whitespace().collect();
+        assert_eq!(words[0], e.name, "{l}");
+        assert_eq!(l.contains("bit-accurate path"), e.fixed.is_some(), "{l}");
+        let config = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["config", "--engine", e.name, "--scene", "cg_wall_front"])
+            .output()
+            .unwrap();
+        assert_eq!(
+            config.status.success(),
+            e.fixed.is_some(),
+            "{}: config --engine disagrees with the list",
+            e.name
+        );
+    }
+}

@@ -206,7 +206,13 @@ impl Table {
             for (ei, e) in self.engines.iter().enumerate() {
                 let r = &self.errors[si][ei];
                 let psnr = if r.psnr_db.is_infinite() {
-                    "∞ (reference)".to_string()
+                    // Only the reference is the reference; another engine can equal it exactly.
+                    if e.name == super::blinn::BLINN.name {
+                        "∞ (reference)"
+                    } else {
+                        "∞ (identical)"
+                    }
+                    .to_string()
                 } else {
                     format!("{:.2}", r.psnr_db)
                 };
@@ -229,11 +235,24 @@ impl Table {
         for e in &self.engines {
             s += &format!("| {} | {} | {} | {} |\n", e.name, e.source, e.per_triangle, e.per_fragment);
         }
+        // The map sizes of the engines in the table, and only those.
+        let has = |name: &str| self.engines.iter().any(|e| e.name == name);
+        let mut maps = String::new();
+        if has(super::embm::EMBM.name) {
+            let n = self.maps.embm_map;
+            maps += &format!(
+                " EMBM's environment maps have {n}×{n} texels; moving one light regenerates 2 · {n}² = {} texels per object.",
+                2 * n * n
+            );
+        }
+        if has(super::cg::CG.name) {
+            maps += &format!(
+                " The Cg engine's normalisation cube map has {0}×{0} texels a face.",
+                self.maps.cg_cube
+            );
+        }
         s += &format!(
-            "\nErrors are in 8-bit LSBs against `blinn` over the drawn pixels, every engine in f64 (no arithmetic rounding: each engine's own approximations only). The seam error compares the colour jump between two side-by-side pixels on different triangles of one object with the reference's jump there. Bytes per triangle and words per fragment count 16-bit words beyond what a textured Gouraud triangle already carries (screen positions, colours, uv), at the scene's number of bump lights: what the engine sends to the rasteriser, and what its interpolators produce per fragment. EMBM's environment maps have {0}×{0} texels; moving one light regenerates 2 · {0}² = {1} texels per object. The Cg engine's normalisation cube map has {2}×{2} texels a face. The contact sheet's columns are the engines in this table's order; under each scene's row of images is their difference from `blinn` (full scale 16 LSB).\n",
-            self.maps.embm_map,
-            2 * self.maps.embm_map * self.maps.embm_map,
-            self.maps.cg_cube
+            "\nErrors are in 8-bit LSBs against `blinn` over the drawn pixels, every engine in f64 (no arithmetic rounding: each engine's own approximations only). The seam error compares the colour jump between two side-by-side pixels on different triangles of one object with the reference's jump there. Bytes per triangle (16-bit words, two bytes each) and words per fragment count what goes beyond what a textured Gouraud triangle already carries (screen positions, colours, uv), at the scene's number of bump lights: what the engine sends to the rasteriser, and what its interpolators produce per fragment.{maps} The contact sheet's columns are the engines in this table's order; under each scene's row of images is their difference from `blinn` (full scale 16 LSB).\n",
         );
         if self.maps.renormalise_map {
             s += "\nWhat-if (`--renormalise-map`): SGI and Cg renormalise the map's filtered normal before lighting with it, which neither text does; their f64 rows above show it, no other engine's changes, and the bit-accurate paths do not (in hardware that is `renormalise_bump = true`, a `normalise_b` unit after the fetch: `gbump claim map-filter`).\n";

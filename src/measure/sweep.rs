@@ -470,7 +470,7 @@ fn fitting(configs: Vec<(String, PipelineConfig)>, scene: &str, file: &str) -> R
     let first = e.lines().next().unwrap_or_default().to_string();
     if out.is_empty() {
         return Err(Error::Other(format!(
-            "{file}: no grid point can render the scene {scene} (the first, {label}: {first})\n  fix: widen the grid (more light slots than the scene's bump lights, say), or sweep another scene"
+            "{file}: no grid point can render the scene {scene} (the first, {label}: {first})\n  fix: change the grid or [base] so its points fit the scene (the reason names the field), or sweep another scene"
         )));
     }
     let note = format!(
