@@ -211,8 +211,8 @@ pub enum Cmd {
     PowerSpace {
         #[command(flatten)]
         pick: ConfigPick,
-        /// Largest exponent to check.
-        #[arg(long, default_value_t = 255)]
+        /// Largest exponent to check (1..=MAX_SHININESS).
+        #[arg(long, default_value_t = 255, value_parser = clap::value_parser!(u32).range(1..=crate::limits::MAX_SHININESS as i64))]
         max_n: u32,
         #[arg(long, value_name = "FILE", value_parser = output_file)]
         json: Option<PathBuf>,
@@ -939,7 +939,12 @@ pub fn run() -> anyhow::Result<()> {
             let budget = crate::fit::budget::Budget::parse(&budget)?;
             if !(0.0..=1.0).contains(&min_throughput) {
                 return Err(Error::Other(format!(
-                    "--min-throughput {min_throughput}: a top takes at most one fragment per clock\n  fix: use a value in 0..=1 (1/n for a serial top of n lights)"
+                    "--min-throughput {min_throughput}: {}\n  fix: use a value in 0..=1 (1/n for a serial top of n lights)",
+                    if min_throughput > 1.0 {
+                        "a top takes at most one fragment per clock"
+                    } else {
+                        "not a number of fragments per clock (0 or more)"
+                    }
                 ))
                 .into());
             }

@@ -810,6 +810,24 @@ fn cases() -> Vec<Case> {
             vec!["--size 1x1", "no object covers a pixel", "fix: give a larger --size"],
         ),
         (
+            "a fit budget beyond any colour's range",
+            vec![],
+            vec!["fit", "--scene", "torus_caps", "--budget", "max<=1e308", "--no-regress", "--out", "out"],
+            vec!["max<=1e308", "out of range", "at most 4095 LSB"],
+        ),
+        (
+            "a negative --min-throughput",
+            vec![],
+            vec!["fit", "--scene", "torus_caps", "--budget", "max<=2", "--min-throughput=-1", "--out", "out"],
+            vec!["--min-throughput -1", "0 or more"],
+        ),
+        (
+            "power-space --max-n beyond MAX_SHININESS",
+            vec![],
+            vec!["power-space", "--max-n", "99999999999"],
+            vec!["--max-n", "1..=1024"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),

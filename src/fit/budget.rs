@@ -68,9 +68,11 @@ impl Budget {
             return Err(bad());
         };
         let v: f64 = value.parse().map_err(|_| bad())?;
-        if !v.is_finite() || v < 0.0 || (kind == "psnr" && v > 200.0) {
+        // An error in LSBs cannot exceed the widest colour's range.
+        let lsb_max = ((1u64 << crate::config::limit("colour_bits").1) - 1) as f64;
+        if !v.is_finite() || v < 0.0 || (kind == "psnr" && v > 200.0) || (kind != "psnr" && v > lsb_max) {
             return Err(Error::Other(format!(
-                "--budget `{text}`: the bound is out of range\n  fix: a finite bound, at least 0 (PSNR at most 200 dB)"
+                "--budget `{text}`: the bound is out of range\n  fix: a finite bound, at least 0 (PSNR at most 200 dB, an error at most {lsb_max} LSB)"
             )));
         }
         Ok(match kind {
