@@ -67,6 +67,15 @@ fn torus_caps_within_max_2_is_fitted_regressed_and_written() {
     for f in ["front.csv", "front.svg"] {
         assert!(out.join(f).exists(), "{f} missing");
     }
+    // Every candidate row has its area, not only the front's.
+    let csv = std::fs::read_to_string(out.join("front.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = header.iter().position(|h| *h == "area_ge").unwrap();
+    assert!(csv.lines().count() > 10, "{csv}");
+    for row in csv.lines().skip(1) {
+        let ge: f64 = row.split(',').nth(col).unwrap().parse().unwrap_or_else(|_| panic!("no area in {row}"));
+        assert!(ge > 1000.0, "{row}");
+    }
 }
 
 #[test]

@@ -160,8 +160,9 @@ impl Search<'_> {
                 cfg: cfg.clone(),
                 measured,
                 met,
-                // Only the winners are synthesised (see `run`).
-                area_ge: f64::NAN,
+                // Sized as the front is (the area model: microseconds), so front.csv has an
+                // area on every row; Yosys confirms only the chosen one (`run`).
+                area_ge: (self.area)(cfg)?,
                 throughput: 1.0 / cfg.initiation_interval() as f64,
             });
         }
