@@ -641,12 +641,24 @@ impl PipelineConfig {
         }
         check_renamed(file, text)?;
         toml::from_str(text).map_err(|e| {
-            toml_error(
+            let err = toml_error(
                 file,
                 text,
                 &e,
                 "`gbump config` prints every field with its default (the optional ones as `#` comments)",
-            )
+            );
+            // A counted field given a value of the wrong type (-1, 1e9, nan, "two"): its range.
+            match err {
+                Error::Input { file, line, col, msg, fix } => {
+                    let key = msg.strip_prefix('`').and_then(|m| m.split_once('`')).map(|(k, _)| k.rsplit('.').next().unwrap_or(k));
+                    let fix = match key.and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
+                        Some(&(k, lo, hi, why)) => format!("`{k}` is a whole number in {lo}..={hi} ({why})"),
+                        None => fix,
+                    };
+                    Error::Input { file, line, col, msg, fix }
+                }
+                other => other,
+            }
         })
     }
 

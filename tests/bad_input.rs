@@ -828,6 +828,12 @@ fn cases() -> Vec<Case> {
             vec!["--max-n", "1..=1024"],
         ),
         (
+            "a counted field given a value of the wrong type",
+            vec![("c.toml", "lights = nan\n".into())],
+            vec!["rtl", "--config", "c.toml", "--out", "out"],
+            vec!["c.toml:1", "`lights`", "fix: `lights` is a whole number in 1..=8"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),
