@@ -198,11 +198,11 @@ fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json
 pub fn check_inputs(cfg: &PipelineConfig, o: &CosimOptions) -> Result<()> {
     crate::sim::require(crate::sim::Sim::Verilator)?;
     crate::capi::GbumpConfig::new(cfg.clone())?;
-    library(o)?;
+    // The user's own inputs first, then the library this gbump was built beside.
     if let Some(d) = &o.rtl {
         interface_of(cfg, &std::path::absolute(d).map_err(|e| Error::io(d, e))?)?;
     }
-    Ok(())
+    library(o).map(|_| ())
 }
 
 /// Run `o.count` fragments of seed `o.seed` through the RTL (generated for `cfg`, or

@@ -15,7 +15,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         if !meta.is_file() {
             if meta.is_dir() {
                 return Err(Error::Other(format!(
-                    "{}: is a folder, not a file\n  fix: give a file path",
+                    "{}: is a folder, where this run writes a file\n  fix: move the folder away, or give the output another path (folder)",
                     path.display()
                 )));
             }
