@@ -595,8 +595,29 @@ fn refuse_empty_arguments() -> Result<()> {
     Ok(())
 }
 
+/// Refuse a negative number given to an option (`--random -5`, `--seed=-1`): no option of
+/// gbump takes one, and the parser would otherwise call it an unknown argument.
+fn refuse_negative_numbers() -> Result<()> {
+    let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
+    let negative = |v: &str| v.starts_with('-') && v[1..].parse::<f64>().is_ok_and(|x| x > 0.0);
+    for (i, a) in args.iter().enumerate() {
+        let (flag, value) = match a.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, v),
+            _ if a.starts_with("--") && i + 1 < args.len() => (a.as_str(), args[i + 1].as_str()),
+            _ => continue,
+        };
+        if negative(value) {
+            return Err(Error::Other(format!(
+                "{flag} {value}: a negative number, which no gbump option takes\n  fix: give {flag} a value of 0 or more (`gbump help` names each command's options and their ranges)"
+            )));
+        }
+    }
+    Ok(())
+}
+
 pub fn run() -> anyhow::Result<()> {
     refuse_empty_arguments()?;
+    refuse_negative_numbers()?;
     let cli = Cli::parse();
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,

@@ -834,6 +834,12 @@ fn cases() -> Vec<Case> {
             vec!["c.toml:1", "`lights`", "fix: `lights` is a whole number in 1..=8"],
         ),
         (
+            "a negative count",
+            vec![],
+            vec!["regress", "--random", "-5", "--work", "w"],
+            vec!["--random -5: a negative number", "fix: give --random a value of 0 or more"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),
