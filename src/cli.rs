@@ -608,7 +608,7 @@ fn refuse_negative_numbers() -> Result<()> {
         };
         if negative(value) {
             return Err(Error::Other(format!(
-                "{flag} {value}: a negative number, which no gbump option takes\n  fix: give {flag} a value of 0 or more (`gbump help` names each command's options and their ranges)"
+                "{flag} {value}: a negative number, which no gbump option takes\n  fix: give {flag} a value in its range (`gbump <command> --help` names each option's)"
             )));
         }
     }

@@ -544,7 +544,7 @@ fn cases() -> Vec<Case> {
             "fuzz for -1 minutes",
             vec![],
             vec!["fuzz", "--minutes=-1", "--work", "out"],
-            vec!["--minutes", "positive"],
+            vec!["--minutes -1", "a negative number"],
         ),
         // A name that becomes part of a path (issue item 5).
         (
@@ -819,7 +819,7 @@ fn cases() -> Vec<Case> {
             "a negative --min-throughput",
             vec![],
             vec!["fit", "--scene", "torus_caps", "--budget", "max<=2", "--min-throughput=-1", "--out", "out"],
-            vec!["--min-throughput -1", "0 or more"],
+            vec!["--min-throughput -1", "a negative number"],
         ),
         (
             "power-space --max-n beyond MAX_SHININESS",
@@ -837,7 +837,7 @@ fn cases() -> Vec<Case> {
             "a negative count",
             vec![],
             vec!["regress", "--random", "-5", "--work", "w"],
-            vec!["--random -5: a negative number", "fix: give --random a value of 0 or more"],
+            vec!["--random -5: a negative number", "fix: give --random a value in its range"],
         ),
         (
             "unknown field in a sweep base",
