@@ -650,7 +650,10 @@ impl PipelineConfig {
             // A counted field given a value of the wrong type (-1, 1e9, nan, "two"): its range.
             match err {
                 Error::Input { file, line, col, msg, fix } => {
-                    let key = msg.strip_prefix('`').and_then(|m| m.split_once('`')).map(|(k, _)| k.rsplit('.').next().unwrap_or(k));
+                    let key = msg
+                        .strip_prefix('`')
+                        .and_then(|m| m.split_once('`'))
+                        .map(|(k, _)| k.rsplit('.').next().unwrap_or(k));
                     let fix = match key.and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
                         Some(&(k, lo, hi, why)) => format!("`{k}` is a whole number in {lo}..={hi} ({why})"),
                         None => fix,

@@ -73,7 +73,12 @@ fn torus_caps_within_max_2_is_fitted_regressed_and_written() {
     let col = header.iter().position(|h| *h == "area_ge").unwrap();
     assert!(csv.lines().count() > 10, "{csv}");
     for row in csv.lines().skip(1) {
-        let ge: f64 = row.split(',').nth(col).unwrap().parse().unwrap_or_else(|_| panic!("no area in {row}"));
+        let ge: f64 = row
+            .split(',')
+            .nth(col)
+            .unwrap()
+            .parse()
+            .unwrap_or_else(|_| panic!("no area in {row}"));
         assert!(ge > 1000.0, "{row}");
     }
 }
