@@ -24,6 +24,8 @@ pub struct Row {
 pub fn rows(say: &mut dyn FnMut(&str)) -> Result<Vec<Row>> {
     let area = |c: &PipelineConfig| Ok(crate::measure::area_model::estimate(c));
     let mut out = Vec::new();
+    let total = crate::scene::builtin::ALL.len() * BUDGETS.len();
+    let t0 = std::time::Instant::now();
     for (name, _) in crate::scene::builtin::ALL {
         for b in BUDGETS {
             let budget = Budget::parse(b)?;
@@ -38,9 +40,12 @@ pub fn rows(say: &mut dyn FnMut(&str)) -> Result<Vec<Row>> {
                 }
                 Err(e) => return Err(e),
             };
+            // A counter and the time so far: the table takes minutes (a fit per row).
             say(&format!(
-                "{name} {budget}: {}",
-                if fitted.is_ok() { "fitted" } else { "none meets it" }
+                "[{}/{total}] {name} {budget}: {} ({:.0} s)",
+                out.len() + 1,
+                if fitted.is_ok() { "fitted" } else { "none meets it" },
+                t0.elapsed().as_secs_f64()
             ));
             out.push(Row {
                 scene: name.to_string(),
