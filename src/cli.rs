@@ -440,11 +440,12 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     under_folders(p)
 }
 
-/// `p` when its nearest existing ancestor is a folder this run can write in (what is missing
+/// `p` when it, or its nearest existing ancestor, is a folder this run can write in (what is missing
 /// is made on writing): tried with a file made and removed there, so a folder of /proc, a
 /// read-only mount or a folder without write permission fails now, not after the run.
 fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
-    let mut up = p.parent();
+    // An existing output folder is itself where the files go.
+    let mut up = if p.is_dir() { Some(p.as_path()) } else { p.parent() };
     let folder = loop {
         match up {
             Some(a) if a.as_os_str().is_empty() => break Path::new("."),
