@@ -311,7 +311,7 @@ pub enum Cmd {
         out: PathBuf,
         /// Print every engine's name, whether it has a bit-accurate path (`gbump config
         /// --engine`), and its source, and stop.
-        #[arg(long, conflicts_with_all = ["scenes", "engines", "size", "out"])]
+        #[arg(long, conflicts_with_all = ["scenes", "engines", "size", "out", "embm_map", "cg_cube", "renormalise_map"])]
         list: bool,
     },
     /// One of the paper's claims about the engines, measured: NAME.md and NAME.svg (the
@@ -440,16 +440,20 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     under_folders(p)
 }
 
-/// `p` when it, or its nearest existing ancestor, is a folder this run can write in (what is missing
-/// is made on writing): tried with a file made and removed there, so a folder of /proc, a
-/// read-only mount or a folder without write permission fails now, not after the run.
+/// `p` when its nearest existing ancestor is a folder (what is missing is made on writing).
 fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
-    // An existing output folder is itself where the files go.
-    let mut up = if p.is_dir() { Some(p.as_path()) } else { p.parent() };
-    let folder = loop {
+    nearest_folder(&p)?;
+    Ok(p)
+}
+
+/// The folder `p`'s files go in: `p` itself when it is a folder, else its nearest existing
+/// ancestor; an error when a file stands in the way.
+fn nearest_folder(p: &Path) -> std::result::Result<PathBuf, String> {
+    let mut up = if p.is_dir() { Some(p) } else { p.parent() };
+    loop {
         match up {
-            Some(a) if a.as_os_str().is_empty() => break Path::new("."),
-            Some(a) if a.is_dir() => break a,
+            Some(a) if a.as_os_str().is_empty() => return Ok(PathBuf::from(".")),
+            Some(a) if a.is_dir() => return Ok(a.to_path_buf()),
             Some(a) if a.exists() => {
                 return Err(format!(
                     "{} is a file, not a folder (fix: give a path through folders)",
@@ -457,24 +461,51 @@ fn under_folders(p: PathBuf) -> std::result::Result<PathBuf, String> {
                 ))
             }
             Some(a) => up = a.parent(),
-            None => break Path::new("/"),
+            None => return Ok(PathBuf::from("/")),
         }
+    }
+}
+
+/// The options that name where a command writes.
+const OUTPUT_OPTIONS: [&str; 5] = ["out", "work", "json", "junit", "write"];
+
+/// Every output option given on the command line (not a default: a command that never writes
+/// there must not fail for it) is tried with a file made and removed in the folder it writes
+/// in, so a folder of /proc, a read-only mount or a folder without write permission fails now,
+/// not after a search or a synthesis.
+fn probe_outputs(m: &clap::ArgMatches) -> Result<()> {
+    let Some((_, sub)) = m.subcommand() else {
+        return Ok(());
     };
-    // A device or pipe named as the output (/dev/stdout) is written in place, not beside.
-    if std::fs::metadata(&p).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
-        return Ok(p);
-    }
-    let probe = folder.join(format!(".gbump-write-check{}", std::process::id()));
-    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
-        Ok(_) => {
-            let _ = std::fs::remove_file(&probe);
-            Ok(p)
+    for id in OUTPUT_OPTIONS {
+        // Only the command's own options (asking about another is a programming error to clap).
+        if !sub.ids().any(|i| i.as_str() == id) || sub.value_source(id) != Some(clap::parser::ValueSource::CommandLine) {
+            continue;
         }
-        Err(e) => Err(format!(
-            "cannot write in {}: {e} (fix: give a path under a folder you can write to)",
-            folder.display()
-        )),
+        let Ok(Some(p)) = sub.try_get_one::<PathBuf>(id) else {
+            continue;
+        };
+        // A device or pipe named as the output (/dev/stdout) is written in place, not beside.
+        if std::fs::metadata(p).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+            continue;
+        }
+        let folder = nearest_folder(p).map_err(|e| Error::Other(format!("--{id} {}: {e}", p.display())))?;
+        let probe = folder.join(format!(".gbump-write-check{}", std::process::id()));
+        match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+            Ok(_) => {
+                let _ = std::fs::remove_file(&probe);
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            Err(e) => {
+                return Err(Error::Other(format!(
+                    "--{id} {}: cannot write in {}: {e}\n  fix: give a path under a folder you can write to",
+                    p.display(),
+                    folder.display()
+                )))
+            }
+        }
     }
+    Ok(())
 }
 
 /// The scene's reasons (`# FIELD = VALUE: why`) under an engine's path: a field the engine
@@ -617,9 +648,15 @@ fn refuse_negative_numbers() -> Result<()> {
 }
 
 pub fn run() -> anyhow::Result<()> {
+    crate::limits::record_inputs();
     refuse_empty_arguments()?;
     refuse_negative_numbers()?;
-    let cli = Cli::parse();
+    let matches = <Cli as clap::CommandFactory>::command().get_matches();
+    probe_outputs(&matches)?;
+    let cli = match <Cli as clap::FromArgMatches>::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => e.exit(),
+    };
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render {
@@ -763,6 +800,12 @@ pub fn run() -> anyhow::Result<()> {
             };
             // A target the configuration lacks is refused before the work folder is touched.
             crate::vectors::targets::resolve(&cfg, &opts.targets)?;
+            // The given sets are inputs too, before --junit is checked against them.
+            if !vectors.is_empty() {
+                crate::sim::regress_cmd::given_manifests(&vectors)?
+                    .iter()
+                    .for_each(|m| crate::limits::note_input(m));
+            }
             not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
@@ -867,11 +910,14 @@ pub fn run() -> anyhow::Result<()> {
             // prints no report. A built-in scene that covers no pixel at this size is the
             // size's fault, not the scene file's.
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
-            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| {
-                let first = e.to_string().lines().next().unwrap_or_default().to_string();
-                Error::Other(format!(
-                    "--size {w}x{h}: {first}\n  fix: give a larger --size (the default is 192x144)"
-                ))
+            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| match e {
+                Error::Field { ref field, .. } if field == "objects" => {
+                    let first = e.to_string().lines().next().unwrap_or_default().to_string();
+                    Error::Other(format!(
+                        "--size {w}x{h}: {first}\n  fix: give a larger --size (the default is 192x144)"
+                    ))
+                }
+                other => other,
             })?;
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
@@ -903,14 +949,17 @@ pub fn run() -> anyhow::Result<()> {
                 p: cfg.power_frac_bits,
             };
             let rs = crate::measure::power_space::evaluate(fm, &crate::measure::power_space::default_designs(), max_n);
+            // Everything is measured, then written, then printed: a failing run leaves no file
+            // and prints no report.
+            let _lock = area.then(|| lock_work(&work)).transpose()?;
+            let rows = area.then(|| crate::measure::power_space::area_rows(fm, &rs, &work)).transpose()?;
             if let Some(j) = &json {
                 write_atomic(j, serde_json::to_string_pretty(&rs).expect("json").as_bytes())?;
             }
             out!("{}", crate::measure::power_space::markdown(fm, &rs, max_n));
-            let _lock = area.then(|| lock_work(&work)).transpose()?;
-            if area {
+            if let Some(rows) = rows {
                 out!("\nYosys area of the datapath (ROM as a black box, contents for n = 16; `synth -flatten; dffunmap; abc -g cmos2; stat -tech cmos`, GE = transistors / 4)\n\n| design | max error | ROM bits | datapath GE |\n|---|---:|---:|---:|\n");
-                out!("{}", crate::measure::power_space::area_rows(fm, &rs, &work)?);
+                out!("{rows}");
             }
         }
         Cmd::AreaModel {

@@ -654,7 +654,8 @@ impl PipelineConfig {
                         .strip_prefix('`')
                         .and_then(|m| m.split_once('`'))
                         .map(|(k, _)| k.rsplit('.').next().unwrap_or(k));
-                    let fix = match key.and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
+                    let typed = msg.contains("invalid type") || msg.contains("invalid value");
+                    let fix = match key.filter(|_| typed).and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
                         Some(&(k, lo, hi, why)) => format!("`{k}` is a whole number in {lo}..={hi} ({why})"),
                         None => fix,
                     };
@@ -997,7 +998,6 @@ impl PipelineConfig {
         Ok(())
     }
 
-    /// The numeric field `name` of [`LIMITS`].
     /// Field `field`'s value as its TOML writes it, `toml` being this configuration's
     /// [`to_toml`](Self::to_toml); a field at its default is left out of the TOML
     /// (colour_guard_bits = 0, white_lights = false, interpolate = "none"): that default.
@@ -1015,6 +1015,7 @@ impl PipelineConfig {
             })
     }
 
+    /// The numeric field `name` of [`LIMITS`].
     pub fn get(&self, name: &str) -> u32 {
         match name {
             "normal_bits" => self.normal_bits,

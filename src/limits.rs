@@ -241,14 +241,28 @@ pub fn check_not_pipe(path: &Path, fix: &str) -> Result<()> {
     Ok(())
 }
 
-/// The files this run has read as inputs (canonical paths): a result written over one of them
-/// would destroy the input it came from (`--json` naming the `--config`, say).
-static INPUTS: std::sync::Mutex<Vec<std::path::PathBuf>> = std::sync::Mutex::new(Vec::new());
+/// The regular files this run has read as inputs (canonical paths): a result written over one
+/// of them would destroy the input it came from (`--json` naming the `--config`, say). Kept
+/// only by a command-line run ([`record_inputs`]): a library or Python process reads and
+/// writes as its caller says.
+static INPUTS: std::sync::Mutex<Option<std::collections::HashSet<std::path::PathBuf>>> = std::sync::Mutex::new(None);
 
-/// Record `path` as an input of this run.
+/// Start keeping this process's inputs (the command line does).
+pub fn record_inputs() {
+    INPUTS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get_or_insert_with(Default::default);
+}
+
+/// Record `path` as an input of this run (a regular file: a device is read and written in
+/// place, never replaced).
 pub fn note_input(path: &Path) {
-    if let Ok(p) = std::fs::canonicalize(path) {
-        INPUTS.lock().unwrap_or_else(|e| e.into_inner()).push(p);
+    let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+    if let (Some(set), Ok(p)) = (inputs.as_mut(), std::fs::canonicalize(path)) {
+        if p.is_file() {
+            set.insert(p);
+        }
     }
 }
 
@@ -257,7 +271,12 @@ pub fn check_not_input(path: &Path) -> Result<()> {
     let Ok(p) = std::fs::canonicalize(path) else {
         return Ok(());
     };
-    if INPUTS.lock().unwrap_or_else(|e| e.into_inner()).contains(&p) {
+    if INPUTS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .as_ref()
+        .is_some_and(|s| s.contains(&p))
+    {
         return Err(Error::Other(format!(
             "{}: an input of this run; writing a result there would replace it\n  fix: give the output another path",
             path.display()

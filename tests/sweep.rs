@@ -158,7 +158,7 @@ fn points_that_cannot_render_the_scene_are_skipped_and_named() {
         .success();
     let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
     assert!(
-        err.contains("1 of 2 grid points cannot render the scene torus_caps and are skipped (the first, lights=1:")
+        err.contains("1 of the 2 designs in the grid cannot render the scene torus_caps and are skipped (the first, lights=1:")
             && err.contains("2 bump lights"),
         "{err}"
     );

@@ -223,7 +223,10 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     let source = format!("{}\n{}", crate::capi::DPI_PACKAGE, tb::fill(&j, &jf, &rtl_dir)?);
     // The model reads the configuration from a file beside the build, whatever picked it.
     let cfg_file = o.work.join(format!("cosim_config_{hash}.toml"));
-    crate::render::output::write_atomic(&cfg_file, cfg.to_toml().as_bytes())?;
+    // Written unless it holds this text already (it may be the --config the run read).
+    if std::fs::read(&cfg_file).ok().as_deref() != Some(cfg.to_toml().as_bytes()) {
+        crate::render::output::write_atomic(&cfg_file, cfg.to_toml().as_bytes())?;
+    }
     let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib)?;
     let args = vec![
         format!("+config={}", cfg_file.display()),

@@ -474,7 +474,7 @@ fn fitting(configs: Vec<(String, PipelineConfig)>, scene: &str, file: &str) -> R
         )));
     }
     let note = format!(
-        "note: {file}: {} of {total} grid points cannot render the scene {scene} and are skipped (the first, {label}: {first})",
+        "note: {file}: {} of the {total} designs in the grid cannot render the scene {scene} and are skipped (the first, {label}: {first})",
         total - out.len()
     );
     Ok((out, Some(note)))
