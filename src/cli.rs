@@ -515,18 +515,17 @@ fn engine_why(why: &str, scene: &PipelineConfig, fixed: &PipelineConfig) -> Stri
     let (st, ft) = (scene.to_toml(), fixed.to_toml());
     why.lines()
         .map(|l| {
-            let field = l.strip_prefix("# ").and_then(|r| r.split_once(" = ")).map(|(f, _)| f);
-            match field {
-                Some(f)
-                    if f.chars().all(|c| c.is_ascii_lowercase() || c == '_') && scene.field_text(&st, f) != fixed.field_text(&ft, f) =>
-                {
-                    format!(
-                        "# {f} = {}: set by the engine's path (the scene alone: {f} = {})\n",
-                        fixed.field_text(&ft, f),
-                        scene.field_text(&st, f)
-                    )
+            let field = l
+                .strip_prefix("# ")
+                .and_then(|r| r.split_once(" = "))
+                .map(|(f, _)| f)
+                .filter(|f| f.chars().all(|c| c.is_ascii_lowercase() || c == '_'));
+            let values = field.map(|f| (scene.field_text(&st, f), fixed.field_text(&ft, f)));
+            match (field, values) {
+                (Some(f), Some((was, now))) if was != now => {
+                    format!("# {f} = {now}: set by the engine's path (the scene alone: {f} = {was})\n")
                 }
-                Some("shininess") if fixed.power_unit == crate::config::PowerUnitKind::Squaring => format!(
+                (Some("shininess"), _) if fixed.power_unit == crate::config::PowerUnitKind::Squaring => format!(
                     "# shininess = {0}: the scene's; the engine's squaring power unit computes x^{0} by successive squarings (no table)\n",
                     fixed.shininess
                 ),
@@ -800,12 +799,6 @@ pub fn run() -> anyhow::Result<()> {
             };
             // A target the configuration lacks is refused before the work folder is touched.
             crate::vectors::targets::resolve(&cfg, &opts.targets)?;
-            // The given sets are inputs too, before --junit is checked against them.
-            if !vectors.is_empty() {
-                crate::sim::regress_cmd::given_manifests(&vectors)?
-                    .iter()
-                    .for_each(|m| crate::limits::note_input(m));
-            }
             not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
@@ -939,7 +932,6 @@ pub fn run() -> anyhow::Result<()> {
         } => {
             let cfg = pick.resolve()?;
             not_inputs(&[json.as_deref()])?;
-            crate::limits::check_count("--max-n", max_n.into(), 1, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
             if area {
                 crate::yosys::require()?;
                 crate::sim::check_tool_path(&work, "--work")?;
@@ -1131,9 +1123,8 @@ pub fn run() -> anyhow::Result<()> {
             crate::names::check(&space.display().to_string(), "file name", &name)?;
             let sp = crate::measure::sweep::Space::load(&space)?;
             // The results are named after the space: none may be the space itself.
-            for ext in ["csv", "json", "svg"] {
-                not_inputs(&[Some(&out.join(format!("{name}.{ext}")))])?;
-            }
+            let results = ["csv", "json", "svg"].map(|ext| out.join(format!("{name}.{ext}")));
+            not_inputs(&results.each_ref().map(|p| Some(p.as_path())))?;
             let _lock = lock_work(&work)?;
             let t0 = std::time::Instant::now();
             let pts = crate::measure::sweep::sweep(&sp, &space.display().to_string(), &work, true, yosys)?;

@@ -151,11 +151,7 @@ impl Fit {
                 g.power_segments,
                 g.power_frac_bits,
                 g.colour_guard_bits,
-                if c.area_ge.is_nan() {
-                    String::new()
-                } else {
-                    format!("{:.0}", c.area_ge)
-                },
+                format!("{:.0}", c.area_ge),
                 c.throughput,
                 fmt_measure(c.measured.max_lsb),
                 fmt_measure(c.measured.psnr_db),

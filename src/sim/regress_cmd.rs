@@ -62,6 +62,10 @@ pub fn regress(
     // folder is taken, and before `announce` writes or says anything.
     let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
     let given = check_sets(cfg, &given, o)?;
+    // The given manifests are read now: --junit may not name one of them.
+    if let Some(j) = junit {
+        crate::limits::check_not_input(j)?;
+    }
     let _lock = lock()?;
     announce(say)?;
     let sets = if vectors.is_empty() {
