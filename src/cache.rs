@@ -41,6 +41,23 @@ impl Key {
     }
 }
 
+/// Where results shared between runs and work folders are kept (today Verilator's runtime
+/// objects, `sim::verilator_runtime`): `GBUMP_CACHE`, else `$XDG_CACHE_HOME/gbump`, else
+/// `$HOME/.cache/gbump`. None when `GBUMP_CACHE` is set empty, no home is known or the folder
+/// cannot be made: nothing is shared then, and every build compiles all it needs.
+pub fn shared_root() -> Option<PathBuf> {
+    let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
+    let root = match std::env::var_os("GBUMP_CACHE") {
+        Some(v) if v.is_empty() => return None,
+        Some(v) => PathBuf::from(v),
+        None => env("XDG_CACHE_HOME")
+            .or_else(|| env("HOME").map(|h| h.join(".cache")))?
+            .join("gbump"),
+    };
+    std::fs::create_dir_all(&root).ok()?;
+    Some(root)
+}
+
 /// The first line a tool prints for `--version` (or `-V`), once per process.
 pub fn tool_version(prog: &str) -> String {
     static SEEN: OnceLock<Mutex<HashMap<String, String>>> = OnceLock::new();

@@ -15,6 +15,7 @@ pub mod stream;
 pub mod summary;
 pub mod verdict;
 pub mod verilator;
+pub mod verilator_runtime;
 
 /// The testbenches are generated with the RTL; the simulators run them.
 pub use crate::rtlgen::testbench;

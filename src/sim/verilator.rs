@@ -1,9 +1,11 @@
-//! Verilator: `--binary` builds the Verilog testbenches; `--cc --exe --build` builds the C++
-//! harness that streams binary vectors (Verilator only, so an inherent method); `--lint-only
-//! -Wall` lints. Builds compile with two jobs (the machine has two cores).
+//! Verilator: `--main --exe --timing` (`--binary` less its build) makes the Verilog testbenches;
+//! `--cc --exe` makes the C++ harness that streams binary vectors (Verilator only, so an inherent method); `--lint-only
+//! -Wall` lints. Verilator only writes the C++; make compiles it with two jobs (the machine
+//! has two cores), Verilator's own runtime objects reused from the shared cache.
 
 use super::rtl_files::Rtl;
 use super::simulator::{build_key, Simulator, Testbench};
+use super::verilator_runtime::{fetch, runtime_objects, store};
 use crate::error::{Error, Result};
 use crate::tool::{run_cmd, tail};
 use std::path::{Path, PathBuf};
@@ -11,17 +13,31 @@ use std::process::Command;
 
 pub struct Verilator;
 
-/// Build `exe_name` from the generated `source` (written as `source_name`) and the RTL with
-/// `flags`, in a folder keyed by everything that goes in (the C++ compiler included), built
-/// under a temporary name and verified on reuse.
-fn cached_build(root: &Path, kind: &str, exe_name: &str, source_name: &str, source: &str, flags: &[String], rtl: &Rtl) -> Result<PathBuf> {
+/// Build `exe_name` from the generated `source` (written as `source_name`) and the RTL:
+/// Verilator turns them into C++ with `flags` (never `--build`), then make compiles it with
+/// `make_args` (the optimisation levels), Verilator's runtime objects taken from the shared
+/// cache where it holds them (`verilator_runtime`). The folder is keyed by everything that goes
+/// in (the C++ compiler included), built under a temporary name and verified on reuse.
+#[allow(clippy::too_many_arguments)]
+fn cached_build(
+    root: &Path,
+    kind: &str,
+    exe_name: &str,
+    source_name: &str,
+    source: &str,
+    flags: &[String],
+    make_args: &str,
+    rtl: &Rtl,
+) -> Result<PathBuf> {
     super::require(super::Sim::Verilator)?;
-    let key = build_key(kind, source, flags, rtl, &["verilator", "c++"])?;
+    let make_args: Vec<String> = make_args.split_whitespace().map(str::to_string).collect();
+    let key_flags: Vec<String> = flags.iter().chain(&make_args).cloned().collect();
+    let key = build_key(kind, source, &key_flags, rtl, &["verilator", "c++"])?;
     let dir = crate::cache::build_dir(&root.join(format!("{kind}_{key}")), &[exe_name], |dir| {
         let src = dir.join(source_name);
         std::fs::write(&src, source).map_err(|e| Error::io(&src, e))?;
         let mut cmd = Command::new("verilator");
-        cmd.args(["-j", "2", "-Wno-fatal", "-Mdir", "obj", "-o"])
+        cmd.args(["-Wno-fatal", "-Mdir", "obj", "-o"])
             .arg(format!("../{exe_name}"))
             .args(flags)
             .args(&rtl.waivers)
@@ -29,15 +45,41 @@ fn cached_build(root: &Path, kind: &str, exe_name: &str, source_name: &str, sour
             .args(&rtl.sources)
             .current_dir(dir);
         let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
-        if !ok || !dir.join(exe_name).exists() {
+        let obj = dir.join("obj");
+        let mk = if ok { makefile(&obj) } else { None };
+        let Some(mk) = mk else {
             return Err(Error::Other(format!("verilator failed to build {exe_name}:\n{}", tail(&log, 25))));
+        };
+        let runtime = runtime_objects(&obj, &mk, &make_args)?;
+        let missing = fetch(&runtime, &obj);
+        let mut make = Command::new("make");
+        make.args(["-j", "2", "-f", &mk]).args(&make_args).current_dir(&obj);
+        let (ok, make_log, _) = run_cmd(&mut make, "make (Verilator's C++)")?;
+        if !ok || !dir.join(exe_name).exists() {
+            return Err(Error::Other(format!(
+                "verilator failed to build {exe_name}:\n{}",
+                tail(&(log + &make_log), 25)
+            )));
         }
+        store(&missing, &obj);
         // The object folder is only needed while linking.
-        let _ = std::fs::remove_dir_all(dir.join("obj"));
+        let _ = std::fs::remove_dir_all(&obj);
         Ok(())
     })?;
     Ok(dir.join(exe_name))
 }
+
+/// The makefile Verilator wrote in `obj` (`V<top>.mk`, beside its `_classes.mk`).
+fn makefile(obj: &Path) -> Option<String> {
+    std::fs::read_dir(obj).ok()?.flatten().find_map(|e| {
+        let n = e.file_name().to_string_lossy().into_owned();
+        (n.starts_with('V') && n.ends_with(".mk") && !n.ends_with("_classes.mk")).then_some(n)
+    })
+}
+
+/// `--binary` without its `--build`: a testbench with its own `main`, timing on; make runs
+/// apart so the runtime objects can come from the cache.
+const BINARY: [&str; 3] = ["--main", "--exe", "--timing"];
 
 /// The C++ optimisation of every build but the lockstep one. Verilator's makefile compiles at
 /// -Os, which ran the one-light top at half the speed of -O2. -O1 against -O2 (the harness's
@@ -60,7 +102,6 @@ impl Verilator {
         let mut flags = strings(&[
             "--cc",
             "--exe",
-            "--build",
             "-O3",
             "--x-assign",
             "fast",
@@ -68,8 +109,6 @@ impl Verilator {
             "fast",
             "--top-module",
             top,
-            "-MAKEFLAGS",
-            CXX_OPT,
         ]);
         flags.push(format!(
             "-GINIT_FILE={}",
@@ -88,6 +127,7 @@ impl Verilator {
             "harness.cpp",
             cpp,
             &flags,
+            CXX_OPT,
             rtl,
         )
     }
@@ -102,17 +142,27 @@ impl Simulator for Verilator {
         &["verilator", "make"]
     }
 
-    /// `--binary`; the RTL's `.vlt` waivers go in with it.
+    /// A binary of its own (`--binary`'s options); the RTL's `.vlt` waivers go in with it.
     fn build(&self, root: &Path, tb: &Testbench, rtl: &Rtl) -> Result<PathBuf> {
         let top = tb.top;
-        let mut flags = strings(&["--binary", "-Wno-lint", "-Wno-style", "--top-module", top, "-MAKEFLAGS", CXX_OPT]);
+        let mut flags = strings(&BINARY);
+        flags.extend(strings(&["-Wno-lint", "-Wno-style", "--top-module", top]));
         if tb.waves {
             flags.push("--trace-fst".into());
         }
         if tb.x_unique {
             flags.extend(strings(&["--x-assign", "unique", "--x-initial", "unique"]));
         }
-        cached_build(root, &format!("verilator_{top}"), top, &format!("{top}.v"), tb.source, &flags, rtl)
+        cached_build(
+            root,
+            &format!("verilator_{top}"),
+            top,
+            &format!("{top}.v"),
+            tb.source,
+            &flags,
+            CXX_OPT,
+            rtl,
+        )
     }
 
     /// The executable takes its arguments as given; `waves` goes last as `+waves=`.
@@ -145,16 +195,17 @@ impl Simulator for Verilator {
 pub fn build_cosim(root: &Path, source: &str, rtl: &Rtl, lib: &Path) -> Result<PathBuf> {
     // Unoptimised C++ halves the build (8 s instead of 16 s for the one-light top) and still
     // checks 25 000 fragments a second on the default top: a lockstep run is dominated by its build.
-    let mut flags = strings(&[
-        "--binary",
-        "-Wno-lint",
-        "-Wno-style",
-        "--top-module",
-        "tb_cosim",
-        "-MAKEFLAGS",
-        "OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0",
-        "-LDFLAGS",
-    ]);
+    let mut flags = strings(&BINARY);
+    flags.extend(strings(&["-Wno-lint", "-Wno-style", "--top-module", "tb_cosim", "-LDFLAGS"]));
     flags.push(lib.display().to_string());
-    cached_build(root, "verilator_cosim", "tb_cosim", "tb_cosim.sv", source, &flags, rtl)
+    cached_build(
+        root,
+        "verilator_cosim",
+        "tb_cosim",
+        "tb_cosim.sv",
+        source,
+        &flags,
+        "OPT_FAST=-O0 OPT_SLOW=-O0 OPT_GLOBAL=-O0",
+        rtl,
+    )
 }
