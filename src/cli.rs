@@ -269,7 +269,14 @@ pub enum Cmd {
     },
     /// Every built-in scene under max<=2, psnr>=50 and exact<=1: the scene's default
     /// configuration against the one `gbump fit` chooses (area model, no regression).
-    FitTable,
+    FitTable {
+        /// Only these scenes (built-in name or file; repeatable; default every built-in scene).
+        #[arg(long)]
+        scene: Vec<String>,
+        /// Also write the table (Markdown) to this file; it is printed either way.
+        #[arg(long, value_name = "FILE", value_parser = output_file)]
+        write: Option<PathBuf>,
+    },
     /// Fit the area model to Yosys on the first configurations and check it on the rest.
     AreaModel {
         /// Configuration files (a folder: every .toml in it, in name order).
@@ -1114,9 +1121,14 @@ pub fn run() -> anyhow::Result<()> {
                 );
             }
         }
-        Cmd::FitTable => {
-            let rows = crate::fit::table::rows(&mut |m| eprintln!("fit-table: {m}"))?;
-            out!("{}", crate::fit::table::markdown(&rows));
+        Cmd::FitTable { scene, write } => {
+            let rows = crate::fit::table::rows(&scene, &mut |m| eprintln!("fit-table: {m}"))?;
+            let md = crate::fit::table::markdown(&rows);
+            // Written before it is printed: a file that cannot be written fails the run.
+            if let Some(f) = &write {
+                write_atomic(f, md.as_bytes())?;
+            }
+            out!("{md}");
         }
         Cmd::Sweep { space, out, work, yosys } => {
             let name = space.file_stem().map_or("sweep".into(), |s| s.to_string_lossy().into_owned());

@@ -152,6 +152,15 @@ fn the_command_writes_its_table_sheet_and_csv_and_refuses_unknown_engines() {
     }
     let img = image::open(dir.path().join("engines.png")).unwrap();
     assert!(img.width() > ENGINES.len() as u32 * 64 && img.height() > 2 * 32);
+    // At a small size every column is still as wide as the longest engine name: no name is cut.
+    let name_w = ENGINES.iter().map(|e| e.name.len() as u32).max().unwrap() * gbump::render::label::CHAR_W;
+    assert!(name_w > 64, "the test needs a name wider than the image");
+    assert!(
+        img.width() >= ENGINES.len() as u32 * name_w,
+        "{} px for {} columns of {name_w} px",
+        img.width(),
+        ENGINES.len()
+    );
     let bad = Command::cargo_bin("gbump")
         .unwrap()
         .args(["engines", "--engine", "phong", "--out"])

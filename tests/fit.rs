@@ -141,3 +141,41 @@ fn a_bad_min_fmax_is_refused_before_the_search() {
     let t = text(o.get_output());
     assert!(t.contains("--min-fmax -3") && t.contains("fix:"), "{t}");
 }
+
+/// `gbump fit-table --scene S --write F`: one row per budget for the scene, the file equal to
+/// what it prints; an unknown scene is refused before any fit, with nothing written.
+#[test]
+fn fit_table_writes_its_rows_for_the_scenes_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    // bump_spot at a small size: three fits in seconds.
+    let scene = dir.path().join("small_spot.toml");
+    let text_of = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/bump_spot.toml")).unwrap();
+    assert!(text_of.contains("size = [128, 64]"));
+    std::fs::write(&scene, text_of.replace("size = [128, 64]", "size = [48, 24]")).unwrap();
+    let table = dir.path().join("table.md");
+    let o = gbump()
+        .args(["fit-table", "--scene"])
+        .arg(&scene)
+        .arg("--write")
+        .arg(&table)
+        .assert()
+        .success();
+    let printed = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    let written = std::fs::read_to_string(&table).unwrap();
+    assert_eq!(printed.trim_end(), written.trim_end());
+    let rows: Vec<&str> = written.lines().filter(|l| l.contains("small_spot.toml")).collect();
+    assert_eq!(rows.len(), gbump::fit::table::BUDGETS.len(), "{written}");
+    for b in gbump::fit::table::BUDGETS {
+        assert!(rows.iter().any(|r| r.contains(&format!("`{b}`"))), "{b}: {written}");
+    }
+    assert!(String::from_utf8_lossy(&o.get_output().stderr).contains("[3/3]"));
+    let missing = dir.path().join("none.md");
+    let o = gbump()
+        .args(["fit-table", "--scene", "torus_caps", "--scene", "no_such_scene", "--write"])
+        .arg(&missing)
+        .assert()
+        .failure();
+    let t = text(o.get_output());
+    assert!(t.contains("no_such_scene") && !t.contains("[1/"), "{t}");
+    assert!(!missing.exists());
+}

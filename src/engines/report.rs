@@ -341,13 +341,21 @@ impl Table {
 
     /// The contact sheet: a column per engine under its name, and per scene its name, then
     /// its images, then their differences from the reference as heat maps (full scale at
-    /// 16 LSB), a 2-pixel gutter.
+    /// 16 LSB), a 2-pixel gutter. A column is as wide as its widest image and the longest
+    /// engine name, so no name is cut at a small `--size`; images are centred in it.
     pub fn contact_sheet(&self) -> (u32, u32, Vec<[u8; 3]>) {
-        use crate::render::label::{draw, LINE_H};
+        use crate::render::label::{draw, CHAR_W, LINE_H};
         const GAP: u32 = 2;
         const INK: [u8; 3] = [230, 230, 230];
         let band = LINE_H + GAP;
-        let cw = self.images.iter().flat_map(|r| r.iter().map(|i| i.w)).max().unwrap_or(1);
+        let iw = self.images.iter().flat_map(|r| r.iter().map(|i| i.w)).max().unwrap_or(1);
+        let name_w = self
+            .engines
+            .iter()
+            .map(|e| e.name.chars().count() as u32 * CHAR_W)
+            .max()
+            .unwrap_or(0);
+        let cw = iw.max(name_w);
         let ch = self.images.iter().flat_map(|r| r.iter().map(|i| i.h)).max().unwrap_or(1);
         let cols = self.engines.len() as u32;
         let scene_h = band + 2 * (ch + GAP);
@@ -358,7 +366,7 @@ impl Table {
             draw(&mut px, w, col_x(ei as u32), GAP, e.name, cw, INK);
         }
         let put = |px: &mut [[u8; 3]], col: u32, y0: u32, iw: u32, pixels: &[[u8; 3]]| {
-            let x0 = col_x(col);
+            let x0 = col_x(col) + (cw - iw) / 2;
             for (k, c) in pixels.iter().enumerate() {
                 let (x, y) = (x0 + k as u32 % iw, y0 + k as u32 / iw);
                 px[(y * w + x) as usize] = *c;
