@@ -141,3 +141,57 @@ fn cosim_catches_mutants() {
         "another configuration's RTL passed:\n{log}"
     );
 }
+
+/// Verilator's runtime objects are compiled once into the shared cache (`GBUMP_CACHE`) and
+/// taken from it by the next build; a damaged entry is compiled again, never linked.
+#[test]
+fn verilators_runtime_objects_come_from_the_shared_cache() {
+    use gbump::sim::verilator_runtime::RUNTIME_RECORD;
+    let tmp = tempfile::tempdir().unwrap();
+    let cache = tmp.path().join("cache");
+    let run = |work: &str| {
+        let work = tmp.path().join(work);
+        let out = Gbump::cargo_bin("gbump")
+            .unwrap()
+            .env("GBUMP_CACHE", &cache)
+            .args([
+                "cosim",
+                "--config",
+                "tests/configs/one_light_parallel.toml",
+                "--random",
+                "300",
+                "--work",
+            ])
+            .arg(&work)
+            .current_dir(root())
+            .output()
+            .unwrap();
+        let log = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(out.status.success(), "{log}");
+        let builds = work.join("builds");
+        let b = std::fs::read_dir(&builds)
+            .unwrap()
+            .flatten()
+            .find(|e| e.path().join(RUNTIME_RECORD).exists())
+            .unwrap_or_else(|| panic!("no build with {RUNTIME_RECORD} in {}", builds.display()));
+        let text = std::fs::read_to_string(b.path().join(RUNTIME_RECORD)).unwrap();
+        text.lines()
+            .map(|l| l.split(' ').map(str::to_string).collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+    };
+    let first = run("w1");
+    assert!(first.len() >= 2 && first.iter().any(|l| l[0] == "verilated.o"), "{first:?}");
+    assert!(
+        first.iter().all(|l| l[1] == "compiled"),
+        "an empty cache compiles everything: {first:?}"
+    );
+    // Damage one entry: it is compiled again; the others are taken.
+    let damaged = &first[0];
+    std::fs::write(Path::new(&damaged[2]).join(&damaged[0]), b"not an object").unwrap();
+    let second = run("w2");
+    for l in &second {
+        let want = if l[0] == damaged[0] { "compiled" } else { "cached" };
+        assert_eq!(l[1], want, "{second:?}");
+    }
+    assert_eq!(second.len(), first.len());
+}

@@ -5,7 +5,7 @@
 
 use super::rtl_files::Rtl;
 use super::simulator::{build_key, Simulator, Testbench};
-use super::verilator_runtime::{fetch, runtime_objects, store};
+use super::verilator_runtime::{fetch, record, runtime_objects, store};
 use crate::error::{Error, Result};
 use crate::tool::{run_cmd, tail};
 use std::path::{Path, PathBuf};
@@ -62,6 +62,7 @@ fn cached_build(
             )));
         }
         store(&missing, &obj);
+        record(dir, &runtime, &missing)?;
         // The object folder is only needed while linking.
         let _ = std::fs::remove_dir_all(&obj);
         Ok(())

@@ -91,6 +91,25 @@ pub fn store(missing: &[&RuntimeObject], obj: &Path) {
     }
 }
 
+/// The build folder's `RUNTIME_RECORD`: each runtime object, and whether it was taken from
+/// the cache or compiled (none listed: no shared cache).
+pub fn record(dir: &Path, objects: &[RuntimeObject], missing: &[&RuntimeObject]) -> Result<()> {
+    let mut s = String::new();
+    for o in objects {
+        let how = if missing.iter().any(|m| m.name == o.name) {
+            "compiled"
+        } else {
+            "cached"
+        };
+        s += &format!("{} {how} {}\n", o.name, o.entry.display());
+    }
+    let f = dir.join(RUNTIME_RECORD);
+    std::fs::write(&f, s).map_err(|e| Error::io(&f, e))
+}
+
+/// The file in a Verilator build folder that says where its runtime objects came from.
+pub const RUNTIME_RECORD: &str = "verilator_runtime.txt";
+
 #[cfg(test)]
 mod tests {
     use super::*;
