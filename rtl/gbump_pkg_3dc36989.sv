@@ -46,8 +46,13 @@ package gbump_pkg_3dc36989;
     localparam int LIGHTS = 4; // light slots
     localparam int SHININESS = 16; // shininess of the power-up table
     // Timing (rising edges, as the interface JSON defines them).
-    localparam int LATENCY = 15; // accepting edge to the edge out_valid is first sampled high
+    localparam int LATENCY = 15; // latency_cycles: accepting edge to the edge out_valid is first sampled high
     localparam int INITIATION_INTERVAL = 4; // edges between accepts
+    localparam int RESET_CYCLES = 1; // rising edges with rst high that reset the top
+    localparam int OUTPUT_BUFFER_RESULTS = 5; // untaken results the output buffer holds before in_ready falls (0: no back-pressure)
+    localparam int TRIANGLE_BANKS = 2; // bump_state.banks (0: the state enters with every fragment)
+    localparam int BANK_HOLD_CYCLES = 8; // bump_state.bank_hold_cycles: last use of a bank to the first setup that may load it
+    localparam int SETUP_EDGES = 4; // bump_state.setup_edges: the fewest edges a setup spans
     localparam INIT_FILE = "power_table_3dc36989.hex"; // power-up table, relative to the simulator's working folder
     // Top ports.
     localparam int CLK_BITS = 1; // width of clk

@@ -1270,6 +1270,20 @@ mod tests {
     }
 
     #[test]
+    fn retired_names_are_the_renamed_fields() {
+        let old: Vec<&str> = RENAMED_FIELDS.iter().map(|r| r.0).collect();
+        assert_eq!(old, crate::error::RETIRED_NAMES);
+        // A typo is answered with the current name, never an old one.
+        match PipelineConfig::from_toml("t.toml", "bump_stat = \"fragment\"\n") {
+            Err(Error::Input { msg, fix, .. }) => {
+                assert_eq!(msg, "unknown field `bump_stat`");
+                assert!(fix.starts_with("did you mean `bump_state`?"), "{fix}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
     fn old_field_names_read_as_the_new_ones() {
         let old = PipelineConfig::from_toml("o.toml", "lights = 2\ndot_bits = 10\n  power_bits=9\nk_bits = 7\n").unwrap();
         let new = PipelineConfig::from_toml("n.toml", "lights = 2\ndot_frac_bits = 10\npower_frac_bits = 9\nk_frac_bits = 7\n").unwrap();

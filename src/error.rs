@@ -129,13 +129,66 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
     } else if msg.is_empty() {
         msg = "the file cannot be read as TOML here".to_string();
     }
+    let mut fix = fix.to_string();
+    if toml::from_str::<toml::Table>(text).is_err() {
+        // Not TOML at all: the caller's hint is about fields, which this is not yet about.
+        fix = "this is not TOML syntax: a table header is `[name]` alone on its line, a field `name = value`, text in double quotes, a list in `[ ]`".to_string();
+    } else if let Some((name, expected)) = unknown_field(&msg) {
+        let known: Vec<&str> = expected.iter().copied().filter(|e| !RETIRED_NAMES.contains(e)).collect();
+        fix = match nearest(name, &known) {
+            Some(n) => format!("did you mean `{n}`? {fix}"),
+            None => format!("the fields here: {}; {fix}", known.join(", ")),
+        };
+        msg = format!("unknown field `{name}`");
+    }
     Error::Input {
         file: file.to_string(),
         line,
         col,
         msg,
-        fix: fix.to_string(),
+        fix,
     }
+}
+
+/// Old field names still read (with a warning) that an unknown-field error should not
+/// suggest: the configuration's `RENAMED_FIELDS`, kept here so the bottom module needs no
+/// import from above it (a test checks the two lists agree).
+pub const RETIRED_NAMES: [&str; 3] = ["dot_bits", "power_bits", "k_bits"];
+
+/// (name, expected names) of serde's "unknown field `x`, expected one of `a`, `b`" (the
+/// message may carry a `key: ` prefix).
+fn unknown_field(msg: &str) -> Option<(&str, Vec<&str>)> {
+    let rest = &msg[msg.find("unknown field `")? + "unknown field `".len()..];
+    let (name, rest) = rest.split_once('`')?;
+    let list = rest.split_once("expected one of ").map_or("", |(_, l)| l);
+    Some((
+        name,
+        list.split(',')
+            .map(|x| x.trim().trim_matches('`'))
+            .filter(|x| !x.is_empty())
+            .collect(),
+    ))
+}
+
+/// The candidate closest to `name` by edit distance, if it is close enough to be a typo (at
+/// most a third of the name's letters wrong).
+pub fn nearest<'a>(name: &str, candidates: &[&'a str]) -> Option<&'a str> {
+    let d = |a: &str, b: &str| {
+        let b: Vec<char> = b.chars().collect();
+        let mut row: Vec<usize> = (0..=b.len()).collect();
+        for (i, ca) in a.chars().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for j in 0..b.len() {
+                let cur = row[j + 1];
+                row[j + 1] = (prev + usize::from(ca != b[j])).min(row[j] + 1).min(cur + 1);
+                prev = cur;
+            }
+        }
+        row[b.len()]
+    };
+    let (best, dist) = candidates.iter().map(|c| (*c, d(name, c))).min_by_key(|x| x.1)?;
+    (dist > 0 && dist * 3 <= name.chars().count().max(3)).then_some(best)
 }
 
 #[cfg(test)]
@@ -157,6 +210,46 @@ mod tests {
         let e = e.expect_err(text);
         match toml_error("f.toml", text, &e, "fix") {
             Error::Input { msg, .. } => msg,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_typo_is_answered_with_the_nearest_name_and_syntax_with_syntax() {
+        assert_eq!(nearest("bump_stat", &["bump_state", "lights", "light_mode"]), Some("bump_state"));
+        assert_eq!(nearest("toop", &["top", "all", "power_unit"]), Some("top"));
+        assert_eq!(nearest("zebra", &["top", "all"]), None);
+        let e = toml::from_str::<toml::Table>("[pipeline\nlights = 2\n").unwrap_err();
+        match toml_error("f.toml", "[pipeline\nlights = 2\n", &e, "about fields") {
+            Error::Input { fix, .. } => assert!(fix.contains("not TOML syntax") && !fix.contains("about fields"), "{fix}"),
+            other => panic!("{other:?}"),
+        }
+        #[derive(serde::Deserialize, Debug)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)]
+        struct T {
+            bump_state: Option<u32>,
+            #[serde(alias = "dot_bits")]
+            dot_frac_bits: Option<u32>,
+        }
+        let text = "bump_stat = 1\n";
+        let e = toml::from_str::<T>(text).unwrap_err();
+        match toml_error("f.toml", text, &e, "see the fields") {
+            Error::Input { msg, fix, .. } => {
+                assert_eq!(msg, "unknown field `bump_stat`");
+                assert!(
+                    fix.starts_with("did you mean `bump_state`?") && fix.ends_with("see the fields"),
+                    "{fix}"
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        let e = toml::from_str::<T>("zzz = 1\n").unwrap_err();
+        match toml_error("f.toml", "zzz = 1\n", &e, "x") {
+            Error::Input { fix, .. } => assert!(
+                fix.contains("bump_state") && !fix.contains("dot_bits"),
+                "retired names are not offered: {fix}"
+            ),
             other => panic!("{other:?}"),
         }
     }

@@ -275,7 +275,7 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
         std::fs::write(
             &user,
             format!(
-                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_bump=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_bump, r.{p}_h, r.{p}_k, {p}_h_lane(r.{p}_h, 0, 1), {p}_lc_lane(r.{p}_lc, 0, 2), {p}_k_lane(r.{p}_k, 0), LATENCY, INITIATION_INTERVAL);\n    end\nendmodule\n`default_nettype wire\n",
+                "`timescale 1ns / 1ps\n`default_nettype none\nmodule user;\n    import {name}::*;\n    logic [TOP_RECORD_BITS-1:0] mem [0:2];\n    top_record_t r;\n    initial begin\n        $readmemh(\"{}\", mem);\n        r = mem[1];\n        $display(\"out_c=%h in_bump=%h in_h=%h in_k=%h h01=%h lc02=%h k0=%h lat=%0d ii=%0d\", r.out_c, r.in_bump, r.{p}_h, r.{p}_k, {p}_h_lane(r.{p}_h, 0, 1), {p}_lc_lane(r.{p}_lc, 0, 2), {p}_k_lane(r.{p}_k, 0), LATENCY, INITIATION_INTERVAL);\n        $display(\"reset=%0d buffer=%0d banks=%0d hold=%0d setup=%0d\", RESET_CYCLES, OUTPUT_BUFFER_RESULTS, TRIANGLE_BANKS, BANK_HOLD_CYCLES, SETUP_EDGES);\n    end\nendmodule\n`default_nettype wire\n",
                 hex.display(),
                 p = if cfg.per_triangle() { "tri" } else { "in" }
             ),
@@ -330,6 +330,30 @@ fn the_sv_package_compiles_and_its_record_struct_reads_a_dumped_record() {
             log.contains(&want),
             "package fields differ from the manifest's columns:\nwant {want}\n{log}"
         );
+        // The handshake's numbers are the interface JSON's (0 where it has none or null).
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(
+                tmp.path()
+                    .join("rtl")
+                    .join(format!("{}.json", gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"))),
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let num = |v: &serde_json::Value| v.as_u64().unwrap_or(0);
+        let want = format!(
+            "reset={} buffer={} banks={} hold={} setup={}",
+            num(&json["reset_cycles"]),
+            num(&json["output_buffer_results"]),
+            num(&json["bump_state"]["banks"]),
+            num(&json["bump_state"]["bank_hold_cycles"]),
+            num(&json["bump_state"]["setup_edges"])
+        );
+        assert!(
+            log.contains(&want),
+            "package timing differs from the interface JSON:\nwant {want}\n{log}"
+        );
+        assert!(num(&json["reset_cycles"]) > 0 && num(&json["output_buffer_results"]) > 0, "{want}");
     }
 }
 

@@ -40,14 +40,19 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     s += if cfg.light_mode == LightMode::Parallel && !cfg.backpressure {
         " (`in_ready` is tied high). "
     } else {
-        " (`in_ready` is undefined before the first reset edge, and high from it on while `rst` stays high). "
+        " (`in_ready` comes from registers: at the first edge at which `rst` is sampled high it still shows the state from before, undefined after power-up; from the next edge on it is high while `rst` stays high). "
     };
     s += &format!(
         "`rst` does **not** restore the power table: it keeps what was last written; its power-up contents come from the `INIT_FILE` parameter (default `{}`, a `$readmemh` file; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere).\n\n",
         rom_file_name(cfg, "power_table", "hex")
     );
     s += &format!(
-        "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}); results leave in the order fragments entered. "
+        "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}){}; results leave in the order fragments entered. ",
+        if super::top::output_depth(cfg).is_some() {
+            " when every earlier result was taken as it was offered; a result held up behind an untaken one is offered from the edge after that one is taken, never earlier than the latency (see Back-pressure)"
+        } else {
+            ""
+        }
     );
     s += &match super::top::output_depth(cfg) {
         Some(d) => format!(
@@ -69,7 +74,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight.{}\n\n",
             match super::top::setup_edges(cfg) {
                 1 => String::new(),
-                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges counted from the first edge at which `tri_valid` offers it (with `tri_valid` held high from one setup to the next, the edge after the previous setup was taken), whether its bank is free yet or not: it is taken at the later of that span's last edge (the first offer + {}) and the end of the bank hold (the last use + {hold}), where `tri_ready` is high, and `tri_*` must hold until then (as valid/ready requires anyway).", e - 1),
+                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges, whether its bank is free yet or not. Count them from the first edge at which `tri_valid` offers the setup; when `tri_valid` stays high from one setup to the next, that is the edge right after the previous setup was taken. The setup is taken at whichever edge comes later: the span's last edge (the first offer + {}) or the end of the bank hold (the last use + {hold}). `tri_ready` is high at that edge, and `tri_*` must hold until then (as valid/ready requires anyway).", e - 1),
             }
         );
     }

@@ -201,13 +201,46 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         &mut s,
         "LATENCY",
         latency(cfg).into(),
-        "accepting edge to the edge out_valid is first sampled high",
+        "latency_cycles: accepting edge to the edge out_valid is first sampled high",
     );
     p(
         &mut s,
         "INITIATION_INTERVAL",
         cfg.initiation_interval().into(),
         "edges between accepts",
+    );
+    // The rest of the handshake's numbers, each the interface JSON's key of the same name
+    // (0 where the JSON has none or null).
+    p(
+        &mut s,
+        "RESET_CYCLES",
+        super::top::RESET_CYCLES.into(),
+        "rising edges with rst high that reset the top",
+    );
+    p(
+        &mut s,
+        "OUTPUT_BUFFER_RESULTS",
+        super::top::output_depth(cfg).unwrap_or(0).into(),
+        "untaken results the output buffer holds before in_ready falls (0: no back-pressure)",
+    );
+    let tri = cfg.per_triangle();
+    p(
+        &mut s,
+        "TRIANGLE_BANKS",
+        if tri { cfg.triangle_banks.into() } else { 0 },
+        "bump_state.banks (0: the state enters with every fragment)",
+    );
+    p(
+        &mut s,
+        "BANK_HOLD_CYCLES",
+        super::top::bank_hold(cfg).unwrap_or(0).into(),
+        "bump_state.bank_hold_cycles: last use of a bank to the first setup that may load it",
+    );
+    p(
+        &mut s,
+        "SETUP_EDGES",
+        if tri { super::top::setup_edges(cfg).into() } else { 0 },
+        "bump_state.setup_edges: the fewest edges a setup spans",
     );
     s += &format!(
         "    localparam INIT_FILE = \"{}\"; // power-up table, relative to the simulator's working folder\n",

@@ -651,7 +651,12 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
         let named: Vec<&str> = if t == "all" {
             all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
         } else if !all.contains(&t.as_str()) {
-            let usual = format!("one of all, {}", all.join(", "));
+            // This configuration's targets, the nearest first if the name looks like a typo.
+            let here: Vec<&str> = all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect();
+            let mut usual = format!("one of all, {} (this configuration's targets)", here.join(", "));
+            if let Some(n) = crate::error::nearest(t, &here) {
+                usual = format!("did you mean `{n}`? {usual}");
+            }
             return Err(Error::Other(format!(
                 "--target {t}: unknown\n  fix: {}",
                 crate::renamed::unit_fix(t, usual)
