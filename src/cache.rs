@@ -55,6 +55,11 @@ pub fn shared_root() -> Option<PathBuf> {
             .join("gbump"),
     };
     std::fs::create_dir_all(&root).ok()?;
+    // Entries half-built by a process that was killed are cleared once per run.
+    static CLEANED: OnceLock<()> = OnceLock::new();
+    CLEANED.get_or_init(|| {
+        crate::temp_files::clean_stale(&root, 0);
+    });
     Some(root)
 }
 
