@@ -37,7 +37,7 @@ pub enum PowerUnitKind {
     /// entries each: dense where x^n changes fastest.
     Segmented,
     /// No table: the Cg Tutorial's specular power (§8.3), x^e by successive squarings, e the
-    /// power of two nearest the shininess (`model::power_unit::squarings_exponent`: three
+    /// power of two nearest the shininess on a log scale (`model::power_unit::squarings_exponent`: three
     /// squarings for 8, four for 20), each product rounded on u1.(power_frac_bits +
     /// SQUARING_GUARD_BITS). The exponent is fixed when the hardware is built, so the top
     /// serves one shininess, as a ROM table does; its table load port stays, unused.

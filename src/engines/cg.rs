@@ -5,7 +5,7 @@
 //! it; the decal as the texture colour. Assumptions: the cube map has 32×32 texels a face
 //! (the text's "typically sufficient") read nearest, each texel the unit vector through its
 //! centre (its 8-bit range compression is arithmetic, the fixed-point model's part); the
-//! exponent is the power of two nearest the material's shininess (the text squares three
+//! exponent is the power of two nearest the material's shininess on a log scale (the text squares three
 //! times for 8); no scene has a gloss map, so the gloss is 1; the normal map's sample is
 //! range-expanded and used as the filter leaves it, not renormalised (Example 8-2's
 //! `expand(tex2D(normalMap, …))`).

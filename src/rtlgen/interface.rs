@@ -93,7 +93,7 @@ pub fn interface_markdown(cfg: &PipelineConfig) -> String {
 /// How a memory is loaded: its load port, or (a ROM power table) not at all.
 fn load_port(cfg: &PipelineConfig, prefix: &str) -> String {
     if cfg.power_unit == crate::config::PowerUnitKind::Squaring && prefix == "power_table" {
-        "none: power_unit = \"squaring\" reads no table (x^e by successive squarings, e the power of two nearest the shininess); power_table_we, power_table_waddr, power_table_wdata are unused"
+        "none: power_unit = \"squaring\" reads no table (x^e by successive squarings, e = 2^round(log2 shininess), the power of two nearest on a log scale); power_table_we, power_table_waddr, power_table_wdata are unused"
             .into()
     } else if cfg.power_rom && prefix == "power_table" {
         "none: power_rom = true, the table is a ROM holding its init_file; power_table_we, power_table_waddr, power_table_wdata are unused"

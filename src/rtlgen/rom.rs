@@ -165,9 +165,20 @@ pub fn power_rom(cfg: &PipelineConfig, n: u32) -> Rom {
                 cfg.power_frac_bits,
                 cfg.power_frac_bits
             ),
-            _ => format!(
-                "{} knots for n = {n}, u1.{} (layout: model::power_unit)",
-                cfg.power_unit_design().label(),
+            crate::config::PowerUnitKind::Lerp => format!(
+                "{} knots, knot i = round((i/{})^{n} * 2^{}), u1.{}; fs interpolates between two knots (README: The power units)",
+                cfg.power_entries,
+                cfg.power_entries - 1,
+                cfg.power_frac_bits,
+                cfg.power_frac_bits
+            ),
+            crate::config::PowerUnitKind::Segmented => format!(
+                "{} segments of {} knots (word s*{} + j: knot j of segment s) = round((1 - y_j/2^{})^{n} * 2^{}), u1.{}; fs interpolates between two knots (README: The power units)",
+                cfg.power_segments,
+                cfg.power_entries + 1,
+                cfg.power_entries + 1,
+                cfg.dot_frac_bits,
+                cfg.power_frac_bits,
                 cfg.power_frac_bits
             ),
         },
