@@ -189,3 +189,32 @@ fn a_segmented_table_holds_its_knots() {
     let header = gbump::rtlgen::rom::power_rom(&cfg, 16).layout;
     assert!(header.contains("6 segments of 17 knots"), "{header}");
 }
+
+/// dot_clamp's corner catalogue holds exact rounding ties, so every corner set tells the three
+/// roundings apart at the dot product (random stimuli hit a tie about once in 20 000).
+#[test]
+fn the_dot_corners_hold_rounding_ties() {
+    for (nb, lh, d) in [(8, 16, 8), (6, 12, 10), (10, 10, 12)] {
+        let base = PipelineConfig {
+            normal_bits: nb,
+            lh_bits: lh,
+            dot_frac_bits: d,
+            ..PipelineConfig::default()
+        };
+        let unit = gbump::units::unit("dot_clamp").unwrap();
+        let ties: Vec<_> = unit.corners(&base).into_iter().filter(|c| c.0.contains("rounding tie")).collect();
+        assert_eq!(ties.len(), 2, "nb {nb} lh {lh} d {d}");
+        for (name, lanes) in ties {
+            let got: Vec<i64> = ROUNDINGS
+                .iter()
+                .map(|&r| {
+                    let b: [i64; 3] = lanes[0].clone().try_into().unwrap();
+                    let v: [i64; 3] = lanes[1].clone().try_into().unwrap();
+                    gbump::model::dot_clamp::dot_clamp(&with(&base, r), b, v)
+                })
+                .collect();
+            let want = if name.contains("1/2") { [0, 1, 0] } else { [1, 2, 2] };
+            assert_eq!(got, want, "{name}: truncate, half up, nearest even");
+        }
+    }
+}
