@@ -6,6 +6,7 @@ pub mod bumpmap;
 pub mod cache;
 pub mod capi;
 pub mod cli;
+pub mod commit;
 pub mod config;
 pub mod cosim;
 pub mod engines;

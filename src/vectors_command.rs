@@ -99,7 +99,9 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         shininess: r.shininess,
     };
     let t0 = std::time::Instant::now();
-    let sets = crate::render::output::undo_on_error(r.out, || dump(&cfg, &src, &targets, r.out, &opts))?;
+    // Every set lands together or none does: a failed or interrupted dump over an earlier one
+    // leaves the earlier one whole.
+    let sets = crate::render::output::undo_on_error(r.out, || crate::commit::together(|| dump(&cfg, &src, &targets, r.out, &opts)))?;
     let secs = t0.elapsed().as_secs_f64();
     for s in &sets {
         say(&format!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display()))?;

@@ -29,7 +29,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     // A result file's folder is made as the output folders of every command are.
     make_folder(dir)?;
     let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
-    let res = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
+    let res = std::fs::write(&tmp, bytes).and_then(|_| {
+        // Inside `commit::together` the rename waits for the other results.
+        if crate::commit::defer(&tmp, path) {
+            Ok(())
+        } else {
+            std::fs::rename(&tmp, path)
+        }
+    });
     if let Err(e) = res {
         let _ = std::fs::remove_file(&tmp);
         return Err(Error::io(path, e));
@@ -132,16 +139,13 @@ pub fn make_folder(dir: &Path) -> Result<()> {
     })
 }
 
-/// Write every file into `dir` atomically; on any failure remove what this call wrote.
+/// Write every file into `dir` as one (`commit::together`): on any failure the folder keeps
+/// what it held before, the files this call would have replaced included.
 pub fn write_files<T: AsRef<[u8]>>(dir: &Path, files: &[(String, T)]) -> Result<()> {
     make_folder(dir)?;
-    for (i, (name, text)) in files.iter().enumerate() {
-        if let Err(e) = write_atomic(&dir.join(name), text.as_ref()) {
-            for (n, _) in &files[..i] {
-                let _ = std::fs::remove_file(dir.join(n));
-            }
-            return Err(e);
-        }
-    }
-    Ok(())
+    crate::commit::together(|| {
+        files
+            .iter()
+            .try_for_each(|(name, text)| write_atomic(&dir.join(name), text.as_ref()))
+    })
 }

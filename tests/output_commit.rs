@@ -1,0 +1,99 @@
+//! A run that fails or is interrupted over an earlier run's output leaves that output whole:
+//! the files of one command land together or not at all (`src/commit.rs`).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+fn gbump() -> Command {
+    let mut c = Command::new(assert_cmd::cargo::cargo_bin("gbump"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+/// Every file of `dir` (not hidden ones) with its bytes.
+fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| (e.file_name().to_string_lossy().into_owned(), std::fs::read(e.path()).unwrap()))
+        .collect()
+}
+
+/// `gbump rtl` that fails on one file (a folder stands at its name) keeps every other file of
+/// the earlier RTL as it was, and leaves no temporary file.
+#[test]
+fn a_failed_rtl_run_keeps_the_earlier_rtl() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("rtl");
+    assert!(gbump().args(["rtl", "--out"]).arg(&out).status().unwrap().success());
+    let before = snapshot(&out);
+    let blocked = before.keys().find(|n| n.starts_with("tb_top_")).unwrap().clone();
+    std::fs::remove_file(out.join(&blocked)).unwrap();
+    std::fs::create_dir_all(out.join(&blocked).join("inside")).unwrap();
+    // The same configuration from a file: the same names, and every header (the command
+    // line) would change.
+    let cfg = d.path().join("default.toml");
+    let text = gbump().arg("config").output().unwrap().stdout;
+    std::fs::write(&cfg, text).unwrap();
+    let o = gbump().args(["rtl", "--config"]).arg(&cfg).arg("--out").arg(&out).output().unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&blocked) && err.contains("fix:"), "{err}");
+    let mut after = snapshot(&out);
+    let mut want = before.clone();
+    want.remove(&blocked);
+    after.retain(|n, _| !n.starts_with('.'));
+    assert_eq!(after.keys().collect::<Vec<_>>(), want.keys().collect::<Vec<_>>());
+    assert!(after == want, "a file of the earlier RTL changed");
+    let hidden: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp"))
+        .collect();
+    assert!(hidden.is_empty(), "{hidden:?}");
+}
+
+/// `gbump vectors` interrupted (SIGINT) at several moments over an earlier dump: afterwards
+/// every manifest in the folder verifies against its files, and all of them are of one run
+/// (the earlier seed everywhere, or the new one everywhere).
+#[test]
+fn an_interrupted_dump_leaves_one_whole_run() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("v");
+    let dump = |seed: &str| {
+        let mut c = gbump();
+        c.args(["vectors", "--source", "random:150000", "--seed", seed, "--out"]).arg(&out);
+        c
+    };
+    assert!(dump("1").status().unwrap().success());
+    for (k, ms) in [40u64, 120, 250, 400, 700, 1100].into_iter().enumerate() {
+        let seed = (k + 2).to_string();
+        let mut child = dump(&seed).spawn().unwrap();
+        std::thread::sleep(Duration::from_millis(ms));
+        // SAFETY: a plain kill(2) of the child this test started.
+        unsafe {
+            libc::kill(child.id() as libc::pid_t, libc::SIGINT);
+        }
+        child.wait().unwrap();
+        let mut seeds = std::collections::BTreeSet::new();
+        for e in std::fs::read_dir(&out).unwrap().flatten() {
+            let p = e.path();
+            if p.extension().is_some_and(|x| x == "json") {
+                let (m, _) = gbump::vectors::verify(&p).unwrap_or_else(|e| panic!("after SIGINT at {ms} ms: {}: {e}", p.display()));
+                seeds.insert(m.seed);
+            }
+        }
+        assert_eq!(seeds.len(), 1, "after SIGINT at {ms} ms the folder mixes runs: seeds {seeds:?}");
+        let tmp: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains(".tmp"))
+            .collect();
+        assert!(tmp.is_empty(), "after SIGINT at {ms} ms: {tmp:?}");
+    }
+}
