@@ -350,6 +350,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         simulator.run(&exe, &plus, waves.as_deref(), &o.work, &what)
                     }
                 };
+                let outcome = outcome.and_then(|out| every_record(out, m.count, &what));
                 results.push(RunResult {
                     sim,
                     set: name,
@@ -360,4 +361,18 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
         }
     }
     Ok(results)
+}
+
+/// A clean run must have checked every record of its set: a testbench that stops early,
+/// skips records or prints a summary of its own is a failing run, not a pass. (A run with
+/// mismatches may stop at --max-errors; it fails anyway.)
+fn every_record(out: super::verdict::Outcome, count: u64, what: &str) -> Result<super::verdict::Outcome> {
+    if out.failed == 0 && out.passed != count {
+        return Err(Error::Other(format!(
+            "{what}: the testbench reports {} vectors checked, and the set holds {count}\n  fix: a run must check every record; look at the simulator's log below for where it stopped\n{}",
+            out.passed,
+            crate::tool::tail(&out.log, 15)
+        )));
+    }
+    Ok(out)
 }
