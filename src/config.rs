@@ -654,7 +654,9 @@ impl PipelineConfig {
                         .strip_prefix('`')
                         .and_then(|m| m.split_once('`'))
                         .map(|(k, _)| k.rsplit('.').next().unwrap_or(k));
-                    let typed = msg.contains("invalid type") || msg.contains("invalid value");
+                    let typed = ["invalid type", "invalid value", "number", "floating-point"]
+                        .iter()
+                        .any(|w| msg.contains(w));
                     let fix = match key.filter(|_| typed).and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
                         Some(&(k, lo, hi, why)) => format!("`{k}` is a whole number in {lo}..={hi} ({why})"),
                         None => fix,
