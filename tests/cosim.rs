@@ -6,6 +6,7 @@
 
 use assert_cmd::Command as Gbump;
 use std::path::{Path, PathBuf};
+use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -194,4 +195,22 @@ fn verilators_runtime_objects_come_from_the_shared_cache() {
         assert_eq!(l[1], want, "{second:?}");
     }
     assert_eq!(second.len(), first.len());
+    // Garbage that its entry's digest vouches for (the digest rewritten): the build does not
+    // link, so every runtime object is compiled again and the entries are replaced.
+    let bad = Path::new(&second[0][2]);
+    let obj = bad.join(&second[0][0]);
+    std::fs::write(&obj, b"garbage that is not an object file").unwrap();
+    let sum = Command::new("sha256sum").arg(&obj).output().unwrap();
+    let digest = String::from_utf8_lossy(&sum.stdout).split_whitespace().next().unwrap().to_string();
+    std::fs::write(bad.join(".complete"), format!("{digest}  {}\n", second[0][0])).unwrap();
+    let third = run("w3");
+    assert!(
+        third.iter().all(|l| l[1] == "compiled"),
+        "a cached object that does not link is compiled again: {third:?}"
+    );
+    assert_ne!(
+        std::fs::read(&obj).unwrap(),
+        b"garbage that is not an object file",
+        "the entry is replaced"
+    );
 }

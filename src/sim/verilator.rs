@@ -51,10 +51,23 @@ fn cached_build(
             return Err(Error::Other(format!("verilator failed to build {exe_name}:\n{}", tail(&log, 25))));
         };
         let runtime = runtime_objects(&obj, &mk, &make_args)?;
-        let missing = fetch(&runtime, &obj);
-        let mut make = Command::new("make");
-        make.args(["-j", "2", "-f", &mk]).args(&make_args).current_dir(&obj);
-        let (ok, make_log, _) = run_cmd(&mut make, "make (Verilator's C++)")?;
+        let mut missing = fetch(&runtime, &obj);
+        let make = || {
+            let mut make = Command::new("make");
+            make.args(["-j", "2", "-f", &mk]).args(&make_args).current_dir(&obj);
+            run_cmd(&mut make, "make (Verilator's C++)")
+        };
+        let (mut ok, mut make_log, _) = make()?;
+        if (!ok || !dir.join(exe_name).exists()) && missing.len() < runtime.len() {
+            // A cached object that does not link (damaged in a way its digest cannot see, or
+            // made by another compiler that prints the same version): compile them all here
+            // once more, and replace their entries.
+            for o in &runtime {
+                o.forget(&obj);
+            }
+            missing = runtime.iter().collect();
+            (ok, make_log, _) = make()?;
+        }
         if !ok || !dir.join(exe_name).exists() {
             return Err(Error::Other(format!(
                 "verilator failed to build {exe_name}:\n{}",

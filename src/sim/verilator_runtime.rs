@@ -67,6 +67,15 @@ fn compile_lines(dry_run: &str) -> Vec<(String, String, String)> {
         .collect()
 }
 
+impl RuntimeObject {
+    /// Drop this object from `obj` and its entry from the cache, so the next make compiles it
+    /// and the build stores it afresh.
+    pub fn forget(&self, obj: &Path) {
+        let _ = std::fs::remove_file(obj.join(&self.name));
+        let _ = std::fs::remove_dir_all(&self.entry);
+    }
+}
+
 /// Copy every kept object into `obj`; returns the ones the cache did not hold.
 pub fn fetch<'a>(objects: &'a [RuntimeObject], obj: &Path) -> Vec<&'a RuntimeObject> {
     objects
