@@ -126,6 +126,12 @@ impl Drop for Cleanup {
     }
 }
 
+/// Whether a signal asked this run to stop (its error path then exits with 130, as the
+/// shell's convention for Ctrl-C is, whichever step noticed it).
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::Relaxed)
+}
+
 /// Error if an interrupt arrived.
 pub fn check() -> Result<()> {
     if INTERRUPTED.load(Ordering::Relaxed) {

@@ -2,6 +2,6 @@ fn main() {
     gbump::interrupt::install();
     if let Err(e) = gbump::cli::run() {
         eprintln!("gbump: error: {e:#}");
-        std::process::exit(1);
+        std::process::exit(if gbump::interrupt::interrupted() { 130 } else { 1 });
     }
 }

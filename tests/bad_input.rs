@@ -1205,6 +1205,7 @@ fn an_interrupted_dump_leaves_nothing_behind() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "SIG{signal}: {err}");
         assert!(err.contains("interrupted"), "SIG{signal}: {err}");
+        assert_eq!(o.status.code(), Some(130), "SIG{signal}: a stopped run exits 130 whichever step noticed: {err}");
         let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
             .map(|d| d.map(|e| e.unwrap().file_name()).collect())
             .unwrap_or_default();

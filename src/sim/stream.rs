@@ -354,6 +354,8 @@ pub fn regress_stream(
             progress: true,
         };
         let mut outcome = run_stream(cfg, s, &run).map_err(|e| e.to_string());
+        // A signal that stopped the harness too is the user's stop, not a failing RTL run.
+        crate::interrupt::check()?;
         let failing = match &mut outcome {
             Ok(out) if out.failed > 0 => Some(first_failing_record(&out.log)),
             Ok(_) => None,
