@@ -1205,7 +1205,11 @@ fn an_interrupted_dump_leaves_nothing_behind() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "SIG{signal}: {err}");
         assert!(err.contains("interrupted"), "SIG{signal}: {err}");
-        assert_eq!(o.status.code(), Some(130), "SIG{signal}: a stopped run exits 130 whichever step noticed: {err}");
+        assert_eq!(
+            o.status.code(),
+            Some(130),
+            "SIG{signal}: a stopped run exits 130 whichever step noticed: {err}"
+        );
         let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
             .map(|d| d.map(|e| e.unwrap().file_name()).collect())
             .unwrap_or_default();
@@ -1502,4 +1506,37 @@ fn a_signal_during_a_build_ends_the_builds_processes() {
             left.join("\n")
         );
     }
+}
+
+/// A work folder reached through a symbolic link is checked where it really is: make cannot
+/// build in a path with a space, and the link must not hide one (refused before anything is
+/// written, the link and its target named).
+#[test]
+fn a_link_to_a_path_with_a_space_is_refused_as_the_path_is() {
+    let d = tempfile::tempdir().unwrap();
+    let real = d.path().join("real sp");
+    std::fs::create_dir(&real).unwrap();
+    std::os::unix::fs::symlink(&real, d.path().join("link")).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "regress",
+            "--config",
+            "tests/configs/one_light_parallel.toml",
+            "--sim",
+            "verilator",
+            "--target",
+            "top",
+            "--work",
+        ])
+        .arg(d.path().join("link").join("w"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("through a link") && err.contains("real sp") && err.contains("fix:"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_dir(&real).unwrap().count(), 0, "written before the refusal");
 }

@@ -91,8 +91,20 @@ pub fn check_out_path(p: &Path) -> Result<()> {
 /// then `why` (the tools that would misread it, and the fix).
 fn refuse_chars(p: &Path, flag: &str, bad: impl Fn(char) -> bool, why: &str) -> Result<()> {
     let abs = std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-    let text = abs.to_string_lossy();
-    let found: Vec<String> = text.chars().filter(|&c| bad(c)).map(|c| format!("{c:?}")).collect();
+    // Where the tools really work: a symbolic link on the way may lead to such a path too.
+    let real = abs
+        .ancestors()
+        .find_map(|a| Some((a, std::fs::canonicalize(a).ok()?)))
+        .map(|(a, c)| c.join(abs.strip_prefix(a).unwrap_or(Path::new(""))))
+        .filter(|r| *r != abs);
+    let (checked, text) = match &real {
+        Some(r) if r.to_string_lossy().chars().any(&bad) => (
+            r.to_string_lossy().into_owned(),
+            format!("{} (through a link: {})", abs.display(), r.display()),
+        ),
+        _ => (abs.to_string_lossy().into_owned(), abs.to_string_lossy().into_owned()),
+    };
+    let found: Vec<String> = checked.chars().filter(|&c| bad(c)).map(|c| format!("{c:?}")).collect();
     if found.is_empty() {
         return Ok(());
     }
