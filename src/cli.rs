@@ -59,6 +59,9 @@ pub enum Cmd {
         /// Also render through the Verilated RTL and require it to equal the golden image.
         #[arg(long)]
         rtl: bool,
+        /// Work folder of --rtl: generated RTL and the cached Verilator build.
+        #[arg(long, default_value = crate::sim::rtl_image::RENDER_WORK, value_parser = output_dir, requires = "rtl")]
+        work: PathBuf,
     },
     /// Generate the Verilog, ROM init file and interface JSON of a configuration.
     Rtl {
@@ -671,15 +674,16 @@ pub fn run() -> anyhow::Result<()> {
             size,
             config,
             rtl,
+            work,
         } => {
             let r = crate::render::report::RenderRequest {
                 scene: &scene,
                 out: &out,
                 size: size.as_deref(),
                 config: config.as_deref(),
-                rtl,
+                rtl: rtl.then_some(work.as_path()),
             };
-            crate::render::report::render(&r, || lock_work(Path::new(crate::sim::rtl_image::RENDER_WORK)), &mut say)?
+            crate::render::report::render(&r, || lock_work(&work), &mut say)?
         }
         Cmd::Rtl { pick, out } => {
             crate::sim::check_out_path(&out)?;

@@ -22,8 +22,9 @@ pub struct RenderRequest<'a> {
     pub size: Option<&'a str>,
     /// Configuration file (default: derived from the scene).
     pub config: Option<&'a Path>,
-    /// Also render through the RTL (in `sim::rtl_image::RENDER_WORK`).
-    pub rtl: bool,
+    /// Also render through the RTL, in this work folder (`--work`, by default
+    /// `sim::rtl_image::RENDER_WORK`).
+    pub rtl: Option<&'a Path>,
 }
 
 /// Scene plus the configuration to render it with (a given file, or derived).
@@ -50,7 +51,7 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
     };
     crate::names::check(&s.file, "name", &s.name)?;
     crate::limits::check_render(&s.file, w, h, s.triangles())?;
-    if r.rtl {
+    if let Some(work) = r.rtl {
         if cfg.palette {
             let from = r
                 .config
@@ -60,12 +61,9 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
             )));
         }
         crate::sim::require(crate::sim::Sim::Verilator)?;
-        // Its work folder is under the current one: a path the simulators cannot take is
-        // refused before anything is rendered or written.
-        crate::sim::check_tool_path(
-            Path::new(crate::sim::rtl_image::RENDER_WORK),
-            "the RTL work folder (under the current folder)",
-        )?;
+        // A work folder the simulators cannot take is refused before anything is rendered
+        // or written.
+        crate::sim::check_tool_path(work, "--work")?;
     }
     let t0 = std::time::Instant::now();
     let img = super::render(&s, &cfg, w, h, std::io::stderr().is_terminal())?;
@@ -98,9 +96,8 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
     // The RTL image first: a build or simulation that fails leaves nothing in the output
     // folder; one that differs writes every image, its own among them, as the evidence.
     let mut rtl = None;
-    if r.rtl {
+    if let Some(work) = r.rtl {
         let t0 = std::time::Instant::now();
-        let work = Path::new(crate::sim::rtl_image::RENDER_WORK);
         let _lock = lock()?;
         let img_rtl = crate::sim::rtl_image::rtl_image(r.scene, &cfg, w, h, work)?;
         blobs.push((format!("{name}_rtl.png"), encode_png(w, h, &codes_to_u8(&img_rtl, max))?));
