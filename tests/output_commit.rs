@@ -22,6 +22,16 @@ fn snapshot(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         .collect()
 }
 
+/// Temporary names left in `dir`.
+fn temporaries(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp"))
+        .collect()
+}
+
 /// `gbump rtl` that fails on one file (a folder stands at its name) keeps every other file of
 /// the earlier RTL as it was, and leaves no temporary file.
 #[test]
@@ -48,12 +58,7 @@ fn a_failed_rtl_run_keeps_the_earlier_rtl() {
     after.retain(|n, _| !n.starts_with('.'));
     assert_eq!(after.keys().collect::<Vec<_>>(), want.keys().collect::<Vec<_>>());
     assert!(after == want, "a file of the earlier RTL changed");
-    let hidden: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains(".tmp"))
-        .collect();
+    let hidden = temporaries(&out);
     assert!(hidden.is_empty(), "{hidden:?}");
 }
 
@@ -88,12 +93,7 @@ fn an_interrupted_dump_leaves_one_whole_run() {
             }
         }
         assert_eq!(seeds.len(), 1, "after SIGINT at {ms} ms the folder mixes runs: seeds {seeds:?}");
-        let tmp: Vec<String> = std::fs::read_dir(&out)
-            .unwrap()
-            .flatten()
-            .map(|e| e.file_name().to_string_lossy().into_owned())
-            .filter(|n| n.contains(".tmp"))
-            .collect();
+        let tmp = temporaries(&out);
         assert!(tmp.is_empty(), "after SIGINT at {ms} ms: {tmp:?}");
     }
 }
