@@ -224,3 +224,22 @@ fn a_missing_file_or_a_moved_column_is_named() {
     let name = &m.columns[2].name;
     assert!(e.contains(&format!("column 2 is `{name}` at lsb {}", m.columns[2].lsb)), "{e}");
 }
+
+/// A text set converted to CRLF line ends is named as such, and a manifest with a wrong
+/// latency names the field `latency` (not the module beside it).
+#[test]
+fn crlf_line_ends_and_a_wrong_latency_are_named() {
+    let d = tempfile::tempdir().unwrap();
+    let man = corner_set(d.path());
+    let hex = man.with_file_name("corners_top.hex");
+    let text = std::fs::read_to_string(&hex).unwrap();
+    std::fs::write(&hex, text.replace('\n', "\r\n")).unwrap();
+    let e = gbump::vectors::verify(&man).unwrap_err().to_string();
+    assert!(e.contains("CRLF") && e.contains("dos2unix"), "{e}");
+    std::fs::write(&hex, text).unwrap();
+    let mut m = read_manifest(&man);
+    m.latency += 1;
+    write_manifest(&man, &m);
+    let e = gbump::vectors::verify(&man).unwrap_err().to_string();
+    assert!(e.contains("latency") && !e.contains("field `module`"), "{e}");
+}

@@ -180,9 +180,17 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     let l = super::targets::layout(&m.config, &m.target);
     let (module, latency, ii) = timing(&m.config, &m.target);
     if m.module != module || m.latency != latency || m.initiation_interval != ii {
+        // The first of the three that differs is the field named.
+        let field = if m.module != module {
+            "module"
+        } else if m.latency != latency {
+            "latency"
+        } else {
+            "initiation_interval"
+        };
         return Err(Error::field(
             &file,
-            "module",
+            field,
             format!(
                 "module {}, latency {}, interval {} are not this configuration's {} ({module}, {latency}, {ii})",
                 m.module, m.latency, m.initiation_interval, m.target
@@ -296,9 +304,24 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
             }
         })?;
         if bytes != f.bytes || sha != f.sha256 {
+            // One extra byte a line is what a CRLF conversion does to a text set.
+            let crlf = !is_bin && f.bytes > 0 && bytes == f.bytes + m.count;
+            let (why, fix) = if crlf {
+                (
+                    "its lines end in CRLF (one byte more per record)",
+                    "convert it back to LF line ends (dos2unix), or regenerate with",
+                )
+            } else {
+                ("truncated, corrupted or from another run", "regenerate with")
+            };
             return Err(Error::Other(format!(
-                "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): truncated, corrupted or from another run\n  fix: regenerate with: {regen}",
-                p.display(), manifest.display(), bytes, &sha[..12], f.bytes, &f.sha256[..12.min(f.sha256.len())]
+                "{}: does not match its manifest {} ({} bytes, sha256 {}…; expected {} bytes, sha256 {}…): {why}\n  fix: {fix}: {regen}",
+                p.display(),
+                manifest.display(),
+                bytes,
+                &sha[..12],
+                f.bytes,
+                &f.sha256[..12.min(f.sha256.len())]
             )));
         }
     }
@@ -426,6 +449,13 @@ fn check_hex_records(p: &Path, bin: Option<&Path>, m: &Manifest, regen: &str) ->
         n += 1;
         if n > m.count {
             return Err(bad(n, format!("more records than the {} the manifest counts", m.count)));
+        }
+        if line.len() == digits + 1 && line.last() == Some(&b'\r') {
+            // An editor or a transfer that wrote Windows line ends.
+            return Err(bad(
+                n,
+                "the line ends in a carriage return (CRLF line ends); gbump writes LF only, convert the file back (dos2unix) or regenerate it".to_string(),
+            ));
         }
         if line.len() != digits {
             return Err(bad(
