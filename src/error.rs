@@ -130,11 +130,12 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         msg = "the file cannot be read as TOML here".to_string();
     }
     let mut fix = fix.to_string();
+    let syntax = toml::from_str::<toml::Table>(text).is_err();
     let number = ["number", "floating-point", "integer"].iter().any(|w| msg.contains(w));
-    if toml::from_str::<toml::Table>(text).is_err() && number {
+    if syntax && number {
         // A number TOML itself cannot hold (1e400, 2^64 and beyond).
         fix = format!("this number cannot be read: an integer must fit in 64 bits and a float in a double's range; {fix}");
-    } else if toml::from_str::<toml::Table>(text).is_err() {
+    } else if syntax {
         // Not TOML at all: the caller's hint is about fields, which this is not yet about.
         fix = "this is not TOML syntax: a table header is `[name]` alone on its line, a field `name = value`, text in double quotes, a list in `[ ]`".to_string();
     } else if let Some((name, expected)) = unknown_field(&msg) {

@@ -97,12 +97,11 @@ fn refuse_chars(p: &Path, flag: &str, bad: impl Fn(char) -> bool, why: &str) -> 
         .find_map(|a| Some((a, std::fs::canonicalize(a).ok()?)))
         .map(|(a, c)| c.join(abs.strip_prefix(a).unwrap_or(Path::new(""))))
         .filter(|r| *r != abs);
-    let (checked, text) = match &real {
-        Some(r) if r.to_string_lossy().chars().any(&bad) => (
-            r.to_string_lossy().into_owned(),
-            format!("{} (through a link: {})", abs.display(), r.display()),
-        ),
-        _ => (abs.to_string_lossy().into_owned(), abs.to_string_lossy().into_owned()),
+    let linked = real.filter(|r| r.to_string_lossy().chars().any(&bad));
+    let checked = linked.as_ref().unwrap_or(&abs).to_string_lossy().into_owned();
+    let text = match &linked {
+        Some(r) => format!("{} (through a link: {})", abs.display(), r.display()),
+        None => checked.clone(),
     };
     let found: Vec<String> = checked.chars().filter(|&c| bad(c)).map(|c| format!("{c:?}")).collect();
     if found.is_empty() {

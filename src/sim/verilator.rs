@@ -1,7 +1,8 @@
-//! Verilator: `--main --exe --timing` (`--binary` less its build) makes the Verilog testbenches;
-//! `--cc --exe` makes the C++ harness that streams binary vectors (Verilator only, so an inherent method); `--lint-only
-//! -Wall` lints. Verilator only writes the C++; make compiles it with two jobs (the machine
-//! has two cores), Verilator's own runtime objects reused from the shared cache.
+//! Verilator: `--main --exe --timing` (`--binary` less its build) makes the Verilog
+//! testbenches; `--cc --exe` makes the C++ harness that streams binary vectors (Verilator
+//! only, so an inherent method); `--lint-only -Wall` lints. Verilator only writes the C++;
+//! make compiles it with two jobs (the machine has two cores), Verilator's own runtime
+//! objects reused from the shared cache.
 
 use super::rtl_files::Rtl;
 use super::simulator::{build_key, Simulator, Testbench};
@@ -46,8 +47,7 @@ fn cached_build(
             .current_dir(dir);
         let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
         let obj = dir.join("obj");
-        let mk = if ok { makefile(&obj) } else { None };
-        let Some(mk) = mk else {
+        let Some(mk) = ok.then(|| makefile(&obj)).flatten() else {
             return Err(Error::Other(format!("verilator failed to build {exe_name}:\n{}", tail(&log, 25))));
         };
         let runtime = runtime_objects(&obj, &mk, &make_args)?;

@@ -646,13 +646,13 @@ pub fn all_targets() -> Vec<&'static str> {
 pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Vec<String>> {
     use crate::error::Error;
     let all = all_targets();
+    let here: Vec<&str> = all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect();
     let mut out: Vec<String> = Vec::new();
     for t in args {
         let named: Vec<&str> = if t == "all" {
-            all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect()
+            here.clone()
         } else if !all.contains(&t.as_str()) {
             // This configuration's targets, the nearest first if the name looks like a typo.
-            let here: Vec<&str> = all.iter().copied().filter(|u| super::writer::unit_present(cfg, u)).collect();
             let mut usual = format!("one of all, {} (this configuration's targets)", here.join(", "));
             if let Some(n) = crate::error::nearest(t, &here) {
                 usual = format!("did you mean `{n}`? {usual}");
