@@ -94,12 +94,64 @@ fn key_before(before: &str) -> Option<&str> {
     (!k.is_empty() && k.chars().all(plain) && !before.trim_start().starts_with(['#', '['])).then_some(k)
 }
 
-/// The `[table]` (or `[[array]]`) header the text above a line last opened, if any.
-fn table_above(above: &str) -> Option<&str> {
-    above.lines().rev().map(str::trim).find(|l| l.starts_with('[')).map(|l| {
-        let l = l.split('#').next().unwrap_or(l).trim();
-        l.trim_start_matches('[').trim_end_matches(']').trim()
-    })
+/// The table the text above a line last opened, as a path that names array entries by index:
+/// the third `[[objects]]` is `objects[2]`, and `[objects.shape]` under it `objects[2].shape`.
+/// None above every header.
+fn table_above(above: &str) -> Option<String> {
+    let headers: Vec<(bool, &str)> = above
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or(l).trim())
+        .filter(|l| l.starts_with('['))
+        .map(|l| (l.starts_with("[["), l.trim_start_matches('[').trim_end_matches(']').trim()))
+        .collect();
+    let &(_, last) = headers.last()?;
+    let parts: Vec<&str> = last.split('.').map(str::trim).collect();
+    let mut path = String::new();
+    for k in 0..parts.len() {
+        let prefix = parts[..=k].join(".");
+        if !path.is_empty() {
+            path.push('.');
+        }
+        path += parts[k];
+        // An array of tables: its entry is the count of its headers so far, less one.
+        let entries = headers
+            .iter()
+            .filter(|(array, h)| *array && h.split('.').map(str::trim).collect::<Vec<_>>().join(".") == prefix)
+            .count();
+        if entries > 0 {
+            path += &format!("[{}]", entries - 1);
+        }
+    }
+    Some(path)
+}
+
+/// The inline tables open on a line before the error (`shape = { kind = "torus", major = `
+/// is inside `shape`), outermost first. Inline tables are on one line in TOML.
+fn inline_tables(before: &str) -> Vec<String> {
+    let (mut open, mut key, mut seg, mut quoted) = (Vec::new(), String::new(), 0, false);
+    let mut last_sig = ' ';
+    for (i, c) in before.char_indices() {
+        if quoted {
+            quoted = c != '"';
+            continue;
+        }
+        match c {
+            '"' => quoted = true,
+            '=' => key = before[seg..i].trim().trim_matches('"').to_string(),
+            '{' if last_sig == '=' => open.push(std::mem::take(&mut key)),
+            '}' => {
+                open.pop();
+            }
+            _ => {}
+        }
+        if matches!(c, '{' | ',') {
+            seg = i + c.len_utf8();
+        }
+        if !c.is_whitespace() {
+            last_sig = c;
+        }
+    }
+    open
 }
 
 /// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
@@ -113,9 +165,11 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let (before, after) = (&text[line_start..start], &text[start..line_end]);
-    let key = key_before(before).map(|k| match table_above(&text[..line_start]) {
-        Some(t) => format!("{t}.{k}"),
-        None => k.to_string(),
+    let key = key_before(before).map(|k| {
+        let mut path: Vec<String> = table_above(&text[..line_start]).into_iter().collect();
+        path.extend(inline_tables(before));
+        path.push(k.to_string());
+        path.join(".")
     });
     let mut msg = e.message().trim().to_string();
     if let Some(k) = key {
@@ -274,7 +328,12 @@ mod tests {
         let m = message("[light]\nx = 1\ny =\n");
         assert!(m.starts_with("`light.y`"), "{m}");
         let m = message("light = { x = 1, y = }\n");
-        assert!(m.starts_with("`y`"), "{m}");
+        assert!(m.starts_with("`light.y`"), "{m}");
+        // Array entries by index, inline tables by name.
+        let m = message("[[objects]]\na = 1\n[[objects]]\nshape = { kind = \"torus\", major = }\n");
+        assert!(m.starts_with("`objects[1].shape.major`"), "{m}");
+        let m = message("[[objects]]\n[objects.bump]\nsource = { n = { r = 1 }, cells = }\n");
+        assert!(m.starts_with("`objects[0].bump.source.cells`"), "{m}");
         // No key is made up from a comment or a header.
         let m = message("# a = \n[light\n");
         assert!(!m.starts_with('`'), "{m}");

@@ -5,8 +5,11 @@ use serde::Serialize;
 
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct ImageError {
-    /// Peak signal-to-noise ratio in dB (infinite when identical).
+    /// Peak signal-to-noise ratio in dB: infinite when identical, which JSON cannot hold, so
+    /// a report writes it as `null` beside `identical: true`.
     pub psnr_db: f64,
+    /// Whether every covered pixel is equal (no difference at all).
+    pub identical: bool,
     /// Largest per-channel error, in LSBs of the colour format.
     pub max_lsb: f64,
     pub mean_lsb: f64,
@@ -67,6 +70,7 @@ pub fn stats(diffs: impl Iterator<Item = [f64; 3]>, max: f64) -> ImageError {
     };
     ImageError {
         psnr_db: psnr,
+        identical: mse == 0.0,
         max_lsb: worst,
         mean_lsb: sum / samples,
         over_1lsb: over as f64 / n.max(1) as f64,
@@ -83,10 +87,12 @@ mod tests {
         let g = vec![[255u32, 0, 128]; 4];
         let o = vec![[1.0, 0.0, 128.0 / 255.0]; 4];
         let e = compare(&g, &o, &[true; 4], 255);
-        assert!(e.psnr_db.is_infinite() && e.max_lsb < 1e-9);
+        assert!(e.psnr_db.is_infinite() && e.max_lsb < 1e-9 && e.identical);
+        let json = serde_json::to_value(e).unwrap();
+        assert!(json["psnr_db"].is_null() && json["identical"] == true, "{json}");
         let o2 = vec![[1.0, 2.0 / 255.0, 128.0 / 255.0]; 4];
         let e = compare(&g, &o2, &[true; 4], 255);
-        assert!((e.max_lsb - 2.0).abs() < 1e-9 && e.over_1lsb == 1.0, "{e:?}");
+        assert!((e.max_lsb - 2.0).abs() < 1e-9 && e.over_1lsb == 1.0 && !e.identical, "{e:?}");
         // mse = 4/3 → psnr = 10 log10(255² · 3/4)
         assert!((e.psnr_db - 10.0 * (255f64.powi(2) * 0.75).log10()).abs() < 1e-9);
     }

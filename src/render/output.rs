@@ -8,6 +8,9 @@ use std::path::Path;
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let _cleanup = crate::interrupt::cleanup();
     crate::interrupt::check()?;
+    // A symbolic link keeps pointing where it did: the file it leads to is replaced.
+    let target = link_target(path)?;
+    let path = target.as_path();
     crate::limits::check_not_input(path)?;
     // A device or FIFO (e.g. /dev/full, /dev/stdout) is written in place: renaming over it
     // would replace the device node.
@@ -43,6 +46,59 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     // What a killed run left in this folder goes now that a run has written there.
     crate::temp_files::clean_stale(dir, 0);
+    Ok(())
+}
+
+/// Where an output path really leads: `path` itself, or the file at the end of its chain of
+/// symbolic links (which need not exist yet), so a result written through a link replaces the
+/// link's target and the link stays.
+pub fn link_target(path: &Path) -> Result<std::path::PathBuf> {
+    let mut at = path.to_path_buf();
+    // As many hops as the kernel follows before it calls a chain a loop.
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&at) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let next = std::fs::read_link(&at).map_err(|e| Error::io(&at, e))?;
+                at = match at.parent() {
+                    Some(dir) if next.is_relative() => dir.join(next),
+                    _ => next,
+                };
+            }
+            _ => return Ok(at),
+        }
+    }
+    Err(Error::Other(format!(
+        "{}: a loop of symbolic links (40 hops without reaching a file)\n  fix: point the link at a file, or give the output another path",
+        path.display()
+    )))
+}
+
+/// Check before a long run that its result file `path` can be written at the end: not a
+/// folder, not an input, and its folder made and writable (a file is created there and
+/// removed). The run's hours are not spent on a result that cannot land.
+pub fn check_writable(path: &Path) -> Result<()> {
+    let target = link_target(path)?;
+    let path = target.as_path();
+    crate::limits::check_not_input(path)?;
+    if path.is_dir() {
+        return Err(Error::Other(format!(
+            "{}: is a folder, where this run writes a file\n  fix: move the folder away, or give the output another path (folder)",
+            path.display()
+        )));
+    }
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
+    make_folder(dir)?;
+    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    std::fs::write(&tmp, b"").map_err(|e| {
+        Error::Other(format!(
+            "{}: this run could not write its result here ({e})\n  fix: give a path in a folder you can write to",
+            path.display()
+        ))
+    })?;
+    let _ = std::fs::remove_file(&tmp);
     Ok(())
 }
 
@@ -122,6 +178,15 @@ pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
 /// Make output folder `dir` and its parents, or say which part could not be made and why
 /// (`--out /proc/x` reads as "no such file" in the OS's words).
 pub fn make_folder(dir: &Path) -> Result<()> {
+    if let (Ok(m), Err(_)) = (std::fs::symlink_metadata(dir), std::fs::metadata(dir)) {
+        if m.file_type().is_symlink() {
+            let to = std::fs::read_link(dir).map(|t| t.display().to_string()).unwrap_or_default();
+            return Err(Error::Other(format!(
+                "{}: a symbolic link to {to}, which does not exist\n  fix: create {to}, or remove the link",
+                dir.display()
+            )));
+        }
+    }
     std::fs::create_dir_all(dir).map_err(|e| {
         // The deepest part that exists: where the creation failed.
         let existing = dir.ancestors().skip(1).find(|a| a.as_os_str().is_empty() || a.exists());

@@ -64,7 +64,7 @@ pub fn regress(
     let given = check_sets(cfg, &given, o)?;
     // The given manifests are read now: --junit may not name one of them.
     if let Some(j) = junit {
-        crate::limits::check_not_input(j)?;
+        crate::render::output::check_writable(j)?;
     }
     let _lock = lock()?;
     announce(say)?;

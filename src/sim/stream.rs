@@ -337,6 +337,9 @@ pub fn regress_stream(
     // A signal ends the stream through its error path: the harness stops, the seed is said.
     let _cleanup = crate::interrupt::cleanup();
     let streams = streams(cfg, src, o.seed, o.scene_size)?;
+    if let Some(j) = junit {
+        crate::render::output::check_writable(j)?;
+    }
     let _lock = lock()?;
     let h = &cfg.hash()[..8];
     let exe = regress_harness(cfg, pick_args, &o.work)?;
