@@ -123,3 +123,23 @@ pub fn markdown(r: &AreaReport) -> String {
     }
     s
 }
+
+/// Yosys area of `cfg`, shared by every point of the same configuration whatever the scene.
+pub(crate) fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<AreaReport> {
+    let mut k = crate::cache::Key::new("area");
+    k.add(cfg.to_toml().as_bytes())
+        .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())
+        .add_tool("yosys");
+    let file = work.join("area").join(format!("{}.json", k.finish()));
+    if let Some(r) = std::fs::read_to_string(&file)
+        .ok()
+        .and_then(|t| serde_json::from_str::<AreaReport>(&t).ok())
+    {
+        if r.config_hash == cfg.hash() {
+            return Ok(r);
+        }
+    }
+    let r = area(cfg, &work.join("area"), "gbump sweep")?;
+    crate::render::output::write_atomic(&file, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
+    Ok(r)
+}

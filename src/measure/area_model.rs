@@ -308,7 +308,7 @@ pub fn calibrate_and_check(
     for (i, p) in configs.iter().enumerate() {
         let cfg = PipelineConfig::load(p)?;
         // Cached by configuration, script and Yosys version, as `gbump sweep` caches.
-        let r = super::sweep::cached_area(&cfg, work)?;
+        let r = super::area::cached_area(&cfg, work)?;
         let ge = r.top().gate_equivalents;
         say(&format!(
             "[{}/{}] {} ({}): {ge:.0} GE",

@@ -107,7 +107,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     progress.start("Verilator");
     let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
     if crate::tool::have("verilator") {
-        let mut configs = vec![PipelineConfig::from_toml("one_light_parallel", super::report::ONE_LIGHT_PARALLEL)?];
+        let mut configs = vec![PipelineConfig::from_toml("one_light_parallel", super::configs::ONE_LIGHT_PARALLEL)?];
         if cfg.hash() != configs[0].hash() {
             configs.push(cfg.clone());
         }

@@ -3,6 +3,7 @@
 pub mod area;
 pub mod area_model;
 pub mod bench;
+pub mod configs;
 pub mod fpga;
 pub mod image_metrics;
 pub mod long_run;

@@ -14,14 +14,6 @@ fn power_section(fm: PowerFormats, work: &Path) -> Result<String> {
     Ok(s)
 }
 
-/// `tests/configs/one_light_parallel.toml`, the second configuration of the FPGA section
-/// (inline, so the report runs from any folder; a test keeps the two equal).
-pub const ONE_LIGHT_PARALLEL: &str = "lights = 1\nlight_mode = \"parallel\"\n";
-
-/// `tests/configs/paper_sample_one_light.toml`: one light in parallel with k_i an on/off
-/// enable (`k_frac_bits = 0`), the paper's sample implementation (inline, as above).
-pub const PAPER_SAMPLE_ONE_LIGHT: &str = "lights = 1\nlight_mode = \"parallel\"\nk_frac_bits = 0\n";
-
 /// The FPGA section: the top of the default and the one-light parallel configuration on each
 /// FPGA target, iCE40 placed and routed on an HX8K in its register shell.
 pub fn fpga_section(work: &Path) -> Result<String> {
@@ -30,7 +22,7 @@ pub fn fpga_section(work: &Path) -> Result<String> {
         ("default (4 lights, serial)", PipelineConfig::default()),
         (
             "`tests/configs/one_light_parallel.toml`",
-            PipelineConfig::from_toml("one_light_parallel", ONE_LIGHT_PARALLEL)?,
+            PipelineConfig::from_toml("one_light_parallel", super::configs::ONE_LIGHT_PARALLEL)?,
         ),
     ];
     let mut s = String::from("`gbump area --target ice40|ecp5|xilinx` (with `--config tests/configs/one_light_parallel.toml` for the second configuration); each top synthesised alone (`synth_ice40`, `synth_ecp5`, `synth_xilinx -flatten -noiopad`), iCE40 placed and routed by nextpnr-ice40 on an HX8K (ct256). ");
@@ -177,19 +169,4 @@ pub fn report(
     ];
     files.extend(engine_files);
     Ok(files)
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_inline_one_light_config_is_the_test_config() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/configs/one_light_parallel.toml");
-        let file = crate::config::PipelineConfig::from_toml(path, &std::fs::read_to_string(path).unwrap()).unwrap();
-        let inline = crate::config::PipelineConfig::from_toml("inline", super::ONE_LIGHT_PARALLEL).unwrap();
-        assert_eq!(file.hash(), inline.hash());
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/configs/paper_sample_one_light.toml");
-        let file = crate::config::PipelineConfig::from_toml(path, &std::fs::read_to_string(path).unwrap()).unwrap();
-        let inline = crate::config::PipelineConfig::from_toml("inline", super::PAPER_SAMPLE_ONE_LIGHT).unwrap();
-        assert_eq!(file.hash(), inline.hash());
-    }
 }

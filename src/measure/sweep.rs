@@ -315,26 +315,6 @@ fn point_key(cfg: &PipelineConfig, scene: &crate::scene::Scene, target: Option<s
     Ok(k.finish())
 }
 
-/// Yosys area of `cfg`, shared by every point of the same configuration whatever the scene.
-pub(crate) fn cached_area(cfg: &PipelineConfig, work: &Path) -> Result<super::area::AreaReport> {
-    let mut k = crate::cache::Key::new("area");
-    k.add(cfg.to_toml().as_bytes())
-        .add(crate::yosys::scripts::cmos_area(&[], "").as_bytes())
-        .add_tool("yosys");
-    let file = work.join("area").join(format!("{}.json", k.finish()));
-    if let Some(r) = std::fs::read_to_string(&file)
-        .ok()
-        .and_then(|t| serde_json::from_str::<super::area::AreaReport>(&t).ok())
-    {
-        if r.config_hash == cfg.hash() {
-            return Ok(r);
-        }
-    }
-    let r = super::area::area(cfg, &work.join("area"), "gbump sweep")?;
-    crate::render::output::write_atomic(&file, serde_json::to_string_pretty(&r).expect("json").as_bytes())?;
-    Ok(r)
-}
-
 /// Measure one configuration on `scene` (cached in `work/points/<key>.json`, the key made of
 /// the configuration, the scene and its files, the sizes, gbump's and Yosys's versions).
 pub fn measure(
@@ -363,7 +343,7 @@ pub fn measure(
         _ => None,
     };
     let area = if yosys {
-        let area = cached_area(cfg, work)?;
+        let area = super::area::cached_area(cfg, work)?;
         let ge = |name: &str| {
             area.units
                 .iter()

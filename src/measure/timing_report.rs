@@ -18,8 +18,8 @@ pub const BEFORE: (f64, f64, f64) = (53_000.0, 24_000.0, 31.6);
 
 /// The one-light configurations of the section: (test config file, its TOML).
 pub const ONE_LIGHT_CONFIGS: [(&str, &str); 2] = [
-    ("tests/configs/one_light_parallel.toml", super::report::ONE_LIGHT_PARALLEL),
-    ("tests/configs/paper_sample_one_light.toml", super::report::PAPER_SAMPLE_ONE_LIGHT),
+    ("tests/configs/one_light_parallel.toml", super::configs::ONE_LIGHT_PARALLEL),
+    ("tests/configs/paper_sample_one_light.toml", super::configs::PAPER_SAMPLE_ONE_LIGHT),
 ];
 
 /// A one-light configuration (`toml`) at `depth`.

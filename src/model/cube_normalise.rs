@@ -8,7 +8,7 @@
 //! With `face` = 2^c texels along an edge (`cube_map_face`):
 //!
 //! 1. The major axis is x when |x| >= |y| and |x| >= |z|, else y when |y| >= |z|, else z (the
-//!    order `engines::cg::cube_normalise` uses); its magnitude is `m`, and a zero vector
+//!    order `reference::cube_map::cube_normalise` uses); its magnitude is `m`, and a zero vector
 //!    stays zero.
 //! 2. Each minor component p (y and z for x, x and z for y, x and y for z) picks the texel
 //!    `i = min(floor((p + m) · face / (2m)), face - 1)`: an exact integer division with a
@@ -146,7 +146,7 @@ mod tests {
         }
     }
 
-    /// The integer texel choice is the f64 engine's (`engines::cg::cube_normalise`), away from
+    /// The integer texel choice is the f64 engine's (`reference::cube_map::cube_normalise`), away from
     /// texel edges where f64's division may round either way; the result's direction is
     /// within the map's angle bound plus its rounding, for every face size.
     #[test]
@@ -163,7 +163,7 @@ mod tests {
                     assert_eq!(got, [0; 3]);
                     continue;
                 }
-                let f = crate::engines::cg::cube_normalise(d, face) * one;
+                let f = crate::reference::cube_map::cube_normalise(d, face) * one;
                 let g = DVec3::new(got[0] as f64, got[1] as f64, got[2] as f64);
                 // Rounding moves each component by half an LSB at most.
                 assert!(

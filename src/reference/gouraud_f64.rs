@@ -74,7 +74,7 @@ pub fn shade_interpolating(p: &Prepared, hit: &Hit, g: &PixelGeom, how: PerFragm
         // The cube map's texel direction where the configuration reads one.
         let unit = |v: DVec3| match how.cube_map_face {
             0 => v.normalize_or_zero(),
-            face => crate::engines::cg::cube_normalise(v, face),
+            face => super::cube_map::cube_normalise(v, face),
         };
         let (l, h) = match (how.renormalise, how.interpolate) {
             (false, _) | (_, Interpolate::None) => (l, h),

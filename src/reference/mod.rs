@@ -6,5 +6,6 @@
 //! quantisation. Golden − gouraud_f64 is quantisation error; gouraud_f64 − perpixel is the
 //! algorithm's own error.
 
+pub mod cube_map;
 pub mod gouraud_f64;
 pub mod perpixel;
