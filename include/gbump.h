@@ -20,12 +20,18 @@
  *   clear it); empty before any failure.
  * - Strings returned are owned by the library, never freed by the caller: gbump_version and
  *   gbump_source are static; gbump_config_hash, gbump_config_toml, gbump_port_name and
- *   gbump_column_name live as long as their handle; gbump_last_error's until the next
- *   failure on the thread.
+ *   gbump_column_name, gbump_target_name and gbump_config_warnings live as long as their
+ *   handle; gbump_last_error's until the next failure on the thread. Copy an error before
+ *   the next call: an argument list that both fails a call and reads gbump_last_error() may
+ *   read it before or after the failure.
+ * - Output: the library never writes to stdout or stderr. A configuration read under an old
+ *   field name is accepted with a warning that gbump_config_warnings returns.
  * - Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
- *   files (gbump_column gives each column's offset); targets are "top" and the unit names of
- *   gbump_column_name's table. Bits above a record's last bit are ignored.
- * - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call.
+ *   files (gbump_column gives each column's offset); targets are "top" and the units the
+ *   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
+ *   record's last bit are ignored.
+ * - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call (the
+ *   limit the Python module's arrays have too).
  * - Threads: a handle may be read from several threads at once, but not while
  *   gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.
  */
@@ -100,6 +106,33 @@ struct GbumpConfig *gbump_config_from_file(const char *path);
  * `h` is NULL or a handle from `gbump_config_*` not yet freed.
  */
 void gbump_config_free(struct GbumpConfig *h);
+
+/**
+ * The warnings reading the handle's configuration gave, one per line (a renamed field read
+ * under its old name, with the fix); "" when there were none. The library never writes to
+ * stdout or stderr: this is where its warnings go.
+ *
+ * # Safety
+ * `h` is a live handle.
+ */
+const char *gbump_config_warnings(const struct GbumpConfig *h);
+
+/**
+ * Evaluation targets of the configuration: `top` (index 0), then each unit it has, in
+ * data-flow order (the names `gbump_eval`, `gbump_record_words` and `gbump_column` take).
+ *
+ * # Safety
+ * `h` is a live handle.
+ */
+int32_t gbump_target_count(const struct GbumpConfig *h);
+
+/**
+ * Name of target `i` (0..gbump_target_count); NULL when out of range.
+ *
+ * # Safety
+ * `h` is a live handle.
+ */
+const char *gbump_target_name(const struct GbumpConfig *h, int32_t i);
 
 /**
  * The configuration's 16-hex-digit hash (as in every generated file's header).

@@ -3,6 +3,7 @@
 // SystemVerilog DPI-C declarations of the gbump golden model (include/gbump.h); link
 // libgbump (Verilator: -LDFLAGS /path/to/libgbump.so). Records are packed LSB first, as in
 // the vector files; C-only functions (arrays of records): gbump_eval_batch
+`timescale 1ns / 1ps
 package gbump_dpi_pkg;
     localparam int GBUMP_ABI_VERSION = 1;
     // Width of the record vectors: every configuration's records fit.
@@ -28,6 +29,15 @@ package gbump_dpi_pkg;
     import "DPI-C" function chandle gbump_config_from_file(input string path);
     // Release a configuration handle (NULL is ignored). Streams made from it stay valid.
     import "DPI-C" function void gbump_config_free(input chandle h);
+    // The warnings reading the handle's configuration gave, one per line (a renamed field read
+    // under its old name, with the fix); "" when there were none. The library never writes to
+    // stdout or stderr: this is where its warnings go.
+    import "DPI-C" function string gbump_config_warnings(input chandle h);
+    // Evaluation targets of the configuration: `top` (index 0), then each unit it has, in
+    // data-flow order (the names `gbump_eval`, `gbump_record_words` and `gbump_column` take).
+    import "DPI-C" function int gbump_target_count(input chandle h);
+    // Name of target `i` (0..gbump_target_count); NULL when out of range.
+    import "DPI-C" function string gbump_target_name(input chandle h, input int i);
     // The configuration's 16-hex-digit hash (as in every generated file's header).
     import "DPI-C" function string gbump_config_hash(input chandle h);
     // The configuration as canonical TOML (the input of the hash): every field, except that the

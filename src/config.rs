@@ -592,7 +592,7 @@ fn check_renamed(file: &str, text: &str) -> Result<()> {
         if table.contains_key(new) {
             return Err(renamed_twice(&at, old, new));
         }
-        eprintln!("{}", renamed_warning(&at, old, new));
+        crate::warn::warn(renamed_warning(&at, old, new));
     }
     Ok(())
 }

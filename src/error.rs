@@ -186,7 +186,11 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
     let mut fix = fix.to_string();
     let syntax = toml::from_str::<toml::Table>(text).is_err();
     let number = ["number", "floating-point", "integer"].iter().any(|w| msg.contains(w));
-    if syntax && number {
+    let twice = msg.contains("duplicate key") || msg.contains("duplicate table") || msg.contains("redefin");
+    if twice {
+        // Valid TOML piece by piece, but a key or table is given twice.
+        fix = "a key or table is given twice in this file; keep one of them".to_string();
+    } else if syntax && number {
         // A number TOML itself cannot hold (1e400, 2^64 and beyond).
         fix = format!("this number cannot be read: an integer must fit in 64 bits and a float in a double's range; {fix}");
     } else if syntax {
@@ -282,6 +286,14 @@ mod tests {
         match toml_error("f.toml", "[pipeline\nlights = 2\n", &e, "about fields") {
             Error::Input { fix, .. } => assert!(fix.contains("not TOML syntax") && !fix.contains("about fields"), "{fix}"),
             other => panic!("{other:?}"),
+        }
+        // A key given twice is said as such, not as a syntax slip.
+        for text in ["a = 1\na = 2\n", "[t]\nx = 1\n[t]\ny = 2\n"] {
+            let e = toml::from_str::<toml::Table>(text).unwrap_err();
+            match toml_error("f.toml", text, &e, "about fields") {
+                Error::Input { fix, .. } => assert!(fix.contains("given twice"), "{text:?}: {fix}"),
+                other => panic!("{other:?}"),
+            }
         }
         // A number TOML cannot hold is not a syntax slip.
         let e = toml::from_str::<toml::Table>("x = 1e400\n").unwrap_err();

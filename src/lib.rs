@@ -34,6 +34,7 @@ pub mod tool;
 pub mod units;
 pub mod vectors;
 pub mod vectors_command;
+pub mod warn;
 pub mod work_lock;
 pub mod yosys;
 

@@ -109,7 +109,7 @@ pub const ALL: &[(&str, u64, &str)] = &[
     (
         "MAX_BATCH_RECORDS",
         MAX_BATCH_RECORDS,
-        "records of one array the Python module builds (`vectors`, `Stimulus.next`, `pack`)",
+        "records of one array the Python module builds (`vectors`, `Stimulus.next`, `pack`) and of one C `gbump_eval_batch` call",
     ),
     ("MAX_SHININESS", MAX_SHININESS as u64, "shininess n of a power table"),
     (

@@ -34,7 +34,9 @@ pub fn level() -> Level {
             Ok("avx512") | Err(_) => Level::Avx512,
             Ok(other) => {
                 // Deep in a loop there is no error path; say so once and run uncapped.
-                eprintln!("gbump: warning: GBUMP_SIMD={other:?} is not baseline, avx2 or avx512; ignored");
+                crate::warn::warn(format!(
+                    "gbump: warning: GBUMP_SIMD={other:?} is not baseline, avx2 or avx512; ignored"
+                ));
                 Level::Avx512
             }
         };

@@ -168,6 +168,30 @@ fn queries_agree_with_the_interface() {
         );
         assert_eq!(gbump_set_shininess(h, 3), 0);
         assert_eq!(gbump_shininess(h), 3);
+        // The targets are the top and the configuration's units, each one gbump_eval takes.
+        let targets: Vec<String> = (0..gbump_target_count(h)).map(|i| s(gbump_target_name(h, i))).collect();
+        let units: Vec<&str> = gbump::units::included(&cfg).iter().map(|u| u.name()).collect();
+        assert_eq!(targets[0], "top");
+        assert_eq!(&targets[1..], &units[..], "the units the configuration has, in data-flow order");
+        for t in &targets {
+            assert!(gbump_record_words(h, c(t).as_ptr()) > 0, "{t}");
+        }
+        assert!(gbump_target_name(h, targets.len() as i32).is_null());
+        assert!(s(gbump_last_error()).contains("gbump_target_count"));
+        assert_eq!(s(gbump_config_warnings(h)), "", "the default gives no warning");
+        gbump_config_free(h);
+    }
+}
+
+/// A configuration under an old field name is read, its warning kept in the handle: the
+/// library writes nothing to its host's stderr.
+#[test]
+fn warnings_stay_in_the_handle() {
+    unsafe {
+        let h = gbump_config_from_toml(c("dot_bits = 8\n").as_ptr(), c("old.toml").as_ptr());
+        assert!(!h.is_null(), "{}", s(gbump_last_error()));
+        let w = s(gbump_config_warnings(h));
+        assert!(w.contains("old.toml:1:1") && w.contains("dot_frac_bits"), "{w}");
         gbump_config_free(h);
     }
 }
@@ -192,6 +216,10 @@ fn errors_come_back_as_status_and_message() {
         let mut r = vec![0u32; 64];
         assert_eq!(gbump_eval(h, c("nonsense").as_ptr(), r.as_ptr(), r.as_mut_ptr()), -1);
         assert!(s(gbump_last_error()).contains("fix: one of top"), "{}", s(gbump_last_error()));
+        // Each function names itself in its errors.
+        assert!(s(gbump_last_error()).starts_with("gbump_eval:"), "{}", s(gbump_last_error()));
+        assert_eq!(gbump_eval_batch(h, c("nonsense").as_ptr(), r.as_ptr(), r.as_mut_ptr(), 1), -1);
+        assert!(s(gbump_last_error()).starts_with("gbump_eval_batch:"), "{}", s(gbump_last_error()));
         assert_eq!(gbump_eval(h, c("top").as_ptr(), std::ptr::null(), r.as_mut_ptr()), -1);
         assert_eq!(gbump_power_word(h, 256), -1);
         assert_eq!(gbump_set_shininess(h, 5000), -1);

@@ -382,7 +382,7 @@ fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
         conn.push(format!(".{0}({0})", p.name));
     }
     let tb = format!(
-        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d\", a, b, c_off, c_acc);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
+        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1, idle_any = 0, idle_all = 1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  repeat (6) begin @(negedge clk); idle_any = idle_any | tri_ready; idle_all = idle_all & tri_ready; end\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d idle_any %0d idle_all %0d\", a, b, c_off, c_acc, idle_any, idle_all);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
         conn.join(", ")
     );
     let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_hold", &tb), &rtl).unwrap();
@@ -392,6 +392,15 @@ fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
     let (a, b, c_off, c_acc) = (v[0], v[1], v[2], v[3]);
     let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
     let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
+    // Idle after reset with every bank free: register banks are ready; a setup spanning
+    // several edges shows tri_ready only at the edge that takes an offered setup, as the
+    // integration section says.
+    let (idle_any, idle_all) = (v[4], v[5]);
+    if edges > 1 {
+        assert_eq!(idle_any, 0, "{line}: tri_ready rose with no setup offered");
+    } else {
+        assert_eq!(idle_all, 1, "{line}: tri_ready fell while idle with every bank free");
+    }
     assert!(b >= a, "setup B was taken before fragment A: {line}");
     assert!(
         a + hold > c_off + edges - 1,

@@ -25,6 +25,18 @@ impl Config {
     }
 }
 
+/// The handle of the configuration `f` reads; its warnings (an old field name) are raised as
+/// Python `DeprecationWarning`s, which the caller's warning filters govern, not printed.
+fn read(py: Python<'_>, f: impl FnOnce() -> gbump::Result<PipelineConfig>) -> PyResult<Config> {
+    let h = GbumpConfig::read(f).map_err(crate::err)?;
+    let text = h.warnings.to_str().unwrap_or_default();
+    if !text.is_empty() {
+        let category = py.get_type::<pyo3::exceptions::PyDeprecationWarning>();
+        PyErr::warn(py, &category, &h.warnings, 1)?;
+    }
+    Ok(Config { h })
+}
+
 /// A JSON text as Python objects (dicts, lists, numbers, strings).
 fn json_to_py<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))
@@ -34,23 +46,17 @@ fn json_to_py<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
 impl Config {
     #[new]
     #[pyo3(signature = (toml = None, name = "<toml text>"))]
-    fn new(toml: Option<&str>, name: &str) -> PyResult<Self> {
-        let cfg = match toml {
-            None => PipelineConfig::default(),
-            Some(t) => PipelineConfig::from_toml(name, t).map_err(crate::err)?,
-        };
-        Ok(Config {
-            h: GbumpConfig::new(cfg).map_err(crate::err)?,
+    fn new(py: Python<'_>, toml: Option<&str>, name: &str) -> PyResult<Self> {
+        read(py, || match toml {
+            None => Ok(PipelineConfig::default()),
+            Some(t) => PipelineConfig::from_toml(name, t),
         })
     }
 
     /// The configuration in TOML file `path`.
     #[staticmethod]
-    fn load(path: PathBuf) -> PyResult<Self> {
-        let cfg = PipelineConfig::load(&path).map_err(crate::err)?;
-        Ok(Config {
-            h: GbumpConfig::new(cfg).map_err(crate::err)?,
-        })
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        read(py, || PipelineConfig::load(&path))
     }
 
     /// The configuration scene `name` (built-in or a path) derives, as `--scene` picks it.

@@ -151,6 +151,15 @@ forged = os.path.join(work, "forged.json")
 with open(forged, "w") as f:
     json.dump(dict(iface, config_hash="0" * 16), f)
 check(raises(lambda: gbump.Config.from_interface(forged), "config_hash", "fix:"), "an interface of another gbump")
+# An old field name is read with a DeprecationWarning, which the caller's filters govern.
+import warnings
+with warnings.catch_warnings(record=True) as said:
+    warnings.simplefilter("always")
+    gbump.Config("dot_bits = 8\n", "old.toml")
+check(
+    len(said) == 1 and issubclass(said[0].category, DeprecationWarning) and "dot_frac_bits" in str(said[0].message),
+    "an old field name warns through Python's warnings",
+)
 try:
     model.eval("top", stim.astype(np.int64))
     check(False, "int64 records are refused")

@@ -171,6 +171,9 @@ pub fn package(header: &str, regenerate: &str) -> Result<String> {
         crate::TOOL,
         fns.iter().filter(|f| !is_dpi(f)).map(|f| format!(" {}", f.name)).collect::<String>()
     );
+    // The generated RTL's timescale: a file list that names the package first, as packages
+    // come before their users, then builds under Verilator without TIMESCALEMOD.
+    s += "`timescale 1ns / 1ps\n";
     s += "package gbump_dpi_pkg;\n";
     s += &format!("    localparam int GBUMP_ABI_VERSION = {};\n", super::ABI_VERSION);
     s += &format!(

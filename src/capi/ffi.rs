@@ -59,7 +59,7 @@ pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *cons
     guard("gbump_config_from_toml", std::ptr::null_mut(), || {
         let text = str_arg(text, "text")?;
         let name = str_arg(name, "name")?;
-        boxed(GbumpConfig::new(PipelineConfig::from_toml(name, text)?))
+        boxed(GbumpConfig::read(|| PipelineConfig::from_toml(name, text)))
     })
 }
 
@@ -71,7 +71,7 @@ pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *cons
 pub unsafe extern "C" fn gbump_config_from_file(path: *const c_char) -> *mut GbumpConfig {
     guard("gbump_config_from_file", std::ptr::null_mut(), || {
         let path = str_arg(path, "path")?;
-        boxed(GbumpConfig::new(PipelineConfig::load(std::path::Path::new(path))?))
+        boxed(GbumpConfig::read(|| PipelineConfig::load(std::path::Path::new(path))))
     })
 }
 
@@ -84,6 +84,44 @@ pub unsafe extern "C" fn gbump_config_free(h: *mut GbumpConfig) {
     if !h.is_null() {
         drop(Box::from_raw(h));
     }
+}
+
+/// The warnings reading the handle's configuration gave, one per line (a renamed field read
+/// under its old name, with the fix); "" when there were none. The library never writes to
+/// stdout or stderr: this is where its warnings go.
+///
+/// # Safety
+/// `h` is a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_config_warnings(h: *const GbumpConfig) -> *const c_char {
+    with("gbump_config_warnings", h, std::ptr::null(), |h| Ok(h.warnings.as_ptr()))
+}
+
+/// Evaluation targets of the configuration: `top` (index 0), then each unit it has, in
+/// data-flow order (the names `gbump_eval`, `gbump_record_words` and `gbump_column` take).
+///
+/// # Safety
+/// `h` is a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_target_count(h: *const GbumpConfig) -> i32 {
+    with("gbump_target_count", h, -1, |h| Ok(h.targets.len() as i32))
+}
+
+/// Name of target `i` (0..gbump_target_count); NULL when out of range.
+///
+/// # Safety
+/// `h` is a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_target_name(h: *const GbumpConfig, i: i32) -> *const c_char {
+    with("gbump_target_name", h, std::ptr::null(), |h| {
+        let t = h.targets.get(usize::try_from(i).unwrap_or(usize::MAX)).ok_or_else(|| {
+            Error::Other(format!(
+                "target {i}: out of range\n  fix: use 0..{} (gbump_target_count)",
+                h.targets.len()
+            ))
+        })?;
+        Ok(t.c_name.as_ptr())
+    })
 }
 
 /// Run `f` on the handle; `fail` (NULL or -1) when the handle is NULL or `f` fails.
@@ -320,7 +358,7 @@ pub unsafe extern "C" fn gbump_column(
 /// `gbump_record_words(h, target)` words each.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_eval(h: *const GbumpConfig, target: *const c_char, rec_in: *const u32, rec_out: *mut u32) -> i32 {
-    gbump_eval_batch(h, target, rec_in, rec_out, 1)
+    eval_batch("gbump_eval", h, target, rec_in, rec_out, 1)
 }
 
 /// Evaluate `count` records of `target` back to back (`gbump_record_words(h, target)` words
@@ -337,7 +375,12 @@ pub unsafe extern "C" fn gbump_eval_batch(
     rec_out: *mut u32,
     count: i64,
 ) -> i32 {
-    with("gbump_eval_batch", h, -1, |h| {
+    eval_batch("gbump_eval_batch", h, target, rec_in, rec_out, count)
+}
+
+/// `gbump_eval_batch`, its errors named after the function the caller called (`what`).
+unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, rec_in: *const u32, rec_out: *mut u32, count: i64) -> i32 {
+    with(what, h, -1, |h| {
         let t = h.target(str_arg(target, "target")?)?;
         let n = t.layout.words32();
         let count =

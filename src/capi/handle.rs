@@ -14,6 +14,8 @@ use std::ffi::CString;
 /// One evaluation target: `top` or a unit the configuration has.
 pub struct Target {
     pub name: &'static str,
+    /// The name, kept alive for `gbump_target_name`.
+    pub c_name: CString,
     pub layout: Layout,
     /// Column names, kept alive for `gbump_column_name`.
     pub column_names: Vec<CString>,
@@ -32,6 +34,9 @@ pub struct GbumpConfig {
     pub toml: CString,
     /// The top's ports: name, width, whether an output.
     pub ports: Vec<(CString, u32, bool)>,
+    /// The warnings reading the configuration gave (a renamed field under its old name), one
+    /// per line; empty when there were none. The library never prints them.
+    pub warnings: CString,
 }
 
 fn cstring(s: String) -> CString {
@@ -73,7 +78,17 @@ impl GbumpConfig {
                 .map(|(n, d, w)| (cstring(n), w, d == "output"))
                 .collect(),
             cfg,
+            warnings: CString::default(),
         })
+    }
+
+    /// A handle for the configuration `read` returns, the warnings it gave kept in the
+    /// handle rather than printed.
+    pub fn read(read: impl FnOnce() -> Result<PipelineConfig>) -> Result<GbumpConfig> {
+        let (cfg, warnings) = crate::warn::capture(read);
+        let mut h = GbumpConfig::new(cfg?)?;
+        h.warnings = cstring(warnings.join("\n").replace('\0', " "));
+        Ok(h)
     }
 
     /// The target called `name`, or an error listing the ones there are.
@@ -188,6 +203,7 @@ impl GbumpConfig {
 fn target(name: &'static str, layout: Layout) -> Target {
     Target {
         name,
+        c_name: cstring(name.to_string()),
         column_names: layout.columns.iter().map(|c| cstring(c.name.clone())).collect(),
         layout,
     }

@@ -278,7 +278,7 @@ impl Scene {
                 if over.contains_key(new) {
                     return Err(crate::config::renamed_twice(&at, old, new));
                 }
-                eprintln!("{}", crate::config::renamed_warning(&at, old, new));
+                crate::warn::warn(crate::config::renamed_warning(&at, old, new));
                 over.insert(new.to_string(), v);
                 if let Some(p) = pos {
                     s.pipeline_lines.insert(new.to_string(), p);
