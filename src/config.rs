@@ -316,6 +316,17 @@ pub struct PipelineConfig {
     /// older hashes are unchanged.
     #[serde(skip_serializing_if = "is_false")]
     pub pixel_lh: bool,
+    /// Environment-mapped bump mapping (Direct3D 6 EMBM, paper §3.3) with two maps of
+    /// 2^env_map_bits texels a side (0: none). The fragment port carries the interpolated
+    /// sphere-map coordinates `in_st` and the triangle's 2×2 matrix `in_m` in place of the
+    /// light state; the `env_coords` unit forms s = st + M·(b_x, b_y) from the fetched
+    /// normal, the texel (x0, y0) and the bilinear weights (4 sub-texel bits a side), the
+    /// `env_fetch_*` units read the four texels of the diffuse and the specular map, and the
+    /// blend units filter them: D = Σ w_i·texel_i into the diffuse blend, S likewise into the
+    /// specular blend, each rounded once. The four light slots are the four texels (lights =
+    /// 4, parallel, per fragment). Left out of the TOML when 0, so older hashes are unchanged.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub env_map_bits: u32,
 }
 
 /// What the rasteriser and the pipeline do per fragment beyond the paper's per-triangle
@@ -476,6 +487,7 @@ impl Default for PipelineConfig {
             triangle_frame: false,
             frame_quaternion: false,
             pixel_lh: false,
+            env_map_bits: 0,
         }
     }
 }
@@ -545,6 +557,12 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
         0,
         128,
         "a power of two, texels along a cube-map face edge (0: no cube map); 128 keeps the quarter face at 4096 words",
+    ),
+    (
+        "env_map_bits",
+        0,
+        8,
+        "texels a side of each EMBM environment map as a power of two, 2 (4x4) to 8 (256x256); 0: no EMBM",
     ),
     (
         "pipeline_depth",
@@ -779,6 +797,7 @@ impl PipelineConfig {
                 "use 4, 8, 16, 32 (the Cg Tutorial's size), 64 or 128, or 0 for the normalise unit's arithmetic",
             ));
         }
+        self.validate_embm(file)?;
         if !self.power_entries.is_power_of_two() {
             return Err(Error::field(
                 file,
@@ -1000,6 +1019,139 @@ impl PipelineConfig {
         Ok(())
     }
 
+    /// EMBM's rules (`env_map_bits` > 0): the four light slots are the bilinear filter's
+    /// four texels, on a parallel per-fragment top, and nothing else per fragment.
+    fn validate_embm(&self, file: &str) -> Result<()> {
+        if self.env_map_bits == 0 {
+            return Ok(());
+        }
+        let e = "env_map_bits";
+        let rules: [(bool, &str, String, &str); 15] = [
+            (
+                self.env_map_bits < 2,
+                e,
+                format!("{} gives maps of fewer than 4x4 texels", self.env_map_bits),
+                "use 2..=8, or 0 for no EMBM",
+            ),
+            (
+                self.lights != 4,
+                "lights",
+                format!(
+                    "lights = {}: EMBM's four light slots are the bilinear filter's four texels",
+                    self.lights
+                ),
+                "set lights = 4",
+            ),
+            (
+                self.light_mode != LightMode::Parallel,
+                "light_mode",
+                "EMBM filters its four texels in one parallel blend per map".into(),
+                "set light_mode = \"parallel\"",
+            ),
+            (
+                self.bump_state != BumpStateAt::Fragment,
+                "bump_state",
+                "EMBM's map coordinates are interpolated, so they enter with every fragment".into(),
+                "set bump_state = \"fragment\"",
+            ),
+            (
+                self.palette,
+                "palette",
+                "EMBM reads the stored normal's x and y as (du, dv)".into(),
+                "set palette = false",
+            ),
+            (
+                !self.interpolate.is_none(),
+                "interpolate",
+                "EMBM has no L or H to interpolate: its lighting is in the maps".into(),
+                "leave interpolate out",
+            ),
+            (
+                self.renormalise,
+                "renormalise",
+                "EMBM has no L or H to renormalise".into(),
+                "drop renormalise",
+            ),
+            (
+                self.interpolate_k,
+                "interpolate_k",
+                "EMBM has no k per light: each texel's weight is the filter's".into(),
+                "drop interpolate_k",
+            ),
+            (
+                self.renormalise_bump,
+                "renormalise_bump",
+                "EMBM reads the fetched (du, dv) as stored".into(),
+                "drop renormalise_bump",
+            ),
+            (
+                self.frame_transform,
+                "frame_transform",
+                "EMBM perturbs map coordinates, not a normal in a frame".into(),
+                "drop frame_transform",
+            ),
+            (
+                self.self_shadow,
+                "self_shadow",
+                "EMBM has no light direction to shadow by".into(),
+                "drop self_shadow",
+            ),
+            (
+                self.white_lights,
+                "white_lights",
+                "EMBM's light slots carry the texels' colours".into(),
+                "drop white_lights",
+            ),
+            (
+                self.power_rom,
+                "power_rom",
+                "EMBM's specular light comes from its map, not a power table".into(),
+                "drop power_rom",
+            ),
+            (
+                self.diffuse && self.dot_frac_bits < 8,
+                "dot_frac_bits",
+                format!(
+                    "{}: the bilinear weights have 8 fraction bits, which the diffuse factor must hold",
+                    self.dot_frac_bits
+                ),
+                "use dot_frac_bits >= 8",
+            ),
+            (
+                self.specular && self.power_frac_bits < 8,
+                "power_frac_bits",
+                format!(
+                    "{}: the bilinear weights have 8 fraction bits, which the specular factor must hold",
+                    self.power_frac_bits
+                ),
+                "use power_frac_bits >= 8",
+            ),
+        ];
+        match rules.into_iter().find(|r| r.0) {
+            Some((_, field, msg, fix)) if field == e => Err(Error::field(file, field, msg, fix)),
+            Some((_, field, msg, fix)) => Err(Error::field(
+                file,
+                field,
+                msg,
+                format!(
+                    "{fix} (env_map_bits = {} asks for EMBM), or set env_map_bits = 0",
+                    self.env_map_bits
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether the top is EMBM's (`env_map_bits` > 0).
+    pub fn embm(&self) -> bool {
+        self.env_map_bits > 0
+    }
+
+    /// Texels along a side of each EMBM environment map.
+    pub fn env_map_side(&self) -> u32 {
+        1 << self.env_map_bits
+    }
+
     /// Field `field`'s value as its TOML writes it, `toml` being this configuration's
     /// [`to_toml`](Self::to_toml); a field at its default is left out of the TOML
     /// (colour_guard_bits = 0, white_lights = false, interpolate = "none"): that default.
@@ -1034,6 +1186,7 @@ impl PipelineConfig {
             "triangle_banks" => self.triangle_banks,
             "pipeline_depth" => self.pipeline_depth,
             "cube_map_face" => self.cube_map_face,
+            "env_map_bits" => self.env_map_bits,
             _ => unreachable!("LIMITS names a field `get` does not know: {name}"),
         }
     }

@@ -99,6 +99,9 @@ pub struct FastModel {
     self_shadow: bool,
     /// `frame_build` or `frame_quaternion`: the configuration its frame is formed in.
     built: Option<PipelineConfig>,
+    /// EMBM (`env_map_bits` > 0): the configuration and its maps, shaded by the readable
+    /// model (`pipeline::shade_embm`); no specialised path yet.
+    embm: Option<(PipelineConfig, super::env_map::EnvMaps)>,
 }
 
 impl FastModel {
@@ -143,7 +146,17 @@ impl FastModel {
             }),
             self_shadow: cfg.self_shadow,
             built: (cfg.frame_build || cfg.frame_quaternion).then(|| cfg.clone()),
+            embm: cfg.embm().then(|| (cfg.clone(), super::env_map::default_maps(cfg))),
         }
+    }
+
+    /// The fast model of `cfg` with the memories `mem` (EMBM's maps among them).
+    pub fn of(cfg: &PipelineConfig, mem: &crate::units::Memories) -> FastModel {
+        let mut f = FastModel::new(cfg, mem.table, Some(mem.palette));
+        if let Some((_, maps)) = &mut f.embm {
+            *maps = mem.env.clone();
+        }
+        f
     }
 
     /// The frame a state's fragments are placed in: its own, or the one `frame_build` or
@@ -187,6 +200,12 @@ impl FastModel {
     pub fn colours_run_at(&self, level: Level, state: &BumpState, frags: &[FragmentIn], out: &mut [[u32; 3]]) {
         assert_eq!(frags.len(), out.len(), "one colour per fragment");
         assert!(crate::simd::supported(level), "{level:?} is beyond this CPU");
+        if let Some((cfg, maps)) = &self.embm {
+            for (f, o) in frags.iter().zip(out.iter_mut()) {
+                *o = super::pipeline::shade_embm(cfg, maps, state, f).colour();
+            }
+            return;
+        }
         let owned;
         let state = match &self.renorm {
             Some(cfg) => {
@@ -372,6 +391,13 @@ impl FastModel {
     /// without a palette.
     pub fn colours<T>(&self, items: &[T], get: impl Fn(&T) -> (&BumpState, &FragmentIn), out: &mut [[u32; 3]]) {
         assert_eq!(items.len(), out.len(), "one colour per fragment");
+        if let Some((cfg, maps)) = &self.embm {
+            for (item, o) in items.iter().zip(out.iter_mut()) {
+                let (state, f) = get(item);
+                *o = super::pipeline::shade_embm(cfg, maps, state, f).colour();
+            }
+            return;
+        }
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {

@@ -12,6 +12,7 @@ pub mod blend;
 pub mod bump_fetch;
 pub mod cube_normalise;
 pub mod dot_clamp;
+pub mod env_map;
 pub mod fast;
 pub mod frame_build;
 pub mod frame_transform;

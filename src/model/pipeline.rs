@@ -34,6 +34,8 @@ pub struct BumpState {
     pub lights: [LightSlot; MAX_LIGHTS],
     /// T, B and N, raw `s1.(lh-2)` components (`frame_transform`; unread otherwise).
     pub frame: super::frame_transform::Frame,
+    /// EMBM's map coordinates and matrix (`env_map_bits` > 0; unread otherwise).
+    pub env: super::env_map::EnvState,
 }
 
 /// A fetched bump texel: stored RGB codes, or a palette index.
@@ -85,6 +87,10 @@ pub struct Shaded {
     /// The final colour C_new: the last stage rounded to colour codes (`colour_round`; the
     /// last stage itself when there are no guard bits).
     pub out: [u32; 3],
+    /// EMBM's texel and weights (`env_coords`; zero otherwise).
+    pub env: super::env_map::EnvSample,
+    /// EMBM's four texels of the diffuse and of the specular map (`env_fetch_*`).
+    pub texels: [[[u32; 3]; 4]; 2],
 }
 
 impl Shaded {
@@ -152,8 +158,10 @@ pub fn lit(cfg: &PipelineConfig, surface: Option<[i64; 3]>, l: [i64; 3]) -> bool
     }
 }
 
-/// Shade one fragment. `palette` must be given when `cfg.palette` is set.
+/// Shade one fragment. `palette` must be given when `cfg.palette` is set; an EMBM
+/// configuration shades through [`shade_embm`], which reads its maps.
 pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>, state: &BumpState, frag: &FragmentIn) -> Shaded {
+    assert!(!cfg.embm(), "an EMBM configuration shades with its maps (shade_embm)");
     let n = cfg.lights as usize;
     let b = match frag.bump {
         BumpTexel::Rgb(rgb) => bump_fetch_rgb(cfg, rgb),
@@ -235,6 +243,74 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
         }
         BlendOrder::TextureLast => {
             let s = specular(s0);
+            (s, texture(s))
+        }
+    };
+    out.stages = [s0, s1, s2];
+    out.out = colour_round(cfg, s2);
+    out.dfac = dfac;
+    out.sfac = sfac;
+    out
+}
+
+/// Shade one fragment of an EMBM configuration (`env_map_bits` > 0) with `maps`: the
+/// fetched normal's (x, y) through `env_coords`, the four texels of each map through
+/// `env_fetch`, and the blends as light slots whose factors are the bilinear weights, k one
+/// and colours the texels: D = Σ w_i·diffuse_i and S = Σ w_i·specular_i, each rounded once,
+/// in the configured blend order. The flat bypass and the enables act as for any top.
+pub fn shade_embm(cfg: &PipelineConfig, maps: &super::env_map::EnvMaps, state: &BumpState, frag: &FragmentIn) -> Shaded {
+    use super::env_map::{env_coords, env_fetch, WEIGHT_FRAC_BITS};
+    let b = match frag.bump {
+        BumpTexel::Rgb(rgb) => bump_fetch_rgb(cfg, rgb),
+        BumpTexel::Index(_) => unreachable!("EMBM configurations have no palette"),
+    };
+    let flat = b == cfg.flat_normal();
+    let bypass = cfg.skip_flat && flat;
+    let diffuse_on = cfg.diffuse && frag.diffuse_en && !bypass;
+    let specular_on = cfg.specular && frag.specular_en && !bypass;
+    let env = env_coords(cfg, [b[0], b[1]], state.env.st, state.env.m);
+    let mut out = Shaded {
+        fetched: b,
+        framed: b,
+        b,
+        flat,
+        env,
+        ..Default::default()
+    };
+    let kone = [1i64 << cfg.k_frac_bits; 4];
+    let td = env_fetch(maps.bits, &maps.diffuse, env.x0, env.y0);
+    let ts = env_fetch(maps.bits, &maps.specular, env.x0, env.y0);
+    out.texels = [td, ts];
+    let (mut dfac, mut sfac) = ([0i64; MAX_LIGHTS], [0i64; MAX_LIGHTS]);
+    for i in 0..4 {
+        if cfg.diffuse {
+            out.fd[i] = env.w[i] << (cfg.dot_frac_bits - WEIGHT_FRAC_BITS);
+            if diffuse_on {
+                dfac[i] = align_factor(cfg, out.fd[i], cfg.dot_frac_bits);
+            }
+        }
+        if cfg.specular {
+            out.fs[i] = env.w[i] << (cfg.power_frac_bits - WEIGHT_FRAC_BITS);
+            if specular_on {
+                sfac[i] = align_factor(cfg, out.fs[i], cfg.power_frac_bits);
+            }
+        }
+    }
+    let diffuse = |c| blend(cfg, c, &dfac[..4], &kone, &td);
+    let specular = |c| blend(cfg, c, &sfac[..4], &kone, &ts);
+    let texture = |c| texture_modulate(cfg, c, frag.tex);
+    let s0 = if cfg.diffuse {
+        diffuse(frag.c_src.map(|c| c << cfg.colour_guard_bits))
+    } else {
+        frag.c_src.map(|c| c << cfg.colour_guard_bits)
+    };
+    let (s1, s2) = match cfg.blend_order {
+        BlendOrder::DiffuseTextureSpecular => {
+            let t = texture(s0);
+            (t, if cfg.specular { specular(t) } else { t })
+        }
+        BlendOrder::TextureLast => {
+            let s = if cfg.specular { specular(s0) } else { s0 };
             (s, texture(s))
         }
     };

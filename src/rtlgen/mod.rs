@@ -3,6 +3,7 @@
 //! `PipelineConfig`. Output is deterministic: the same config gives the same bytes.
 
 pub mod booth;
+pub mod env_v;
 pub mod fixed_ops;
 pub mod fpga_shell;
 pub mod frame_build_v;
@@ -65,6 +66,21 @@ pub fn generate(cfg: &PipelineConfig, command: &str) -> Vec<GenFile> {
             rom_file_name(cfg, "bump_palette_spiral", "hex"),
             rom::write(&pal, rom::RomFormat::Hex, &hl),
         ));
+    }
+    if cfg.embm() {
+        let maps = crate::model::env_map::default_maps(cfg);
+        for (which, map) in [("diffuse", &maps.diffuse), ("specular", &maps.specular)] {
+            let on = if which == "diffuse" { cfg.diffuse } else { cfg.specular };
+            if !on {
+                continue;
+            }
+            let rom = rom::env_map_rom(cfg, map, which, rom::DEFAULT_ENV_MAPS);
+            let hl = rom::rom_header(&rom, Some(cfg), command, &format!("env_fetch_{which} reset contents ($readmemh)"));
+            files.push((
+                rom_file_name(cfg, &format!("env_{which}_default"), "hex"),
+                rom::write(&rom, rom::RomFormat::Hex, &hl),
+            ));
+        }
     }
     let table = rom::power_rom(cfg, cfg.shininess);
     let hl = rom::rom_header(&table, Some(cfg), command, "power_table reset contents ($readmemh)");

@@ -237,6 +237,34 @@ pub fn palette_rom(cfg: &PipelineConfig, p: &Palette, source: &str) -> Rom {
     }
 }
 
+/// An EMBM environment map (`which`: "diffuse" or "specular") as the `env_fetch` unit's
+/// memory holds it: texel (x, y) at word y·n + x, {B, G, R} with R in the low bits.
+pub fn env_map_rom(cfg: &PipelineConfig, map: &[[u32; 3]], which: &str, source: &str) -> Rom {
+    let cb = cfg.colour_bits;
+    let n = cfg.env_map_side();
+    Rom {
+        name: format!("env_{which}"),
+        width: 3 * cb,
+        words: map
+            .iter()
+            .map(|c| c[0] as u64 | (c[1] as u64) << cb | (c[2] as u64) << (2 * cb))
+            .collect(),
+        layout: format!(
+            "texel (x, y) of the {n}x{n} {which} map at word y*{n} + x: {{B, G, R}}, {cb}-bit channels, R in bits [{}:0]",
+            cb - 1
+        ),
+        params: vec![
+            param("env_map_bits", cfg.env_map_bits),
+            param("colour_bits", cb),
+            param("shininess", cfg.shininess),
+            param("env_map_source", source),
+        ],
+    }
+}
+
+/// Source name of `model::env_map::default_maps` in map ROM names and headers.
+pub const DEFAULT_ENV_MAPS: &str = "default";
+
 /// Direction through texel (s, t) of cube face `face` (OpenGL order +X −X +Y −Y +Z −Z).
 pub fn cube_dir(face: usize, s: usize, t: usize, size: usize) -> DVec3 {
     let sc = 2.0 * (s as f64 + 0.5) / size as f64 - 1.0;

@@ -100,7 +100,10 @@ pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
 /// The power table's load-port docs where the port is unused: (write enable, address and
 /// data).
 fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {
-    if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+    if cfg.embm() {
+        let doc = "unused: env_map_bits > 0 (EMBM: the specular light comes from its map, not a power table)";
+        Some((doc, doc))
+    } else if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
         let doc = "unused: power_unit = \"squaring\" (no table: x^n is squared out)";
         Some((doc, doc))
     } else if cfg.power_rom {
@@ -247,44 +250,65 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
     } else {
         ("L_j", "H_j")
     };
-    v.extend([
-        tp(
-            &format!("{pre}_l"),
-            Dir::In,
-            kind,
-            cfg.lh_fmt(),
-            3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: {l_is} in {space}{scaled}"),
-        ),
-        tp(
-            &format!("{pre}_h"),
-            Dir::In,
-            kind,
-            cfg.lh_fmt(),
-            3 * n,
-            &format!("light j, component c (x, y, z) at lane 3j + c: {h_is} in {space}{scaled}"),
-        ),
-        tp(
-            &format!("{pre}_lc"),
-            Dir::In,
-            kind,
-            col,
-            3 * n,
-            if cfg.white_lights {
-                "unused: white_lights = true (every Lc_j is 1, 1, 1; drive anything)"
-            } else {
-                "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j"
-            },
-        ),
-        tp(
-            &format!("{pre}_k"),
-            Dir::In,
-            kind,
-            cfg.k_fmt(),
-            n,
-            "light j at lane j: the light's weight k_j",
-        ),
-    ]);
+    if cfg.embm() {
+        v.extend([
+            tp(
+                "in_st",
+                Dir::In,
+                kind,
+                cfg.lh_fmt(),
+                2,
+                "EMBM: the interpolated sphere-map coordinates (s, t) of the unperturbed normal (lane 0 = s); texel i's centre is at (i + 1/2) 2/n - 1",
+            ),
+            tp(
+                "in_m",
+                Dir::In,
+                kind,
+                cfg.lh_fmt(),
+                4,
+                "EMBM: the triangle's 2x2 matrix, lanes 0, 1 = ds/ddu (s, t), lanes 2, 3 = ds/ddv: s = st + M (b_x, b_y)",
+            ),
+        ]);
+    } else {
+        v.extend([
+            tp(
+                &format!("{pre}_l"),
+                Dir::In,
+                kind,
+                cfg.lh_fmt(),
+                3 * n,
+                &format!("light j, component c (x, y, z) at lane 3j + c: {l_is} in {space}{scaled}"),
+            ),
+            tp(
+                &format!("{pre}_h"),
+                Dir::In,
+                kind,
+                cfg.lh_fmt(),
+                3 * n,
+                &format!("light j, component c (x, y, z) at lane 3j + c: {h_is} in {space}{scaled}"),
+            ),
+            tp(
+                &format!("{pre}_lc"),
+                Dir::In,
+                kind,
+                col,
+                3 * n,
+                if cfg.white_lights {
+                    "unused: white_lights = true (every Lc_j is 1, 1, 1; drive anything)"
+                } else {
+                    "light j, channel c (R, G, B) at lane 3j + c: light colour Lc_j"
+                },
+            ),
+            tp(
+                &format!("{pre}_k"),
+                Dir::In,
+                kind,
+                cfg.k_fmt(),
+                n,
+                "light j at lane j: the light's weight k_j",
+            ),
+        ]);
+    }
     if cfg.frame_transform {
         v.push(tp(
             "in_frame",
@@ -943,13 +967,6 @@ fn bank_ram(s: &mut Scheduler, cfg: &PipelineConfig, jb: u32) -> u32 {
 }
 
 fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
-    let n = cfg.lights;
-    let (lh3, f1, p1, ff1) = (
-        3 * cfg.lh_bits,
-        cfg.dot_frac_bits + 1,
-        cfg.power_frac_bits + 1,
-        cfg.factor_frac() + 1,
-    );
     if cfg.backpressure {
         s.m.wire("credit", 1, None);
         s.m.raw("assign in_ready = credit;");
@@ -969,6 +986,120 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
     s.m.comment("The fetch; the rest of the fragment waits beside it.");
     fetch(s, cfg, "{in_bump}", false);
     let bn = &dot_normal(s, cfg, pre);
+    if cfg.embm() {
+        embm_factors(s, cfg, bn);
+    } else {
+        light_factors(s, cfg, pre, bn);
+    }
+    s.m.comment("The colour stages in the configured order.");
+    let out = colour_stages(s, cfg, "in_c_src", "{in_tex}", |s, st, c| {
+        let (u, f, name, frac) = match st {
+            Stage::Diffuse if cfg.diffuse => (&units::DIFFUSE_BLEND, "{dfac}", "c_dif", cfg.dot_frac_bits),
+            Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe", cfg.power_frac_bits),
+            _ => return None,
+        };
+        let c_in = format!("{{{c}}}");
+        // EMBM's light slots are the texels: k is one and the colours are the map's.
+        let (k, lc) = if cfg.embm() {
+            let kw = cfg.k_frac_bits + 1;
+            let one = format!("{kw}'d{}", 1u64 << cfg.k_frac_bits);
+            (
+                format!("{{{one}, {one}, {one}, {one}}}"),
+                if st == Stage::Diffuse { "{td}" } else { "{ts}" }.to_string(),
+            )
+        } else {
+            (format!("{{{pre}_k}}"), format!("{{{pre}_lc}}"))
+        };
+        let mut ins = vec![("c_in", c_in.as_str()), ("f", f), ("k", k.as_str())];
+        if !cfg.white_lights {
+            ins.push(("lc", lc.as_str()));
+        }
+        s.unit(cfg, u, &format!("u_{}", u.name()), &ins, &[("c_out", name)], &[]);
+        s.m.factor_frac(frac);
+        Some(name.to_string())
+    });
+    let lat = s.ready(&out);
+    let v = s.at("accept", lat);
+    // Stage 0 is the accepting cycle: that fragment is tagged with the current bank, which a
+    // setup never writes; stage s ends s edges after the accept.
+    let hold = cfg.per_triangle().then(|| bank_ready(s, "tri_cur", "accept", 1));
+    (lat, out, v, hold)
+}
+
+/// EMBM's blend factors and texels (paper §3.3): `env_coords` on the fetched normal's x and
+/// y, the two maps' `env_fetch`, and the bilinear weights as `dfac` and `sfac` (each aligned
+/// from u1.8, gated by its enable).
+fn embm_factors(s: &mut Scheduler, cfg: &PipelineConfig, bn: &str) {
+    use crate::model::env_map::WEIGHT_FRAC_BITS;
+    use crate::rtlgen::env_v::WEIGHT_BITS;
+    let nb = cfg.normal_bits;
+    let ff1 = cfg.factor_frac() + 1;
+    let coords = units::unit("env_coords").expect("unit");
+    s.m.comment("EMBM: the map coordinates, then the four texels of each map.");
+    s.unit(
+        cfg,
+        coords,
+        "u_env_coords",
+        &[("b", &format!("{bn}[{}:0]", 2 * nb - 1)), ("st", "{in_st}"), ("m", "{in_m}")],
+        &[("x0", "ex0"), ("y0", "ey0"), ("w", "ew")],
+        &[],
+    );
+    for (on, name, out, fac, en, frac) in [
+        (
+            cfg.diffuse,
+            "env_fetch_diffuse",
+            "td",
+            "dfac",
+            ("de", "in_diffuse_en"),
+            cfg.dot_frac_bits,
+        ),
+        (
+            cfg.specular,
+            "env_fetch_specular",
+            "ts",
+            "sfac",
+            ("se", "in_specular_en"),
+            cfg.power_frac_bits,
+        ),
+    ] {
+        if !on {
+            continue;
+        }
+        let u = units::unit(name).expect("unit");
+        s.unit(
+            cfg,
+            u,
+            &format!("u_{name}"),
+            &[("x0", "{ex0}"), ("y0", "{ey0}")],
+            &[("t", out)],
+            &mem_params(cfg, u),
+        );
+        s.comb(en.0, 1, &enable(cfg, true, en.1));
+        let parts: Vec<String> = (0..4)
+            .rev()
+            .map(|i| {
+                // The weight in the factor's format: u1.8 widened to u1.frac, then aligned.
+                let lane = format!("{{ew}}[{}:{}]", i * WEIGHT_BITS + WEIGHT_BITS - 1, i * WEIGHT_BITS);
+                let pad = frac - WEIGHT_FRAC_BITS;
+                let wgt = if pad > 0 { format!("{{{lane}, {pad}'d0}}") } else { lane };
+                factor(cfg, &wgt, frac, &format!("{{{}}}", en.0))
+            })
+            .collect();
+        s.comb(fac, 4 * ff1, &format!("{{{}}}", parts.join(", ")));
+    }
+}
+
+/// The light slots' blend factors (paper §4.2): one `dot_clamp` per light for B·L_i into
+/// `dfac`, and B·H_i through the power unit into `sfac`, with the renormalise units, the
+/// self-shadow gates and the enables.
+fn light_factors(s: &mut Scheduler, cfg: &PipelineConfig, pre: &str, bn: &str) {
+    let n = cfg.lights;
+    let (lh3, f1, p1, ff1) = (
+        3 * cfg.lh_bits,
+        cfg.dot_frac_bits + 1,
+        cfg.power_frac_bits + 1,
+        cfg.factor_frac() + 1,
+    );
     let dot = units::unit("dot_clamp").expect("unit");
     let norm = units::unit(crate::model::normalise::lh_unit(cfg)).expect("unit");
     // Which vectors are renormalised before their dot products: H, and L when interpolated.
@@ -1065,28 +1196,6 @@ fn parallel(s: &mut Scheduler, cfg: &PipelineConfig) -> Body {
             .collect();
         s.comb("sfac", n * ff1, &format!("{{{}}}", parts.join(", ")));
     }
-    s.m.comment("The colour stages in the configured order.");
-    let out = colour_stages(s, cfg, "in_c_src", "{in_tex}", |s, st, c| {
-        let (u, f, name, frac) = match st {
-            Stage::Diffuse if cfg.diffuse => (&units::DIFFUSE_BLEND, "{dfac}", "c_dif", cfg.dot_frac_bits),
-            Stage::Specular if cfg.specular => (&units::SPECULAR_BLEND, "{sfac}", "c_spe", cfg.power_frac_bits),
-            _ => return None,
-        };
-        let (c_in, k, lc) = (format!("{{{c}}}"), format!("{{{pre}_k}}"), format!("{{{pre}_lc}}"));
-        let mut ins = vec![("c_in", c_in.as_str()), ("f", f), ("k", k.as_str())];
-        if !cfg.white_lights {
-            ins.push(("lc", lc.as_str()));
-        }
-        s.unit(cfg, u, &format!("u_{}", u.name()), &ins, &[("c_out", name)], &[]);
-        s.m.factor_frac(frac);
-        Some(name.to_string())
-    });
-    let lat = s.ready(&out);
-    let v = s.at("accept", lat);
-    // Stage 0 is the accepting cycle: that fragment is tagged with the current bank, which a
-    // setup never writes; stage s ends s edges after the accept.
-    let hold = cfg.per_triangle().then(|| bank_ready(s, "tri_cur", "accept", 1));
-    (lat, out, v, hold)
 }
 
 /// Bits of the serial top's light slot index `j`.

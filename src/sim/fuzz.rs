@@ -65,6 +65,7 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             triangle_frame: false,
             frame_quaternion: false,
             pixel_lh: false,
+            env_map_bits: 0,
         };
         // Drawn only where it is valid (per-fragment state, parallel lights), so no draw is
         // rejected for it (its draws do shift every later configuration of a seed, as any

@@ -14,6 +14,13 @@ impl Unit for DotClamp {
     fn source(&self) -> &'static str {
         "paper §4.2: fd_i = B·L_i, and B·H_i"
     }
+    fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
+        vec![("env_map_bits", "0")]
+    }
+    fn included(&self, cfg: &PipelineConfig) -> bool {
+        // EMBM's blend factors are the bilinear weights: no dot product.
+        !cfg.embm()
+    }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p("b", Dir::In, cfg.normal_fmt(), 3, "bump normal B"),

@@ -13,6 +13,8 @@ mod blend;
 mod bump_fetch;
 mod colour_round;
 mod dot_clamp;
+mod env_coords;
+mod env_fetch;
 mod frame_build;
 mod frame_transform;
 mod normalise;
@@ -27,6 +29,7 @@ pub mod timing;
 
 use crate::config::PipelineConfig;
 use crate::fixed::Format;
+use crate::model::env_map::EnvMaps;
 use crate::model::{Palette, PowerTable};
 
 pub use blend::{DIFFUSE_BLEND, SPECULAR_BLEND};
@@ -88,13 +91,27 @@ pub struct Memory {
 pub struct Memories<'a> {
     pub table: &'a PowerTable,
     pub palette: &'a Palette,
+    /// EMBM's two environment maps (empty without EMBM).
+    pub env: &'a EnvMaps,
 }
 
-/// Owned memory contents: the power table for one shininess and the palette the top powers
-/// up with (the default spiral).
+impl Memories<'_> {
+    /// Shade one fragment of `cfg` with these memories (the pipeline model, EMBM's included).
+    pub fn shade(&self, cfg: &PipelineConfig, state: &crate::model::BumpState, frag: &crate::model::FragmentIn) -> crate::model::Shaded {
+        if cfg.embm() {
+            crate::model::pipeline::shade_embm(cfg, self.env, state, frag)
+        } else {
+            crate::model::shade(cfg, self.table, Some(self.palette), state, frag)
+        }
+    }
+}
+
+/// Owned memory contents: the power table for one shininess, the palette and the
+/// environment maps the top powers up with (the default spiral; the default maps).
 pub struct MemoryContents {
     pub table: PowerTable,
     pub palette: Palette,
+    pub env: EnvMaps,
 }
 
 impl MemoryContents {
@@ -102,6 +119,7 @@ impl MemoryContents {
         MemoryContents {
             table: PowerTable::build(cfg, shininess),
             palette: crate::rtlgen::rom::default_palette(cfg),
+            env: crate::model::env_map::default_maps(cfg),
         }
     }
 
@@ -109,6 +127,7 @@ impl MemoryContents {
         Memories {
             table: &self.table,
             palette: &self.palette,
+            env: &self.env,
         }
     }
 }
@@ -185,6 +204,9 @@ pub static UNITS: &[&dyn Unit] = &[
     &quat_frame::QuatFrame,
     &frame_transform::FrameTransform,
     &normalise::NORMALISE_B,
+    &env_coords::EnvCoords,
+    &env_fetch::ENV_FETCH_DIFFUSE,
+    &env_fetch::ENV_FETCH_SPECULAR,
     &dot_clamp::DotClamp,
     &power_unit::PowerUnit,
     &DIFFUSE_BLEND,
@@ -315,9 +337,11 @@ mod tests {
         for cfg in cfgs {
             let table = PowerTable::build(&cfg, cfg.shininess);
             let palette = crate::rtlgen::rom::default_palette(&cfg);
+            let env = crate::model::env_map::default_maps(&cfg);
             let mem = Memories {
                 table: &table,
                 palette: &palette,
+                env: &env,
             };
             for u in included(&cfg) {
                 let mut ins: Vec<Lanes> = u.corners(&cfg).into_iter().map(|c| c.1).collect();

@@ -35,10 +35,10 @@ impl Unit for PowerUnit {
         "paper §4.2: fs_i = (B·H_i)^n, a reloadable table for one shininess"
     }
     fn requires(&self, _: &PipelineConfig) -> Vec<(&'static str, &'static str)> {
-        vec![("specular", "true")]
+        vec![("specular", "true"), ("env_map_bits", "0")]
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
-        cfg.specular
+        cfg.specular && !cfg.embm()
     }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![

@@ -15,6 +15,9 @@ pub const BLEND: &[&str] = &["after f k", "after f k Lc", "after the sum over th
 /// light_accumulate: f·k, then ·Lc; the running sum stays the last stage, so its feedback
 /// (`acc_in`) is one cycle at any depth.
 pub const ACCUMULATE: &[&str] = &["after f k", "after f k Lc"];
+/// env_coords: the four products M b with st, then the texel coordinates (clamp, floor and
+/// the sub-texel fraction); the weights' small products stay before the output register.
+pub const ENV_COORDS: &[&str] = &["after s = st + M b", "after the texel and its fractions"];
 /// texture_modulate: c·t, then the exact division by 2^w - 1 (two adds).
 pub const TEXTURE: &[&str] = &["after c t"];
 

@@ -132,6 +132,12 @@ unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 #[inline(always)]
 fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
     use super::rng::{range_of, unit_of};
+    if cfg.embm() {
+        return BumpState {
+            env: random_env(cfg, rng),
+            ..Default::default()
+        };
+    }
     let cmax = cfg.colour_max() as i64;
     let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
@@ -164,6 +170,28 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         state.frame = random_frame(cfg, rng, raw);
     }
     state
+}
+
+/// EMBM's random state: half the time raw codes over the whole L/H format (clamping at
+/// the map's edges, the widest sums), else map coordinates inside the map, in [-1, 1], and a
+/// matrix of entries in [-1, 1] scaled together by a factor in [0, 1] (a gentle or a steep
+/// perturbation).
+fn random_env(cfg: &PipelineConfig, rng: &mut SplitMix64) -> crate::model::env_map::EnvState {
+    use super::rng::{range_of, unit_of};
+    let lh = cfg.lh_fmt();
+    let x = rng.next_block::<8>();
+    if unit_of(x[0]) < 0.5 {
+        return crate::model::env_map::EnvState {
+            st: [1, 2].map(|i| range_of(x[i], lh.min_raw(), lh.max_raw())),
+            m: [3, 4, 5, 6].map(|i| range_of(x[i], lh.min_raw(), lh.max_raw())),
+        };
+    }
+    let one = one(cfg);
+    let scale = unit_of(x[7]);
+    crate::model::env_map::EnvState {
+        st: [1, 2].map(|i| range_of(x[i], -one, one)),
+        m: [3, 4, 5, 6].map(|i| (range_of(x[i], -one, one) as f64 * scale).round() as i64),
+    }
 }
 
 /// A random frame (`frame_transform`): raw codes over the whole L/H format, or an
@@ -499,6 +527,9 @@ fn scale8(x: u32, cmax: u32) -> u32 {
 
 /// The corner-case catalogue at `level`. Each entry says why it is there.
 pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
+    if cfg.embm() {
+        return corners_embm(cfg, level);
+    }
     let mut v: Vec<(String, TopStim)> = corners_level1(cfg).into_iter().map(|(w, s)| (w.to_string(), s)).collect();
     if cfg.palette {
         // The palette's first and last entries, under a light straight above.
@@ -512,6 +543,68 @@ pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
     }
     if level >= 2 {
         v.extend(corners_level2(cfg));
+    }
+    v
+}
+
+/// EMBM's corners: each of `env_coords`' own edges (texel centres, clamps, the truncation
+/// of the sub-texel fraction, the widest sums) as a fragment, under a mid-grey C_src and a
+/// white texture; then the enables off, a saturating C_src and a black texture at the map's
+/// centre; level 2 adds the blocks at the map's four corners.
+fn corners_embm(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
+    let half = 1i64 << (cfg.normal_bits - 1);
+    let nmax = (1u32 << cfg.normal_bits) - 1;
+    let cmax = cfg.colour_max();
+    let stim = |b: &[i64], st: &[i64], m: &[i64], c: u32, t: u32, de: bool, se: bool| {
+        let mut s = corner_stim(cfg, [0; 3], [0; 3], [0; 3], 0, 0, c, t);
+        s.state = BumpState {
+            env: crate::model::env_map::EnvState {
+                st: [st[0], st[1]],
+                m: [m[0], m[1], m[2], m[3]],
+            },
+            ..Default::default()
+        };
+        s.frag.bump = bump_of(cfg, [(b[0] + half) as u32, (b[1] + half) as u32, nmax]);
+        s.frag.diffuse_en = de;
+        s.frag.specular_en = se;
+        s
+    };
+    let coords = crate::units::unit("env_coords").expect("unit");
+    let mut v: Vec<(String, TopStim)> = coords
+        .corners(cfg)
+        .into_iter()
+        .map(|(why, i)| (why, stim(&i[0], &i[1], &i[2], scale8(96, cmax), cmax, true, true)))
+        .collect();
+    let o = one(cfg);
+    let id = [o, 0, 0, o];
+    for (why, c, t, de, se) in [
+        (
+            "both enables off: C_src through the texture alone",
+            scale8(96, cmax),
+            cmax,
+            false,
+            false,
+        ),
+        ("C_src at full scale: both blends saturate", cmax, cmax, true, true),
+        (
+            "black texture: the diffuse light vanishes, the specular stays",
+            scale8(96, cmax),
+            0,
+            true,
+            true,
+        ),
+    ] {
+        v.push((why.to_string(), stim(&[0, 0], &[0, 0], &id, c, t, de, se)));
+    }
+    if level >= 2 {
+        let n = cfg.env_map_side() as i64;
+        let centre = |i: i64| ((2 * i + 1) * o) / n - o;
+        for (x, y) in [(0, 0), (n - 1, 0), (0, n - 1), (n - 1, n - 1)] {
+            v.push((
+                format!("the map's corner texel ({x}, {y}) alone"),
+                stim(&[0, 0], &[centre(x), centre(y)], &id, 0, cmax, true, true),
+            ));
+        }
     }
     v
 }

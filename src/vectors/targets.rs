@@ -4,7 +4,7 @@
 
 use super::layout::{Column, Layout, Record, Role};
 use crate::config::PipelineConfig;
-use crate::model::{shade, BumpState, BumpTexel, FragmentIn, Shaded};
+use crate::model::{BumpState, BumpTexel, FragmentIn, Shaded};
 use crate::units::{Dir, Memories, UNITS};
 
 /// A top-level stimulus: one fragment with its triangle's bump state, and whether it is the
@@ -63,10 +63,10 @@ struct TopColumns<'a> {
     de: &'a Column,
     se: &'a Column,
     start: Option<&'a Column>,
-    l: &'a Column,
-    h: &'a Column,
-    lc: &'a Column,
-    k: &'a Column,
+    /// The light slots' columns (none under EMBM, whose slots are its texels).
+    lights: Option<[&'a Column; 4]>,
+    /// EMBM's `in_st` and `in_m`.
+    env: Option<[&'a Column; 2]>,
     /// `in_frame` (`frame_transform`).
     frame: Option<&'a Column>,
     out: &'a Column,
@@ -82,10 +82,8 @@ impl<'a> TopColumns<'a> {
             de: l.column("in_diffuse_en"),
             se: l.column("in_specular_en"),
             start: l.columns.iter().find(|c| c.name == TRI_START),
-            l: st("l"),
-            h: st("h"),
-            lc: st("lc"),
-            k: st("k"),
+            lights: (!cfg.embm()).then(|| [st("l"), st("h"), st("lc"), st("k")]),
+            env: cfg.embm().then(|| [l.column("in_st"), l.column("in_m")]),
             frame: l.columns.iter().find(|c| c.name == FRAME),
             out: l.column("out_c"),
         }
@@ -131,10 +129,10 @@ pub struct TopEncoder<'a> {
     de: Lanes<'a>,
     se: Lanes<'a>,
     start: Option<Lanes<'a>>,
-    l: Lanes<'a>,
-    h: Lanes<'a>,
-    lc: Lanes<'a>,
-    k: Lanes<'a>,
+    /// L, H, Lc and k (none under EMBM).
+    lights: Option<[Lanes<'a>; 4]>,
+    /// EMBM's st and M.
+    env: Option<[Lanes<'a>; 2]>,
     frame: Option<Lanes<'a>>,
     out: Lanes<'a>,
     /// Where the fragment's stimulus columns start, when they follow one another in
@@ -224,10 +222,8 @@ impl<'a> TopEncoder<'a> {
             de: Lanes::of(c.de),
             se: Lanes::of(c.se),
             start: c.start.map(Lanes::of),
-            l: Lanes::of(c.l),
-            h: Lanes::of(c.h),
-            lc: Lanes::of(c.lc),
-            k: Lanes::of(c.k),
+            lights: c.lights.map(|l| l.map(Lanes::of)),
+            env: c.env.map(|e| e.map(Lanes::of)),
             frame: c.frame.map(Lanes::of),
             out: Lanes::of(c.out),
             packed_from: packed_from(&c),
@@ -256,13 +252,23 @@ impl<'a> TopEncoder<'a> {
     /// The bump-state columns, into `r` (whose state columns are zero): a triangle's
     /// records share them, so a run of its fragments starts from one record holding them.
     pub fn fill_state(&self, state: &BumpState, r: &mut Record) {
-        for j in 0..self.cfg.lights as usize {
-            let ls = &state.lights[j];
-            let lane = 3 * j as u32;
-            self.l.set3(r, lane, ls.l);
-            self.h.set3(r, lane, ls.h);
-            self.lc.set3(r, lane, ls.lc.map(i64::from));
-            self.k.set(r, j as u32, ls.k);
+        if let Some([l, h, lc, k]) = &self.lights {
+            for j in 0..self.cfg.lights as usize {
+                let ls = &state.lights[j];
+                let lane = 3 * j as u32;
+                l.set3(r, lane, ls.l);
+                h.set3(r, lane, ls.h);
+                lc.set3(r, lane, ls.lc.map(i64::from));
+                k.set(r, j as u32, ls.k);
+            }
+        }
+        if let Some([st, m]) = &self.env {
+            for (i, v) in state.env.st.iter().enumerate() {
+                st.set(r, i as u32, *v);
+            }
+            for (i, v) in state.env.m.iter().enumerate() {
+                m.set(r, i as u32, *v);
+            }
         }
         if let Some(f) = &self.frame {
             for (i, v) in state.frame.iter().enumerate() {
@@ -429,22 +435,26 @@ pub fn top_stim(cfg: &PipelineConfig, l: &Layout, r: &Record) -> TopStim {
         de: c_de,
         se: c_se,
         start,
-        l: c_l,
-        h: c_h,
-        lc: c_lc,
-        k: c_k,
+        lights,
+        env,
         frame: c_frame,
         ..
     } = TopColumns::of(cfg, l);
     let lane3 = |c, base: u32| [0, 1, 2].map(|i| r.lane_value(c, base + i));
     let code3 = |c| lane3(c, 0).map(|v| v as u32);
     let mut state = BumpState::default();
-    for (j, s) in state.lights.iter_mut().enumerate().take(cfg.lights as usize) {
-        let b = 3 * j as u32;
-        s.l = lane3(c_l, b);
-        s.h = lane3(c_h, b);
-        s.lc = lane3(c_lc, b).map(|v| v as u32);
-        s.k = r.lane_value(c_k, j as u32);
+    if let Some([c_l, c_h, c_lc, c_k]) = lights {
+        for (j, s) in state.lights.iter_mut().enumerate().take(cfg.lights as usize) {
+            let b = 3 * j as u32;
+            s.l = lane3(c_l, b);
+            s.h = lane3(c_h, b);
+            s.lc = lane3(c_lc, b).map(|v| v as u32);
+            s.k = r.lane_value(c_k, j as u32);
+        }
+    }
+    if let Some([c_st, c_m]) = env {
+        state.env.st = [0, 1].map(|i| r.lane_value(c_st, i));
+        state.env.m = [0, 1, 2, 3].map(|i| r.lane_value(c_m, i));
     }
     if let Some(c) = c_frame {
         state.frame = std::array::from_fn(|i| lane3(c, 3 * i as u32));
@@ -539,6 +549,9 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![t.framed.to_vec()],
         });
     }
+    if cfg.embm() {
+        return embm_unit_stims(cfg, s, t, v);
+    }
     let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
     // The colours the blends multiply by (white: every code at 1.0, and no lc input).
     let lc: Vec<i64> = (0..n)
@@ -631,9 +644,55 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     v
 }
 
+/// The rest of [`unit_stims`] for an EMBM top: `env_coords`, each map's `env_fetch`, and the
+/// blends with the weights as factors, k one and the texels as light colours.
+fn embm_unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded, mut v: Vec<UnitStim>) -> Vec<UnitStim> {
+    v.push(UnitStim {
+        unit: "env_coords",
+        inputs: vec![t.b[..2].to_vec(), s.state.env.st.to_vec(), s.state.env.m.to_vec()],
+    });
+    let at = vec![vec![t.env.x0], vec![t.env.y0]];
+    for (on, unit) in [(cfg.diffuse, "env_fetch_diffuse"), (cfg.specular, "env_fetch_specular")] {
+        if on {
+            v.push(UnitStim { unit, inputs: at.clone() });
+        }
+    }
+    let k = vec![1i64 << cfg.k_frac_bits; 4];
+    let lanes = |c: [u32; 3]| c.map(i64::from);
+    let colours = |map: usize| t.texels[map].iter().flat_map(|c| lanes(*c)).collect::<Vec<i64>>();
+    let order = crate::rtlgen::top::stage_order(cfg);
+    let mut c_in = s.frag.c_src.map(|c| c << cfg.colour_guard_bits);
+    for (i, unit) in order.iter().enumerate() {
+        let c = c_in.iter().map(|&y| y as i64).collect::<Vec<i64>>();
+        match *unit {
+            "diffuse_blend" if cfg.diffuse => v.push(UnitStim {
+                unit: "diffuse_blend",
+                inputs: vec![c, t.dfac[..4].to_vec(), k.clone(), colours(0)],
+            }),
+            "specular_blend" if cfg.specular => v.push(UnitStim {
+                unit: "specular_blend",
+                inputs: vec![c, t.sfac[..4].to_vec(), k.clone(), colours(1)],
+            }),
+            "texture_modulate" => v.push(UnitStim {
+                unit: "texture_modulate",
+                inputs: vec![c, s.frag.tex.iter().map(|&y| y as i64).collect()],
+            }),
+            _ => {}
+        }
+        c_in = t.stages[i];
+    }
+    if cfg.colour_guard_bits > 0 {
+        v.push(UnitStim {
+            unit: "colour_round",
+            inputs: vec![c_in.iter().map(|&y| y as i64).collect()],
+        });
+    }
+    v
+}
+
 /// Model evaluation of a top stimulus.
 pub fn eval_top(cfg: &PipelineConfig, mem: &Memories, s: &TopStim) -> Shaded {
-    shade(cfg, mem.table, Some(mem.palette), &s.state, &s.frag)
+    mem.shade(cfg, &s.state, &s.frag)
 }
 
 /// Names of every target.

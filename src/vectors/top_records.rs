@@ -13,7 +13,7 @@ use super::sources::{chunk_rng, RandomTriangles, RANDOM_CHUNK};
 use super::targets::{top_layout, TopEncoder, TopStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::model::{shade, BumpState, FastModel, FragmentIn};
+use crate::model::{BumpState, FastModel, FragmentIn};
 use crate::units::Memories;
 use std::borrow::Cow;
 
@@ -39,7 +39,7 @@ pub struct TopRecords<'a> {
 
 impl<'a> TopRecords<'a> {
     pub fn new(cfg: &'a PipelineConfig, mem: Memories<'a>) -> TopRecords<'a> {
-        let fast = Cow::Owned(FastModel::new(cfg, mem.table, Some(mem.palette)));
+        let fast = Cow::Owned(FastModel::of(cfg, &mem));
         TopRecords::with(cfg, mem, fast)
     }
 
@@ -67,7 +67,7 @@ impl<'a> TopRecords<'a> {
     #[inline]
     fn check(&self, i: u64, state: &BumpState, frag: &FragmentIn, got: [u32; 3]) -> Result<()> {
         if checked(i) {
-            let want = shade(self.cfg, self.mem.table, Some(self.mem.palette), state, frag).colour();
+            let want = self.mem.shade(self.cfg, state, frag).colour();
             if want != got {
                 return Err(mismatch(self.cfg, i, frag, want, got));
             }
