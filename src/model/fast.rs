@@ -571,19 +571,17 @@ impl FastModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::shade;
     use crate::vectors::rng::SplitMix64;
     use crate::vectors::sources::{corners, random_chunk};
 
     /// Every fragment of `stims` gets the readable model's colour, in one batch and alone.
     fn agree(cfg: &PipelineConfig, shininess: u32, stims: &[crate::vectors::targets::TopStim]) {
-        let table = PowerTable::build(cfg, shininess);
-        let palette = crate::rtlgen::rom::default_palette(cfg);
-        let fast = FastModel::new(cfg, &table, Some(&palette));
+        let mem = crate::units::MemoryContents::new(cfg, shininess);
+        let fast = FastModel::of(cfg, &mem.view());
         let mut out = vec![[0; 3]; stims.len()];
         fast.colours(stims, |s| (&s.state, &s.frag), &mut out);
         for (s, got) in stims.iter().zip(&out) {
-            let want = shade(cfg, &table, Some(&palette), &s.state, &s.frag).colour();
+            let want = mem.view().shade(cfg, &s.state, &s.frag).colour();
             assert_eq!(*got, want, "config {}:\n{}\nn = {shininess}, {s:?}", cfg.hash(), cfg.to_toml());
             assert_eq!(fast.colour(&s.state, &s.frag), want);
         }
@@ -601,10 +599,7 @@ mod tests {
         }
         // One run longer than any block, out of every fragment under the first state.
         let long: Vec<FragmentIn> = stims.iter().take(3 * super::LANES + 5).map(|s| s.frag).collect();
-        let long_want: Vec<[u32; 3]> = long
-            .iter()
-            .map(|f| shade(cfg, &table, Some(&palette), &stims[0].state, f).colour())
-            .collect();
+        let long_want: Vec<[u32; 3]> = long.iter().map(|f| mem.view().shade(cfg, &stims[0].state, f).colour()).collect();
         runs.push((&stims[0].state, long, long_want));
         for level in crate::simd::Level::Avx512
             .and_below()

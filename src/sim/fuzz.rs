@@ -104,6 +104,16 @@ pub fn random_config(rng: &mut SplitMix64) -> PipelineConfig {
             // normalise fed the halved sum of the normalised L and V.
             cfg.pixel_lh = cfg.renormalise && cfg.interpolate == crate::config::Interpolate::Hl && pick(rng, &[false, true]);
         }
+        // Drawn last, where valid: EMBM, whose four light slots are the bilinear texels (what
+        // it has no use for is cleared; its weights need 8 fraction bits in each factor).
+        let four_parallel = cfg.lights == 4 && cfg.light_mode == LightMode::Parallel && cfg.bump_state == BumpStateAt::Fragment;
+        if four_parallel && !cfg.palette && cfg.dot_frac_bits >= 8 && cfg.power_frac_bits >= 8 && pick(rng, &[false, true]) {
+            cfg.env_map_bits = rng.range(2, limit("env_map_bits").1 as i64) as u32;
+            cfg.interpolate = crate::config::Interpolate::None;
+            (cfg.renormalise, cfg.renormalise_bump, cfg.interpolate_k, cfg.cube_map_face) = (false, false, false, 0);
+            (cfg.frame_transform, cfg.frame_build, cfg.frame_quaternion, cfg.pixel_lh) = (false, false, false, false);
+            (cfg.self_shadow, cfg.white_lights, cfg.power_rom) = (false, false, false);
+        }
         // A drawn value no unit reads (banks with per-fragment state, segments of a table)
         // goes back to its default: the draws stay the same, and the hash is the hardware's.
         let cfg = cfg.canonical();
@@ -143,7 +153,45 @@ pub fn corner_configs() -> Vec<(&'static str, PipelineConfig)> {
         shininess: hi("shininess"),
         ..d.clone()
     };
+    let embm = PipelineConfig {
+        lights: 4,
+        light_mode: LightMode::Parallel,
+        bump_state: BumpStateAt::Fragment,
+        ..d.clone()
+    };
     vec![
+        (
+            "EMBM, the largest maps, every width at its top, the deepest pipeline",
+            PipelineConfig {
+                env_map_bits: hi("env_map_bits"),
+                normal_bits: hi("normal_bits"),
+                normal_range: NormalRange::Symmetric,
+                lh_bits: hi("lh_bits"),
+                colour_bits: hi("colour_bits"),
+                colour_guard_bits: hi("colour_guard_bits"),
+                k_frac_bits: hi("k_frac_bits"),
+                dot_frac_bits: hi("dot_frac_bits"),
+                power_frac_bits: hi("power_frac_bits"),
+                pipeline_depth: hi("pipeline_depth"),
+                rounding: Rounding::NearestEven,
+                skip_flat: true,
+                blend_order: BlendOrder::TextureLast,
+                ..embm.clone()
+            },
+        ),
+        (
+            "EMBM, the smallest maps, the narrowest normals and L/H words (4 coordinate fraction bits), diffuse only",
+            PipelineConfig {
+                env_map_bits: 2,
+                normal_bits: lo("normal_bits"),
+                lh_bits: lo("lh_bits"),
+                colour_bits: lo("colour_bits"),
+                k_frac_bits: lo("k_frac_bits"),
+                specular: false,
+                pipeline_depth: lo("pipeline_depth"),
+                ..embm
+            },
+        ),
         (
             "all light slots, serial, self-shadowing",
             PipelineConfig {

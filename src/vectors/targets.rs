@@ -770,13 +770,18 @@ mod tests {
         }
         let n = cfg.lights as usize;
         let st = &s.state.lights[..n];
-        put(&state_column(cfg, "l"), &st.iter().flat_map(|x| x.l).collect::<Vec<_>>());
-        put(&state_column(cfg, "h"), &st.iter().flat_map(|x| x.h).collect::<Vec<_>>());
-        put(
-            &state_column(cfg, "lc"),
-            &st.iter().flat_map(|x| x.lc.map(i64::from)).collect::<Vec<_>>(),
-        );
-        put(&state_column(cfg, "k"), &st.iter().map(|x| x.k).collect::<Vec<_>>());
+        if cfg.embm() {
+            put("in_st", &s.state.env.st);
+            put("in_m", &s.state.env.m);
+        } else {
+            put(&state_column(cfg, "l"), &st.iter().flat_map(|x| x.l).collect::<Vec<_>>());
+            put(&state_column(cfg, "h"), &st.iter().flat_map(|x| x.h).collect::<Vec<_>>());
+            put(
+                &state_column(cfg, "lc"),
+                &st.iter().flat_map(|x| x.lc.map(i64::from)).collect::<Vec<_>>(),
+            );
+            put(&state_column(cfg, "k"), &st.iter().map(|x| x.k).collect::<Vec<_>>());
+        }
         if cfg.frame_transform {
             put(FRAME, &s.state.frame.concat());
         }
