@@ -9,8 +9,8 @@
 /*
  * Conventions of every function below:
  * - Handles: gbump_config_* and gbump_stim_new create one, the matching _free releases it.
- *   NULL means failure. A NULL or freed handle passed in is refused like any bad argument
- *   (a NULL handle is never dereferenced; a freed one is undefined behaviour).
+ *   NULL means failure. A NULL handle passed in is refused like any bad argument (it is never
+ *   dereferenced); a freed handle, or one of the other type, is undefined behaviour, as in C.
  * - Status: functions returning int32_t give 0 on success and -1 on failure (gbump_eval,
  *   gbump_eval_batch, gbump_set_shininess, gbump_stim_next); counts, widths, offsets and
  *   words (gbump_record_words, gbump_column, gbump_power_word, ...) are -1 on failure;

@@ -813,6 +813,24 @@ pub fn run() -> anyhow::Result<()> {
             not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
                 let src = crate::sim::stream::StreamSource::parse(&src)?;
+                // A scene streams under the scene's own configuration unless one is given, as
+                // `gbump vectors --source scene:NAME` writes it, and says so.
+                let (cfg, pick) = match (&src, &pick.config, &pick.scene) {
+                    (crate::sim::stream::StreamSource::Scene(name), None, None) => {
+                        let own = ConfigPick {
+                            config: None,
+                            scene: Some(name.clone()),
+                        };
+                        let c = own.resolve()?;
+                        crate::vectors::targets::resolve(&c, &opts.targets)?;
+                        eprintln!(
+                            "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
+                            c.hash()
+                        );
+                        (c, own)
+                    }
+                    _ => (cfg, pick),
+                };
                 if matches!(sim, SimChoice::Icarus) {
                     return Err(Error::Other(
                         "--stream runs on Verilator (its C++ harness reads the pipe)\n  fix: drop --sim icarus, or write the vectors with `gbump vectors` and run them with --vectors".into(),
@@ -929,10 +947,14 @@ pub fn run() -> anyhow::Result<()> {
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
-            out!(
-                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
-                crate::measure::scene_error::scene_error_table(&scenes)
-            );
+            if cfg.embm() {
+                out!("\nImage error per scene: none, scenes are not rasterised for an EMBM configuration yet (`gbump engines` measures EMBM in f64)");
+            } else {
+                out!(
+                    "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
+                    crate::measure::scene_error::scene_error_table(&scenes)
+                );
+            }
         }
         Cmd::PowerSpace {
             pick,

@@ -1286,6 +1286,10 @@ impl PipelineConfig {
     /// (`power_rom = true`), or there is no table (`power_unit = "squaring"`): exactly the
     /// hardware of one shininess.
     pub fn power_table_unused(&self) -> Option<&'static str> {
+        if self.embm() {
+            // EMBM's specular light is its map's: there is no power unit.
+            return Some("env_map_bits > 0 (EMBM)");
+        }
         self.fixed_shininess().map(|f| f.setting)
     }
 

@@ -1,7 +1,8 @@
 //! Ctrl-C, SIGTERM and SIGHUP (a CI runner's timeout, a closed terminal). Where a run holds a
 //! [`Cleanup`] (writing vector files, output folders, a streamed regression), the first
 //! signal sets a flag that its loops check, so they stop through their normal error path and
-//! remove what they wrote; a second exits at once. Anywhere else the first exits at once, as
+//! remove what they wrote; a second exits at once, and so does the first after
+//! [`STOP_GRACE`] when the run is blocked where no loop looks. Anywhere else the first exits at once, as
 //! the signal's default would, so a long computation is not finished only to be thrown away.
 //! A signal that was ignored when gbump started (`nohup`'s SIGHUP) stays ignored.
 
@@ -78,6 +79,15 @@ impl Drop for Child {
     }
 }
 
+/// How long a run stopping through its error path may take before the signal ends it.
+pub const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Exit as a signal's default would, saying what is left behind.
+fn stop_now() -> ! {
+    eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
+    std::process::exit(130);
+}
+
 /// Install the handler (once, from `main`).
 pub fn install() {
     #[cfg(unix)]
@@ -97,9 +107,19 @@ pub fn install() {
         // error path must not wait for a whole build first.
         end_descendants();
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
-            eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
-            std::process::exit(130);
+            stop_now();
         }
+        // A run blocked where no loop checks the flag (opening a FIFO nobody reads, a full
+        // pipe) would wait for a second signal, which a CI timeout or `docker stop` never
+        // sends: after a grace period the first one ends it too.
+        std::thread::spawn(|| {
+            std::thread::sleep(STOP_GRACE);
+            eprintln!(
+                "gbump: interrupted: the run did not stop within {} s of the signal (blocked outside its loops)",
+                STOP_GRACE.as_secs()
+            );
+            stop_now();
+        });
     });
     #[cfg(unix)]
     for s in ignored {

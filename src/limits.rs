@@ -160,6 +160,21 @@ pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<
     Err(Error::Other(format!("{what}: {why}\n  fix: {fix}")))
 }
 
+/// Parse the record count `n` of a source (`what`: the flag and its value, for messages):
+/// decimal digits, `_` between them allowed, within `lo..=hi` (`limit` names the bound).
+pub fn parse_count(what: &str, n: &str, lo: u64, hi: u64, limit: &str) -> Result<u64> {
+    let digits = n.replace('_', "");
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || n.starts_with('_') {
+        return Err(Error::Other(format!(
+            "{what}: `{n}` is not a count of records: N is written in decimal digits alone (no sign, point or exponent; `_` may group them)\n  fix: use {lo}..={hi}, e.g. 1000000 or 1_000_000"
+        )));
+    }
+    // More digits than a u64 holds is above any limit.
+    let v = digits.parse::<u64>().unwrap_or(u64::MAX);
+    check_count(what, v, lo, hi, limit)?;
+    Ok(v)
+}
+
 /// Parse an image size `WxH` (`--size`, `--scene-size`), each side in 1..=[`MAX_IMAGE_SIDE`].
 pub fn parse_size(flag: &str, s: &str) -> Result<(u32, u32)> {
     let max = MAX_IMAGE_SIDE;
@@ -190,10 +205,15 @@ pub fn memory_budget() -> u64 {
 pub fn check_memory(what: &str, bytes: u64, fix: &str) -> Result<()> {
     let budget = memory_budget();
     if bytes > budget {
+        // As many decimals as tell the two apart (8.01 against 8.00, not 8.0 against 8.0).
+        let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+        let places = (1..=6)
+            .find(|&p| format!("{:.p$}", gib(bytes)) != format!("{:.p$}", gib(budget)))
+            .unwrap_or(6);
         return Err(Error::Other(format!(
-            "{what} would need about {:.1} GiB of memory, more than the {:.1} GiB allowed (MAX_MEMORY_BYTES or MemAvailable, whichever is lower)\n  fix: {fix}",
-            bytes as f64 / (1u64 << 30) as f64,
-            budget as f64 / (1u64 << 30) as f64
+            "{what} would need about {:.places$} GiB of memory, more than the {:.places$} GiB allowed (MAX_MEMORY_BYTES or MemAvailable, whichever is lower)\n  fix: {fix}",
+            gib(bytes),
+            gib(budget)
         )));
     }
     Ok(())
@@ -299,4 +319,16 @@ pub fn read_text_as(path: &Path, what: &str, fix: &str) -> Result<String> {
         )));
     }
     String::from_utf8(buf).map_err(|_| Error::Other(format!("{}: not UTF-8 text, so not {what}\n  fix: {fix}", path.display())))
+}
+
+/// Bytes an unprivileged writer may still put on the file system holding `dir` (None when
+/// the system cannot say).
+pub fn free_bytes(dir: &Path) -> Option<u64> {
+    use std::os::unix::ffi::OsStrExt;
+    let c = std::ffi::CString::new(dir.as_os_str().as_bytes()).ok()?;
+    // SAFETY: statvfs(3) fills the zeroed struct from a NUL-terminated path.
+    unsafe {
+        let mut st: libc::statvfs = std::mem::zeroed();
+        (libc::statvfs(c.as_ptr(), &mut st) == 0).then(|| st.f_bavail as u64 * st.f_frsize as u64)
+    }
 }

@@ -472,7 +472,13 @@ fn cases() -> Vec<Case> {
             "random:0",
             vec![],
             vec!["vectors", "--source", "random:0", "--out", "out"],
-            vec!["random:N", "1 <= N"],
+            vec!["random:0", "below 1", "MAX_RANDOM_VECTORS"],
+        ),
+        (
+            "random:1e3",
+            vec![],
+            vec!["vectors", "--source", "random:1e3", "--out", "out"],
+            vec!["random:1e3", "decimal digits alone", "fix:"],
         ),
         (
             "--shininess on a scene source",
@@ -1020,6 +1026,13 @@ fn cases() -> Vec<Case> {
             vec!["lib.so", "built from other sources than this gbump", "gbump --version", "fix:"],
         ),
         (
+            // A program, not a library: named as such, not as a build of other sources.
+            "cosim --lib given the gbump executable",
+            vec![],
+            vec!["cosim", "--lib", env!("CARGO_BIN_EXE_gbump"), "--work", "w"],
+            vec!["an executable", "not the gbump C library", "libgbump.so", "fix:"],
+        ),
+        (
             "an engine named twice",
             vec![],
             vec!["engines", "--engine", "blinn", "--engine", "blinn", "--out", "out"],
@@ -1194,7 +1207,16 @@ fn an_interrupted_dump_leaves_nothing_behind() {
     for signal in ["INT", "TERM", "HUP"] {
         let dir = tempfile::tempdir().unwrap();
         let child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
-            .args(["vectors", "--source", "random:200000000", "--target", "top", "--out"])
+            .args([
+                "vectors",
+                "--source",
+                "random:50000000",
+                "--format",
+                "bin",
+                "--target",
+                "top",
+                "--out",
+            ])
             .arg(dir.path().join("out"))
             .stderr(std::process::Stdio::piped())
             .spawn()
@@ -1215,6 +1237,80 @@ fn an_interrupted_dump_leaves_nothing_behind() {
             .unwrap_or_default();
         assert!(left.is_empty(), "SIG{signal} left behind: {left:?}");
     }
+}
+
+/// A dump larger than the free space under its folder is refused before a byte is written.
+#[test]
+fn a_dump_larger_than_the_disk_is_refused_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let free = gbump::limits::free_bytes(dir.path()).expect("statvfs");
+    let n = gbump::limits::MAX_RANDOM_VECTORS;
+    let cfg = gbump::PipelineConfig::default();
+    let need: u64 = gbump::vectors::targets::resolve(&cfg, &["all".to_string()])
+        .unwrap()
+        .iter()
+        .map(|t| {
+            let l = gbump::vectors::targets::layout(&cfg, t);
+            (l.bytes() + l.hex_digits() + 1) as u64 * n
+        })
+        .sum();
+    assert!(
+        need > free,
+        "this disk holds {free} bytes free, more than the {need} the test needs to exceed"
+    );
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .args(["vectors", "--source", &format!("random:{n}"), "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("GB free") && err.contains("fix:"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
+        .map(|d| d.map(|e| e.unwrap().file_name()).collect())
+        .unwrap_or_default();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+/// One SIGTERM ends a run blocked where no loop looks (writing its JUnit report into a
+/// named pipe nobody reads), within the grace period: a CI timeout sends no second one.
+#[test]
+fn one_signal_ends_a_run_blocked_on_a_named_pipe() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("junit.xml");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["regress", "--vectors", "vectors/corners_top.json", "--sim", "icarus", "--work"])
+        .arg(dir.path().join("work"))
+        .arg("--junit")
+        .arg(&fifo)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Until the regression has run and the report's open blocks.
+    let start = std::time::Instant::now();
+    while !dir.path().join("work").exists() || start.elapsed().as_secs() < 3 {
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before it blocked");
+        assert!(start.elapsed().as_secs() < 120, "the run never started");
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    let sent = std::time::Instant::now();
+    send("TERM", child.id());
+    let grace = gbump::interrupt::STOP_GRACE.as_secs();
+    let st = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
+        assert!(
+            sent.elapsed().as_secs() < grace + 10,
+            "still running {} s after one SIGTERM",
+            grace + 10
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    assert_eq!(st.code(), Some(130));
 }
 
 fn send(signal: &str, pid: u32) {

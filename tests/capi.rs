@@ -224,12 +224,24 @@ fn errors_come_back_as_status_and_message() {
         assert_eq!(gbump_power_word(h, 256), -1);
         assert_eq!(gbump_set_shininess(h, 5000), -1);
         assert!(s(gbump_last_error()).contains("MAX_SHININESS"));
-        // A power-table index beyond the table panics inside the model: caught, reported.
+        // A record whose value fits its column but not the unit's domain (a clamped dot
+        // product above 1.0, a stage colour above full scale) is refused, not evaluated.
         let pt = c("power_unit");
         let mut w = vec![0u32; gbump_record_words(h, pt.as_ptr()) as usize];
-        w[0] = 0x1ff;
+        w[0] = 257;
         assert_eq!(gbump_eval(h, pt.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr()), -1);
-        assert!(s(gbump_last_error()).contains("internal error"), "{}", s(gbump_last_error()));
+        let e = s(gbump_last_error());
+        assert!(e.contains("`x` lane 0 is 257, above 256") && e.contains("fix:"), "{e}");
+        w[0] = 256;
+        assert_eq!(gbump_eval(h, pt.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr()), 0, "1.0 is inside");
+        let g = gbump_config_from_toml(c("colour_guard_bits = 1\n").as_ptr(), c("g.toml").as_ptr());
+        let cr = c("colour_round");
+        let mut w = vec![0u32; gbump_record_words(g, cr.as_ptr()) as usize];
+        w[0] = 0x1ff;
+        assert_eq!(gbump_eval_batch(g, cr.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr(), 1), -1);
+        let e = s(gbump_last_error());
+        assert!(e.contains("record 0") && e.contains("colour_round: input `c_in`"), "{e}");
+        gbump_config_free(g);
         gbump_config_free(h);
         gbump_config_free(std::ptr::null_mut());
     }

@@ -106,6 +106,8 @@ proptest! {
     #[test]
     fn whole_pipeline_stays_in_range_and_serial_equals_parallel(seed in any::<u64>(), stim_seed in any::<u64>()) {
         let cfg = cfg_from(seed);
+        // EMBM's texel slots have a parallel form only (`tests/rtl_sim.rs` regresses it).
+        prop_assume!(!cfg.embm());
         let other = PipelineConfig { light_mode: match cfg.light_mode {
             gbump::config::LightMode::Serial => gbump::config::LightMode::Parallel,
             gbump::config::LightMode::Parallel => gbump::config::LightMode::Serial,

@@ -394,6 +394,28 @@ fn regress_visa_quaternion_frame_pipeline() {
 }
 
 #[test]
+fn regress_embms_environment_map_pipeline() {
+    // EMBM (paper §3.3): env_coords and the two maps' env_fetch on both simulators, with
+    // their own corner, random and exhaustive sets; the light path's units are absent and
+    // scenes are not rasterised for it yet (skipped, said).
+    let t = regress_no_scenes("tests/configs/embm.toml", "embm");
+    for unit in ["env_coords", "env_fetch_diffuse", "env_fetch_specular"] {
+        assert_unit_sets_ran(&t, unit);
+    }
+    for absent in ["_dot_clamp", "_power_unit"] {
+        assert!(!runs(&t).iter().any(|x| x.1.ends_with(absent)), "{absent} ran:\n{t}");
+    }
+    let r = runs(&t);
+    for sim in ["icarus", "verilator"] {
+        assert!(
+            r.iter()
+                .any(|x| x.0 == sim && x.1 == "exhaustive_env_fetch_diffuse_env_fetch_diffuse" && x.2 == 225),
+            "{sim}: every block of the 16x16 map\n{t}"
+        );
+    }
+}
+
+#[test]
 fn regress_interpolated_h_and_l() {
     // Paper §6: each scene fragment carries its own interpolated L and H on the fragment
     // port; scenes with more than two bump lights do not fit the two slots.

@@ -49,6 +49,29 @@ fn a_streamed_random_regression_passes_on_the_default_config() {
     assert!(log.contains("1 runs, 20000 vectors, 0 failing run(s)"), "{log}");
 }
 
+/// A scene streams under the scene's own configuration, as `gbump vectors` writes it, and
+/// says so: a streamed and a file regression of one source check the same RTL.
+#[test]
+fn a_scene_streams_under_its_own_configuration() {
+    let own = gbump::scene::Scene::load("torus_caps").unwrap().derive_config().unwrap();
+    assert_ne!(own.hash(), gbump::PipelineConfig::default().hash());
+    let (ok, log) = gbump(&[
+        "regress",
+        "--stream",
+        "scene:torus_caps",
+        "--scene-size",
+        "16x16",
+        "--work",
+        "target/test-regress/scene_stream",
+    ]);
+    assert!(ok, "{log}");
+    assert!(
+        log.contains(&format!("targets the scene's own configuration {}", own.hash())),
+        "{log}"
+    );
+    assert!(log.contains(&format!("regress config {}", own.hash())), "{log}");
+}
+
 #[test]
 fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record() {
     // The mutant of tests/rtl_sim.rs (texture modulation's rounding constant one off), in its
@@ -145,6 +168,10 @@ fn bad_stream_requests_are_refused_before_anything_is_built() {
         (vec!["--stream", "random:0"], "MAX_STREAM_VECTORS"),
         (vec!["--stream", &too_many], "MAX_STREAM_VECTORS"),
         (vec!["--stream", "randm:5"], "not a stream source"),
+        (vec!["--stream", "random:1e3"], "decimal digits alone"),
+        (vec!["--stream", "random:-1"], "decimal digits alone"),
+        (vec!["--stream", "random:+5"], "decimal digits alone"),
+        (vec!["--stream", "random:18446744073709551616"], "exceeds MAX_STREAM_VECTORS"),
         (vec!["--stream", "exhaustive:dot_clamp"], "not a stream source"),
         (vec!["--stream", "scene:no_such_scene"], "no_such_scene"),
         (vec!["--stream", "random:5", "--sim", "icarus"], "runs on Verilator"),

@@ -21,9 +21,39 @@ pub fn last_error() -> *const c_char {
     LAST_ERROR.with(|e| e.borrow().as_ptr())
 }
 
+/// Guarded calls running now, on any thread (their pool's workers included).
+static GUARDED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+/// The panic hook, chained once in front of the host's: silent while a guarded call runs (its
+/// panic comes back as the call's error message, and a library writes nothing into its host's
+/// stderr), the previous hook's behaviour otherwise.
+fn quiet_panics() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if GUARDED.load(std::sync::atomic::Ordering::SeqCst) == 0 {
+                previous(info);
+            }
+        }));
+    });
+}
+
 /// Run `f`; on an error or a panic record the message and return `fail`.
 pub fn guard<T>(what: &str, fail: T, f: impl FnOnce() -> Result<T>) -> T {
-    match catch_unwind(AssertUnwindSafe(f)) {
+    use std::sync::atomic::Ordering::SeqCst;
+    quiet_panics();
+    struct Active;
+    impl Drop for Active {
+        fn drop(&mut self) {
+            GUARDED.fetch_sub(1, SeqCst);
+        }
+    }
+    GUARDED.fetch_add(1, SeqCst);
+    let active = Active;
+    let result = catch_unwind(AssertUnwindSafe(f));
+    drop(active);
+    match result {
         Ok(Ok(v)) => v,
         Ok(Err(e)) => {
             set_error(&format!("{what}: {e}"));
@@ -100,4 +130,21 @@ pub unsafe fn words_mut<'a>(p: *mut u32, n: usize, arg: &str) -> Result<&'a mut 
         return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a buffer of {n} 32-bit words")));
     }
     Ok(std::slice::from_raw_parts_mut(p, n))
+}
+
+#[cfg(test)]
+mod tests {
+    /// A panic inside a guarded call comes back as the call's error, and the count of
+    /// guarded calls (which keeps the panic hook silent) is restored however the call ends.
+    #[test]
+    fn a_panic_is_an_error_and_the_hook_is_restored() {
+        let r = super::guard("f", -1, || -> crate::error::Result<i32> { panic!("boom") });
+        assert_eq!(r, -1);
+        let e = unsafe { std::ffi::CStr::from_ptr(super::last_error()) }
+            .to_string_lossy()
+            .into_owned();
+        assert!(e.starts_with("f: internal error (panic: boom)"), "{e}");
+        assert_eq!(super::guard("g", -1, || Ok(3)), 3);
+        assert_eq!(super::GUARDED.load(std::sync::atomic::Ordering::SeqCst), 0);
+    }
 }

@@ -67,7 +67,7 @@ impl GbumpConfig {
         }
         let mem = crate::units::MemoryContents::new(&cfg, cfg.shininess);
         Ok(GbumpConfig {
-            fast: crate::model::FastModel::new(&cfg, &mem.table, Some(&mem.palette)),
+            fast: crate::model::FastModel::of(&cfg, &mem.view()),
             mem,
             targets,
             hash: cstring(cfg.hash()),
@@ -118,20 +118,22 @@ impl GbumpConfig {
             )));
         }
         self.mem.table = PowerTable::build(&self.cfg, n as u32);
-        self.fast = crate::model::FastModel::new(&self.cfg, &self.mem.table, Some(&self.mem.palette));
+        self.fast = crate::model::FastModel::of(&self.cfg, &self.mem.view());
         Ok(())
     }
 
     /// Evaluate one record of `t`: the stimulus columns of `input` are read, and the whole
     /// record (stimulus and the model's expected columns) is returned, exactly as the vector
     /// files hold it.
-    pub fn eval(&self, t: &Target, input: &Record) -> Record {
+    pub fn eval(&self, t: &Target, input: &Record) -> Result<Record> {
         if t.name == "top" {
             let s = top_stim(&self.cfg, &t.layout, input);
-            top_record(&self.cfg, &t.layout, &s, &eval_top(&self.cfg, &self.mem.view(), &s))
+            Ok(top_record(&self.cfg, &t.layout, &s, &eval_top(&self.cfg, &self.mem.view(), &s)))
         } else {
             let s = unit_stim(&t.layout, t.name, input);
-            unit_record(&t.layout, &s, &eval_unit(&self.cfg, &self.mem.view(), &s))
+            let u = crate::units::unit(t.name).expect("a target is a unit");
+            crate::units::check_domain(u, &self.cfg, &s.inputs)?;
+            Ok(unit_record(&t.layout, &s, &eval_unit(&self.cfg, &self.mem.view(), &s)))
         }
     }
 }
@@ -153,13 +155,18 @@ impl GbumpConfig {
         if t.name == "top" {
             return self.eval_top_words(t, input, out);
         }
-        let eval = |(i, o): (&[u32], &mut [u32])| o.copy_from_slice(&self.eval(t, &Record::from_words32(i)).to_words32(n));
+        let eval = |(k, (i, o)): (usize, (&[u32], &mut [u32]))| -> Result<()> {
+            let r = self
+                .eval(t, &Record::from_words32(i))
+                .map_err(|e| Error::Other(format!("record {k}: {e}")))?;
+            o.copy_from_slice(&r.to_words32(n));
+            Ok(())
+        };
         if input.len() / n >= 1024 {
-            input.par_chunks(n).zip(out.par_chunks_mut(n)).for_each(eval);
+            input.par_chunks(n).zip(out.par_chunks_mut(n)).enumerate().try_for_each(eval)
         } else {
-            input.chunks(n).zip(out.chunks_mut(n)).for_each(eval);
+            input.chunks(n).zip(out.chunks_mut(n)).enumerate().try_for_each(eval)
         }
-        Ok(())
     }
 }
 

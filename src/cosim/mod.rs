@@ -56,6 +56,27 @@ pub fn built_from_these_sources(lib: &Path) -> bool {
     std::fs::read(lib).is_ok_and(|b| b.windows(needle.len()).any(|w| w == needle.as_bytes()))
 }
 
+/// Whether ELF image `b` is a program rather than a shared library: of type EXEC, or with a
+/// PT_INTERP program header (a position-independent executable is of type DYN, as a library
+/// is, but names its loader). 64-bit little-endian images only; anything else is left to
+/// the checks after this one.
+pub fn elf_executable(b: &[u8]) -> bool {
+    let u16_at = |o: usize| b.get(o..o + 2).map(|x| u16::from_le_bytes([x[0], x[1]]) as usize);
+    let u32_at = |o: usize| b.get(o..o + 4).map(|x| u32::from_le_bytes([x[0], x[1], x[2], x[3]]));
+    let u64_at = |o: usize| b.get(o..o + 8).map(|x| u64::from_le_bytes(x.try_into().expect("8 bytes")) as usize);
+    // ELFCLASS64, little-endian.
+    if b.get(4) != Some(&2) || b.get(5) != Some(&1) {
+        return false;
+    }
+    if u16_at(16) == Some(2) {
+        return true;
+    }
+    let (Some(phoff), Some(phentsize), Some(phnum)) = (u64_at(0x20), u16_at(0x36), u16_at(0x38)) else {
+        return false;
+    };
+    (0..phnum).any(|i| u32_at(phoff + i * phentsize) == Some(3))
+}
+
 /// The C library of the running gbump (see [`library_beside`]).
 pub fn default_library() -> Result<PathBuf> {
     let exe = std::env::current_exe().map_err(|e| Error::Other(format!("cannot find the running executable: {e}")))?;
@@ -85,6 +106,12 @@ pub fn check_library(lib: &Path) -> Result<()> {
     if !is_elf {
         return Err(Error::Other(format!(
             "{}: not a shared library (no ELF header), so not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
+            lib.display()
+        )));
+    }
+    if std::fs::read(lib).is_ok_and(|b| elf_executable(&b)) {
+        return Err(Error::Other(format!(
+            "{}: an executable (it names a program interpreter), not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
             lib.display()
         )));
     }
@@ -237,4 +264,20 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     ];
     use crate::sim::Simulator;
     crate::sim::Verilator.run(&exe, &args, None, &o.work, "cosim (verilator)")
+}
+
+#[cfg(test)]
+mod tests {
+    /// The running test binary is a program; the library this crate builds (when there) is
+    /// not.
+    #[test]
+    fn a_program_is_told_from_a_library() {
+        let me = std::fs::read(std::env::current_exe().unwrap()).unwrap();
+        assert!(super::elf_executable(&me));
+        let lib = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/release/libgbump.so");
+        if let Ok(b) = std::fs::read(&lib) {
+            assert!(!super::elf_executable(&b), "{}", lib.display());
+        }
+        assert!(!super::elf_executable(b"\x7fELF"));
+    }
 }

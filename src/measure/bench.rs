@@ -445,7 +445,7 @@ pub fn model_speed(cfg: &PipelineConfig) -> (f64, f64) {
     use crate::vectors::sources::{chunk_rng, RandomTriangles, RANDOM_CHUNK};
     use crate::vectors::top_records::BATCH;
     let contents = crate::units::MemoryContents::new(cfg, cfg.shininess);
-    let fast = crate::model::FastModel::new(cfg, &contents.table, Some(&contents.palette));
+    let fast = crate::model::FastModel::of(cfg, &contents.view());
     let mut runs: Vec<(BumpState, Vec<FragmentIn>)> = Vec::new();
     for c in 0..MODEL_RECORDS / RANDOM_CHUNK {
         let mut tris = RandomTriangles::new(chunk_rng(1, c));
@@ -484,7 +484,7 @@ pub fn model_speed(cfg: &PipelineConfig) -> (f64, f64) {
     let readable_rate = rate(
         &|out, st, fr| {
             for (o, f) in out.iter_mut().zip(fr) {
-                *o = crate::model::shade(cfg, &contents.table, Some(&contents.palette), st, f).colour();
+                *o = contents.view().shade(cfg, st, f).colour();
             }
             xor(&out[..fr.len()])
         },

@@ -4,6 +4,7 @@ pub mod area;
 pub mod area_model;
 pub mod bench;
 pub mod configs;
+pub mod embm_error;
 pub mod fpga;
 pub mod image_metrics;
 pub mod long_run;

@@ -31,7 +31,7 @@ pub struct ErrorStats {
 }
 
 impl ErrorStats {
-    fn new(unit: &str, source: &str) -> ErrorStats {
+    pub(crate) fn new(unit: &str, source: &str) -> ErrorStats {
         ErrorStats {
             unit: unit.into(),
             source: source.into(),
@@ -42,7 +42,7 @@ impl ErrorStats {
             histogram: vec![0; BINS.len()],
         }
     }
-    fn add(&mut self, err: f64, input: impl FnOnce() -> String) {
+    pub(crate) fn add(&mut self, err: f64, input: impl FnOnce() -> String) {
         let e = err.abs();
         self.samples += 1;
         self.mean_lsb += (e - self.mean_lsb) / self.samples as f64;
@@ -148,6 +148,9 @@ pub fn exact_pipeline(cfg: &PipelineConfig, n: u32, palette: &Palette, s: &TopSt
 /// Every unit's error and the pipeline's, over corners, `random` random stimuli and
 /// exhaustive sweeps where a unit is small enough.
 pub fn unit_errors(cfg: &PipelineConfig, random: u64, seed: u64) -> Vec<ErrorStats> {
+    if cfg.embm() {
+        return super::embm_error::embm_errors(cfg, &stimuli(cfg, random, &mut SplitMix64(seed)));
+    }
     let n = cfg.shininess;
     let table = PowerTable::build(cfg, n);
     let palette = crate::rtlgen::rom::default_palette(cfg);
@@ -353,6 +356,14 @@ fn pipeline_rows(cfg: &PipelineConfig, table: &PowerTable, palette: &Palette, st
 /// The whole pipeline's largest error against exact arithmetic over the level-2 corners and
 /// `random` random stimuli (`gbump error`'s pipeline rows, in colour LSB).
 pub fn pipeline_exact_max(cfg: &PipelineConfig, random: u64, seed: u64) -> f64 {
+    if cfg.embm() {
+        let rows = super::embm_error::embm_errors(cfg, &stimuli(cfg, random, &mut SplitMix64(seed)));
+        return rows
+            .iter()
+            .filter(|r| r.unit == "gbump_pipeline")
+            .map(|r| r.max_lsb)
+            .fold(0.0, f64::max);
+    }
     let table = PowerTable::build(cfg, cfg.shininess);
     let palette = crate::rtlgen::rom::default_palette(cfg);
     pipeline_rows(cfg, &table, &palette, &stimuli(cfg, random, &mut SplitMix64(seed)))

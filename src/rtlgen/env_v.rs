@@ -62,11 +62,12 @@ pub fn env_coords(cfg: &PipelineConfig) -> String {
             0,
             sw,
         );
+        w.line(format!("wire [{}:0] st{axis}_raw = st[{}:{}];", lh - 1, i * lh + lh - 1, i * lh));
         w.line(format!(
-            "wire signed [{}:0] st{axis} = $signed(st[{}:{}]);",
+            "wire signed [{}:0] st{axis} = $signed({{{{{}{{st{axis}_raw[{}]}}}}, st{axis}_raw}});",
             sw - 1,
-            i * lh + lh - 1,
-            i * lh
+            sw - lh,
+            lh - 1
         ));
         w.stage(
             cut(cfg, ENV_COORDS, 0),
@@ -87,10 +88,13 @@ pub fn env_coords(cfg: &PipelineConfig) -> String {
             xw - 1,
             1u64 << (g - 1)
         ));
+        // Clamped to [0, (n - 1) 2^G]: G + E bits hold it.
         let top = ((1u64 << e) - 1) << g;
+        let cw = g + e;
         w.line(format!(
-            "wire [{}:0] c{axis} = v{axis} < 0 ? {xw}'d0 : v{axis} > {xw}'sd{top} ? {xw}'d{top} : v{axis};",
-            xw - 1
+            "wire [{}:0] c{axis} = v{axis} < 0 ? {cw}'d0 : v{axis} > {xw}'sd{top} ? {cw}'d{top} : v{axis}[{}:0];",
+            cw - 1,
+            cw - 1
         ));
         // X at the last texel's centre, exactly: the block before it, at its far side.
         w.line(format!("wire l{axis} = c{axis}[{}:{g}] == {e}'d{};", g + e - 1, (1u64 << e) - 1));
@@ -115,8 +119,9 @@ pub fn env_coords(cfg: &PipelineConfig) -> String {
     }
     let uf = |s: &str| Factor::unsigned(s, fb);
     for (i, (a, b)) in [("gx", "gy"), ("fx", "gy"), ("gx", "fy"), ("fx", "fy")].iter().enumerate() {
-        let e = sum_of_products(&mut w, Form::of(cfg), &format!("w{i}m"), &[(uf(a), uf(b))], 0, WEIGHT_BITS + 1);
-        w.line(format!("wire [{}:0] wp{i} = {e};", WEIGHT_BITS));
+        // At most 16 x 16 = 256: exact in the weight's 9 bits.
+        let e = sum_of_products(&mut w, Form::of(cfg), &format!("w{i}m"), &[(uf(a), uf(b))], 0, WEIGHT_BITS);
+        w.line(format!("wire [{}:0] wp{i} = {e};", WEIGHT_BITS - 1));
     }
     w.block("always @(posedge clk) begin", "end", |w| {
         w.line("x0 <= ix;");

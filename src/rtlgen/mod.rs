@@ -156,6 +156,16 @@ fn waivers(cfg: &PipelineConfig, command: &str) -> String {
             }
         }
     }
+    if cfg.embm() {
+        s += "// env_coords keeps the texel index and four sub-texel bits of the clamped coordinate and\n";
+        s += "// truncates the rest by design; the top reads the fetched normal's x and y, not its z.\n";
+        for sig in ["cx", "cy"] {
+            s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*env_coords_{h}.v\" -match \"Bits of signal are not used: '{sig}'*\"\n");
+        }
+        s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: 'b'*\"\n");
+        s += "// EMBM has no power unit: the top's INIT_FILE (the power table's) stays a parameter, unread.\n";
+        s += &format!("lint_off -rule UNUSEDPARAM -file \"*gbump_pipeline_{h}.v\" -match \"Parameter is not used: 'INIT_FILE'\"\n");
+    }
     if cfg.pixel_lh {
         s += "// pixel_lh halves the sum of the normalised L and V: each component's low bit is dropped by design.\n";
         s += &format!("lint_off -rule UNUSEDSIGNAL -file \"*gbump_pipeline_{h}.v\" -match \"Bits of signal are not used: 'hs*\"\n");

@@ -39,9 +39,8 @@ impl StreamSource {
         match s.split_once(':') {
             None if s == "corners" => Ok(StreamSource::Corners),
             Some(("random", n)) => {
-                let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
                 let max = crate::limits::MAX_STREAM_VECTORS;
-                crate::limits::check_count(&format!("--stream {s}"), v, 1, max, "MAX_STREAM_VECTORS")?;
+                let v = crate::limits::parse_count(&format!("--stream {s}"), n, 1, max, "MAX_STREAM_VECTORS")?;
                 Ok(StreamSource::Random(v))
             }
             Some(("scene", n)) if !n.is_empty() => {

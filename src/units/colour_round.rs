@@ -39,6 +39,9 @@ impl Unit for ColourRound {
             ),
         ]
     }
+    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
+        vec![("c_in", cfg.stage_colour_max(), "full scale: a stage colour saturates there")]
+    }
     fn eval(&self, cfg: &PipelineConfig, _: &Memories, i: &[Vec<i64>]) -> Lanes {
         let c = [i[0][0] as u32, i[0][1] as u32, i[0][2] as u32];
         vec![colour_round(cfg, c).iter().map(|&x| x as i64).collect()]

@@ -88,7 +88,7 @@ impl Unit for EnvCoords {
             + Resources::muxes(xw + e + fb)
             + Resources::stage(cut(cfg, ENV_COORDS, 1), e + fb)
             + Resources::adders(fb);
-        let weight = sum_of_products(form(cfg), &[(unsigned(fb), unsigned(fb))], false, WEIGHT_BITS + 1);
+        let weight = sum_of_products(form(cfg), &[(unsigned(fb), unsigned(fb))], false, WEIGHT_BITS);
         axis.scaled(2.0) + weight.scaled(4.0) + Resources::regs(2 * e + 4 * WEIGHT_BITS)
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {

@@ -86,6 +86,13 @@ impl Unit for EnvFetch {
             },
         })
     }
+    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
+        let last = cfg.env_map_side() as i64 - 2;
+        vec![
+            ("x0", last, "n - 2: the block's second column is inside the map"),
+            ("y0", last, "n - 2: the block's second row is inside the map"),
+        ]
+    }
     fn eval(&self, cfg: &PipelineConfig, m: &Memories, i: &[Vec<i64>]) -> Lanes {
         let t = env_fetch(cfg.env_map_bits, self.map(m), i[0][0], i[1][0]);
         vec![t.iter().flat_map(|c| c.map(i64::from)).collect()]

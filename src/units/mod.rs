@@ -165,6 +165,14 @@ pub trait Unit: Sync {
     fn memory(&self, _cfg: &PipelineConfig) -> Option<Memory> {
         None
     }
+    /// Input ports whose values the unit's domain bounds below their format's largest code,
+    /// as (port, largest raw value, what it is): a clamped dot product is at most 1.0, a stage
+    /// colour at most full scale, a texel block starts at most at n − 2. Every stimulus the
+    /// pipeline makes is inside; [`check_domain`] refuses one from outside (a hand-made
+    /// record) instead of evaluating it.
+    fn input_max(&self, _cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
+        Vec::new()
+    }
     /// Bit-accurate model: output lanes (raw codes) for input lanes, in port order.
     fn eval(&self, cfg: &PipelineConfig, mem: &Memories, inputs: &[Vec<i64>]) -> Lanes;
     /// The same equation in f64, without the unit's roundings, in the output formats' LSBs.
@@ -250,6 +258,41 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
         has.join(", "),
         want.join(" and ")
     )
+}
+
+/// The blends' input bounds: a factor at most 1.0, k at most 1.0, a stage colour at most
+/// full scale, and (`acc`) a sum of at most `terms` full terms f·k·Lc.
+pub(crate) fn blend_domain(cfg: &PipelineConfig, terms: Option<(&'static str, i64)>) -> Vec<(&'static str, i64, &'static str)> {
+    let (f1, k1) = (1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
+    let mut v = vec![
+        ("c_in", cfg.stage_colour_max(), "full scale: a stage colour saturates there"),
+        ("f", f1, "1.0: a dot product or power is clamped there"),
+        ("k", k1, "1.0: the largest light weight"),
+    ];
+    if let Some((port, n)) = terms {
+        v.push((
+            port,
+            n * f1 * k1 * cfg.colour_max() as i64,
+            "the sum of the light slots' largest terms",
+        ));
+    }
+    v
+}
+
+/// Refuse inputs of `u` outside its domain ([`Unit::input_max`]), naming the port, the lane,
+/// the value and the bound.
+pub fn check_domain(u: &dyn Unit, cfg: &PipelineConfig, inputs: &[Vec<i64>]) -> crate::error::Result<()> {
+    let ports = self::inputs(u, cfg);
+    for (name, max, what) in u.input_max(cfg) {
+        let i = ports.iter().position(|p| p.name == name).expect("input_max names an input");
+        if let Some((lane, v)) = inputs[i].iter().enumerate().find(|(_, v)| **v > max) {
+            return Err(crate::error::Error::Other(format!(
+                "{}: input `{name}` lane {lane} is {v}, above {max} ({what}): outside the unit's domain, which the pipeline never feeds it\n  fix: give `{name}` at most {max}",
+                u.name()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Input ports of a unit, in order.

@@ -46,6 +46,9 @@ impl Unit for PowerUnit {
             p("fs", Dir::Out, cfg.power_fmt(), 1, "table[round(x (N-1))]"),
         ]
     }
+    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
+        vec![("x", 1 << cfg.dot_frac_bits, "1.0: a clamped dot product")]
+    }
     /// The table's read register is its output register; an interpolating unit adds the
     /// interpolation after it; a squaring unit's chain of products is cut by
     /// `pipeline_depth` ([`crate::units::timing::SQUARING`]).

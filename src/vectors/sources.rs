@@ -33,14 +33,14 @@ impl Source {
                 src
             }
             Some(("random", n)) => {
-                let v: u64 = n.replace('_', "").parse().map_err(|_| bad())?;
                 let max = crate::limits::MAX_RANDOM_VECTORS;
-                if v == 0 || v > max {
-                    return Err(Error::Other(format!(
-                        "--source {s}: count out of range\n  fix: use random:N with 1 <= N <= {max} (MAX_RANDOM_VECTORS)"
-                    )));
-                }
-                Source::Random(v)
+                Source::Random(crate::limits::parse_count(
+                    &format!("--source {s}"),
+                    n,
+                    1,
+                    max,
+                    "MAX_RANDOM_VECTORS",
+                )?)
             }
             Some(("exhaustive", u)) => {
                 crate::names::check("--source", "exhaustive:UNIT", u)?;

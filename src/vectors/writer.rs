@@ -261,6 +261,34 @@ pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
     }
 }
 
+/// Refuse, before anything is written, a random dump of `n` records per target whose files
+/// would not fit the free space under `dir` (a dump that fills the disk fails only at the
+/// end, and fills it for everyone else meanwhile).
+fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<()> {
+    let per_record: u64 = targets
+        .iter()
+        .map(|t| {
+            let l = super::targets::layout(cfg, t);
+            u64::from(o.binary) * l.bytes() as u64 + u64::from(o.text) * (l.hex_digits() as u64 + 1)
+        })
+        .sum();
+    let need = per_record.saturating_mul(n);
+    let Some(free) = crate::limits::free_bytes(dir) else {
+        return Ok(());
+    };
+    if need > free {
+        let gb = |b: u64| b as f64 / 1e9;
+        return Err(Error::Other(format!(
+            "{}: {n} records of {} target(s) need about {:.1} GB, and the disk under it has {:.1} GB free\n  fix: fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
+            dir.display(),
+            targets.len(),
+            gb(need),
+            gb(free)
+        )));
+    }
+    Ok(())
+}
+
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
 fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
     if cfg.palette && matches!(src, Source::Scene(_)) {
@@ -294,6 +322,9 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
     check(cfg, src, o)?;
     crate::render::output::make_folder(dir)?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
+    if let Source::Random(n) = src {
+        check_space(cfg, *n, &targets, dir, o)?;
+    }
     let mut out = Vec::new();
     match src {
         Source::Exhaustive(unit) => {
