@@ -503,6 +503,43 @@ fn a_white_light_term_without_its_subtract_is_caught() {
     }
 }
 
+/// EMBM's units wrong in two ways, each caught on both simulators: the diffuse map's second
+/// texel read from the first's address (by the unit's random and exhaustive sets and the
+/// top's), and the last texel's sub-texel fraction one short (by the corners, which hold
+/// the map's far edge).
+#[test]
+fn embm_mutants_are_caught() {
+    use gbump::sim::regress::run_sets;
+    let (cfg, work, rtl) = mutant_rtl(
+        Some("tests/configs/embm.toml"),
+        "mutant_embm",
+        &[
+            ("env_fetch_diffuse", mutants::env_fetch_second_texel),
+            ("env_coords", mutants::env_coords_edge_fraction),
+        ],
+    );
+    let o = mutant_dump_options();
+    let mut sets = Vec::new();
+    for (src, targets) in [
+        (gbump::vectors::Source::Random(5_000), vec!["env_fetch_diffuse", "top"]),
+        (
+            gbump::vectors::Source::Exhaustive("env_fetch_diffuse".into()),
+            vec!["env_fetch_diffuse"],
+        ),
+        (gbump::vectors::Source::Corners(2), vec!["env_coords"]),
+    ] {
+        let targets: Vec<String> = targets.into_iter().map(String::from).collect();
+        let d = gbump::vectors::dump(&cfg, &src, &targets, &work.join("vectors"), &o).unwrap();
+        sets.extend(d.iter().map(|s| (s.manifest.clone(), None)));
+    }
+    let res = run_sets(&cfg, &sets, &rtl, &mutant_run_options(&work)).unwrap();
+    assert_eq!(res.len(), 8, "four sets on two simulators");
+    for r in res {
+        let out = r.outcome.unwrap();
+        assert!(out.failed >= 1, "{:?} {}: the mutant passed", r.sim, r.set);
+    }
+}
+
 #[test]
 fn regress_power_table_as_a_rom() {
     // The table's write port tied off: every top set runs on the ROM's contents (the load

@@ -141,3 +141,17 @@ pub fn half_sum_not_halved(text: &str) -> Option<String> {
     out += rest;
     (out != line).then(|| text.replacen(line, &out, 1))
 }
+
+/// env_fetch reading the block's first texel where its second, (x0 + 1, y0), belongs: the
+/// second RAM copy's address loses its increment. None when the design has no such read.
+pub fn env_fetch_second_texel(text: &str) -> Option<String> {
+    let from = ".raddr({y0, x1})";
+    text.contains(from).then(|| text.replacen(from, ".raddr({y0, x0})", 1))
+}
+
+/// env_coords with the last texel's fraction one sixteenth short: at the map's far edge
+/// the block's far texel weighs 15/16 instead of 1. None when the line is not there.
+pub fn env_coords_edge_fraction(text: &str) -> Option<String> {
+    let from = "lx ? 5'd16";
+    text.contains(from).then(|| text.replacen(from, "lx ? 5'd15", 1))
+}
