@@ -234,6 +234,20 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
     }
     let diffuse = |c| blend(cfg, c, &dfac[..n], &kd[..n], &lc[..n]);
     let specular = |c| blend(cfg, c, &sfac[..n], &kd[..n], &lc[..n]);
+    (out.stages, out.out) = colour_stages(cfg, frag, diffuse, specular);
+    out.dfac = dfac;
+    out.sfac = sfac;
+    out
+}
+
+/// The three colour stages from C_src in the configured blend order (paper Figs. 2 and 3),
+/// and the final colour rounded to codes.
+fn colour_stages(
+    cfg: &PipelineConfig,
+    frag: &FragmentIn,
+    diffuse: impl Fn([u32; 3]) -> [u32; 3],
+    specular: impl Fn([u32; 3]) -> [u32; 3],
+) -> ([[u32; 3]; 3], [u32; 3]) {
     let texture = |c| texture_modulate(cfg, c, frag.tex);
     let s0 = diffuse(frag.c_src.map(|c| c << cfg.colour_guard_bits));
     let (s1, s2) = match cfg.blend_order {
@@ -246,11 +260,7 @@ pub fn shade(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>
             (s, texture(s))
         }
     };
-    out.stages = [s0, s1, s2];
-    out.out = colour_round(cfg, s2);
-    out.dfac = dfac;
-    out.sfac = sfac;
-    out
+    ([s0, s1, s2], colour_round(cfg, s2))
 }
 
 /// Shade one fragment of an EMBM configuration (`env_map_bits` > 0) with `maps`: the
@@ -296,26 +306,10 @@ pub fn shade_embm(cfg: &PipelineConfig, maps: &super::env_map::EnvMaps, state: &
             }
         }
     }
+    // A blend the configuration leaves out has zero factors: it passes its colour on.
     let diffuse = |c| blend(cfg, c, &dfac[..4], &kone, &td);
     let specular = |c| blend(cfg, c, &sfac[..4], &kone, &ts);
-    let texture = |c| texture_modulate(cfg, c, frag.tex);
-    let s0 = if cfg.diffuse {
-        diffuse(frag.c_src.map(|c| c << cfg.colour_guard_bits))
-    } else {
-        frag.c_src.map(|c| c << cfg.colour_guard_bits)
-    };
-    let (s1, s2) = match cfg.blend_order {
-        BlendOrder::DiffuseTextureSpecular => {
-            let t = texture(s0);
-            (t, if cfg.specular { specular(t) } else { t })
-        }
-        BlendOrder::TextureLast => {
-            let s = if cfg.specular { specular(s0) } else { s0 };
-            (s, texture(s))
-        }
-    };
-    out.stages = [s0, s1, s2];
-    out.out = colour_round(cfg, s2);
+    (out.stages, out.out) = colour_stages(cfg, frag, diffuse, specular);
     out.dfac = dfac;
     out.sfac = sfac;
     out

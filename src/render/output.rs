@@ -25,13 +25,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
             return std::fs::write(path, bytes).map_err(|e| Error::io(path, e));
         }
     }
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
-    // A result file's folder is made as the output folders of every command are.
-    make_folder(dir)?;
-    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    let (dir, tmp) = temp_beside(path)?;
     let res = std::fs::write(&tmp, bytes).and_then(|_| {
         // Inside `commit::together` the rename waits for the other results.
         if crate::commit::defer(&tmp, path) {
@@ -45,8 +39,21 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         return Err(Error::io(path, e));
     }
     // What a killed run left in this folder goes now that a run has written there.
-    crate::temp_files::clean_stale(dir, 0);
+    crate::temp_files::clean_stale(&dir, 0);
     Ok(())
+}
+
+/// The folder of result file `path`, made as every command's output folder is, and the
+/// temporary name beside it that a write goes to before its rename (the pattern
+/// `temp_files::clean_stale` clears after a killed run).
+fn temp_beside(path: &Path) -> Result<(std::path::PathBuf, std::path::PathBuf)> {
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
+    make_folder(dir)?;
+    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    Ok((dir.to_path_buf(), tmp))
 }
 
 /// Where an output path really leads: `path` itself, or the file at the end of its chain of
@@ -86,12 +93,7 @@ pub fn check_writable(path: &Path) -> Result<()> {
             path.display()
         )));
     }
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
-    make_folder(dir)?;
-    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    let (_, tmp) = temp_beside(path)?;
     std::fs::write(&tmp, b"").map_err(|e| {
         Error::Other(format!(
             "{}: this run could not write its result here ({e})\n  fix: give a path in a folder you can write to",

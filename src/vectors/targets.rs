@@ -549,16 +549,20 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
             inputs: vec![t.framed.to_vec()],
         });
     }
-    if cfg.embm() {
-        return embm_unit_stims(cfg, s, t, v);
-    }
-    let k: Vec<i64> = (0..n).map(|j| s.state.lights[j].k).collect();
-    // The colours the blends multiply by (white: every code at 1.0, and no lc input).
-    let lc: Vec<i64> = (0..n)
-        .flat_map(|j| cfg.light_colour(s.state.lights[j].lc).map(|x| x as i64))
-        .collect();
+    // Each blend's k and light colours (white: every code at 1.0, and no lc input); under
+    // EMBM k is one and the colours are each map's four texels.
+    let (k, lc_d, lc_s) = if cfg.embm() {
+        let texels = |map: usize| t.texels[map].iter().flat_map(|c| c.map(i64::from)).collect::<Vec<i64>>();
+        v.extend(embm_fetch_stims(cfg, s, t));
+        (vec![1i64 << cfg.k_frac_bits; n], texels(0), texels(1))
+    } else {
+        let lc: Vec<i64> = (0..n)
+            .flat_map(|j| cfg.light_colour(s.state.lights[j].lc).map(|x| x as i64))
+            .collect();
+        ((0..n).map(|j| s.state.lights[j].k).collect(), lc.clone(), lc)
+    };
     let white = cfg.white_lights;
-    for j in 0..n {
+    for j in (0..n).filter(|_| !cfg.embm()) {
         let ls = &s.state.lights[j];
         // The normalise instances: H's, and L's when it is interpolated too.
         let (norm_l, norm_h) = crate::model::normalise::renormalised(cfg);
@@ -591,6 +595,7 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     // The serial form: one accumulate per slot, then the finish; the parallel form: one blend.
     let blend_in = |c_in: [u32; 3], f: &[i64], v: &mut Vec<UnitStim>, unit: &'static str| {
         let c = c_in.iter().map(|&y| y as i64).collect::<Vec<_>>();
+        let lc = if unit == "specular_blend" { &lc_s } else { &lc_d };
         if !serial {
             let mut inputs = vec![c, f[..n].to_vec(), k.clone()];
             if !white {
@@ -644,48 +649,20 @@ pub fn unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim
     v
 }
 
-/// The rest of [`unit_stims`] for an EMBM top: `env_coords`, each map's `env_fetch`, and the
-/// blends with the weights as factors, k one and the texels as light colours.
-fn embm_unit_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded, mut v: Vec<UnitStim>) -> Vec<UnitStim> {
-    v.push(UnitStim {
+/// An EMBM top's own units among [`unit_stims`]: `env_coords` on the fetched normal's x and
+/// y, then each map's `env_fetch` at the block it chose.
+fn embm_fetch_stims(cfg: &PipelineConfig, s: &TopStim, t: &Shaded) -> Vec<UnitStim> {
+    let mut v = vec![UnitStim {
         unit: "env_coords",
         inputs: vec![t.b[..2].to_vec(), s.state.env.st.to_vec(), s.state.env.m.to_vec()],
-    });
-    let at = vec![vec![t.env.x0], vec![t.env.y0]];
+    }];
     for (on, unit) in [(cfg.diffuse, "env_fetch_diffuse"), (cfg.specular, "env_fetch_specular")] {
         if on {
-            v.push(UnitStim { unit, inputs: at.clone() });
+            v.push(UnitStim {
+                unit,
+                inputs: vec![vec![t.env.x0], vec![t.env.y0]],
+            });
         }
-    }
-    let k = vec![1i64 << cfg.k_frac_bits; 4];
-    let lanes = |c: [u32; 3]| c.map(i64::from);
-    let colours = |map: usize| t.texels[map].iter().flat_map(|c| lanes(*c)).collect::<Vec<i64>>();
-    let order = crate::rtlgen::top::stage_order(cfg);
-    let mut c_in = s.frag.c_src.map(|c| c << cfg.colour_guard_bits);
-    for (i, unit) in order.iter().enumerate() {
-        let c = c_in.iter().map(|&y| y as i64).collect::<Vec<i64>>();
-        match *unit {
-            "diffuse_blend" if cfg.diffuse => v.push(UnitStim {
-                unit: "diffuse_blend",
-                inputs: vec![c, t.dfac[..4].to_vec(), k.clone(), colours(0)],
-            }),
-            "specular_blend" if cfg.specular => v.push(UnitStim {
-                unit: "specular_blend",
-                inputs: vec![c, t.sfac[..4].to_vec(), k.clone(), colours(1)],
-            }),
-            "texture_modulate" => v.push(UnitStim {
-                unit: "texture_modulate",
-                inputs: vec![c, s.frag.tex.iter().map(|&y| y as i64).collect()],
-            }),
-            _ => {}
-        }
-        c_in = t.stages[i];
-    }
-    if cfg.colour_guard_bits > 0 {
-        v.push(UnitStim {
-            unit: "colour_round",
-            inputs: vec![c_in.iter().map(|&y| y as i64).collect()],
-        });
     }
     v
 }
