@@ -183,6 +183,38 @@ fn queries_agree_with_the_interface() {
     }
 }
 
+/// light_accumulate's sum wraps at the accumulator's width as the RTL's adder does (an
+/// accumulator at its format's top plus a full term), and the unit's own corners evaluate.
+#[test]
+fn an_accumulator_wraps_as_the_rtl_does_and_its_corners_evaluate() {
+    let cfg = PipelineConfig::default();
+    let h = gbump::capi::GbumpConfig::new(cfg.clone()).unwrap();
+    let t = h.target("light_accumulate").unwrap();
+    let mut r = Record::new(&t.layout);
+    let set = |r: &mut Record, name: &str, lanes: &[i64]| {
+        for (i, v) in lanes.iter().enumerate() {
+            r.set_lane(t.layout.column(name), i as u32, *v);
+        }
+    };
+    let acc_max = cfg.acc_fmt().max_raw();
+    set(&mut r, "acc_in", &[acc_max; 3]);
+    set(&mut r, "f", &[1 << cfg.factor_frac()]);
+    set(&mut r, "k", &[1 << cfg.k_frac_bits]);
+    set(&mut r, "lc", &[cfg.colour_max() as i64; 3]);
+    let out = h.eval(t, &r).unwrap();
+    let term = (1i64 << cfg.factor_frac()) * (1 << cfg.k_frac_bits) * cfg.colour_max() as i64;
+    let wrapped = (acc_max + term) & ((1i64 << cfg.acc_fmt().width) - 1);
+    assert_eq!(out.lane_value(t.layout.column("acc"), 0), wrapped);
+    let u = gbump::units::unit("light_accumulate").unwrap();
+    for (why, lanes) in u.corners(&cfg) {
+        let mut r = Record::new(&t.layout);
+        for (port, v) in gbump::units::inputs(u, &cfg).iter().zip(&lanes) {
+            set(&mut r, port.name, v);
+        }
+        h.eval(t, &r).unwrap_or_else(|e| panic!("{why}: {e}"));
+    }
+}
+
 /// A configuration under an old field name is read, its warning kept in the handle: the
 /// library writes nothing to its host's stderr.
 #[test]

@@ -21,18 +21,26 @@ pub fn last_error() -> *const c_char {
     LAST_ERROR.with(|e| e.borrow().as_ptr())
 }
 
-/// Guarded calls running now, on any thread (their pool's workers included).
+/// Guarded calls running now, on any thread.
 static GUARDED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
-/// The panic hook, chained once in front of the host's: silent while a guarded call runs (its
-/// panic comes back as the call's error message, and a library writes nothing into its host's
-/// stderr), the previous hook's behaviour otherwise.
+thread_local! {
+    /// Whether this thread is inside a guarded call.
+    static IN_GUARD: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// The panic hook, chained once in front of the one before it (in the C library, this
+/// library's own): silent for a panic on a thread inside a guarded call, or on the library's
+/// thread pool while one runs (its batches), since that panic comes back as the call's error
+/// message and a library writes nothing into its host's stderr; the previous hook's
+/// behaviour for every other panic.
 fn quiet_panics() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            if GUARDED.load(std::sync::atomic::Ordering::SeqCst) == 0 {
+            let pool = rayon::current_thread_index().is_some() && GUARDED.load(std::sync::atomic::Ordering::SeqCst) > 0;
+            if !(IN_GUARD.with(|g| g.get()) || pool) {
                 previous(info);
             }
         }));
@@ -43,14 +51,15 @@ fn quiet_panics() {
 pub fn guard<T>(what: &str, fail: T, f: impl FnOnce() -> Result<T>) -> T {
     use std::sync::atomic::Ordering::SeqCst;
     quiet_panics();
-    struct Active;
+    struct Active(bool);
     impl Drop for Active {
         fn drop(&mut self) {
             GUARDED.fetch_sub(1, SeqCst);
+            IN_GUARD.with(|g| g.set(self.0));
         }
     }
     GUARDED.fetch_add(1, SeqCst);
-    let active = Active;
+    let active = Active(IN_GUARD.with(|g| g.replace(true)));
     let result = catch_unwind(AssertUnwindSafe(f));
     drop(active);
     match result {

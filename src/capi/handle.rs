@@ -133,7 +133,9 @@ impl GbumpConfig {
             let s = unit_stim(&t.layout, t.name, input);
             let u = crate::units::unit(t.name).expect("a target is a unit");
             crate::units::check_domain(u, &self.cfg, &s.inputs)?;
-            Ok(unit_record(&t.layout, &s, &eval_unit(&self.cfg, &self.mem.view(), &s)))
+            let outs = eval_unit(&self.cfg, &self.mem.view(), &s);
+            crate::units::check_outputs(u, &self.cfg, &outs)?;
+            Ok(unit_record(&t.layout, &s, &outs))
         }
     }
 }

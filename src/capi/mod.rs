@@ -41,7 +41,8 @@ Conventions of every function below:
 - Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
   files (gbump_column gives each column's offset); targets are \"top\" and the units the
   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
-  record's last bit are ignored.
+  record's last bit are ignored. A unit record the pipeline could never feed the unit (a
+  table index above 1.0, a texel block beyond the map) is refused with the port and bound.
 - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call (the
   limit the Python module's arrays have too).
 - Threads: a handle may be read from several threads at once, but not while

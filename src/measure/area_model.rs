@@ -117,9 +117,12 @@ pub fn model_area(cfg: &PipelineConfig) -> ModelArea {
             .ge(&COEFFICIENTS);
         }
         if let Some(m) = u.memory(cfg) {
-            // An interpolating power unit reads two knots per port: two copies.
+            // An interpolating power unit reads two knots per port: two copies; an EMBM fetch
+            // reads its 2x2 block from four.
             let per_port = if i.unit == "power_unit" && cfg.power_unit != crate::config::PowerUnitKind::Table {
                 2
+            } else if i.unit.starts_with("env_fetch") {
+                crate::rtlgen::env_v::FETCH_COPIES
             } else {
                 1
             };

@@ -1,7 +1,8 @@
 //! `gbump error` for an EMBM configuration (`env_map_bits` > 0): `env_coords`' weights against
 //! the exact sub-texel fractions, and the whole pipeline against exact arithmetic on the same
-//! quantised inputs and maps: s = st + M·b exactly, the texel coordinate unclamped below its
-//! clamp, exact bilinear weights, unrounded blend sums with saturation, exact c·t/max.
+//! quantised inputs and maps: s = st + M·b exactly, the texel coordinate clamped to the map as
+//! the hardware clamps it but not truncated to a sixteenth, exact bilinear weights, unrounded
+//! blend sums with saturation, exact c·t/max.
 
 use super::unit_error::ErrorStats;
 use crate::config::{BlendOrder, PipelineConfig};

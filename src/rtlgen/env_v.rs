@@ -14,6 +14,9 @@ pub fn coord_width(cfg: &PipelineConfig) -> u32 {
     cfg.lh_bits + cfg.normal_bits + 1
 }
 
+/// RAM copies of each environment map: one per texel of the bilinear block.
+pub const FETCH_COPIES: u32 = 4;
+
 /// Bits of a bilinear weight (u1.8: 0..=256).
 pub const WEIGHT_BITS: u32 = WEIGHT_FRAC_BITS + 1;
 

@@ -57,9 +57,6 @@ impl Unit for Blend {
     fn included(&self, cfg: &PipelineConfig) -> bool {
         cfg.light_mode == crate::config::LightMode::Parallel && if self.specular { cfg.specular } else { cfg.diffuse }
     }
-    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
-        super::blend_domain(cfg, None)
-    }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         let mut v = vec![
             p(

@@ -124,19 +124,19 @@ impl Unit for EnvCoords {
                 vec![flat.clone(), vec![lf.max_raw(), lf.max_raw()], id.clone()],
             ),
             (
-                "largest perturbation: s = st + M b at its extremes, clamps".into(),
-                vec![
-                    vec![nf.min_raw(), nf.min_raw()],
-                    vec![lf.max_raw(), lf.min_raw()],
-                    vec![lf.max_raw(); 4],
-                ],
+                "the largest s: st at its top and M b at its most positive (both negative extremes), clamps to the last texel".into(),
+                vec![vec![nf.min_raw(); 2], vec![lf.max_raw(); 2], vec![lf.min_raw(); 4]],
             ),
             (
-                "most negative codes everywhere: the widest sum".into(),
+                "the most negative s: st at its bottom and M b at its most negative, clamps to the first texel".into(),
+                vec![vec![nf.max_raw(); 2], vec![lf.min_raw(); 2], vec![lf.min_raw(); 4]],
+            ),
+            (
+                "most negative codes everywhere: st and M b pull against each other".into(),
                 vec![vec![nf.min_raw(); 2], vec![lf.min_raw(); 2], vec![lf.min_raw(); 4]],
             ),
             (
-                "a tilt of half a texel: equal weights across the block".into(),
+                "a tilt of half a texel (where the L/H word resolves 2/n): equal weights across the block".into(),
                 vec![
                     vec![1 << (cfg.normal_bits - 2), 1 << (cfg.normal_bits - 2)],
                     vec![centre(2), centre(2)],

@@ -101,9 +101,10 @@ impl Unit for EnvFetch {
         // A read is exact: the model is the equation.
         vec![self.eval(cfg, m, i)[0].iter().map(|&x| x as f64).collect()]
     }
-    fn resources(&self, _cfg: &PipelineConfig) -> crate::units::resources::Resources {
-        // Four RAM copies (their read registers included) and two increments.
-        crate::units::resources::Resources::default()
+    fn resources(&self, cfg: &PipelineConfig) -> crate::units::resources::Resources {
+        // Four RAM copies (their read registers included, counted as memory) and the two
+        // increments x0 + 1, y0 + 1.
+        crate::units::resources::Resources::adders(2 * cfg.env_map_bits)
     }
     fn verilog(&self, cfg: &PipelineConfig) -> Vec<(&'static str, String)> {
         vec![

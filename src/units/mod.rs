@@ -260,27 +260,8 @@ pub fn absence(u: &dyn Unit, cfg: &PipelineConfig) -> String {
     )
 }
 
-/// The blends' input bounds: a factor at most 1.0, k at most 1.0, a stage colour at most
-/// full scale, and (`acc`) a sum of at most `terms` full terms f·k·Lc.
-pub(crate) fn blend_domain(cfg: &PipelineConfig, terms: Option<(&'static str, i64)>) -> Vec<(&'static str, i64, &'static str)> {
-    let (f1, k1) = (1i64 << cfg.factor_frac(), 1i64 << cfg.k_frac_bits);
-    let mut v = vec![
-        ("c_in", cfg.stage_colour_max(), "full scale: a stage colour saturates there"),
-        ("f", f1, "1.0: a dot product or power is clamped there"),
-        ("k", k1, "1.0: the largest light weight"),
-    ];
-    if let Some((port, n)) = terms {
-        v.push((
-            port,
-            n * f1 * k1 * cfg.colour_max() as i64,
-            "the sum of the light slots' largest terms",
-        ));
-    }
-    v
-}
-
 /// Refuse inputs of `u` outside its domain ([`Unit::input_max`]), naming the port, the lane,
-/// the value and the bound.
+/// the value and the bound: the ports whose model indexes a table or map by its value.
 pub fn check_domain(u: &dyn Unit, cfg: &PipelineConfig, inputs: &[Vec<i64>]) -> crate::error::Result<()> {
     let ports = self::inputs(u, cfg);
     for (name, max, what) in u.input_max(cfg) {
@@ -289,6 +270,26 @@ pub fn check_domain(u: &dyn Unit, cfg: &PipelineConfig, inputs: &[Vec<i64>]) -> 
             return Err(crate::error::Error::Other(format!(
                 "{}: input `{name}` lane {lane} is {v}, above {max} ({what}): outside the unit's domain, which the pipeline never feeds it\n  fix: give `{name}` at most {max}",
                 u.name()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Refuse outputs of `u` that do not fit their ports (`outs` as `eval` gives them): inputs
+/// every lane of which fits its format can still take a sum beyond the output's (an
+/// accumulator fed its format's largest value and a full term). The pipeline never does.
+pub fn check_outputs(u: &dyn Unit, cfg: &PipelineConfig, outs: &[Vec<i64>]) -> crate::error::Result<()> {
+    for (port, lanes) in outputs(u, cfg).iter().zip(outs) {
+        let f = port.fmt;
+        if let Some((lane, v)) = lanes.iter().enumerate().find(|(_, v)| **v < f.min_raw() || **v > f.max_raw()) {
+            return Err(crate::error::Error::Other(format!(
+                "{}: these inputs take output `{}` lane {lane} to {v}, beyond its {} format ({}..={}): outside the unit's domain, which the pipeline never feeds it\n  fix: give inputs whose result fits (a smaller sum or term)",
+                u.name(),
+                port.name,
+                f.name(),
+                f.min_raw(),
+                f.max_raw()
             )));
         }
     }
@@ -332,6 +333,21 @@ pub fn markdown_table(cfg: &PipelineConfig) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An output beyond its port's format is refused, naming the unit, the port and the
+    /// value; one inside passes.
+    #[test]
+    fn an_output_beyond_its_format_is_refused() {
+        let cfg = PipelineConfig::default();
+        let u = unit("dot_clamp").unwrap();
+        let top = 1i64 << cfg.dot_frac_bits;
+        check_outputs(u, &cfg, &[vec![top]]).unwrap();
+        let e = check_outputs(u, &cfg, &[vec![2 * top]]).unwrap_err().to_string();
+        assert!(
+            e.contains("dot_clamp") && e.contains("output `f` lane 0") && e.contains("fix:"),
+            "{e}"
+        );
+    }
 
     /// Every unit's model output fits its output ports, over its corners and, where it has
     /// one, its exhaustive domain; and the exact version is never more than a few LSBs away.
@@ -399,6 +415,8 @@ mod tests {
                             assert!(v >= port.fmt.min_raw() && v <= port.fmt.max_raw(), "{} input {v}", u.name());
                         }
                     }
+                    // Its own edges are inside its domain: the C library evaluates them.
+                    check_domain(u, &cfg, i).unwrap_or_else(|e| panic!("{}: {e}", u.name()));
                     let out = u.eval(&cfg, &mem, i);
                     let ex = u.exact(&cfg, &mem, i);
                     for ((port, lanes), exl) in outputs(u, &cfg).iter().zip(&out).zip(&ex) {

@@ -51,12 +51,6 @@ impl Unit for LightAccumulate {
     fn latency(&self, cfg: &PipelineConfig) -> u32 {
         super::timing::latency(cfg, super::timing::ACCUMULATE)
     }
-    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
-        // The running sum before the last slot holds the other slots' terms.
-        let mut v = super::blend_domain(cfg, Some(("acc_in", cfg.lights as i64 - 1)));
-        v.retain(|d| d.0 != "c_in");
-        v
-    }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![
             p(
@@ -186,11 +180,6 @@ impl Unit for BlendFinish {
     }
     fn included(&self, cfg: &PipelineConfig) -> bool {
         serial_blend(cfg)
-    }
-    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
-        let mut v = super::blend_domain(cfg, Some(("acc", cfg.lights as i64)));
-        v.retain(|d| d.0 == "c_in" || d.0 == "acc");
-        v
     }
     fn ports(&self, c: &PipelineConfig) -> Vec<Port> {
         vec![

@@ -18,9 +18,6 @@ impl Unit for TextureModulate {
     fn source(&self) -> &'static str {
         "paper §5.1: the texture stage between the blends"
     }
-    fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
-        vec![("c_in", cfg.stage_colour_max(), "full scale: a stage colour saturates there")]
-    }
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p(
