@@ -677,7 +677,7 @@ impl PipelineConfig {
                         .any(|w| msg.contains(w));
                     let fix = match key.filter(|_| typed).and_then(|k| LIMITS.iter().find(|l| l.0 == k)) {
                         Some(&(k, lo, hi, why)) => format!("`{k}` is a whole number in {lo}..={hi} ({why})"),
-                        None => fix,
+                        None => crate::error::wrong_kind(text, "configuration").unwrap_or(fix),
                     };
                     Error::Input { file, line, col, msg, fix }
                 }

@@ -154,6 +154,33 @@ fn inline_tables(before: &str) -> Vec<String> {
     open
 }
 
+/// The kind of gbump file `text` is by its top-level keys, when it is clearly the other kind
+/// than the one being read: a scene has `objects` or `camera`; a pipeline configuration has
+/// none of those and fields only a configuration has. `reading` is "scene" or
+/// "configuration"; the answer is the refusal's fix, or None.
+pub fn wrong_kind(text: &str, reading: &str) -> Option<String> {
+    let table = text.parse::<toml::Table>().ok()?;
+    let scene = table.contains_key("objects") || table.contains_key("camera");
+    let config_only = [
+        "light_mode",
+        "normal_bits",
+        "lh_bits",
+        "bump_state",
+        "pipeline_depth",
+        "dot_frac_bits",
+    ];
+    let config = !scene && table.keys().any(|k| config_only.contains(&k.as_str()));
+    match reading {
+        "configuration" if scene => Some(
+            "this is a scene file (it has `objects` or `camera`), not a pipeline configuration: pass it with --scene, which derives the configuration (`gbump config --scene FILE` prints it)".into(),
+        ),
+        "scene" if config => Some(
+            "this is a pipeline configuration (it has fields such as `light_mode` or `normal_bits` at the top), not a scene: pass it with --config, or put its fields under `[pipeline]` in a scene".into(),
+        ),
+        _ => None,
+    }
+}
+
 /// Turn a `toml` deserialisation error into an [`Error::Input`] that names file, line and column.
 ///
 /// The parser's message names neither the key nor, at a missing value, anything at all

@@ -1026,6 +1026,24 @@ fn cases() -> Vec<Case> {
             vec!["lib.so", "built from other sources than this gbump", "gbump --version", "fix:"],
         ),
         (
+            "a scene file given as --config",
+            vec![("s.toml", TORUS.into())],
+            vec!["rtl", "--config", "s.toml", "--out", "out"],
+            vec!["s.toml", "this is a scene file", "--scene"],
+        ),
+        (
+            "a configuration given as --scene",
+            vec![("c.toml", "lights = 2\nlight_mode = \"parallel\"\n".into())],
+            vec!["render", "--scene", "c.toml", "--out", "out"],
+            vec!["c.toml", "pipeline configuration", "--config"],
+        ),
+        (
+            "a vector set named twice",
+            vec![],
+            vec!["regress", "--vectors", "v.json", "--vectors", "./v.json", "--work", "w"],
+            vec!["v.json", "given more than once", "fix:"],
+        ),
+        (
             // A program, not a library: named as such, not as a build of other sources.
             "cosim --lib given the gbump executable",
             vec![],

@@ -251,8 +251,16 @@ pub fn pick_config(config: Option<&Path>, scene: Option<&str>) -> Result<Pipelin
 impl Scene {
     /// Parse scene TOML; `file` names it in errors and `base` resolves relative paths.
     pub fn from_toml(file: &str, text: &str, base: &Path) -> Result<Scene> {
-        let mut s: Scene =
-            toml::from_str(text).map_err(|e| toml_error(file, text, &e, "compare with a built-in scene: `gbump scenes --show NAME`"))?;
+        let mut s: Scene = toml::from_str(text).map_err(|e| {
+            let fix = crate::error::wrong_kind(text, "scene");
+            toml_error(
+                file,
+                text,
+                &e,
+                fix.as_deref()
+                    .unwrap_or("compare with a built-in scene: `gbump scenes --show NAME`"),
+            )
+        })?;
         s.base = base.to_path_buf();
         s.file = file.to_string();
         // Each override's place, however it is written (a `[pipeline]` table, dotted keys,

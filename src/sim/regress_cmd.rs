@@ -27,6 +27,17 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
             given.push(std::path::absolute(p).map_err(|e| Error::io(p, e))?);
         }
     }
+    // A set named twice (directly, or in a folder named too) would run twice.
+    let mut seen = std::collections::BTreeSet::new();
+    if let Some(twice) = given
+        .iter()
+        .find(|p| !seen.insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())))
+    {
+        return Err(Error::Other(format!(
+            "--vectors: {} is given more than once\n  fix: name each set (or its folder) once",
+            twice.display()
+        )));
+    }
     if !vectors.is_empty() && given.is_empty() {
         return Err(Error::Other(format!(
             "--vectors {}: no .json manifests there\n  fix: point at a folder or the .json manifests `gbump vectors --out DIR` wrote",
