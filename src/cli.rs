@@ -790,9 +790,24 @@ pub fn run() -> anyhow::Result<()> {
             // the first manifest's (written to the work folder, so generated headers can
             // name it), and check_sets refuses any set of another. Nothing is written or
             // said until every given set has been checked whole (`regress`'s `announce`).
+            let stream = stream.map(|s| crate::sim::stream::StreamSource::parse(&s)).transpose()?;
             let mut from_manifest = None;
-            let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty()) {
-                (None, None, false) => {
+            let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty(), &stream) {
+                // A scene streams under the scene's own configuration unless one is given, as
+                // `gbump vectors --source scene:NAME` writes it, and says so.
+                (None, None, _, Some(crate::sim::stream::StreamSource::Scene(name))) => {
+                    let own = ConfigPick {
+                        config: None,
+                        scene: Some(name.clone()),
+                    };
+                    let c = own.resolve()?;
+                    eprintln!(
+                        "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
+                        c.hash()
+                    );
+                    (c, own)
+                }
+                (None, None, false, _) => {
                     let first = crate::sim::regress_cmd::given_manifests(&vectors)?.remove(0);
                     let m = crate::vectors::manifest::read_fields(&first)?;
                     let dir = std::path::absolute(&work).map_err(|e| Error::io(&work, e))?;
@@ -812,25 +827,6 @@ pub fn run() -> anyhow::Result<()> {
             crate::vectors::targets::resolve(&cfg, &opts.targets)?;
             not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
-                let src = crate::sim::stream::StreamSource::parse(&src)?;
-                // A scene streams under the scene's own configuration unless one is given, as
-                // `gbump vectors --source scene:NAME` writes it, and says so.
-                let (cfg, pick) = match (&src, &pick.config, &pick.scene) {
-                    (crate::sim::stream::StreamSource::Scene(name), None, None) => {
-                        let own = ConfigPick {
-                            config: None,
-                            scene: Some(name.clone()),
-                        };
-                        let c = own.resolve()?;
-                        crate::vectors::targets::resolve(&c, &opts.targets)?;
-                        eprintln!(
-                            "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
-                            c.hash()
-                        );
-                        (c, own)
-                    }
-                    _ => (cfg, pick),
-                };
                 if matches!(sim, SimChoice::Icarus) {
                     return Err(Error::Other(
                         "--stream runs on Verilator (its C++ harness reads the pipe)\n  fix: drop --sim icarus, or write the vectors with `gbump vectors` and run them with --vectors".into(),

@@ -107,6 +107,15 @@ pub struct FastModel {
 impl FastModel {
     /// The fast model of `cfg` with power table `table` and (palette configurations) `palette`.
     pub fn new(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>) -> FastModel {
+        FastModel::with_maps(cfg, table, palette, super::env_map::default_maps(cfg))
+    }
+
+    /// The fast model of `cfg` with the memories `mem` (EMBM's maps among them).
+    pub fn of(cfg: &PipelineConfig, mem: &crate::units::Memories) -> FastModel {
+        FastModel::with_maps(cfg, mem.table, Some(mem.palette), mem.env.clone())
+    }
+
+    fn with_maps(cfg: &PipelineConfig, table: &PowerTable, palette: Option<&Palette>, maps: super::env_map::EnvMaps) -> FastModel {
         let half = 1i64 << (cfg.normal_bits - 1);
         let factor = cfg.factor_frac();
         let dot_max = 1i64 << cfg.dot_frac_bits;
@@ -146,17 +155,8 @@ impl FastModel {
             }),
             self_shadow: cfg.self_shadow,
             built: (cfg.frame_build || cfg.frame_quaternion).then(|| cfg.clone()),
-            embm: cfg.embm().then(|| (cfg.clone(), super::env_map::default_maps(cfg))),
+            embm: cfg.embm().then(|| (cfg.clone(), maps)),
         }
-    }
-
-    /// The fast model of `cfg` with the memories `mem` (EMBM's maps among them).
-    pub fn of(cfg: &PipelineConfig, mem: &crate::units::Memories) -> FastModel {
-        let mut f = FastModel::new(cfg, mem.table, Some(mem.palette));
-        if let Some((_, maps)) = &mut f.embm {
-            *maps = mem.env.clone();
-        }
-        f
     }
 
     /// The frame a state's fragments are placed in: its own, or the one `frame_build` or

@@ -17,10 +17,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     if let Ok(meta) = std::fs::metadata(path) {
         if !meta.is_file() {
             if meta.is_dir() {
-                return Err(Error::Other(format!(
-                    "{}: is a folder, where this run writes a file\n  fix: move the folder away, or give the output another path (folder)",
-                    path.display()
-                )));
+                return Err(folder_in_the_way(path));
             }
             return std::fs::write(path, bytes).map_err(|e| Error::io(path, e));
         }
@@ -41,6 +38,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     // What a killed run left in this folder goes now that a run has written there.
     crate::temp_files::clean_stale(&dir, 0);
     Ok(())
+}
+
+/// The refusal of a result file whose path is a folder.
+fn folder_in_the_way(path: &Path) -> Error {
+    Error::Other(format!(
+        "{}: is a folder, where this run writes a file\n  fix: move the folder away, or give the output another path (folder)",
+        path.display()
+    ))
 }
 
 /// The folder of result file `path`, made as every command's output folder is, and the
@@ -88,10 +93,7 @@ pub fn check_writable(path: &Path) -> Result<()> {
     let path = target.as_path();
     crate::limits::check_not_input(path)?;
     if path.is_dir() {
-        return Err(Error::Other(format!(
-            "{}: is a folder, where this run writes a file\n  fix: move the folder away, or give the output another path (folder)",
-            path.display()
-        )));
+        return Err(folder_in_the_way(path));
     }
     let (_, tmp) = temp_beside(path)?;
     std::fs::write(&tmp, b"").map_err(|e| {

@@ -55,8 +55,8 @@ pub fn env_coords(cfg: &PipelineConfig) -> String {
     ));
     let bl = |i: u32| Factor::signed(format!("b[{}:{}]", i * nb + nb - 1, i * nb), nb);
     let ml = |i: u32| Factor::signed(format!("m[{}:{}]", i * lh + lh - 1, i * lh), lh);
-    for (axis, (mx, my)) in [("x", (0, 2)), ("y", (1, 3))] {
-        let i = if axis == "x" { 0 } else { 1 };
+    for (i, (axis, (mx, my))) in [("x", (0, 2)), ("y", (1, 3))].into_iter().enumerate() {
+        let i = i as u32;
         let prod = sum_of_products(
             &mut w,
             Form::of(cfg),
