@@ -943,14 +943,10 @@ pub fn run() -> anyhow::Result<()> {
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
-            if cfg.embm() {
-                out!("\nImage error per scene: none, scenes are not rasterised for an EMBM configuration yet (`gbump engines` measures EMBM in f64)");
-            } else {
-                out!(
-                    "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
-                    crate::measure::scene_error::scene_error_table(&scenes)
-                );
-            }
+            out!(
+                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
+                crate::measure::scene_error::scene_error_table(&scenes)
+            );
         }
         Cmd::PowerSpace {
             pick,

@@ -363,6 +363,9 @@ pub struct PerFragment {
     /// Whether L is formed at the pixel from the interpolated vector to the light and H from
     /// it and the viewer direction (`pixel_lh`, Blinn's per-pixel lighting).
     pub pixel_lh: bool,
+    /// Environment-map address bits per axis (`env_map_bits`, EMBM: the lighting read from
+    /// per-object maps at perturbed coordinates); 0: none.
+    pub env_map_bits: u32,
 }
 
 impl PerFragment {
@@ -381,6 +384,7 @@ impl PerFragment {
         triangle_frame: false,
         frame_quaternion: false,
         pixel_lh: false,
+        env_map_bits: 0,
     };
 }
 
@@ -418,6 +422,9 @@ impl std::fmt::Display for PerFragment {
         if self.frame_quaternion {
             write!(f, ", frame_quaternion = true")?;
         }
+        if self.env_map_bits > 0 {
+            write!(f, ", env_map_bits = {}", self.env_map_bits)?;
+        }
         if self.pixel_lh {
             write!(f, ", pixel_lh = true")?;
         }
@@ -441,6 +448,7 @@ impl PipelineConfig {
             triangle_frame: self.triangle_frame,
             frame_quaternion: self.frame_quaternion,
             pixel_lh: self.pixel_lh,
+            env_map_bits: self.env_map_bits,
         }
     }
 }

@@ -180,7 +180,7 @@ fn interpolated_k_removes_the_spot_cones_seams() {
     );
 }
 
-/// `gbump config --engine` prints the configuration the table names; an f64-only engine is
+/// `gbump config --engine` prints the configuration the table names; an unknown engine is
 /// refused with the engines that have a path.
 #[test]
 fn the_config_command_prints_an_engines_path() {
@@ -199,12 +199,12 @@ fn the_config_command_prints_an_engines_path() {
     let out = Command::cargo_bin("gbump")
         .unwrap()
         .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["config", "--scene", SPOT, "--engine", "embm"])
+        .args(["config", "--scene", SPOT, "--engine", "phong"])
         .assert()
         .failure();
     let err = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
     assert!(
-        err.contains("--engine embm") && err.contains("f64 only") && err.contains("sgi"),
+        err.contains("--engine phong") && err.contains("no such engine") && err.contains("sgi"),
         "{err}"
     );
 }

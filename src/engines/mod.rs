@@ -82,6 +82,20 @@ impl Engine {
         cfg.triangle_frame = v.triangle_frame;
         cfg.frame_quaternion = v.frame_quaternion;
         cfg.pixel_lh = v.pixel_lh;
+        cfg.env_map_bits = v.env_map_bits;
+        if v.env_map_bits > 0 {
+            // EMBM (`validate_embm`): the four light slots are the bilinear filter's texels in
+            // one parallel blend per map, the map coordinates enter per fragment, the stored
+            // normal's x and y are (du, dv), and the lighting is in the maps.
+            cfg.lights = 4;
+            cfg.light_mode = LightMode::Parallel;
+            cfg.bump_state = BumpStateAt::Fragment;
+            cfg.palette = false;
+            cfg.white_lights = false;
+            cfg.power_rom = false;
+            cfg.dot_frac_bits = cfg.dot_frac_bits.max(crate::model::env_map::WEIGHT_FRAC_BITS);
+            cfg.power_frac_bits = cfg.power_frac_bits.max(crate::model::env_map::WEIGHT_FRAC_BITS);
+        }
         if v.renormalise_bump {
             // The fetched normal is renormalised, which a palette (unfiltered, loaded as
             // given) refuses: the engine's path fetches the stored codes instead.
@@ -116,9 +130,6 @@ impl Engine {
 /// per object rather than per pixel.
 pub struct Ctx<'a> {
     pub p: &'a Prepared<'a>,
-    /// Each object's centre (the mean of its vertices): where EMBM's stationary lights are
-    /// evaluated.
-    pub centres: Vec<DVec3>,
     /// Texels along EMBM's environment-map side.
     pub embm_map: u32,
     /// Texels along a face edge of the Cg engine's normalisation cube map.
@@ -130,14 +141,8 @@ pub struct Ctx<'a> {
 
 impl<'a> Ctx<'a> {
     pub fn new(p: &'a Prepared<'a>, maps: Maps) -> Ctx<'a> {
-        let centres = p
-            .objects
-            .iter()
-            .map(|o| o.mesh.verts.iter().map(|v| v.p).sum::<DVec3>() / o.mesh.verts.len().max(1) as f64)
-            .collect();
         Ctx {
             p,
-            centres,
             embm_map: maps.embm_map,
             cg_cube: maps.cg_cube,
             renormalise_map: maps.renormalise_map,

@@ -1,10 +1,11 @@
 //! Everything per object that the renderers share: mesh, normal map (f64), stored bump
-//! map (codes), texture, per-triangle bump states, and power tables per shininess.
+//! map (codes), texture, per-triangle bump states, EMBM's maps, and power tables per shininess.
 
 use super::tri_state::{tri_states, TriState};
 use crate::bumpmap::{NormalMap, StoredMap};
 use crate::config::PipelineConfig;
 use crate::error::Result;
+use crate::model::env_map::EnvMaps;
 use crate::model::PowerTable;
 use crate::scene::mesh::{tessellate, Mesh};
 use crate::scene::{Camera, Object, Scene, Texture};
@@ -16,6 +17,10 @@ pub struct ObjectAssets {
     pub normals: NormalMap,
     pub stored: StoredMap,
     pub tris: Vec<TriState>,
+    /// EMBM's diffuse and specular maps of this object (empty without EMBM).
+    pub env: EnvMaps,
+    /// The mean of the mesh's vertices: where EMBM's stationary lights are evaluated.
+    pub centre: DVec3,
 }
 
 /// An object's f64 normal map: its height field, differentiated, curved for a facet-baked
@@ -51,11 +56,18 @@ impl<'a> Prepared<'a> {
             mirrored_refused(scene, cfg, objects.len(), &mesh)?;
             let tris = tri_states(scene, cfg, &camera, &mesh)?;
             tables.entry(o.shininess).or_insert_with(|| PowerTable::build(cfg, o.shininess));
+            let centre = crate::reference::embm_f64::centre(&mesh);
+            let env = match cfg.embm() {
+                true => super::env_setup::object_maps(cfg, scene, &camera, objects.len(), centre),
+                false => EnvMaps::default(),
+            };
             objects.push(ObjectAssets {
                 mesh,
                 normals,
                 stored,
                 tris,
+                env,
+                centre,
             });
         }
         Ok(Prepared {

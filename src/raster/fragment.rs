@@ -74,6 +74,11 @@ pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {
 pub fn state_at(p: &Prepared, hit: &Hit) -> BumpState {
     let o = &p.objects[hit.obj as usize];
     let ts = &o.tris[hit.tri as usize];
+    if p.cfg.embm() {
+        let mut st = ts.fixed;
+        st.env = super::env_setup::fragment_env(p.cfg, &p.camera, &o.mesh.corners(hit.tri), ts.fixed.env.m, hit.bary);
+        return st;
+    }
     if p.cfg.interpolate.is_none() && !p.cfg.interpolate_k && !p.cfg.frame_transform {
         return ts.fixed;
     }

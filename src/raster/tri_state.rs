@@ -58,6 +58,12 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
             k: [0.0; MAX_LIGHTS],
             fixed: BumpState::default(),
         };
+        if cfg.embm() {
+            // EMBM's lights are in its maps: the setup sends the triangle's 2×2 matrix alone.
+            st.fixed.env.m = super::env_setup::send_matrix(cfg, cam, &v);
+            out.push(st);
+            continue;
+        }
         for (i, light) in lights.iter().enumerate() {
             let ld = light_dir(light, centroid, n);
             let hd = half_vector(ld, cam.to_viewer);

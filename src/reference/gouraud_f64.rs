@@ -27,6 +27,10 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
 /// The equations with L, H and k as the configuration's per-fragment choices say (per
 /// triangle unless it interpolates them).
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
+    if p.cfg.embm() {
+        // EMBM's lighting is in its maps.
+        return super::embm_f64::shade(p, hit, g);
+    }
     shade_interpolating(p, hit, g, p.cfg.per_fragment())
 }
 
@@ -142,6 +146,12 @@ pub fn shade_with(
             spec += lc * powi_exact(bn.dot(hv).clamp(0.0, 1.0), cfg.power_exponent(so.shininess));
         }
     }
+    combine(cfg, so, g, diff, spec)
+}
+
+/// The pipeline's colour from diffuse and specular light `diff` and `spec`: the clamped
+/// Gouraud colour, the texture and the blends in the configuration's order.
+pub fn combine(cfg: &crate::config::PipelineConfig, so: &crate::scene::Object, g: &PixelGeom, diff: DVec3, spec: DVec3) -> DVec3 {
     let tex = crate::raster::assets::texture_at(so, g.uv);
     let c = (g.c_src).clamp(DVec3::ZERO, DVec3::ONE);
     let s0 = (c + diff).min(DVec3::ONE);

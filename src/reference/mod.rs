@@ -4,8 +4,10 @@
 //! [`gouraud_f64`] evaluates the Gouraud bump equations themselves (per-triangle L and H,
 //! interpolated Gouraud colour, filtered but unnormalised bump normals) without any
 //! quantisation. Golden − gouraud_f64 is quantisation error; gouraud_f64 − perpixel is the
-//! algorithm's own error.
+//! algorithm's own error. [`embm_f64`] is EMBM's geometry and maps, which its engine and
+//! its bit-accurate path share.
 
 pub mod cube_map;
+pub mod embm_f64;
 pub mod gouraud_f64;
 pub mod perpixel;

@@ -40,6 +40,9 @@ pub fn golden_image(p: &Prepared, frags: &[FragmentRecord], bar: &ProgressBar) -
             bar.inc(chunk.len() as u64);
             chunk.iter().map(|f| {
                 let o = &p.objects[f.obj as usize];
+                if p.cfg.embm() {
+                    return crate::model::pipeline::shade_embm(p.cfg, &o.env, &f.state, &f.frag).colour();
+                }
                 let table = &p.tables[&p.scene.objects[f.obj as usize].shininess];
                 shade(p.cfg, table, o.stored.palette(), &f.state, &f.frag).colour()
             })

@@ -411,16 +411,9 @@ impl Scene {
     /// Check that `cfg` can render this scene.
     pub fn check_config(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
         if cfg.embm() {
-            // The rasteriser makes no sphere-map coordinates, matrices or per-object maps yet.
-            return Err(Error::field(
-                cfg_file,
-                "env_map_bits",
-                format!(
-                    "scene `{}` ({}): scenes are not rendered through an EMBM configuration yet (its map coordinates, matrices and per-object maps are not rasterised); `gbump engines` renders EMBM in f64",
-                    self.name, self.file
-                ),
-                "use corners, random:N or exhaustive sets (on the power-up maps) for the RTL, or set env_map_bits = 0",
-            ));
+            // EMBM's lights, any number and colour, are in each object's maps, and it reads
+            // no power table.
+            return Ok(());
         }
         let n = self.bump_lights().count() as u32;
         if n > cfg.lights {

@@ -84,18 +84,12 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
             sets.push((s.manifest, Some(sim)));
         }
     }
-    // Scene sets of a palette configuration would need a palette per object (refused by dump).
-    if o.scenes && cfg.palette {
-        eprintln!(
-            "regress: the built-in scene sets are skipped: a palette configuration's scenes need a palette per object (random, corner and unit sets still run)"
-        );
+    // Scene sets of a configuration with memories loaded per object are refused by dump.
+    let scene_sets = crate::vectors::sources::scene_sets_made(cfg, "the built-in scene sets are skipped");
+    if let (true, Err(e)) = (o.scenes, &scene_sets) {
+        eprintln!("regress: {e}\n  (random, corner and unit sets still run)");
     }
-    if o.scenes && cfg.embm() {
-        eprintln!(
-            "regress: the built-in scene sets are skipped: scenes are not rasterised for an EMBM configuration yet (random, corner and unit sets still run)"
-        );
-    }
-    if o.scenes && !cfg.palette && !cfg.embm() && has("top") {
+    if o.scenes && scene_sets.is_ok() && has("top") {
         for (name, _) in crate::scene::builtin::ALL {
             let scene = crate::scene::Scene::load(name)?;
             if scene.check_config(cfg, "").is_err() {

@@ -92,11 +92,7 @@ pub fn streams(cfg: &PipelineConfig, src: &StreamSource, seed: u64, size: Option
             }]
         }
         StreamSource::Scene(name) => {
-            if cfg.palette {
-                return Err(Error::Other(format!(
-                    "--stream scene:{name}: scene vectors of a palette configuration are not made yet (each palettised map has its own palette)\n  fix: use random:N or corners, or set palette = false"
-                )));
-            }
+            crate::vectors::sources::scene_sets_made(cfg, &format!("--stream scene:{name}"))?;
             let size_arg = size.map_or(String::new(), |(w, h)| format!(" --size {w}x{h}"));
             scene_groups(cfg, name, size)?
                 .into_iter()

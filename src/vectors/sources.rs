@@ -435,9 +435,33 @@ unsafe fn fragments_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, f
     fragments(cfg, rng, k, frags)
 }
 
+/// Refuse scene vectors for a configuration whose memories a scene loads per object, which no
+/// harness does yet: a palette (each palettised map has its own) and EMBM's environment maps
+/// (each object's lighting). `what` names the request (`--source scene:NAME`).
+pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
+    let (why, fix) = if cfg.palette {
+        (
+            "each palettised map has its own palette, loaded per object",
+            "use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false",
+        )
+    } else if cfg.embm() {
+        (
+            "each object has its own environment maps (its lighting), loaded per object; `gbump render` renders the scene through this configuration's golden model",
+            "use corners, random:N or exhaustive:env_coords (all on the power-up maps), or set env_map_bits = 0",
+        )
+    } else {
+        return Ok(());
+    };
+    Err(Error::Other(format!(
+        "{what}: scene vectors of {} configuration are not made yet: {why}\n  fix: {fix}",
+        if cfg.palette { "a palette" } else { "an EMBM" }
+    )))
+}
+
 /// The fragments of scene `name` rendered at `size` (default: the scene's own), grouped by
 /// their object's shininess: (shininess, set stem, stimuli), one group per power table.
 pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+    scene_sets_made(cfg, &format!("scene:{name}"))?;
     let s = crate::scene::Scene::load(name)?;
     s.check_config(cfg, "pipeline config")?;
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));

@@ -291,11 +291,8 @@ fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: 
 
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
 fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
-    if cfg.palette && matches!(src, Source::Scene(_)) {
-        return Err(Error::Other(
-            "scene vectors of a palette configuration are not written yet: each palettised map has its own palette, loaded per object\n  fix: use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false"
-                .into(),
-        ));
+    if let Source::Scene(name) = src {
+        super::sources::scene_sets_made(cfg, &format!("--source scene:{name}"))?;
     }
     if let Some(n) = o.shininess {
         crate::limits::check_count("--shininess", n.into(), 0, crate::limits::MAX_SHININESS.into(), "MAX_SHININESS")?;
