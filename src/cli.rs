@@ -944,7 +944,12 @@ pub fn run() -> anyhow::Result<()> {
             }
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
             out!(
-                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour)\n\n{}",
+                "\nImage error per scene at {w}x{h} (covered pixels; LSBs of colour{})\n\n{}",
+                if cfg.embm() {
+                    "; the f64 columns are EMBM's own equations, `reference::embm_f64`, with each object's maps"
+                } else {
+                    ""
+                },
                 crate::measure::scene_error::scene_error_table(&scenes)
             );
         }

@@ -17,6 +17,9 @@ fn scene(edit: impl Fn(&str) -> String) -> Vec<(&'static str, Vec<u8>)> {
 /// A configuration with the frame_transform unit, to which a frame source is added.
 const FRAME: &str = "bump_state = \"fragment\"\nlight_mode = \"parallel\"\ninterpolate = \"hl\"\nrenormalise = true\nrenormalise_bump = true\nframe_transform = true\n";
 
+/// An EMBM configuration (`tests/configs/embm.toml`'s fields).
+const EMBM: &str = "lights = 4\nlight_mode = \"parallel\"\nbump_state = \"fragment\"\nenv_map_bits = 4\n";
+
 fn cfg(text: &str) -> Vec<(&'static str, Vec<u8>)> {
     vec![("c.toml", text.into())]
 }
@@ -533,6 +536,24 @@ fn cases() -> Vec<Case> {
             cfg("palette = true\n"),
             vec!["vectors", "--source", "scene:torus_caps", "--config", "c.toml", "--out", "out"],
             vec!["palette", "palette = false"],
+        ),
+        (
+            "scene vectors of an EMBM configuration",
+            cfg(EMBM),
+            vec!["vectors", "--source", "scene:torus_caps", "--config", "c.toml", "--out", "out"],
+            vec!["scene:torus_caps", "EMBM", "its own environment maps", "env_map_bits = 0"],
+        ),
+        (
+            "a streamed scene of an EMBM configuration",
+            cfg(EMBM),
+            vec!["regress", "--stream", "scene:torus_caps", "--config", "c.toml", "--work", "out"],
+            vec!["--stream scene:torus_caps", "EMBM", "random:N"],
+        ),
+        (
+            "an EMBM render through the RTL",
+            cfg(EMBM),
+            vec!["render", "--rtl", "--scene", "torus_caps", "--config", "c.toml", "--out", "out", "--work", "w"],
+            vec!["EMBM", "its own environment maps", "drop --rtl"],
         ),
         (
             "corrupt vector manifest",

@@ -52,14 +52,11 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
     crate::names::check(&s.file, "name", &s.name)?;
     crate::limits::check_render(&s.file, w, h, s.triangles())?;
     if let Some(work) = r.rtl {
-        if cfg.palette {
-            let from = r
-                .config
-                .map_or_else(|| format!("{} (its derived configuration)", s.file), |p| p.display().to_string());
-            return Err(Error::Other(format!(
-                "{from}: render --rtl with palette = true: scene fragments are not sent through a palette top yet (each palettised map has its own palette, loaded per object)\n  fix: drop --rtl, or set palette = false"
-            )));
-        }
+        // Scene fragments reach the RTL as a scene vector set: refused where one is.
+        let from = r
+            .config
+            .map_or_else(|| format!("{} (its derived configuration)", s.file), |p| p.display().to_string());
+        crate::vectors::sources::scene_sets_made(&cfg, &format!("{from}: render --rtl"))?;
         crate::sim::require(crate::sim::Sim::Verilator)?;
         // A work folder the simulators cannot take is refused before anything is rendered
         // or written.

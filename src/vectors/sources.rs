@@ -437,7 +437,8 @@ unsafe fn fragments_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, f
 
 /// Refuse scene vectors for a configuration whose memories a scene loads per object, which no
 /// harness does yet: a palette (each palettised map has its own) and EMBM's environment maps
-/// (each object's lighting). `what` names the request (`--source scene:NAME`).
+/// (each object's lighting). `what` names the request (`--source scene:NAME`); the fix says
+/// what to use instead, or to drop `--rtl` where `what` renders.
 pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
     let (why, fix) = if cfg.palette {
         (
@@ -446,11 +447,16 @@ pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
         )
     } else if cfg.embm() {
         (
-            "each object has its own environment maps (its lighting), loaded per object; `gbump render` renders the scene through this configuration's golden model",
+            "each object has its own environment maps (its lighting), loaded per object; `gbump render` without --rtl renders the scene through this configuration's golden model",
             "use corners, random:N or exhaustive:env_coords (all on the power-up maps), or set env_map_bits = 0",
         )
     } else {
         return Ok(());
+    };
+    let fix = if what.contains("--rtl") {
+        format!("drop --rtl (the golden image needs no vectors), or {}", fix.rsplit(", or ").next().unwrap_or(fix))
+    } else {
+        fix.to_string()
     };
     Err(Error::Other(format!(
         "{what}: scene vectors of {} configuration are not made yet: {why}\n  fix: {fix}",
