@@ -73,7 +73,19 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     if let Source::Exhaustive(u) = &src {
         crate::vectors::writer::exhaustive_unit_present(&cfg, u)?;
     }
-    let targets = crate::vectors::targets::resolve(&cfg, r.targets)?;
+    let mut targets = crate::vectors::targets::resolve(&cfg, r.targets)?;
+    if let (Source::Scene(_), true, false) = (&src, cfg.embm(), r.targets.iter().any(|t| t.starts_with("env_fetch"))) {
+        // A scene's fragments read each object's maps, which only the top loads: `all` leaves
+        // the map readers' own sets out (named, they are refused with the reason).
+        let skipped: Vec<String> = targets.iter().filter(|t| t.starts_with("env_fetch")).cloned().collect();
+        if !skipped.is_empty() {
+            targets.retain(|t| !t.starts_with("env_fetch"));
+            eprintln!(
+                "note: --source {source}: {} left out (a scene's fragments read each object's own maps, which only the top loads)",
+                skipped.join(", ")
+            );
+        }
+    }
     if let Source::Exhaustive(u) = &src {
         // An exhaustive source sweeps one unit's inputs: it writes that unit's set only.
         if r.targets.iter().any(|t| t != "all" && t != u) {

@@ -12,7 +12,9 @@
 // prints its evaluation rate (the upper bound of any regression).
 // --vectors - --count N reads N records from standard input (a pipe from `gbump regress
 // --stream`): records are read in blocks into a ring, so memory stays constant for any N.
-// Usage: harness --vectors FILE.bin|- [--count N] [--table FILE.hex] [--bubbles N] [--stall N] [--dump FILE] [--max-errors N] [--raw CYCLES]
+// Usage: harness --vectors FILE.bin|- [--count N] [--table FILE.hex] [--MEMORY FILE.hex] [--bubbles N] [--stall N] [--dump FILE] [--max-errors N] [--raw CYCLES]
+// (--MEMORY: another memory of the top, loaded through its port after the table: EMBM's
+// --env-diffuse and --env-specular, a scene set's object maps)
 #include "V{{TOP}}.h"
 #include "verilated.h"
 #include <chrono>
@@ -121,7 +123,7 @@ static double cpu_seconds() {
     return t.tv_sec + t.tv_nsec * 1e-9;
 }
 
-static bool read_table(const char* path, std::vector<uint32_t>& out) {
+static bool read_words(const char* path, std::vector<uint32_t>& out, int words) {
     std::ifstream f(path);
     if (!f) return false;
     std::string line;
@@ -132,7 +134,7 @@ static bool read_table(const char* path, std::vector<uint32_t>& out) {
         std::string tok;
         if (ss >> tok) out.push_back((uint32_t)strtoul(tok.c_str(), nullptr, 16));
     }
-    return (int)out.size() == POWER_TABLE_WORDS;
+    return (int)out.size() == words;
 }
 
 int main(int argc, char** argv) {
@@ -145,6 +147,7 @@ int main(int argc, char** argv) {
     long long count = 0;
     long bubbles = 0;
     long stall = 0;
+{{MEM_VARS}}
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--vectors") && i + 1 < argc) vec_path = argv[++i];
         else if (!strcmp(argv[i], "--table") && i + 1 < argc) table_path = argv[++i];
@@ -155,11 +158,13 @@ int main(int argc, char** argv) {
         else if (!strcmp(argv[i], "--bubbles") && i + 1 < argc) bubbles = atol(argv[++i]);
         else if (!strcmp(argv[i], "--stall") && i + 1 < argc) stall = atol(argv[++i]);
         else if (!strcmp(argv[i], "--count") && i + 1 < argc) count = atoll(argv[++i]);
+{{MEM_ARGS}}
         else { fprintf(stderr, "FATAL: unknown argument %s\n", argv[i]); return 2; }
     }
     if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
     std::vector<uint32_t> table;
-    if (table_path && !read_table(table_path, table)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, POWER_TABLE_WORDS); return 2; }
+    if (table_path && !read_words(table_path, table, POWER_TABLE_WORDS)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, POWER_TABLE_WORDS); return 2; }
+{{MEM_READ}}
     Records recs;
     if (!recs.open(vec_path, count)) return 2;
     const size_t n = recs.n;
@@ -178,6 +183,7 @@ int main(int argc, char** argv) {
     if (table_path)
         for (int i = 0; i < POWER_TABLE_WORDS; ++i) { top.power_table_we = 1; top.power_table_waddr = i; top.power_table_wdata = table[i]; tick(); }
     top.power_table_we = 0;
+{{MEM_LOAD}}
 
     if (raw_cycles > 0) {
         const uint8_t* rin = recs.next(0, 0);

@@ -538,22 +538,10 @@ fn cases() -> Vec<Case> {
             vec!["palette", "palette = false"],
         ),
         (
-            "scene vectors of an EMBM configuration",
+            "an EMBM scene's map reader as a target of its own",
             cfg(EMBM),
-            vec!["vectors", "--source", "scene:torus_caps", "--config", "c.toml", "--out", "out"],
-            vec!["scene:torus_caps", "EMBM", "its own environment maps", "env_map_bits = 0"],
-        ),
-        (
-            "a streamed scene of an EMBM configuration",
-            cfg(EMBM),
-            vec!["regress", "--stream", "scene:torus_caps", "--config", "c.toml", "--work", "out"],
-            vec!["--stream scene:torus_caps", "EMBM", "random:N"],
-        ),
-        (
-            "an EMBM render through the RTL",
-            cfg(EMBM),
-            vec!["render", "--rtl", "--scene", "torus_caps", "--config", "c.toml", "--out", "out", "--work", "w"],
-            vec!["EMBM", "its own environment maps", "drop --rtl"],
+            vec!["vectors", "--source", "scene:torus_caps", "--target", "env_fetch_specular", "--config", "c.toml", "--out", "out"],
+            vec!["--target env_fetch_specular", "own maps", "only the top loads", "exhaustive:env_fetch_specular"],
         ),
         (
             "corrupt vector manifest",

@@ -396,9 +396,18 @@ fn regress_visa_quaternion_frame_pipeline() {
 #[test]
 fn regress_embms_environment_map_pipeline() {
     // EMBM (paper §3.3): env_coords and the two maps' env_fetch on both simulators, with
-    // their own corner, random and exhaustive sets; the light path's units are absent and
-    // scenes are not rasterised for it yet (skipped, said).
-    let t = regress_no_scenes("tests/configs/embm.toml", "embm");
+    // their own corner, random and exhaustive sets, and every built-in scene on its objects'
+    // own maps (one set per object); the light path's units are absent.
+    let t = regress_small_scenes("tests/configs/embm.toml", "embm", (2_000, 20_000), &[]);
+    let r = runs(&t);
+    for sim in ["icarus", "verilator"] {
+        let scenes: Vec<_> = r.iter().filter(|x| x.0 == sim && x.1.starts_with("scene_")).collect();
+        // Twelve scenes, cg_wall_floor's two objects in two sets.
+        assert_eq!(scenes.len(), 13, "{sim}: {scenes:?}");
+        assert!(scenes.iter().any(|x| x.1 == "scene_cg_wall_floor_o1_top"), "{sim}: {scenes:?}");
+        // A set on its own maps has no power-up run: the power-up maps are not its.
+        assert!(!r.iter().any(|x| x.1.starts_with("scene_") && x.1.ends_with("+power-up")), "{t}");
+    }
     for unit in ["env_coords", "env_fetch_diffuse", "env_fetch_specular"] {
         assert_unit_sets_ran(&t, unit);
     }
@@ -413,6 +422,88 @@ fn regress_embms_environment_map_pipeline() {
             "{sim}: every block of the 16x16 map\n{t}"
         );
     }
+}
+
+/// A scene's EMBM set holds its object's maps, which the harnesses load: the same records
+/// fail on the power-up maps (the harness run without them), and the RTL renders the scene
+/// as the golden model does, from files and streamed.
+#[test]
+fn embm_scene_sets_run_on_their_objects_maps() {
+    let dir = root().join("target/test-regress/embm_scene");
+    let _ = std::fs::remove_dir_all(&dir);
+    let cfg = "tests/configs/embm.toml";
+    gbump()
+        .args([
+            "vectors",
+            "--source",
+            "scene:cg_wall_floor",
+            "--size",
+            "48x32",
+            "--target",
+            "top",
+            "--config",
+            cfg,
+        ])
+        .arg("--out")
+        .arg(dir.join("v"))
+        .assert()
+        .success();
+    let mut sets = Vec::new();
+    for o in ["o0", "o1"] {
+        let m = dir.join(format!("v/scene_cg_wall_floor_{o}_top.json"));
+        let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&m).unwrap()).unwrap();
+        assert!(
+            j["env_maps"]["diffuse"]["name"].as_str().unwrap().ends_with("_env_diffuse.hex"),
+            "{j}"
+        );
+        sets.push(m.display().to_string());
+    }
+    let work = dir.join("work").display().to_string();
+    let t = regress(
+        &["--sim", "both", "--config", cfg, "--vectors", &sets[0], "--vectors", &sets[1]],
+        "embm_scene/work",
+    );
+    assert_eq!(runs(&t).len(), 4, "{t}");
+    // The harness regress built, on the first set without its maps: the power-up maps light
+    // another scene.
+    let build = std::fs::read_dir(Path::new(&work).join("build"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.file_name().unwrap().to_string_lossy().starts_with("verilator_harness"))
+        .expect("the harness build");
+    let v = dir.join("v");
+    let out = std::process::Command::new(build.join("harness"))
+        .args([
+            "--vectors",
+            "scene_cg_wall_floor_o0_top.bin",
+            "--table",
+            "scene_cg_wall_floor_o0_top_power_table.hex",
+        ])
+        .current_dir(&v)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&out.stdout);
+    assert!(!out.status.success() && !log.contains(" 0 failed"), "{log}");
+    // Rendered through the RTL and streamed: the same images and verdicts.
+    let r = gbump()
+        .args(["render", "--rtl", "--scene", "cg_wall_floor", "--size", "48x32", "--config", cfg])
+        .arg("--out")
+        .arg(dir.join("img"))
+        .arg("--work")
+        .arg(dir.join("render"))
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&r.get_output().stdout).into_owned() + &String::from_utf8_lossy(&r.get_output().stderr);
+    assert!(text.contains("0 pixel(s) differ"), "{text}");
+    let t = regress(
+        &["--stream", "scene:cg_wall_floor", "--scene-size", "48x32", "--config", cfg],
+        "embm_scene/stream",
+    );
+    assert_eq!(
+        runs(&t).iter().filter(|x| x.1.starts_with("stream_scene_cg_wall_floor_o")).count(),
+        2,
+        "{t}"
+    );
 }
 
 #[test]

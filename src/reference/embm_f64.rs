@@ -31,7 +31,10 @@ pub fn coords_at(cam: &Camera, v: &[Vertex; 3], bary: [f64; 3]) -> DVec2 {
 /// components of its T and B (the averaged, re-orthonormalised frame the setup sends).
 pub fn triangle_matrix(cam: &Camera, v: &[Vertex; 3]) -> [DVec2; 2] {
     let (_, t, b) = triangle_frame(v);
-    [DVec2::new(t.dot(cam.right), t.dot(cam.up)), DVec2::new(b.dot(cam.right), b.dot(cam.up))]
+    [
+        DVec2::new(t.dot(cam.right), t.dot(cam.up)),
+        DVec2::new(b.dot(cam.right), b.dot(cam.up)),
+    ]
 }
 
 /// The mean of a mesh's vertices: where an object's map lights are evaluated.
@@ -120,6 +123,10 @@ pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
     let bypass = cfg.skip_flat && (nb - DVec3::Z).length() < 1e-9;
     let (diff, spec) = maps_lighting(p, hit, nb, cfg.env_map_side());
     let d = if cfg.diffuse && so.diffuse && !bypass { diff } else { DVec3::ZERO };
-    let s = if cfg.specular && so.specular && !bypass { spec } else { DVec3::ZERO };
+    let s = if cfg.specular && so.specular && !bypass {
+        spec
+    } else {
+        DVec3::ZERO
+    };
     super::gouraud_f64::combine(cfg, so, g, d, s)
 }

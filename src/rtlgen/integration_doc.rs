@@ -98,6 +98,16 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         cfg.power_frac_bits
     );
     }
+    if cfg.embm() {
+        let n = cfg.env_map_side();
+        s += &format!(
+            "**Loading the environment maps** (EMBM, `env_map_bits = {e}`). Each map present (`env_diffuse_*`, `env_specular_*`) is written like the power table, one texel per rising edge with its `_we` high: texel (x, y) of the {n}x{n} map at address y*{n} + x, a {w}-bit word {{B, G, R}} with R in the low {cb} bits (the i-th data line of a `_env_diffuse.hex` or `_env_specular.hex` file, after its `//` header, is the word for address i), {words} words a map, under the same rule: only while no fragment is in flight. A port writes all four copies of its map at once. A scene's vector set (`gbump vectors --source scene:NAME`) runs on its object's own maps, one set per object, which its manifest names (`env_maps`); the top testbench loads them with `+env_diffuse=FILE +env_specular=FILE` and the C++ harness with `--env-diffuse FILE --env-specular FILE`. Every other set runs on the power-up maps (the init files).\n\n",
+            e = cfg.env_map_bits,
+            w = 3 * cfg.colour_bits,
+            cb = cfg.colour_bits,
+            words = n * n
+        );
+    }
     s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline. ";
     s += if cfg.skip_flat {
         "In this configuration a flat bump normal (the code of (0, 0, 1)) also clears both (paper §5.4.2's bypass).\n\n"

@@ -118,7 +118,16 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     s += &format!(
         "  lint:\n    default_tool: verilator\n    filesets: [rtl, waivers, package]\n    toplevel: {top}\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n"
     );
-    let plus = "[INIT_FILE, vectors, table, bubbles, max_errors]";
+    // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
+    let others: Vec<&'static str> = crate::rtlgen::top::memories(cfg)
+        .iter()
+        .map(|m| m.prefix)
+        .filter(|p| *p != crate::units::POWER_TABLE)
+        .collect();
+    let plus = format!(
+        "[INIT_FILE, vectors, table, {}bubbles, max_errors]",
+        others.iter().map(|p| format!("{p}, ")).collect::<String>()
+    );
     s += &format!(
         "  sim_icarus:\n    default_tool: icarus\n    filesets: [rtl, tb]\n    toplevel: tb_top\n    parameters: {plus}\n    tools:\n      icarus:\n        iverilog_options: [-g2005, -Wall]\n"
     );
@@ -131,6 +140,9 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     );
     s += "  vectors:\n    datatype: file\n    paramtype: plusarg\n    description: top vector set in text form (gbump vectors --target top --format hex), one record per line\n";
     s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
+    for p in &others {
+        s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata after the table (a scene set's _{p}.hex); without it the power-up contents\n");
+    }
     s += "  bubbles:\n    datatype: int\n    paramtype: plusarg\n    description: idle in_valid for 1-3 cycles before every Nth record\n";
     s += "  max_errors:\n    datatype: int\n    paramtype: plusarg\n    description: stop after this many mismatches (default 20)\n";
     s

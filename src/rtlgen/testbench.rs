@@ -44,6 +44,16 @@ fn slice(rec: &str, lsb: u32, width: u32) -> String {
     format!("{rec}[{}:{lsb}]", lsb + width - 1)
 }
 
+/// The top's memories other than the power table (a palette, EMBM's maps): each loadable
+/// from a file by the testbench (`+PREFIX=FILE`) and the harness (`--PREFIX FILE`, `_` as
+/// `-`).
+fn other_memories(cfg: &PipelineConfig) -> Vec<crate::units::Memory> {
+    crate::rtlgen::top::memories(cfg)
+        .into_iter()
+        .filter(|m| m.prefix != crate::units::POWER_TABLE)
+        .collect()
+}
+
 /// The top testbench (Icarus and Verilator --binary); the pipeline powers up with `rtl`'s
 /// init file.
 pub fn tb_top(cfg: &PipelineConfig, rtl: &Rtl) -> String {
@@ -100,16 +110,25 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
             connect.push(format!(".{0}({0})", c.name));
         }
     }
-    // The other memories' load ports idle: the vectors assume their power-up contents.
-    for m in crate::rtlgen::top::memories(cfg)
-        .iter()
-        .filter(|m| m.prefix != crate::units::POWER_TABLE)
-    {
+    // The other memories' load ports idle unless +PREFIX=FILE names contents to load (a set
+    // with its own maps); otherwise the vectors assume their power-up contents.
+    let mut mem_load = Vec::new();
+    for m in other_memories(cfg) {
         for (sig, w) in [("we", 1), ("waddr", m.addr_bits), ("wdata", m.data_bits)] {
             let r = if w > 1 { format!("[{}:0] ", w - 1) } else { String::new() };
             decls.push(format!("    reg {r}{}_{sig} = 0;", m.prefix));
             connect.push(format!(".{0}_{sig}({0}_{sig})", m.prefix));
         }
+        let p = m.prefix;
+        decls.push(format!(
+            "    reg [{}:0] {p}_mem [0:{}];\n    reg [8*512-1:0] {p}_file;",
+            m.data_bits - 1,
+            m.depth - 1
+        ));
+        mem_load.push(format!(
+            "        if ($value$plusargs(\"{p}=%s\", {p}_file)) begin\n            $readmemh({p}_file, {p}_mem);\n            for (i = 0; i < {d}; i = i + 1) begin\n                {p}_we = 1'b1; {p}_waddr = i; {p}_wdata = {p}_mem[i];\n                @(negedge clk);\n            end\n            {p}_we = 1'b0;\n        end",
+            d = m.depth
+        ));
     }
     let out = l.column("out_c");
     let mut s = pt(cfg);
@@ -133,6 +152,7 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         ("OUT_HI", (out.lsb + out.width - 1).to_string()),
         ("OUT_LO", out.lsb.to_string()),
         ("TRI_START", tri_start_bit(&l).map_or("1'b0".into(), |b| format!("stim[{b}]"))),
+        ("MEM_LOAD", mem_load.join("\n")),
     ]);
     s.extend(banks(cfg));
     s.push(("OUT_DEPTH", crate::rtlgen::top::output_depth(cfg).unwrap_or(0).to_string()));
@@ -282,11 +302,23 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         p += " printf(\"\\n\");";
         print.push(p);
     }
-    for m in crate::rtlgen::top::memories(cfg)
-        .iter()
-        .filter(|m| m.prefix != crate::units::POWER_TABLE)
-    {
-        assign.push(format!("            top.{}_we = 0;", m.prefix));
+    let (mut vars, mut args, mut read, mut load) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for m in other_memories(cfg) {
+        let p = m.prefix;
+        assign.push(format!("            top.{p}_we = 0;"));
+        vars.push(format!("    const char* {p}_path = nullptr;\n    std::vector<uint32_t> {p}_words;"));
+        args.push(format!(
+            "        else if (!strcmp(argv[i], \"--{}\") && i + 1 < argc) {p}_path = argv[++i];",
+            p.replace('_', "-")
+        ));
+        read.push(format!(
+            "    if ({p}_path && !read_words({p}_path, {p}_words, {d})) {{ fprintf(stderr, \"FATAL: %s: expected %d words of {p}\\n\", {p}_path, {d}); return 2; }}",
+            d = m.depth
+        ));
+        load.push(format!(
+            "    if ({p}_path)\n        for (int i = 0; i < {d}; ++i) {{ top.{p}_we = 1; top.{p}_waddr = i; top.{p}_wdata = {p}_words[i]; tick(); }}\n    top.{p}_we = 0;",
+            d = m.depth
+        ));
     }
     let out = l.column("out_c");
     let mut s = pt(cfg);
@@ -299,6 +331,10 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         ("OUT_LSB", out.lsb.to_string()),
         ("OUT_W", out.width.to_string()),
         ("II", cfg.initiation_interval().to_string()),
+        ("MEM_VARS", vars.join("\n")),
+        ("MEM_ARGS", args.join("\n")),
+        ("MEM_READ", read.join("\n")),
+        ("MEM_LOAD", load.join("\n")),
         (
             "TRI_START",
             tri_start_bit(&l).map_or("false".into(), |b| format!("(get_bits(rin, {b}, 1) != 0)")),

@@ -305,7 +305,8 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                 }
             };
             let mut loads = vec![true];
-            if bench != Bench::Units && !power_up_done && m.shininess == cfg.shininess {
+            // A set with its own maps means nothing on the power-up ones.
+            if bench != Bench::Units && !power_up_done && m.shininess == cfg.shininess && m.env_maps.is_none() {
                 loads.push(false);
                 power_up_done = true;
             }
@@ -323,6 +324,9 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         if let Some(t) = &table {
                             args.extend(["--table".into(), t.clone()]);
                         }
+                        for (flag, f) in env_files(&m, &dir) {
+                            args.extend([format!("--{}", flag.replace('_', "-")), f]);
+                        }
                         if o.bubbles > 0 {
                             args.extend(["--bubbles".into(), o.bubbles.to_string()]);
                         }
@@ -335,6 +339,9 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         let mut plus = vec![format!("+vectors={}", file(&m.hex)), format!("+max_errors={}", o.max_errors)];
                         if let Some(t) = &table {
                             plus.push(format!("+table={t}"));
+                        }
+                        if bench != Bench::Units {
+                            plus.extend(env_files(&m, &dir).into_iter().map(|(flag, f)| format!("+{flag}={f}")));
                         }
                         if bench == Bench::Units {
                             plus.push(format!("+unit={}", m.target));
@@ -374,4 +381,16 @@ fn every_record(out: super::verdict::Outcome, count: u64, what: &str) -> Result<
         )));
     }
     Ok(out)
+}
+
+/// A set's environment maps as (harness option name, path): `env_diffuse` and
+/// `env_specular` (`--env-diffuse` for the C++ harness, `+env_diffuse=` for the testbench),
+/// none for a set on the power-up maps.
+pub fn env_files(m: &crate::vectors::manifest::Manifest, dir: &Path) -> Vec<(&'static str, String)> {
+    m.env_maps.as_ref().map_or_else(Vec::new, |e| {
+        vec![
+            ("env_diffuse", dir.join(&e.diffuse.name).display().to_string()),
+            ("env_specular", dir.join(&e.specular.name).display().to_string()),
+        ]
+    })
 }

@@ -42,12 +42,12 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let frags = fragments(&p, &rasterise(&p)?);
     let bg = crate::raster::fragment::colour_codes(glam::DVec3::from_array(scene.camera.background), cfg.colour_max());
     let mut img = vec![bg; (w * h) as usize];
-    for set in sets {
+    // The dump's groups in their order (`scene_groups`): one set each.
+    let key = |obj: u32| crate::vectors::sources::group_key(cfg, &scene, obj);
+    let keys: std::collections::BTreeSet<u32> = frags.iter().map(|f| key(f.obj)).collect();
+    for (set, k) in sets.into_iter().zip(keys) {
         let (m, dir) = verify(&set.manifest)?;
-        let mine: Vec<_> = frags
-            .iter()
-            .filter(|f| scene.objects[f.obj as usize].shininess == m.shininess)
-            .collect();
+        let mine: Vec<_> = frags.iter().filter(|f| key(f.obj) == k).collect();
         let out = dir.join(format!("{}.rtl_out", m.module));
         let bin = dir.join(&m.bin.as_ref().expect("binary set").name);
         let args = [
@@ -59,6 +59,11 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
             out.display().to_string(),
             "--no-check".into(),
         ];
+        let env = super::regress::env_files(&m, &dir);
+        let args: Vec<String> = args
+            .into_iter()
+            .chain(env.into_iter().flat_map(|(flag, f)| [format!("--{}", flag.replace('_', "-")), f]))
+            .collect();
         let res = Verilator.run(&exe, &args, None, &dir, "verilator render")?;
         let bytes = std::fs::read(&out).map_err(|e| Error::io(&out, e))?;
         if bytes.len() != mine.len() * 8 || res.passed as usize != mine.len() {

@@ -66,6 +66,8 @@ pub struct Stream {
     pub shininess: u32,
     pub count: u64,
     feed: Feed,
+    /// EMBM scene streams: the object's maps, loaded through the top's ports first.
+    env: Option<crate::model::env_map::EnvMaps>,
     /// The `gbump vectors` arguments that write this stream as a file (`--source ...`).
     source_args: String,
 }
@@ -79,6 +81,7 @@ pub fn streams(cfg: &PipelineConfig, src: &StreamSource, seed: u64, size: Option
             shininess: cfg.shininess,
             count: *n,
             feed: Feed::Random(seed),
+            env: None,
             source_args: format!("--source random:{n} --seed {seed}"),
         }],
         StreamSource::Corners => {
@@ -88,6 +91,7 @@ pub fn streams(cfg: &PipelineConfig, src: &StreamSource, seed: u64, size: Option
                 shininess: cfg.shininess,
                 count: stims.len() as u64,
                 feed: Feed::Stims(stims, why),
+                env: None,
                 source_args: "--source corners --level 2".into(),
             }]
         }
@@ -96,11 +100,12 @@ pub fn streams(cfg: &PipelineConfig, src: &StreamSource, seed: u64, size: Option
             let size_arg = size.map_or(String::new(), |(w, h)| format!(" --size {w}x{h}"));
             scene_groups(cfg, name, size)?
                 .into_iter()
-                .map(|(n, stem, stims)| Stream {
-                    set: format!("stream_{stem}_top"),
-                    shininess: n,
-                    count: stims.len() as u64,
-                    feed: Feed::Stims(stims, Vec::new()),
+                .map(|g| Stream {
+                    set: format!("stream_{}_top", g.stem),
+                    shininess: g.shininess,
+                    count: g.stims.len() as u64,
+                    feed: Feed::Stims(g.stims, Vec::new()),
+                    env: g.env,
                     source_args: format!("--source scene:{name}{size_arg}"),
                 })
                 .collect()
@@ -201,7 +206,18 @@ pub struct StreamRun<'a> {
 pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Outcome> {
     crate::interrupt::check()?;
     let what = format!("verilator {}", s.set);
-    let contents = MemoryContents::new(cfg, s.shininess);
+    let mut contents = MemoryContents::new(cfg, s.shininess);
+    // Beside the power table, the maps the harness loads (as a file-based set's).
+    let mut env_args = Vec::new();
+    if let Some(env) = &s.env {
+        let dir = r.table.parent().unwrap_or(r.cwd);
+        let files = crate::vectors::writer::write_env_maps(dir, &s.set, cfg, env, "gbump regress --stream")?;
+        for (flag, f) in [("--env-diffuse", &files.diffuse), ("--env-specular", &files.specular)] {
+            env_args.push(flag.to_string());
+            env_args.push(dir.join(&f.name).display().to_string());
+        }
+        contents.env = env.clone();
+    }
     let maker = TopRecords::new(cfg, contents.view());
     let t0 = std::time::Instant::now();
     let mut cmd = Command::new(r.exe);
@@ -214,7 +230,8 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         &r.max_errors.to_string(),
     ])
     .arg("--table")
-    .arg(r.table);
+    .arg(r.table)
+    .args(&env_args);
     if r.bubbles > 0 {
         cmd.args(["--bubbles", &r.bubbles.to_string()]);
     }

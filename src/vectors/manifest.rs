@@ -46,6 +46,32 @@ pub struct Manifest {
     /// Top only: cycles from accept to out_valid, and cycles between accepts.
     pub latency: u32,
     pub initiation_interval: u32,
+    /// EMBM scene sets: the object's two maps, loaded through the top's `env_diffuse_*` and
+    /// `env_specular_*` ports before the run (other sets run on the power-up maps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub env_maps: Option<EnvMapFiles>,
+}
+
+/// A set's environment maps, as `gbump rom` writes the power-up ones.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct EnvMapFiles {
+    pub diffuse: FileEntry,
+    pub specular: FileEntry,
+}
+
+impl Manifest {
+    /// Every file the manifest names beside itself: the data files, the power table and the
+    /// maps.
+    pub fn files(&self) -> Vec<&FileEntry> {
+        let mut v: Vec<&FileEntry> = [self.hex.as_ref(), self.bin.as_ref(), Some(&self.power_table)]
+            .into_iter()
+            .flatten()
+            .collect();
+        if let Some(e) = &self.env_maps {
+            v.extend([&e.diffuse, &e.specular]);
+        }
+        v
+    }
 }
 
 pub fn columns(l: &Layout) -> Vec<ColumnEntry> {
@@ -141,6 +167,14 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 /// one its hash names, its target is a set this configuration has, its record layout is that
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
+    if m.env_maps.is_some() && !(m.config.embm() && m.target == "top") {
+        return Err(Error::Other(format!(
+            "{}: names environment maps, which only an EMBM configuration's top set loads (target {}, env_map_bits = {}): the manifest was edited\n  fix: regenerate the set with `gbump vectors`",
+            manifest.display(),
+            m.target,
+            m.config.env_map_bits
+        )));
+    }
     let file = manifest.display().to_string();
     let dir = folder_of(manifest);
     let regen = format!("regenerate the set with: {}", regenerate_into(&m.command, &dir));
@@ -271,7 +305,7 @@ pub fn read_fields(manifest: &Path) -> Result<Manifest> {
     })?;
     check_fields(manifest, &m)?;
     // A manifest names files beside itself, never elsewhere.
-    for f in [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)].into_iter().flatten() {
+    for f in m.files() {
         crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
     }
     Ok(m)
@@ -285,10 +319,10 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
             manifest.display()
         )));
     }
-    let files = [m.hex.as_ref(), m.bin.as_ref(), Some(&m.power_table)];
+    let files = m.files();
     let regen = regenerate_into(&m.command, &dir);
     let mut padding = PaddingCheck::new(&m);
-    for f in files.into_iter().flatten() {
+    for f in files {
         let p = dir.join(&f.name);
         if !p.exists() {
             return Err(Error::Other(format!(

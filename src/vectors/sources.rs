@@ -435,38 +435,55 @@ unsafe fn fragments_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, f
     fragments(cfg, rng, k, frags)
 }
 
-/// Refuse scene vectors for a configuration whose memories a scene loads per object, which no
-/// harness does yet: a palette (each palettised map has its own) and EMBM's environment maps
-/// (each object's lighting). `what` names the request (`--source scene:NAME`); the fix says
-/// what to use instead, or to drop `--rtl` where `what` renders.
+/// Refuse scene vectors for a palette configuration, whose memory a scene would load per
+/// object, which no harness does yet (each palettised map has its own palette). `what`
+/// names the request (`--source scene:NAME`); the fix says what to use instead, or to drop
+/// `--rtl` where `what` renders. EMBM's per-object maps are loaded (`SceneGroup::env`).
 pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
-    let (why, fix) = if cfg.palette {
-        (
-            "each palettised map has its own palette, loaded per object",
-            "use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false",
-        )
-    } else if cfg.embm() {
-        (
-            "each object has its own environment maps (its lighting), loaded per object; `gbump render` without --rtl renders the scene through this configuration's golden model",
-            "use corners, random:N or exhaustive:env_coords (all on the power-up maps), or set env_map_bits = 0",
-        )
-    } else {
+    if !cfg.palette {
         return Ok(());
-    };
+    }
+    let fix = "use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false";
     let fix = if what.contains("--rtl") {
-        format!("drop --rtl (the golden image needs no vectors), or {}", fix.rsplit(", or ").next().unwrap_or(fix))
+        "drop --rtl (the golden image needs no vectors), or set palette = false"
     } else {
-        fix.to_string()
+        fix
     };
     Err(Error::Other(format!(
-        "{what}: scene vectors of {} configuration are not made yet: {why}\n  fix: {fix}",
-        if cfg.palette { "a palette" } else { "an EMBM" }
+        "{what}: scene vectors of a palette configuration are not made yet: each palettised map has its own palette, loaded per object\n  fix: {fix}"
     )))
 }
 
+/// One run of a scene's fragments: those that share the top's memories.
+pub struct SceneGroup {
+    /// The power table's shininess.
+    pub shininess: u32,
+    /// The set's stem (`scene_NAME`, `_nS` or `_oI` when the scene has several groups).
+    pub stem: String,
+    pub stims: Vec<TopStim>,
+    /// EMBM: the object's two maps, which the harness loads before the run.
+    pub env: Option<crate::model::env_map::EnvMaps>,
+}
+
+/// The group a fragment of object `obj` of scene `s` goes with under `cfg`: its object under
+/// EMBM (each object has its own maps), else its power table's shininess.
+pub fn group_key(cfg: &PipelineConfig, s: &crate::scene::Scene, obj: u32) -> u32 {
+    let o = &s.objects[obj as usize];
+    if cfg.embm() {
+        obj
+    } else if cfg.fixed_shininess().is_some() && !o.specular {
+        // Hardware of one shininess (a ROM table, a squaring unit): an object without the
+        // specular blend reads no power, so its fragments go with the built-in one (a
+        // loadable table keeps each object's).
+        cfg.shininess
+    } else {
+        o.shininess
+    }
+}
+
 /// The fragments of scene `name` rendered at `size` (default: the scene's own), grouped by
-/// their object's shininess: (shininess, set stem, stimuli), one group per power table.
-pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+/// [`group_key`] in its order: one group per power table, or under EMBM per object.
+pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<SceneGroup>> {
     scene_sets_made(cfg, &format!("scene:{name}"))?;
     let s = crate::scene::Scene::load(name)?;
     s.check_config(cfg, "pipeline config")?;
@@ -479,17 +496,9 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     // `fragments` gives each triangle's fragments together: a setup starts each run.
     let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
     for f in frags {
-        let o = &s.objects[f.obj as usize];
-        // Hardware of one shininess (a ROM table, a squaring unit): an object without the
-        // specular blend reads no power, so its fragments go with the built-in one (a
-        // loadable table keeps each object's).
-        let n = if cfg.fixed_shininess().is_some() && !o.specular {
-            cfg.shininess
-        } else {
-            o.shininess
-        };
-        let tri_start = prev.insert(n, (f.obj, f.tri)) != Some((f.obj, f.tri));
-        groups.entry(n).or_default().push(TopStim {
+        let key = group_key(cfg, &s, f.obj);
+        let tri_start = prev.insert(key, (f.obj, f.tri)) != Some((f.obj, f.tri));
+        groups.entry(key).or_default().push(TopStim {
             frag: f.frag,
             state: f.state,
             tri_start,
@@ -497,9 +506,21 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     }
     let stem = Source::Scene(name.to_string()).stem();
     let multi = groups.len() > 1;
+    let mut objects: Vec<Option<crate::model::env_map::EnvMaps>> = p.objects.into_iter().map(|o| Some(o.env)).collect();
     Ok(groups
         .into_iter()
-        .map(|(n, v)| (n, if multi { format!("{stem}_n{n}") } else { stem.clone() }, v))
+        .map(|(key, stims)| {
+            let (shininess, tag, env) = match cfg.embm() {
+                true => (cfg.shininess, format!("_o{key}"), objects[key as usize].take()),
+                false => (key, format!("_n{key}"), None),
+            };
+            SceneGroup {
+                shininess,
+                stem: if multi { format!("{stem}{tag}") } else { stem.clone() },
+                stims,
+                env,
+            }
+        })
         .collect())
 }
 

@@ -3,12 +3,13 @@
 //! interrupted or failed dump leaves no set that looks whole.
 
 use super::layout::{Layout, Record};
-use super::manifest::{columns, FileEntry, Manifest};
-use super::sources::{corners, exhaustive, exhaustive_count, Source, RANDOM_CHUNK};
+use super::manifest::{columns, EnvMapFiles, FileEntry, Manifest};
+use super::sources::{corners, exhaustive, exhaustive_count, SceneGroup, Source, RANDOM_CHUNK};
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use super::top_records::TopRecords;
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
+use crate::model::env_map::EnvMaps;
 use crate::units::{Memories, MemoryContents};
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
@@ -168,6 +169,20 @@ impl SetWriter {
     }
 
     fn finish(self, dir: &Path, cfg: &PipelineConfig, src: &Source, o: &DumpOptions, n: u32) -> Result<VectorSet> {
+        self.finish_with(dir, cfg, src, o, n, None)
+    }
+
+    /// [`Self::finish`] for a set that runs on its own environment maps `env` (EMBM scene
+    /// sets: the object's), written beside it for the harness to load.
+    fn finish_with(
+        self,
+        dir: &Path,
+        cfg: &PipelineConfig,
+        src: &Source,
+        o: &DumpOptions,
+        n: u32,
+        env: Option<&EnvMaps>,
+    ) -> Result<VectorSet> {
         if self.count == 0 {
             return Err(Error::Other(format!(
                 "{}: no vectors for target {}\n  fix: choose a source that exercises it",
@@ -190,6 +205,10 @@ impl SetWriter {
             text.len() as u64,
             Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
         );
+        let env_maps = match env {
+            Some(maps) => Some(write_env_maps(dir, &self.stem, cfg, maps, &o.command)?),
+            None => None,
+        };
         let (module, latency, initiation_interval) = super::manifest::timing(cfg, &self.target);
         let m = Manifest {
             generator: crate::TOOL.into(),
@@ -214,6 +233,7 @@ impl SetWriter {
             },
             latency,
             initiation_interval,
+            env_maps,
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
@@ -225,24 +245,49 @@ impl SetWriter {
     }
 }
 
+/// The two maps of a set (`{stem}_env_diffuse.hex`, `{stem}_env_specular.hex`), as the
+/// `env_fetch` units' init files are written, and their manifest entries.
+pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMaps, command: &str) -> Result<EnvMapFiles> {
+    let one = |which: &str, map: &[[u32; 3]]| -> Result<FileEntry> {
+        let name = format!("{stem}_env_{which}.hex");
+        let rom = crate::rtlgen::rom::env_map_rom(cfg, map, which, "a scene object's lighting");
+        let text = crate::rtlgen::rom::write(
+            &rom,
+            crate::rtlgen::rom::RomFormat::Hex,
+            &crate::rtlgen::rom::rom_header(&rom, Some(cfg), command, &format!("{which} environment map of this vector set")),
+        );
+        crate::render::output::write_atomic(&dir.join(&name), text.as_bytes())?;
+        Ok(FileEntry {
+            name,
+            bytes: text.len() as u64,
+            sha256: Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
+        })
+    };
+    Ok(EnvMapFiles {
+        diffuse: one("diffuse", &maps.diffuse)?,
+        specular: one("specular", &maps.specular)?,
+    })
+}
+
 /// Whether target `unit` (the top, or a unit) exists in the hardware of `cfg`.
 pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
     unit == "top" || crate::units::unit(unit).is_some_and(|u| u.included(cfg))
 }
 
-/// Top stimuli of a source, grouped by power-table shininess.
-fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -> Result<Vec<(u32, String, Vec<TopStim>)>> {
+/// Top stimuli of a source, grouped by the memories they run on.
+fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -> Result<Vec<SceneGroup>> {
     Ok(match src {
         Source::Corners(level) => {
             let cat = corners(cfg, *level);
             // The catalogue beside the vectors: record number and why it is there.
             let text: String = cat.iter().enumerate().map(|(i, (why, _))| format!("{i}\t{why}\n")).collect();
             crate::render::output::write_atomic(&dir.join(format!("{}_catalogue.txt", src.stem())), text.as_bytes())?;
-            vec![(
-                o.shininess.unwrap_or(cfg.shininess),
-                src.stem(),
-                cat.into_iter().map(|c| c.1).collect(),
-            )]
+            vec![SceneGroup {
+                shininess: o.shininess.unwrap_or(cfg.shininess),
+                stem: src.stem(),
+                stims: cat.into_iter().map(|c| c.1).collect(),
+                env: None,
+            }]
         }
         Source::Scene(name) => super::sources::scene_groups(cfg, name, o.size)?,
         _ => unreachable!(),
@@ -321,6 +366,13 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
     if let Source::Random(n) = src {
         check_space(cfg, *n, &targets, dir, o)?;
+    }
+    if let (Source::Scene(name), true) = (src, cfg.embm()) {
+        if let Some(t) = targets.iter().find(|t| t.starts_with("env_fetch")) {
+            return Err(Error::Other(format!(
+                "--source scene:{name} --target {t}: a scene's fragments read each object's own maps, which only the top loads (its env_diffuse_*/env_specular_* ports); the unit's own harness runs on the power-up map\n  fix: dump the scene for the top, and {t} from corners, random:N or exhaustive:{t}"
+            )));
+        }
     }
     let mut out = Vec::new();
     match src {
@@ -402,10 +454,14 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             }
         }
         _ => {
-            for (n, stem, stims) in top_groups(cfg, src, o, dir)? {
-                let mem = MemoryContents::new(cfg, n);
-                let mut ws = open(dir, &stem, &targets, cfg, o, u64::MAX)?;
-                write_tops(cfg, &mem.view(), &stims, &mut ws, true)?;
+            for g in top_groups(cfg, src, o, dir)? {
+                let (n, stims) = (g.shininess, &g.stims);
+                let mut mem = MemoryContents::new(cfg, n);
+                if let Some(env) = &g.env {
+                    mem.env = env.clone();
+                }
+                let mut ws = open(dir, &g.stem, &targets, cfg, o, u64::MAX)?;
+                write_tops(cfg, &mem.view(), stims, &mut ws, true)?;
                 if matches!(src, Source::Corners(_)) {
                     // Each unit's own edges follow the ones the top corners reach.
                     let own: Vec<UnitStim> = ws
@@ -428,7 +484,9 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     )));
                 }
                 for w in ws {
-                    out.push(w.finish(dir, cfg, src, o, n)?);
+                    // The top loads the maps through its ports; a unit's harness has none.
+                    let env = if w.target == "top" { g.env.as_ref() } else { None };
+                    out.push(w.finish_with(dir, cfg, src, o, n, env)?);
                 }
             }
         }
