@@ -40,6 +40,9 @@
 // Plusargs: +vectors=FILE  [+table=FILE] loads the power table through the load port; without
 //           it the pipeline runs on its power-up contents (INIT_FILE)
 //           [+bubbles=N] idles in_valid for 1-3 cycles before every Nth record
+//           [+MEMORY=FILE] loads another memory of the top through its port after the power
+//           table (EMBM's env_diffuse and env_specular: a scene set's object maps); without
+//           it the memory keeps its power-up contents
 //           [+stall=N] (tops with out_ready) holds out_ready low for the first 1-3 edges (at most N) of every N edges:
 //           a result is then taken later than its latency, and in_ready may be low while
 //           OUT_DEPTH accepted results are untaken, never otherwise
@@ -190,6 +193,7 @@ module tb_top;
             end
         end
         power_table_we = 1'b0;
+
         if ($test$plusargs("reset_after_load")) begin
             rst = 1'b1;
             in_valid = $test$plusargs("valid_during_reset");
