@@ -54,7 +54,17 @@ pub fn shared_root() -> Option<PathBuf> {
             .or_else(|| env("HOME").map(|h| h.join(".cache")))?
             .join("gbump"),
     };
-    std::fs::create_dir_all(&root).ok()?;
+    if let Err(e) = std::fs::create_dir_all(&root) {
+        // Nothing is shared then; said once, since every build is slower for it.
+        static SAID: OnceLock<()> = OnceLock::new();
+        SAID.get_or_init(|| {
+            crate::warn::warn(format!(
+                "gbump: warning: the shared cache {} cannot be used ({e}): every build compiles all it needs\n  fix: point GBUMP_CACHE at a folder (or set it empty to share nothing, silently)",
+                root.display()
+            ))
+        });
+        return None;
+    }
     // Entries half-built by a process that was killed are cleared once per run.
     static CLEANED: OnceLock<()> = OnceLock::new();
     CLEANED.get_or_init(|| {

@@ -447,6 +447,13 @@ fn output_file(s: &str) -> std::result::Result<PathBuf, String> {
     if p.is_dir() {
         return Err(format!("{s} is a folder; give a file name (fix: e.g. {s}/result)"));
     }
+    if s.ends_with(std::path::MAIN_SEPARATOR) {
+        // A missing folder named as one: no file name to write.
+        return Err(format!(
+            "{s} ends in {0}, so it names a folder; give a file name (fix: e.g. {s}result)",
+            std::path::MAIN_SEPARATOR
+        ));
+    }
     under_folders(p)
 }
 
@@ -1145,6 +1152,7 @@ pub fn run() -> anyhow::Result<()> {
             }
         }
         Cmd::FitTable { scene, write } => {
+            named_once("--scene", &scene)?;
             let rows = crate::fit::table::rows(&scene, &mut |m| eprintln!("fit-table: {m}"))?;
             let md = crate::fit::table::markdown(&rows);
             // Written before it is printed: a file that cannot be written fails the run.

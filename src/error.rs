@@ -76,6 +76,23 @@ impl Error {
     }
 }
 
+/// A message as the terminal should show it: control characters (but the line breaks and
+/// tabs the message is laid out with) and the bidirectional overrides that would reorder
+/// what follows them, as `\u{...}` escapes, so a name taken from a file or an argument
+/// cannot rewrite or hide the rest of the message.
+pub fn shown(msg: &str) -> String {
+    msg.chars()
+        .map(|c| {
+            let bidi = matches!(c, '\u{202A}'..='\u{202E}' | '\u{2066}'..='\u{2069}' | '\u{200E}' | '\u{200F}' | '\u{061C}');
+            if (c.is_control() && c != '\n' && c != '\t') || bidi {
+                format!("\\u{{{:x}}}", c as u32)
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 /// Line and column (1-based) of a byte offset in `text`.
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
@@ -302,6 +319,12 @@ mod tests {
             Error::Input { msg, .. } => msg,
             other => panic!("{other:?}"),
         }
+    }
+
+    /// An escape sequence or a right-to-left override in a name cannot rewrite the message.
+    #[test]
+    fn control_and_bidi_characters_are_shown_escaped() {
+        assert_eq!(shown("a\u{1b}[2Jb\u{202E}c\nd\te"), "a\\u{1b}[2Jb\\u{202e}c\nd\te");
     }
 
     #[test]

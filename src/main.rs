@@ -1,7 +1,7 @@
 fn main() {
     gbump::interrupt::install();
     if let Err(e) = gbump::cli::run() {
-        eprintln!("gbump: error: {e:#}");
+        eprintln!("gbump: error: {}", gbump::error::shown(&format!("{e:#}")));
         std::process::exit(if gbump::interrupt::interrupted() { 130 } else { 1 });
     }
 }

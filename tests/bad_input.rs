@@ -538,6 +538,18 @@ fn cases() -> Vec<Case> {
             vec!["palette", "palette = false"],
         ),
         (
+            "a result file named as a missing folder",
+            vec![],
+            vec!["error", "--json", "missing_dir/"],
+            vec!["missing_dir/", "names a folder", "give a file name"],
+        ),
+        (
+            "a scene named twice to fit-table",
+            vec![],
+            vec!["fit-table", "--scene", "torus_caps", "--scene", "torus_caps"],
+            vec!["--scene torus_caps", "more than once"],
+        ),
+        (
             "an EMBM scene's map reader as a target of its own",
             cfg(EMBM),
             vec!["vectors", "--source", "scene:torus_caps", "--target", "env_fetch_specular", "--config", "c.toml", "--out", "out"],
