@@ -881,7 +881,18 @@ fn cases() -> Vec<Case> {
                     .into(),
             )],
             vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
-            vec!["m.json", "files[].name", "../corners_top.hex"],
+            vec!["m.json", "hex.name", "../corners_top.hex"],
+        ),
+        (
+            "manifest with a key gbump does not write",
+            vec![(
+                "m.json",
+                include_str!("../vectors/corners_top.json")
+                    .replacen("\"seed\":", "\"sead\": 1,\n  \"seed\":", 1)
+                    .into(),
+            )],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
+            vec!["m.json", "unknown field `sead`"],
         ),
         (
             "regress --scene-size 8192x8192",

@@ -57,8 +57,11 @@ impl Stimulus {
 }
 
 /// Top records of `stims` evaluated with the power table of shininess `n`, as words.
-fn top_words(cfg: &PipelineConfig, stims: &[TopStim], n: u32) -> Vec<u32> {
-    let mem = MemoryContents::new(cfg, n);
+fn top_words(cfg: &PipelineConfig, stims: &[TopStim], n: u32, env: Option<&gbump::model::env_map::EnvMaps>) -> Vec<u32> {
+    let mut mem = MemoryContents::new(cfg, n);
+    if let Some(e) = env {
+        mem.env = e.clone();
+    }
     let l = gbump::vectors::targets::top_layout(cfg);
     let w = l.words32();
     stims
@@ -108,21 +111,33 @@ pub fn vectors<'py>(
                     .into_par_iter()
                     .map(|c| random_chunk(cfg, seed, c, count))
                     .collect();
-                top_words(cfg, &chunks.concat(), n)
+                top_words(cfg, &chunks.concat(), n, None)
             });
             out.append(set(py, &src.stem(), "top", n, words, top_w, None)?)?;
         }
         Source::Corners(level) => {
             let (reasons, stims): (Vec<String>, Vec<TopStim>) = corners(cfg, *level).into_iter().unzip();
-            let words = py.detach(|| top_words(cfg, &stims, n));
+            let words = py.detach(|| top_words(cfg, &stims, n, None));
             out.append(set(py, &src.stem(), "top", n, words, top_w, Some(reasons))?)?;
         }
         Source::Scene(name) => {
             let groups = py.detach(|| scene_groups(cfg, name, size)).map_err(crate::err)?;
-            for (gn, stem, stims) in groups {
-                check_batch("scene fragments", stims.len() as u64)?;
-                let words = py.detach(|| top_words(cfg, &stims, gn));
-                out.append(set(py, &stem, "top", gn, words, top_w, None)?)?;
+            for g in groups {
+                check_batch("scene fragments", g.stims.len() as u64)?;
+                let words = py.detach(|| top_words(cfg, &g.stims, g.shininess, g.env.as_ref()));
+                let d = set(py, &g.stem, "top", g.shininess, words, top_w, None)?;
+                if let Some(e) = &g.env {
+                    // EMBM: the object's maps, as RAM words for the env_*_wdata ports.
+                    for (key, map) in [("env_diffuse", &e.diffuse), ("env_specular", &e.specular)] {
+                        let cb = cfg.colour_bits;
+                        let words: Vec<u64> = map
+                            .iter()
+                            .map(|c| c[0] as u64 | (c[1] as u64) << cb | (c[2] as u64) << (2 * cb))
+                            .collect();
+                        d.set_item(key, words)?;
+                    }
+                }
+                out.append(d)?;
             }
         }
         Source::Exhaustive(unit) => {

@@ -9,6 +9,8 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+// A key gbump does not write is an edit: refused, with its line.
+#[serde(deny_unknown_fields)]
 pub struct FileEntry {
     pub name: String,
     pub bytes: u64,
@@ -16,6 +18,8 @@ pub struct FileEntry {
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+// A key gbump does not write is an edit: refused, with its line.
+#[serde(deny_unknown_fields)]
 pub struct ColumnEntry {
     pub name: String,
     pub role: String,
@@ -26,6 +30,8 @@ pub struct ColumnEntry {
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+// A key gbump does not write is an edit: refused, with its line.
+#[serde(deny_unknown_fields)]
 pub struct Manifest {
     pub generator: String,
     pub command: String,
@@ -54,6 +60,8 @@ pub struct Manifest {
 
 /// A set's environment maps, as `gbump rom` writes the power-up ones.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+// A key gbump does not write is an edit: refused, with its line.
+#[serde(deny_unknown_fields)]
 pub struct EnvMapFiles {
     pub diffuse: FileEntry,
     pub specular: FileEntry,
@@ -63,12 +71,21 @@ impl Manifest {
     /// Every file the manifest names beside itself: the data files, the power table and the
     /// maps.
     pub fn files(&self) -> Vec<&FileEntry> {
-        let mut v: Vec<&FileEntry> = [self.hex.as_ref(), self.bin.as_ref(), Some(&self.power_table)]
-            .into_iter()
-            .flatten()
-            .collect();
+        self.named_files().into_iter().map(|(_, f)| f).collect()
+    }
+
+    /// [`Self::files`] with the key each is named under (`hex.name`, `env_maps.diffuse.name`).
+    pub fn named_files(&self) -> Vec<(&'static str, &FileEntry)> {
+        let mut v: Vec<(&'static str, &FileEntry)> = [
+            ("hex.name", self.hex.as_ref()),
+            ("bin.name", self.bin.as_ref()),
+            ("power_table.name", Some(&self.power_table)),
+        ]
+        .into_iter()
+        .filter_map(|(k, f)| Some((k, f?)))
+        .collect();
         if let Some(e) = &self.env_maps {
-            v.extend([&e.diffuse, &e.specular]);
+            v.extend([("env_maps.diffuse.name", &e.diffuse), ("env_maps.specular.name", &e.specular)]);
         }
         v
     }
@@ -305,8 +322,8 @@ pub fn read_fields(manifest: &Path) -> Result<Manifest> {
     })?;
     check_fields(manifest, &m)?;
     // A manifest names files beside itself, never elsewhere.
-    for f in m.files() {
-        crate::names::check(&manifest.display().to_string(), "files[].name", &f.name)?;
+    for (key, f) in m.named_files() {
+        crate::names::check(&manifest.display().to_string(), key, &f.name)?;
     }
     Ok(m)
 }
