@@ -123,7 +123,8 @@ static double cpu_seconds() {
     return t.tv_sec + t.tv_nsec * 1e-9;
 }
 
-static bool read_words(const char* path, std::vector<uint32_t>& out, int words) {
+// Words up to 64 bits (a map's {B, G, R} is 3 x colour_bits wide).
+static bool read_words(const char* path, std::vector<uint64_t>& out, int words) {
     std::ifstream f(path);
     if (!f) return false;
     std::string line;
@@ -132,7 +133,7 @@ static bool read_words(const char* path, std::vector<uint32_t>& out, int words) 
         if (c != std::string::npos) line = line.substr(0, c);
         std::stringstream ss(line);
         std::string tok;
-        if (ss >> tok) out.push_back((uint32_t)strtoul(tok.c_str(), nullptr, 16));
+        if (ss >> tok) out.push_back((uint64_t)strtoull(tok.c_str(), nullptr, 16));
     }
     return (int)out.size() == words;
 }
@@ -162,7 +163,7 @@ int main(int argc, char** argv) {
         else { fprintf(stderr, "FATAL: unknown argument %s\n", argv[i]); return 2; }
     }
     if (!vec_path) { fprintf(stderr, "FATAL: usage: %s --vectors FILE.bin [--table FILE.hex]\n", argv[0]); return 2; }
-    std::vector<uint32_t> table;
+    std::vector<uint64_t> table;
     if (table_path && !read_words(table_path, table, POWER_TABLE_WORDS)) { fprintf(stderr, "FATAL: %s: expected %d table entries\n", table_path, POWER_TABLE_WORDS); return 2; }
 {{MEM_READ}}
     Records recs;

@@ -141,10 +141,11 @@ fn the_interpolated_coordinates_are_the_vertex_normals_sphere_coordinates() {
 }
 
 /// Each object's maps are its own lighting: texel for texel the f64 texel clamped and rounded
-/// to colour codes; two objects of different shininess (or place) get different maps.
+/// to colour codes (spot-checked against `embm_f64::texel`, the engine's own); the wall and
+/// the floor of `cg_wall_floor` (one light, two places, two materials) get different maps.
 #[test]
 fn each_object_has_its_own_maps() {
-    let s = Scene::load("sphere_bricks_spots").unwrap();
+    let s = Scene::load("cg_wall_floor").unwrap();
     let cfg = embm_config(&s);
     let p = Prepared::new(&s, &cfg, 64, 64).unwrap();
     let side = cfg.env_map_side();
@@ -162,6 +163,11 @@ fn each_object_has_its_own_maps() {
         // Lit somewhere: the maps are not blank.
         assert!(o.env.diffuse.iter().any(|t| t.iter().any(|&c| c > 0)), "object {i}");
     }
+    assert_eq!(p.objects.len(), 2);
+    assert_ne!(p.objects[0].env, p.objects[1].env, "two objects, two maps");
+    // A stored texel is clamped: a light summing above full scale saturates in the map.
+    let max = cfg.colour_max();
+    assert!(p.objects.iter().all(|o| o.env.specular.iter().flatten().all(|&c| c <= max)));
 }
 
 /// A scene's EMBM sets are one per object, each naming its maps; the map readers' own unit
@@ -205,7 +211,7 @@ fn embm_scene_sets_are_per_object_with_their_maps() {
         let e = m.env_maps.expect("the object's maps");
         // The maps as the prepared scene holds them, word for word.
         let p = Prepared::new(&s, &m.config, 48, 32).unwrap();
-        let text = std::fs::read_to_string(v.join(&e.diffuse.name)).unwrap();
+        let text = std::fs::read_to_string(v.join(&e.diffuse.expect("a diffuse map").name)).unwrap();
         let words: Vec<u64> = text
             .lines()
             .filter(|l| !l.starts_with("//") && !l.trim().is_empty())

@@ -141,7 +141,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     s += "  vectors:\n    datatype: file\n    paramtype: plusarg\n    description: top vector set in text form (gbump vectors --target top --format hex), one record per line\n";
     s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
     for p in &others {
-        s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata after the table (a scene set's _{p}.hex); without it the power-up contents\n");
+        s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata after the table (the _{p}.hex a set's manifest names, where it names one); without it the power-up contents\n");
     }
     s += "  bubbles:\n    datatype: int\n    paramtype: plusarg\n    description: idle in_valid for 1-3 cycles before every Nth record\n";
     s += "  max_errors:\n    datatype: int\n    paramtype: plusarg\n    description: stop after this many mismatches (default 20)\n";

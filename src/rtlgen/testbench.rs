@@ -121,13 +121,16 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
         }
         let p = m.prefix;
         decls.push(format!(
-            "    reg [{}:0] {p}_mem [0:{}];\n    reg [8*512-1:0] {p}_file;",
+            "    reg [{}:0] {p}_mem [0:{}];\n    reg [8*512-1:0] {p}_file;\n    integer {p}_fd;",
             m.data_bits - 1,
             m.depth - 1
         ));
+        // A file that is missing or short would load x words: refused by name instead.
         mem_load.push(format!(
-            "        if ($value$plusargs(\"{p}=%s\", {p}_file)) begin\n            $readmemh({p}_file, {p}_mem);\n            for (i = 0; i < {d}; i = i + 1) begin\n                {p}_we = 1'b1; {p}_waddr = i; {p}_wdata = {p}_mem[i];\n                @(negedge clk);\n            end\n            {p}_we = 1'b0;\n        end",
-            d = m.depth
+            "        if ($value$plusargs(\"{p}=%s\", {p}_file)) begin\n            {p}_fd = $fopen({p}_file, \"r\");\n            if ({p}_fd == 0) begin $display(\"FATAL: cannot open %0s\", {p}_file); end_run(1); end\n            $fclose({p}_fd);\n            for (i = 0; i < {d}; i = i + 1) {p}_mem[i] = {{{w}{{1'bx}}}};\n            $readmemh({p}_file, {p}_mem);\n            if (^{p}_mem[{last}] === 1'bx) begin $display(\"FATAL: %0s: fewer than {d} words of {p}\", {p}_file); end_run(1); end\n            for (i = 0; i < {d}; i = i + 1) begin\n                {p}_we = 1'b1; {p}_waddr = i; {p}_wdata = {p}_mem[i];\n                @(negedge clk);\n            end\n            {p}_we = 1'b0;\n        end",
+            d = m.depth,
+            w = m.data_bits,
+            last = m.depth - 1
         ));
     }
     let out = l.column("out_c");
@@ -306,7 +309,9 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
     for m in other_memories(cfg) {
         let p = m.prefix;
         assign.push(format!("            top.{p}_we = 0;"));
-        vars.push(format!("    const char* {p}_path = nullptr;\n    std::vector<uint32_t> {p}_words;"));
+        // Verilator gives a port of up to 64 bits a plain integer; wider would be a VlWide.
+        assert!(m.data_bits <= 64, "{p}: a load port wider than 64 bits");
+        vars.push(format!("    const char* {p}_path = nullptr;\n    std::vector<uint64_t> {p}_words;"));
         args.push(format!(
             "        else if (!strcmp(argv[i], \"--{}\") && i + 1 < argc) {p}_path = argv[++i];",
             p.replace('_', "-")

@@ -388,9 +388,9 @@ fn every_record(out: super::verdict::Outcome, count: u64, what: &str) -> Result<
 /// none for a set on the power-up maps.
 pub fn env_files(m: &crate::vectors::manifest::Manifest, dir: &Path) -> Vec<(&'static str, String)> {
     m.env_maps.as_ref().map_or_else(Vec::new, |e| {
-        vec![
-            ("env_diffuse", dir.join(&e.diffuse.name).display().to_string()),
-            ("env_specular", dir.join(&e.specular.name).display().to_string()),
-        ]
+        e.each()
+            .into_iter()
+            .map(|(prefix, f)| (prefix, dir.join(&f.name).display().to_string()))
+            .collect()
     })
 }

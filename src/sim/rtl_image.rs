@@ -45,6 +45,13 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     // The dump's groups in their order (`scene_groups`): one set each.
     let key = |obj: u32| crate::vectors::sources::group_key(cfg, &scene, obj);
     let keys: std::collections::BTreeSet<u32> = frags.iter().map(|f| key(f.obj)).collect();
+    if keys.len() != sets.len() {
+        return Err(Error::Other(format!(
+            "render --rtl: the dump wrote {} top set(s) for {} group(s) of fragments; colours would land on the wrong pixels",
+            sets.len(),
+            keys.len()
+        )));
+    }
     for (set, k) in sets.into_iter().zip(keys) {
         let (m, dir) = verify(&set.manifest)?;
         let mine: Vec<_> = frags.iter().filter(|f| key(f.obj) == k).collect();

@@ -212,8 +212,8 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     if let Some(env) = &s.env {
         let dir = r.table.parent().unwrap_or(r.cwd);
         let files = crate::vectors::writer::write_env_maps(dir, &s.set, cfg, env, "gbump regress --stream")?;
-        for (flag, f) in [("--env-diffuse", &files.diffuse), ("--env-specular", &files.specular)] {
-            env_args.push(flag.to_string());
+        for (prefix, f) in files.each() {
+            env_args.push(format!("--{}", prefix.replace('_', "-")));
             env_args.push(dir.join(&f.name).display().to_string());
         }
         contents.env = env.clone();

@@ -58,13 +58,26 @@ pub struct Manifest {
     pub env_maps: Option<EnvMapFiles>,
 }
 
-/// A set's environment maps, as `gbump rom` writes the power-up ones.
+/// A set's environment maps, as `gbump rom` writes the power-up ones: one for each blend
+/// the configuration has (the top has no other map's port).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 // A key gbump does not write is an edit: refused, with its line.
 #[serde(deny_unknown_fields)]
 pub struct EnvMapFiles {
-    pub diffuse: FileEntry,
-    pub specular: FileEntry,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diffuse: Option<FileEntry>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub specular: Option<FileEntry>,
+}
+
+impl EnvMapFiles {
+    /// (the top's load-port prefix, the file) of each map the set has.
+    pub fn each(&self) -> Vec<(&'static str, &FileEntry)> {
+        [("env_diffuse", self.diffuse.as_ref()), ("env_specular", self.specular.as_ref())]
+            .into_iter()
+            .filter_map(|(p, f)| Some((p, f?)))
+            .collect()
+    }
 }
 
 impl Manifest {
@@ -85,7 +98,16 @@ impl Manifest {
         .filter_map(|(k, f)| Some((k, f?)))
         .collect();
         if let Some(e) = &self.env_maps {
-            v.extend([("env_maps.diffuse.name", &e.diffuse), ("env_maps.specular.name", &e.specular)]);
+            v.extend(e.each().into_iter().map(|(p, f)| {
+                (
+                    if p == "env_diffuse" {
+                        "env_maps.diffuse.name"
+                    } else {
+                        "env_maps.specular.name"
+                    },
+                    f,
+                )
+            }));
         }
         v
     }
@@ -184,9 +206,29 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 /// one its hash names, its target is a set this configuration has, its record layout is that
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
-    if m.env_maps.is_some() && !(m.config.embm() && m.target == "top") {
+    // An EMBM scene's top set runs on its object's maps, one for each map the top has; no
+    // other set names any.
+    let scene_top = m.config.embm() && m.target == "top" && m.source.starts_with("Scene(");
+    let want: Vec<&str> = crate::rtlgen::top::memories(&m.config)
+        .iter()
+        .map(|x| x.prefix)
+        .filter(|p| p.starts_with("env_"))
+        .collect();
+    let have: Vec<&str> = m
+        .env_maps
+        .as_ref()
+        .map_or_else(Vec::new, |e| e.each().into_iter().map(|x| x.0).collect());
+    if scene_top && have != want {
         return Err(Error::Other(format!(
-            "{}: names environment maps, which only an EMBM configuration's top set loads (target {}, env_map_bits = {}): the manifest was edited\n  fix: regenerate the set with `gbump vectors`",
+            "{}: an EMBM scene set runs on its object's maps ({}), but the manifest names {}: the manifest was edited\n  fix: regenerate the set with `gbump vectors`",
+            manifest.display(),
+            want.join(", "),
+            if have.is_empty() { "none".to_string() } else { have.join(", ") }
+        )));
+    }
+    if m.env_maps.is_some() && !scene_top {
+        return Err(Error::Other(format!(
+            "{}: names environment maps, which only an EMBM configuration's top set of a scene loads (target {}, env_map_bits = {}): the manifest was edited\n  fix: regenerate the set with `gbump vectors`",
             manifest.display(),
             m.target,
             m.config.env_map_bits
@@ -356,7 +398,8 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
         })?;
         if bytes != f.bytes || sha != f.sha256 {
             // One extra byte a line is what a CRLF conversion does to a text set.
-            let crlf = !is_bin && f.bytes > 0 && bytes == f.bytes + m.count;
+            let is_hex = m.hex.as_ref().is_some_and(|h| std::ptr::eq(h, f));
+            let crlf = is_hex && f.bytes > 0 && bytes == f.bytes + m.count;
             let (why, fix) = if crlf {
                 (
                     "its lines end in CRLF (one byte more per record)",
@@ -400,6 +443,11 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     // above the record. Where the set has both files (Icarus reads the text, Verilator the
     // binary), they must hold the same records, or the two simulators judge different sets.
     check_power_table(&dir.join(&m.power_table.name), &m, &regen)?;
+    if let Some(e) = &m.env_maps {
+        for (_, f) in e.each() {
+            check_env_map(&dir.join(&f.name), &m, &regen)?;
+        }
+    }
     if let Some(h) = &m.hex {
         let bin = m.bin.as_ref().map(|b| dir.join(&b.name));
         check_hex_records(&dir.join(&h.name), bin.as_deref(), &m, &regen)?;
@@ -460,6 +508,32 @@ pub fn relative_note(words: &[String]) -> String {
         " (from the folder the set was made in: {} relative to it)",
         relative.iter().map(|f| format!("`{f}` is")).collect::<Vec<_>>().join(", ")
     )
+}
+
+/// A set's map holds one word per texel, each within the map's {B, G, R} width (the files'
+/// checksums cannot see an edited manifest beside an edited map).
+fn check_env_map(path: &Path, m: &Manifest, regen: &str) -> Result<()> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let side = m.config.env_map_side() as usize;
+    let bits = 3 * m.config.colour_bits;
+    let words: Vec<&str> = text
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .collect();
+    let bad = words
+        .iter()
+        .position(|w| u64::from_str_radix(w, 16).map_or(true, |v| bits < 64 && v >> bits != 0));
+    if words.len() != side * side || bad.is_some() {
+        return Err(Error::Other(format!(
+            "{}: {} words where the {side}x{side} map has {} of {bits} bits{}: the map or its manifest was edited\n  fix: regenerate with: {regen}",
+            path.display(),
+            words.len(),
+            side * side,
+            bad.map_or(String::new(), |i| format!(" (word {i}, `{}`, is not one)", words[i]))
+        )));
+    }
+    Ok(())
 }
 
 /// The folder a manifest's files lie in: its parent, `.` for a bare file name.

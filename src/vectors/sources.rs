@@ -446,6 +446,8 @@ pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
     let fix = "use corners, random:N or exhaustive:palette_fetch (all on the power-up palette), or set palette = false";
     let fix = if what.contains("--rtl") {
         "drop --rtl (the golden image needs no vectors), or set palette = false"
+    } else if what.contains("--stream") {
+        "stream random:N or corners (on the power-up palette), or set palette = false"
     } else {
         fix
     };

@@ -263,9 +263,11 @@ pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMa
             sha256: Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
         })
     };
+    // Only the maps the top has a port for (one per blend of the configuration).
+    let has = |which: &str| crate::rtlgen::top::memories(cfg).iter().any(|m| m.prefix == format!("env_{which}"));
     Ok(EnvMapFiles {
-        diffuse: one("diffuse", &maps.diffuse)?,
-        specular: one("specular", &maps.specular)?,
+        diffuse: has("diffuse").then(|| one("diffuse", &maps.diffuse)).transpose()?,
+        specular: has("specular").then(|| one("specular", &maps.specular)).transpose()?,
     })
 }
 
