@@ -490,16 +490,20 @@ fn embm_scene_sets_run_on_their_objects_maps() {
         .unwrap_or_else(|| panic!("no verdict line:\n{log}"));
     assert!(!out.status.success() && failed > 0, "{log}");
     // Rendered through the RTL and streamed: the same images and verdicts.
-    let r = gbump()
-        .args(["render", "--rtl", "--scene", "cg_wall_floor", "--size", "48x32", "--config", cfg])
-        .arg("--out")
-        .arg(dir.join("img"))
-        .arg("--work")
-        .arg(dir.join("render"))
-        .assert()
-        .success();
-    let text = String::from_utf8_lossy(&r.get_output().stdout).into_owned() + &String::from_utf8_lossy(&r.get_output().stderr);
-    assert!(text.contains(" 0 pixel(s) differ"), "{text}");
+    let render_rtl = |config: &Path, tag: &str| {
+        let r = gbump()
+            .args(["render", "--rtl", "--scene", "cg_wall_floor", "--size", "48x32", "--config"])
+            .arg(config)
+            .arg("--out")
+            .arg(dir.join(format!("img_{tag}")))
+            .arg("--work")
+            .arg(dir.join(format!("render_{tag}")))
+            .assert()
+            .success();
+        let text = String::from_utf8_lossy(&r.get_output().stdout).into_owned() + &String::from_utf8_lossy(&r.get_output().stderr);
+        assert!(text.contains(" 0 pixel(s) differ"), "{tag}: {text}");
+    };
+    render_rtl(&root().join(cfg), "both_maps");
     // A top with one blend has one map and one load port: its sets name and load that one.
     let diffuse_only = dir.join("diffuse_only.toml");
     std::fs::write(
@@ -507,17 +511,7 @@ fn embm_scene_sets_run_on_their_objects_maps() {
         std::fs::read_to_string(root().join(cfg)).unwrap() + "specular = false\n",
     )
     .unwrap();
-    let r = gbump()
-        .args(["render", "--rtl", "--scene", "cg_wall_floor", "--size", "48x32", "--config"])
-        .arg(&diffuse_only)
-        .arg("--out")
-        .arg(dir.join("img1"))
-        .arg("--work")
-        .arg(dir.join("render1"))
-        .assert()
-        .success();
-    let text = String::from_utf8_lossy(&r.get_output().stdout).into_owned() + &String::from_utf8_lossy(&r.get_output().stderr);
-    assert!(text.contains(" 0 pixel(s) differ"), "{text}");
+    render_rtl(&diffuse_only, "diffuse_only");
     let t = regress(
         &["--stream", "scene:cg_wall_floor", "--scene-size", "48x32", "--config", cfg],
         "embm_scene/stream",
