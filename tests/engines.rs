@@ -242,6 +242,21 @@ fn the_papers_claims_hold_as_measured() {
         let y: Vec<f64> = s.points.iter().map(|p| p.1).collect();
         assert!(y.windows(2).all(|w| w[1] < w[0]), "{}: {y:?}", s.label);
     }
+    // Its bit-accurate path at each map size it generates tracks the f64 engine, and its RAM
+    // is four copies of both maps (8-bit colours: 24-bit words).
+    let mut fixed_rows = 0;
+    for row in e.markdown.lines().filter(|l| l.starts_with("| ") && !l.starts_with("| scene")) {
+        let c: Vec<&str> = row.split('|').map(str::trim).collect();
+        if c[7] == "–" {
+            continue;
+        }
+        let (f64_db, fixed_db): (f64, f64) = (c[3].parse().unwrap(), c[7].parse().unwrap());
+        assert!((f64_db - fixed_db).abs() < 0.5, "{row}");
+        let side: u64 = c[2].parse().unwrap();
+        assert_eq!(c[8].parse::<u64>().unwrap(), 2 * 4 * side * side * 24, "{row}");
+        fixed_rows += 1;
+    }
+    assert_eq!(fixed_rows, 3 * 6, "{}", e.markdown);
     // The texture filter: renormalising the map's filtered normal lowers SGI's and Cg's error
     // at every bump strength.
     let m = claim("map-filter").unwrap();

@@ -341,8 +341,11 @@ fn map_filter() -> Result<Claim> {
 const EMBM_SIDES: [u32; 7] = [8, 16, 32, 64, 128, 256, 512];
 
 fn embm_resolution() -> Result<Claim> {
-    let mut md = String::from("| scene | map side | PSNR against Blinn (dB) | mean (LSB) | PSNR against the finest map (dB) | mean (LSB) | texels regenerated when one light moves |\n|---|---:|---:|---:|---:|---:|---:|\n");
+    let mut md = String::from("| scene | map side | PSNR against Blinn (dB) | mean (LSB) | PSNR against the finest map (dB) | mean (LSB) | bit-accurate: PSNR against Blinn (dB) | its map RAM bits | texels regenerated when one light moves |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     let (mut series, mut psnr) = (Vec::new(), Vec::new());
+    // The bit-accurate path's gap to its f64 model over the sizes it generates.
+    let mut gap = 0f64;
+    let max_bits = crate::config::limit("env_map_bits").1;
     let finest = Maps {
         embm_map: crate::limits::MAX_ENV_MAP_SIDE,
         ..Maps::default()
@@ -364,8 +367,27 @@ fn embm_resolution() -> Result<Claim> {
                 },
             )?;
             let (e, own) = (compare(&img[0], &best[0]), compare(&img[0], &best[1]));
+            // The golden model with maps of this side (2^env_map_bits), where gbump generates
+            // one: the same engine rounded, and the RAM its four copies of each map take.
+            let bits = side.trailing_zeros();
+            let fixed = match bits <= max_bits {
+                true => {
+                    let mut cfg = eng("embm").fixed_config(&s)?.expect("embm has a bit-accurate path");
+                    cfg.env_map_bits = bits;
+                    cfg.validate(&format!("{} (embm, env_map_bits = {bits})", s.file))?;
+                    let f = compare(&super::report::golden_image(&s, &cfg, &best[0])?, &best[0]);
+                    gap = gap.max((f.psnr_db - e.psnr_db).abs());
+                    let ram: u64 = crate::rtlgen::top::memories(&cfg)
+                        .iter()
+                        .filter(|m| m.prefix.starts_with("env_"))
+                        .map(|m| 4 * m.depth as u64 * m.data_bits as u64)
+                        .sum();
+                    format!("{:.2} | {ram}", f.psnr_db)
+                }
+                false => "– | –".to_string(),
+            };
             md += &format!(
-                "| {name} | {side} | {:.2} | {:.3} | {:.2} | {:.3} | {} |\n",
+                "| {name} | {side} | {:.2} | {:.3} | {:.2} | {:.3} | {fixed} | {} |\n",
                 e.psnr_db,
                 e.mean_lsb,
                 own.psnr_db,
@@ -386,7 +408,7 @@ fn embm_resolution() -> Result<Claim> {
     let (lo, hi) = psnr
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    md += &format!("\nEMBM's diffuse and specular environment maps (sphere maps of the view-space normal, read bilinearly) at seven sizes: against Blinn, and against the same engine with a {0}×{0} map (the map's own share of the error, the figure). The map's share falls {1:.2}-fold per doubling of the side (geometric mean over the scenes), while the PSNR against Blinn stays between {lo:.1} and {hi:.1} dB at every size: the rest of the error is not the map's but the model's other approximations (the maps' lights taken as distant at each object's centre, the map coordinates interpolated from the vertices, the sphere map's view-space parameterisation off the view axis). Moving one light regenerates both maps of every object (2 · side² texels each), where Gouraud bump mapping sends one new L and H per triangle.\n", crate::limits::MAX_ENV_MAP_SIDE, per_doubling.exp());
+    md += &format!("\nEMBM's diffuse and specular environment maps (sphere maps of the view-space normal, read bilinearly) at seven sizes: against Blinn, and against the same engine with a {0}×{0} map (the map's own share of the error, the figure). The map's share falls {1:.2}-fold per doubling of the side (geometric mean over the scenes), while the PSNR against Blinn stays between {lo:.1} and {hi:.1} dB at every size: the rest of the error is not the map's but the model's other approximations (the maps' lights taken as distant at each object's centre, the map coordinates interpolated from the vertices, the sphere map's view-space parameterisation off the view axis). Moving one light regenerates both maps of every object (2 · side² texels each), where Gouraud bump mapping sends one new L and H per triangle. In bit-accurate form (the golden model, which the RTL computes, with `env_map_bits` = log2 side up to {max_side}) the PSNR against Blinn is within {gap:.2} dB of the f64 model's at every size, so what resolution costs in hardware is the RAM: four copies of each map (one per texel of the bilinear block), 2 · 4 · side² words of 3 · colour_bits.\n", crate::limits::MAX_ENV_MAP_SIDE, per_doubling.exp(), max_side = 1u32 << max_bits);
     Ok(Claim {
         name: "embm-resolution",
         svg: lines(
