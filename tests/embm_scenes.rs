@@ -238,3 +238,43 @@ fn embm_scene_sets_are_per_object_with_their_maps() {
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(!out.status.success() && err.contains("only the top loads"), "{err}");
 }
+
+/// `gbump render` under an EMBM configuration names what its f64 image is: EMBM's own
+/// equations, and within the bound above of the golden image.
+#[test]
+fn the_render_names_embms_equations() {
+    use assert_cmd::Command;
+    let dir = tempfile::tempdir().unwrap();
+    let out = Command::cargo_bin("gbump")
+        .unwrap()
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "render",
+            "--scene",
+            "torus_caps",
+            "--size",
+            "96x72",
+            "--config",
+            "tests/configs/embm.toml",
+            "--out",
+        ])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{text}");
+    let line = text
+        .lines()
+        .find(|l| l.contains("golden vs f64 EMBM equations"))
+        .unwrap_or_else(|| panic!("{text}"));
+    let max: f64 = line
+        .split("max")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(max < 12.0, "{line}");
+}

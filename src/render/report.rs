@@ -116,7 +116,9 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
         100.0 * vs_ref.over_1lsb
     ))?;
     say(&format!(
-        "  golden vs f64 Gouraud bump   : PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
+        "  golden vs {}: PSNR {:6.2} dB, max {:5.1} LSB, mean {:.3} LSB, {:5.2}% of pixels off by >1 LSB",
+        // The configuration's own equations in f64: EMBM's maps, or Gouraud bump's lights.
+        if cfg.embm() { "f64 EMBM equations " } else { "f64 Gouraud bump   " },
         vs_gou.psnr_db,
         vs_gou.max_lsb,
         vs_gou.mean_lsb,
