@@ -255,6 +255,11 @@ impl UnormDiv {
     }
 }
 
+/// Quantise a [0,1] colour to codes (clamped; NaN cannot occur, inputs are validated).
+pub fn colour_codes(c: glam::DVec3, max: u32) -> [u32; 3] {
+    c.to_array().map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

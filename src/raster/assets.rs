@@ -23,17 +23,6 @@ pub struct ObjectAssets {
     pub centre: DVec3,
 }
 
-/// An object's f64 normal map: its height field, differentiated, curved for a facet-baked
-/// cylinder.
-pub fn normal_map(scene: &Scene, o: &Object) -> Result<NormalMap> {
-    let hf = o.bump.source.generate(o.bump.size as usize, &scene.base)?;
-    let mut normals = NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
-    if o.bump.cylinder_sides > 0 {
-        normals.curve_for_cylinder(o.bump.cylinder_sides);
-    }
-    Ok(normals)
-}
-
 /// A scene made ready to render under one configuration at one size.
 pub struct Prepared<'a> {
     pub scene: &'a Scene,
@@ -50,13 +39,13 @@ impl<'a> Prepared<'a> {
         let mut objects = Vec::new();
         let mut tables = BTreeMap::new();
         for o in &scene.objects {
-            let normals = normal_map(scene, o)?;
+            let normals = scene.normal_map(o)?;
             let stored = StoredMap::store(cfg, &normals);
             let mesh = tessellate(o);
             mirrored_refused(scene, cfg, objects.len(), &mesh)?;
             let tris = tri_states(scene, cfg, &camera, &mesh)?;
             tables.entry(o.shininess).or_insert_with(|| PowerTable::build(cfg, o.shininess));
-            let centre = crate::reference::embm_f64::centre(&mesh);
+            let centre = crate::scene::sphere_map::centre(&mesh);
             let env = match cfg.embm() {
                 true => super::env_setup::object_maps(cfg, scene, &camera, objects.len(), centre),
                 false => EnvMaps::default(),

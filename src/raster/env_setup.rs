@@ -1,12 +1,12 @@
 //! EMBM's setup (paper §3.3), in the pipeline's words: each object's two environment maps
 //! quantised to colour codes, the triangle's 2×2 matrix and the fragment's interpolated map
-//! coordinates as the rasteriser sends them (`reference::embm_f64` is their geometry).
+//! coordinates as the rasteriser sends them (`scene::sphere_map` is their geometry).
 
 use crate::config::PipelineConfig;
 use crate::fixed::{from_f64, Overflow, Rounding};
 use crate::model::env_map::{EnvMaps, EnvState};
-use crate::reference::embm_f64::{coords_at, texel, texel_centre, triangle_matrix};
 use crate::scene::mesh::Vertex;
+use crate::scene::sphere_map::{coords_at, texel, texel_centre};
 use crate::scene::{Camera, Scene};
 use glam::DVec3;
 
@@ -21,8 +21,8 @@ pub fn object_maps(cfg: &PipelineConfig, scene: &Scene, cam: &Camera, obj: usize
         for x in 0..side {
             let (sx, sy) = texel_centre(side, x, y);
             let (d, s) = texel(scene, cam, obj, at, sx, sy);
-            diffuse.push(super::fragment::colour_codes(d, max));
-            specular.push(super::fragment::colour_codes(s, max));
+            diffuse.push(crate::fixed::colour_codes(d, max));
+            specular.push(crate::fixed::colour_codes(s, max));
         }
     }
     EnvMaps {
@@ -30,15 +30,6 @@ pub fn object_maps(cfg: &PipelineConfig, scene: &Scene, cam: &Camera, obj: usize
         diffuse,
         specular,
     }
-}
-
-/// The triangle's matrix as the setup sends it (`m`, `s1.(lh-2)`): (m_0, m_1) its T's and
-/// (m_2, m_3) its B's (right, up) components, times the normal codes' scale as L and H are,
-/// so M times the fetched codes is M times the normal.
-pub fn send_matrix(cfg: &PipelineConfig, cam: &Camera, v: &[Vertex; 3]) -> [i64; 4] {
-    let [t, b] = triangle_matrix(cam, v);
-    // Unit T and B give components within [-1, 1]: finite, and inside the L/H format.
-    [t.x, t.y, b.x, b.y].map(|c| super::tri_state::send_lh(cfg, c).expect("a unit frame's components are finite"))
 }
 
 /// The fragment's EMBM state: its triangle's matrix and its map coordinates interpolated at

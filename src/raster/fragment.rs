@@ -49,10 +49,7 @@ pub fn pixel_geom(p: &Prepared, hit: &Hit) -> PixelGeom {
     }
 }
 
-/// Quantise a [0,1] colour to codes (clamped; NaN cannot occur, inputs are validated).
-pub fn colour_codes(c: DVec3, max: u32) -> [u32; 3] {
-    c.to_array().map(|x| (x.clamp(0.0, 1.0) * max as f64).round() as u32)
-}
+pub use crate::fixed::colour_codes;
 
 /// The pipeline inputs for a hit.
 pub fn fragment_in(p: &Prepared, hit: &Hit, g: &PixelGeom) -> FragmentIn {

@@ -36,6 +36,15 @@ pub fn send_k(cfg: &PipelineConfig, x: f64) -> i64 {
     from_f64(x, cfg.k_fmt(), Rounding::HalfUp, Overflow::Saturate).expect("finite k")
 }
 
+/// The triangle's matrix as the setup sends it (`m`, `s1.(lh-2)`): (m_0, m_1) its T's and
+/// (m_2, m_3) its B's (right, up) components, times the normal codes' scale as L and H are,
+/// so M times the fetched codes is M times the normal.
+pub fn send_matrix(cfg: &PipelineConfig, cam: &Camera, v: &[crate::scene::mesh::Vertex; 3]) -> [i64; 4] {
+    let [t, b] = crate::scene::sphere_map::triangle_matrix(cam, v);
+    // Unit T and B give components within [-1, 1]: finite, and inside the L/H format.
+    [t.x, t.y, b.x, b.y].map(|c| send_lh(cfg, c).expect("a unit frame's components are finite"))
+}
+
 pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh) -> Result<Vec<TriState>> {
     let lights: Vec<_> = scene.bump_lights().collect();
     scene.check_config(cfg, "pipeline config")?;
@@ -60,7 +69,7 @@ pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh
         };
         if cfg.embm() {
             // EMBM's lights are in its maps: the setup sends the triangle's 2×2 matrix alone.
-            st.fixed.env.m = super::env_setup::send_matrix(cfg, cam, &v);
+            st.fixed.env.m = send_matrix(cfg, cam, &v);
             out.push(st);
             continue;
         }

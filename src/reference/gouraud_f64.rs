@@ -27,10 +27,6 @@ pub fn filtered_normal(map: &crate::bumpmap::NormalMap, uv: DVec2, filter: Filte
 /// The equations with L, H and k as the configuration's per-fragment choices say (per
 /// triangle unless it interpolates them).
 pub fn shade(p: &Prepared, hit: &Hit, g: &PixelGeom) -> DVec3 {
-    if p.cfg.embm() {
-        // EMBM's lighting is in its maps.
-        return super::embm_f64::shade(p, hit, g);
-    }
     shade_interpolating(p, hit, g, p.cfg.per_fragment())
 }
 

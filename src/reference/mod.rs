@@ -11,3 +11,14 @@ pub mod cube_map;
 pub mod embm_f64;
 pub mod gouraud_f64;
 pub mod perpixel;
+
+use crate::raster::{Hit, PixelGeom, Prepared};
+
+/// The configuration's own equations in f64 at a fragment (what the golden model rounds):
+/// EMBM's maps under `env_map_bits`, else the Gouraud bump equations.
+pub fn equations(p: &Prepared, hit: &Hit, g: &PixelGeom) -> glam::DVec3 {
+    match p.cfg.embm() {
+        true => embm_f64::shade(p, hit, g),
+        false => gouraud_f64::shade(p, hit, g),
+    }
+}

@@ -11,7 +11,7 @@ use crate::model::shade;
 use crate::raster::fragment::{colour_codes, fragments, pixel_geom};
 use crate::raster::rasterise::rasterise;
 use crate::raster::{FragmentRecord, Prepared};
-use crate::reference::{gouraud_f64, perpixel};
+use crate::reference::perpixel;
 use crate::scene::Scene;
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -89,7 +89,10 @@ pub fn render(scene: &Scene, cfg: &PipelineConfig, w: u32, h: u32, progress: boo
             None => (bg, bg),
             Some(hit) => {
                 let g = pixel_geom(&p, hit);
-                (gouraud_f64::shade(&p, hit, &g).to_array(), perpixel::shade(&p, hit, &g).to_array())
+                (
+                    crate::reference::equations(&p, hit, &g).to_array(),
+                    perpixel::shade(&p, hit, &g).to_array(),
+                )
             }
         })
         .collect();

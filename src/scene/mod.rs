@@ -8,6 +8,7 @@ mod fingerprint;
 pub mod lighting;
 pub mod mesh;
 pub mod needs;
+pub mod sphere_map;
 pub mod teapot;
 mod validate;
 
@@ -406,6 +407,17 @@ impl Scene {
             }
             e => e,
         }
+    }
+
+    /// Object `o`'s f64 normal map: its height field, differentiated, curved for a
+    /// facet-baked cylinder.
+    pub fn normal_map(&self, o: &Object) -> Result<crate::bumpmap::NormalMap> {
+        let hf = o.bump.source.generate(o.bump.size as usize, &self.base)?;
+        let mut normals = crate::bumpmap::NormalMap::from_height(&hf, o.bump.method, o.bump.strength);
+        if o.bump.cylinder_sides > 0 {
+            normals.curve_for_cylinder(o.bump.cylinder_sides);
+        }
+        Ok(normals)
     }
 
     /// Check that `cfg` can render this scene.

@@ -38,7 +38,7 @@ pub fn distinct_normals(scene: &Scene, cfg: &PipelineConfig) -> Result<Vec<usize
     };
     let mut out = Vec::new();
     for o in &scene.objects {
-        let normals = crate::raster::assets::normal_map(scene, o)?;
+        let normals = scene.normal_map(o)?;
         out.push(match StoredMap::store(&plain, &normals) {
             StoredMap::Rgb { codes, .. } => codes.into_iter().collect::<HashSet<_>>().len(),
             StoredMap::Palettised { .. } => unreachable!("stored without a palette"),

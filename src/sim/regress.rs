@@ -324,7 +324,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         if let Some(t) = &table {
                             args.extend(["--table".into(), t.clone()]);
                         }
-                        for (flag, f) in env_files(&m, &dir) {
+                        for (flag, f) in env_files(m, dir) {
                             args.extend([format!("--{}", flag.replace('_', "-")), f]);
                         }
                         if o.bubbles > 0 {
@@ -341,7 +341,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                             plus.push(format!("+table={t}"));
                         }
                         if bench != Bench::Units {
-                            plus.extend(env_files(&m, &dir).into_iter().map(|(flag, f)| format!("+{flag}={f}")));
+                            plus.extend(env_files(m, dir).into_iter().map(|(flag, f)| format!("+{flag}={f}")));
                         }
                         if bench == Bench::Units {
                             plus.push(format!("+unit={}", m.target));
