@@ -204,7 +204,15 @@ pub fn wrong_kind(text: &str, reading: &str) -> Option<String> {
 /// (`shininess =` at the end of a file gives an empty one), so the key is read off the line
 /// the error points into and a missing value is said in words.
 pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Error {
-    let start = e.span().map_or(0, |s| s.start.min(text.len()));
+    let mut start = e.span().map_or(0, |s| s.start.min(text.len()));
+    // A value read whole (an internally tagged table such as a shape) is pointed at from its
+    // `{`: the key inside it whose value the message quotes is the place.
+    if let Some(at) = e
+        .span()
+        .and_then(|s| quoted_value_at(&text[s.start.min(text.len())..s.end.min(text.len())], e.message()))
+    {
+        start += at;
+    }
     let (line, col) = line_col(text, start);
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
@@ -255,6 +263,29 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         msg,
         fix,
     }
+}
+
+/// Where, in the text of an inline table `span` (`{ kind = "torus", major = "big" }`), the
+/// value an "invalid type: string \"big\", expected f64" message quotes stands, when the
+/// message quotes one and the table holds it once.
+fn quoted_value_at(span: &str, msg: &str) -> Option<usize> {
+    if !span.trim_start().starts_with('{') {
+        return None;
+    }
+    let quoted = msg.split_once("invalid type: ")?.1.split_once(", expected")?.0;
+    // `string "big"` keeps its quotes; `integer `3``, `boolean `true`` and `floating point
+    // `1.5`` are between backticks.
+    let value = match quoted.split_once('"') {
+        Some(_) => &quoted[quoted.find('"')?..],
+        None => quoted.split('`').nth(1)?,
+    };
+    let mut hits = span.match_indices(value).filter(|(i, _)| {
+        let before = span[..*i].trim_end();
+        let after = span[i + value.len()..].trim_start();
+        before.ends_with('=') && (after.starts_with(',') || after.starts_with('}'))
+    });
+    let (at, _) = hits.next()?;
+    hits.next().is_none().then_some(at)
 }
 
 /// Old field names still read (with a warning) that an unknown-field error should not
@@ -319,6 +350,34 @@ mod tests {
             Error::Input { msg, .. } => msg,
             other => panic!("{other:?}"),
         }
+    }
+
+    /// A type error inside a value read whole (an internally tagged inline table) names the
+    /// key inside it, at its value's column.
+    #[test]
+    fn a_type_error_inside_a_tagged_inline_table_names_its_key() {
+        #[derive(serde::Deserialize, Debug)]
+        #[serde(tag = "kind", rename_all = "lowercase")]
+        #[allow(dead_code)]
+        enum Shape {
+            Torus { major: f64, minor: f64 },
+        }
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Obj {
+            shape: Shape,
+        }
+        #[derive(serde::Deserialize, Debug)]
+        #[allow(dead_code)]
+        struct Scene {
+            objects: Vec<Obj>,
+        }
+        let text = "[[objects]]\nshape = { kind = \"torus\", major = \"big\", minor = 0.4 }\n";
+        let e = toml::from_str::<Scene>(text).unwrap_err();
+        let msg = toml_error("s.toml", text, &e, "fix").to_string();
+        assert!(msg.contains("s.toml:2:") && msg.contains("objects[0].shape.major"), "{msg}");
+        let col = text.lines().nth(1).unwrap().find("\"big\"").unwrap() + 1;
+        assert!(msg.contains(&format!(":2:{col}:")), "{msg}");
     }
 
     /// An escape sequence or a right-to-left override in a name cannot rewrite the message.

@@ -544,6 +544,15 @@ fn cases() -> Vec<Case> {
             vec!["missing_dir/", "names a folder", "give a file name"],
         ),
         (
+            "a wrong type inside a shape",
+            vec![(
+                "s.toml",
+                include_str!("../scenes/torus_caps.toml").replacen("major = 1.0", "major = \"big\"", 1).into(),
+            )],
+            vec!["render", "--scene", "s.toml", "--out", "out"],
+            vec!["s.toml:25:", "objects[0].shape.major", "expected f64"],
+        ),
+        (
             "a scene named twice to fit-table",
             vec![],
             vec!["fit-table", "--scene", "torus_caps", "--scene", "torus_caps"],
