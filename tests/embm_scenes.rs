@@ -99,7 +99,7 @@ fn the_sent_coordinates_are_the_f64_coordinates() {
             let cam = &p.camera;
             // The fetched codes as the normal they stand for.
             let (du, dv) = (b[0] as f64 / nb_one * cfg.normal_scale(), b[1] as f64 / nb_one * cfg.normal_scale());
-            let [mt, mb] = gbump::reference::embm_f64::triangle_matrix(cam, &v);
+            let [mt, mb] = gbump::scene::sphere_map::triangle_matrix(cam, &v);
             // The fragment's barycentric weights are not kept: take st from what was sent.
             let st = [f.state.env.st[0], f.state.env.st[1]].map(|x| x as f64 * lh_lsb);
             let want = [st[0] + mt.x * du + mb.x * dv, st[1] + mt.y * du + mb.y * dv];
@@ -130,7 +130,7 @@ fn the_interpolated_coordinates_are_the_vertex_normals_sphere_coordinates() {
     for hit in gb.hits.iter().flatten() {
         let st = gbump::raster::fragment::state_at(&p, hit).env.st;
         let v = p.objects[hit.obj as usize].mesh.corners(hit.tri);
-        let want = gbump::reference::embm_f64::coords_at(&p.camera, &v, hit.bary);
+        let want = gbump::scene::sphere_map::coords_at(&p.camera, &v, hit.bary);
         assert!(
             (st[0] as f64 * lh_lsb - want.x).abs() <= lh_lsb / 2.0 && (st[1] as f64 * lh_lsb - want.y).abs() <= lh_lsb / 2.0,
             "{st:?} for {want:?}"
@@ -153,8 +153,8 @@ fn each_object_has_its_own_maps() {
     for (i, o) in p.objects.iter().enumerate() {
         assert_eq!(o.env.diffuse.len(), (side * side) as usize);
         for (x, y) in [(0, 0), (side / 2, side / 2), (side - 1, 3), (7, side - 2)] {
-            let (sx, sy) = gbump::reference::embm_f64::texel_centre(side, x, y);
-            let (d, sp) = gbump::reference::embm_f64::texel(&s, &p.camera, i, o.centre, sx, sy);
+            let (sx, sy) = gbump::scene::sphere_map::texel_centre(side, x, y);
+            let (d, sp) = gbump::scene::sphere_map::texel(&s, &p.camera, i, o.centre, sx, sy);
             let code = |v: f64| (v.clamp(0.0, 1.0) * max).round() as u32;
             let at = (y * side + x) as usize;
             assert_eq!(o.env.diffuse[at], d.to_array().map(code), "object {i} texel ({x}, {y})");

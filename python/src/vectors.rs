@@ -58,10 +58,7 @@ impl Stimulus {
 
 /// Top records of `stims` evaluated with the power table of shininess `n`, as words.
 fn top_words(cfg: &PipelineConfig, stims: &[TopStim], n: u32, env: Option<&gbump::model::env_map::EnvMaps>) -> Vec<u32> {
-    let mut mem = MemoryContents::new(cfg, n);
-    if let Some(e) = env {
-        mem.env = e.clone();
-    }
+    let mem = MemoryContents::new(cfg, n).with_env(env);
     let l = gbump::vectors::targets::top_layout(cfg);
     let w = l.words32();
     stims
@@ -128,13 +125,9 @@ pub fn vectors<'py>(
                 let d = set(py, &g.stem, "top", g.shininess, words, top_w, None)?;
                 if let Some(e) = &g.env {
                     // EMBM: the object's maps, as RAM words for the env_*_wdata ports.
-                    for (key, map) in [("env_diffuse", &e.diffuse), ("env_specular", &e.specular)] {
-                        let cb = cfg.colour_bits;
-                        let words: Vec<u64> = map
-                            .iter()
-                            .map(|c| c[0] as u64 | (c[1] as u64) << cb | (c[2] as u64) << (2 * cb))
-                            .collect();
-                        d.set_item(key, words)?;
+                    for (which, map) in [("diffuse", &e.diffuse), ("specular", &e.specular)] {
+                        let rom = gbump::rtlgen::rom::env_map_rom(cfg, map, which, "a scene object's lighting");
+                        d.set_item(format!("env_{which}"), rom.words)?;
                     }
                 }
                 out.append(d)?;

@@ -377,9 +377,8 @@ fn embm_resolution() -> Result<Claim> {
                     cfg.validate(&format!("{} (embm, env_map_bits = {bits})", s.file))?;
                     let f = compare(&super::report::golden_image(&s, &cfg, &best[0])?, &best[0]);
                     gap = gap.max((f.psnr_db - e.psnr_db).abs());
-                    let ram: u64 = crate::rtlgen::top::memories(&cfg)
+                    let ram: u64 = crate::rtlgen::top::env_map_memories(&cfg)
                         .iter()
-                        .filter(|m| m.prefix.starts_with("env_"))
                         .map(|m| 4 * m.depth as u64 * m.data_bits as u64)
                         .sum();
                     format!("{:.2} | {ram}", f.psnr_db)

@@ -4,7 +4,7 @@
 //! through the triangle's 2×2 matrix, the view-space (right, up) components of its T and B.
 
 use crate::raster::{Hit, PixelGeom, Prepared};
-pub use crate::scene::sphere_map::*;
+use crate::scene::sphere_map::{coords_at, lookup, texel, texel_centre, triangle_matrix};
 use glam::{DVec2, DVec3};
 
 /// The map coordinates the fragment at `hit` reads with bump normal `nb` (tangent space):

@@ -119,11 +119,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  lint:\n    default_tool: verilator\n    filesets: [rtl, waivers, package]\n    toplevel: {top}\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n"
     );
     // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
-    let others: Vec<&'static str> = crate::rtlgen::top::memories(cfg)
-        .iter()
-        .map(|m| m.prefix)
-        .filter(|p| *p != crate::units::POWER_TABLE)
-        .collect();
+    let others: Vec<&'static str> = super::testbench::other_memories(cfg).iter().map(|m| m.prefix).collect();
     let plus = format!(
         "[INIT_FILE, vectors, table, {}bubbles, max_errors]",
         others.iter().map(|p| format!("{p}, ")).collect::<String>()

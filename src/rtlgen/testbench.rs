@@ -45,13 +45,18 @@ fn slice(rec: &str, lsb: u32, width: u32) -> String {
 }
 
 /// The top's memories other than the power table (a palette, EMBM's maps): each loadable
-/// from a file by the testbench (`+PREFIX=FILE`) and the harness (`--PREFIX FILE`, `_` as
-/// `-`).
-fn other_memories(cfg: &PipelineConfig) -> Vec<crate::units::Memory> {
+/// from a file by the testbench (`+PREFIX=FILE`) and the harness ([`harness_flag`]).
+pub fn other_memories(cfg: &PipelineConfig) -> Vec<crate::units::Memory> {
     crate::rtlgen::top::memories(cfg)
         .into_iter()
         .filter(|m| m.prefix != crate::units::POWER_TABLE)
         .collect()
+}
+
+/// The C++ harness's option that loads the memory of load-port prefix `prefix`
+/// (`env_diffuse` is `--env-diffuse`).
+pub fn harness_flag(prefix: &str) -> String {
+    format!("--{}", prefix.replace('_', "-"))
 }
 
 /// The top testbench (Icarus and Verilator --binary); the pipeline powers up with `rtl`'s
@@ -313,8 +318,8 @@ pub fn harness_top(cfg: &PipelineConfig) -> String {
         assert!(m.data_bits <= 64, "{p}: a load port wider than 64 bits");
         vars.push(format!("    const char* {p}_path = nullptr;\n    std::vector<uint64_t> {p}_words;"));
         args.push(format!(
-            "        else if (!strcmp(argv[i], \"--{}\") && i + 1 < argc) {p}_path = argv[++i];",
-            p.replace('_', "-")
+            "        else if (!strcmp(argv[i], \"{}\") && i + 1 < argc) {p}_path = argv[++i];",
+            harness_flag(p)
         ));
         read.push(format!(
             "    if ({p}_path && !read_words({p}_path, {p}_words, {d})) {{ fprintf(stderr, \"FATAL: %s: expected %d words of {p}\\n\", {p}_path, {d}); return 2; }}",

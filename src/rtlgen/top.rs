@@ -79,6 +79,11 @@ pub fn memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
     v
 }
 
+/// EMBM's environment maps among [`memories`]: one per blend the configuration has.
+pub fn env_map_memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
+    memories(cfg).into_iter().filter(|m| m.prefix.starts_with("env_")).collect()
+}
+
 /// The memories other than the power table: (the top's init parameter, the unit that holds
 /// the memory, the init file's name in the generated RTL).
 pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {

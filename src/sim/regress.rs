@@ -10,6 +10,7 @@ use super::{Outcome, Sim, Simulator, Testbench, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
+use crate::vectors::manifest::EnvMapFiles;
 use crate::vectors::{dump, verify, DumpOptions, Source};
 use std::path::{Path, PathBuf};
 
@@ -324,9 +325,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         if let Some(t) = &table {
                             args.extend(["--table".into(), t.clone()]);
                         }
-                        for (flag, f) in env_files(m, dir) {
-                            args.extend([format!("--{}", flag.replace('_', "-")), f]);
-                        }
+                        args.extend(harness_memory_args(m.env_maps.as_ref(), dir));
                         if o.bubbles > 0 {
                             args.extend(["--bubbles".into(), o.bubbles.to_string()]);
                         }
@@ -341,7 +340,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                             plus.push(format!("+table={t}"));
                         }
                         if bench != Bench::Units {
-                            plus.extend(env_files(m, dir).into_iter().map(|(flag, f)| format!("+{flag}={f}")));
+                            plus.extend(env_files(m.env_maps.as_ref(), dir).into_iter().map(|(p, f)| format!("+{p}={f}")));
                         }
                         if bench == Bench::Units {
                             plus.push(format!("+unit={}", m.target));
@@ -383,14 +382,21 @@ fn every_record(out: super::verdict::Outcome, count: u64, what: &str) -> Result<
     Ok(out)
 }
 
-/// A set's environment maps as (harness option name, path): `env_diffuse` and
-/// `env_specular` (`--env-diffuse` for the C++ harness, `+env_diffuse=` for the testbench),
-/// none for a set on the power-up maps.
-pub fn env_files(m: &crate::vectors::manifest::Manifest, dir: &Path) -> Vec<(&'static str, String)> {
-    m.env_maps.as_ref().map_or_else(Vec::new, |e| {
+/// A set's environment maps in `dir` as (load-port prefix, path): `env_diffuse` is
+/// `+env_diffuse=` for the testbench; none for a set on the power-up maps.
+pub fn env_files(e: Option<&EnvMapFiles>, dir: &Path) -> Vec<(&'static str, String)> {
+    e.map_or_else(Vec::new, |e| {
         e.each()
             .into_iter()
-            .map(|(prefix, f)| (prefix, dir.join(&f.name).display().to_string()))
+            .map(|(prefix, _, f)| (prefix, dir.join(&f.name).display().to_string()))
             .collect()
     })
+}
+
+/// [`env_files`] as the C++ harness's options (`--env-diffuse PATH`).
+pub fn harness_memory_args(e: Option<&EnvMapFiles>, dir: &Path) -> Vec<String> {
+    env_files(e, dir)
+        .into_iter()
+        .flat_map(|(p, f)| [crate::rtlgen::testbench::harness_flag(p), f])
+        .collect()
 }

@@ -66,10 +66,9 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
             out.display().to_string(),
             "--no-check".into(),
         ];
-        let env = super::regress::env_files(&m, &dir);
         let args: Vec<String> = args
             .into_iter()
-            .chain(env.into_iter().flat_map(|(flag, f)| [format!("--{}", flag.replace('_', "-")), f]))
+            .chain(super::regress::harness_memory_args(m.env_maps.as_ref(), &dir))
             .collect();
         let res = Verilator.run(&exe, &args, None, &dir, "verilator render")?;
         let bytes = std::fs::read(&out).map_err(|e| Error::io(&out, e))?;

@@ -206,18 +206,20 @@ pub struct StreamRun<'a> {
 pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Outcome> {
     crate::interrupt::check()?;
     let what = format!("verilator {}", s.set);
-    let mut contents = MemoryContents::new(cfg, s.shininess);
+    let contents = MemoryContents::new(cfg, s.shininess).with_env(s.env.as_ref());
     // Beside the power table, the maps the harness loads (as a file-based set's).
-    let mut env_args = Vec::new();
-    if let Some(env) = &s.env {
-        let dir = r.table.parent().unwrap_or(r.cwd);
-        let files = crate::vectors::writer::write_env_maps(dir, &s.set, cfg, env, "gbump regress --stream")?;
-        for (prefix, f) in files.each() {
-            env_args.push(format!("--{}", prefix.replace('_', "-")));
-            env_args.push(dir.join(&f.name).display().to_string());
-        }
-        contents.env = env.clone();
-    }
+    let dir = r.table.parent().unwrap_or(r.cwd);
+    let files = match &s.env {
+        Some(env) => Some(crate::vectors::writer::write_env_maps(
+            dir,
+            &s.set,
+            cfg,
+            env,
+            "gbump regress --stream",
+        )?),
+        None => None,
+    };
+    let env_args = super::regress::harness_memory_args(files.as_ref(), dir);
     let maker = TopRecords::new(cfg, contents.view());
     let t0 = std::time::Instant::now();
     let mut cmd = Command::new(r.exe);

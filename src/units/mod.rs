@@ -123,6 +123,15 @@ impl MemoryContents {
         }
     }
 
+    /// These contents with `env` in place of the power-up maps, where a set has its own (an
+    /// EMBM scene object's).
+    pub fn with_env(mut self, env: Option<&crate::model::env_map::EnvMaps>) -> MemoryContents {
+        if let Some(e) = env {
+            self.env = e.clone();
+        }
+        self
+    }
+
     pub fn view(&self) -> Memories<'_> {
         Memories {
             table: &self.table,

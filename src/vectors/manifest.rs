@@ -71,12 +71,16 @@ pub struct EnvMapFiles {
 }
 
 impl EnvMapFiles {
-    /// (the top's load-port prefix, the file) of each map the set has.
-    pub fn each(&self) -> Vec<(&'static str, &FileEntry)> {
-        [("env_diffuse", self.diffuse.as_ref()), ("env_specular", self.specular.as_ref())]
-            .into_iter()
-            .filter_map(|(p, f)| Some((p, f?)))
-            .collect()
+    /// (the top's load-port prefix, the manifest key naming it, the file) of each map the
+    /// set has.
+    pub fn each(&self) -> Vec<(&'static str, &'static str, &FileEntry)> {
+        [
+            ("env_diffuse", "env_maps.diffuse.name", self.diffuse.as_ref()),
+            ("env_specular", "env_maps.specular.name", self.specular.as_ref()),
+        ]
+        .into_iter()
+        .filter_map(|(p, k, f)| Some((p, k, f?)))
+        .collect()
     }
 }
 
@@ -98,16 +102,7 @@ impl Manifest {
         .filter_map(|(k, f)| Some((k, f?)))
         .collect();
         if let Some(e) = &self.env_maps {
-            v.extend(e.each().into_iter().map(|(p, f)| {
-                (
-                    if p == "env_diffuse" {
-                        "env_maps.diffuse.name"
-                    } else {
-                        "env_maps.specular.name"
-                    },
-                    f,
-                )
-            }));
+            v.extend(e.each().into_iter().map(|(_, k, f)| (k, f)));
         }
         v
     }
@@ -209,15 +204,11 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     // An EMBM scene's top set runs on its object's maps, one for each map the top has; no
     // other set names any.
     let scene_top = m.config.embm() && m.target == "top" && m.source.starts_with("Scene(");
-    let want: Vec<&str> = crate::rtlgen::top::memories(&m.config)
-        .iter()
-        .map(|x| x.prefix)
-        .filter(|p| p.starts_with("env_"))
-        .collect();
+    let want: Vec<&str> = crate::rtlgen::top::env_map_memories(&m.config).iter().map(|x| x.prefix).collect();
     let have: Vec<&str> = m
         .env_maps
         .as_ref()
-        .map_or_else(Vec::new, |e| e.each().into_iter().map(|x| x.0).collect());
+        .map_or_else(Vec::new, |e| e.each().into_iter().map(|(p, _, _)| p).collect());
     if scene_top && have != want {
         return Err(Error::Other(format!(
             "{}: an EMBM scene set runs on its object's maps ({}), but the manifest names {}: the manifest was edited\n  fix: regenerate the set with `gbump vectors`",
@@ -444,7 +435,7 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     // binary), they must hold the same records, or the two simulators judge different sets.
     check_power_table(&dir.join(&m.power_table.name), &m, &regen)?;
     if let Some(e) = &m.env_maps {
-        for (_, f) in e.each() {
+        for (_, _, f) in e.each() {
             check_env_map(&dir.join(&f.name), &m, &regen)?;
         }
     }

@@ -264,7 +264,11 @@ pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMa
         })
     };
     // Only the maps the top has a port for (one per blend of the configuration).
-    let has = |which: &str| crate::rtlgen::top::memories(cfg).iter().any(|m| m.prefix == format!("env_{which}"));
+    let has = |which: &str| {
+        crate::rtlgen::top::env_map_memories(cfg)
+            .iter()
+            .any(|m| m.prefix == format!("env_{which}"))
+    };
     Ok(EnvMapFiles {
         diffuse: has("diffuse").then(|| one("diffuse", &maps.diffuse)).transpose()?,
         specular: has("specular").then(|| one("specular", &maps.specular)).transpose()?,
@@ -458,10 +462,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
         _ => {
             for g in top_groups(cfg, src, o, dir)? {
                 let (n, stims) = (g.shininess, &g.stims);
-                let mut mem = MemoryContents::new(cfg, n);
-                if let Some(env) = &g.env {
-                    mem.env = env.clone();
-                }
+                let mem = MemoryContents::new(cfg, n).with_env(g.env.as_ref());
                 let mut ws = open(dir, &g.stem, &targets, cfg, o, u64::MAX)?;
                 write_tops(cfg, &mem.view(), stims, &mut ws, true)?;
                 if matches!(src, Source::Corners(_)) {
