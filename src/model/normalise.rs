@@ -259,6 +259,9 @@ pub fn normalise_bump(cfg: &PipelineConfig, b: [i64; 3]) -> [i64; 3] {
 }
 
 /// A vector of `shape` normalised: the unit's arithmetic.
+// Never inlined: inlined into the fast model's run, its table set-up (an `exp2`) was hoisted
+// above the check that skips it, and every run of every configuration paid for it.
+#[inline(never)]
 pub fn normalise_shape(shape: &Shape, v: [i64; 3]) -> [i64; 3] {
     let p = params_of(shape);
     let Some((shift, r)) = reciprocal(&p, v) else {

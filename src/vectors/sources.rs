@@ -101,27 +101,36 @@ pub fn chunk_rng(seed: u64, chunk: u64) -> SplitMix64 {
 /// A random triangle's bump state: half realistic (unit vectors), half raw codes over the
 /// whole of every format.
 pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+    let mut state = BumpState::default();
+    random_state_into(cfg, rng, &mut state);
+    state
+}
+
+/// [`random_state`] written over `state`, which must be the default or an earlier state of
+/// the same configuration (every field this configuration draws is written; the rest stay
+/// as they were): a triangle's state is made in place, not copied.
+pub fn random_state_into(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
     match crate::simd::level() {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `simd::level` names only what this CPU has.
-        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, rng) },
+        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, rng, state) },
         #[cfg(target_arch = "x86_64")]
         // SAFETY: as above.
-        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, rng) },
-        _ => state(cfg, rng),
+        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, rng, state) },
+        _ => fill_state(cfg, rng, state),
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-unsafe fn state_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
-    state(cfg, rng)
+unsafe fn state_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
+    fill_state(cfg, rng, state)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,bmi2")]
-unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
-    state(cfg, rng)
+unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
+    fill_state(cfg, rng, state)
 }
 
 /// [`random_state`]'s draws, a light's ten fixed ones (L, H, Lc and k's coin) as one block.
@@ -130,20 +139,17 @@ unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 /// them run side by side. Each lane is the same IEEE operations in the same order as one
 /// vector alone, so the codes do not depend on how many lanes run at once.
 #[inline(always)]
-fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
+fn fill_state(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
     use super::rng::{range_of, unit_of};
     if cfg.embm() {
-        return BumpState {
-            env: random_env(cfg, rng),
-            ..Default::default()
-        };
+        state.env = random_env(cfg, rng);
+        return;
     }
     let cmax = cfg.colour_max() as i64;
     let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
     let n = cfg.lights as usize;
-    let mut state = BumpState::default();
     // Each light's L and H draws: vector 2i is light i's L, 2i + 1 its H.
     let mut x = [[0u64; 3]; 2 * MAX_LIGHTS];
     for (i, s) in state.lights.iter_mut().take(n).enumerate() {
@@ -158,8 +164,11 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         for (v, x) in v.iter_mut().zip(&x).take(2 * n) {
             *v = x.map(|x| range_of(x, lh.min_raw(), lh.max_raw()));
         }
+    } else if n <= MAX_LIGHTS / 2 {
+        // Half the lanes hold every vector of up to four lights: one register's worth.
+        unit_codes::<MAX_LIGHTS>(cfg, &x, &mut v);
     } else {
-        unit_codes(cfg, &x, &mut v);
+        unit_codes::<{ 2 * MAX_LIGHTS }>(cfg, &x, &mut v);
     }
     for (i, s) in state.lights.iter_mut().take(n).enumerate() {
         s.l = v[2 * i];
@@ -169,7 +178,6 @@ fn state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         // Drawn after the lights, so a configuration without a frame draws what it drew.
         state.frame = random_frame(cfg, rng, raw);
     }
-    state
 }
 
 /// EMBM's random state: half the time raw codes over the whole L/H format (clamping at
@@ -235,11 +243,10 @@ fn random_frame(cfg: &PipelineConfig, rng: &mut SplitMix64, raw: bool) -> crate:
 /// rounded to L/H codes (half away from zero, clamped), a component a lane: straight-line arithmetic over fixed-size arrays, which the compiler runs in vector
 /// registers where the caller is compiled for them.
 #[inline(always)]
-fn unit_codes(cfg: &PipelineConfig, x: &[[u64; 3]; 2 * MAX_LIGHTS], out: &mut [[i64; 3]; 2 * MAX_LIGHTS]) {
+fn unit_codes<const V: usize>(cfg: &PipelineConfig, x: &[[u64; 3]; 2 * MAX_LIGHTS], out: &mut [[i64; 3]; 2 * MAX_LIGHTS]) {
     use super::rng::unit_of;
-    const V: usize = 2 * MAX_LIGHTS;
     let mut c = [[0f64; V]; 3];
-    for (k, x) in x.iter().enumerate() {
+    for (k, x) in x.iter().enumerate().take(V) {
         c[0][k] = unit_of(x[0]) * 2.0 - 1.0;
         c[1][k] = unit_of(x[1]) * 2.0 - 1.0;
         c[2][k] = unit_of(x[2]) * 1.2 - 0.2;
@@ -396,7 +403,7 @@ impl RandomTriangles {
                 let span = 1i64 << self.rng.range(0, TRIANGLE_MAX_FRAGMENTS.ilog2() as i64);
                 1 + self.rng.range(0, span - 1) as u64
             };
-            self.state = random_state(cfg, &mut self.rng);
+            random_state_into(cfg, &mut self.rng, &mut self.state);
         }
         tri_start
     }
