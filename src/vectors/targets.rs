@@ -326,12 +326,13 @@ impl<'a> TopEncoder<'a> {
     /// its lanes.
     #[inline(always)]
     pub fn fragment_bits(&self, frag: &FragmentIn, tri_start: bool, colour: [u32; 3]) -> (u128, u128) {
-        // A column's three lanes as one value (each lane is at most 21 bits wide here).
+        // A column's three lanes as one value (each lane is at most 21 bits wide here, so
+        // the three fit a u64: u128 shifts by a run-time width cost a branch each).
         let three = |l: &Lanes, v: [u32; 3]| {
-            v.iter().enumerate().rev().fold(0u128, |acc, (i, &x)| {
+            for (i, &x) in v.iter().enumerate() {
                 l.check(i as u32, x as i64);
-                (acc << l.width) | x as u128
-            })
+            }
+            (((v[2] as u64) << l.width | v[1] as u64) << l.width | v[0] as u64) as u128
         };
         let bump = match frag.bump {
             BumpTexel::Rgb(codes) => three(&self.bump, codes),
@@ -412,6 +413,74 @@ impl PackedFragment {
     pub fn or_into(&self, record: &mut [u8], stim: u128, out: u128) {
         or_bits(record, self.stim_lsb, self.stim_width, stim);
         or_bits(record, self.out_lsb, self.out_width, out);
+    }
+}
+
+impl PackedFragment {
+    /// The two values' 16-byte windows in `record` (a run's record, its fragment columns
+    /// zero), each holding its value whole; None when the record is shorter than a window.
+    pub fn windows(&self, record: &[u8]) -> Option<Windows> {
+        let bytes = record.len();
+        if bytes < 16 {
+            return None;
+        }
+        // From the value's first byte, or the record's last 16 where that runs past its end.
+        let place = |lsb: u32, width: u32| {
+            let at = ((lsb / 8) as usize).min(bytes - 16);
+            let shift = lsb - 8 * at as u32;
+            (shift + width <= 128).then_some((at, shift))
+        };
+        let ((stim_at, stim_shift), (out_at, out_shift)) = (place(self.stim_lsb, self.stim_width)?, place(self.out_lsb, self.out_width)?);
+        let load = |at: usize| u128::from_le_bytes(record[at..at + 16].try_into().expect("16 bytes"));
+        Some(Windows {
+            stim_at,
+            stim_shift,
+            out_at,
+            out_shift,
+            stim_state: load(stim_at),
+            out_state: load(out_at),
+        })
+    }
+}
+
+/// Where a packed fragment's two values are stored in a record copied from its run's state:
+/// each as one 16-byte window of the state's bytes with the value ORed in, so a record is a
+/// copy and two stores. ORing into the copied bytes instead read them back right after the
+/// copy's wide stores, a store-forwarding stall on every record.
+#[derive(Clone, Copy, Debug)]
+pub struct Windows {
+    stim_at: usize,
+    stim_shift: u32,
+    out_at: usize,
+    out_shift: u32,
+    /// The state's bytes in each window.
+    stim_state: u128,
+    out_state: u128,
+}
+
+impl Windows {
+    /// Store the fragment's two values (as [`TopEncoder::fragment_bits`] gives them) into
+    /// `record`, a copy of the run's state bytes.
+    #[inline(always)]
+    pub fn put(&self, record: &mut [u8], stim: u128, out: u128) {
+        let (s, o) = (stim << self.stim_shift, out << self.out_shift);
+        // Windows may overlap: each carries the other's value where it does, so the order of
+        // the two stores does not matter.
+        let d = self.out_at as isize - self.stim_at as isize;
+        let w_stim = self.stim_state | s | moved(o, d);
+        let w_out = self.out_state | o | moved(s, -d);
+        record[self.stim_at..self.stim_at + 16].copy_from_slice(&w_stim.to_le_bytes());
+        record[self.out_at..self.out_at + 16].copy_from_slice(&w_out.to_le_bytes());
+    }
+}
+
+/// `v`'s bytes moved `by` bytes up (down where negative), those leaving 16 bytes dropped.
+#[inline(always)]
+fn moved(v: u128, by: isize) -> u128 {
+    match by {
+        16.. | ..=-16 => 0,
+        0.. => v << (8 * by),
+        _ => v >> (8 * -by),
     }
 }
 
@@ -723,6 +792,53 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A fragment stored through its windows is the state with both values ORed in, wherever
+    /// the two values lie: apart, in overlapping windows, in one window, at the record's end.
+    #[test]
+    fn windows_store_what_or_into_does() {
+        let mut rng = crate::vectors::rng::SplitMix64(0x71D0);
+        let mut tried = [0usize; 3];
+        for _ in 0..20_000 {
+            let bytes = rng.range(1, 40) as usize;
+            let bits = 8 * bytes as i64;
+            let stim_width = rng.range(1, 120.min(bits)) as u32;
+            let out_width = rng.range(1, 63.min(bits)) as u32;
+            let stim_lsb = rng.range(0, bits - stim_width as i64) as u32;
+            let out_lsb = rng.range(0, bits - out_width as i64) as u32;
+            // The two values may not share bits.
+            if stim_lsb < out_lsb + out_width && out_lsb < stim_lsb + stim_width {
+                continue;
+            }
+            let p = PackedFragment {
+                stim_lsb,
+                stim_width,
+                out_lsb,
+                out_width,
+            };
+            let mut state: Vec<u8> = (0..bytes).map(|_| rng.next_u64() as u8).collect();
+            for (lsb, width) in [(stim_lsb, stim_width), (out_lsb, out_width)] {
+                for b in lsb..lsb + width {
+                    state[(b / 8) as usize] &= !(1 << (b % 8));
+                }
+            }
+            let mask = |w: u32| if w >= 128 { u128::MAX } else { (1u128 << w) - 1 };
+            let stim = (rng.next_u64() as u128) << 64 | rng.next_u64() as u128 & mask(stim_width);
+            let (stim, out) = (stim & mask(stim_width), rng.next_u64() as u128 & mask(out_width));
+            let mut want = state.clone();
+            p.or_into(&mut want, stim, out);
+            let Some(w) = p.windows(&state) else {
+                tried[0] += 1;
+                assert!(bytes < 16, "no windows for a {bytes}-byte record");
+                continue;
+            };
+            let mut got = state.clone();
+            w.put(&mut got, stim, out);
+            assert_eq!(got, want, "{p:?} in {bytes} bytes");
+            tried[1 + (w.stim_at.abs_diff(w.out_at) < 16) as usize] += 1;
+        }
+        assert!(tried.iter().all(|&n| n > 100), "cases: {tried:?}");
+    }
 
     /// A top record built lane by lane from the layout's column names with
     /// `Record::set_lane`, sharing nothing with `TopEncoder`.

@@ -190,6 +190,7 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         // A packed layout's binary record is the state's bytes with the fragment's two
         // values ORed in: no record of words in between.
         let packed = self.enc.packed();
+        let windows = packed.and_then(|p| p.windows(&self.bytes[..bytes]));
         for (b, frags) in run.frags.chunks(BATCH).enumerate() {
             let out = &mut self.colours[..frags.len()];
             m.fast.colours_run(run.state, frags, out);
@@ -201,7 +202,10 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
                     let (stim, colour) = self.enc.fragment_bits(f, tri_start, *c);
                     let at = bin.len();
                     bin.extend_from_slice(&self.bytes[..bytes]);
-                    p.or_into(&mut bin[at..], stim, colour);
+                    match &windows {
+                        Some(w) => w.put(&mut bin[at..], stim, colour),
+                        None => p.or_into(&mut bin[at..], stim, colour),
+                    }
                     if hex.is_none() {
                         continue;
                     }

@@ -45,6 +45,9 @@ struct Sink {
     bytes: u64,
 }
 
+/// Bytes of one write from which the hash runs beside the write (a thread each time).
+const PARALLEL_HASH_BYTES: usize = 1 << 20;
+
 impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
         crate::limits::check_not_input(&path)?;
@@ -64,9 +67,19 @@ impl Sink {
     }
     fn put(&mut self, b: &[u8]) -> Result<()> {
         crate::interrupt::check()?;
-        self.sha.update(b);
         self.bytes += b.len() as u64;
-        self.w.write_all(b).map_err(|e| Error::io(&self.tmp, e))
+        if b.len() < PARALLEL_HASH_BYTES {
+            self.sha.update(b);
+            return self.w.write_all(b).map_err(|e| Error::io(&self.tmp, e));
+        }
+        // Hashed on a thread of its own while the write copies the same bytes into the page
+        // cache: one after the other on the writer thread, the two were the dump's limit.
+        let (sha, w) = (&mut self.sha, &mut self.w);
+        std::thread::scope(|s| {
+            s.spawn(|| sha.update(b));
+            w.write_all(b)
+        })
+        .map_err(|e| Error::io(&self.tmp, e))
     }
     fn finish(mut self) -> Result<FileEntry> {
         self.w.flush().map_err(|e| Error::io(&self.tmp, e))?;
