@@ -214,18 +214,27 @@ impl FastModel {
             }
             None => state,
         };
-        let frame = self.fragment_frame(&state.frame);
+        // The state's own frame by reference: a copy of it, read back wider than the random
+        // state's stores wrote it, stalled every run.
+        let built;
+        let frame = match &self.built {
+            Some(cfg) => {
+                built = super::frame_build::fragment_frame(cfg, &state.frame);
+                &built
+            }
+            None => &state.frame,
+        };
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &self.lights::<1>(state, &frame), &frame, frags, out),
-                    2 => self.run_at::<2, $tl>(level, &self.lights::<2>(state, &frame), &frame, frags, out),
-                    3 => self.run_at::<3, $tl>(level, &self.lights::<3>(state, &frame), &frame, frags, out),
-                    4 => self.run_at::<4, $tl>(level, &self.lights::<4>(state, &frame), &frame, frags, out),
-                    5 => self.run_at::<5, $tl>(level, &self.lights::<5>(state, &frame), &frame, frags, out),
-                    6 => self.run_at::<6, $tl>(level, &self.lights::<6>(state, &frame), &frame, frags, out),
-                    7 => self.run_at::<7, $tl>(level, &self.lights::<7>(state, &frame), &frame, frags, out),
-                    8 => self.run_at::<8, $tl>(level, &self.lights::<8>(state, &frame), &frame, frags, out),
+                    1 => self.run_at::<1, $tl>(level, &self.lights::<1>(state, frame), frame, frags, out),
+                    2 => self.run_at::<2, $tl>(level, &self.lights::<2>(state, frame), frame, frags, out),
+                    3 => self.run_at::<3, $tl>(level, &self.lights::<3>(state, frame), frame, frags, out),
+                    4 => self.run_at::<4, $tl>(level, &self.lights::<4>(state, frame), frame, frags, out),
+                    5 => self.run_at::<5, $tl>(level, &self.lights::<5>(state, frame), frame, frags, out),
+                    6 => self.run_at::<6, $tl>(level, &self.lights::<6>(state, frame), frame, frags, out),
+                    7 => self.run_at::<7, $tl>(level, &self.lights::<7>(state, frame), frame, frags, out),
+                    8 => self.run_at::<8, $tl>(level, &self.lights::<8>(state, frame), frame, frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };

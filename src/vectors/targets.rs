@@ -185,6 +185,16 @@ impl<'a> Lanes<'a> {
             return (0..3).for_each(|k| self.set(r, i + k as u32, v[k]));
         }
         let mask = if self.width >= 64 { u64::MAX } else { (1u64 << self.width) - 1 };
+        if width <= 64 {
+            // The usual case (lanes of 21 bits or fewer) in a u64: u128 shifts by a run-time
+            // width cost a branch each.
+            let mut all = 0u64;
+            for k in (0..3).rev() {
+                self.check(i + k as u32, v[k]);
+                all = (all << self.width) | (v[k] as u64 & mask);
+            }
+            return r.set(lsb, width, all);
+        }
         let mut all = 0u128;
         for k in (0..3).rev() {
             self.check(i + k as u32, v[k]);
