@@ -663,15 +663,32 @@ fn refuse_negative_numbers() -> Result<()> {
     Ok(())
 }
 
+/// Clap's own answer (help, version, a usage error) and its exit code; a usage error quotes
+/// the argument as given, so its control characters are shown escaped as gbump's own errors
+/// show them (a carriage return could overwrite the message on a terminal).
+fn clap_exit(e: clap::Error) -> ! {
+    use clap::error::ErrorKind;
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        e.exit()
+    }
+    eprint!("{}", crate::error::shown(&e.render().to_string()));
+    std::process::exit(e.exit_code())
+}
+
 pub fn run() -> anyhow::Result<()> {
     crate::limits::record_inputs();
     refuse_empty_arguments()?;
     refuse_negative_numbers()?;
-    let matches = <Cli as clap::CommandFactory>::command().get_matches();
+    let matches = <Cli as clap::CommandFactory>::command()
+        .try_get_matches()
+        .unwrap_or_else(|e| clap_exit(e));
     probe_outputs(&matches)?;
     let cli = match <Cli as clap::FromArgMatches>::from_arg_matches(&matches) {
         Ok(c) => c,
-        Err(e) => e.exit(),
+        Err(e) => clap_exit(e),
     };
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,

@@ -630,7 +630,36 @@ fn cases() -> Vec<Case> {
                     .replacen("segments = [16, 8]", "segments = [1024, 1024]", 1)
             }),
             render(&[]),
-            vec!["s.toml", "MAX_TRIANGLES", "segments"],
+            // The object that makes them is named, with its shape's own rule and its segments.
+            vec!["s.toml", "MAX_TRIANGLES", "(a teapot) makes", "64 triangles per segment pair", "[1024, 1024]"],
+        ),
+        (
+            "an output folder whose files pass the system's path length",
+            vec![],
+            vec![
+                "render",
+                "--scene",
+                "torus_caps",
+                "--size",
+                "32x16",
+                "--out",
+                // 4,086 characters: the folders can be made, their files cannot; the run
+                // fails with every folder made, and none may be left.
+                Box::leak(format!("out/{}/{}", vec!["d".repeat(200); 20].join("/"), "e".repeat(62)).into_boxed_str()),
+            ],
+            vec!["torus_caps_golden.png", "File name too long", "fix:"],
+        ),
+        (
+            "an unknown subcommand with a carriage return",
+            vec![],
+            vec!["rend\rer", "--out", "out"],
+            vec!["unrecognized subcommand", "rend\\u{d}er"],
+        ),
+        (
+            "a value clap refuses, holding a carriage return",
+            vec![],
+            vec!["vectors", "--source", "random:10", "--out", "out", "--format", "b\rin"],
+            vec!["invalid value", "b\\u{d}in", "--format"],
         ),
         (
             "--size 16384x16384",
@@ -1161,6 +1190,12 @@ fn every_bad_input_is_refused_cleanly() {
             (err.contains("panicked"), "panic".to_string()),
             (!err.contains("error:"), "no error message".to_string()),
             (!out.stdout.is_empty(), "printed results before refusing".to_string()),
+            // Every message, clap's usage errors too, shows an argument's control characters
+            // escaped: a carriage return or an escape sequence could rewrite the terminal.
+            (
+                err.chars().any(|c| c.is_control() && c != '\n' && c != '\t'),
+                "a raw control character in the message".to_string(),
+            ),
         ]
         .into_iter()
         .filter(|(bad, _)| *bad)

@@ -2,7 +2,7 @@
 //! write never leaves a partial image behind; and the difference heat map.
 
 use crate::error::{Error, Result};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Write `bytes` to `path` atomically (temporary sibling, then rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
@@ -179,8 +179,23 @@ pub fn quantise(c: &[[f64; 3]], max: u32) -> Vec<[u32; 3]> {
         .collect()
 }
 
+/// Folders [`make_folder`] made in this run.
+static MADE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Remove the folders this run made that are still empty, the deepest first: a run that
+/// fails (a file path past the system's limit under a new folder, say) leaves no empty
+/// folders behind. A folder with anything in it stays.
+pub fn remove_made_folders() {
+    let mut made = std::mem::take(&mut *MADE.lock().unwrap_or_else(|p| p.into_inner()));
+    made.sort_by_key(|p| std::cmp::Reverse(p.components().count()));
+    for d in made {
+        let _ = std::fs::remove_dir(d);
+    }
+}
+
 /// Make output folder `dir` and its parents, or say which part could not be made and why
-/// (`--out /proc/x` reads as "no such file" in the OS's words).
+/// (`--out /proc/x` reads as "no such file" in the OS's words). The folders it makes are
+/// recorded for [`remove_made_folders`].
 pub fn make_folder(dir: &Path) -> Result<()> {
     if let (Ok(m), Err(_)) = (std::fs::symlink_metadata(dir), std::fs::metadata(dir)) {
         if m.file_type().is_symlink() {
@@ -191,21 +206,37 @@ pub fn make_folder(dir: &Path) -> Result<()> {
             )));
         }
     }
-    std::fs::create_dir_all(dir).map_err(|e| {
-        // The deepest part that exists: where the creation failed.
-        let existing = dir.ancestors().skip(1).find(|a| a.as_os_str().is_empty() || a.exists());
-        let at = existing.map_or(".".into(), |a| {
-            if a.as_os_str().is_empty() {
-                ".".into()
-            } else {
-                a.display().to_string()
-            }
-        });
-        Error::Other(format!(
-            "{}: cannot create this folder in {at} ({e})\n  fix: give an output folder under one you can write to",
-            dir.display()
-        ))
-    })
+    // Below the deepest folder that was there before, every one is this call's.
+    let before = dir
+        .ancestors()
+        .find(|a| a.as_os_str().is_empty() || a.exists())
+        .map(Path::to_path_buf);
+    let made = dir.ancestors().take_while(|a| Some(*a) != before.as_deref());
+    if let Err(e) = std::fs::create_dir_all(dir) {
+        // A path past the system's length limit fails many folders down: this call's go now.
+        for d in made {
+            let _ = std::fs::remove_dir(d);
+        }
+        return Err(not_made(dir, e));
+    }
+    MADE.lock().unwrap_or_else(|p| p.into_inner()).extend(made.map(Path::to_path_buf));
+    Ok(())
+}
+
+/// Why `dir` could not be made, named at its deepest part that exists.
+fn not_made(dir: &Path, e: std::io::Error) -> Error {
+    let existing = dir.ancestors().skip(1).find(|a| a.as_os_str().is_empty() || a.exists());
+    let at = existing.map_or(".".into(), |a| {
+        if a.as_os_str().is_empty() {
+            ".".into()
+        } else {
+            a.display().to_string()
+        }
+    });
+    Error::Other(format!(
+        "{}: cannot create this folder in {at} ({e})\n  fix: give an output folder under one you can write to",
+        dir.display()
+    ))
 }
 
 /// Write every file into `dir` as one (`commit::together`): on any failure the folder keeps

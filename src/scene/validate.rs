@@ -266,10 +266,26 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     }
     let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
     if tris > MAX_TRIANGLES {
+        // The object that makes the most of them, with its own shape's rule.
+        let (i, o) = s
+            .objects
+            .iter()
+            .enumerate()
+            .max_by_key(|(_, o)| super::mesh::triangle_count(o))
+            .expect("a scene with triangles has an object");
+        let rule = match &o.shape {
+            Shape::Teapot => "64 triangles per segment pair: two per quad of each of its 32 patches".to_string(),
+            Shape::Cylinder { sides, .. } if *sides > 0 => format!("2 x sides ({sides}) x segments[1] triangles"),
+            _ => "2 triangles per segment pair".to_string(),
+        };
         return Err(c.fail(
-            "objects[*].segments",
-            format!("the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}"),
-            "lower `segments` (the teapot makes 64 triangles per segment pair: 32 patches)",
+            &format!("objects[{i}].segments"),
+            format!(
+                "the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}; objects[{i}] (a {}) makes {} of them ({rule})",
+                o.shape.kind(),
+                super::mesh::triangle_count(o)
+            ),
+            &format!("lower objects[{i}].segments, now {:?}", o.segments),
         ));
     }
     Ok(())
