@@ -639,6 +639,16 @@ fn refuse_empty_arguments() -> Result<()> {
                 "{flag}: an empty value\n  fix: give {flag} a value (`gbump --help` lists what each command takes)"
             )));
         }
+        // Clap says only "invalid UTF-8 was detected in one or more arguments": name which.
+        if args[i].to_str().is_none() {
+            let what = match i.checked_sub(1).map(|j| args[j].to_string_lossy()) {
+                Some(f) if f.starts_with('-') => f.into_owned(),
+                _ => format!("argument {}", i + 1),
+            };
+            return Err(Error::Other(format!(
+                "{what} {a:?}: not UTF-8 (\u{fffd} marks each byte that is not), and gbump reads every path and value as UTF-8\n  fix: rename the file or folder to a UTF-8 name"
+            )));
+        }
     }
     Ok(())
 }

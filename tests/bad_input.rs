@@ -1730,3 +1730,32 @@ fn a_link_to_a_path_with_a_space_is_refused_as_the_path_is() {
     );
     assert_eq!(std::fs::read_dir(&real).unwrap().count(), 0, "written before the refusal");
 }
+
+/// An argument that is not UTF-8 is named (the option it is the value of, or its place), not
+/// only "invalid UTF-8 was detected in one or more arguments".
+#[test]
+fn an_argument_that_is_not_utf8_is_named() {
+    use std::os::unix::ffi::OsStrExt;
+    let bad = std::ffi::OsStr::from_bytes(b"a\xffb.toml");
+    let dir = tempfile::tempdir().unwrap();
+    for (args, needle) in [
+        (
+            vec!["render".as_ref(), "--scene".as_ref(), bad, "--out".as_ref(), "out".as_ref()],
+            "--scene \"a\u{fffd}b.toml\"",
+        ),
+        (vec!["render".as_ref(), bad], "argument 2 \"a\u{fffd}b.toml\""),
+    ] {
+        let out = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(&args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{err}");
+        for n in [needle, "not UTF-8", "fix:"] {
+            assert!(err.contains(n), "`{n}` missing from: {err}");
+        }
+        assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none(), "left output behind");
+    }
+}
