@@ -227,14 +227,14 @@ impl FastModel {
         macro_rules! by_lights {
             ($tl:literal) => {
                 match self.lights {
-                    1 => self.run_at::<1, $tl>(level, &self.lights::<1>(state, frame), frame, frags, out),
-                    2 => self.run_at::<2, $tl>(level, &self.lights::<2>(state, frame), frame, frags, out),
-                    3 => self.run_at::<3, $tl>(level, &self.lights::<3>(state, frame), frame, frags, out),
-                    4 => self.run_at::<4, $tl>(level, &self.lights::<4>(state, frame), frame, frags, out),
-                    5 => self.run_at::<5, $tl>(level, &self.lights::<5>(state, frame), frame, frags, out),
-                    6 => self.run_at::<6, $tl>(level, &self.lights::<6>(state, frame), frame, frags, out),
-                    7 => self.run_at::<7, $tl>(level, &self.lights::<7>(state, frame), frame, frags, out),
-                    8 => self.run_at::<8, $tl>(level, &self.lights::<8>(state, frame), frame, frags, out),
+                    1 => self.run_lit::<1, $tl>(level, state, frame, frags, out),
+                    2 => self.run_lit::<2, $tl>(level, state, frame, frags, out),
+                    3 => self.run_lit::<3, $tl>(level, state, frame, frags, out),
+                    4 => self.run_lit::<4, $tl>(level, state, frame, frags, out),
+                    5 => self.run_lit::<5, $tl>(level, state, frame, frags, out),
+                    6 => self.run_lit::<6, $tl>(level, state, frame, frags, out),
+                    7 => self.run_lit::<7, $tl>(level, state, frame, frags, out),
+                    8 => self.run_lit::<8, $tl>(level, state, frame, frags, out),
                     n => unreachable!("{n} lights: the configuration allows 1 to 8"),
                 }
             };
@@ -244,6 +244,23 @@ impl FastModel {
         } else {
             by_lights!(false)
         }
+    }
+
+    /// The run's lights formed in place, then [`run_at`](Self::run_at).
+    #[inline(always)]
+    fn run_lit<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        level: Level,
+        state: &BumpState,
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
+        // Formed where they are read: returned by value, the array was copied on the stack
+        // and read back wider than written, a store-forwarding stall every run.
+        let mut lights = [Light::default(); N];
+        self.lights_into(state, frame, &mut lights);
+        self.run_at::<N, TEXTURE_LAST>(level, &lights, frame, frags, out)
     }
 
     /// [`run`](Self::run) compiled for `level`, which the CPU must have.
@@ -256,6 +273,9 @@ impl FastModel {
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
+        if frags.len() <= SCALAR_MAX {
+            return self.run_scalar::<N, TEXTURE_LAST>(lights, frame, frags, out);
+        }
         match level {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU has every feature the function is compiled for (the caller's
@@ -265,6 +285,21 @@ impl FastModel {
             // SAFETY: as above.
             Level::Avx2 => unsafe { self.run_avx2::<N, TEXTURE_LAST>(lights, frame, frags, out) },
             _ => self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out),
+        }
+    }
+
+    /// A run too short for a block, a fragment at a time, apart from the vector loop (whose
+    /// entry broadcasts every constant to a register, more than such a run costs).
+    #[inline(never)]
+    fn run_scalar<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
+        for (f, o) in frags.iter().zip(out.iter_mut()) {
+            *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
         }
     }
 
@@ -508,7 +543,14 @@ impl FastModel {
         // All ones where the blend adds, zero where it is off: the factors are masked.
         let dmask = -i64::from(self.diffuse & frag.diffuse_en & !bypass);
         let smask = -i64::from(self.specular & frag.specular_en & !bypass);
-        let b = self.dot_normal(b, frame);
+        // Neither a frame nor a renormaliser: `b` as it is, kept in registers (through
+        // `dot_normal`'s match it was copied on the stack and read back wider than written,
+        // a store-forwarding stall on every fragment).
+        let b = if self.frame.is_none() && self.renorm_b.is_none() {
+            b
+        } else {
+            self.dot_normal(b, frame)
+        };
         let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
         for s in lights {
             let dl = self.dot(b, s.l);
@@ -550,6 +592,14 @@ impl FastModel {
     /// unperturbed normal placed in `frame`).
     #[inline(always)]
     fn lights<const N: usize>(&self, state: &BumpState, frame: &Frame) -> [Light; N] {
+        let mut out = [Light::default(); N];
+        self.lights_into(state, frame, &mut out);
+        out
+    }
+
+    /// [`lights`](Self::lights) into `out`.
+    #[inline(always)]
+    fn lights_into<const N: usize>(&self, state: &BumpState, frame: &Frame, out: &mut [Light; N]) {
         let surface = match self.frame {
             Some((q, lo, hi)) if self.self_shadow => {
                 Some(std::array::from_fn(|c| q.apply(framed_exact(self.flat, frame, c)).clamp(lo, hi)))
@@ -557,7 +607,6 @@ impl FastModel {
             _ => None,
         };
         // A loop, not `array::from_fn`: that stayed a call per run, 4 % of a vector dump.
-        let mut out = [Light::default(); N];
         for (o, s) in out.iter_mut().zip(&state.lights) {
             let lit = match surface {
                 Some(n) => self.dot(n, s.l) > 0,
@@ -574,7 +623,6 @@ impl FastModel {
             o.h = s.h;
             o.klc = [s.k * lc[0] as i64, s.k * lc[1] as i64, s.k * lc[2] as i64];
         }
-        out
     }
 }
 
