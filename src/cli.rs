@@ -639,18 +639,25 @@ fn refuse_empty_arguments() -> Result<()> {
                 "{flag}: an empty value\n  fix: give {flag} a value (`gbump --help` lists what each command takes)"
             )));
         }
-        // Clap says only "invalid UTF-8 was detected in one or more arguments": name which.
-        if args[i].to_str().is_none() {
-            let what = match i.checked_sub(1).map(|j| args[j].to_string_lossy()) {
-                Some(f) if f.starts_with('-') => f.into_owned(),
-                _ => format!("argument {}", i + 1),
-            };
-            return Err(Error::Other(format!(
-                "{what} {a:?}: not UTF-8 (\u{fffd} marks each byte that is not), and gbump reads every path and value as UTF-8\n  fix: rename the file or folder to a UTF-8 name"
-            )));
-        }
     }
     Ok(())
+}
+
+/// Refuse an argument that is not UTF-8, naming its option (or its place): clap says only
+/// "invalid UTF-8 was detected in one or more arguments".
+fn refuse_non_utf8_arguments() -> Result<()> {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
+    let Some(i) = args.iter().position(|a| a.to_str().is_none()) else {
+        return Ok(());
+    };
+    let what = match i.checked_sub(1).map(|j| args[j].to_string_lossy()) {
+        Some(f) if f.starts_with('-') => f.into_owned(),
+        _ => format!("argument {}", i + 1),
+    };
+    Err(Error::Other(format!(
+        "{what} {:?}: not UTF-8 (\u{fffd} marks each byte that is not), and gbump reads every path and value as UTF-8\n  fix: rename the file or folder to a UTF-8 name",
+        args[i].to_string_lossy()
+    )))
 }
 
 /// Refuse a negative number given to an option (`--random -5`, `--seed=-1`): no option of
@@ -691,6 +698,7 @@ fn clap_exit(e: clap::Error) -> ! {
 pub fn run() -> anyhow::Result<()> {
     crate::limits::record_inputs();
     refuse_empty_arguments()?;
+    refuse_non_utf8_arguments()?;
     refuse_negative_numbers()?;
     let matches = <Cli as clap::CommandFactory>::command()
         .try_get_matches()

@@ -267,11 +267,12 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
     if tris > MAX_TRIANGLES {
         // The object that makes the most of them, with its own shape's rule.
-        let (i, o) = s
+        let (i, o, made) = s
             .objects
             .iter()
             .enumerate()
-            .max_by_key(|(_, o)| super::mesh::triangle_count(o))
+            .map(|(i, o)| (i, o, super::mesh::triangle_count(o)))
+            .max_by_key(|t| t.2)
             .expect("a scene with triangles has an object");
         let rule = match &o.shape {
             Shape::Teapot => "64 triangles per segment pair: two per quad of each of its 32 patches".to_string(),
@@ -281,9 +282,8 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         return Err(c.fail(
             &format!("objects[{i}].segments"),
             format!(
-                "the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}; objects[{i}] (a {}) makes {} of them ({rule})",
-                o.shape.kind(),
-                super::mesh::triangle_count(o)
+                "the scene tessellates into {tris} triangles, more than MAX_TRIANGLES = {MAX_TRIANGLES}; objects[{i}] (a {}) makes {made} of them ({rule})",
+                o.shape.kind()
             ),
             &format!("lower objects[{i}].segments, now {:?}", o.segments),
         ));

@@ -424,9 +424,7 @@ impl PackedFragment {
         or_bits(record, self.stim_lsb, self.stim_width, stim);
         or_bits(record, self.out_lsb, self.out_width, out);
     }
-}
 
-impl PackedFragment {
     /// The two values' 16-byte windows in `record` (a run's record, its fragment columns
     /// zero), each holding its value whole; None when the record is shorter than a window.
     pub fn windows(&self, record: &[u8]) -> Option<Windows> {
