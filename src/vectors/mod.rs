@@ -8,6 +8,7 @@ pub mod layout;
 pub mod manifest;
 pub mod rng;
 pub mod sources;
+pub mod staged_file;
 pub mod targets;
 pub mod top_records;
 pub mod writer;

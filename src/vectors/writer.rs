@@ -5,6 +5,7 @@
 use super::layout::{Layout, Record};
 use super::manifest::{columns, EnvMapFiles, FileEntry, Manifest};
 use super::sources::{corners, exhaustive, exhaustive_count, SceneGroup, Source, RANDOM_CHUNK};
+use super::staged_file::StagedFile;
 use super::targets::{eval_top, eval_unit, top_layout, top_record, unit_layout, unit_record, unit_stims, TopStim, UnitStim};
 use super::top_records::TopRecords;
 use crate::config::PipelineConfig;
@@ -13,7 +14,7 @@ use crate::model::env_map::EnvMaps;
 use crate::units::{Memories, MemoryContents};
 use rayon::prelude::*;
 use sha2::{Digest, Sha256};
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug)]
@@ -40,7 +41,8 @@ pub struct VectorSet {
 struct Sink {
     path: PathBuf,
     tmp: PathBuf,
-    w: BufWriter<std::fs::File>,
+    /// Taken when the file is finished.
+    w: Option<StagedFile>,
     sha: Sha256,
     bytes: u64,
 }
@@ -56,25 +58,29 @@ impl Sink {
             path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
             std::process::id()
         ));
-        let f = std::fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
+        let f = StagedFile::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
         Ok(Sink {
             path,
             tmp,
-            w: BufWriter::with_capacity(1 << 20, f),
+            w: Some(f),
             sha: Sha256::new(),
             bytes: 0,
         })
     }
+    fn file(&mut self) -> &mut StagedFile {
+        self.w.as_mut().expect("open until finished")
+    }
+
     fn put(&mut self, b: &[u8]) -> Result<()> {
         crate::interrupt::check()?;
         self.bytes += b.len() as u64;
         if b.len() < PARALLEL_HASH_BYTES {
             self.sha.update(b);
-            return self.w.write_all(b).map_err(|e| Error::io(&self.tmp, e));
+            return self.file().write_all(b).map_err(|e| Error::io(&self.tmp, e));
         }
-        // Hashed on a thread of its own while the write copies the same bytes into the page
-        // cache: one after the other on the writer thread, the two were the dump's limit.
-        let (sha, w) = (&mut self.sha, &mut self.w);
+        // Hashed on a thread of its own while the write stages the same bytes and sends them
+        // to the disk: one after the other on the writer thread, the two were the dump's limit.
+        let (sha, w) = (&mut self.sha, self.w.as_mut().expect("open"));
         std::thread::scope(|s| {
             s.spawn(|| sha.update(b));
             w.write_all(b)
@@ -82,8 +88,8 @@ impl Sink {
         .map_err(|e| Error::io(&self.tmp, e))
     }
     fn finish(mut self) -> Result<FileEntry> {
-        self.w.flush().map_err(|e| Error::io(&self.tmp, e))?;
-        self.w.get_ref().sync_all().map_err(|e| Error::io(&self.tmp, e))?;
+        // Written and synced; closed before the rename.
+        drop(self.w.take().expect("open").finish().map_err(|e| Error::io(&self.tmp, e))?);
         if crate::commit::defer(&self.tmp, &self.path) {
             // The scope renames it with the other results; it is no longer ours to remove.
             self.tmp = PathBuf::new();
