@@ -660,6 +660,28 @@ fn refuse_non_utf8_arguments() -> Result<()> {
     )))
 }
 
+/// Refuse an argument holding a control character (a newline, a tab, a bell: pasted or
+/// typed by mistake), naming its option and showing it escaped: no path or value of gbump
+/// takes one, and passed on it would break the message that quotes it or end up raw in
+/// every file that records the command line. Run after clap's parse, so that an unknown
+/// subcommand or a refused value keeps clap's own message.
+fn refuse_control_characters() -> Result<()> {
+    let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
+    let Some(i) = args.iter().position(|a| a.chars().any(char::is_control)) else {
+        return Ok(());
+    };
+    let (what, value) = match args[i].split_once('=') {
+        Some((f, v)) if f.starts_with("--") => (f.to_string(), v),
+        _ => match i.checked_sub(1).map(|j| &args[j]) {
+            Some(f) if f.starts_with('-') => (f.clone(), args[i].as_str()),
+            _ => (format!("argument {}", i + 1), args[i].as_str()),
+        },
+    };
+    Err(Error::Other(format!(
+        "{what} {value:?}: holds a control character, which no gbump path or value takes\n  fix: give it again without the control character (shown escaped above)"
+    )))
+}
+
 /// Refuse a negative number given to an option (`--random -5`, `--seed=-1`): no option of
 /// gbump takes one, and the parser would otherwise call it an unknown argument.
 fn refuse_negative_numbers() -> Result<()> {
@@ -703,6 +725,7 @@ pub fn run() -> anyhow::Result<()> {
     let matches = <Cli as clap::CommandFactory>::command()
         .try_get_matches()
         .unwrap_or_else(|e| clap_exit(e));
+    refuse_control_characters()?;
     probe_outputs(&matches)?;
     let cli = match <Cli as clap::FromArgMatches>::from_arg_matches(&matches) {
         Ok(c) => c,
@@ -1333,11 +1356,12 @@ pub fn run() -> anyhow::Result<()> {
             None => {
                 let cfg = PipelineConfig::default();
                 out!(
-                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n# white_lights = false  (true: every bump light is white, so the Lc multiplies go; tri_lc/in_lc stay on the interface, unused; written only when true, so older hashes stay)\n# power_rom = false  (true: the power table is a ROM holding x^shininess, its load port unused; written only when true, so older hashes stay)\n# renormalise = false  (true: a normalise unit scales each interpolated L and H back to unit length per fragment, a reciprocal-square-root table and Newton steps; needs interpolate and light_mode = \"parallel\"; written only when true, so older hashes stay)\n# interpolate_k = false  (true: the rasteriser interpolates each light's k, intensity times spot factor, from the vertices; needs bump_state = \"fragment\"; no RTL changes; written only when true, so older hashes stay)\n# renormalise_bump = false  (true: a normalise_b unit scales the fetched bump normal back to unit length before the dot products, undoing the texture filter's shortening; written only when true, so older hashes stay)\n# cube_map_face = 0  (4..={}, a power of two: with renormalise, a normalise_cube unit reads a normalisation cube map of that many texels a face edge, Cg §8.2, instead of computing 1/|v|; written only when set, so older hashes stay)\n# self_shadow = false  (true: geometric self-shadowing, Cg sec. 8.5.3: a light below the surface (L_z <= 0; with frame_transform, N.L <= 0 with the frame's normal) adds nothing and a bump facing away from a light gets no highlight from it; needs diffuse; written only when true, so older hashes stay)\n# frame_transform = false  (true: Harmony, paper sec. 3.5: the fetched bump normal is placed in a frame T, B, N that enters with every fragment on in_frame, a frame_transform unit, so L and H are given in the frame's space; needs bump_state = \"fragment\"; written only when true, so older hashes stay)\n# frame_build = false  (true: TexRam, paper sec. 3.1: in_frame carries the main direction m in its T lanes and the interpolated normal N_i in its N lanes, and a frame_build unit forms N = N_i/|N_i|, B = N x m/|N x m|, T = B x N per fragment; needs frame_transform; written only when true, so older hashes stay)\n# triangle_frame = false  (true: VISA+, paper sec. 3.2: the rasteriser sends the triangle's plane T and B with the interpolated normal N_i as the frame, a per-triangle alignment matrix; no RTL changes; needs frame_transform, not with frame_build; written only when true, so older hashes stay)\n# frame_quaternion = false  (true: VISA+ with quaternions, paper sec. 3.2 [5]: in_frame's lanes 0-3 carry an interpolated vertex quaternion (w, x, y, z) and lanes 6-8 the interpolated normal N_i, and a quat_frame unit forms T and B as its rotation's columns and N = N_i, all times |q|^2, per fragment; needs frame_transform, not with frame_build or triangle_frame; written only when true, so older hashes stay)\n# pixel_lh = false  (true: Blinn, paper sec. 2: L and H formed at the pixel: each light's L lanes carry its vector to the light unnormalised (exact when interpolated), the H lanes the viewer direction V, and H = normalise((normalise(L) + V)/2); needs frame_transform, interpolate = \"hl\" and renormalise; written only when true, so older hashes stay)\n",
+                    "# config hash {}\n{}# interpolate = \"none\"  (\"h\" or \"hl\": the rasteriser interpolates H, or H and L, per fragment, paper §6; needs bump_state = \"fragment\"; written only when set, so older hashes stay)\n# colour_guard_bits = 0  (0..={}: fraction bits the colour keeps between the diffuse blend, the texture modulation and the specular blend, rounded once at the end by colour_round; written only when above 0, so older hashes stay)\n# white_lights = false  (true: every bump light is white, so the Lc multiplies go; tri_lc/in_lc stay on the interface, unused; written only when true, so older hashes stay)\n# power_rom = false  (true: the power table is a ROM holding x^shininess, its load port unused; written only when true, so older hashes stay)\n# renormalise = false  (true: a normalise unit scales each interpolated L and H back to unit length per fragment, a reciprocal-square-root table and Newton steps; needs interpolate and light_mode = \"parallel\"; written only when true, so older hashes stay)\n# interpolate_k = false  (true: the rasteriser interpolates each light's k, intensity times spot factor, from the vertices; needs bump_state = \"fragment\"; no RTL changes; written only when true, so older hashes stay)\n# renormalise_bump = false  (true: a normalise_b unit scales the fetched bump normal back to unit length before the dot products, undoing the texture filter's shortening; written only when true, so older hashes stay)\n# cube_map_face = 0  (4..={}, a power of two: with renormalise, a normalise_cube unit reads a normalisation cube map of that many texels a face edge, Cg §8.2, instead of computing 1/|v|; written only when set, so older hashes stay)\n# self_shadow = false  (true: geometric self-shadowing, Cg sec. 8.5.3: a light below the surface (L_z <= 0; with frame_transform, N.L <= 0 with the frame's normal) adds nothing and a bump facing away from a light gets no highlight from it; needs diffuse; written only when true, so older hashes stay)\n# frame_transform = false  (true: Harmony, paper sec. 3.5: the fetched bump normal is placed in a frame T, B, N that enters with every fragment on in_frame, a frame_transform unit, so L and H are given in the frame's space; needs bump_state = \"fragment\"; written only when true, so older hashes stay)\n# frame_build = false  (true: TexRam, paper sec. 3.1: in_frame carries the main direction m in its T lanes and the interpolated normal N_i in its N lanes, and a frame_build unit forms N = N_i/|N_i|, B = N x m/|N x m|, T = B x N per fragment; needs frame_transform; written only when true, so older hashes stay)\n# triangle_frame = false  (true: VISA+, paper sec. 3.2: the rasteriser sends the triangle's plane T and B with the interpolated normal N_i as the frame, a per-triangle alignment matrix; no RTL changes; needs frame_transform, not with frame_build; written only when true, so older hashes stay)\n# frame_quaternion = false  (true: VISA+ with quaternions, paper sec. 3.2 [5]: in_frame's lanes 0-3 carry an interpolated vertex quaternion (w, x, y, z) and lanes 6-8 the interpolated normal N_i, and a quat_frame unit forms T and B as its rotation's columns and N = N_i, all times |q|^2, per fragment; needs frame_transform, not with frame_build or triangle_frame; written only when true, so older hashes stay)\n# pixel_lh = false  (true: Blinn, paper sec. 2: L and H formed at the pixel: each light's L lanes carry its vector to the light unnormalised (exact when interpolated), the H lanes the viewer direction V, and H = normalise((normalise(L) + V)/2); needs frame_transform, interpolate = \"hl\" and renormalise; written only when true, so older hashes stay)\n# env_map_bits = 0  (2..={}: EMBM, paper sec. 3.3: two environment maps of 2^env_map_bits texels a side, read at the sphere-map coordinates in_st moved by the triangle's 2x2 matrix in_m times the bump normal, bilinearly filtered into the diffuse and the specular blend; needs lights = 4, light_mode = \"parallel\", bump_state = \"fragment\" and more: `gbump config --engine embm --scene S` prints a whole one; written only when set, so older hashes stay)\n",
                     cfg.hash(),
                     cfg.to_toml(),
                     crate::config::limit("colour_guard_bits").1,
-                    crate::config::limit("cube_map_face").1
+                    crate::config::limit("cube_map_face").1,
+                    crate::config::limit("env_map_bits").1
                 );
             }
         },

@@ -252,6 +252,7 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         let known: Vec<&str> = expected.iter().copied().filter(|e| !RETIRED_NAMES.contains(e)).collect();
         fix = match nearest(name, &known) {
             Some(n) => format!("did you mean `{n}`? {fix}"),
+            None if known.is_empty() => format!("this table takes no fields; {fix}"),
             None => format!("the fields here: {}; {fix}", known.join(", ")),
         };
         msg = format!("unknown field `{name}`");
@@ -293,19 +294,16 @@ fn quoted_value_at(span: &str, msg: &str) -> Option<usize> {
 /// import from above it (a test checks the two lists agree).
 pub const RETIRED_NAMES: [&str; 3] = ["dot_bits", "power_bits", "k_bits"];
 
-/// (name, expected names) of serde's "unknown field `x`, expected one of `a`, `b`" (the
-/// message may carry a `key: ` prefix).
+/// (name, expected names) of serde's "unknown field `x`, expected one of `a`, `b`, `c`",
+/// "expected `a` or `b`", "expected `a`" or "there are no fields" (the message may carry a
+/// `key: ` prefix).
 fn unknown_field(msg: &str) -> Option<(&str, Vec<&str>)> {
     let rest = &msg[msg.find("unknown field `")? + "unknown field `".len()..];
     let (name, rest) = rest.split_once('`')?;
-    let list = rest.split_once("expected one of ").map_or("", |(_, l)| l);
-    Some((
-        name,
-        list.split(',')
-            .map(|x| x.trim().trim_matches('`'))
-            .filter(|x| !x.is_empty())
-            .collect(),
-    ))
+    let list = rest.split_once("expected ").map_or("", |(_, l)| l);
+    let list = list.strip_prefix("one of ").unwrap_or(list);
+    // Each name is between backticks; the separators (", ", " or ") are outside them.
+    Some((name, list.split('`').skip(1).step_by(2).filter(|x| !x.is_empty()).collect()))
 }
 
 /// The candidate closest to `name` by edit distance, if it is close enough to be a typo (at
@@ -332,6 +330,26 @@ pub fn nearest<'a>(name: &str, candidates: &[&'a str]) -> Option<&'a str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every form serde gives the expected names in is read: a long list, two, one, none.
+    #[test]
+    fn unknown_field_reads_every_list_form() {
+        let cases: [(&str, &[&str]); 4] = [
+            (
+                "unknown field `celss`, expected one of `cells`, `radius`, `depth`",
+                &["cells", "radius", "depth"],
+            ),
+            (
+                "bump.source: unknown field `celss`, expected `cells` or `radius`",
+                &["cells", "radius"],
+            ),
+            ("unknown field `celss`, expected `cells`", &["cells"]),
+            ("unknown field `celss`, there are no fields", &[]),
+        ];
+        for (msg, want) in cases {
+            assert_eq!(unknown_field(msg), Some(("celss", want.to_vec())), "{msg}");
+        }
+    }
 
     /// The message of `toml_error` for `text` read as a table of integers and strings.
     fn message(text: &str) -> String {

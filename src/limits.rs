@@ -169,8 +169,12 @@ pub fn parse_count(what: &str, n: &str, lo: u64, hi: u64, limit: &str) -> Result
             "{what}: `{n}` is not a count of records: N is written in decimal digits alone (no sign, point or exponent; `_` may group them)\n  fix: use {lo}..={hi}, e.g. 1000000 or 1_000_000"
         )));
     }
-    // More digits than a u64 holds is above any limit.
-    let v = digits.parse::<u64>().unwrap_or(u64::MAX);
+    let Ok(v) = digits.parse::<u64>() else {
+        // More digits than a u64 holds is above any limit; the message quotes them as given.
+        return Err(Error::Other(format!(
+            "{what}: {n} exceeds {limit} = {hi}\n  fix: use {lo}..={hi} ({limit}, README: Limits)"
+        )));
+    };
     check_count(what, v, lo, hi, limit)?;
     Ok(v)
 }

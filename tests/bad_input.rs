@@ -662,6 +662,30 @@ fn cases() -> Vec<Case> {
             vec!["invalid value", "b\\u{d}in", "--format"],
         ),
         (
+            "an output folder holding a bell character (it would be written raw into every header)",
+            vec![],
+            vec!["rtl", "--out", "o\u{7}bell"],
+            vec!["--out \"o\\u{7}bell\"", "control character", "fix:"],
+        ),
+        (
+            "a configuration path holding a newline",
+            vec![],
+            vec!["rtl", "--config", "x\ny.toml", "--out", "out"],
+            vec!["--config \"x\\ny.toml\"", "control character", "fix:"],
+        ),
+        (
+            "a source given as --source=VALUE holding a newline",
+            vec![],
+            vec!["vectors", "--source=random:1\n0", "--out", "out"],
+            vec!["--source \"random:1\\n0\"", "control character", "fix:"],
+        ),
+        (
+            "a random count past 64 bits, quoted as given",
+            vec![],
+            vec!["vectors", "--source", "random:99999999999999999999999", "--out", "out"],
+            vec!["99999999999999999999999 exceeds MAX_RANDOM_VECTORS", "fix:"],
+        ),
+        (
             "--size 16384x16384",
             vec![],
             vec!["render", "--scene", "cg_wall_front", "--size", "16384x16384", "--out", "out"],

@@ -175,3 +175,27 @@ fn following_the_exhaustive_sweeps_fix_is_enough() {
     ]);
     assert!(o.status.success(), "{toml}\n{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Every field a configuration file takes is in `gbump config`'s output (set, or as a `#`
+/// comment with its default), as the messages that send users there promise; the fields are
+/// the ones serde lists for an unknown name, so a new field cannot be left out.
+#[test]
+fn gbump_config_prints_every_field() {
+    let err = toml::from_str::<gbump::PipelineConfig>("not_a_field = 1").unwrap_err().to_string();
+    let list = err.split_once("expected one of ").expect("serde names the fields").1;
+    let fields: Vec<&str> = list
+        .split(',')
+        .map(|x| x.trim().trim_matches(|c: char| c == '`' || c.is_whitespace()))
+        .filter(|x| !x.is_empty() && !gbump::error::RETIRED_NAMES.contains(x))
+        .collect();
+    assert!(fields.len() > 30, "{fields:?}");
+    let out = assert_cmd::Command::cargo_bin("gbump").unwrap().arg("config").output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for f in fields {
+        let listed = text
+            .lines()
+            .any(|l| l.trim_start_matches("# ").split_once(" = ").is_some_and(|(k, _)| k == f));
+        assert!(listed, "`gbump config` does not print `{f}`:\n{text}");
+    }
+}

@@ -97,3 +97,28 @@ fn an_interrupted_dump_leaves_one_whole_run() {
         assert!(tmp.is_empty(), "after SIGINT at {ms} ms: {tmp:?}");
     }
 }
+
+/// A folder standing where a result file goes is refused the same way by every writer, the
+/// streamed vector files as the files written whole: the message says to move it (it is an
+/// output, so "give the file itself" would be wrong), the run fails, and no file is left.
+#[test]
+fn a_folder_in_a_results_place_is_refused_alike_by_every_writer() {
+    for (args, blocked) in [
+        (vec!["vectors", "--source", "corners", "--target", "top"], "corners_top.hex"),
+        (vec!["vectors", "--source", "corners", "--target", "top"], "corners_top.json"),
+        (vec!["rom", "--shininess", "8"], "power_table_n8_3dc36989.hex"),
+    ] {
+        let d = tempfile::tempdir().unwrap();
+        let out = d.path().join("o");
+        std::fs::create_dir_all(out.join(blocked)).unwrap();
+        let o = gbump().args(&args).arg("--out").arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} with a folder at {blocked}");
+        assert!(
+            err.contains(blocked) && err.contains("is a folder, where this run writes a file") && err.contains("move the folder away"),
+            "{args:?}, {blocked}: {err}"
+        );
+        let left: Vec<_> = std::fs::read_dir(&out).unwrap().flatten().map(|e| e.file_name()).collect();
+        assert_eq!(left, vec![std::ffi::OsString::from(blocked)], "{args:?}");
+    }
+}

@@ -1097,19 +1097,32 @@ fn an_output_buffer_that_reads_its_ram_during_the_write_is_caught() {
     }
 }
 
+/// A missing tool is named with its install command, and the run leaves no trace: the work
+/// folder it would have made is not there afterwards (its lock file included).
 #[test]
 fn a_missing_simulator_is_an_error_that_names_the_fix() {
     let empty = tempfile::tempdir().unwrap();
-    let o = gbump()
-        .env("PATH", empty.path())
-        .args(["regress", "--sim", "icarus", "--work", "target/test-regress/nosim"])
-        .assert()
-        .failure();
-    let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
-    assert!(
-        err.contains("iverilog is not installed") && err.contains("apt-get install -y iverilog"),
-        "{err}"
-    );
+    let d = tempfile::tempdir().unwrap();
+    for (args, tool) in [
+        (vec!["regress", "--sim", "icarus"], "iverilog"),
+        (vec!["lint"], "verilator"),
+        (vec!["area"], "yosys"),
+    ] {
+        let work = d.path().join(args[0]).join("work");
+        let o = gbump()
+            .env("PATH", empty.path())
+            .args(&args)
+            .arg("--work")
+            .arg(&work)
+            .assert()
+            .failure();
+        let err = String::from_utf8_lossy(&o.get_output().stderr).into_owned();
+        assert!(
+            err.contains(&format!("{tool} is not installed")) && err.contains(&format!("apt-get install -y {tool}")),
+            "{args:?}: {err}"
+        );
+        assert!(!d.path().join(args[0]).exists(), "{args:?} left {}", work.display());
+    }
 }
 
 #[test]

@@ -40,6 +40,18 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
+/// Where a result file streamed to its own temporary name (a vector set's) goes: the end of
+/// `path`'s symbolic links, refused as `write_atomic` refuses it when that is an input of
+/// the run or a folder.
+pub fn streamed_result_path(path: &Path) -> Result<PathBuf> {
+    let target = link_target(path)?;
+    crate::limits::check_not_input(&target)?;
+    if target.is_dir() {
+        return Err(folder_in_the_way(&target));
+    }
+    Ok(target)
+}
+
 /// The refusal of a result file whose path is a folder.
 fn folder_in_the_way(path: &Path) -> Error {
     Error::Other(format!(
@@ -184,11 +196,23 @@ static MADE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 
 /// Remove the folders this run made that are still empty, the deepest first: a run that
 /// fails (a file path past the system's limit under a new folder, say) leaves no empty
-/// folders behind. A folder with anything in it stays.
-pub fn remove_made_folders() {
+/// folders behind. A folder that holds nothing but files named in `own` (the run's own
+/// bookkeeping, such as its work lock) counts as empty; one with anything else in it stays.
+pub fn remove_made_folders(own: &[&str]) {
     let mut made = std::mem::take(&mut *MADE.lock().unwrap_or_else(|p| p.into_inner()));
     made.sort_by_key(|p| std::cmp::Reverse(p.components().count()));
     for d in made {
+        let names: Vec<_> = std::fs::read_dir(&d)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        if names.iter().all(|n| own.iter().any(|o| n == *o)) {
+            for n in &names {
+                let _ = std::fs::remove_file(d.join(n));
+            }
+        }
         let _ = std::fs::remove_dir(d);
     }
 }

@@ -52,7 +52,7 @@ const PARALLEL_HASH_BYTES: usize = 1 << 20;
 
 impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
-        crate::limits::check_not_input(&path)?;
+        let path = crate::render::output::streamed_result_path(&path)?;
         let tmp = path.with_extension(format!(
             "{}.tmp{}",
             path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
