@@ -17,7 +17,11 @@
 //           a result is then taken later than its latency, and in_ready may be low while
 //           OUT_DEPTH accepted results are untaken, never otherwise
 //           [+valid_during_reset] [+reset_after_load] (reset behaviour, see below)
+//           [+count=N] the file must hold exactly N records (its manifest's `count`): without it
+//           a file cut at a line boundary runs as a shorter set
 //           [+waves=FILE.fst] [+max_errors=N]
+// Every line of the file must be exactly the record's hex digits (a final newline, and a
+// carriage return before it, allowed): a cut, joined or padded line is refused by number.
 `timescale 1ns / 1ps
 `default_nettype none
 module tb_top;
@@ -27,6 +31,8 @@ module tb_top;
     localparam RB = {{RECORD_BITS}};
     localparam LAT = {{LATENCY}};
     localparam POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
+    // Hex digits of a record's line.
+    localparam HD = {{HEX_DIGITS}};
     reg clk = 1'b0;
     reg rst = 1'b1;
     reg power_table_we = 1'b0;
@@ -99,6 +105,57 @@ module tb_top;
         end
     endtask
 
+    // The vector file's current line, read whole (two characters more than a record's, so
+    // that a longer line shows), and what follows a record's digits on it.
+    reg [8*(HD+2)-1:0] line;
+    reg [8*(HD+2)-1:0] rest;
+    integer len;
+    integer line_no = 0;
+    integer want_count;
+    reg [7:0] first_ch;
+    reg [7:0] last_ch;
+    integer ch;
+
+    // The next record of the vector file into stim: code 1, or 0 at the end of the file; a
+    // line that is not exactly a record's HD hex digits is refused by its number (code -1,
+    // the run given up). A line is read whole, so a space, a joined or a cut line cannot be
+    // read as records of another width.
+    task read_stim;
+        begin
+            line = 0;
+            len = $fgets(line, fin);
+            line_no = line_no + 1;
+            code = 0;
+            if (len > 0) begin
+                if (line[7:0] == 8'h0a) begin line = line >> 8; len = len - 1; end
+                if (len > 0 && line[7:0] == 8'h0d) begin line = line >> 8; len = len - 1; end
+                last_ch = line[7:0];
+                // Left-aligned: Verilator's $sscanf stops at a leading zero byte, Icarus's skips it.
+                line = line << (8 * (HD + 2 - len));
+                first_ch = line[8*(HD+2)-1 -: 8];
+                rest = 0;
+                code = -1;
+                if (len != HD)
+                    $display("FATAL: %0s line %0d: %0d characters, where a record is %0d hex digits (a cut or joined line, or a set of another configuration)", vec_file, line_no, len, HD);
+                else if (first_ch == " " || first_ch == "\t" || last_ch == " " || last_ch == "\t" || $sscanf(line, "%h%s", stim, rest) != 1)
+                    $display("FATAL: %0s line %0d: a character that is not a hex digit", vec_file, line_no);
+                else code = 1;
+`ifdef VERILATOR
+                // Two-state: an x, z or ? digit reads as 0 here, so it is looked for.
+                for (ch = 0; code == 1 && ch < HD; ch = ch + 1)
+                    if (line[8*(HD+2-ch)-1 -: 8] == "x" || line[8*(HD+2-ch)-1 -: 8] == "X" || line[8*(HD+2-ch)-1 -: 8] == "z" || line[8*(HD+2-ch)-1 -: 8] == "Z" || line[8*(HD+2-ch)-1 -: 8] == "?") code = 2;
+`else
+                if (code == 1 && (^stim) === 1'bx) code = 2;
+`endif
+                if (code == 2) begin
+                    $display("FATAL: %0s line %0d holds an x, z or ? digit", vec_file, line_no);
+                    code = -1;
+                end
+                if (code < 0) gave_up = 1'b1;
+            end
+        end
+    endtask
+
     task finish_run;
         begin
             if (n_tri > 0) $display("%0d triangle setups, %0d edges waited for tri_ready, %0d edges in all", n_tri, tri_waits, cyc);
@@ -150,10 +207,8 @@ module tb_top;
             in_valid = 1'b0;
             tri_valid = 1'b0;
         end
-        code = $fscanf(fin, "%h\n", stim);
-        // %h also reads x, z and ? digits (unknown bits): a record holding one is refused, not
-        // driven. (It reads `_` as a separator; `gbump regress` refuses such a set first.)
-        while (code == 1 && (^stim) !== 1'bx) begin
+        read_stim;
+        while (code == 1) begin
             if (bubbles > 0 && n_in % bubbles == bubbles - 1) begin
                 in_valid = 1'b0;
                 for (gap = 0; gap <= (n_in / bubbles) % 3; gap = gap + 1) @(negedge clk);
@@ -172,12 +227,12 @@ module tb_top;
             while (!in_ready) @(negedge clk);
             @(negedge clk);
             n_in = n_in + 1;
-            code = $fscanf(fin, "%h\n", stim);
+            read_stim;
         end
-        // The loop stops at the end of the file or at a character that is not a hex digit (the
-        // part of its line before it, if any, was read as a record: the line is n or n + 1).
-        if (code == 1) begin $display("FATAL: %0s: record %0d (line %0d) holds an x, z or ? digit", vec_file, n_in, n_in + 1); gave_up = 1'b1; end
-        else if (!$feof(fin)) begin $display("FATAL: reading %0s stopped at a character that is not a hex digit, on line %0d or %0d", vec_file, n_in, n_in + 1); gave_up = 1'b1; end
+        if (!gave_up && $value$plusargs("count=%d", want_count) && n_in != want_count) begin
+            $display("FATAL: %0s holds %0d records, where +count=%0d (its manifest's count) wants %0d: a cut or grown file", vec_file, n_in, want_count, want_count);
+            gave_up = 1'b1;
+        end
         in_valid = 1'b0;
         cycles = 0;
         while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end

@@ -210,9 +210,52 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
             Path::new("../cores"),
             target,
             &core,
-            &[format!("--vectors={hex}"), format!("--table={table}"), "--bubbles=7".into()],
+            &[
+                format!("--vectors={hex}"),
+                "--count=400".into(),
+                format!("--table={table}"),
+                "--bubbles=7".into(),
+            ],
         );
         assert_eq!(passed_failed(&log), (400, 0), "{target}:\n{log}");
+    }
+    // A file damaged the ways an edit or a copy damages one is refused by line (or by its
+    // count) on both simulators, and fusesoc fails: never read as records of another width.
+    let text = std::fs::read_to_string(tmp.path().join("v/random400_top.hex")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let edited = |i: usize, l: &str| {
+        let mut v: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
+        v[i] = l.to_string();
+        v.join("\n") + "\n"
+    };
+    let line = lines[4];
+    let damaged = [
+        ("grown", edited(3, &format!("12 34\n{}", lines[3])), "line 4: 5 characters"),
+        ("half", edited(1, &lines[1][..lines[1].len() / 2]), "line 2: 77 characters"),
+        (
+            "stray",
+            edited(4, &format!("{}g{}", &line[..9], &line[10..])),
+            "line 5: a character that is not a hex digit",
+        ),
+        (
+            "padded",
+            edited(4, &format!(" {}", &line[1..])),
+            "line 5: a character that is not a hex digit",
+        ),
+        ("x", edited(5, &format!("x{}", &lines[5][1..])), "line 6 holds an x, z or ? digit"),
+        ("cut", lines[..300].join("\n") + "\n", "holds 300 records, where +count=400"),
+    ];
+    for (name, body, want) in &damaged {
+        std::fs::write(tmp.path().join(format!("v/{name}.hex")), body).unwrap();
+        for target in ["sim_icarus", "sim_verilator"] {
+            let plus = [
+                format!("--vectors=../v/{name}.hex"),
+                "--count=400".into(),
+                format!("--table={table}"),
+            ];
+            let (ok, log) = fusesoc_run(&cwd, Path::new("../cores"), target, &core, &plus);
+            assert!(!ok && log.contains(want), "{target}, {name} file: wanted `{want}`:\n{log}");
+        }
     }
     // Without the table the pipeline runs on its power-up contents (n = 16, INIT_FILE found
     // in the simulator's folder): the n = 40 vectors must fail there, and fusesoc with them.

@@ -92,7 +92,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     let mut s = String::from("CAPI=2:\n");
     s += &header(cfg, command, "FuseSoC CAPI2 core of the pipeline and its top testbench", "# ");
     s += &format!(
-        "# fusesoc --cores-root DIR run --target sim_icarus gbump:gbump:{top} --vectors=SET_top.hex [--table=SET_top_power_table.hex] [--bubbles=N]\n"
+        "# fusesoc --cores-root DIR run --target sim_icarus gbump:gbump:{top} --vectors=SET_top.hex [--count=N] [--table=SET_top_power_table.hex] [--bubbles=N]\n"
     );
     s += &format!("name: gbump:gbump:{top}:{}\n", env!("CARGO_PKG_VERSION"));
     s += &format!(
@@ -121,7 +121,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
     let others: Vec<&'static str> = super::testbench::other_memories(cfg).iter().map(|m| m.prefix).collect();
     let plus = format!(
-        "[INIT_FILE, vectors, table, {}bubbles, max_errors]",
+        "[INIT_FILE, vectors, count, table, {}bubbles, max_errors]",
         others.iter().map(|p| format!("{p}, ")).collect::<String>()
     );
     s += &format!(
@@ -135,6 +135,7 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  INIT_FILE:\n    datatype: str\n    paramtype: vlogparam\n    default: {init}\n    description: $readmemh file of the power table's power-up contents, relative to the simulator's working folder\n"
     );
     s += "  vectors:\n    datatype: file\n    paramtype: plusarg\n    description: top vector set in text form (gbump vectors --target top --format hex), one record per line\n";
+    s += "  count:\n    datatype: int\n    paramtype: plusarg\n    description: records the vector file must hold (its manifest's count); without it a file cut at a line boundary runs as a shorter set\n";
     s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
     for p in &others {
         s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata after the table (the _{p}.hex a set's manifest names, where it names one); without it the power-up contents\n");

@@ -142,6 +142,7 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
     let mut s = pt(cfg);
     s.extend([
         ("RECORD_BITS", l.bits.to_string()),
+        ("HEX_DIGITS", l.hex_digits().to_string()),
         ("LATENCY", latency(cfg).to_string()),
         ("II", cfg.initiation_interval().to_string()),
         ("INIT_FILE", init.to_string()),

@@ -335,7 +335,11 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         Verilator.run(&exe, &args, None, &o.work, &what)
                     }
                     _ => {
-                        let mut plus = vec![format!("+vectors={}", file(&m.hex)), format!("+max_errors={}", o.max_errors)];
+                        let mut plus = vec![
+                            format!("+vectors={}", file(&m.hex)),
+                            format!("+max_errors={}", o.max_errors),
+                            format!("+count={}", m.count),
+                        ];
                         if let Some(t) = &table {
                             plus.push(format!("+table={t}"));
                         }
