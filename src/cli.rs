@@ -198,7 +198,7 @@ pub enum Cmd {
     Error {
         #[command(flatten)]
         pick: ConfigPick,
-        /// Random stimuli per unit.
+        /// Random stimuli per unit (the table's samples count outputs: one per channel and light of each stimulus).
         #[arg(long, default_value_t = 100_000)]
         random: u64,
         #[arg(long, default_value_t = 1)]

@@ -16,6 +16,10 @@ fn power_section(fm: PowerFormats, work: &Path) -> Result<String> {
 
 /// The FPGA section: the top of the default and the one-light parallel configuration on each
 /// FPGA target, iCE40 placed and routed on an HX8K in its register shell.
+/// Random stimuli per unit of the report's error table (its caption names them, so the
+/// table can be made again with the command it shows).
+pub const REPORT_ERROR_STIMULI: u64 = 50_000;
+
 pub fn fpga_section(work: &Path) -> Result<String> {
     use super::fpga::{fpga_area, Target};
     let configs = [
@@ -91,8 +95,8 @@ pub fn report(
     let area = super::area::area(&cfg, &work.join("area"), "gbump report")?;
     md += &super::area::markdown(&area);
     md += "\nThe power table and the palette are synchronous-read RAMs (`src/rtlgen/ram.rs`, one copy per read port), black boxes in this synthesis: the GE are logic, the RAM bits stand apart. The blend units are reported in their parallel (all lights at once) form.\n\n";
-    md += "## Error against exact arithmetic (default configuration)\n\n`gbump error`\n\n";
-    let errs = super::unit_error::unit_errors(&cfg, 50_000, 1);
+    md += &format!("## Error against exact arithmetic (default configuration)\n\n`gbump error --random {REPORT_ERROR_STIMULI}`\n\n");
+    let errs = super::unit_error::unit_errors(&cfg, REPORT_ERROR_STIMULI, 1);
     md += &super::unit_error::markdown(&cfg, &errs);
     md += "\n### Image error per scene\n\n";
     md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, 192, 144)?);

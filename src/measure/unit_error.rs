@@ -444,7 +444,7 @@ pub fn flat_highlight_loss(cfg: &PipelineConfig) -> f64 {
 
 /// Markdown table of unit errors.
 pub fn markdown(cfg: &PipelineConfig, stats: &[ErrorStats]) -> String {
-    let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format; the colour stages in LSBs of the output colour)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
+    let mut s = format!("Error against exact arithmetic, config `{}` (LSBs of each unit's output format; the colour stages in LSBs of the output colour; samples are outputs compared, one per channel and light of each random stimulus)\n\n| unit | source | samples | max | mean | 0 | ≤½ | ≤1 | ≤2 | ≤4 | ≤8 | >8 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", cfg.hash());
     for e in stats {
         let h: Vec<String> = e.histogram.iter().map(|x| x.to_string()).collect();
         s += &format!(

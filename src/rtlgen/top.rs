@@ -167,7 +167,7 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             &format!("{}_wdata", m.prefix),
             Dir::In,
             PortKind::Load,
-            Format::u(m.data_bits, 0),
+            Format::u(m.data_bits, m.data_frac),
             1,
             unused.map_or(m.doc, |u| u.1),
         ));

@@ -83,6 +83,8 @@ pub struct Memory {
     pub depth: u32,
     pub addr_bits: u32,
     pub data_bits: u32,
+    /// Fraction bits of a word (the power table's entries are u1.P; colours are integers).
+    pub data_frac: u32,
     pub doc: &'static str,
 }
 

@@ -42,6 +42,7 @@ impl Unit for PaletteFetch {
             depth: PALETTE_ENTRIES,
             addr_bits: 8,
             data_bits: 3 * cfg.normal_bits,
+            data_frac: 0,
             doc: "palette entries {z, y, x}, offset-binary components, x in the low bits",
         })
     }

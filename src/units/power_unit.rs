@@ -23,6 +23,7 @@ pub fn table_memory(cfg: &PipelineConfig) -> Memory {
         depth: cfg.power_depth(),
         addr_bits: cfg.power_addr_bits(),
         data_bits: cfg.power_frac_bits + 1,
+        data_frac: cfg.power_frac_bits,
         doc: "power table entries, u1.P (the shininess is whatever was loaded)",
     }
 }
