@@ -453,6 +453,25 @@ impl PipelineConfig {
     }
 }
 
+/// The file this run's configuration was read from (`--config`), for a message that finds a
+/// clash with it later, away from where it was read (a scene's needs, say).
+static ORIGIN: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
+/// Record `file` as the run's configuration file ([`origin`]).
+pub fn note_origin(file: &str) {
+    *ORIGIN.lock().unwrap_or_else(|e| e.into_inner()) = Some(file.to_string());
+}
+
+/// The run's configuration file as messages name it: the `--config` file, else "pipeline
+/// config" (the default, or one a scene derived).
+pub fn origin() -> String {
+    ORIGIN
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .clone()
+        .unwrap_or_else(|| "pipeline config".into())
+}
+
 impl Default for PipelineConfig {
     fn default() -> Self {
         PipelineConfig {

@@ -686,6 +686,12 @@ fn cases() -> Vec<Case> {
             vec!["99999999999999999999999 exceeds MAX_RANDOM_VECTORS", "fix:"],
         ),
         (
+            "a scene that needs more lights than the --config file has: the file is named",
+            vec![("one.toml", "lights = 1\nlight_mode = \"parallel\"\n".into())],
+            vec!["vectors", "--source", "scene:torus_caps", "--config", "one.toml", "--out", "out"],
+            vec!["one.toml: field `lights`", "2 bump lights", "fix: set lights = 2"],
+        ),
+        (
             "--size 16384x16384",
             vec![],
             vec!["render", "--scene", "cg_wall_front", "--size", "16384x16384", "--out", "out"],

@@ -199,3 +199,19 @@ fn gbump_config_prints_every_field() {
         assert!(listed, "`gbump config` does not print `{f}`:\n{text}");
     }
 }
+
+/// The README names every kind of bump source a scene takes (the kinds serde lists for an
+/// unknown one), each as `kind`.
+#[test]
+fn the_readme_names_every_bump_source() {
+    let err = toml::from_str::<gbump::bumpmap::height::HeightSource>("kind = \"not_a_kind\"")
+        .unwrap_err()
+        .to_string();
+    let list = err.split_once("expected one of ").expect("serde names the kinds").1;
+    let kinds: Vec<&str> = list.split('`').skip(1).step_by(2).collect();
+    assert!(kinds.len() >= 5 && kinds.contains(&"png"), "{kinds:?}");
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    for k in kinds {
+        assert!(readme.contains(&format!("`{k}`")), "the README does not name bump source `{k}`");
+    }
+}

@@ -109,6 +109,10 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
             if r.max_lsb <= 1.0 { "yes" } else { "no" }
         );
     }
+    s += &format!(
+        "\nThe squaring rows are a design study: square-and-multiply for every n, with the guard bits shown. The pipeline's `power_unit = \"squaring\"` is built for one shininess, rounded to a power of two (its squarings alone, the Cg Tutorial's form), with {} guard bits (`SQUARING_GUARD_BITS`); `gbump error` measures it under a configuration.\n",
+        crate::config::SQUARING_GUARD_BITS
+    );
     s
 }
 

@@ -243,7 +243,11 @@ fn default_strength() -> f64 {
 /// (`--config` / `--scene`, which the command line makes exclusive).
 pub fn pick_config(config: Option<&Path>, scene: Option<&str>) -> Result<PipelineConfig> {
     match (config, scene) {
-        (Some(p), _) => PipelineConfig::load(p),
+        (Some(p), _) => {
+            let cfg = PipelineConfig::load(p)?;
+            crate::config::note_origin(&p.display().to_string());
+            Ok(cfg)
+        }
         (None, Some(s)) => Scene::load(s)?.derive_config(),
         (None, None) => Ok(PipelineConfig::default()),
     }

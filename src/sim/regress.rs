@@ -105,7 +105,7 @@ pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec
     // built-in ones; it must fit, and a palette configuration's scene sets are refused by the
     // dump with the reason: a misfit is an error, not a silent skip.
     for file in o.own_scenes.iter().filter(|_| has("top")) {
-        crate::scene::Scene::load(file)?.check_config(cfg, "pipeline config")?;
+        crate::scene::Scene::load(file)?.check_config(cfg, &crate::config::origin())?;
         for s in dump(
             cfg,
             &Source::Scene(file.clone()),

@@ -495,7 +495,7 @@ pub fn group_key(cfg: &PipelineConfig, s: &crate::scene::Scene, obj: u32) -> u32
 pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) -> Result<Vec<SceneGroup>> {
     scene_sets_made(cfg, &format!("scene:{name}"))?;
     let s = crate::scene::Scene::load(name)?;
-    s.check_config(cfg, "pipeline config")?;
+    s.check_config(cfg, &crate::config::origin())?;
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
     crate::limits::check_render(&s.file, w, h, s.triangles())?;
     let p = crate::raster::Prepared::new(&s, cfg, w, h)?;

@@ -374,7 +374,7 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
         }
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
-            s.check_config(cfg, "pipeline config")?;
+            s.check_config(cfg, &crate::config::origin())?;
             let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
             crate::limits::check_render(&s.file, w, h, s.triangles())
         }
