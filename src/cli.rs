@@ -1485,8 +1485,19 @@ fn cosim(
     }
     outln!("{} passed, {} failed ({:.1} s)", r.passed, r.failed, r.seconds);
     if r.failed > 0 {
+        let vectors = format!("gbump vectors --source random:{random} --seed {seed} --target top {a}--out DIR");
+        // `gbump regress` simulates the RTL it generates: RTL given with --rtl replays through
+        // that folder's own FuseSoC core, or the replay would test other RTL and pass.
+        let replay = match &o.rtl {
+            None => format!("{vectors}, then gbump regress --sim verilator {a}--vectors DIR"),
+            Some(dir) => format!(
+                "{vectors} --format hex, then fusesoc --cores-root {} run --target sim_verilator gbump:gbump:{} --vectors=DIR/random{random}_top.hex --count={random} --table=DIR/random{random}_top_power_table.hex (the --rtl folder's own core and testbench)",
+                quoted(&dir.display().to_string()),
+                crate::rtlgen::units_v::module_name(&cfg, "gbump_pipeline")
+            ),
+        };
         return Err(Error::Other(format!(
-            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: gbump vectors --source random:{random} --seed {seed} --target top {a}--out DIR, then gbump regress --sim verilator {a}--vectors DIR",
+            "cosim: {} mismatches between the RTL and the model\n  fix: replay the seed as vectors: {replay}",
             r.failed,
         )));
     }

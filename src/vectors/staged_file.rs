@@ -135,7 +135,7 @@ impl StagedFile {
             },
         );
         let out = self.out()?;
-        if tail.len % ALIGN != 0 {
+        if !tail.len.is_multiple_of(ALIGN) {
             out.stop_direct()?;
         }
         out.write_all(tail.filled())?;
