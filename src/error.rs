@@ -188,6 +188,9 @@ pub fn wrong_kind(text: &str, reading: &str) -> Option<String> {
     ];
     let config = !scene && table.keys().any(|k| config_only.contains(&k.as_str()));
     match reading {
+        "configuration" if !scene && table.get("pipeline").is_some_and(|p| p.is_table()) => Some(
+            "a configuration file is flat, its fields at the top; `[pipeline]` is the table a scene file holds them in: drop the `[pipeline]` line (or pass the scene with --scene)".into(),
+        ),
         "configuration" if scene => Some(
             "this is a scene file (it has `objects` or `camera`), not a pipeline configuration: pass it with --scene, which derives the configuration (`gbump config --scene FILE` prints it)".into(),
         ),

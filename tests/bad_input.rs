@@ -692,6 +692,12 @@ fn cases() -> Vec<Case> {
             vec!["one.toml: field `lights`", "2 bump lights", "fix: set lights = 2"],
         ),
         (
+            "a configuration written under a scene's [pipeline] header",
+            vec![("c.toml", "[pipeline]\nlights = 2\n".into())],
+            vec!["rtl", "--config", "c.toml", "--out", "out"],
+            vec!["c.toml:1:", "unknown field `pipeline`", "a configuration file is flat"],
+        ),
+        (
             "--size 16384x16384",
             vec![],
             vec!["render", "--scene", "cg_wall_front", "--size", "16384x16384", "--out", "out"],

@@ -120,8 +120,16 @@ fn cosim_catches_mutants() {
     );
     // The replay the message gives, followed as written, runs this folder's RTL and fails
     // too (replayed through `gbump regress`, which generates its own RTL, it would pass).
-    let fix = log.lines().find(|l| l.contains("replay the seed as vectors: ")).expect("the replay line");
-    let (vectors, rest) = fix.split_once("replay the seed as vectors: ").unwrap().1.split_once(", then ").unwrap();
+    let fix = log
+        .lines()
+        .find(|l| l.contains("replay the seed as vectors: "))
+        .expect("the replay line");
+    let (vectors, rest) = fix
+        .split_once("replay the seed as vectors: ")
+        .unwrap()
+        .1
+        .split_once(", then ")
+        .unwrap();
     let simulate = rest.split(" (the --rtl").next().unwrap();
     let dir = w.join("replay");
     let _ = std::fs::remove_dir_all(&dir);
@@ -135,7 +143,10 @@ fn cosim_catches_mutants() {
     // Every path in it is absolute here; fusesoc's build folder goes in the work folder.
     let o = Command::new("fusesoc").args(&f[1..]).current_dir(&w).output().unwrap();
     let out = String::from_utf8_lossy(&o.stdout).to_string() + &String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && out.contains("MISMATCH"), "the replay passed on the mutant RTL:\n{simulate}\n{out}");
+    assert!(
+        !o.status.success() && out.contains("MISMATCH"),
+        "the replay passed on the mutant RTL:\n{simulate}\n{out}"
+    );
     // The lockstep binary run alone, as a user's script would, exits 1 on the mismatch.
     let exe = build_for(&w.join("builds"), &std::path::absolute(&mutant).unwrap());
     let cfg_file = w.join(format!("cosim_config_{}.toml", gbump::PipelineConfig::default().hash()));

@@ -17,8 +17,14 @@ pub struct Records {
 /// The records of `a`, each `words` words of a `target` record.
 pub fn records_in(a: &Bound<'_, PyAny>, words: usize, target: &str) -> PyResult<Records> {
     let arr: PyReadonlyArrayDyn<'_, u32> = a.extract().map_err(|_| {
-        pyo3::exceptions::PyTypeError::new_err(format!(
-            "records: not a numpy uint32 array\n  fix: pass numpy.asarray(records, dtype=numpy.uint32), shape (N, {words}) for `{target}` records"
+        // What was given, as numpy names it (a list, a float or int64 array, a uint32 array
+        // in the other byte order all land here): a GbumpError like every other bad input.
+        let given = a
+            .getattr("dtype")
+            .and_then(|d| d.str())
+            .map_or_else(|_| format!("a {}", a.get_type().name().map_or("value".into(), |n| n.to_string())), |d| format!("dtype {d}"));
+        crate::fail(format!(
+            "records: {given}, not a numpy uint32 array in this machine's byte order\n  fix: pass numpy.asarray(records, dtype=numpy.uint32), shape (N, {words}) for `{target}` records"
         ))
     })?;
     let shape = arr.shape().to_vec();
@@ -31,6 +37,7 @@ pub fn records_in(a: &Bound<'_, PyAny>, words: usize, target: &str) -> PyResult<
             )))
         }
     };
+    check_batch("records", count as u64)?;
     Ok(Records {
         words: arr.as_array().iter().copied().collect(),
         count,
@@ -50,6 +57,11 @@ pub fn records_out(py: Python<'_>, words: Vec<u32>, per: usize, single: bool) ->
 
 /// Refuse to build more than `MAX_BATCH_RECORDS` records in one array.
 pub fn check_batch(what: &str, n: u64) -> PyResult<()> {
+    check_records(what, n, 0)
+}
+
+/// Refuse a count of records outside `lo..=MAX_BATCH_RECORDS`.
+pub fn check_records(what: &str, n: u64, lo: u64) -> PyResult<()> {
     use gbump::limits::{check_count, MAX_BATCH_RECORDS};
-    check_count(what, n, 0, MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS").map_err(crate::err)
+    check_count(what, n, lo, MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS").map_err(crate::err)
 }

@@ -342,7 +342,8 @@ impl Config {
     /// reasons} (one per power table; `reasons` lists why each corner is there, else None).
     /// Random, corner and exhaustive sets use `shininess`, by default the configuration's own
     /// (its TOML field, what `gbump vectors` uses; not the model's current table, which the
-    /// `shininess` property reads and sets); scenes their objects'.
+    /// `shininess` property reads and sets); scenes their objects'. `size` is a scene's image
+    /// size as a (width, height) tuple in pixels (by default the scene's own).
     #[pyo3(signature = (source, seed = 1, shininess = None, size = None))]
     fn vectors<'py>(
         &self,

@@ -27,10 +27,21 @@ fn column_values(v: &Bound<'_, PyAny>, c: &Column) -> PyResult<(usize, Vec<i64>)
     let a = np.call_method1("asarray", (v,))?;
     let kind: String = a.getattr("dtype")?.getattr("kind")?.extract()?;
     if !"iub".contains(kind.as_str()) || kind.is_empty() {
-        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+        return Err(crate::fail(format!(
             "column `{}`: dtype kind `{kind}`, not integers\n  fix: pass integer codes (format {})",
             c.name, c.format
         )));
+    }
+    // An unsigned value past int64 would wrap to a negative code in the cast below: refused
+    // as what it is instead.
+    if kind == "u" && a.getattr("size")?.extract::<usize>()? > 0 {
+        let max: u64 = np.call_method1("max", (&a,))?.extract()?;
+        if max > i64::MAX as u64 {
+            return Err(crate::fail(format!(
+                "column `{}`: {max} is outside format {} (and past int64)\n  fix: give codes of the column's format",
+                c.name, c.format
+            )));
+        }
     }
     let a = a.call_method1("astype", ("int64",))?;
     let arr: PyReadonlyArrayDyn<'_, i64> = a.extract()?;

@@ -34,8 +34,7 @@ impl Stimulus {
     /// The next `n` records, uint32 shape (n, words).
     #[pyo3(signature = (n = 1))]
     fn next<'py>(&mut self, py: Python<'py>, n: i128) -> PyResult<Bound<'py, PyAny>> {
-        let n = crate::arg("Stimulus.next: n", n, 0, u64::MAX, "")?;
-        check_batch("Stimulus.next: n", n)?;
+        let n = crate::arg("Stimulus.next: n", n, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
         let w = self.s.layout.words32();
         let mut out = Vec::with_capacity(n as usize * w);
         for _ in 0..n {
@@ -101,7 +100,7 @@ pub fn vectors<'py>(
     let out = PyList::empty(py);
     match &src {
         Source::Random(count) => {
-            check_batch("random:N", *count)?;
+            crate::arrays::check_records("random:N", *count, 1)?;
             let count = *count;
             let words = py.detach(|| {
                 let chunks: Vec<Vec<TopStim>> = (0..count.div_ceil(RANDOM_CHUNK))

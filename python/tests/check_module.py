@@ -160,9 +160,26 @@ check(
     len(said) == 1 and issubclass(said[0].category, DeprecationWarning) and "dot_frac_bits" in str(said[0].message),
     "an old field name warns through Python's warnings",
 )
-try:
-    model.eval("top", stim.astype(np.int64))
-    check(False, "int64 records are refused")
-except TypeError:
-    check(True, "int64 records are refused")
+# Records of another dtype (int64, float, a list, uint32 in the other byte order) are refused
+# as any bad input is, with GbumpError naming what was given; never cast.
+for bad, name in [
+    (stim.astype(np.int64), "dtype int64"),
+    (stim.astype(np.float64), "dtype float64"),
+    (stim.astype(">u4"), "dtype >u4"),
+    (stim.tolist(), "a list"),
+]:
+    check(raises(lambda: model.eval("top", bad), name, "numpy uint32"), f"{name} records are refused with GbumpError")
+# A count past MAX_BATCH_RECORDS is refused before anything is evaluated, as in C.
+n_words = model.record_words("power_unit")
+big = np.zeros((2**24 + 1, n_words), np.uint32)
+check(raises(lambda: model.eval("power_unit", big), "MAX_BATCH_RECORDS"), "a batch past 2^24 records is refused")
+check(raises(lambda: model.unpack("power_unit", big), "MAX_BATCH_RECORDS"), "an unpack past 2^24 records is refused")
+del big
+# An unsigned value past int64 is refused, not wrapped to a negative code.
+check(
+    raises(lambda: model.eval_fields("dot_clamp", {"b": np.array([[2**64 - 1, 0, 0]], np.uint64), "v": [[0, 0, 16384]]}), "18446744073709551615", "`b`"),
+    "a uint64 past int64 is refused by its value",
+)
+check(raises(lambda: model.stimulus(1).next(-1), f"0..={2**24}"), "a negative count names the batch limit")
+check(raises(lambda: model.vectors("random:0"), "1..="), "random:0 names the range it takes")
 print(f"module check: {passed} passed, 0 failed")

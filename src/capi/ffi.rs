@@ -364,6 +364,9 @@ pub unsafe extern "C" fn gbump_eval(h: *const GbumpConfig, target: *const c_char
 /// Evaluate `count` records of `target` back to back (`gbump_record_words(h, target)` words
 /// each), in parallel on the library's thread pool; 0 on success, -1 on failure. `count` is
 /// 0..=MAX_BATCH_RECORDS (2^24); with 0 nothing is read or written (the buffers may be NULL).
+/// A batch with a record the model refuses fails as a whole: `gbump_last_error()` names the
+/// lowest such record (the same one every run, however the work was split), and what
+/// `rec_out` holds is then unspecified.
 ///
 /// # Safety
 /// As `gbump_eval`, with `count` records in each buffer.

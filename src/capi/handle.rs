@@ -144,7 +144,6 @@ impl GbumpConfig {
     /// Evaluate back-to-back records of `t` (`t.layout.words32()` words each) from `input`
     /// into `out` (the same length), on the library's thread pool when there are many.
     pub fn eval_words(&self, t: &Target, input: &[u32], out: &mut [u32]) -> Result<()> {
-        use rayon::prelude::*;
         let n = t.layout.words32();
         if input.len() != out.len() || !input.len().is_multiple_of(n) {
             return Err(Error::Other(format!(
@@ -164,12 +163,34 @@ impl GbumpConfig {
             o.copy_from_slice(&r.to_words32(n));
             Ok(())
         };
-        if input.len() / n >= 1024 {
-            input.par_chunks(n).zip(out.par_chunks_mut(n)).enumerate().try_for_each(eval)
-        } else {
-            input.chunks(n).zip(out.chunks_mut(n)).enumerate().try_for_each(eval)
-        }
+        each_chunk(input, out, n, input.len() / n >= 1024, eval)
     }
+}
+
+/// `f` over `input` and `out` a chunk of `words` at a time (numbered from 0), on every core
+/// when `parallel`; on failure the error of the lowest chunk that fails, whichever thread
+/// met one first, so a batch names the same record every run (what `out` holds then is
+/// unspecified).
+fn each_chunk<F>(input: &[u32], out: &mut [u32], words: usize, parallel: bool, f: F) -> Result<()>
+where
+    F: Fn((usize, (&[u32], &mut [u32]))) -> Result<()> + Sync,
+{
+    use rayon::prelude::*;
+    let failed = if parallel {
+        input
+            .par_chunks(words)
+            .zip(out.par_chunks_mut(words))
+            .enumerate()
+            .filter_map(|(k, io)| f((k, io)).err().map(|e| (k, e)))
+            .min_by_key(|(k, _)| *k)
+    } else {
+        input
+            .chunks(words)
+            .zip(out.chunks_mut(words))
+            .enumerate()
+            .find_map(|(k, io)| f((k, io)).err().map(|e| (k, e)))
+    };
+    failed.map_or(Ok(()), |(_, e)| Err(e))
 }
 
 impl GbumpConfig {
@@ -179,7 +200,6 @@ impl GbumpConfig {
     fn eval_top_words(&self, t: &Target, input: &[u32], out: &mut [u32]) -> Result<()> {
         use crate::vectors::targets::TopEncoder;
         use crate::vectors::top_records::{TopRecords, BATCH};
-        use rayon::prelude::*;
         let n = t.layout.words32();
         let maker = TopRecords::with(&self.cfg, self.mem.view(), std::borrow::Cow::Borrowed(&self.fast));
         let run = |(b, (i, o)): (usize, (&[u32], &mut [u32]))| -> Result<()> {
@@ -197,15 +217,7 @@ impl GbumpConfig {
             }
             Ok(())
         };
-        if input.len() / n >= 1024 {
-            input
-                .par_chunks(n * BATCH)
-                .zip(out.par_chunks_mut(n * BATCH))
-                .enumerate()
-                .try_for_each(run)
-        } else {
-            input.chunks(n * BATCH).zip(out.chunks_mut(n * BATCH)).enumerate().try_for_each(run)
-        }
+        each_chunk(input, out, n * BATCH, input.len() / n >= 1024, run)
     }
 }
 
@@ -256,6 +268,30 @@ impl GbumpStim {
 mod tests {
     use super::*;
     use crate::config::{LightMode, PowerUnitKind};
+
+    /// A batch with several records outside the unit's domain names the lowest of them, on
+    /// the parallel path as on the serial one, every time.
+    #[test]
+    fn a_failing_batch_names_its_lowest_bad_record() {
+        let h = GbumpConfig::new(PipelineConfig::default()).unwrap();
+        let t = h.target("power_unit").unwrap();
+        let n = t.layout.words32();
+        let x = t.layout.column("x");
+        for count in [300usize, 1 << 16] {
+            let bad = [100, count / 2, count - 10];
+            let mut input = vec![0u32; count * n];
+            for &k in &bad {
+                let mut r = Record::new(&t.layout);
+                r.set_lane(x, 0, (1 << PipelineConfig::default().dot_frac_bits) + 1);
+                input[k * n..(k + 1) * n].copy_from_slice(&r.to_words32(n));
+            }
+            for _ in 0..3 {
+                let mut out = vec![0u32; count * n];
+                let e = h.eval_words(t, &input, &mut out).unwrap_err().to_string();
+                assert!(e.starts_with("record 100:"), "{count} records: {e}");
+            }
+        }
+    }
 
     /// The widest configurations the limits allow fit the DPI-C package's records.
     #[test]

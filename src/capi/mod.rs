@@ -32,17 +32,21 @@ Conventions of every function below:
   clear it); empty before any failure.
 - Strings returned are owned by the library, never freed by the caller: gbump_version and
   gbump_source are static; gbump_config_hash, gbump_config_toml, gbump_port_name and
-  gbump_column_name, gbump_target_name and gbump_config_warnings live as long as their
-  handle; gbump_last_error's until the next failure on the thread. Copy an error before
-  the next call: an argument list that both fails a call and reads gbump_last_error() may
-  read it before or after the failure.
+  gbump_column_name, gbump_target_name, gbump_module_name and gbump_config_warnings live
+  as long as their handle; gbump_last_error's until the next failure on the thread, which
+  frees it. Copy an error before the next call: in an argument list that both fails a call
+  and reads gbump_last_error() (printf(\"%d %s\", gbump_latency(NULL), gbump_last_error()),
+  say) the pointer read may be freed by the failure before it is used.
 - Output: the library never writes to stdout or stderr. A configuration read under an old
   field name is accepted with a warning that gbump_config_warnings returns.
 - Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
   files (gbump_column gives each column's offset); targets are \"top\" and the units the
   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
-  record's last bit are ignored. A unit record the pipeline could never feed the unit (a
-  table index above 1.0, a texel block beyond the map) is refused with the port and bound.
+  record's last bit are ignored. A unit record the pipeline could never feed the unit where
+  the model would index a memory with it (a table index above 1.0, a texel block beyond the
+  map) is refused with the port and bound, as is one whose result overflows its output;
+  every other input is taken over its whole format, as the unit's RTL takes it (a blend
+  factor or k above 1.0 included), though the pipeline feeds at most 1.0 there.
 - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call (the
   limit the Python module's arrays have too).
 - Threads: a handle may be read from several threads at once, but not while
