@@ -19,15 +19,29 @@ pub struct WorkLock {
 impl WorkLock {
     /// Lock `dir` (created if missing) for the command `what`; waits while another run holds it.
     pub fn acquire(dir: &Path, what: &str) -> Result<WorkLock> {
-        crate::render::output::make_folder(dir)?;
         let path = dir.join(LOCK_NAME);
+        // A run that fails removes a work folder it made, lock file and all
+        // (`output::remove_made_folders`): a lock then taken on the removed file is no lock,
+        // so it is taken again on the file at the path.
+        loop {
+            let file = WorkLock::lock_file(dir, &path)?;
+            if still_at(&file, &path) {
+                return WorkLock::hold(file, dir, what);
+            }
+        }
+    }
+
+    /// `path` opened (created if missing, its folder too) and locked, waiting while another
+    /// run holds it.
+    fn lock_file(dir: &Path, path: &Path) -> Result<File> {
+        crate::render::output::make_folder(dir)?;
         let mut file = std::fs::OpenOptions::new()
             .read(true)
             .write(true)
             .create(true)
             .truncate(false)
-            .open(&path)
-            .map_err(|e| Error::io(&path, e))?;
+            .open(path)
+            .map_err(|e| Error::io(path, e))?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
@@ -39,10 +53,15 @@ impl WorkLock {
                     dir.display(),
                     if holder.is_empty() { "another process" } else { holder }
                 );
-                file.lock().map_err(|e| Error::io(&path, e))?;
+                file.lock().map_err(|e| Error::io(path, e))?;
             }
-            Err(TryLockError::Error(e)) => return Err(Error::io(&path, e)),
+            Err(TryLockError::Error(e)) => return Err(Error::io(path, e)),
         }
+        Ok(file)
+    }
+
+    /// The lock held: the holder written into it, what killed runs left cleared.
+    fn hold(mut file: File, dir: &Path, what: &str) -> Result<WorkLock> {
         let me = format!("pid {}: {what}\n", std::process::id());
         let _ = file
             .set_len(0)
@@ -54,4 +73,17 @@ impl WorkLock {
             dir: dir.to_path_buf(),
         })
     }
+}
+
+/// Whether `file` is still the file at `path` (not removed, nor replaced, since it was opened).
+#[cfg(unix)]
+fn still_at(file: &File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    let id = |m: std::fs::Metadata| (m.dev(), m.ino());
+    matches!((file.metadata().map(id), std::fs::metadata(path).map(id)), (Ok(a), Ok(b)) if a == b)
+}
+
+#[cfg(not(unix))]
+fn still_at(_file: &File, _path: &Path) -> bool {
+    true
 }

@@ -244,7 +244,27 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
         ),
         ("x", edited(5, &format!("x{}", &lines[5][1..])), "line 6 holds an x, z or ? digit"),
         ("cut", lines[..300].join("\n") + "\n", "holds 300 records, where +count=400"),
+        (
+            "underscore",
+            edited(6, &format!("{}_{}", &lines[6][..20], &lines[6][21..])),
+            "line 7: a character that is not a hex digit",
+        ),
     ];
+    // Blank lines (a trailing one, one between records) are passed over, as $readmemh does.
+    std::fs::write(
+        tmp.path().join("v/blank.hex"),
+        format!("{}\n\n{}\n\n", lines[..200].join("\n"), lines[200..].join("\n")),
+    )
+    .unwrap();
+    for target in ["sim_icarus", "sim_verilator"] {
+        let plus = [
+            "--vectors=../v/blank.hex".to_string(),
+            "--count=400".into(),
+            format!("--table={table}"),
+        ];
+        let log = fusesoc(&cwd, Path::new("../cores"), target, &core, &plus);
+        assert_eq!(passed_failed(&log), (400, 0), "{target}, blank lines:\n{log}");
+    }
     for (name, body, want) in &damaged {
         std::fs::write(tmp.path().join(format!("v/{name}.hex")), body).unwrap();
         for target in ["sim_icarus", "sim_verilator"] {

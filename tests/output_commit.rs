@@ -122,3 +122,29 @@ fn a_folder_in_a_results_place_is_refused_alike_by_every_writer() {
         assert_eq!(left, vec![std::ffi::OsString::from(blocked)], "{args:?}");
     }
 }
+
+/// A vector file that is a symbolic link is written through to its target, and the set's
+/// manifest still names the file by the set's own name (the link), so the set verifies.
+#[test]
+fn a_vector_file_behind_a_symbolic_link_keeps_its_name_in_the_manifest() {
+    let d = tempfile::tempdir().unwrap();
+    let (vs, other) = (d.path().join("vs"), d.path().join("other"));
+    std::fs::create_dir_all(&vs).unwrap();
+    std::fs::create_dir_all(&other).unwrap();
+    std::os::unix::fs::symlink("../other/elsewhere.hex", vs.join("random10_top.hex")).unwrap();
+    let o = gbump()
+        .args(["vectors", "--source", "random:10", "--target", "top", "--format", "hex", "--out"])
+        .arg(&vs)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value = serde_json::from_slice(&std::fs::read(vs.join("random10_top.json")).unwrap()).unwrap();
+    assert_eq!(m["hex"]["name"], "random10_top.hex", "{m}");
+    assert!(std::fs::symlink_metadata(vs.join("random10_top.hex"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(std::fs::read_to_string(other.join("elsewhere.hex")).unwrap().lines().count(), 10);
+    let (man, _) = gbump::vectors::verify(&vs.join("random10_top.json")).unwrap();
+    assert_eq!(man.count, 10);
+}

@@ -1545,3 +1545,42 @@ fn random_configurations_generate_lint_and_simulate_clean() {
     // Two random draws here; the six extreme corners run in tests/fuzz_corners.rs.
     assert!(text.contains("fuzz: 2 configurations"), "{text}");
 }
+
+/// The top testbench builds and passes on both simulators for a configuration whose record
+/// line is wider than Verilator's 2048-bit string limit (it decodes the line a character at
+/// a time there).
+#[test]
+fn the_testbench_reads_records_wider_than_verilators_strings() {
+    let cfg = gbump::PipelineConfig::from_toml(
+        "wide",
+        "lh_bits = 24\ncolour_bits = 12\nk_frac_bits = 12\nnormal_bits = 16\nbump_state = \"fragment\"\nframe_transform = true\n",
+    )
+    .unwrap();
+    let digits = gbump::vectors::targets::top_layout(&cfg).hex_digits();
+    assert!(8 * (digits + 2) > 2048, "{digits} digits: no longer wider than 2048 bits");
+    let work = std::path::absolute(root().join("target/test-regress/wide_tb")).unwrap();
+    let _ = std::fs::remove_dir_all(work.join("v"));
+    let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
+    let o = gbump::vectors::DumpOptions {
+        text: true,
+        binary: false,
+        seed: 1,
+        size: None,
+        command: "test".into(),
+        shininess: None,
+    };
+    let sets = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Corners(1), &["top".into()], &work.join("v"), &o).unwrap();
+    let (m, dir) = gbump::vectors::verify(&sets[0].manifest).unwrap();
+    let plus = [
+        format!("+vectors={}", dir.join(&m.hex.as_ref().unwrap().name).display()),
+        format!("+table={}", dir.join(&m.power_table.name).display()),
+        format!("+count={}", m.count),
+    ];
+    let sims: [(&dyn Simulator, &str); 2] = [(&Icarus, "icarus"), (&Verilator, "verilator")];
+    for (sim, name) in sims {
+        let text = gbump::sim::testbench::tb_top(&cfg, &rtl);
+        let exe = sim.build(&work.join(name), &Testbench::new("tb_top", &text), &rtl).unwrap();
+        let v = sim.run(&exe, &plus, None, &work, name).unwrap();
+        assert_eq!((v.passed, v.failed), (m.count, 0), "{name}");
+    }
+}

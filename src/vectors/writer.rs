@@ -39,6 +39,9 @@ pub struct VectorSet {
 }
 
 struct Sink {
+    /// The file's name in the set (its manifest entry), even where `path` is the end of a
+    /// symbolic link of that name.
+    name: String,
     path: PathBuf,
     tmp: PathBuf,
     /// Taken when the file is finished.
@@ -52,6 +55,7 @@ const PARALLEL_HASH_BYTES: usize = 1 << 20;
 
 impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
+        let name = path.file_name().expect("a file name").to_string_lossy().into_owned();
         let path = crate::render::output::streamed_result_path(&path)?;
         let tmp = path.with_extension(format!(
             "{}.tmp{}",
@@ -60,6 +64,7 @@ impl Sink {
         ));
         let f = StagedFile::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
         Ok(Sink {
+            name,
             path,
             tmp,
             w: Some(f),
@@ -97,7 +102,7 @@ impl Sink {
             std::fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))?;
         }
         Ok(FileEntry {
-            name: self.path.file_name().expect("name").to_string_lossy().into(),
+            name: std::mem::take(&mut self.name),
             bytes: self.bytes,
             sha256: std::mem::take(&mut self.sha)
                 .finalize()
