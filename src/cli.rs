@@ -646,18 +646,29 @@ fn refuse_empty_arguments() -> Result<()> {
 /// Refuse an argument that is not UTF-8, naming its option (or its place): clap says only
 /// "invalid UTF-8 was detected in one or more arguments".
 fn refuse_non_utf8_arguments() -> Result<()> {
-    let args: Vec<std::ffi::OsString> = std::env::args_os().skip(1).collect();
-    let Some(i) = args.iter().position(|a| a.to_str().is_none()) else {
+    let Some(i) = std::env::args_os().skip(1).position(|a| a.to_str().is_none()) else {
         return Ok(());
     };
-    let what = match i.checked_sub(1).map(|j| args[j].to_string_lossy()) {
-        Some(f) if f.starts_with('-') => f.into_owned(),
-        _ => format!("argument {}", i + 1),
-    };
+    let args = lossy_arguments();
     Err(Error::Other(format!(
-        "{what} {:?}: not UTF-8 (\u{fffd} marks each byte that is not), and gbump reads every path and value as UTF-8\n  fix: rename the file or folder to a UTF-8 name",
-        args[i].to_string_lossy()
+        "{} {:?}: not UTF-8 (\u{fffd} marks each byte that is not), and gbump reads every path and value as UTF-8\n  fix: rename the file or folder to a UTF-8 name",
+        option_of(&args, i),
+        args[i]
     )))
+}
+
+/// The command line after the program's name, each argument as text (`\u{fffd}` for a byte
+/// that is not UTF-8).
+fn lossy_arguments() -> Vec<String> {
+    std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect()
+}
+
+/// How a message names argument `i`: the option before it, whose value it is, or its place.
+fn option_of(args: &[String], i: usize) -> String {
+    match i.checked_sub(1).map(|j| &args[j]) {
+        Some(f) if f.starts_with('-') => f.clone(),
+        _ => format!("argument {}", i + 1),
+    }
 }
 
 /// Refuse an argument holding a control character (a newline, a tab, a bell: pasted or
@@ -666,16 +677,13 @@ fn refuse_non_utf8_arguments() -> Result<()> {
 /// every file that records the command line. Run after clap's parse, so that an unknown
 /// subcommand or a refused value keeps clap's own message.
 fn refuse_control_characters() -> Result<()> {
-    let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
+    let args = lossy_arguments();
     let Some(i) = args.iter().position(|a| a.chars().any(char::is_control)) else {
         return Ok(());
     };
     let (what, value) = match args[i].split_once('=') {
         Some((f, v)) if f.starts_with("--") => (f.to_string(), v),
-        _ => match i.checked_sub(1).map(|j| &args[j]) {
-            Some(f) if f.starts_with('-') => (f.clone(), args[i].as_str()),
-            _ => (format!("argument {}", i + 1), args[i].as_str()),
-        },
+        _ => (option_of(&args, i), args[i].as_str()),
     };
     Err(Error::Other(format!(
         "{what} {value:?}: holds a control character, which no gbump path or value takes\n  fix: give it again without the control character (shown escaped above)"
@@ -685,7 +693,7 @@ fn refuse_control_characters() -> Result<()> {
 /// Refuse a negative number given to an option (`--random -5`, `--seed=-1`): no option of
 /// gbump takes one, and the parser would otherwise call it an unknown argument.
 fn refuse_negative_numbers() -> Result<()> {
-    let args: Vec<String> = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned()).collect();
+    let args = lossy_arguments();
     let negative = |v: &str| v.starts_with('-') && v[1..].parse::<f64>().is_ok_and(|x| x > 0.0);
     for (i, a) in args.iter().enumerate() {
         let (flag, value) = match a.split_once('=') {

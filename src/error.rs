@@ -303,10 +303,17 @@ pub const RETIRED_NAMES: [&str; 3] = ["dot_bits", "power_bits", "k_bits"];
 fn unknown_field(msg: &str) -> Option<(&str, Vec<&str>)> {
     let rest = &msg[msg.find("unknown field `")? + "unknown field `".len()..];
     let (name, rest) = rest.split_once('`')?;
-    let list = rest.split_once("expected ").map_or("", |(_, l)| l);
+    Some((name, expected_names(rest)))
+}
+
+/// The names a serde message lists as expected ("expected one of `a`, `b`, `c`", "expected
+/// `a` or `b`", "expected `a`"; none for "there are no fields"), for an unknown field or
+/// variant alike.
+pub fn expected_names(msg: &str) -> Vec<&str> {
+    let list = msg.split_once("expected ").map_or("", |(_, l)| l);
     let list = list.strip_prefix("one of ").unwrap_or(list);
     // Each name is between backticks; the separators (", ", " or ") are outside them.
-    Some((name, list.split('`').skip(1).step_by(2).filter(|x| !x.is_empty()).collect()))
+    list.split('`').skip(1).step_by(2).filter(|x| !x.is_empty()).collect()
 }
 
 /// The candidate closest to `name` by edit distance, if it is close enough to be a typo (at

@@ -149,15 +149,22 @@ pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<
     if v >= lo && v <= hi {
         return Ok(());
     }
-    let (why, fix) = match (v < lo, limit.is_empty()) {
-        (true, true) => (format!("{v} is below {lo}"), format!("use {lo} or more")),
-        (true, false) => (format!("{v} is below {lo}"), format!("use {lo}..={hi} ({limit}, README: Limits)")),
-        (false, _) => (
-            format!("{v} exceeds {limit} = {hi}"),
-            format!("use {lo}..={hi} ({limit}, README: Limits)"),
-        ),
+    if v > hi {
+        return Err(above_limit(what, v, lo, hi, limit));
+    }
+    let fix = if limit.is_empty() {
+        format!("use {lo} or more")
+    } else {
+        format!("use {lo}..={hi} ({limit}, README: Limits)")
     };
-    Err(Error::Other(format!("{what}: {why}\n  fix: {fix}")))
+    Err(Error::Other(format!("{what}: {v} is below {lo}\n  fix: {fix}")))
+}
+
+/// `what` = `shown` (a number, or digits past any integer type) is above the limit `limit` = `hi`.
+fn above_limit(what: &str, shown: impl std::fmt::Display, lo: u64, hi: u64, limit: &str) -> Error {
+    Error::Other(format!(
+        "{what}: {shown} exceeds {limit} = {hi}\n  fix: use {lo}..={hi} ({limit}, README: Limits)"
+    ))
 }
 
 /// Parse the record count `n` of a source (`what`: the flag and its value, for messages):
@@ -171,9 +178,7 @@ pub fn parse_count(what: &str, n: &str, lo: u64, hi: u64, limit: &str) -> Result
     }
     let Ok(v) = digits.parse::<u64>() else {
         // More digits than a u64 holds is above any limit; the message quotes them as given.
-        return Err(Error::Other(format!(
-            "{what}: {n} exceeds {limit} = {hi}\n  fix: use {lo}..={hi} ({limit}, README: Limits)"
-        )));
+        return Err(above_limit(what, n, lo, hi, limit));
     };
     check_count(what, v, lo, hi, limit)?;
     Ok(v)

@@ -112,7 +112,8 @@ module tb_top;
     integer len;
     integer line_no = 0;
     integer want_count;
-    reg [7:0] first_ch;
+    // The character being decoded.
+    reg [7:0] chr;
     integer ch;
     integer got;
     reg [8*HD-1:0] digits;
@@ -154,10 +155,10 @@ module tb_top;
             // fewer than a wide record's line, and it is two-state (%h would read x as 0).
             stim = 0;
             for (ch = 0; code == 1 && ch < HD; ch = ch + 1) begin
-                first_ch = line[8*(HD+2-ch)-1 -: 8];
-                if (first_ch >= "0" && first_ch <= "9") stim = {stim[RB-5:0], first_ch[3:0]};
-                else if ((first_ch >= "a" && first_ch <= "f") || (first_ch >= "A" && first_ch <= "F")) stim = {stim[RB-5:0], first_ch[3:0] + 4'd9};
-                else if (first_ch == "x" || first_ch == "X" || first_ch == "z" || first_ch == "Z" || first_ch == "?") code = 2;
+                chr = line[8*(HD+2-ch)-1 -: 8];
+                if (chr >= "0" && chr <= "9") stim = {stim[RB-5:0], chr[3:0]};
+                else if ((chr >= "a" && chr <= "f") || (chr >= "A" && chr <= "F")) stim = {stim[RB-5:0], chr[3:0] + 4'd9};
+                else if (chr == "x" || chr == "X" || chr == "z" || chr == "Z" || chr == "?") code = 2;
                 else code = 3;
             end
 `else
