@@ -54,9 +54,9 @@
 // carriage return before it, allowed): a cut, joined or padded line is refused by number.
 `timescale 1ns / 1ps
 `default_nettype none
-module tb_top;
+module tb_top_3dc36989;
     // The power table's power-up contents (a relative path resolves against the simulator's
-    // working folder); override with -P tb_top.INIT_FILE / -G INIT_FILE.
+    // working folder); override with -P tb_top_3dc36989.INIT_FILE / -G INIT_FILE.
     parameter INIT_FILE = "power_table_3dc36989.hex";
     localparam RB = 615;
     localparam LAT = 15;
@@ -241,7 +241,7 @@ module tb_top;
         load_table = $value$plusargs("table=%s", table_file);
         if (!$value$plusargs("bubbles=%d", bubbles)) bubbles = 0;
         if (!$value$plusargs("stall=%d", stall)) stall = 0;
-        if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_top); end
+        if ($value$plusargs("waves=%s", wave_file)) begin $dumpfile(wave_file); $dumpvars(0, tb_top_3dc36989); end
         if (load_table) $readmemh(table_file, table_mem);
         fin = $fopen(vec_file, "r");
         fchk = $fopen(vec_file, "r");

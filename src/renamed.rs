@@ -21,6 +21,9 @@ pub enum Where {
     PackageParam,
     /// A key of the interface JSON (`section.key`).
     InterfaceKey,
+    /// The generated top testbench's module (FuseSoC's `toplevel`, `-P NAME.INIT_FILE`, the
+    /// scope of its waves), written with its hash as `<hash8>`.
+    Testbench,
 }
 
 impl Where {
@@ -32,6 +35,7 @@ impl Where {
             Where::Module => "Verilog module `NAME_<hash8>`".into(),
             Where::PackageParam => "SystemVerilog package parameter".into(),
             Where::InterfaceKey => "interface JSON key".into(),
+            Where::Testbench => "module of the top testbench `tb_top_<hash8>.v` (FuseSoC `toplevel`, `-P NAME.INIT_FILE`, wave scope)".into(),
         }
     }
 }
@@ -69,6 +73,7 @@ pub const RENAMED: &[Renamed] = &[
     r(Where::InterfaceKey, "power_table.unit", "power_table.power_unit"),
     r(Where::InterfaceKey, "memories.pt", "memories.power_table"),
     r(Where::InterfaceKey, "memories.pal", "memories.palette"),
+    r(Where::Testbench, "tb_top", "tb_top_<hash8>"),
 ];
 
 /// The fix line for a unit name that is not known: its new name if it was renamed, else `usual`.
@@ -164,6 +169,13 @@ mod tests {
                     .filter_map(|l| l.split('=').next())
                     .filter_map(|l| l.split_whitespace().last())
                     .map(String::from)
+                    .collect()
+            }
+            Where::Testbench => {
+                let tb = crate::rtlgen::testbench::tb_top_init(cfg, "\"init.hex\"", &[]);
+                tb.lines()
+                    .filter_map(|l| l.strip_prefix("module ")?.strip_suffix(';'))
+                    .map(|m| m.replace(&cfg.hash()[..8], "<hash8>"))
                     .collect()
             }
             Where::InterfaceKey => {

@@ -535,3 +535,41 @@ fn rom_files(
 ) -> gbump::Result<Vec<(String, String)>> {
     gbump::rtlgen::rom_files::rom_files(cfg, pick.scene.as_deref(), &pick.args(), n, Some(cube), out)
 }
+
+/// Two configurations' kits, testbenches included, compile into one Icarus design: every
+/// generated module, the testbench's too, carries its configuration's hash.
+#[test]
+fn two_configurations_kits_compile_together() {
+    need("iverilog");
+    let tmp = tempfile::tempdir().unwrap();
+    let configs = [None, Some("tests/configs/one_light_parallel.toml")];
+    let mut sources = Vec::new();
+    let mut tops = Vec::new();
+    for (i, c) in configs.iter().enumerate() {
+        let dir = tmp.path().join(format!("kit{i}"));
+        rtl(*c, &dir);
+        let cfg = cfg_of(*c);
+        let tb = kit::tb_file_name(&cfg);
+        let text = std::fs::read_to_string(dir.join(&tb)).unwrap();
+        assert!(
+            text.contains(&format!("module {};", kit::tb_module_name(&cfg))),
+            "{tb} declares another module"
+        );
+        tops.push(kit::tb_module_name(&cfg));
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "v") {
+                sources.push(p);
+            }
+        }
+    }
+    assert_ne!(tops[0], tops[1]);
+    let mut cmd = Command::new("iverilog");
+    cmd.args(["-g2005", "-o", "both.vvp"]);
+    for t in &tops {
+        cmd.args(["-s", t]);
+    }
+    cmd.args(&sources);
+    let (ok, log) = run(&mut cmd, tmp.path());
+    assert!(ok, "two kits do not compile together:\n{log}");
+}

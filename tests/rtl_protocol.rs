@@ -48,7 +48,12 @@ fn config(path: Option<&str>) -> PipelineConfig {
 }
 
 fn icarus_top(w: &Path, rtl: &Rtl, tb: &str, hex: &str, extra: &[&str], cwd: &Path) -> gbump::Result<Outcome> {
-    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_top", tb), rtl)?;
+    // The testbench's module (`tb_top_<hash8>`), as its text declares it.
+    let module = tb
+        .lines()
+        .find_map(|l| l.strip_prefix("module ")?.strip_suffix(';'))
+        .expect("a module line");
+    let exe = Icarus.build(&w.join("build"), &Testbench::new(module, tb), rtl)?;
     let mut plus = vec![format!("+vectors={hex}"), "+max_errors=5".to_string()];
     plus.extend(extra.iter().map(|s| s.to_string()));
     Icarus.run(&exe, &plus, None, cwd, "icarus")

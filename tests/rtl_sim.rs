@@ -1168,7 +1168,10 @@ fn a_testbench_given_no_vectors_fails() {
     let exe = Icarus
         .build(
             &work.join("build"),
-            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+            &Testbench::new(
+                &gbump::rtlgen::kit::tb_module_name(&cfg),
+                &gbump::sim::testbench::tb_top(&cfg, &rtl),
+            ),
             &rtl,
         )
         .unwrap();
@@ -1242,7 +1245,10 @@ fn the_testbench_exit_code_is_its_verdict() {
                 &work.join("build"),
                 &Testbench {
                     waves: true,
-                    ..Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl))
+                    ..Testbench::new(
+                        &gbump::rtlgen::kit::tb_module_name(&cfg),
+                        &gbump::sim::testbench::tb_top(&cfg, &rtl),
+                    )
                 },
                 &rtl,
             )
@@ -1381,7 +1387,10 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     let exe = Icarus
         .build(
             &work.join("build"),
-            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl)),
+            &Testbench::new(
+                &gbump::rtlgen::kit::tb_module_name(&cfg),
+                &gbump::sim::testbench::tb_top(&cfg, &rtl),
+            ),
             &rtl,
         )
         .unwrap();
@@ -1405,7 +1414,10 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     let exe2 = Icarus
         .build(
             &work.join("build"),
-            &Testbench::new("tb_top", &gbump::sim::testbench::tb_top(&cfg, &rtl2)),
+            &Testbench::new(
+                &gbump::rtlgen::kit::tb_module_name(&cfg),
+                &gbump::sim::testbench::tb_top(&cfg, &rtl2),
+            ),
             &rtl2,
         )
         .unwrap();
@@ -1425,7 +1437,7 @@ fn verilator_with_unique_x_values_agrees_with_the_model_over_several_seeds() {
             &work.join("build"),
             &Testbench {
                 x_unique: true,
-                ..Testbench::new("tb_top", &tb)
+                ..Testbench::new(&gbump::rtlgen::kit::tb_module_name(&cfg), &tb)
             },
             &rtl,
         )
@@ -1579,7 +1591,13 @@ fn the_testbench_reads_records_wider_than_verilators_strings() {
     let sims: [(&dyn Simulator, &str); 2] = [(&Icarus, "icarus"), (&Verilator, "verilator")];
     for (sim, name) in sims {
         let text = gbump::sim::testbench::tb_top(&cfg, &rtl);
-        let exe = sim.build(&work.join(name), &Testbench::new("tb_top", &text), &rtl).unwrap();
+        let exe = sim
+            .build(
+                &work.join(name),
+                &Testbench::new(&gbump::rtlgen::kit::tb_module_name(&cfg), &text),
+                &rtl,
+            )
+            .unwrap();
         let v = sim.run(&exe, &plus, None, &work, name).unwrap();
         assert_eq!((v.passed, v.failed), (m.count, 0), "{name}");
     }

@@ -137,7 +137,11 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         let hs = crate::vectors::dump(cfg, &crate::vectors::Source::Random(20_000), &all, &hexdir, &ho)?;
         let (hm, hd) = crate::vectors::verify(&hs[0].manifest)?;
         let tb = crate::sim::testbench::tb_top(cfg, &rtl);
-        let exe = Icarus.build(&work.join("build"), &Testbench::new("tb_top", &tb), &rtl)?;
+        let exe = Icarus.build(
+            &work.join("build"),
+            &Testbench::new(&crate::rtlgen::kit::tb_module_name(cfg), &tb),
+            &rtl,
+        )?;
         let plus = [
             format!("+vectors={}", hd.join(&hm.hex.as_ref().expect("hex").name).display()),
             format!("+table={}", hd.join(&hm.power_table.name).display()),

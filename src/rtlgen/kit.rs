@@ -23,9 +23,15 @@ use crate::vectors::targets::{top_layout, unit_layout};
 /// The environment variable the Icarus command file takes the RTL folder from.
 pub const ICARUS_DIR_VAR: &str = "GBUMP_RTL";
 
-/// File name of the generated top testbench (module `tb_top`).
+/// File name of the generated top testbench, its module's name and `.v`.
 pub fn tb_file_name(cfg: &PipelineConfig) -> String {
-    format!("tb_top_{}.v", &cfg.hash()[..8])
+    format!("{}.v", tb_module_name(cfg))
+}
+
+/// The generated top testbench's module, `tb_top_<hash8>` as every generated module is named,
+/// so the kits of two configurations compile together.
+pub fn tb_module_name(cfg: &PipelineConfig) -> String {
+    module_name(cfg, "tb_top")
 }
 
 /// File name of the SystemVerilog package (package `gbump_pkg_<hash8>`).
@@ -120,15 +126,16 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     );
     // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
     let others: Vec<&'static str> = super::testbench::other_memories(cfg).iter().map(|m| m.prefix).collect();
+    let tb = tb_module_name(cfg);
     let plus = format!(
         "[INIT_FILE, vectors, count, table, {}bubbles, max_errors]",
         others.iter().map(|p| format!("{p}, ")).collect::<String>()
     );
     s += &format!(
-        "  sim_icarus:\n    default_tool: icarus\n    filesets: [rtl, tb]\n    toplevel: tb_top\n    parameters: {plus}\n    tools:\n      icarus:\n        iverilog_options: [-g2005, -Wall]\n"
+        "  sim_icarus:\n    default_tool: icarus\n    filesets: [rtl, tb]\n    toplevel: {tb}\n    parameters: {plus}\n    tools:\n      icarus:\n        iverilog_options: [-g2005, -Wall]\n"
     );
     s += &format!(
-        "  sim_verilator:\n    default_tool: verilator\n    filesets: [rtl, waivers, tb]\n    toplevel: tb_top\n    parameters: {plus}\n    tools:\n      verilator:\n        mode: binary\n        verilator_options: [-Wno-lint, -Wno-style]\n\n"
+        "  sim_verilator:\n    default_tool: verilator\n    filesets: [rtl, waivers, tb]\n    toplevel: {tb}\n    parameters: {plus}\n    tools:\n      verilator:\n        mode: binary\n        verilator_options: [-Wno-lint, -Wno-style]\n\n"
     );
     s += "parameters:\n";
     s += &format!(

@@ -154,6 +154,7 @@ pub fn tb_top_init(cfg: &PipelineConfig, init: &str, extra: &[(String, String)])
                 .join(", "),
         ),
         ("TOP", module_name(cfg, "gbump_pipeline")),
+        ("TB_MODULE", crate::rtlgen::kit::tb_module_name(cfg)),
         ("DECLS", decls.join("\n")),
         ("CONNECT", format!("        {}", connect.join(", "))),
         ("ASSIGN", assign.join("\n")),

@@ -288,7 +288,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                 None => {
                     let (top, source) = match bench {
                         Bench::Harness => (module_name(cfg, "gbump_pipeline"), harness_top(cfg)),
-                        Bench::TopTb => ("tb_top".to_string(), tb_top(cfg, rtl)),
+                        Bench::TopTb => (crate::rtlgen::kit::tb_module_name(cfg), tb_top(cfg, rtl)),
                         Bench::Units => ("tb_units".to_string(), tb_units(cfg, rtl)),
                     };
                     let exe = match bench {

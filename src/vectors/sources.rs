@@ -158,7 +158,11 @@ fn fill_state(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState)
         x[2 * i + 1] = [b[3], b[4], b[5]];
         // Written out: `[6, 7, 8].map(..)` stayed a call whose three narrow stores were read
         // back as one wide load, a store-forwarding stall per light.
-        s.lc = [range_of(b[6], 0, cmax) as u32, range_of(b[7], 0, cmax) as u32, range_of(b[8], 0, cmax) as u32];
+        s.lc = [
+            range_of(b[6], 0, cmax) as u32,
+            range_of(b[7], 0, cmax) as u32,
+            range_of(b[8], 0, cmax) as u32,
+        ];
         s.k = if unit_of(b[9]) < 0.5 { kone } else { rng.range(0, kone) };
     }
     let mut v = [[0i64; 3]; 2 * MAX_LIGHTS];
