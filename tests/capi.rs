@@ -43,12 +43,8 @@ fn header_and_dpi_package_are_current() {
 /// Every set of a dump: its target and its records (hex lines).
 fn dumped(cfg: &PipelineConfig, source: &str, seed: u64, dir: &Path) -> Vec<(String, Vec<String>)> {
     let o = DumpOptions {
-        text: true,
-        binary: false,
         seed,
-        size: None,
-        command: "test".into(),
-        shininess: None,
+        ..DumpOptions::formats("test", true, false)
     };
     let targets = gbump::vectors::targets::resolve(cfg, &["all".to_string()]).unwrap();
     let sets = dump(cfg, &Source::parse(source).unwrap(), &targets, dir, &o).unwrap();

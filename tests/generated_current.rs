@@ -50,14 +50,7 @@ fn checked_in_vectors_are_current() {
         (Source::Corners(1), "gbump vectors --source corners --out vectors"),
         (Source::Random(256), "gbump vectors --source random:256 --seed 1 --out vectors"),
     ] {
-        let o = DumpOptions {
-            text: true,
-            binary: true,
-            seed: 1,
-            size: None,
-            command: cmd.into(),
-            shininess: None,
-        };
+        let o = DumpOptions::formats(cmd, true, true);
         dump(&cfg, &src, &all, tmp.path(), &o).unwrap();
     }
     let files: Vec<(String, Vec<u8>)> = std::fs::read_dir(tmp.path())

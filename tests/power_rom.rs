@@ -138,12 +138,8 @@ fn a_scene_with_a_non_specular_object_makes_one_set_at_the_roms_shininess() {
     assert!(cfg.power_rom && cfg.shininess == 24, "{}", cfg.to_toml());
     let dir = tempfile::tempdir().unwrap();
     let o = gbump::vectors::DumpOptions {
-        text: false,
-        binary: true,
-        seed: 1,
         size: Some((48, 36)),
-        command: "test".into(),
-        shininess: None,
+        ..gbump::vectors::DumpOptions::formats("test", false, true)
     };
     let sets = gbump::vectors::dump(
         &cfg,

@@ -101,12 +101,8 @@ fn reset_and_vector_tables_state_their_shininess() {
     assert_eq!(parse(text, RomFormat::Hex).unwrap(), want);
     let tmp = tempfile::tempdir().unwrap();
     let o = gbump::vectors::DumpOptions {
-        text: true,
-        binary: false,
-        seed: 1,
-        size: None,
-        command: "test".into(),
         shininess: Some(9),
+        ..gbump::vectors::DumpOptions::formats("test", true, false)
     };
     gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(4), &["top".to_string()], tmp.path(), &o).unwrap();
     let table = std::fs::read_dir(tmp.path())

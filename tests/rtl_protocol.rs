@@ -29,14 +29,7 @@ fn corner_vectors(cfg: &PipelineConfig, dir: &Path) -> (String, String) {
 
 /// Vectors of the top from `src` (text and binary): (hex, bin) paths.
 fn top_vectors(cfg: &PipelineConfig, dir: &Path, src: Source) -> (String, String) {
-    let o = DumpOptions {
-        text: true,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "test".into(),
-        shininess: None,
-    };
+    let o = DumpOptions::formats("test", true, true);
     let sets = dump(cfg, &src, &["top".into()], dir, &o).unwrap();
     let (m, d) = verify(&sets[0].manifest).unwrap();
     let f = |e: &Option<gbump::vectors::manifest::FileEntry>| d.join(&e.as_ref().unwrap().name).display().to_string();
@@ -310,12 +303,8 @@ fn a_set_in_a_format_the_bench_cannot_read_is_refused_or_routed_before_building(
 /// Corner vectors of the top for shininess `n`: (hex, that set's power table).
 fn corner_vectors_for(cfg: &PipelineConfig, dir: &Path, n: u32) -> (String, String) {
     let o = DumpOptions {
-        text: true,
-        binary: false,
-        seed: 1,
-        size: None,
-        command: "test".into(),
         shininess: Some(n),
+        ..DumpOptions::formats("test", true, false)
     };
     let sets = dump(cfg, &Source::Corners(2), &["top".into()], dir, &o).unwrap();
     let (m, d) = verify(&sets[0].manifest).unwrap();

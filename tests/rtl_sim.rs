@@ -797,14 +797,7 @@ fn images_through_the_rtl_equal_the_golden_images() {
 
 /// Vector dumps of the mutant tests: text and binary, seed 1.
 fn mutant_dump_options() -> gbump::vectors::DumpOptions {
-    gbump::vectors::DumpOptions {
-        text: true,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "test".into(),
-        shininess: None,
-    }
+    gbump::vectors::DumpOptions::formats("test", true, true)
 }
 
 /// A mutant's RTL under `target/test-regress/<work>`: the configuration of `config` (None: the
@@ -1573,14 +1566,7 @@ fn the_testbench_reads_records_wider_than_verilators_strings() {
     let work = std::path::absolute(root().join("target/test-regress/wide_tb")).unwrap();
     let _ = std::fs::remove_dir_all(work.join("v"));
     let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
-    let o = gbump::vectors::DumpOptions {
-        text: true,
-        binary: false,
-        seed: 1,
-        size: None,
-        command: "test".into(),
-        shininess: None,
-    };
+    let o = gbump::vectors::DumpOptions::formats("test", true, false);
     let sets = gbump::vectors::dump(&cfg, &gbump::vectors::Source::Corners(1), &["top".into()], &work.join("v"), &o).unwrap();
     let (m, dir) = gbump::vectors::verify(&sets[0].manifest).unwrap();
     let plus = [

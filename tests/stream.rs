@@ -94,12 +94,8 @@ fn a_mutant_fails_streamed_as_it_fails_from_the_file_and_names_seed_and_record()
 
     let seed = 11;
     let o = gbump::vectors::DumpOptions {
-        text: false,
-        binary: true,
         seed,
-        size: None,
-        command: "test".into(),
-        shininess: None,
+        ..gbump::vectors::DumpOptions::formats("test", false, true)
     };
     let vdir = work.join("stream_vectors");
     let set = &gbump::vectors::dump(&cfg, &gbump::vectors::Source::Random(20_000), &["top".into()], &vdir, &o).unwrap()[0];

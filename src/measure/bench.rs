@@ -78,14 +78,7 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let vdir = work.join("vectors");
     let _ = std::fs::remove_dir_all(&vdir);
     let all = ["top".to_string()];
-    let o = crate::vectors::DumpOptions {
-        text: false,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "gbump bench".into(),
-        shininess: None,
-    };
+    let o = crate::vectors::DumpOptions::formats("gbump bench", false, true);
     let t = Instant::now();
     let sets = crate::vectors::dump(cfg, &crate::vectors::Source::Random(DUMP_RECORDS), &all, &vdir, &o)?;
     let secs = t.elapsed().as_secs_f64();
@@ -329,14 +322,7 @@ pub fn harness_speed(cfg: &PipelineConfig, work: &Path) -> Result<HarnessSpeed> 
     let table = power_table(cfg, &work.join("table"), cfg.shininess, "gbump bench")?;
     let vdir = work.join("vectors");
     let _ = std::fs::remove_dir_all(&vdir);
-    let o = crate::vectors::DumpOptions {
-        text: false,
-        binary: true,
-        seed: 1,
-        size: None,
-        command: "gbump bench".into(),
-        shininess: None,
-    };
+    let o = crate::vectors::DumpOptions::formats("gbump bench", false, true);
     let sets = crate::vectors::dump(
         cfg,
         &crate::vectors::Source::Random(HARNESS_RECORDS),

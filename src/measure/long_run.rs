@@ -49,12 +49,8 @@ pub fn long_run(cfg: &PipelineConfig, pick_args: &str, work: &Path, count: u64) 
     let vdir = work.join("long_run_vectors");
     let _ = std::fs::remove_dir_all(&vdir);
     let o = crate::vectors::DumpOptions {
-        text: false,
-        binary: true,
         seed: LONG_RUN_SEED,
-        size: None,
-        command: "gbump report".into(),
-        shininess: None,
+        ..crate::vectors::DumpOptions::formats("gbump report", false, true)
     };
     let t = Instant::now();
     let sets = crate::vectors::dump(cfg, &crate::vectors::Source::Random(count), &["top".to_string()], &vdir, &o)?;

@@ -412,12 +412,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
     progress.start("vectors from the model");
     let all: Vec<String> = crate::vectors::targets::all_targets().iter().map(|s| s.to_string()).collect();
     let o = DumpOptions {
-        text: true,
-        binary: true,
         seed,
-        size: None,
-        command: "gbump fuzz".into(),
-        shininess: None,
+        ..DumpOptions::formats("gbump fuzz", true, true)
     };
     let mut sets = Vec::new();
     for src in [Source::Corners(2), Source::Random(vectors_for(cfg, random))] {

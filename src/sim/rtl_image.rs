@@ -23,12 +23,9 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let rtl = write_rtl(cfg, &work.join(format!("rtl_{hash}")), "gbump render --rtl")?;
     let vdir = work.join(format!("image_{hash}_{}", scene.name));
     let opts = DumpOptions {
-        text: false,
-        binary: true,
         seed: 0,
         size: Some((w, h)),
-        command: format!("gbump render --rtl --scene {scene_name}"),
-        shininess: None,
+        ..DumpOptions::formats(format!("gbump render --rtl --scene {scene_name}"), false, true)
     };
     let sets = dump(cfg, &Source::Scene(scene_name.to_string()), &["top".to_string()], &vdir, &opts)?;
     let exe = Verilator.build_harness(

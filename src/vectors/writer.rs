@@ -30,6 +30,21 @@ pub struct DumpOptions {
     pub shininess: Option<u32>,
 }
 
+impl DumpOptions {
+    /// The files `text` (`.hex`) and `binary` (`.bin`) of seed 1, at a scene's own size and the
+    /// configuration's shininess, recorded as made by `command`; set any other field apart.
+    pub fn formats(command: impl Into<String>, text: bool, binary: bool) -> DumpOptions {
+        DumpOptions {
+            text,
+            binary,
+            seed: 1,
+            size: None,
+            command: command.into(),
+            shininess: None,
+        }
+    }
+}
+
 /// A written set.
 #[derive(Clone, Debug)]
 pub struct VectorSet {
