@@ -204,7 +204,7 @@ pub enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Image size for the per-scene table.
-        #[arg(long, value_name = "WxH", default_value = "192x144")]
+        #[arg(long, value_name = "WxH", default_value = crate::measure::scene_error::IMAGE_SIZE_ARG)]
         size: String,
         /// Also write the report as JSON.
         #[arg(long, value_name = "FILE", value_parser = output_file)]
@@ -1005,7 +1005,8 @@ pub fn run() -> anyhow::Result<()> {
                 Error::Field { ref field, .. } if field == "objects" => {
                     let first = e.to_string().lines().next().unwrap_or_default().to_string();
                     Error::Other(format!(
-                        "--size {w}x{h}: {first}\n  fix: give a larger --size (the default is 192x144)"
+                        "--size {w}x{h}: {first}\n  fix: give a larger --size (the default is {})",
+                        crate::measure::scene_error::IMAGE_SIZE_ARG
                     ))
                 }
                 other => other,

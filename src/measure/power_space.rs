@@ -110,7 +110,7 @@ pub fn markdown(fm: PowerFormats, rs: &[DesignResult], max_n: u32) -> String {
         );
     }
     s += &format!(
-        "\nThe squaring rows are a design study: square-and-multiply for every n, with the guard bits shown. The pipeline's `power_unit = \"squaring\"` is built for one shininess, rounded to a power of two (its squarings alone, the Cg Tutorial's form), with {} guard bits (`SQUARING_GUARD_BITS`); `gbump error` measures it under a configuration.\n",
+        "\nThe squaring rows are a design study: square-and-multiply for every n, with the guard bits shown. The pipeline's `power_unit = \"squaring\"` is built for one shininess, rounded to a power of two (its squarings alone, the Cg Tutorial's form), with {} guard bits (`SQUARING_GUARD_BITS`); `gbump error` measures it under a configuration. The segmented rows without `lerp` are a design study too: each entry holds one constant, the mean of x^n at its first and last code (the minimax constant), so x = 0 reads half of the last entry's range; the pipeline's `power_unit = \"segmented\"` is the `lerp` form, which interpolates between knots at the entries' boundaries and gives fs(0) = 0.\n",
         crate::config::SQUARING_GUARD_BITS
     );
     s

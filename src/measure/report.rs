@@ -98,8 +98,10 @@ pub fn report(
     md += &format!("## Error against exact arithmetic (default configuration)\n\n`gbump error --random {REPORT_ERROR_STIMULI}`\n\n");
     let errs = super::unit_error::unit_errors(&cfg, REPORT_ERROR_STIMULI, 1);
     md += &super::unit_error::markdown(&cfg, &errs);
-    md += "\n### Image error per scene\n\n";
-    md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, 192, 144)?);
+    let (w, h) = super::scene_error::IMAGE_SIZE;
+    md += &format!("\n### Image error per scene (default configuration, {w}x{h})\n\n");
+    md += &scene_error_note();
+    md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, w, h)?);
     md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_frac_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
     md += &power_section(
@@ -133,7 +135,7 @@ pub fn report(
     } else {
         (String::new(), "")
     };
-    md += &format!("`gbump sweep --space {}`; ![error against area](sweep.svg)\n\n| configuration | top GE | blend units GE | fragments/clock | latency | max err | mean err | PSNR vs reference | Pareto |{fh}\n|---|---:|---:|---:|---:|---:|---:|---:|---|{fl}\n", space.display());
+    md += &format!("`gbump sweep --space {} --yosys` (top and blend GE from Yosys; without `--yosys` the sweep gives the area model's estimate); ![error against area](sweep.svg)\n\n| configuration | top GE | blend units GE | fragments/clock | latency | max err | mean err | PSNR vs reference | Pareto |{fh}\n|---|---:|---:|---:|---:|---:|---:|---:|---|{fl}\n", space.display());
     for p in &pts {
         let fc = if fpga {
             format!(
@@ -157,7 +159,7 @@ pub fn report(
             if p.pareto { "yes" } else { "" }
         );
     }
-    md += "\n### Against the paper\n\nErnst et al. put the blending units at 10,000-25,000 gate equivalents. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's logic (its RAM bits apart), the pipeline registers of `pipeline_depth` and those that carry the bump state with each fragment.\n\n";
+    md += "\n### Against the paper\n\nErnst et al. put the hardware Gouraud bump mapping adds (their Fig. 1: the dot products, the power table and the blending units) at 10,000-25,000 gate equivalents, depending on the accuracy of B, H, n and colour and on the specular generator. `blend units GE` above is the diffuse plus the specular blend in their parallel form; the whole top adds the dot products, the power table's logic (its RAM bits apart), the pipeline registers of `pipeline_depth` and those that carry the bump state with each fragment.\n\n";
     md += "## The survey's bump engines\n\n";
     let (engines_md, engine_files) = crate::engines::report::section()?;
     md += &engines_md;
@@ -173,4 +175,10 @@ pub fn report(
     ];
     files.extend(engine_files);
     Ok(files)
+}
+
+/// What the image-error table holds: the scenes under one configuration, not each its own.
+fn scene_error_note() -> String {
+    let (w, h) = super::scene_error::IMAGE_SIZE;
+    format!("`gbump error`: every scene rendered at {w}x{h} under the default configuration, whatever its own configuration asks for (a scene that needs more than the default holds is left out), so the rows compare scenes, not pipelines. `blend_texture_last` is Fig. 3's scene in the default diffuse-texture-specular order, hence `blend_split`'s figures; under its own configuration (`blend_order = \"texture_last\"`) `gbump render --scene blend_texture_last` measures it.\n\n")
 }

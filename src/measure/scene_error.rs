@@ -39,6 +39,11 @@ pub fn check_builtin_renders(w: u32, h: u32) -> Result<()> {
     Ok(())
 }
 
+/// The per-scene table's image size: `gbump error`'s default and the report's.
+pub const IMAGE_SIZE: (u32, u32) = (192, 144);
+/// [`IMAGE_SIZE`] as `--size` takes it.
+pub const IMAGE_SIZE_ARG: &str = "192x144";
+
 /// Image error of every built-in scene that fits `cfg`'s light slots.
 pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {
     let mut out = Vec::new();
@@ -54,4 +59,13 @@ pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneErr
         out.push((name.to_string(), g, r));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_size_argument_is_the_size() {
+        let (w, h) = super::IMAGE_SIZE;
+        assert_eq!(super::IMAGE_SIZE_ARG, format!("{w}x{h}"));
+    }
 }

@@ -108,7 +108,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             words = n * n
         );
     }
-    s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline. ";
+    s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline, which the paper reads from the colour information in C_src; here they are two bits of their own, so `in_c_src` keeps its whole range. ";
     s += if cfg.skip_flat {
         "In this configuration a flat bump normal (the code of (0, 0, 1)) also clears both (paper §5.4.2's bypass).\n\n"
     } else {
