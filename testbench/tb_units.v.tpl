@@ -1,7 +1,9 @@
 // Unit testbench template: every unit of the configuration instantiated once; +unit=NAME
-// selects which one the text vectors drive. A record is applied on one falling edge and held
-// while it passes the unit's registers; its outputs are checked `lat` falling edges later
-// (the unit's latency, which the generator fills in per unit).
+// selects which one the text vectors drive. Records stream one per clock, as a unit takes
+// them (initiation interval 1): record r's inputs are applied on falling edge r (a column
+// whose manifest `enters` is e on edge r + e), and its outputs are checked on falling edge
+// r + lat (the unit's latency, which the generator fills in per unit), before that edge's
+// inputs change.
 // Plusargs: +unit=NAME +vectors=FILE +table=FILE [+waves=FILE.fst] [+max_errors=N]
 `timescale 1ns / 1ps
 `default_nettype none
@@ -14,12 +16,19 @@ module tb_units;
     always #5 clk = ~clk;
 {{DECLS}}
     reg [{{MAX_RB}}-1:0] rec;
+    // hist[k]: the record applied k falling edges ago (hist[0]: this edge's); hv[k]: whether
+    // it is one.
+    localparam MAX_LAT = {{MAX_LAT}};
+    reg [{{MAX_RB}}-1:0] hist [0:MAX_LAT];
+    reg [{{MAX_RB}}-1:0] chk;
+    reg [MAX_LAT:0] hv = 0;
+    reg more;
     reg [{{POWER_TABLE_DATA_BITS}}-1:0] table_mem [0:POWER_TABLE_WORDS-1];
     reg [8*512-1:0] vec_file;
     reg [8*512-1:0] table_file;
     reg [8*512-1:0] wave_file;
     reg [8*32-1:0] unit;
-    integer fin, code, i, n, max_errors, lat;
+    integer fin, code, i, n, m, max_errors, lat;
     integer passed = 0;
     integer failed = 0;
     reg ok;
@@ -63,26 +72,40 @@ module tb_units;
             @(negedge clk);
         end
         power_table_we = 1'b0;
+        lat = 1;
+{{LAT}}
         n = 0;
+        m = 0;
         code = $fscanf(fin, "%h\n", rec);
         // %h also reads x, z and ? digits (unknown bits): a record holding one is refused, not
         // driven. (It reads `_` as a separator; `gbump regress` refuses such a set first.)
-        while (code == 1 && (^rec) !== 1'bx) begin
-            ok = 1'b1;
-            lat = 1;
-{{DRIVE}}
-            repeat (lat) @(negedge clk);
+        more = code == 1 && (^rec) !== 1'bx;
+        while (more || hv != 0) begin
+            // The record applied `lat` falling edges ago has passed the unit's registers.
+            if (hv[lat - 1]) begin
+                chk = hist[lat - 1];
+                ok = 1'b1;
 {{CHECK}}
-            if (ok) passed = passed + 1;
-            else begin
-                failed = failed + 1;
-                if (failed >= max_errors) begin
-                    $display("stopping after %0d mismatches", failed);
-                    finish_run;
+                if (ok) passed = passed + 1;
+                else begin
+                    failed = failed + 1;
+                    if (failed >= max_errors) begin
+                        $display("stopping after %0d mismatches", failed);
+                        finish_run;
+                    end
                 end
+                m = m + 1;
             end
-            n = n + 1;
-            code = $fscanf(fin, "%h\n", rec);
+            for (i = MAX_LAT; i > 0; i = i - 1) hist[i] = hist[i - 1];
+            hist[0] = rec;
+            hv = {hv[MAX_LAT-1:0], more};
+            if (more) begin
+                n = n + 1;
+                code = $fscanf(fin, "%h\n", rec);
+                more = code == 1 && (^rec) !== 1'bx;
+            end
+{{DRIVE}}
+            @(negedge clk);
         end
         // The loop stops at the end of the file or at a character that is not a hex digit (the
         // part of its line before it, if any, was read as a record: the line is n or n + 1).

@@ -1588,3 +1588,57 @@ fn the_testbench_reads_records_wider_than_verilators_strings() {
         assert_eq!((v.passed, v.failed), (m.count, 0), "{name}");
     }
 }
+
+/// Unit records stream one per clock, as a testbench written from the manifest drives them:
+/// `light_accumulate`'s `acc_in` says it enters `latency - 1` edges after the record's other
+/// inputs (the running sum fed back into the last stage), every other column that it enters
+/// with them. Skewed as the manifest says, every record passes on both simulators; driven
+/// with the others, the unit adds a later record's sum and the run fails.
+#[test]
+fn unit_records_stream_one_per_clock_with_each_column_entering_as_its_manifest_says() {
+    let cfg = gbump::PipelineConfig::default();
+    let unit = gbump::units::unit("light_accumulate").unwrap();
+    let lat = unit.latency(&cfg);
+    assert!(lat >= 2, "light_accumulate's latency {lat}: acc_in no longer enters late");
+    let work = std::path::absolute(root().join("target/test-regress/unit_stream")).unwrap();
+    let _ = std::fs::remove_dir_all(work.join("v"));
+    let rtl = gbump::sim::regress::write_rtl(&cfg, &work.join("rtl"), "x").unwrap();
+    let o = gbump::vectors::DumpOptions::formats("test", true, false);
+    let sets = gbump::vectors::dump(
+        &cfg,
+        &gbump::vectors::Source::Random(2000),
+        &["light_accumulate".into()],
+        &work.join("v"),
+        &o,
+    )
+    .unwrap();
+    let (m, dir) = gbump::vectors::verify(&sets[0].manifest).unwrap();
+    for c in &m.columns {
+        let want = if c.name == "acc_in" { lat - 1 } else { 0 };
+        assert_eq!(c.enters, want, "column {} of {}", c.name, sets[0].manifest.display());
+    }
+    let plus = [
+        "+unit=light_accumulate".to_string(),
+        format!("+vectors={}", dir.join(&m.hex.as_ref().unwrap().name).display()),
+        format!("+table={}", dir.join(&m.power_table.name).display()),
+    ];
+    let tb = gbump::sim::testbench::tb_units(&cfg, &rtl);
+    let skewed = format!("light_accumulate_acc_in = hist[{}]", lat - 1);
+    assert!(tb.contains(&skewed), "the unit testbench drives acc_in otherwise");
+    let aligned = tb.replace(&skewed, "light_accumulate_acc_in = hist[0]");
+    let sims: [(&dyn Simulator, &str); 2] = [(&Icarus, "icarus"), (&Verilator, "verilator")];
+    for (sim, name) in sims {
+        for (text, skew) in [(&tb, true), (&aligned, false)] {
+            let exe = sim
+                .build(&work.join(format!("{name}_{skew}")), &Testbench::new("tb_units", text), &rtl)
+                .unwrap();
+            let (_, log, _) = sim.run_log(&exe, &plus, None, &work, name).unwrap();
+            let (passed, failed) = gbump::sim::verdict::parse_summary(&log).unwrap_or_else(|| panic!("{name}: no summary:\n{log}"));
+            if skew {
+                assert_eq!((passed, failed), (m.count, 0), "{name}, acc_in skewed:\n{log}");
+            } else {
+                assert!(failed > 0, "{name}: acc_in driven with the other inputs passes:\n{log}");
+            }
+        }
+    }
+}

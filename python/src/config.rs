@@ -273,6 +273,7 @@ impl Config {
             d.set_item("lanes", c.lanes)?;
             d.set_item("lane_bits", c.width / c.lanes)?;
             d.set_item("format", &c.format)?;
+            d.set_item("enters", c.enters)?;
             d.set_item("signed", c.signed())?;
             l.append(d)?;
         }

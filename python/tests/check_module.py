@@ -98,6 +98,10 @@ check(fmts["lh"]["width"] == model.as_dict()["lh_bits"], "the lh format is lh_bi
 # Random vectors at shininess 40, the stimulus stream and evaluation of the file's stimulus.
 vec = os.path.join(work, "v")
 run("vectors", "--source", "random:700", "--seed", "7", "--target", "top", "--target", "dot_clamp", "--format", "hex", "--shininess", "40", "--out", vec)
+# Each column says when it enters, as the set's manifest does.
+with open(os.path.join(vec, "random700_dot_clamp.json")) as f:
+    man = json.load(f)
+check([c["enters"] for c in model.columns("dot_clamp")] == [c["enters"] for c in man["columns"]], "columns' enters equal the manifest's")
 w = model.record_words("top")
 ref = rows_from_hex(os.path.join(vec, "random700_top.hex"), w)
 (s,) = model.vectors("random:700", seed=7, shininess=40)

@@ -78,7 +78,9 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             }
         );
     }
-    if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
+    if cfg.embm() {
+        s += "**No power table** (EMBM, `env_map_bits > 0`): the specular light comes from its environment map, so the top holds no power table; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused, INIT_FILE is not read, and the `_power_table.hex` beside a vector set may be ignored.\n\n";
+    } else if cfg.power_unit == crate::config::PowerUnitKind::Squaring {
         s += &format!(
             "**No power table** (`power_unit = \"squaring\"`): the power unit computes x^{} (shininess {}) by successive squarings; `power_table_we`, `power_table_waddr` and `power_table_wdata` stay on the interface, unused, and INIT_FILE is not read. A top vector set for another shininess is refused.\n\n",
             cfg.power_exponent(cfg.shininess),
@@ -106,6 +108,18 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
             w = 3 * cfg.colour_bits,
             cb = cfg.colour_bits,
             words = n * n
+        );
+    }
+    if let Some(m) = crate::units::unit("palette_fetch")
+        .and_then(|u| u.memory(cfg))
+        .filter(|_| cfg.palette)
+    {
+        s += &format!(
+            "**The palette** (`palette = true`, paper §6). Its {n} words (`{w}` bits: the entry's normal codes {{z, y, x}}, offset binary, x in the low {nb} bits; address = the `in_bump` index) are written like the power table, one per rising edge with `palette_we` high, under the same rule: only while no fragment is in flight. It powers up from `PALETTE_INIT_FILE` (`{init}` beside the RTL, the words `gbump rom` writes as its bump palette), and every vector set gbump makes, the top's and `palette_fetch`'s, runs on those power-up contents: leave it as it powers up, or load those words again after writing others.\n\n",
+            n = m.depth,
+            w = 3 * cfg.normal_bits,
+            nb = cfg.normal_bits,
+            init = super::units_v::rom_file_name(cfg, "bump_palette_spiral", "hex"),
         );
     }
     s += "**Per-fragment enables.** `in_diffuse_en` = 0 gives the fragment no diffuse term from any light (every fd_i is forced to 0), `in_specular_en` = 0 no specular term (every fs_i is 0): the per-object switches of the paper's pipeline, which the paper reads from the colour information in C_src; here they are two bits of their own, so `in_c_src` keeps its whole range. ";
@@ -175,7 +189,39 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         }
     }
     s += &vector_layout(cfg);
+    s += &unit_vectors(cfg);
     s
+}
+
+/// How a testbench drives a unit's vectors: one record per edge, each column when it enters,
+/// and which memory a unit's load port writes.
+fn unit_vectors(cfg: &PipelineConfig) -> String {
+    let mut late = Vec::new();
+    for u in crate::units::included(cfg) {
+        for p in u.ports(cfg).iter().filter(|p| p.enters > 0) {
+            late.push(format!("`{}`'s `{}` enters {} edge(s) late", u.name(), p.name, p.enters));
+        }
+    }
+    let late = if late.is_empty() {
+        "none in this configuration".to_string()
+    } else {
+        late.join(", ")
+    };
+    let mut mem = vec!["`power_unit` reads the power table, written through its `we`, `waddr` and `wdata` from the set's `_power_table.hex` as the top's is (its parameter `R`, the read ports, stays 1: the vectors hold one `x` lane)".to_string()];
+    for u in crate::units::included(cfg) {
+        if let Some(m) = u.memory(cfg).filter(|_| u.name() != "power_unit") {
+            mem.push(format!(
+                "`{}` reads the {} memory its `{}` loads at power-up, which its sets assume: its load port stays idle",
+                u.name(),
+                m.prefix,
+                m.init_param
+            ));
+        }
+    }
+    format!(
+        "\n**Unit vectors** (`gbump vectors --target UNIT`, `exhaustive:UNIT`). A unit is a bare datapath with registered outputs: no valid, ready or reset. Its records stream one per rising edge (initiation interval 1): a record's stimulus columns are sampled at one edge, except a column whose manifest `enters` is e > 0, sampled e edges later ({late}: a running sum fed back into the unit's last stage); its expected columns are on the outputs `latency` edges after the first (the manifest's `latency`, the unit table above). `tb_units`, which `gbump regress` runs, drives them so. Memories: {}.\n",
+        mem.join("; ")
+    )
 }
 
 /// How the top gates each light under `self_shadow`, in the space L is given in.

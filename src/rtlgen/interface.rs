@@ -50,7 +50,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
                 .into_iter()
                 .filter(|p| p.kind == super::top::PortKind::Fragment)
                 .map(|p| p.name)
-                .filter(|n| ["l", "h", "lc", "k"].iter().any(|f| *n == crate::vectors::targets::state_column(cfg, f)) || n == crate::vectors::targets::FRAME)
+                .filter(|n| ["l", "h", "lc", "k"].iter().any(|f| *n == crate::vectors::targets::state_column(cfg, f)) || [crate::vectors::targets::FRAME, "in_st", "in_m"].contains(&n.as_str()))
                 .collect();
             json!({"at": "fragment", "setup": format!("none: the bump state enters with every fragment on the {} ports", ports.join(", "))})
         },
@@ -92,7 +92,10 @@ pub fn interface_markdown(cfg: &PipelineConfig) -> String {
 
 /// How a memory is loaded: its load port, or (a ROM power table) not at all.
 fn load_port(cfg: &PipelineConfig, prefix: &str) -> String {
-    if cfg.power_unit == crate::config::PowerUnitKind::Squaring && prefix == "power_table" {
+    if cfg.embm() && prefix == "power_table" {
+        "none: env_map_bits > 0 (EMBM: the specular light comes from its map), the top has no power table; power_table_we, power_table_waddr, power_table_wdata are unused and INIT_FILE is not read"
+            .into()
+    } else if cfg.power_unit == crate::config::PowerUnitKind::Squaring && prefix == "power_table" {
         "none: power_unit = \"squaring\" reads no table (x^e by successive squarings, e = 2^round(log2 shininess), the power of two nearest on a log scale); power_table_we, power_table_waddr, power_table_wdata are unused"
             .into()
     } else if cfg.power_rom && prefix == "power_table" {

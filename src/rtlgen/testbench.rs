@@ -201,9 +201,11 @@ pub fn units_of(cfg: &PipelineConfig) -> Vec<&'static str> {
 /// The all-units testbench.
 pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
     let mut decls = Vec::new();
+    let mut lats = Vec::new();
     let mut drive = Vec::new();
     let mut check = Vec::new();
     let mut max_rb = 1;
+    let mut max_lat = 1;
     for (i, u) in units_of(cfg).iter().enumerate() {
         let l: Layout = unit_layout(cfg, u);
         max_rb = max_rb.max(l.bits);
@@ -221,8 +223,12 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         let kw = if i == 0 { "if" } else { "else if" };
         let mut d = vec![format!("            {kw} (unit == \"{u}\") begin")];
         let unit = crate::units::unit(u).expect("unit");
-        d.push(format!("                lat = {};", unit.latency(cfg)));
-        let mut k = vec![format!("            {kw} (unit == \"{u}\") begin")];
+        let lat = unit.latency(cfg);
+        // Every unit registers its outputs: a record is checked at least one edge after it enters.
+        assert!(lat >= 1, "unit {u}: latency 0");
+        max_lat = max_lat.max(lat);
+        lats.push(format!("        {kw} (unit == \"{u}\") lat = {lat};"));
+        let mut k = vec![format!("                {kw} (unit == \"{u}\") begin")];
         for c in &l.columns {
             let sig = format!("{u}_{}", c.name);
             let r = if c.width > 1 {
@@ -231,33 +237,39 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
                 String::new()
             };
             if c.role == Role::Stimulus {
+                assert!(c.enters < lat, "unit {u}: {} enters after the output is sampled", c.name);
                 decls.push(format!("    reg {r}{sig} = 0;"));
-                d.push(format!("                {sig} = {};", slice("rec", c.lsb, c.width)));
+                d.push(format!(
+                    "                {sig} = {};",
+                    slice(&format!("hist[{}]", c.enters), c.lsb, c.width)
+                ));
             } else {
                 decls.push(format!("    wire {r}{sig};"));
-                k.push(format!("                if ({sig} !== {}) begin", slice("rec", c.lsb, c.width)));
-                k.push("                    ok = 1'b0;".into());
-                k.push("                    if (failed < max_errors) begin".into());
-                k.push(format!("                        $display(\"MISMATCH unit {u} vector %0d:\", n);"));
+                k.push(format!("                    if ({sig} !== {}) begin", slice("chk", c.lsb, c.width)));
+                k.push("                        ok = 1'b0;".into());
+                k.push("                        if (failed < max_errors) begin".into());
+                k.push(format!(
+                    "                            $display(\"MISMATCH unit {u} vector %0d:\", m);"
+                ));
                 for ci in l.columns.iter().filter(|x| x.role == Role::Stimulus) {
                     k.push(format!(
-                        "                        $display(\"  {:10} %h\", {});",
+                        "                            $display(\"  {:10} %h\", {});",
                         ci.name,
-                        slice("rec", ci.lsb, ci.width)
+                        slice("chk", ci.lsb, ci.width)
                     ));
                 }
                 k.push(format!(
-                    "                        $display(\"  {} expected %h got %h\", {}, {sig});",
+                    "                            $display(\"  {} expected %h got %h\", {}, {sig});",
                     c.name,
-                    slice("rec", c.lsb, c.width)
+                    slice("chk", c.lsb, c.width)
                 ));
+                k.push("                        end".into());
                 k.push("                    end".into());
-                k.push("                end".into());
             }
             conns.push(format!(".{}({sig})", c.name));
         }
         d.push("            end".into());
-        k.push("            end".into());
+        k.push("                end".into());
         drive.extend(d);
         check.extend(k);
         let params = if *u == "power_unit" {
@@ -269,13 +281,15 @@ pub fn tb_units(cfg: &PipelineConfig, rtl: &Rtl) -> String {
         };
         decls.push(format!("    {}{params} u_{u} ({});", module_name(cfg, u), conns.join(", ")));
     }
-    drive.push("            else begin $display(\"FATAL: unknown unit %0s\", unit); end_run(1); end".into());
+    lats.push("        else begin $display(\"FATAL: unknown unit %0s\", unit); end_run(1); end".into());
     let mut s = pt(cfg);
     s.extend([
         ("DECLS", decls.join("\n")),
+        ("LAT", lats.join("\n")),
         ("DRIVE", drive.join("\n")),
         ("CHECK", check.join("\n")),
         ("MAX_RB", max_rb.to_string()),
+        ("MAX_LAT", max_lat.to_string()),
     ]);
     fill(TB_UNITS.to_string(), &s)
 }

@@ -51,11 +51,21 @@ pub struct Port {
     pub fmt: Format,
     pub lanes: u32,
     pub doc: &'static str,
+    /// An input sampled this many rising edges after the edge that samples its record's other
+    /// inputs (0 for nearly every port): `light_accumulate`'s `acc_in`, the running sum fed
+    /// back into its last stage, enters `latency - 1` edges late. A unit's vectors name it
+    /// per column (`enters`), so a testbench that streams records one per edge skews it.
+    pub enters: u32,
 }
 
 impl Port {
     pub fn bits(&self) -> u32 {
         self.fmt.width * self.lanes
+    }
+
+    /// This port sampled `edges` edges after its record's other inputs.
+    pub fn entering(self, edges: u32) -> Port {
+        Port { enters: edges, ..self }
     }
 }
 
@@ -66,6 +76,7 @@ pub(crate) fn p(name: &'static str, dir: Dir, fmt: Format, lanes: u32, doc: &'st
         fmt,
         lanes,
         doc,
+        enters: 0,
     }
 }
 
@@ -328,8 +339,12 @@ pub fn markdown_table(cfg: &PipelineConfig) -> String {
                 String::new()
             };
             let dir = if port.dir == Dir::In { "in" } else { "out" };
+            let late = match port.enters {
+                0 => String::new(),
+                e => format!(" (sampled {e} edge(s) after the other inputs: `enters` = {e})"),
+            };
             s += &format!(
-                "| {name} | `{}` | {dir} | {} | {} | {} | {} |\n",
+                "| {name} | `{}` | {dir} | {} | {} | {} | {}{late} |\n",
                 port.name,
                 port.fmt.name(),
                 port.lanes,

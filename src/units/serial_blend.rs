@@ -59,7 +59,8 @@ impl Unit for LightAccumulate {
                 c.acc_fmt(),
                 3,
                 "the running sum (the top feeds acc back); added at the last stage",
-            ),
+            )
+            .entering(self.latency(c) - 1),
             p("first", Dir::In, Format::u(1, 0), 1, "first light slot: start from 0"),
             p("f", Dir::In, c.factor_fmt(), 1, "fd_j or fs_j of this slot, aligned"),
             p("k", Dir::In, c.k_fmt(), 1, "k_j of this slot"),

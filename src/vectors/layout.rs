@@ -21,6 +21,9 @@ pub struct Column {
     /// Lanes of `width / lanes` bits each (lane 0 in the low bits).
     pub lanes: u32,
     pub format: String,
+    /// Edges after its record's other inputs at which this input is sampled (a unit port's
+    /// [`crate::units::Port::enters`]; 0 everywhere else).
+    pub enters: u32,
 }
 
 impl Column {
@@ -46,6 +49,7 @@ impl Layout {
             width,
             lanes,
             format,
+            enters: 0,
         });
         self.bits += width;
     }

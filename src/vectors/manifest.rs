@@ -27,6 +27,11 @@ pub struct ColumnEntry {
     pub width: u32,
     pub lanes: u32,
     pub format: String,
+    /// Rising edges after its record's other inputs at which a stimulus column is sampled
+    /// (`light_accumulate`'s `acc_in`: latency - 1); 0 for every other column. A set written
+    /// before the key existed reads as 0.
+    #[serde(default)]
+    pub enters: u32,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -49,7 +54,8 @@ pub struct Manifest {
     pub hex: Option<FileEntry>,
     pub bin: Option<FileEntry>,
     pub power_table: FileEntry,
-    /// Top only: cycles from accept to out_valid, and cycles between accepts.
+    /// Edges from a record's first input edge to its outputs (the top: from accept to
+    /// out_valid), and edges between records (a unit takes one per edge).
     pub latency: u32,
     pub initiation_interval: u32,
     /// EMBM scene sets: the object's two maps, loaded through the top's `env_diffuse_*` and
@@ -118,6 +124,7 @@ pub fn columns(l: &Layout) -> Vec<ColumnEntry> {
             width: c.width,
             lanes: c.lanes,
             format: c.format.clone(),
+            enters: c.enters,
         })
         .collect()
 }

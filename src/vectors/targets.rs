@@ -107,6 +107,7 @@ pub fn unit_layout(cfg: &PipelineConfig, unit: &str) -> Layout {
         for p in u.ports(cfg).into_iter().filter(|p| p.dir == dir) {
             let role = if dir == Dir::In { Role::Stimulus } else { Role::Expected };
             l.push(p.name, role, p.fmt.width, p.lanes, p.fmt.name());
+            l.columns.last_mut().expect("just pushed").enters = p.enters;
         }
     }
     l
