@@ -1644,6 +1644,43 @@ fn a_named_pipe_as_input_is_refused() {
     assert!(!dir.path().join("out").exists());
 }
 
+/// A named pipe in place of any file a vector set's manifest names (the records, the power
+/// table) is refused when the set is checked, not waited on.
+#[test]
+fn a_named_pipe_in_a_vector_set_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["vectors", "--source", "random:20", "--target", "top", "--out", "v"])
+        .current_dir(dir.path())
+        .assert()
+        .success();
+    for file in ["random20_top.hex", "random20_top_power_table.hex"] {
+        let set = dir.path().join(format!("s_{file}"));
+        std::fs::create_dir(&set).unwrap();
+        for e in std::fs::read_dir(dir.path().join("v")).unwrap() {
+            let e = e.unwrap();
+            std::fs::copy(e.path(), set.join(e.file_name())).unwrap();
+        }
+        std::fs::remove_file(set.join(file)).unwrap();
+        assert!(std::process::Command::new("mkfifo").arg(set.join(file)).status().unwrap().success());
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["regress", "--sim", "icarus", "--vectors"])
+            .arg(set.join("random20_top.json"))
+            .arg("--work")
+            .arg(dir.path().join("w"))
+            .timeout(std::time::Duration::from_secs(60))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("named pipe") && err.contains(file) && err.contains("fix:"),
+            "{file}: {err}"
+        );
+    }
+}
+
 /// A sweep space may name `target = "cmos"`: gate equivalents, what every sweep measures.
 #[test]
 fn a_sweep_for_cmos_measures_gate_equivalents() {

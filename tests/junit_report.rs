@@ -54,3 +54,54 @@ fn junit_lands_through_a_link_and_an_unwritable_path_is_refused_first() {
     assert!(text.contains("plain_file") && text.contains("fix:"), "{text}");
     assert!(!text.contains("passed"), "the regression ran before the refusal:\n{text}");
 }
+
+/// A regression that fails before it has runs to report (here a set it refuses) replaces an
+/// earlier run's green report with its error, so CI never reads the old verdict; a --junit
+/// path that holds something else (not a gbump report) is left as it is.
+#[test]
+fn a_failed_regression_leaves_no_earlier_green_report() {
+    let d = tempfile::tempdir().unwrap();
+    let junit = d.path().join("junit.xml");
+    let (ok, text) = regress(d.path(), &junit);
+    assert!(ok, "{text}");
+    assert!(std::fs::read_to_string(&junit).unwrap().contains("failures=\"0\""));
+    // A set with a character that is not a hex digit: refused before anything runs.
+    let v = d.path().join("v");
+    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+        .args(["vectors", "--source", "random:20", "--target", "top", "--format", "hex", "--out"])
+        .arg(&v)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let hex = v.join("random20_top.hex");
+    let text = std::fs::read_to_string(&hex).unwrap();
+    std::fs::write(&hex, text.replacen(|c: char| c.is_ascii_hexdigit(), "g", 1)).unwrap();
+    let failing = |junit: &std::path::Path| {
+        Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+            .args(["regress", "--sim", "icarus", "--vectors"])
+            .arg(v.join("random20_top.json"))
+            .arg("--work")
+            .arg(d.path().join("work2"))
+            .arg("--junit")
+            .arg(junit)
+            .output()
+            .unwrap()
+    };
+    let o = failing(&junit);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    let report = std::fs::read_to_string(&junit).unwrap();
+    assert!(report.contains("errors=\"1\"") && report.contains("<error message="), "{report}");
+    let first = err.lines().next().unwrap().trim_start_matches("gbump: error: ");
+    let esc = first
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;");
+    assert!(report.contains(&esc), "the report lacks the error `{first}`:\n{report}");
+    // Not a report gbump wrote: kept.
+    let other = d.path().join("notes.xml");
+    std::fs::write(&other, "mine").unwrap();
+    assert!(!failing(&other).status.success());
+    assert_eq!(std::fs::read_to_string(&other).unwrap(), "mine");
+}

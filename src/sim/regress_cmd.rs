@@ -65,6 +65,37 @@ pub fn regress(
     announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
+    let r = regress_run(cfg, pick_args, vectors, o, junit, lock, announce, say);
+    // A run that fails before its table leaves no earlier run's verdict behind for CI to read:
+    // the report becomes this failure. Only over nothing or a report gbump wrote, so a
+    // --junit that names an input (refused with its own message) is never overwritten.
+    if let (Err(e), Some(j)) = (&r, junit) {
+        let ours = std::fs::read(j).map_or_else(
+            |e| e.kind() == std::io::ErrorKind::NotFound,
+            |b| b.starts_with(b"<?xml") && b.windows(JUNIT_SUITE.len()).any(|w| w == JUNIT_SUITE.as_bytes()),
+        );
+        if ours {
+            // The run's own error is what matters; a report that cannot be written adds nothing.
+            let _ = crate::render::output::write_atomic(j, super::summary::junit_error(cfg, &e.to_string()).as_bytes());
+        }
+    }
+    r
+}
+
+/// The suite name every regression's JUnit report carries.
+const JUNIT_SUITE: &str = "<testsuite name=\"gbump regress ";
+
+#[allow(clippy::too_many_arguments)]
+fn regress_run(
+    cfg: &PipelineConfig,
+    pick_args: &str,
+    vectors: &[PathBuf],
+    o: &RegressOptions,
+    junit: Option<&Path>,
+    lock: impl FnOnce() -> Result<WorkLock>,
+    announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+) -> Result<()> {
     for s in &o.sims {
         super::require(*s)?;
     }

@@ -69,12 +69,7 @@ pub fn verdict(cfg: &PipelineConfig, kind: &str, t: &Totals, say: &mut dyn FnMut
 }
 
 pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
-    let esc = |s: &str| {
-        s.replace('&', "&amp;")
-            .replace('<', "&lt;")
-            .replace('>', "&gt;")
-            .replace('"', "&quot;")
-    };
+    let esc = xml_escape;
     let failures = results.iter().filter(|r| !matches!(&r.outcome, Ok(o) if o.failed == 0)).count();
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n",
@@ -90,4 +85,25 @@ pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
         }
     }
     s + "</testsuite>\n"
+}
+
+/// `s` as XML text or an attribute value.
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The report of a regression that failed before it had runs to report (a set refused, a
+/// build that failed, a simulator missing): one test case in error, with the message.
+pub fn junit_error(cfg: &PipelineConfig, message: &str) -> String {
+    let esc = xml_escape;
+    let first = message.lines().next().unwrap_or_default();
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"1\" failures=\"0\" errors=\"1\">\n  <testcase classname=\"regress\" name=\"gbump regress\"><error message=\"{}\">{}</error></testcase>\n</testsuite>\n",
+        cfg.hash(),
+        esc(first),
+        esc(message)
+    )
 }

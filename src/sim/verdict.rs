@@ -80,6 +80,15 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
             if passed + failed == 0 {
                 return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}", tail(&log, 10))));
             }
+            // A clean summary is a pass only from a process that then exited cleanly: one
+            // that crashed or was killed after printing it (its waves or coverage unwritten,
+            // a later check never run) does not count.
+            if !ok && failed == 0 {
+                return Err(Error::Other(format!(
+                    "{what}: the simulation printed \"{passed} passed, 0 failed\" and then exited with an error (a crash or a signal), so it does not count\n--- last lines ---\n{}\n  fix: rerun it; if it fails again, reinstall the simulator (scripts/install-tools.sh)",
+                    tail(&log, 15)
+                )));
+            }
             Ok(Outcome { passed, failed, seconds: secs, log })
         }
         None => Err(Error::Other(format!(
@@ -87,5 +96,20 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
             if ok { "ok" } else { "non-zero" },
             tail(&log, 15)
         ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A summary of no failures from a process that exited with an error is no pass; the
+    /// same summary from a clean exit is, and failures from a failing exit are counted.
+    #[test]
+    fn a_clean_summary_from_a_failed_process_does_not_pass() {
+        let log = "20 passed, 0 failed\n".to_string();
+        let e = super::outcome(false, log.clone(), 1.0, "run").unwrap_err().to_string();
+        assert!(e.contains("exited with an error") && e.contains("fix:"), "{e}");
+        assert_eq!(super::outcome(true, log, 1.0, "run").unwrap().passed, 20);
+        let failing = format!("18 passed, 2 failed\n{}\n", crate::rtlgen::testbench::EXIT_MARK);
+        assert_eq!(super::outcome(false, failing, 1.0, "run").unwrap().failed, 2);
     }
 }

@@ -137,6 +137,8 @@ pub fn sha256_file(p: &Path) -> Result<(u64, String)> {
 /// [`sha256_file`], handing every block read to `see` with its offset in the file (so a
 /// check of the contents costs no second read).
 fn sha256_visit(p: &Path, mut see: impl FnMut(u64, &[u8])) -> Result<(u64, String)> {
+    // A pipe in a data file's place would hang the open; every file a set names is hashed here.
+    crate::limits::check_not_pipe(p, "put back the regular file `gbump vectors` wrote, or regenerate the set")?;
     let mut f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
     let mut h = Sha256::new();
     let mut buf = vec![0u8; 1 << 20];
