@@ -54,6 +54,26 @@ pub fn defer(tmp: &Path, path: &Path) -> bool {
     })
 }
 
+/// Remove `path`, a result the new ones leave out (the other format of a vector set written
+/// again), when the open scope's files land, so the folder never holds an old file beside a
+/// new set; at once when no scope is open. Only a regular file is removed.
+pub fn retire(path: &Path) -> Result<()> {
+    let staged = STAGED.with(|s| match s.borrow_mut().as_mut() {
+        Some(v) => {
+            if !v.iter().any(|(t, p)| t.as_os_str().is_empty() && p == path) {
+                // An empty temporary marks a removal.
+                v.push((PathBuf::new(), path.to_path_buf()));
+            }
+            true
+        }
+        None => false,
+    });
+    if !staged && std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+        std::fs::remove_file(path).map_err(|e| Error::io(path, e))?;
+    }
+    Ok(())
+}
+
 /// The name a replaced result waits under (a temporary name, so a killed run's is cleared).
 fn backup_of(path: &Path) -> PathBuf {
     let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
@@ -79,6 +99,10 @@ fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
         }
     };
     for (i, (tmp, path)) in staged.iter().enumerate() {
+        let retired = tmp.as_os_str().is_empty();
+        if retired && !std::fs::symlink_metadata(path).is_ok_and(|m| m.is_file()) {
+            continue;
+        }
         let backup = match std::fs::symlink_metadata(path) {
             Ok(m) if m.is_file() => {
                 let b = backup_of(path);
@@ -90,6 +114,11 @@ fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
             }
             _ => None,
         };
+        if retired {
+            // Moved aside with the replaced files: gone when all land, back if one fails.
+            done.push((path, backup));
+            continue;
+        }
         if let Err(e) = std::fs::rename(tmp, path) {
             if let Some(b) = &backup {
                 let _ = std::fs::rename(b, path);
@@ -159,5 +188,20 @@ mod tests {
             .filter(|n| n.contains(".tmp"))
             .collect();
         assert!(left.is_empty(), "temporaries left: {left:?}");
+        // A retired file goes when the scope's files land, and stays when the work fails.
+        let r: Result<()> = together(|| {
+            write_atomic(&a, b"newest")?;
+            retire(&c)?;
+            Err(Error::Other("the work failed".into()))
+        });
+        assert!(r.is_err());
+        assert_eq!([read(&a), read(&c)], ["new", "old"]);
+        together(|| {
+            write_atomic(&a, b"newest")?;
+            retire(&c)
+        })
+        .unwrap();
+        assert_eq!(read(&a), "newest");
+        assert!(!c.exists());
     }
 }

@@ -243,3 +243,35 @@ fn crlf_line_ends_and_a_wrong_latency_are_named() {
     let e = gbump::vectors::verify(&man).unwrap_err().to_string();
     assert!(e.contains("latency") && !e.contains("field `module`"), "{e}");
 }
+
+/// A set written again in one format leaves no file of the other beside it: the folder holds
+/// only what the new manifest lists, so a flow that picks `SET.hex` up by name cannot run an
+/// older seed's records against the new set's table.
+#[test]
+fn a_set_written_again_in_one_format_leaves_no_older_file_of_the_other() {
+    let d = tempfile::tempdir().unwrap();
+    let dump = |args: &[&str]| {
+        let o = std::process::Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+            .args(["vectors", "--source", "random:20", "--target", "top", "--out"])
+            .arg(d.path())
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    let names = || {
+        let mut v: Vec<String> = std::fs::read_dir(d.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    dump(&[]);
+    assert!(names().contains(&"random20_top.hex".to_string()) && names().contains(&"random20_top.bin".to_string()));
+    dump(&["--seed", "5", "--format", "bin"]);
+    assert_eq!(names(), ["random20_top.bin", "random20_top.json", "random20_top_power_table.hex"]);
+    dump(&["--format", "hex"]);
+    assert_eq!(names(), ["random20_top.hex", "random20_top.json", "random20_top_power_table.hex"]);
+    gbump::vectors::verify(&d.path().join("random20_top.json")).unwrap();
+}

@@ -276,6 +276,18 @@ impl SetWriter {
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
+        // A format or map this set leaves out goes with the set it belonged to: beside the new
+        // manifest it would be taken for this set's.
+        let listed: Vec<&str> = m.files().iter().map(|f| f.name.as_str()).collect();
+        for stale in ["hex", "bin"]
+            .map(|x| format!("{}.{x}", self.stem))
+            .into_iter()
+            .chain(["diffuse", "specular"].map(|w| format!("{}_env_{w}.hex", self.stem)))
+        {
+            if !listed.contains(&stale.as_str()) {
+                crate::commit::retire(&dir.join(stale))?;
+            }
+        }
         Ok(VectorSet {
             target: self.target,
             manifest: mp,
