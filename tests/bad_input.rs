@@ -180,6 +180,12 @@ fn cases() -> Vec<Case> {
             vec!["camera.eye", "coincide"],
         ),
         (
+            "up along the view",
+            scene(r("up = [0.0, 1.0, 0.0]", "up = [0.0, 0.0, 1.0]")),
+            render(&[]),
+            vec!["s.toml", "camera.up", "parallel to the view", "fix:"],
+        ),
+        (
             "k above 1",
             scene(r("colour = [0.95, 0.95, 0.95]", "colour = [0.95, 0.95, 0.95]\nk = 1.5")),
             render(&[]),

@@ -126,6 +126,19 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     if view.iter().map(|x| x * x).sum::<f64>() < 1e-18 {
         return Err(c.fail("camera.eye", "eye and target coincide".into(), "move the eye away from the target"));
     }
+    // Along the view, `up` names no direction on the screen: the image would come out turned
+    // by whichever axis a fallback picked.
+    let (f, u) = (
+        glam::DVec3::from_slice(&view).normalize(),
+        glam::DVec3::from_array(cam.up).normalize(),
+    );
+    if f.cross(u).length_squared() < 1e-12 {
+        return Err(c.fail(
+            "camera.up",
+            format!("{:?} is parallel to the view (target - eye = {:?})", cam.up, view),
+            "give an up that is not along the view, the screen's upward direction (for example [0, 1, 0] for a camera looking along z)",
+        ));
+    }
     c.num("camera.height", cam.height, 1e-6, 1e6)?;
     c.vec3("camera.background", cam.background, 0.0, 1.0)?;
     c.vec3("ambient", s.ambient, 0.0, 1.0)?;
