@@ -1294,6 +1294,19 @@ fn the_testbench_exit_code_is_its_verdict() {
         let (ok, log, _) = sim.run_log(&exe, &plus, Some(&fst), &work, "waves").unwrap();
         let bytes = std::fs::metadata(&fst).map_or(0, |m| m.len());
         assert!(!ok && bytes > 4000, "{name}: a failing run's waveform is {bytes} bytes:\n{log}");
+        // Judged, the waves are written under a temporary name and put in place, a failing
+        // run's too, with no temporary left.
+        let judged = work.join("judged.fst");
+        let _ = std::fs::remove_file(&judged);
+        let v = sim.run(&exe, &plus, Some(&judged), &work, "waves").unwrap();
+        assert_eq!(v.failed, 1, "{name}");
+        assert!(std::fs::metadata(&judged).is_ok_and(|m| m.len() > 4000), "{name}: no judged waves");
+        let left: Vec<_> = std::fs::read_dir(&work)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains("judged.fst.tmp"))
+            .collect();
+        assert!(left.is_empty(), "{name}: {left:?}");
         let e = edited("malformed.hex", 4, 3, 'g').unwrap_err().to_string();
         assert!(e.contains("line 5: a character that is not a hex digit"), "{name}: {e}");
         // An x, z or ? digit is refused, not driven, on both simulators (Verilator is

@@ -48,9 +48,32 @@ pub trait Simulator: Sync {
     /// write. (exit ok, log, seconds), unjudged.
     fn run_log(&self, exe: &Path, plusargs: &[String], waves: Option<&Path>, cwd: &Path, what: &str) -> Result<(bool, String, f64)>;
 
-    /// `run_log` judged by the testbench's summary line; any simulator warning fails it.
+    /// `run_log` judged by the testbench's summary line; any simulator warning fails it. Waves
+    /// are written under a temporary name and put in place after the run, a failing one's
+    /// too, unless the disk under them filled up: a simulator cut short by a full disk closes
+    /// its FST early without a word, and a cut wave file would pass for a whole one.
     fn run(&self, exe: &Path, plusargs: &[String], waves: Option<&Path>, cwd: &Path, what: &str) -> Result<Outcome> {
-        let (ok, log, secs) = self.run_log(exe, plusargs, waves, cwd, what)?;
+        let Some(w) = waves else {
+            let (ok, log, secs) = self.run_log(exe, plusargs, None, cwd, what)?;
+            return outcome(ok, log, secs, what);
+        };
+        let name = w.file_name().map_or_else(|| "waves".into(), |n| n.to_string_lossy().into_owned());
+        let tmp = w.with_file_name(format!(".{name}.tmp{}", std::process::id()));
+        let ran = self.run_log(exe, plusargs, Some(&tmp), cwd, what);
+        let dir = w.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        if let Some(free) = crate::limits::free_bytes(dir).filter(|&b| b < WAVES_FREE_MARGIN) {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(crate::error::Error::Other(format!(
+                "{what}: the disk holding {} has {free} bytes free after the run: the simulator may have cut the waves short without a word, so they are not kept\n  fix: free space on that disk, or give --work a folder on another",
+                w.display()
+            )));
+        }
+        let (ok, log, secs) = ran.inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })?;
+        if tmp.exists() {
+            std::fs::rename(&tmp, w).map_err(|e| crate::error::Error::io(w, e))?;
+        }
         outcome(ok, log, secs, what)
     }
 
@@ -76,3 +99,7 @@ pub fn build_key(kind: &str, source: &str, flags: &[String], rtl: &Rtl, tools: &
     }
     Ok(k.finish())
 }
+
+/// Free bytes below which a disk that took a wave file is taken to have filled while writing
+/// it (a simulator does not report the short write).
+pub const WAVES_FREE_MARGIN: u64 = 1 << 20;
