@@ -1152,14 +1152,6 @@ pub fn run() -> anyhow::Result<()> {
                 None => None,
             };
             let c = &fit.chosen;
-            crate::render::output::write_files(
-                &out,
-                &[
-                    ("fit.toml".to_string(), fit.toml()),
-                    ("front.csv".to_string(), fit.csv()),
-                    ("front.svg".to_string(), fit.svg()),
-                ],
-            )?;
             outln!(
                 "fit {budget} on {}: {} configurations measured in {:.1} s; chosen {} ({:.0} GE by the area model, {} fragment(s) per clock): {}",
                 scene.join(", "),
@@ -1169,12 +1161,6 @@ pub fn run() -> anyhow::Result<()> {
                 c.area_ge,
                 c.throughput,
                 c.measured.describe()
-            );
-            outln!(
-                "front: {} of {} candidates; wrote fit.toml, front.csv, front.svg in {}",
-                fit.front.len(),
-                fit.seen.len(),
-                out.display()
             );
             if let Some(f) = fmax {
                 outln!("iCE40 {device}: {f:.1} MHz at pipeline_depth {} (nextpnr)", c.cfg.pipeline_depth);
@@ -1211,12 +1197,34 @@ pub fn run() -> anyhow::Result<()> {
                         outln!("{l}");
                         Ok(())
                     },
-                )?;
+                )
+                .map_err(|e| {
+                    // Its results are written only for a configuration that passes: a fit.toml
+                    // beside a failed run would read as a verified choice.
+                    Error::Other(format!(
+                        "the chosen configuration {} failed its regression, so fit.toml, front.csv and front.svg were not written (its TOML is printed above): {e}",
+                        &c.cfg.hash()[..8]
+                    ))
+                })?;
                 outln!(
                     "the chosen configuration passes on Icarus and Verilator ({:.0} s)",
                     t0.elapsed().as_secs_f64()
                 );
             }
+            crate::render::output::write_files(
+                &out,
+                &[
+                    ("fit.toml".to_string(), fit.toml()),
+                    ("front.csv".to_string(), fit.csv()),
+                    ("front.svg".to_string(), fit.svg()),
+                ],
+            )?;
+            outln!(
+                "front: {} of {} candidates; wrote fit.toml, front.csv, front.svg in {}",
+                fit.front.len(),
+                fit.seen.len(),
+                out.display()
+            );
         }
         Cmd::FitTable { scene, write } => {
             named_once("--scene", &scene)?;

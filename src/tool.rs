@@ -71,3 +71,13 @@ pub fn tail(log: &str, n: usize) -> String {
     let lines: Vec<&str> = log.lines().collect();
     lines[lines.len().saturating_sub(n)..].join("\n")
 }
+
+/// The fix line of a build by `tool` that failed with `log`: a tool that crashed is reinstalled;
+/// one that refused the sources names what it refused in the log above the line.
+pub fn build_fix(tool: &str, log: &str) -> String {
+    if log.contains("killed by signal") {
+        format!("  fix: {tool} crashed; reinstall it (scripts/install-tools.sh) and run again")
+    } else {
+        format!("  fix: {tool} refused the sources for the reasons above; gbump's own RTL and testbenches compile on the versions scripts/install-tools.sh installs, so an error in them is a gbump bug: report it with the configuration")
+    }
+}

@@ -179,3 +179,38 @@ fn fit_table_writes_its_rows_for_the_scenes_asked() {
     assert!(t.contains("no_such_scene") && !t.contains("[1/"), "{t}");
     assert!(!missing.exists());
 }
+
+/// A fit whose chosen configuration fails its regression (here a Verilator that crashes) writes
+/// nothing: a fit.toml beside a failed run would read as a verified choice. The message says
+/// so, and the crash's fix.
+#[test]
+fn a_fit_whose_regression_fails_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let fake = bin.join("verilator");
+    std::fs::write(
+        &fake,
+        "#!/bin/sh\nif [ \"$1\" = --version ]; then exec /usr/bin/verilator --version; fi\nkill -SEGV $$\n",
+    )
+    .unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let out = dir.path().join("o");
+    let o = gbump()
+        .env("PATH", path)
+        .args(["fit", "--scene", "torus_caps", "--budget", "max<=2", "--out"])
+        .arg(&out)
+        .arg("--work")
+        .arg(dir.path().join("w"))
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert!(!o.status.success(), "{t}");
+    assert!(
+        t.contains("failed its regression") && t.contains("were not written") && t.contains("reinstall"),
+        "{t}"
+    );
+    assert!(!out.join("fit.toml").exists() && !out.join("front.csv").exists(), "{t}");
+}

@@ -33,7 +33,11 @@ impl Simulator for Icarus {
             cmd.args(&flags).arg("-o").arg(dir.join(&exe_name)).arg(&tb_path).args(&rtl.sources);
             let (ok, log, _) = run_cmd(&mut cmd, "iverilog")?;
             if !ok {
-                return Err(Error::Other(format!("iverilog failed to compile {top}:\n{}", tail(&log, 20))));
+                return Err(Error::Other(format!(
+                    "iverilog failed to compile {top}:\n{}\n{}",
+                    tail(&log, 20),
+                    crate::tool::build_fix("iverilog", &log)
+                )));
             }
             Ok(())
         })?;

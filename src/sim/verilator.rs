@@ -48,7 +48,11 @@ fn cached_build(
         let (ok, log, _) = run_cmd(&mut cmd, "verilator")?;
         let obj = dir.join("obj");
         let Some(mk) = ok.then(|| makefile(&obj)).flatten() else {
-            return Err(Error::Other(format!("verilator failed to build {exe_name}:\n{}", tail(&log, 25))));
+            return Err(Error::Other(format!(
+                "verilator failed to build {exe_name}:\n{}\n{}",
+                tail(&log, 25),
+                crate::tool::build_fix("verilator", &log)
+            )));
         };
         let runtime = runtime_objects(&obj, &mk, &make_args)?;
         let mut missing = fetch(&runtime, &obj);
@@ -69,9 +73,11 @@ fn cached_build(
             (ok, make_log, _) = make()?;
         }
         if !ok || !dir.join(exe_name).exists() {
+            let log = log + &make_log;
             return Err(Error::Other(format!(
-                "verilator failed to build {exe_name}:\n{}",
-                tail(&(log + &make_log), 25)
+                "verilator failed to build {exe_name}:\n{}\n{}",
+                tail(&log, 25),
+                crate::tool::build_fix("verilator", &log)
             )));
         }
         store(&missing, &obj);
