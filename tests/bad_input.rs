@@ -1838,3 +1838,63 @@ fn an_argument_that_is_not_utf8_is_named() {
         assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none(), "left output behind");
     }
 }
+
+/// An output that is a symbolic link into a folder that does not exist is refused, naming the
+/// link, where it leads and the fix, and no folder is made for it: a link is written through,
+/// never used to make folders (a `--junit` link to /nonexistent/j.xml had created /nonexistent).
+#[test]
+fn a_link_into_a_missing_folder_is_refused_without_making_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let gone = d.join("gone");
+    let link = |at: &Path, name: &str| {
+        std::fs::create_dir_all(at).unwrap();
+        std::os::unix::fs::symlink(gone.join(name), at.join(name)).unwrap();
+    };
+    let cfg = gbump::PipelineConfig::default();
+    let top = format!("{}.v", gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline"));
+    link(&d.join("rtl"), &top);
+    link(&d.join("v"), "random10_top.hex");
+    link(d, "j.xml");
+    let runs: [Vec<String>; 3] = [
+        vec!["rtl".into(), "--out".into(), d.join("rtl").display().to_string()],
+        vec![
+            "vectors".into(),
+            "--source".into(),
+            "random:10".into(),
+            "--target".into(),
+            "top".into(),
+            "--out".into(),
+            d.join("v").display().to_string(),
+        ],
+        vec![
+            "regress".into(),
+            "--sim".into(),
+            "icarus".into(),
+            "--vectors".into(),
+            Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("vectors/corners_top.json")
+                .display()
+                .to_string(),
+            "--work".into(),
+            d.join("w").display().to_string(),
+            "--junit".into(),
+            d.join("j.xml").display().to_string(),
+        ],
+    ];
+    for args in runs {
+        let o = Command::cargo_bin("gbump").unwrap().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("a symbolic link to") && err.contains("gone") && err.contains("fix:"),
+            "{}: {err}",
+            args[0]
+        );
+        assert!(
+            [".v.tmp", ".hex.tmp", ".xml.tmp"].iter().all(|t| !err.contains(t)),
+            "{}: the message names a temporary file: {err}",
+            args[0]
+        );
+        assert!(!gone.exists(), "{} made the link's missing folder", args[0]);
+    }
+}

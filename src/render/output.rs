@@ -79,7 +79,7 @@ fn temp_beside(path: &Path) -> Result<(std::path::PathBuf, std::path::PathBuf)> 
 pub fn link_target(path: &Path) -> Result<std::path::PathBuf> {
     let mut at = path.to_path_buf();
     // As many hops as the kernel follows before it calls a chain a loop.
-    for _ in 0..40 {
+    for hop in 0..40 {
         match std::fs::symlink_metadata(&at) {
             Ok(m) if m.file_type().is_symlink() => {
                 let next = std::fs::read_link(&at).map_err(|e| Error::io(&at, e))?;
@@ -88,7 +88,21 @@ pub fn link_target(path: &Path) -> Result<std::path::PathBuf> {
                     _ => next,
                 };
             }
-            _ => return Ok(at),
+            _ => {
+                // A link is written through, never used to make folders: a dangling link's
+                // target folder is the link maker's to create (a link to /nonexistent/x must
+                // not create /nonexistent).
+                let dir = at.parent().filter(|d| !d.as_os_str().is_empty());
+                if hop > 0 && dir.is_some_and(|d| !d.is_dir()) {
+                    return Err(Error::Other(format!(
+                        "{}: a symbolic link to {}, whose folder does not exist\n  fix: create {}, point the link at a file in a folder that exists, or remove the link",
+                        path.display(),
+                        at.display(),
+                        dir.expect("checked").display()
+                    )));
+                }
+                return Ok(at);
+            }
         }
     }
     Err(Error::Other(format!(
