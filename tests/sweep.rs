@@ -166,3 +166,29 @@ fn points_that_cannot_render_the_scene_are_skipped_and_named() {
     let labels: Vec<&str> = pts.as_array().unwrap().iter().map(|p| p["label"].as_str().unwrap()).collect();
     assert_eq!(labels, ["lights=2"]);
 }
+
+/// A renamed field under its old name in a sweep space is said at its own line in the space
+/// file, once, and refused beside its new name at that line (the composed points' TOML had
+/// put both at 1:1, once per value).
+#[test]
+fn a_renamed_field_in_a_space_is_named_at_its_line() {
+    let d = tempfile::tempdir().unwrap();
+    let run = |text: &str| {
+        std::fs::write(d.path().join("sp.toml"), text).unwrap();
+        let o = std::process::Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+            .args(["sweep", "--space", "sp.toml", "--out", "o", "--work", "w"])
+            .current_dir(d.path())
+            .output()
+            .unwrap();
+        (o.status.success(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (ok, err) = run("scene = \"torus_caps\"\n[grid]\ndot_bits = [8]\ndot_frac_bits = [8]\n");
+    assert!(
+        !ok && err.contains("sp.toml:3") && err.contains("given twice") && !err.contains(":1:1"),
+        "{err}"
+    );
+    let (ok, err) = run("scene = \"torus_caps\"\n[base]\nnormal_bits = 8\n[grid]\ndot_bits = [8]\n");
+    assert!(ok, "{err}");
+    assert_eq!(err.matches("is deprecated").count(), 1, "{err}");
+    assert!(err.contains("sp.toml:5") && !err.contains(":1:1"), "{err}");
+}

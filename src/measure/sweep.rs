@@ -125,6 +125,23 @@ impl Space {
                 format!("keep `{k}` in one of them"),
             ));
         }
+        // A renamed field under its old name is said at its own line, then read under its new
+        // one: the points' composed TOML has no lines of this file.
+        for &(old, new) in crate::config::RENAMED_FIELDS {
+            let Some(v) = spans.base.get(old).or_else(|| spans.grid.get(old)) else {
+                continue;
+            };
+            let old_at = at(v.span());
+            if [&s.base, &s.grid].iter().any(|t| t.contains_key(new)) {
+                return Err(crate::config::renamed_twice(&old_at, old, new));
+            }
+            crate::warn::warn(crate::config::renamed_warning(&old_at, old, new));
+            for t in [&mut s.base, &mut s.grid] {
+                if let Some(v) = t.remove(old) {
+                    t.insert(new.to_string(), v);
+                }
+            }
+        }
         let max = crate::limits::MAX_SWEEP_POINTS;
         if points > max {
             return Err(Error::field(
@@ -252,6 +269,8 @@ struct Spans {
 /// range at its own line; a value that fails only beside another field's value is left to the
 /// grid (that combination is skipped, and counted).
 fn check_value(text: &str, file: &str, field: &str, key: &str, v: &toml::Value, span: std::ops::Range<usize>) -> Result<()> {
+    // A renamed field is checked under its new name (`Space::load` says the old one, at its line).
+    let key = crate::config::RENAMED_FIELDS.iter().find(|r| r.0 == key).map_or(key, |r| r.1);
     if let (Some(&(_, lo, hi, why)), Some(x)) = (crate::config::LIMITS.iter().find(|l| l.0 == key), v.as_integer()) {
         if x < lo as i64 || x > hi as i64 {
             let (line, col) = crate::error::line_col(text, span.start);
