@@ -1400,7 +1400,7 @@ fn a_dump_larger_than_the_disk_is_refused_first() {
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("GB free") && err.contains("fix:"), "{err}");
+    assert!(!o.status.success() && err.contains("B free") && err.contains("fix:"), "{err}");
     let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
         .map(|d| d.map(|e| e.unwrap().file_name()).collect())
         .unwrap_or_default();

@@ -379,13 +379,20 @@ fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: 
         return Ok(());
     };
     if need > free {
-        let gb = |b: u64| b as f64 / 1e9;
+        // In the unit the smaller figure reads in, so a small disk's figures are not both 0.0 GB.
+        let (unit, scale) = if need.min(free) >= 1_000_000_000 {
+            ("GB", 1e9)
+        } else if need.min(free) >= 1_000_000 {
+            ("MB", 1e6)
+        } else {
+            ("kB", 1e3)
+        };
         return Err(Error::Other(format!(
-            "{}: {n} records of {} target(s) need about {:.1} GB, and the disk under it has {:.1} GB free\n  fix: fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
+            "{}: {n} records of {} target(s) need about {:.1} {unit}, and the disk under it has {:.1} {unit} free\n  fix: fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
             dir.display(),
             targets.len(),
-            gb(need),
-            gb(free)
+            need as f64 / scale,
+            free as f64 / scale
         )));
     }
     Ok(())
