@@ -55,6 +55,7 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
 /// default suite when there are none. `lock` takes `o.work` once every given set is checked,
 /// then `announce` writes or says what the caller held back until then; the table and totals
 /// go to `say`, the XML to `junit`.
+#[allow(clippy::too_many_arguments)]
 pub fn regress(
     cfg: &PipelineConfig,
     pick_args: &str,
