@@ -1185,9 +1185,13 @@ pub fn run() -> anyhow::Result<()> {
             if !no_regress {
                 let opts = crate::fit::run::regress_options(&work.join("regress"), invocation(), &scene)?;
                 let t0 = std::time::Instant::now();
+                // The RTL's header and any replay name a file that exists: the choice as regressed,
+                // kept in the work folder (fit.toml in --out is written only once it passes).
+                let regressed = work.join("regress").join("fit.toml");
+                write_atomic(&regressed, fit.toml().as_bytes())?;
                 crate::sim::regress_cmd::regress(
                     &c.cfg,
-                    &format!("--config {}", out.join("fit.toml").display()),
+                    &format!("--config {}", crate::shell::quoted(&regressed.display().to_string())),
                     &[],
                     &opts,
                     None,
@@ -1202,8 +1206,9 @@ pub fn run() -> anyhow::Result<()> {
                     // Its results are written only for a configuration that passes: a fit.toml
                     // beside a failed run would read as a verified choice.
                     Error::Other(format!(
-                        "the chosen configuration {} failed its regression, so fit.toml, front.csv and front.svg were not written (its TOML is printed above): {e}",
-                        &c.cfg.hash()[..8]
+                        "the regression of the chosen configuration {} did not pass, so fit.toml, front.csv and front.svg were not written (the configuration is {}): {e}",
+                        &c.cfg.hash()[..8],
+                        regressed.display()
                     ))
                 })?;
                 outln!(

@@ -44,7 +44,9 @@ pub fn together<T>(f: impl FnOnce() -> Result<T>) -> Result<T> {
 pub fn defer(tmp: &Path, path: &Path) -> bool {
     STAGED.with(|s| match s.borrow_mut().as_mut() {
         Some(v) => {
-            // The same result written twice reuses its temporary name: the last bytes win.
+            // The same result written twice reuses its temporary name: the last bytes win. A
+            // result written after it was retired is written, not removed.
+            v.retain(|(t, p)| !(t.as_os_str().is_empty() && p == path));
             if !v.iter().any(|(t, p)| t == tmp && p == path) {
                 v.push((tmp.to_path_buf(), path.to_path_buf()));
             }
@@ -60,8 +62,9 @@ pub fn defer(tmp: &Path, path: &Path) -> bool {
 pub fn retire(path: &Path) -> Result<()> {
     let staged = STAGED.with(|s| match s.borrow_mut().as_mut() {
         Some(v) => {
-            if !v.iter().any(|(t, p)| t.as_os_str().is_empty() && p == path) {
-                // An empty temporary marks a removal.
+            // An empty temporary marks a removal; a file this scope writes there instead stays
+            // (one backup per path: a write and a removal of it would share one).
+            if !v.iter().any(|(_, p)| p == path) {
                 v.push((PathBuf::new(), path.to_path_buf()));
             }
             true

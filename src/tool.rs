@@ -75,8 +75,13 @@ pub fn tail(log: &str, n: usize) -> String {
 /// The fix line of a build by `tool` that failed with `log`: a tool that crashed is reinstalled;
 /// one that refused the sources names what it refused in the log above the line.
 pub fn build_fix(tool: &str, log: &str) -> String {
-    if log.contains("killed by signal") {
-        format!("  fix: {tool} crashed; reinstall it (scripts/install-tools.sh) and run again")
+    // Killed itself, or a compiler it ran (gcc's "Killed signal terminated program cc1plus"
+    // when memory ran out).
+    if ["killed by signal", "Killed signal", "fatal error: Killed", "out of memory"]
+        .iter()
+        .any(|k| log.contains(k))
+    {
+        format!("  fix: {tool} or a compiler it ran was killed (a crash, or memory ran out): check free memory, reinstall it if it happens again (scripts/install-tools.sh), and run again")
     } else {
         format!("  fix: {tool} refused the sources for the reasons above; gbump's own RTL and testbenches compile on the versions scripts/install-tools.sh installs, so an error in them is a gbump bug: report it with the configuration")
     }

@@ -105,3 +105,25 @@ fn a_failed_regression_leaves_no_earlier_green_report() {
     assert!(!failing(&other).status.success());
     assert_eq!(std::fs::read_to_string(&other).unwrap(), "mine");
 }
+
+/// A failed regression whose --junit is a named pipe ends with its error instead of waiting
+/// on the pipe to see whether it holds an earlier report.
+#[test]
+fn a_failed_regression_with_a_pipe_for_its_report_does_not_wait() {
+    let d = tempfile::tempdir().unwrap();
+    let fifo = d.path().join("j.xml");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let o = assert_cmd::Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["regress", "--sim", "icarus", "--vectors"])
+        .arg(d.path().join("absent.json"))
+        .arg("--work")
+        .arg(d.path().join("w"))
+        .arg("--junit")
+        .arg(&fifo)
+        .timeout(std::time::Duration::from_secs(30))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("absent.json"), "{err}");
+}

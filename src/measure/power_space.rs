@@ -159,7 +159,14 @@ pub fn verify_rtl(d: &PowerUnitDesign, fm: PowerFormats, n: u32, dir: &std::path
         .build(dir, &crate::sim::Testbench::new("tb", &tb), &rtl)
         .map_err(|e| Error::Other(format!("{m}: {e}")))?;
     // The bench prints one line per input, not the regression's summary, so it is read here.
-    let (_, out, _) = sim.run_log(&exe, &[], None, dir, "vvp")?;
+    let (ok, out, _) = sim.run_log(&exe, &[], None, dir, "vvp")?;
+    // Every line may be out before a crash: a bench that did not exit cleanly does not count.
+    if !ok {
+        return Err(Error::Other(format!(
+            "{m}: the design's bench exited with an error\n{}\n  fix: rerun; if it fails again, reinstall Icarus (scripts/install-tools.sh)",
+            crate::tool::tail(&out, 10)
+        )));
+    }
     let table = d.table(fm, n);
     let mut checked = 0;
     for line in out.lines() {

@@ -71,10 +71,18 @@ pub fn regress(
     // the report becomes this failure. Only over nothing or a report gbump wrote, so a
     // --junit that names an input (refused with its own message) is never overwritten.
     if let (Err(e), Some(j)) = (&r, junit) {
-        let ours = std::fs::read(j).map_or_else(
-            |e| e.kind() == std::io::ErrorKind::NotFound,
-            |b| b.starts_with(b"<?xml") && b.windows(JUNIT_SUITE.len()).any(|w| w == JUNIT_SUITE.as_bytes()),
-        );
+        // Read only from a regular file, and only its head: a pipe or /dev/stdout would wait.
+        let target = crate::render::output::link_target(j).unwrap_or_else(|_| j.to_path_buf());
+        let ours = match std::fs::metadata(&target) {
+            Err(e) => e.kind() == std::io::ErrorKind::NotFound,
+            Ok(m) if m.is_file() => {
+                use std::io::Read;
+                let mut head = Vec::new();
+                let read = std::fs::File::open(&target).and_then(|f| f.take(512).read_to_end(&mut head));
+                read.is_ok() && head.starts_with(b"<?xml") && head.windows(JUNIT_SUITE.len()).any(|w| w == JUNIT_SUITE.as_bytes())
+            }
+            Ok(_) => false,
+        };
         if ours {
             // The run's own error is what matters; a report that cannot be written adds nothing.
             let _ = crate::render::output::write_atomic(j, super::summary::junit_error(cfg, &e.to_string()).as_bytes());

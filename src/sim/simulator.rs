@@ -49,30 +49,33 @@ pub trait Simulator: Sync {
     fn run_log(&self, exe: &Path, plusargs: &[String], waves: Option<&Path>, cwd: &Path, what: &str) -> Result<(bool, String, f64)>;
 
     /// `run_log` judged by the testbench's summary line; any simulator warning fails it. Waves
-    /// are written under a temporary name and put in place after the run, a failing one's
-    /// too, unless the disk under them filled up: a simulator cut short by a full disk closes
-    /// its FST early without a word, and a cut wave file would pass for a whole one.
+    /// are written under a temporary name and put in place after the run (through a symbolic
+    /// link, as every result is), a failing one's too, unless the disk under them has less
+    /// than [`WAVES_FREE_MARGIN`] free after the run: a simulator cut short by a full disk
+    /// closes its FST early without a word, and a cut wave file would pass for a whole one, so
+    /// a nearly full disk fails the run whatever the waves hold.
     fn run(&self, exe: &Path, plusargs: &[String], waves: Option<&Path>, cwd: &Path, what: &str) -> Result<Outcome> {
         let Some(w) = waves else {
             let (ok, log, secs) = self.run_log(exe, plusargs, None, cwd, what)?;
             return outcome(ok, log, secs, what);
         };
+        let w = crate::render::output::link_target(w)?;
         let name = w.file_name().map_or_else(|| "waves".into(), |n| n.to_string_lossy().into_owned());
         let tmp = w.with_file_name(format!(".{name}.tmp{}", std::process::id()));
-        let ran = self.run_log(exe, plusargs, Some(&tmp), cwd, what);
+        let (ok, log, secs) = self.run_log(exe, plusargs, Some(&tmp), cwd, what).inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })?;
         let dir = w.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         if let Some(free) = crate::limits::free_bytes(dir).filter(|&b| b < WAVES_FREE_MARGIN) {
             let _ = std::fs::remove_file(&tmp);
+            let verdict = super::verdict::parse_summary(&log).map_or("no summary".to_string(), |(p, f)| format!("{p} passed, {f} failed"));
             return Err(crate::error::Error::Other(format!(
-                "{what}: the disk holding {} has {free} bytes free after the run: the simulator may have cut the waves short without a word, so they are not kept\n  fix: free space on that disk, or give --work a folder on another",
+                "{what} ({verdict}): the disk holding {} has {free} bytes free after the run: the simulator may have cut the waves short without a word, so they are not kept\n  fix: free space on that disk, or give --work a folder on another",
                 w.display()
             )));
         }
-        let (ok, log, secs) = ran.inspect_err(|_| {
-            let _ = std::fs::remove_file(&tmp);
-        })?;
         if tmp.exists() {
-            std::fs::rename(&tmp, w).map_err(|e| crate::error::Error::io(w, e))?;
+            std::fs::rename(&tmp, &w).map_err(|e| crate::error::Error::io(&w, e))?;
         }
         outcome(ok, log, secs, what)
     }

@@ -29,7 +29,8 @@ pub struct ColumnEntry {
     pub format: String,
     /// Rising edges after its record's other inputs at which a stimulus column is sampled
     /// (`light_accumulate`'s `acc_in`: latency - 1); 0 for every other column. A set written
-    /// before the key existed reads as 0.
+    /// before the key existed reads as 0, so only an older `light_accumulate` set is refused,
+    /// as a layout of another version, with the command that regenerates it.
     #[serde(default)]
     pub enters: u32,
 }
@@ -299,7 +300,10 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
             .map(|i| {
                 let say = |c: Option<&ColumnEntry>| {
                     c.map_or("nothing".to_string(), |c| {
-                        format!("`{}` at lsb {}, {} bits x {} lanes", c.name, c.lsb, c.width, c.lanes)
+                        format!(
+                            "`{}` at lsb {}, {} bits x {} lanes, entering {} edge(s) late",
+                            c.name, c.lsb, c.width, c.lanes, c.enters
+                        )
                     })
                 };
                 format!(
