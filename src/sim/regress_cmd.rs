@@ -2,7 +2,7 @@
 //! before the work folder is taken, or the default suite generated in it; the RTL written;
 //! every set run; the summary and the JUnit XML; an error when any run failed.
 
-use super::regress::{check_sets, run_checked, suite, write_rtl, RegressOptions};
+use super::regress::{check_sets, run_checked, suite, RegressOptions};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::work_lock::WorkLock;
@@ -66,10 +66,45 @@ pub fn regress(
     announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
-    let r = regress_run(cfg, pick_args, vectors, o, junit, lock, announce, say);
-    // A run that fails before its table leaves no earlier run's verdict behind for CI to read:
-    // the report becomes this failure. Only over nothing or a report gbump wrote, so a
-    // --junit that names an input (refused with its own message) is never overwritten.
+    let r = (|| -> Result<()> {
+        for s in &o.sims {
+            super::require(*s)?;
+        }
+        let h = &cfg.hash()[..8];
+        // Given sets are checked (paths, completeness, sha256, configuration) before the work
+        // folder is taken, and before `announce` writes or says anything.
+        let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
+        let given = check_sets(cfg, &given, o)?;
+        // The given manifests are read now: --junit may not name one of them.
+        if let Some(j) = junit {
+            crate::render::output::check_writable(j)?;
+        }
+        let _lock = lock()?;
+        announce(say)?;
+        let sets = if vectors.is_empty() {
+            let t0 = std::time::Instant::now();
+            let s = suite(cfg, o, &o.work.join(format!("vectors_{h}")))?;
+            say(&format!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64()))?;
+            check_sets(cfg, &s, o)?
+        } else {
+            given
+        };
+        let rtl = super::rtl_files::regression_rtl(cfg, pick_args, &o.work)?;
+        let results = run_checked(cfg, &sets, &rtl, o)?;
+        let t = super::summary::table(&results, say)?;
+        if let Some(j) = junit {
+            crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
+        }
+        super::summary::verdict(cfg, "", &t, say)
+    })();
+    report_failure(cfg, junit, &r);
+    r
+}
+
+/// A run that fails before its table leaves no earlier run's verdict behind for CI to read:
+/// the report becomes this failure. Only over nothing or a report gbump wrote, so a --junit
+/// that names an input (refused with its own message) is never overwritten.
+fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
     if let (Err(e), Some(j)) = (&r, junit) {
         // Read only from a regular file, and only its head: a pipe or /dev/stdout would wait.
         let target = crate::render::output::link_target(j).unwrap_or_else(|_| j.to_path_buf());
@@ -88,58 +123,7 @@ pub fn regress(
             let _ = crate::render::output::write_atomic(j, super::summary::junit_error(cfg, &e.to_string()).as_bytes());
         }
     }
-    r
 }
 
 /// The suite name every regression's JUnit report carries.
 const JUNIT_SUITE: &str = "<testsuite name=\"gbump regress ";
-
-#[allow(clippy::too_many_arguments)]
-fn regress_run(
-    cfg: &PipelineConfig,
-    pick_args: &str,
-    vectors: &[PathBuf],
-    o: &RegressOptions,
-    junit: Option<&Path>,
-    lock: impl FnOnce() -> Result<WorkLock>,
-    announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
-    say: &mut dyn FnMut(&str) -> Result<()>,
-) -> Result<()> {
-    for s in &o.sims {
-        super::require(*s)?;
-    }
-    let h = &cfg.hash()[..8];
-    // Given sets are checked (paths, completeness, sha256, configuration) before the work
-    // folder is taken, and before `announce` writes or says anything.
-    let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
-    let given = check_sets(cfg, &given, o)?;
-    // The given manifests are read now: --junit may not name one of them.
-    if let Some(j) = junit {
-        crate::render::output::check_writable(j)?;
-    }
-    let _lock = lock()?;
-    announce(say)?;
-    let sets = if vectors.is_empty() {
-        let t0 = std::time::Instant::now();
-        let s = suite(cfg, o, &o.work.join(format!("vectors_{h}")))?;
-        say(&format!("generated {} vector sets in {:.1} s", s.len(), t0.elapsed().as_secs_f64()))?;
-        check_sets(cfg, &s, o)?
-    } else {
-        given
-    };
-    let rtl_dir = o.work.join(format!("rtl_{h}"));
-    let rtl = write_rtl(
-        cfg,
-        &rtl_dir,
-        &format!(
-            "gbump rtl {pick_args} --out {}",
-            crate::shell::quoted(&rtl_dir.display().to_string())
-        ),
-    )?;
-    let results = run_checked(cfg, &sets, &rtl, o)?;
-    let t = super::summary::table(&results, say)?;
-    if let Some(j) = junit {
-        crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
-    }
-    super::summary::verdict(cfg, "", &t, say)
-}

@@ -6,6 +6,14 @@ pub use crate::rtlgen::rtl_set::Rtl;
 pub use crate::rtlgen::writer::verilog_string;
 use std::path::Path;
 
+/// The RTL a regression of `cfg` (selected by `pick_args`) runs, in `work/rtl_HASH`, its header
+/// naming the `gbump rtl` command that writes the same files.
+pub fn regression_rtl(cfg: &PipelineConfig, pick_args: &str, work: &Path) -> Result<Rtl> {
+    let dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
+    let command = format!("gbump rtl {pick_args} --out {}", crate::shell::quoted(&dir.display().to_string()));
+    write_rtl(cfg, &dir, &command)
+}
+
 /// Write the RTL of `cfg` into `dir`.
 pub fn write_rtl(cfg: &PipelineConfig, dir: &Path, command: &str) -> Result<Rtl> {
     let dir = std::path::absolute(dir).map_err(|e| Error::io(dir, e))?;

@@ -5,7 +5,7 @@
 //! constant: chunks are encoded in parallel a batch at a time into a bounded channel, one
 //! thread writes them into the pipe, and the harness reads them into a ring.
 
-use super::regress::{write_rtl, RegressOptions, RunResult};
+use super::regress::{RegressOptions, RunResult};
 use super::{Outcome, Sim, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -406,16 +406,7 @@ pub fn regress_stream(
 /// The harness a streamed regression of `cfg` (selected by `pick_args`) builds in `work`:
 /// its RTL in `work/rtl_HASH`, the build cached under `work/build`.
 pub fn regress_harness(cfg: &PipelineConfig, pick_args: &str, work: &Path) -> Result<PathBuf> {
-    let rtl_dir = work.join(format!("rtl_{}", &cfg.hash()[..8]));
-    let rtl = write_rtl(
-        cfg,
-        &rtl_dir,
-        &format!(
-            "gbump rtl {pick_args} --out {}",
-            crate::shell::quoted(&rtl_dir.display().to_string())
-        ),
-    )?;
-    build(cfg, work, &rtl)
+    build(cfg, work, &super::rtl_files::regression_rtl(cfg, pick_args, work)?)
 }
 
 /// The harness of `cfg`'s top, cached under `work/build`.
