@@ -264,9 +264,33 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         file: file.to_string(),
         line,
         col,
-        msg,
+        msg: shorten_quoted(&msg),
         fix,
     }
+}
+
+/// Longest quoted value an error message repeats whole; a longer one (a 900 kB string) keeps
+/// its start and says how long it was.
+pub const MAX_QUOTED_CHARS: usize = 80;
+
+/// `msg` with every double-quoted value longer than [`MAX_QUOTED_CHARS`] cut to its start.
+fn shorten_quoted(msg: &str) -> String {
+    let parts: Vec<&str> = msg.split('"').collect();
+    let mut out = String::with_capacity(msg.len().min(1024));
+    for (i, p) in parts.iter().enumerate() {
+        if i > 0 {
+            out.push('"');
+        }
+        // Odd pieces lie between quotes (a closing quote follows them).
+        let n = p.chars().count();
+        if i % 2 == 1 && i + 1 < parts.len() && n > MAX_QUOTED_CHARS {
+            out.extend(p.chars().take(MAX_QUOTED_CHARS / 2));
+            out += &format!("… ({n} characters in all)");
+        } else {
+            out.push_str(p);
+        }
+    }
+    out
 }
 
 /// Where, in the text of an inline table `span` (`{ kind = "torus", major = "big" }`), the
@@ -339,6 +363,19 @@ pub fn nearest<'a>(name: &str, candidates: &[&'a str]) -> Option<&'a str> {
 
 #[cfg(test)]
 mod tests {
+    /// A long quoted value in a message keeps its start and its length; short ones and the
+    /// rest of the message stay whole.
+    #[test]
+    fn long_quoted_values_are_cut() {
+        let long = "x".repeat(10_000);
+        let m = super::shorten_quoted(&format!("invalid type: string \"{long}\", expected u32 and \"short\""));
+        assert!(
+            m.len() < 200 && m.contains("10000 characters in all") && m.contains("\"short\"") && m.ends_with('"'),
+            "{m}"
+        );
+        assert_eq!(super::shorten_quoted("a \"b\" c"), "a \"b\" c");
+    }
+
     use super::*;
 
     /// Every form serde gives the expected names in is read: a long list, two, one, none.
