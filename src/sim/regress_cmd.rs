@@ -114,7 +114,7 @@ fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
                 use std::io::Read;
                 let mut head = Vec::new();
                 let read = std::fs::File::open(&target).and_then(|f| f.take(512).read_to_end(&mut head));
-                read.is_ok() && head.starts_with(b"<?xml") && head.windows(JUNIT_SUITE.len()).any(|w| w == JUNIT_SUITE.as_bytes())
+                read.is_ok() && super::summary::is_report(&head)
             }
             Ok(_) => false,
         };
@@ -124,6 +124,3 @@ fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
         }
     }
 }
-
-/// The suite name every regression's JUnit report carries.
-const JUNIT_SUITE: &str = "<testsuite name=\"gbump regress ";

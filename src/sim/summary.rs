@@ -69,22 +69,29 @@ pub fn verdict(cfg: &PipelineConfig, kind: &str, t: &Totals, say: &mut dyn FnMut
 }
 
 pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
-    let esc = xml_escape;
     let failures = results.iter().filter(|r| !matches!(&r.outcome, Ok(o) if o.failed == 0)).count();
     let mut s = format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"{}\" failures=\"{failures}\">\n",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{SUITE}{}\" tests=\"{}\" failures=\"{failures}\">\n",
         cfg.hash(),
         results.len()
     );
     for r in results {
         let name = format!("{}.{}", r.sim.name(), r.set);
         match &r.outcome {
-            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, esc(&name), o.seconds),
-            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, esc(&name), o.seconds, o.passed, o.failed, esc(&tail(&o.log, 60))),
-            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, esc(&name), esc(e)),
+            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, xml_escape(&name), o.seconds),
+            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, xml_escape(&name), o.seconds, o.passed, o.failed, xml_escape(&tail(&o.log, 60))),
+            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, xml_escape(&name), xml_escape(e)),
         }
     }
     s + "</testsuite>\n"
+}
+
+/// How every regression report opens its suite, the configuration's hash next.
+const SUITE: &str = "<testsuite name=\"gbump regress ";
+
+/// Whether `head`, the start of a file, is a regression report gbump wrote.
+pub fn is_report(head: &[u8]) -> bool {
+    head.starts_with(b"<?xml") && head.windows(SUITE.len()).any(|w| w == SUITE.as_bytes())
 }
 
 /// `s` as XML text or an attribute value.
@@ -98,12 +105,11 @@ fn xml_escape(s: &str) -> String {
 /// The report of a regression that failed before it had runs to report (a set refused, a
 /// build that failed, a simulator missing): one test case in error, with the message.
 pub fn junit_error(cfg: &PipelineConfig, message: &str) -> String {
-    let esc = xml_escape;
     let first = message.lines().next().unwrap_or_default();
     format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"gbump regress {}\" tests=\"1\" failures=\"0\" errors=\"1\">\n  <testcase classname=\"regress\" name=\"gbump regress\"><error message=\"{}\">{}</error></testcase>\n</testsuite>\n",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{SUITE}{}\" tests=\"1\" failures=\"0\" errors=\"1\">\n  <testcase classname=\"regress\" name=\"gbump regress\"><error message=\"{}\">{}</error></testcase>\n</testsuite>\n",
         cfg.hash(),
-        esc(first),
-        esc(message)
+        xml_escape(first),
+        xml_escape(message)
     )
 }

@@ -282,7 +282,7 @@ impl SetWriter {
         for stale in ["hex", "bin"]
             .map(|x| format!("{}.{x}", self.stem))
             .into_iter()
-            .chain(["diffuse", "specular"].map(|w| format!("{}_env_{w}.hex", self.stem)))
+            .chain(["diffuse", "specular"].map(|w| env_map_name(&self.stem, w)))
         {
             if !listed.contains(&stale.as_str()) {
                 crate::commit::retire(&dir.join(stale))?;
@@ -296,11 +296,16 @@ impl SetWriter {
     }
 }
 
+/// The file of set `stem`'s `which` (`diffuse`, `specular`) environment map.
+fn env_map_name(stem: &str, which: &str) -> String {
+    format!("{stem}_env_{which}.hex")
+}
+
 /// The two maps of a set (`{stem}_env_diffuse.hex`, `{stem}_env_specular.hex`), as the
 /// `env_fetch` units' init files are written, and their manifest entries.
 pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMaps, command: &str) -> Result<EnvMapFiles> {
     let one = |which: &str, map: &[[u32; 3]]| -> Result<FileEntry> {
-        let name = format!("{stem}_env_{which}.hex");
+        let name = env_map_name(stem, which);
         let rom = crate::rtlgen::rom::env_map_rom(cfg, map, which, "a scene object's lighting");
         let text = crate::rtlgen::rom::write(
             &rom,
