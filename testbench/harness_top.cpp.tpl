@@ -203,7 +203,11 @@ int main(int argc, char** argv) {
     }
     size_t next_in = 0, next_out = 0;
     long passed = 0, failed = 0, timing_errors = 0;
+    // Edges since the top last took or gave anything; at WAIT_EDGES the run ends failed (a top
+    // that stops answering ends the run rather than hanging it).
     uint64_t cycles = 0, idle = 0;
+    const uint64_t WAIT_EDGES = LATENCY * 4 + 100;
+    bool setup = false;
     // Timing: the edge of every accept still in flight, and of the last one.
     long long acc_cyc[FLIGHT];
     long long last_acc = -1;
@@ -226,13 +230,13 @@ int main(int argc, char** argv) {
     // The record whose fields are on the inputs: a record offered for several edges (waiting
     // for in_ready or tri_ready) is unpacked once.
     size_t assigned = (size_t)-1;
-    while (next_out < n && idle < LATENCY * 4 + 100 && failed < max_errors) {
+    while (next_out < n && idle < WAIT_EDGES && failed < max_errors) {
         const uint8_t* rin = next_in < n ? recs.next(next_in, next_out) : nullptr;
         if (bubbles > 0 && next_in < n && next_in % bubbles == (size_t)bubbles - 1 && gapped_for != next_in) {
             gap = 1 + (long)((next_in / bubbles) % 3);
             gapped_for = next_in;
         }
-        bool setup = false;
+        setup = false;
         if (next_in < n && gap == 0) {
           if (assigned != next_in) {
             assigned = next_in;
@@ -258,7 +262,7 @@ int main(int argc, char** argv) {
             if (taken && since < BANK_HOLD) timing("setup accepted while its bank is still read", since, BANK_HOLD);
             else if (taken && offered < SETUP_EDGES - 1) timing("setup accepted before it spans its edges", offered + 1, SETUP_EDGES);
             else if (!taken && since >= BANK_HOLD && offered >= SETUP_EDGES - 1) timing("tri_ready low beyond the bank hold", since, BANK_HOLD);
-            if (taken) { setup_for = next_in; ++setups; }
+            if (taken) { setup_for = next_in; ++setups; idle = 0; }
             else ++setup_waits;
         }
         const long long cyc = (long long)cycles;
@@ -268,6 +272,7 @@ int main(int argc, char** argv) {
             if (OUT_DEPTH > 0 && next_in - next_out >= OUT_DEPTH) timing("accepted while the output buffer's untaken results fill it", (long long)(next_in - next_out), (long long)OUT_DEPTH);
             acc_cyc[next_in % FLIGHT] = cyc;
             last_acc = cyc;
+            idle = 0;
             frag_edge[setups % TRI_BANKS] = cyc;
         } else if (top.in_valid && (last_acc < 0 || cyc - last_acc >= II) && (OUT_DEPTH == 0 || next_in - next_out < OUT_DEPTH)) {
             timing("in_ready low beyond the initiation interval", last_acc < 0 ? cyc : cyc - last_acc, II);
@@ -292,7 +297,7 @@ int main(int argc, char** argv) {
                 }
             }
             ++next_out;
-        } else if (next_in >= n) {
+        } else {
             ++idle;
         }
         top.clk = 1;
@@ -303,6 +308,9 @@ int main(int argc, char** argv) {
     }
     if (failed >= max_errors) printf("stopping after %ld mismatches\n", failed);
     double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (idle >= WAIT_EDGES && next_in < n)
+        printf("FATAL: %s stayed low for %llu edges before record %zu: the top stopped taking %s\n", setup ? "tri_ready" : "in_ready",
+               (unsigned long long)idle, next_in, setup ? "setups" : "fragments");
     if (next_out < n && failed < max_errors) {
         printf("MISMATCH: %zu fragments went in but %zu came out\n", next_in, next_out);
         failed += (long)(n - next_out);

@@ -19,6 +19,10 @@ module tb_cosim;
     parameter INIT_FILE = {{INIT_FILE}};
     localparam int LAT = {{LATENCY}};
     localparam int II = {{II}};
+    // The longest the testbench waits on the top: for tri_ready or in_ready before a beat,
+    // and for the last results after the stream. A top that stops answering fails with a
+    // FATAL line after it, rather than hanging the simulator.
+    localparam int WAIT_EDGES = LAT * 4 + 100;
     localparam int POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
     localparam int FLIGHT = 64;
     logic clk = 1'b0;
@@ -81,6 +85,25 @@ module tb_cosim;
         at = lsb;
     endtask
 
+    // Until the top takes the beat on offer, at most WAIT_EDGES edges.
+    task automatic wait_for_tri_ready;
+        int waited = 0;
+        while (!tri_ready) begin
+            if (waited == WAIT_EDGES) fatal($sformatf("tri_ready stayed low for %0d edges before fragment %0d's triangle setup: the top stopped taking setups", waited, n_in));
+            @(negedge clk);
+            waited = waited + 1;
+        end
+    endtask
+
+    task automatic wait_for_in_ready;
+        int waited = 0;
+        while (!in_ready) begin
+            if (waited == WAIT_EDGES) fatal($sformatf("in_ready stayed low for %0d edges before fragment %0d: the top stopped taking fragments", waited, n_in));
+            @(negedge clk);
+            waited = waited + 1;
+        end
+    endtask
+
     task automatic mismatch_stop;
         if (failed >= max_errors) begin
             $display("stopping after %0d mismatches", failed);
@@ -127,17 +150,17 @@ module tb_cosim;
             if ({{TRI_START}}) begin
                 in_valid = 1'b0;
                 tri_valid = 1'b1;
-                while (!tri_ready) @(negedge clk);
+                wait_for_tri_ready();
                 @(negedge clk);
                 tri_valid = 1'b0;
             end
             in_valid = 1'b1;
-            while (!in_ready) @(negedge clk);
+            wait_for_in_ready();
             @(negedge clk);
         end
         in_valid = 1'b0;
         cycles = 0;
-        while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
+        while (n_out < n_in && cycles < WAIT_EDGES) begin @(negedge clk); cycles = cycles + 1; end
         if (n_out != n_in) begin
             $display("MISMATCH: %0d fragments went in but %0d came out", n_in, n_out);
             failed = failed + (n_in - n_out);

@@ -30,6 +30,10 @@ module {{TB_MODULE}};
     parameter INIT_FILE = {{INIT_FILE}};
     localparam RB = {{RECORD_BITS}};
     localparam LAT = {{LATENCY}};
+    // The longest the testbench waits on the top: for tri_ready or in_ready before a beat,
+    // and for the last results after the file. A top that stops answering fails with a
+    // FATAL line after it, rather than hanging the simulator.
+    localparam WAIT_EDGES = LAT * 4 + 100;
     localparam POWER_TABLE_WORDS = {{POWER_TABLE_WORDS}};
     // Hex digits of a record's line.
     localparam HD = {{HEX_DIGITS}};
@@ -243,13 +247,24 @@ module {{TB_MODULE}};
                 // The setup beat: the fragment waits until its triangle is loaded.
                 in_valid = 1'b0;
                 tri_valid = 1'b1;
-                while (!tri_ready) begin @(negedge clk); tri_waits = tri_waits + 1; end
+                waited = 0;
+                while (!tri_ready) begin
+                    if (waited == WAIT_EDGES) stopped("tri_ready", "setups");
+                    @(negedge clk);
+                    tri_waits = tri_waits + 1;
+                    waited = waited + 1;
+                end
                 @(negedge clk);
                 tri_valid = 1'b0;
                 n_tri = n_tri + 1;
             end
             in_valid = 1'b1;
-            while (!in_ready) @(negedge clk);
+            waited = 0;
+            while (!in_ready) begin
+                if (waited == WAIT_EDGES) stopped("in_ready", "fragments");
+                @(negedge clk);
+                waited = waited + 1;
+            end
             @(negedge clk);
             n_in = n_in + 1;
             read_stim;
@@ -260,7 +275,7 @@ module {{TB_MODULE}};
         end
         in_valid = 1'b0;
         cycles = 0;
-        while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
+        while (n_out < n_in && cycles < WAIT_EDGES) begin @(negedge clk); cycles = cycles + 1; end
         if (n_out != n_in) begin
             $display("MISMATCH: %0d fragments went in but %0d came out", n_in, n_out);
             failed = failed + (n_in - n_out);
@@ -279,6 +294,16 @@ module {{TB_MODULE}};
             if (x_reports <= max_errors) $display("MISMATCH unit gbump_pipeline: X on outputs after reset at %0t: out_valid=%b in_ready=%b out_c=%h", $time, out_valid, in_ready, out_c);
         end
     end
+
+    // A handshake the top left low for WAIT_EDGES edges: the run ends failed.
+    integer waited;
+    task stopped(input [8*16-1:0] ready, input [8*16-1:0] what);
+        begin
+            $display("FATAL: %0s stayed low for %0d edges before record %0d: the top stopped taking %0s", ready, WAIT_EDGES, n_in, what);
+            gave_up = 1'b1;
+            finish_run;
+        end
+    endtask
 
     task timing_error(input integer got, input integer want, input [8*64-1:0] what);
         begin

@@ -3,6 +3,9 @@
 //! power-up contents from any folder (a missing init file fails), and sets in a format a
 //! simulator's bench cannot read refused before anything is built.
 
+#[path = "common/mutants.rs"]
+mod mutants;
+
 use assert_cmd::Command;
 use gbump::sim::regress::{write_rtl, Rtl};
 use gbump::sim::testbench::{harness_top, tb_top};
@@ -411,4 +414,68 @@ fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
 fn the_bank_hold_binds_where_the_interface_says() {
     bank_hold_binds(None, "hold_serial");
     bank_hold_binds(Some("tests/configs/one_light_parallel.toml"), "hold_parallel");
+}
+
+/// A top that stops taking setups or fragments (its `tri_ready` or `in_ready` tied low) fails
+/// every bench with a FATAL line naming the handshake, after the bound the benches wait,
+/// rather than hanging the simulator: the file testbench on Icarus, the C++ harness, and the
+/// DPI-C lockstep bench (`gbump cosim`). Mismatch stops are out of reach (`max_errors` far
+/// above the bound), so the wait's own bound ends each run.
+#[test]
+fn a_top_that_stops_answering_fails_every_bench_without_hanging() {
+    let cfg = config(None);
+    assert!(cfg.per_triangle(), "the default top takes triangle setups");
+    let w = work("stops_answering");
+    let (hex, bin) = top_vectors(&cfg, &w.join("vectors"), Source::Random(50));
+    let top = gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline");
+    for ready in ["tri_ready", "in_ready"] {
+        let rtl = write_rtl(&cfg, &w.join(ready), "test").unwrap();
+        let f = rtl.dir.join(format!("{top}.v"));
+        let text = std::fs::read_to_string(&f).unwrap();
+        std::fs::write(&f, mutants::ready_stuck_low(&text, ready).expect("the top assigns the port")).unwrap();
+        let many = "+max_errors=1000000";
+        let tb = tb_top(&cfg, &rtl);
+        let module = tb.lines().find_map(|l| l.strip_prefix("module ")?.strip_suffix(';')).unwrap();
+        let exe = Icarus.build(&w.join("build"), &Testbench::new(module, &tb), &rtl).unwrap();
+        let stuck = format!("FATAL: {ready} stayed low for ");
+        let log = failure(Icarus.run(&exe, &[format!("+vectors={hex}"), many.into()], None, &w, "icarus"));
+        assert!(log.contains(&stuck), "icarus, {ready}:\n{log}");
+        let cpp = harness_top(&cfg);
+        let exe = Verilator.build_harness(&w.join("build"), &top, &cpp, &rtl).unwrap();
+        let log = failure(Verilator.run(
+            &exe,
+            &["--vectors".into(), bin.clone(), "--max-errors".into(), "1000000".into()],
+            None,
+            &w,
+            "verilator",
+        ));
+        assert!(log.contains(&stuck), "harness, {ready}:\n{log}");
+        let out = gbump()
+            .args([
+                "cosim",
+                "--rtl",
+                rtl.dir.to_str().unwrap(),
+                "--random",
+                "50",
+                "--max-errors",
+                "1000000",
+            ])
+            .args(["--work", w.join("cosim").to_str().unwrap()])
+            .timeout(std::time::Duration::from_secs(600))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains(&stuck), "cosim, {ready}:\n{err}");
+    }
+}
+
+/// The log of a run that must have failed: its mismatches, or the error it gave up with.
+fn failure(run: gbump::Result<Outcome>) -> String {
+    match run {
+        Ok(o) => {
+            assert!(o.failed > 0, "the run passed:\n{}", o.log);
+            o.log
+        }
+        Err(e) => e.to_string(),
+    }
 }

@@ -155,3 +155,10 @@ pub fn env_coords_edge_fraction(text: &str) -> Option<String> {
     let from = "lx ? 5'd16";
     text.contains(from).then(|| text.replacen(from, "lx ? 5'd15", 1))
 }
+
+/// The top's handshake output `ready` (`in_ready`, `tri_ready`) tied low: a top that stops
+/// taking beats. None when the top assigns no such port.
+pub fn ready_stuck_low(text: &str, ready: &str) -> Option<String> {
+    let line = text.lines().find(|l| l.starts_with(&format!("assign {ready} = ")))?;
+    Some(text.replacen(line, &format!("assign {ready} = 1'b0;"), 1))
+}
