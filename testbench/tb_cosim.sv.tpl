@@ -89,7 +89,7 @@ module tb_cosim;
     task automatic wait_for_tri_ready;
         int waited = 0;
         while (!tri_ready) begin
-            if (waited == WAIT_EDGES) fatal($sformatf("tri_ready stayed low for %0d edges before fragment %0d's triangle setup: the top stopped taking setups", waited, n_in));
+            if (waited == WAIT_EDGES) fatal($sformatf("tri_ready stayed low for %0d edges before record %0d: the top stopped taking setups", waited, n_in));
             @(negedge clk);
             waited = waited + 1;
         end
@@ -98,7 +98,7 @@ module tb_cosim;
     task automatic wait_for_in_ready;
         int waited = 0;
         while (!in_ready) begin
-            if (waited == WAIT_EDGES) fatal($sformatf("in_ready stayed low for %0d edges before fragment %0d: the top stopped taking fragments", waited, n_in));
+            if (waited == WAIT_EDGES) fatal($sformatf("in_ready stayed low for %0d edges before record %0d: the top stopped taking fragments", waited, n_in));
             @(negedge clk);
             waited = waited + 1;
         end

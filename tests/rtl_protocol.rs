@@ -437,7 +437,9 @@ fn a_top_that_stops_answering_fails_every_bench_without_hanging() {
         let tb = tb_top(&cfg, &rtl);
         let module = tb.lines().find_map(|l| l.strip_prefix("module ")?.strip_suffix(';')).unwrap();
         let exe = Icarus.build(&w.join("build"), &Testbench::new(module, &tb), &rtl).unwrap();
-        let stuck = format!("FATAL: {ready} stayed low for ");
+        // The bound the README states: 4 · latency_cycles + 100 edges.
+        let wait = 4 * gbump::rtlgen::top::latency(&cfg) + 100;
+        let stuck = format!("FATAL: {ready} stayed low for {wait} edges before record 0");
         let log = failure(Icarus.run(&exe, &[format!("+vectors={hex}"), many.into()], None, &w, "icarus"));
         assert!(log.contains(&stuck), "icarus, {ready}:\n{log}");
         let cpp = harness_top(&cfg);
