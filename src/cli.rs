@@ -32,6 +32,10 @@ use std::path::{Path, PathBuf};
 pub struct Cli {
     #[command(subcommand)]
     pub cmd: Cmd,
+    /// Stop any simulator, build or synthesis that runs longer than this, in seconds, and
+    /// fail (default: the GBUMP_TOOL_TIMEOUT environment variable, else no limit)
+    #[arg(long, global = true, value_name = "SECONDS")]
+    pub tool_timeout: Option<f64>,
 }
 
 #[derive(Subcommand)]
@@ -739,6 +743,7 @@ pub fn run() -> anyhow::Result<()> {
         Ok(c) => c,
         Err(e) => clap_exit(e),
     };
+    crate::tool::set_time_limit(cli.tool_timeout)?;
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render {

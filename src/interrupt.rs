@@ -31,6 +31,13 @@ pub fn child(pid: u32) -> Child {
 /// timeout) reaches them only through this.
 #[cfg(target_os = "linux")]
 fn end_descendants() {
+    end_tree(std::process::id(), libc::SIGTERM)
+}
+
+/// Send `signal` to every process under `root` (its children and theirs), and to `root`
+/// itself unless it is this process.
+#[cfg(target_os = "linux")]
+pub fn end_tree(root: u32, signal: libc::c_int) {
     let me = std::process::id();
     // (pid, parent) of every process, from /proc/PID/stat ("pid (comm) state ppid ...";
     // comm may hold spaces and parentheses, so the fields are read after its last `)`).
@@ -45,18 +52,27 @@ fn end_descendants() {
             Some((pid, ppid))
         })
         .collect();
-    let mut found = vec![me];
+    let mut found = vec![root];
     let mut i = 0;
     while i < found.len() {
         let parent = found[i];
         found.extend(procs.iter().filter(|p| p.1 == parent).map(|p| p.0));
         i += 1;
     }
-    for &pid in &found[1..] {
+    for &pid in found.iter().filter(|&&p| p != me) {
         // SAFETY: a plain kill(2) of a process this run started (directly or through a tool).
         unsafe {
-            libc::kill(pid as libc::pid_t, libc::SIGTERM);
+            libc::kill(pid as libc::pid_t, signal);
         }
+    }
+}
+
+/// `root` alone where the process tree cannot be read.
+#[cfg(all(unix, not(target_os = "linux")))]
+pub fn end_tree(root: u32, signal: libc::c_int) {
+    // SAFETY: a plain kill(2) of a tool this run started and still waits for.
+    unsafe {
+        libc::kill(root as libc::pid_t, signal);
     }
 }
 

@@ -49,6 +49,10 @@ pub const MAX_ENV_MAP_SIDE: u32 = 4096;
 pub const MAX_PIPELINE_DEPTH: u32 = 4;
 /// Characters of a name that becomes part of a file name (see `names.rs`).
 pub const MAX_NAME_CHARS: u64 = 64;
+/// Seconds of the tool time limit (`--tool-timeout`, `GBUMP_TOOL_TIMEOUT`): a year.
+pub const MAX_TOOL_TIMEOUT_SECONDS: u64 = 365 * 86400;
+/// Seconds a tool may take to answer `--version` (whether it is installed).
+pub const TOOL_PROBE_SECONDS: u64 = 10;
 
 /// (name, value, what it bounds) of every limit, for the README and `gbump limits`.
 pub const ALL: &[(&str, u64, &str)] = &[
@@ -131,6 +135,16 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "MAX_NAME_CHARS",
         MAX_NAME_CHARS,
         "characters of a name that becomes part of a file name",
+    ),
+    (
+        "MAX_TOOL_TIMEOUT_SECONDS",
+        MAX_TOOL_TIMEOUT_SECONDS,
+        "seconds of the time limit of each simulator, build or synthesis run (`--tool-timeout`, `GBUMP_TOOL_TIMEOUT`; none by default)",
+    ),
+    (
+        "TOOL_PROBE_SECONDS",
+        TOOL_PROBE_SECONDS,
+        "seconds a tool may take to answer `--version`, the check that it is installed; one that takes longer is named as hung",
     ),
 ];
 

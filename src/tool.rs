@@ -4,20 +4,58 @@
 //! everywhere.
 
 use crate::error::{Error, Result};
+use crate::limits::{MAX_TOOL_TIMEOUT_SECONDS, TOOL_PROBE_SECONDS};
 use std::process::Command;
 
-/// Whether `prog` runs.
+/// Whether `prog` runs (and answers `--version` or `-V` within [`PROBE_LIMIT`]).
 pub fn have(prog: &str) -> bool {
-    Command::new(prog).arg("--version").output().is_ok() || Command::new(prog).arg("-V").output().is_ok()
+    probe(prog) == Probe::Runs
 }
 
-/// Error unless `prog` is installed.
+/// Error unless `prog` is installed and answers.
 pub fn require(prog: &str) -> Result<()> {
-    if have(prog) {
-        Ok(())
-    } else {
-        Err(missing(prog))
+    match probe(prog) {
+        Probe::Runs => Ok(()),
+        Probe::Missing => Err(missing(prog)),
+        Probe::Hung => Err(Error::Other(format!(
+            "{prog} did not answer `{prog} --version` within {} s: the program of that name on PATH hangs\n  fix: reinstall it (scripts/install-tools.sh from gbump's repository), or put the right one first on PATH",
+            PROBE_LIMIT.as_secs()
+        ))),
     }
+}
+
+/// How long a tool may take to answer `--version`.
+pub const PROBE_LIMIT: std::time::Duration = std::time::Duration::from_secs(TOOL_PROBE_SECONDS);
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Probe {
+    Runs,
+    Missing,
+    /// Started, but did not end within [`PROBE_LIMIT`].
+    Hung,
+}
+
+fn probe(prog: &str) -> Probe {
+    for flag in ["--version", "-V"] {
+        let Ok(child) = Command::new(prog)
+            .arg(flag)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+        else {
+            continue;
+        };
+        let watchdog = Watchdog::with_limit(child.id(), Some(PROBE_LIMIT));
+        let ended = child.wait_with_output().is_ok();
+        if watchdog.fired() {
+            return Probe::Hung;
+        }
+        if ended {
+            return Probe::Runs;
+        }
+    }
+    Probe::Missing
 }
 
 /// The error for a program that is not installed; it says how to install it.
@@ -51,9 +89,11 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
         .map_err(start_err)?;
     // A signal that ends gbump ends the tool too, rather than leaving it writing on its own.
     let _child = crate::interrupt::child(child.id());
+    let watchdog = Watchdog::start(child.id());
     let out = child.wait_with_output().map_err(|e| Error::Other(format!("{what}: {e}")))?;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
+    watchdog.verdict(what, &prog, &log)?;
     // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
     #[cfg(unix)]
     {
@@ -64,6 +104,124 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     }
     crate::interrupt::check()?;
     Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
+}
+
+/// The environment variable that limits each tool's run, in seconds (`--tool-timeout` sets
+/// it for one command).
+pub const TIME_LIMIT_VAR: &str = "GBUMP_TOOL_TIMEOUT";
+
+static TIME_LIMIT: std::sync::OnceLock<Option<std::time::Duration>> = std::sync::OnceLock::new();
+
+/// Set the time limit of every tool this process runs (`None`: no limit), once, from
+/// `--tool-timeout` or else [`TIME_LIMIT_VAR`]; a value that is not a positive number of
+/// seconds is refused, naming where it came from.
+pub fn set_time_limit(flag: Option<f64>) -> Result<()> {
+    let (value, from) = match flag {
+        Some(v) => (Some(v), "--tool-timeout".to_string()),
+        None => match std::env::var(TIME_LIMIT_VAR) {
+            Ok(v) if v.trim().is_empty() => (None, String::new()),
+            Ok(v) => (
+                Some(v.trim().parse::<f64>().map_err(|_| {
+                    Error::Other(format!(
+                        "{TIME_LIMIT_VAR}={v:?}: not a number of seconds\n  fix: set it to the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or unset it for no limit"
+                    ))
+                })?),
+                TIME_LIMIT_VAR.to_string(),
+            ),
+            Err(_) => (None, String::new()),
+        },
+    };
+    let limit = match value {
+        None => None,
+        Some(v) if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 => Some(std::time::Duration::from_secs_f64(v)),
+        Some(v) => {
+            return Err(Error::Other(format!(
+                "{from} {v}: a tool time limit must be more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} seconds (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds, or leave it out for no limit"
+            )))
+        }
+    };
+    let _ = TIME_LIMIT.set(limit);
+    Ok(())
+}
+
+/// How long a tool stopped at its time limit has to end after SIGTERM before SIGKILL.
+const KILL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
+
+/// Ends a tool (and the processes it started) that runs past the time limit; dropped when
+/// the tool has ended, it ends nothing.
+pub struct Watchdog {
+    cancel: Option<std::sync::mpsc::Sender<()>>,
+    fired: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+    limit: Option<std::time::Duration>,
+}
+
+impl Watchdog {
+    /// Watch process `pid` under the tool time limit (nothing, without one).
+    pub fn start(pid: u32) -> Watchdog {
+        Watchdog::with_limit(pid, TIME_LIMIT.get().copied().flatten())
+    }
+
+    /// Watch process `pid` under `limit`.
+    fn with_limit(pid: u32, limit: Option<std::time::Duration>) -> Watchdog {
+        let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let Some(limit) = limit else {
+            return Watchdog {
+                cancel: None,
+                fired,
+                thread: None,
+                limit,
+            };
+        };
+        let (tx, rx) = std::sync::mpsc::channel::<()>();
+        let f = fired.clone();
+        let thread = std::thread::spawn(move || {
+            use std::sync::mpsc::RecvTimeoutError::Timeout;
+            if rx.recv_timeout(limit) != Err(Timeout) {
+                return;
+            }
+            f.store(true, std::sync::atomic::Ordering::SeqCst);
+            #[cfg(unix)]
+            {
+                crate::interrupt::end_tree(pid, libc::SIGTERM);
+                if rx.recv_timeout(KILL_GRACE) == Err(Timeout) {
+                    crate::interrupt::end_tree(pid, libc::SIGKILL);
+                }
+            }
+        });
+        Watchdog {
+            cancel: Some(tx),
+            fired,
+            thread: Some(thread),
+            limit: Some(limit),
+        }
+    }
+
+    /// Whether the tool was stopped at the time limit.
+    pub fn fired(&self) -> bool {
+        self.fired.load(std::sync::atomic::Ordering::SeqCst)
+    }
+
+    /// The error of a tool `prog` (run for `what`, its output `log`) stopped at the limit.
+    pub fn verdict(&self, what: &str, prog: &str, log: &str) -> Result<()> {
+        if !self.fired() {
+            return Ok(());
+        }
+        let secs = self.limit.map_or(0.0, |l| l.as_secs_f64());
+        Err(Error::Other(format!(
+            "{what}: {prog} ran for more than the tool time limit ({secs} s, --tool-timeout or {TIME_LIMIT_VAR}) and was stopped; the end of its output:\n{}\n  fix: if the run is only long (many vectors, a large design), raise the limit; a tool that does not end on a small run is hung: run it again, and report it with the command if it hangs again",
+            tail(log, 10)
+        )))
+    }
+}
+
+impl Drop for Watchdog {
+    fn drop(&mut self) {
+        drop(self.cancel.take());
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
 }
 
 /// The last `n` lines of a log, for error messages.

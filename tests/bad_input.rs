@@ -1336,6 +1336,92 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
     assert!(text.contains("crashed") && text.contains("signal 11"), "{text}");
 }
 
+/// A simulator that never ends (here a vvp whose own child sleeps) is stopped at the tool time
+/// limit, with the processes it started, and the run fails naming the limit; a limit that is
+/// not a positive number of seconds is refused before anything runs, from the flag or from
+/// the environment.
+#[test]
+fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let pid_file = dir.path().join("sleeper.pid");
+    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
+    // Answers `--version` (the presence probe) unless HANG_PROBE is set; hangs on a run.
+    let vvp = format!(
+        "#!/bin/sh\nif [ \"$1\" = --version ] && [ -z \"$HANG_PROBE\" ]; then echo fake vvp; exit 0; fi\nsleep 1000 &\necho $! > {}\nwait\n",
+        pid_file.display()
+    );
+    for (n, t) in [("iverilog", iverilog.to_string()), ("vvp", vvp)] {
+        let p = bin.join(n);
+        std::fs::write(&p, t).unwrap();
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    let run = |limit: &[&str], env: Option<&str>| {
+        let mut c = Command::cargo_bin("gbump").unwrap();
+        c.env("PATH", &path).env_remove("GBUMP_TOOL_TIMEOUT");
+        if let Some(v) = env {
+            c.env("GBUMP_TOOL_TIMEOUT", v);
+        }
+        c.args(["regress", "--sim", "icarus", "--work"])
+            .arg(dir.path().join("w"))
+            .arg("--vectors")
+            .arg(&vectors)
+            .args(limit)
+            .timeout(std::time::Duration::from_secs(120));
+        let o = c.output().unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr),
+        )
+    };
+    for (limit, env) in [(&["--tool-timeout", "2"][..], None), (&[][..], Some("2"))] {
+        let t = std::time::Instant::now();
+        let (code, text) = run(limit, env);
+        assert_eq!(code, Some(1), "{text}");
+        assert!(text.contains("ran for more than the tool time limit (2 s"), "{text}");
+        assert!(t.elapsed().as_secs() < 60, "stopped late: {text}");
+        let sleeper = std::fs::read_to_string(&pid_file).unwrap();
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", sleeper.trim())).unwrap_or_default();
+        // Gone, or a zombie waiting for init to reap it.
+        assert!(
+            stat.is_empty() || stat.rsplit_once(')').unwrap().1.trim_start().starts_with('Z'),
+            "the tool's child still runs: {stat}"
+        );
+    }
+    // A vvp that hangs on `--version` too is named as hung before anything is built.
+    let t = std::time::Instant::now();
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .env("PATH", &path)
+        .env("HANG_PROBE", "1")
+        .args(["regress", "--sim", "icarus", "--work"])
+        .arg(dir.path().join("w"))
+        .arg("--vectors")
+        .arg(&vectors)
+        .timeout(std::time::Duration::from_secs(120))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.code() == Some(1) && text.contains("vvp did not answer `vvp --version` within"),
+        "{text}"
+    );
+    assert!(t.elapsed() < gbump::tool::PROBE_LIMIT * 3, "the probe waited {:?}", t.elapsed());
+    for (limit, env, says) in [
+        (&["--tool-timeout", "0"][..], None, "--tool-timeout 0"),
+        (&["--tool-timeout", "inf"][..], None, "--tool-timeout inf"),
+        (&[][..], Some("soon"), "GBUMP_TOOL_TIMEOUT=\"soon\""),
+    ] {
+        let (code, text) = run(limit, env);
+        assert!(code == Some(1) && text.contains(says) && text.contains("fix:"), "{text}");
+        assert!(!text.contains("passed"), "a refused limit still ran: {text}");
+    }
+}
+
 /// Ctrl-C, a CI runner's SIGTERM and a closed terminal's SIGHUP each stop a dump midway with
 /// nothing left behind.
 #[test]

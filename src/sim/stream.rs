@@ -248,6 +248,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         .spawn()
         .map_err(|e| Error::Other(format!("{what}: cannot start {}: {e}", r.exe.display())))?;
     let _registered = crate::interrupt::child(child.id());
+    let watchdog = crate::tool::Watchdog::start(child.id());
     let mut stdin = child.stdin.take().expect("piped");
     let mut stdout = child.stdout.take().expect("piped");
     let mut stderr = child.stderr.take().expect("piped");
@@ -329,6 +330,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
                 log += &format!("\n{what}: killed by signal {sig}");
             }
         }
+        watchdog.verdict(&what, &r.exe.display().to_string(), &log)?;
         result?;
         Ok((status.success(), log))
     })?;
