@@ -27,15 +27,20 @@
  *   say) the pointer read may be freed by the failure before it is used.
  * - Output: the library never writes to stdout or stderr. A configuration read under an old
  *   field name is accepted with a warning that gbump_config_warnings returns.
- * - Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
- *   files (gbump_column gives each column's offset); targets are "top" and the units the
+ * - Records: gbump_record_words(h, target) 32-bit words, LSB first, holding the bits of one
+ *   record of the vector files (gbump_column gives each column's offset); a binary vector
+ *   file packs its records back to back in gbump_record_bits / 8 bytes each (rounded up), so
+ *   copy each into a zeroed buffer of whole words. Targets are "top" and the units the
  *   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
  *   record's last bit are ignored. A unit record the pipeline could never feed the unit where
  *   the model would index a memory with it (a table index above 1.0, a texel block beyond the
  *   map) is refused with the port and bound, as is one whose result overflows its output;
  *   every other input is taken over its whole format, as the unit's RTL takes it (a blend
- *   factor or k above 1.0 included), though the pipeline feeds at most 1.0 there.
- * - Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call (the
+ *   factor or k above 1.0 included), though the pipeline feeds at most 1.0 there, and
+ *   light_accumulate's running sum wraps at the accumulator's width as its adder does. In a
+ *   stream of one record per edge, a column enters gbump_column_enters edges after the rest.
+ * - Palette configurations (palette = true) are refused by gbump_config_* for now.
+ * - Batches: gbump_eval_batch takes 0..=GBUMP_MAX_BATCH_RECORDS records per call (the
  *   limit the Python module's arrays have too).
  * - Threads: a handle may be read from several threads at once, but not while
  *   gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.
@@ -43,6 +48,9 @@
 
 /* Compare with gbump_abi_version() at run time. */
 #define GBUMP_ABI_VERSION 1
+
+/* Records of one gbump_eval_batch call, at most (MAX_BATCH_RECORDS). */
+#define GBUMP_MAX_BATCH_RECORDS 16777216
 
 /**
  * A configuration handle (`GbumpConfig *` in C, `chandle` in SystemVerilog).
@@ -201,7 +209,8 @@ int32_t gbump_initiation_interval(const struct GbumpConfig *h);
 int32_t gbump_reset_cycles(const struct GbumpConfig *h);
 
 /**
- * Clock cycles from input to output of unit `unit`.
+ * Clock cycles from input to output of unit `unit` (a unit name; -1 for `"top"`, whose
+ * latency is `gbump_latency`).
  *
  * # Safety
  * `h` is a live handle, `unit` a NUL-terminated string.
@@ -273,9 +282,10 @@ int32_t gbump_column_count(const struct GbumpConfig *h, const char *target);
 const char *gbump_column_name(const struct GbumpConfig *h, const char *target, int32_t i);
 
 /**
- * Where column `column` of `target` lies in a record: its lowest bit, width, lane count,
- * and whether the model fills it (1: expected output, 0: stimulus). -1 when there is no
- * such column.
+ * Where column `column` of `target` lies in a record: its lowest bit, its width (every
+ * lane's bits together: lane i is bits lsb + i·width/lanes up, width/lanes wide), its lane
+ * count, and whether the model fills it (1: expected output, 0: stimulus). -1 when there
+ * is no such column.
  *
  * # Safety
  * `h` is a live handle, the strings NUL-terminated, the four pointers writable.
@@ -287,6 +297,18 @@ int32_t gbump_column(const struct GbumpConfig *h,
                      int32_t *width,
                      int32_t *lanes,
                      int32_t *expected);
+
+/**
+ * Rising edges after the rest of its record at which column `column` of `target` enters
+ * the unit, in a stream of one record per edge: 0 for nearly every column;
+ * `light_accumulate`'s `acc_in`, the running sum fed back into its last stage, enters
+ * `latency - 1` edges late (the vector manifests' `enters`). -1 when there is no such
+ * column.
+ *
+ * # Safety
+ * `h` is a live handle, the strings NUL-terminated.
+ */
+int32_t gbump_column_enters(const struct GbumpConfig *h, const char *target, const char *column);
 
 /**
  * Evaluate one record of `target`: read the stimulus columns of `rec_in` and write the whole
@@ -320,7 +342,11 @@ int32_t gbump_eval_batch(const struct GbumpConfig *h,
                          int64_t count);
 
 /**
- * Load the power table for shininess `n` into the model (as the top's load port would).
+ * Load the power table for shininess `n` (0..=MAX_SHININESS, 1024) into the model, as the
+ * top's load port would. The configuration stays as it was (`gbump_config_toml` and
+ * `gbump_config_hash` are unchanged; `gbump_shininess` gives the table's): the table is a
+ * memory's contents, not the hardware. Refused (-1) where the hardware has no loadable
+ * table (`power_rom = true`, `power_unit = "squaring"`) for any n but the configuration's.
  *
  * # Safety
  * `h` is a live handle, not in use by another thread.

@@ -57,7 +57,8 @@ package gbump_dpi_pkg;
     import "DPI-C" function int gbump_initiation_interval(input chandle h);
     // Rising edges with `rst` high that bring the top to idle.
     import "DPI-C" function int gbump_reset_cycles(input chandle h);
-    // Clock cycles from input to output of unit `unit`.
+    // Clock cycles from input to output of unit `unit` (a unit name; -1 for `"top"`, whose latency
+    // is `gbump_latency`).
     import "DPI-C" function int gbump_unit_latency(input chandle h, input string unit);
     // Ports of the generated top, in declaration order.
     import "DPI-C" function int gbump_port_count(input chandle h);
@@ -75,15 +76,25 @@ package gbump_dpi_pkg;
     import "DPI-C" function int gbump_column_count(input chandle h, input string target);
     // Name of column `i` of `target`.
     import "DPI-C" function string gbump_column_name(input chandle h, input string target, input int i);
-    // Where column `column` of `target` lies in a record: its lowest bit, width, lane count, and
-    // whether the model fills it (1: expected output, 0: stimulus). -1 when there is no such
+    // Where column `column` of `target` lies in a record: its lowest bit, its width (every lane's
+    // bits together: lane i is bits lsb + i·width/lanes up, width/lanes wide), its lane count,
+    // and whether the model fills it (1: expected output, 0: stimulus). -1 when there is no such
     // column.
     import "DPI-C" function int gbump_column(input chandle h, input string target, input string column, output int lsb, output int width, output int lanes, output int expected);
+    // Rising edges after the rest of its record at which column `column` of `target` enters the
+    // unit, in a stream of one record per edge: 0 for nearly every column; `light_accumulate`'s
+    // `acc_in`, the running sum fed back into its last stage, enters `latency - 1` edges late (the
+    // vector manifests' `enters`). -1 when there is no such column.
+    import "DPI-C" function int gbump_column_enters(input chandle h, input string target, input string column);
     // Evaluate one record of `target`: read the stimulus columns of `rec_in` and write the whole
     // record, stimulus and the model's expected columns, to `rec_out` (may equal `rec_in`): the
     // record a vector file holds for that stimulus.
     import "DPI-C" function int gbump_eval(input chandle h, input string target, input gbump_record_t rec_in, output gbump_record_t rec_out);
-    // Load the power table for shininess `n` into the model (as the top's load port would).
+    // Load the power table for shininess `n` (0..=MAX_SHININESS, 1024) into the model, as the
+    // top's load port would. The configuration stays as it was (`gbump_config_toml` and
+    // `gbump_config_hash` are unchanged; `gbump_shininess` gives the table's): the table is a
+    // memory's contents, not the hardware. Refused (-1) where the hardware has no loadable table
+    // (`power_rom = true`, `power_unit = "squaring"`) for any n but the configuration's.
     import "DPI-C" function int gbump_set_shininess(input chandle h, input int n);
     // The shininess of the model's power table (the configuration's until `gbump_set_shininess`).
     import "DPI-C" function int gbump_shininess(input chandle h);

@@ -662,7 +662,7 @@ impl PipelineConfig {
     pub fn from_toml(file: &str, text: &str) -> Result<PipelineConfig> {
         // Text handed over by the C ABI or Python has the cap a file read has (in parse).
         let cfg = Self::parse(file, text)?;
-        cfg.validate(file)?;
+        cfg.validate(file).map_err(|e| at_line(text, e))?;
         Ok(cfg)
     }
 
@@ -716,25 +716,7 @@ impl PipelineConfig {
     /// Load from a file.
     pub fn load(path: &std::path::Path) -> Result<PipelineConfig> {
         let text = crate::limits::read_text(path)?;
-        // A value out of range, or at odds with another, is refused at its own line.
-        Self::from_toml(&path.display().to_string(), &text).map_err(|e| match e {
-            Error::Field { file, field, msg, fix } => {
-                // A field read under its old name is written under that name.
-                let old = RENAMED_FIELDS.iter().find(|(_, new)| *new == field).map(|(old, _)| *old);
-                let written_old = old.and_then(|o| Some((crate::toml_line::place(&text, o)?, o)));
-                let (place, field) = match (crate::toml_line::place(&text, &field), written_old) {
-                    (None, Some((at, old))) => (Some(at), old.to_string()),
-                    (place, _) => (place, field),
-                };
-                Error::Field {
-                    file: place.map_or(file.clone(), |(l, c)| format!("{file}:{l}:{c}")),
-                    field,
-                    msg,
-                    fix,
-                }
-            }
-            e => e,
-        })
+        Self::from_toml(&path.display().to_string(), &text)
     }
 
     /// Canonical TOML (field order fixed by the struct), the input of [`Self::hash`].
@@ -1437,6 +1419,26 @@ impl PipelineConfig {
             ("term", self.term_fmt()),
             ("acc", self.acc_fmt()),
         ]
+    }
+}
+
+/// A field's error placed at its line of `text`: a value out of range, or at odds with
+/// another, is refused where it is written (under its old name, where it was read under one).
+fn at_line(text: &str, e: Error) -> Error {
+    let Error::Field { file, field, msg, fix } = e else {
+        return e;
+    };
+    let old = RENAMED_FIELDS.iter().find(|(_, new)| *new == field).map(|(old, _)| *old);
+    let written_old = old.and_then(|o| Some((crate::toml_line::place(text, o)?, o)));
+    let (place, field) = match (crate::toml_line::place(text, &field), written_old) {
+        (None, Some((at, old))) => (Some(at), old.to_string()),
+        (place, _) => (place, field),
+    };
+    Error::Field {
+        file: place.map_or(file.clone(), |(l, c)| format!("{file}:{l}:{c}")),
+        field,
+        msg,
+        fix,
     }
 }
 

@@ -227,10 +227,14 @@ fn warnings_stay_in_the_handle() {
 #[test]
 fn errors_come_back_as_status_and_message() {
     unsafe {
-        let bad = c("lights = 9\n");
+        // A range error names its line, as one read from a file does.
+        let bad = c("\n\nlights = 9\n");
         assert!(gbump_config_from_toml(bad.as_ptr(), c("mine.toml").as_ptr()).is_null());
         let e = s(gbump_last_error());
-        assert!(e.contains("mine.toml") && e.contains("lights") && e.contains("fix:"), "{e}");
+        assert!(e.contains("mine.toml:3:1") && e.contains("lights") && e.contains("fix:"), "{e}");
+        // A caller's control characters come back escaped, as the CLI shows them.
+        assert!(gbump_config_from_toml(c("lights = 9\n").as_ptr(), c("a\u{1b}[31m.toml").as_ptr()).is_null());
+        assert!(s(gbump_last_error()).contains("a\\u{1b}[31m.toml"), "{}", s(gbump_last_error()));
         let syntax = c("lights = = 2\n");
         assert!(gbump_config_from_toml(syntax.as_ptr(), c("syn.toml").as_ptr()).is_null());
         assert!(s(gbump_last_error()).contains("syn.toml:1:"), "{}", s(gbump_last_error()));
@@ -345,4 +349,31 @@ int main(void) {
         text.trim(),
         format!("{} words, out_c at {}+{}, checksum {sum}", layout.words32(), out.lsb, out.width)
     );
+}
+
+/// Each column's `enters` through the C library is its manifest's: `light_accumulate`'s
+/// `acc_in` enters latency - 1 edges late, every other column 0; an unknown column is -1
+/// with the columns named.
+#[test]
+fn every_column_enters_as_its_manifest_says() {
+    let cfg = PipelineConfig::default();
+    unsafe {
+        let h = gbump_config_default();
+        for t in std::iter::once("top").chain(gbump::units::included(&cfg).iter().map(|u| u.name())) {
+            let layout = gbump::vectors::targets::layout(&cfg, t);
+            for col in &layout.columns {
+                let got = gbump_column_enters(h, c(t).as_ptr(), c(&col.name).as_ptr());
+                assert_eq!(got, col.enters as i32, "{t}.{}", col.name);
+            }
+        }
+        let lat = gbump::units::unit("light_accumulate").unwrap().latency(&cfg) as i32;
+        assert_eq!(
+            gbump_column_enters(h, c("light_accumulate").as_ptr(), c("acc_in").as_ptr()),
+            lat - 1
+        );
+        assert!(lat > 1, "the skew is visible in the default configuration");
+        assert_eq!(gbump_column_enters(h, c("top").as_ptr(), c("nope").as_ptr()), -1);
+        assert!(s(gbump_last_error()).contains("in_bump"), "{}", s(gbump_last_error()));
+        gbump_config_free(h);
+    }
 }

@@ -197,7 +197,8 @@ pub unsafe extern "C" fn gbump_reset_cycles(h: *const GbumpConfig) -> i32 {
     with("gbump_reset_cycles", h, -1, |_| Ok(crate::rtlgen::top::RESET_CYCLES as i32))
 }
 
-/// Clock cycles from input to output of unit `unit`.
+/// Clock cycles from input to output of unit `unit` (a unit name; -1 for `"top"`, whose
+/// latency is `gbump_latency`).
 ///
 /// # Safety
 /// `h` is a live handle, `unit` a NUL-terminated string.
@@ -309,9 +310,10 @@ pub unsafe extern "C" fn gbump_column_name(h: *const GbumpConfig, target: *const
     })
 }
 
-/// Where column `column` of `target` lies in a record: its lowest bit, width, lane count,
-/// and whether the model fills it (1: expected output, 0: stimulus). -1 when there is no
-/// such column.
+/// Where column `column` of `target` lies in a record: its lowest bit, its width (every
+/// lane's bits together: lane i is bits lsb + i·width/lanes up, width/lanes wide), its lane
+/// count, and whether the model fills it (1: expected output, 0: stimulus). -1 when there
+/// is no such column.
 ///
 /// # Safety
 /// `h` is a live handle, the strings NUL-terminated, the four pointers writable.
@@ -326,16 +328,7 @@ pub unsafe extern "C" fn gbump_column(
     expected: *mut i32,
 ) -> i32 {
     with("gbump_column", h, -1, |h| {
-        let t = h.target(str_arg(target, "target")?)?;
-        let name = str_arg(column, "column")?;
-        let c = t.layout.columns.iter().find(|c| c.name == name).ok_or_else(|| {
-            let names: Vec<&str> = t.layout.columns.iter().map(|c| c.name.as_str()).collect();
-            Error::Other(format!(
-                "column `{name}` of {}: no such column\n  fix: one of {}",
-                t.name,
-                names.join(", ")
-            ))
-        })?;
+        let c = column_of(h, target, column)?;
         for (p, v, arg) in [
             (lsb, c.lsb as i32, "lsb"),
             (width, c.width as i32, "width"),
@@ -347,6 +340,33 @@ pub unsafe extern "C" fn gbump_column(
         }
         Ok(0)
     })
+}
+
+/// Column `column` of `target` (`target` and `column` C strings).
+unsafe fn column_of<'h>(h: &'h GbumpConfig, target: *const c_char, column: *const c_char) -> Result<&'h crate::vectors::layout::Column> {
+    let t = h.target(str_arg(target, "target")?)?;
+    let name = str_arg(column, "column")?;
+    t.layout.columns.iter().find(|c| c.name == name).ok_or_else(|| {
+        let names: Vec<&str> = t.layout.columns.iter().map(|c| c.name.as_str()).collect();
+        Error::Other(format!(
+            "column `{name}` of {}: no such column\n  fix: one of {}",
+            t.name,
+            names.join(", ")
+        ))
+    })
+}
+
+/// Rising edges after the rest of its record at which column `column` of `target` enters
+/// the unit, in a stream of one record per edge: 0 for nearly every column;
+/// `light_accumulate`'s `acc_in`, the running sum fed back into its last stage, enters
+/// `latency - 1` edges late (the vector manifests' `enters`). -1 when there is no such
+/// column.
+///
+/// # Safety
+/// `h` is a live handle, the strings NUL-terminated.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_column_enters(h: *const GbumpConfig, target: *const c_char, column: *const c_char) -> i32 {
+    with("gbump_column_enters", h, -1, |h| Ok(column_of(h, target, column)?.enters as i32))
 }
 
 /// Evaluate one record of `target`: read the stimulus columns of `rec_in` and write the whole
@@ -400,7 +420,11 @@ unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, r
     })
 }
 
-/// Load the power table for shininess `n` into the model (as the top's load port would).
+/// Load the power table for shininess `n` (0..=MAX_SHININESS, 1024) into the model, as the
+/// top's load port would. The configuration stays as it was (`gbump_config_toml` and
+/// `gbump_config_hash` are unchanged; `gbump_shininess` gives the table's): the table is a
+/// memory's contents, not the hardware. Refused (-1) where the hardware has no loadable
+/// table (`power_rom = true`, `power_unit = "squaring"`) for any n but the configuration's.
 ///
 /// # Safety
 /// `h` is a live handle, not in use by another thread.

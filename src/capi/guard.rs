@@ -12,7 +12,8 @@ thread_local! {
 
 /// Record `msg` as this thread's last error.
 pub fn set_error(msg: &str) {
-    let c = CString::new(msg.replace('\0', " ")).expect("no NUL left");
+    // Control characters a caller passed in (a name, a path) shown escaped, as the CLI shows them.
+    let c = CString::new(crate::error::shown(&msg.replace('\0', " "))).expect("no NUL left");
     LAST_ERROR.with(|e| *e.borrow_mut() = c);
 }
 

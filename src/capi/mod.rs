@@ -39,15 +39,20 @@ Conventions of every function below:
   say) the pointer read may be freed by the failure before it is used.
 - Output: the library never writes to stdout or stderr. A configuration read under an old
   field name is accepted with a warning that gbump_config_warnings returns.
-- Records: gbump_record_words(h, target) 32-bit words, LSB first, the layout of the vector
-  files (gbump_column gives each column's offset); targets are \"top\" and the units the
+- Records: gbump_record_words(h, target) 32-bit words, LSB first, holding the bits of one
+  record of the vector files (gbump_column gives each column's offset); a binary vector
+  file packs its records back to back in gbump_record_bits / 8 bytes each (rounded up), so
+  copy each into a zeroed buffer of whole words. Targets are \"top\" and the units the
   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
   record's last bit are ignored. A unit record the pipeline could never feed the unit where
   the model would index a memory with it (a table index above 1.0, a texel block beyond the
   map) is refused with the port and bound, as is one whose result overflows its output;
   every other input is taken over its whole format, as the unit's RTL takes it (a blend
-  factor or k above 1.0 included), though the pipeline feeds at most 1.0 there.
-- Batches: gbump_eval_batch takes 0..=MAX_BATCH_RECORDS (2^24) records per call (the
+  factor or k above 1.0 included), though the pipeline feeds at most 1.0 there, and
+  light_accumulate's running sum wraps at the accumulator's width as its adder does. In a
+  stream of one record per edge, a column enters gbump_column_enters edges after the rest.
+- Palette configurations (palette = true) are refused by gbump_config_* for now.
+- Batches: gbump_eval_batch takes 0..=GBUMP_MAX_BATCH_RECORDS records per call (the
   limit the Python module's arrays have too).
 - Threads: a handle may be read from several threads at once, but not while
   gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.";
