@@ -121,7 +121,7 @@ pub enum Cmd {
         sim: SimChoice,
         #[command(flatten)]
         pick: ConfigPick,
-        /// Run these vector manifests (JSON files or folders of them) instead of the default suite.
+        /// Run these vector manifests (JSON files, or folders of them: every .json file under the folder, subfolders included) instead of the default suite.
         #[arg(long, value_name = "PATH")]
         vectors: Vec<PathBuf>,
         /// Stream random:N, scene:NAME or corners through the Verilator harness instead: made in

@@ -8,21 +8,15 @@ use crate::error::{Error, Result};
 use crate::work_lock::WorkLock;
 use std::path::{Path, PathBuf};
 
-/// The manifests `--vectors` names: JSON files, and every JSON file of a folder (sorted), by
-/// absolute path.
+/// The manifests `--vectors` names: JSON files, and every JSON file of a folder and of the
+/// folders under it (sorted; a link to a folder is not followed), by absolute path.
 pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
     let mut given = Vec::new();
     for p in vectors {
         super::check_tool_path(p, "--vectors")?;
         if p.is_dir() {
             let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
-                .map_err(|e| Error::io(p, e))?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                .collect();
-            found.sort();
-            given.extend(found);
+            json_under(p, &mut given)?;
         } else {
             given.push(std::path::absolute(p).map_err(|e| Error::io(p, e))?);
         }
@@ -49,6 +43,25 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
         )));
     }
     Ok(given)
+}
+
+/// Every `.json` file in `dir` and the folders under it, sorted, onto `out`: a set kept in
+/// a subfolder runs too rather than being passed over.
+fn json_under(dir: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
+    let mut entries: Vec<std::fs::DirEntry> = std::fs::read_dir(dir)
+        .map_err(|e| Error::io(dir, e))?
+        .collect::<std::io::Result<_>>()
+        .map_err(|e| Error::io(dir, e))?;
+    entries.sort_by_key(|e| e.file_name());
+    for e in entries {
+        let path = e.path();
+        if e.file_type().map_err(|err| Error::io(&path, err))?.is_dir() {
+            json_under(&path, out)?;
+        } else if path.extension().is_some_and(|x| x == "json") {
+            out.push(path);
+        }
+    }
+    Ok(())
 }
 
 /// Regress `cfg` (selected by `pick_args`, for the RTL's header) on `vectors`, or on the
@@ -122,5 +135,25 @@ fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
             // The run's own error is what matters; a report that cannot be written adds nothing.
             let _ = crate::render::output::write_atomic(j, super::summary::junit_error(cfg, &e.to_string()).as_bytes());
         }
+    }
+}
+
+#[cfg(test)]
+mod manifest_tests {
+    /// A folder's sets are its own `.json` files and those of the folders under it (a set kept
+    /// in a subfolder is not passed over), sorted; other files and links to folders are not
+    /// read.
+    #[test]
+    fn a_folder_gives_the_manifests_of_its_subfolders_too() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path();
+        std::fs::create_dir_all(p.join("b/deeper")).unwrap();
+        for f in ["z.json", "a.json", "b/m.json", "b/deeper/n.json", "b/notes.txt"] {
+            std::fs::write(p.join(f), "{}").unwrap();
+        }
+        std::os::unix::fs::symlink(p.join("b"), p.join("link")).unwrap();
+        let got = super::given_manifests(&[p.to_path_buf()]).unwrap();
+        let rel: Vec<String> = got.iter().map(|g| g.strip_prefix(p).unwrap().display().to_string()).collect();
+        assert_eq!(rel, ["a.json", "b/deeper/n.json", "b/m.json", "z.json"]);
     }
 }
