@@ -127,3 +127,44 @@ fn a_failed_regression_with_a_pipe_for_its_report_does_not_wait() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("absent.json"), "{err}");
 }
+
+/// `--junit` naming a file of a given set (its text or binary records, its power table) is
+/// refused before anything runs, as naming its manifest is: the report would replace the
+/// data the run reads, and the next regression would find the set broken.
+#[test]
+fn junit_over_a_sets_data_file_is_refused_first() {
+    let d = tempfile::tempdir().unwrap();
+    let v = d.path().join("v");
+    let gbump = |args: &[&str]| {
+        let o = Command::new(assert_cmd::cargo::cargo_bin("gbump")).args(args).output().unwrap();
+        (
+            o.status.success(),
+            String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr),
+        )
+    };
+    let (ok, text) = gbump(&["vectors", "--source", "random:50", "--target", "top", "--out", v.to_str().unwrap()]);
+    assert!(ok, "{text}");
+    let manifest = v.join("random50_top.json");
+    for data in ["random50_top.hex", "random50_top.bin", "random50_top_power_table.hex"] {
+        let target = v.join(data);
+        let before = std::fs::read(&target).unwrap();
+        let w = d.path().join("w");
+        let (ok, text) = gbump(&[
+            "regress",
+            "--sim",
+            "icarus",
+            "--vectors",
+            manifest.to_str().unwrap(),
+            "--work",
+            w.to_str().unwrap(),
+            "--junit",
+            target.to_str().unwrap(),
+        ]);
+        assert!(
+            !ok && text.contains("an input of this run") && text.contains(data),
+            "{data}: {text}"
+        );
+        assert!(!text.contains("passed"), "{data}: the regression ran before the refusal:\n{text}");
+        assert_eq!(std::fs::read(&target).unwrap(), before, "{data} was changed");
+    }
+}

@@ -141,6 +141,8 @@ fn sha256_visit(p: &Path, mut see: impl FnMut(u64, &[u8])) -> Result<(u64, Strin
     // A pipe in a data file's place would hang the open; every file a set names is hashed here.
     crate::limits::check_not_pipe(p, "put back the regular file `gbump vectors` wrote, or regenerate the set")?;
     let mut f = std::fs::File::open(p).map_err(|e| Error::io(p, e))?;
+    // A set's file is an input of the run: no result (`--junit`, say) may be written over it.
+    crate::limits::note_input(p);
     let mut h = Sha256::new();
     let mut buf = vec![0u8; 1 << 20];
     let mut n = 0u64;
