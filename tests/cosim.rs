@@ -243,3 +243,40 @@ fn verilators_runtime_objects_come_from_the_shared_cache() {
         "the entry is replaced"
     );
 }
+
+/// An RTL folder whose interface JSON was edited is refused before anything is built, naming
+/// the field: a file name that leads out of the folder (whose contents must not be read, nor
+/// echoed), an empty one, and a `top` that is not the configuration's module.
+#[test]
+fn an_edited_interface_json_is_refused_by_field() {
+    let w = work("edited_json");
+    let dir = w.join("rtl");
+    rtl(None, &dir);
+    let jf = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|x| x == "json"))
+        .unwrap();
+    let original = std::fs::read_to_string(&jf).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&original).unwrap();
+    let edits: [(&[&str], &str, &str); 4] = [
+        (&["files", "filelist"], "/etc/passwd", "files.filelist"),
+        (&["power_table", "init_file"], "../elsewhere.hex", "power_table.init_file"),
+        (&["files", "filelist"], "", "files.filelist"),
+        (&["top"], "gbump_pipeline_deadbeef", "`top`"),
+    ];
+    for (path, value, says) in edits {
+        let mut e = j.clone();
+        let mut at = &mut e;
+        for k in path {
+            at = at.get_mut(*k).unwrap();
+        }
+        *at = serde_json::Value::String(value.into());
+        std::fs::write(&jf, serde_json::to_string_pretty(&e).unwrap()).unwrap();
+        let (ok, log) = gbump(&["cosim", "--rtl", dir.to_str().unwrap(), "--random", "10"], &w);
+        assert!(!ok && log.contains(says) && log.contains("fix:"), "{value}:\n{log}");
+        assert!(!log.contains("root:"), "{value}: a file outside the folder was read:\n{log}");
+    }
+    std::fs::write(&jf, original).unwrap();
+}

@@ -171,15 +171,24 @@ pub fn interface_file(dir: &Path) -> Result<PathBuf> {
 /// The RTL a simulator reads, from the interface JSON's file names (the filelist and the
 /// waivers), all by absolute path.
 fn rtl_of(dir: &Path, j: &serde_json::Value, file: &Path) -> Result<Rtl> {
-    let list = dir.join(tb::text(j, &["files", "filelist"], file)?);
-    let text = std::fs::read_to_string(&list).map_err(|e| Error::io(&list, e))?;
-    let sources: Vec<PathBuf> = text
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with("//"))
-        .map(|l| dir.join(l))
-        .collect();
-    let waivers = vec![dir.join(tb::text(j, &["files", "waivers"], file)?)];
+    // Every name is a file of the folder: none may lead out of it (`../x`, `/etc/x`).
+    let name = |path: &[&str]| -> Result<PathBuf> {
+        let n = tb::text(j, path, file)?;
+        crate::names::check(&file.display().to_string(), &path.join("."), n)?;
+        Ok(dir.join(n))
+    };
+    let list = name(&["files", "filelist"])?;
+    let fix = "regenerate the folder with `gbump rtl --out DIR`";
+    let text = crate::limits::read_text_as(&list, "a filelist", fix)?;
+    let mut sources = Vec::new();
+    for (i, l) in text.lines().enumerate().map(|(i, l)| (i, l.trim())) {
+        if l.is_empty() || l.starts_with("//") {
+            continue;
+        }
+        crate::names::check(&format!("{}:{}", list.display(), i + 1), "source", l)?;
+        sources.push(dir.join(l));
+    }
+    let waivers = vec![name(&["files", "waivers"])?];
     for f in sources.iter().chain(&waivers) {
         if !f.is_file() {
             return Err(Error::Other(format!(
@@ -190,7 +199,7 @@ fn rtl_of(dir: &Path, j: &serde_json::Value, file: &Path) -> Result<Rtl> {
         }
     }
     Ok(Rtl {
-        init_file: dir.join(tb::text(j, &["power_table", "init_file"], file)?),
+        init_file: name(&["power_table", "init_file"])?,
         dir: dir.to_path_buf(),
         sources,
         waivers,
@@ -214,6 +223,16 @@ fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json
         return Err(Error::Other(format!(
             "--rtl {}: the RTL of another configuration ({hash:?}), not of the one picked ({})\n  fix: pick its configuration (the interface JSON's `config`), or generate this one's RTL with `gbump rtl`",
             dir.display(),
+            cfg.hash()
+        )));
+    }
+    // The module the testbench instantiates: the configuration's, as the hash says.
+    let top = crate::rtlgen::units_v::module_name(cfg, "gbump_pipeline");
+    let named = tb::text(&j, &["top"], &jf)?;
+    if named != top {
+        return Err(Error::Other(format!(
+            "{}: `top` is {named:?}, but the top of configuration {} is {top:?}: the interface JSON was edited or belongs to other RTL\n  fix: {fix}",
+            jf.display(),
             cfg.hash()
         )));
     }
