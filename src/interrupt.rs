@@ -10,6 +10,9 @@ use crate::error::{Error, Result};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+/// Set as the handler starts, before anything else: a tool the same signal ended may be
+/// seen ended before the handler has run (`settle`).
+static SIGNALLED: AtomicBool = AtomicBool::new(false);
 static CLEANUPS: AtomicUsize = AtomicUsize::new(0);
 /// Tools running now (`tool::run_cmd`): a signal that ends gbump ends them too.
 static CHILDREN: std::sync::Mutex<Vec<u32>> = std::sync::Mutex::new(Vec::new());
@@ -121,6 +124,7 @@ pub fn install() {
         // The handler runs on a thread of its own, not in signal context: it may read /proc,
         // print and signal. The tools end on the first signal too: a run stopping through its
         // error path must not wait for a whole build first.
+        SIGNALLED.store(true, Ordering::SeqCst);
         end_descendants();
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             stop_now();
@@ -166,6 +170,28 @@ impl Drop for Cleanup {
 /// shell's convention for Ctrl-C is, whichever step noticed it).
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// How long a tool ended by SIGINT, SIGTERM or SIGHUP waits for gbump's own handler.
+const SETTLE: std::time::Duration = std::time::Duration::from_secs(1);
+
+/// A tool ended by signal `sig`: when that is a stop signal that may have reached gbump too
+/// (a terminal's Ctrl-C, a runner's SIGTERM to the group), the handler is given [`SETTLE`]
+/// to run, so the run stops as interrupted rather than reporting a crashed tool, whichever
+/// process the kernel signalled first.
+#[cfg(unix)]
+pub fn settle(sig: i32) -> Result<()> {
+    if [libc::SIGINT, libc::SIGTERM, libc::SIGHUP].contains(&sig) {
+        let t = std::time::Instant::now();
+        while !SIGNALLED.load(Ordering::SeqCst) && t.elapsed() < SETTLE {
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        // A handler that found no cleanup to wait for exits the process; give it the time.
+        if SIGNALLED.load(Ordering::SeqCst) && CLEANUPS.load(Ordering::SeqCst) == 0 {
+            std::thread::sleep(SETTLE);
+        }
+    }
+    check()
 }
 
 /// Error if an interrupt arrived.

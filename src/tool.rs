@@ -99,6 +99,7 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     {
         use std::os::unix::process::ExitStatusExt;
         if let Some(sig) = out.status.signal() {
+            crate::interrupt::settle(sig)?;
             log += &format!("\n{what}: killed by signal {sig}");
         }
     }

@@ -327,6 +327,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         {
             use std::os::unix::process::ExitStatusExt;
             if let Some(sig) = status.signal() {
+                crate::interrupt::settle(sig)?;
                 log += &format!("\n{what}: killed by signal {sig}");
             }
         }
