@@ -792,6 +792,15 @@ fn images_through_the_rtl_equal_the_golden_images() {
         let a = image::open(dir.path().join(format!("{scene}_rtl.png"))).unwrap().to_rgb8();
         let b = image::open(dir.path().join(format!("{scene}_golden.png"))).unwrap().to_rgb8();
         assert_eq!(a.as_raw(), b.as_raw());
+        // A later run without --rtl (another size) leaves no RTL image of the earlier one.
+        let o = gbump()
+            .args(["render", "--size", "32x24", "--scene", scene, "--out"])
+            .arg(dir.path())
+            .assert()
+            .success();
+        let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+        assert!(text.contains(&format!("removed {scene}_rtl.png")), "{text}");
+        assert!(!dir.path().join(format!("{scene}_rtl.png")).exists(), "a stale RTL image stayed");
     }
 }
 

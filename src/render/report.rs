@@ -101,7 +101,21 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
         let differ = img_rtl.iter().zip(&img.golden).filter(|(a, b)| a != b).count();
         rtl = Some((differ, t0.elapsed().as_secs_f64()));
     }
-    write_files(r.out, &blobs)?;
+    // A run without --rtl removes an earlier run's RTL image with the files it replaces: it
+    // was of another size or configuration, and read beside these as if of this run.
+    let stale_rtl = r.out.join(format!("{name}_rtl.png"));
+    let retired = rtl.is_none() && std::fs::symlink_metadata(&stale_rtl).is_ok_and(|m| m.is_file());
+    crate::commit::together(|| {
+        if retired {
+            crate::commit::retire(&stale_rtl)?;
+        }
+        write_files(r.out, &blobs)
+    })?;
+    if retired {
+        say(&format!(
+            "  removed {name}_rtl.png, an earlier run's RTL image (add --rtl to make this run's)"
+        ))?;
+    }
     say(&format!(
         "scene {name} {w}x{h}, config {}, {} fragments, {:.2} s",
         cfg.hash(),
