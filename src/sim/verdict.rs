@@ -15,12 +15,14 @@ pub struct Outcome {
 
 /// Parse the testbench's summary line.
 pub fn parse_summary(log: &str) -> Option<(u64, u64)> {
-    log.lines().rev().find_map(|l| {
-        let l = l.trim();
-        let (p, rest) = l.split_once(" passed, ")?;
-        let f = rest.strip_suffix(" failed")?;
-        Some((p.parse().ok()?, f.parse().ok()?))
-    })
+    log.lines().rev().find_map(summary_of)
+}
+
+/// The counts of one summary line.
+fn summary_of(l: &str) -> Option<(u64, u64)> {
+    let (p, rest) = l.trim().split_once(" passed, ")?;
+    let f = rest.strip_suffix(" failed")?;
+    Some((p.parse().ok()?, f.parse().ok()?))
 }
 
 /// Lines of a simulation log in which the simulator warned or erred: a memory file that did
@@ -64,6 +66,17 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
             } else {
                 "read the lines above; rerun with --waves to see the signals"
             }
+        )));
+    }
+    // A testbench prints one summary and a MISMATCH line for each failure it counts: a second
+    // summary, or a mismatch beside "0 failed", is output mixed with another's or altered
+    // (a wrapper that appends a clean line), and does not count.
+    let summaries = log.lines().filter(|l| summary_of(l).is_some()).count();
+    let mismatches = judged.lines().filter(|l| l.trim_start().starts_with("MISMATCH")).count();
+    if summaries > 1 || (mismatches > 0 && parse_summary(&log).is_some_and(|(_, f)| f == 0)) {
+        return Err(Error::Other(format!(
+            "{what}: the log holds {summaries} \"N passed, N failed\" lines and {mismatches} MISMATCH line(s), which no testbench run prints (one summary, counting every mismatch), so the run does not count\n--- last lines ---\n{}\n  fix: run the simulator as installed (scripts/install-tools.sh), not through a wrapper that adds to its output",
+            tail(&log, 15)
         )));
     }
     if parse_summary(&log) == Some((0, 0)) {
@@ -110,6 +123,13 @@ mod tests {
         assert!(e.contains("exited with an error") && e.contains("fix:"), "{e}");
         assert_eq!(super::outcome(true, log, 1.0, "run").unwrap().passed, 20);
         let failing = format!("18 passed, 2 failed\n{}\n", crate::rtlgen::testbench::EXIT_MARK);
-        assert_eq!(super::outcome(false, failing, 1.0, "run").unwrap().failed, 2);
+        assert_eq!(super::outcome(false, failing.clone(), 1.0, "run").unwrap().failed, 2);
+        // A clean line appended after a failing run's output (a wrapper), or a mismatch
+        // beside "0 failed", does not pass.
+        let appended = format!("MISMATCH vector 3\n{failing}20 passed, 0 failed\n");
+        let e = super::outcome(true, appended, 1.0, "run").unwrap_err().to_string();
+        assert!(e.contains("2 \"N passed, N failed\" lines") && e.contains("fix:"), "{e}");
+        let hidden = "MISMATCH vector 3\n20 passed, 0 failed\n".to_string();
+        assert!(super::outcome(true, hidden, 1.0, "run").is_err());
     }
 }
