@@ -869,6 +869,29 @@ pub fn run() -> anyhow::Result<()> {
             // name it), and check_sets refuses any set of another. Nothing is written or
             // said until every given set has been checked whole (`regress`'s `announce`).
             let stream = stream.map(|s| crate::sim::stream::StreamSource::parse(&s)).transpose()?;
+            // --scene-size sizes scene fragments: refused where this run makes none, rather
+            // than passed over.
+            if let Some(sz) = &scene_size {
+                let scene_stream = matches!(stream, Some(crate::sim::stream::StreamSource::Scene(_)));
+                let top_sets = opts.targets.iter().any(|t| t == "all" || t == "top");
+                let why = if stream.is_some() && !scene_stream {
+                    Some("a --stream of random or corner records has no scene fragments")
+                } else if stream.is_none() && !vectors.is_empty() {
+                    Some("--vectors runs the given sets as they are")
+                } else if stream.is_none() && no_scenes {
+                    Some("--no-scenes leaves the scenes out")
+                } else if stream.is_none() && !top_sets {
+                    Some("--target leaves out the top, whose sets the scenes are")
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    return Err(Error::Other(format!(
+                        "--scene-size {sz}: no effect on this run: {why}\n  fix: drop --scene-size, or run scene fragments (the default suite, or --stream scene:NAME)"
+                    ))
+                    .into());
+                }
+            }
             let mut from_manifest = None;
             let (cfg, pick) = match (&pick.config, &pick.scene, vectors.is_empty(), &stream) {
                 // A scene streams under the scene's own configuration unless one is given, as

@@ -981,6 +981,18 @@ fn cases() -> Vec<Case> {
             vec!["8192x8192", "MAX_MEMORY_BYTES"],
         ),
         (
+            "regress --scene-size on a stream without scenes",
+            vec![],
+            vec!["regress", "--stream", "random:100", "--scene-size", "8x8", "--work", "w"],
+            vec!["--scene-size 8x8", "no effect", "fix:"],
+        ),
+        (
+            "regress --scene-size with --no-scenes",
+            vec![],
+            vec!["regress", "--no-scenes", "--scene-size", "8x8", "--work", "w"],
+            vec!["--scene-size 8x8", "--no-scenes", "fix:"],
+        ),
+        (
             "--size for a source without an image",
             vec![],
             vec!["vectors", "--source", "corners", "--size", "64x64", "--out", "out"],
