@@ -981,6 +981,18 @@ fn cases() -> Vec<Case> {
             vec!["8192x8192", "MAX_MEMORY_BYTES"],
         ),
         (
+            "cosim --lib given a folder",
+            vec![],
+            vec!["cosim", "--lib", "/tmp", "--work", "w"],
+            vec!["/tmp: a folder, not the gbump C library", "fix:"],
+        ),
+        (
+            "cosim --lib given a device",
+            vec![],
+            vec!["cosim", "--lib", "/dev/null", "--work", "w"],
+            vec!["/dev/null: not a regular file", "fix:"],
+        ),
+        (
             "regress --scene-size on a stream without scenes",
             vec![],
             vec!["regress", "--stream", "random:100", "--scene-size", "8x8", "--work", "w"],

@@ -93,8 +93,13 @@ pub fn default_library() -> Result<PathBuf> {
 /// is touched.
 pub fn check_library(lib: &Path) -> Result<()> {
     if !lib.is_file() {
+        let what = match std::fs::metadata(lib) {
+            Err(_) => "the gbump C library is not there",
+            Ok(m) if m.is_dir() => "a folder, not the gbump C library",
+            Ok(_) => "not a regular file (a device or a pipe), so not the gbump C library",
+        };
         return Err(Error::Other(format!(
-            "{}: the gbump C library is not there\n  fix: cargo build --release -j 1 (it builds libgbump.so beside the gbump executable), or pass --lib FILE",
+            "{}: {what}\n  fix: cargo build --release -j 1 (it builds libgbump.so beside the gbump executable), or pass --lib FILE",
             lib.display()
         )));
     }
