@@ -121,7 +121,7 @@ pub enum Cmd {
         sim: SimChoice,
         #[command(flatten)]
         pick: ConfigPick,
-        /// Run these vector manifests (JSON files, or folders of them: every .json file under the folder, subfolders included) instead of the default suite.
+        /// Run these vector manifests (JSON files or folders of them; a folder's subfolders are not read) instead of the default suite.
         #[arg(long, value_name = "PATH")]
         vectors: Vec<PathBuf>,
         /// Stream random:N, scene:NAME or corners through the Verilator harness instead: made in
@@ -876,9 +876,7 @@ pub fn run() -> anyhow::Result<()> {
                 let top_sets = opts.targets.iter().any(|t| t == "all" || t == "top");
                 let why = if stream.is_some() && !scene_stream {
                     Some("a --stream of random or corner records has no scene fragments")
-                } else if stream.is_none() && !vectors.is_empty() {
-                    Some("--vectors runs the given sets as they are")
-                } else if stream.is_none() && no_scenes {
+                } else if stream.is_none() && no_scenes && opts.own_scenes.is_empty() {
                     Some("--no-scenes leaves the scenes out")
                 } else if stream.is_none() && !top_sets {
                     Some("--target leaves out the top, whose sets the scenes are")

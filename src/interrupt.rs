@@ -13,6 +13,9 @@ static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 /// Set as the handler starts, before anything else: a tool the same signal ended may be
 /// seen ended before the handler has run (`settle`).
 static SIGNALLED: AtomicBool = AtomicBool::new(false);
+/// Set once the handler has decided (the run stops through its error path: `INTERRUPTED`
+/// is set), so `settle` reads the decision, not a flag still on its way.
+static HANDLED: AtomicBool = AtomicBool::new(false);
 static CLEANUPS: AtomicUsize = AtomicUsize::new(0);
 /// Tools running now (`tool::run_cmd`): a signal that ends gbump ends them too.
 static CHILDREN: std::sync::Mutex<Vec<u32>> = std::sync::Mutex::new(Vec::new());
@@ -34,13 +37,13 @@ pub fn child(pid: u32) -> Child {
 /// timeout) reaches them only through this.
 #[cfg(target_os = "linux")]
 fn end_descendants() {
-    end_tree(std::process::id(), libc::SIGTERM)
+    end_tree(std::process::id(), libc::SIGTERM);
 }
 
 /// Send `signal` to every process under `root` (its children and theirs), and to `root`
-/// itself unless it is this process.
+/// itself unless it is this process; the processes signalled.
 #[cfg(target_os = "linux")]
-pub fn end_tree(root: u32, signal: libc::c_int) {
+pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     let me = std::process::id();
     // (pid, parent) of every process, from /proc/PID/stat ("pid (comm) state ppid ...";
     // comm may hold spaces and parentheses, so the fields are read after its last `)`).
@@ -62,21 +65,24 @@ pub fn end_tree(root: u32, signal: libc::c_int) {
         found.extend(procs.iter().filter(|p| p.1 == parent).map(|p| p.0));
         i += 1;
     }
-    for &pid in found.iter().filter(|&&p| p != me) {
+    found.retain(|&p| p != me);
+    for &pid in &found {
         // SAFETY: a plain kill(2) of a process this run started (directly or through a tool).
         unsafe {
             libc::kill(pid as libc::pid_t, signal);
         }
     }
+    found
 }
 
 /// `root` alone where the process tree cannot be read.
 #[cfg(all(unix, not(target_os = "linux")))]
-pub fn end_tree(root: u32, signal: libc::c_int) {
+pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     // SAFETY: a plain kill(2) of a tool this run started and still waits for.
     unsafe {
         libc::kill(root as libc::pid_t, signal);
     }
+    vec![root]
 }
 
 #[cfg(not(target_os = "linux"))]
@@ -129,6 +135,7 @@ pub fn install() {
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             stop_now();
         }
+        HANDLED.store(true, Ordering::SeqCst);
         // A run blocked where no loop checks the flag (opening a FIFO nobody reads, a full
         // pipe) would wait for a second signal, which a CI timeout or `docker stop` never
         // sends: after a grace period the first one ends it too.
@@ -182,13 +189,17 @@ const SETTLE: std::time::Duration = std::time::Duration::from_secs(1);
 #[cfg(unix)]
 pub fn settle(sig: i32) -> Result<()> {
     if [libc::SIGINT, libc::SIGTERM, libc::SIGHUP].contains(&sig) {
-        let t = std::time::Instant::now();
-        while !SIGNALLED.load(Ordering::SeqCst) && t.elapsed() < SETTLE {
-            std::thread::sleep(std::time::Duration::from_millis(10));
-        }
-        // A handler that found no cleanup to wait for exits the process; give it the time.
-        if SIGNALLED.load(Ordering::SeqCst) && CLEANUPS.load(Ordering::SeqCst) == 0 {
-            std::thread::sleep(SETTLE);
+        let wait_for = |flag: &AtomicBool| {
+            let t = std::time::Instant::now();
+            while !flag.load(Ordering::SeqCst) && t.elapsed() < SETTLE {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+        };
+        wait_for(&SIGNALLED);
+        // Once the signal reached gbump, the handler either exits the process (no cleanup to
+        // wait for) or sets INTERRUPTED and then HANDLED: wait for that decision.
+        if SIGNALLED.load(Ordering::SeqCst) {
+            wait_for(&HANDLED);
         }
     }
     check()

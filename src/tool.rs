@@ -12,8 +12,10 @@ pub fn have(prog: &str) -> bool {
     probe(prog) == Probe::Runs
 }
 
-/// Error unless `prog` is installed and answers.
+/// Error unless `prog` is installed and answers (and the tool time limit, which every run
+/// of it will have, is valid: a bad one is refused before the command's work).
 pub fn require(prog: &str) -> Result<()> {
+    time_limit()?;
     match probe(prog) {
         Probe::Runs => Ok(()),
         Probe::Missing => Err(missing(prog)),
@@ -37,18 +39,20 @@ enum Probe {
 
 fn probe(prog: &str) -> Probe {
     for flag in ["--version", "-V"] {
-        let Ok(child) = Command::new(prog)
+        // Its output is not read: a process it leaves behind holding a pipe cannot hold the
+        // probe open.
+        let Ok(mut child) = Command::new(prog)
             .arg(flag)
             .stdin(std::process::Stdio::null())
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
             .spawn()
         else {
             continue;
         };
         let watchdog = Watchdog::with_limit(child.id(), Some(PROBE_LIMIT));
-        let ended = child.wait_with_output().is_ok();
-        if watchdog.fired() {
+        let ended = child.wait().is_ok();
+        if watchdog.finish() {
             return Probe::Hung;
         }
         if ended {
@@ -72,6 +76,7 @@ pub fn missing(prog: &str) -> Error {
 /// Run a command, capturing stdout and stderr together; `what` names it in errors.
 pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     crate::interrupt::check()?;
+    let limit = time_limit()?;
     let t0 = std::time::Instant::now();
     let prog = cmd.get_program().to_string_lossy().into_owned();
     let start_err = |e: std::io::Error| {
@@ -89,11 +94,15 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
         .map_err(start_err)?;
     // A signal that ends gbump ends the tool too, rather than leaving it writing on its own.
     let _child = crate::interrupt::child(child.id());
-    let watchdog = Watchdog::start(child.id());
+    let watchdog = Watchdog::start(child.id(), limit);
     let out = child.wait_with_output().map_err(|e| Error::Other(format!("{what}: {e}")))?;
+    // Ended before the tool's pid can be reused, and before any wait below.
+    let timed_out = watchdog.finish();
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
-    watchdog.verdict(what, &prog, &log)?;
+    if timed_out {
+        return Err(time_limit_error(what, &prog, limit, &log));
+    }
     // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
     #[cfg(unix)]
     {
@@ -108,62 +117,69 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
 }
 
 /// The environment variable that limits each tool's run, in seconds (`--tool-timeout` sets
-/// it for one command).
+/// the limit for one command instead).
 pub const TIME_LIMIT_VAR: &str = "GBUMP_TOOL_TIMEOUT";
 
-static TIME_LIMIT: std::sync::OnceLock<Option<std::time::Duration>> = std::sync::OnceLock::new();
+/// `--tool-timeout`, when given (checked when the command line is read).
+static FLAG_LIMIT: std::sync::OnceLock<std::time::Duration> = std::sync::OnceLock::new();
 
-/// Set the time limit of every tool this process runs (`None`: no limit), once, from
-/// `--tool-timeout` or else [`TIME_LIMIT_VAR`]; a value that is not a positive number of
-/// seconds is refused, naming where it came from.
+/// Set the time limit of every tool this process runs from `--tool-timeout` (`None`: the
+/// environment's [`TIME_LIMIT_VAR`], else none), refusing a value that is not a positive
+/// number of seconds up to `MAX_TOOL_TIMEOUT_SECONDS`.
 pub fn set_time_limit(flag: Option<f64>) -> Result<()> {
-    let (value, from) = match flag {
-        Some(v) => (Some(v), "--tool-timeout".to_string()),
-        None => match std::env::var(TIME_LIMIT_VAR) {
-            Ok(v) if v.trim().is_empty() => (None, String::new()),
-            Ok(v) => (
-                Some(v.trim().parse::<f64>().map_err(|_| {
-                    Error::Other(format!(
-                        "{TIME_LIMIT_VAR}={v:?}: not a number of seconds\n  fix: set it to the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or unset it for no limit"
-                    ))
-                })?),
-                TIME_LIMIT_VAR.to_string(),
-            ),
-            Err(_) => (None, String::new()),
-        },
-    };
-    let limit = match value {
-        None => None,
-        Some(v) if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 => Some(std::time::Duration::from_secs_f64(v)),
-        Some(v) => {
-            return Err(Error::Other(format!(
-                "{from} {v}: a tool time limit must be more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} seconds (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds, or leave it out for no limit"
-            )))
-        }
-    };
-    let _ = TIME_LIMIT.set(limit);
+    if let Some(v) = flag {
+        let _ = FLAG_LIMIT.set(limit_of(v, "--tool-timeout")?);
+    }
     Ok(())
+}
+
+fn limit_of(v: f64, from: &str) -> Result<std::time::Duration> {
+    if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 {
+        return Ok(std::time::Duration::from_secs_f64(v));
+    }
+    Err(Error::Other(format!(
+        "{from} {v}: a tool time limit must be more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} seconds (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds, or leave it out for no limit"
+    )))
+}
+
+/// The limit a tool about to run has: `--tool-timeout`, else [`TIME_LIMIT_VAR`] (read here,
+/// so a bad value fails only a command that runs a tool), else none.
+pub fn time_limit() -> Result<Option<std::time::Duration>> {
+    if let Some(l) = FLAG_LIMIT.get() {
+        return Ok(Some(*l));
+    }
+    match std::env::var(TIME_LIMIT_VAR) {
+        Ok(v) if !v.trim().is_empty() => {
+            let secs = v.trim().parse::<f64>().map_err(|_| {
+                Error::Other(format!(
+                    "{TIME_LIMIT_VAR}={v:?}: not a number of seconds\n  fix: set it to the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or unset it for no limit"
+                ))
+            })?;
+            limit_of(secs, TIME_LIMIT_VAR).map(Some)
+        }
+        _ => Ok(None),
+    }
 }
 
 /// How long a tool stopped at its time limit has to end after SIGTERM before SIGKILL.
 const KILL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
-/// Ends a tool (and the processes it started) that runs past the time limit; dropped when
-/// the tool has ended, it ends nothing.
+/// Ends a tool, and every process it started, that runs past its time limit. [`finish`]
+/// it as soon as the tool has ended (before its pid could be reused).
+///
+/// [`finish`]: Watchdog::finish
 pub struct Watchdog {
     cancel: Option<std::sync::mpsc::Sender<()>>,
     fired: std::sync::Arc<std::sync::atomic::AtomicBool>,
     thread: Option<std::thread::JoinHandle<()>>,
-    limit: Option<std::time::Duration>,
 }
 
 impl Watchdog {
-    /// Watch process `pid` under the tool time limit (nothing, without one).
-    pub fn start(pid: u32) -> Watchdog {
-        Watchdog::with_limit(pid, TIME_LIMIT.get().copied().flatten())
+    /// Watch process `pid` under `limit` (nothing, without one).
+    pub fn start(pid: u32, limit: Option<std::time::Duration>) -> Watchdog {
+        Watchdog::with_limit(pid, limit)
     }
 
-    /// Watch process `pid` under `limit`.
     fn with_limit(pid: u32, limit: Option<std::time::Duration>) -> Watchdog {
         let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let Some(limit) = limit else {
@@ -171,7 +187,6 @@ impl Watchdog {
                 cancel: None,
                 fired,
                 thread: None,
-                limit,
             };
         };
         let (tx, rx) = std::sync::mpsc::channel::<()>();
@@ -184,9 +199,17 @@ impl Watchdog {
             f.store(true, std::sync::atomic::Ordering::SeqCst);
             #[cfg(unix)]
             {
-                crate::interrupt::end_tree(pid, libc::SIGTERM);
+                // The processes found now are killed later even if the tool itself has gone
+                // by then (a child that ignored SIGTERM, now an orphan, holding its pipes).
+                let tree = crate::interrupt::end_tree(pid, libc::SIGTERM);
                 if rx.recv_timeout(KILL_GRACE) == Err(Timeout) {
-                    crate::interrupt::end_tree(pid, libc::SIGKILL);
+                    for p in tree {
+                        // SAFETY: a plain kill(2) of a process of the tool's tree, still
+                        // unreaped (the tool is waited for only after this thread is told).
+                        unsafe {
+                            libc::kill(p as libc::pid_t, libc::SIGKILL);
+                        }
+                    }
                 }
             }
         });
@@ -194,35 +217,36 @@ impl Watchdog {
             cancel: Some(tx),
             fired,
             thread: Some(thread),
-            limit: Some(limit),
         }
     }
 
-    /// Whether the tool was stopped at the time limit.
-    pub fn fired(&self) -> bool {
+    /// Stop watching (the tool has ended); whether it was stopped at the limit.
+    pub fn finish(mut self) -> bool {
+        self.stop();
         self.fired.load(std::sync::atomic::Ordering::SeqCst)
     }
 
-    /// The error of a tool `prog` (run for `what`, its output `log`) stopped at the limit.
-    pub fn verdict(&self, what: &str, prog: &str, log: &str) -> Result<()> {
-        if !self.fired() {
-            return Ok(());
-        }
-        let secs = self.limit.map_or(0.0, |l| l.as_secs_f64());
-        Err(Error::Other(format!(
-            "{what}: {prog} ran for more than the tool time limit ({secs} s, --tool-timeout or {TIME_LIMIT_VAR}) and was stopped; the end of its output:\n{}\n  fix: if the run is only long (many vectors, a large design), raise the limit; a tool that does not end on a small run is hung: run it again, and report it with the command if it hangs again",
-            tail(log, 10)
-        )))
-    }
-}
-
-impl Drop for Watchdog {
-    fn drop(&mut self) {
+    fn stop(&mut self) {
         drop(self.cancel.take());
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }
     }
+}
+
+impl Drop for Watchdog {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+/// The error of a tool `prog` (run for `what`, its output `log`) stopped at `limit`.
+pub fn time_limit_error(what: &str, prog: &str, limit: Option<std::time::Duration>, log: &str) -> Error {
+    let secs = limit.map_or(0.0, |l| l.as_secs_f64());
+    Error::Other(format!(
+        "{what}: {prog} ran for more than the tool time limit ({secs} s, --tool-timeout or {TIME_LIMIT_VAR}) and was stopped; the end of its output:\n{}\n  fix: if the run is only long (many vectors, a large design), raise the limit; a tool that does not end on a small run is hung: run it again, and report it with the command if it hangs again",
+        tail(log, 10)
+    ))
 }
 
 /// The last `n` lines of a log, for error messages.

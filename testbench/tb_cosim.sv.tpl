@@ -87,7 +87,8 @@ module tb_cosim;
 
     // Until the top takes the beat on offer, at most WAIT_EDGES edges.
     task automatic wait_for_tri_ready;
-        int waited = 0;
+        int waited;
+        waited = 0;
         while (!tri_ready) begin
             if (waited == WAIT_EDGES) fatal($sformatf("tri_ready stayed low for %0d edges before record %0d: the top stopped taking setups", waited, n_in));
             @(negedge clk);
@@ -96,7 +97,8 @@ module tb_cosim;
     endtask
 
     task automatic wait_for_in_ready;
-        int waited = 0;
+        int waited;
+        waited = 0;
         while (!in_ready) begin
             if (waited == WAIT_EDGES) fatal($sformatf("in_ready stayed low for %0d edges before record %0d: the top stopped taking fragments", waited, n_in));
             @(negedge clk);

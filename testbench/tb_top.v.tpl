@@ -86,6 +86,8 @@ module {{TB_MODULE}};
     integer timing_errors = 0;
     reg load_table;
     integer n_in = 0;
+    // Edges the current beat has waited for its handshake (at most WAIT_EDGES).
+    integer waited = 0;
     integer n_tri = 0;
     integer tri_waits = 0;
     integer n_out = 0;
@@ -296,7 +298,6 @@ module {{TB_MODULE}};
     end
 
     // A handshake the top left low for WAIT_EDGES edges: the run ends failed.
-    integer waited;
     task stopped(input [8*16-1:0] ready, input [8*16-1:0] what);
         begin
             $display("FATAL: %0s stayed low for %0d edges before record %0d: the top stopped taking %0s", ready, WAIT_EDGES, n_in, what);

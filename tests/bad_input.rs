@@ -1707,7 +1707,7 @@ fn an_ignored_hangup_stays_ignored() {
     cmd.args([
         "vectors",
         "--source",
-        "random:3000000",
+        "random:8000000",
         "--target",
         "top",
         "--format",
@@ -1725,7 +1725,8 @@ fn an_ignored_hangup_stays_ignored() {
         });
     }
     let mut child = cmd.spawn().unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(300));
+    // Long enough to start and install its handler; far shorter than the dump.
+    std::thread::sleep(std::time::Duration::from_millis(150));
     assert!(
         child.try_wait().unwrap().is_none(),
         "the dump ended before the hangup: make it longer"
@@ -1737,7 +1738,7 @@ fn an_ignored_hangup_stays_ignored() {
         "a hangup nohup ignores stopped the run: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    assert!(dir.path().join("out/random3000000_top.json").is_file());
+    assert!(dir.path().join("out/random8000000_top.json").is_file());
 }
 
 /// A named pipe given as an input file is refused, not waited on forever.

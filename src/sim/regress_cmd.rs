@@ -8,15 +8,24 @@ use crate::error::{Error, Result};
 use crate::work_lock::WorkLock;
 use std::path::{Path, PathBuf};
 
-/// The manifests `--vectors` names: JSON files, and every JSON file of a folder and of the
-/// folders under it (sorted; a link to a folder is not followed), by absolute path.
+/// The manifests `--vectors` names: JSON files, and every JSON file of a folder (sorted), by
+/// absolute path. A folder's subfolders are not read (a work folder, an RTL kit's interface
+/// JSON or a render's metrics may sit there), but sets in them are named in a warning, so
+/// none is passed over without a word.
 pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
     let mut given = Vec::new();
     for p in vectors {
         super::check_tool_path(p, "--vectors")?;
         if p.is_dir() {
             let p = &std::path::absolute(p).map_err(|e| Error::io(p, e))?;
-            json_under(p, &mut given)?;
+            let mut found: Vec<PathBuf> = std::fs::read_dir(p)
+                .map_err(|e| Error::io(p, e))?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect();
+            found.sort();
+            given.extend(found);
+            warn_sets_below(p);
         } else {
             given.push(std::path::absolute(p).map_err(|e| Error::io(p, e))?);
         }
@@ -45,23 +54,27 @@ pub fn given_manifests(vectors: &[PathBuf]) -> Result<Vec<PathBuf>> {
     Ok(given)
 }
 
-/// Every `.json` file in `dir` and the folders under it, sorted, onto `out`: a set kept in
-/// a subfolder runs too rather than being passed over.
-fn json_under(dir: &Path, out: &mut Vec<PathBuf>) -> Result<()> {
-    let mut entries: Vec<std::fs::DirEntry> = std::fs::read_dir(dir)
-        .map_err(|e| Error::io(dir, e))?
-        .collect::<std::io::Result<_>>()
-        .map_err(|e| Error::io(dir, e))?;
-    entries.sort_by_key(|e| e.file_name());
-    for e in entries {
-        let path = e.path();
-        if e.file_type().map_err(|err| Error::io(&path, err))?.is_dir() {
-            json_under(&path, out)?;
-        } else if path.extension().is_some_and(|x| x == "json") {
-            out.push(path);
-        }
+/// Warn of vector sets in the folders just under `dir` (manifests: `.json` files beside a
+/// `.hex` or `.bin` of the same stem), which `--vectors DIR` does not run.
+fn warn_sets_below(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    let mut below: Vec<PathBuf> = entries
+        .flatten()
+        .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+        .filter_map(|e| std::fs::read_dir(e.path()).ok())
+        .flat_map(|d| d.flatten().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json") && ["hex", "bin"].iter().any(|x| p.with_extension(x).is_file()))
+        .collect();
+    if below.is_empty() {
+        return;
     }
-    Ok(())
+    below.sort();
+    crate::warn::warn(format!(
+        "warning: --vectors {}: {} set(s) in its subfolders are not run (first: {}); name a subfolder, or its manifests, to run them",
+        dir.display(),
+        below.len(),
+        below[0].display()
+    ));
 }
 
 /// Regress `cfg` (selected by `pick_args`, for the RTL's header) on `vectors`, or on the
@@ -140,20 +153,22 @@ fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
 
 #[cfg(test)]
 mod manifest_tests {
-    /// A folder's sets are its own `.json` files and those of the folders under it (a set kept
-    /// in a subfolder is not passed over), sorted; other files and links to folders are not
-    /// read.
+    /// A folder's sets are its own `.json` files, sorted; those of its subfolders are not run
+    /// (unrelated JSON lives there too), and other files are not read.
     #[test]
-    fn a_folder_gives_the_manifests_of_its_subfolders_too() {
+    fn a_folder_gives_its_own_manifests() {
         let d = tempfile::tempdir().unwrap();
         let p = d.path();
-        std::fs::create_dir_all(p.join("b/deeper")).unwrap();
-        for f in ["z.json", "a.json", "b/m.json", "b/deeper/n.json", "b/notes.txt"] {
+        std::fs::create_dir_all(p.join("b")).unwrap();
+        for f in ["z.json", "a.json", "b/m.json", "b/m.hex", "b/notes.txt"] {
             std::fs::write(p.join(f), "{}").unwrap();
         }
-        std::os::unix::fs::symlink(p.join("b"), p.join("link")).unwrap();
-        let got = super::given_manifests(&[p.to_path_buf()]).unwrap();
+        let (got, warned) = crate::warn::capture(|| super::given_manifests(&[p.to_path_buf()]).unwrap());
         let rel: Vec<String> = got.iter().map(|g| g.strip_prefix(p).unwrap().display().to_string()).collect();
-        assert_eq!(rel, ["a.json", "b/deeper/n.json", "b/m.json", "z.json"]);
+        assert_eq!(rel, ["a.json", "z.json"]);
+        assert!(
+            warned.len() == 1 && warned[0].contains("1 set(s) in its subfolders are not run") && warned[0].contains("b/m.json"),
+            "{warned:?}"
+        );
     }
 }
