@@ -60,6 +60,10 @@ module tb_top_3dc36989;
     parameter INIT_FILE = "power_table_3dc36989.hex";
     localparam RB = 615;
     localparam LAT = 15;
+    // The longest the testbench waits on the top: for tri_ready or in_ready before a beat,
+    // and for the last results after the file. A top that stops answering fails with a
+    // FATAL line after it, rather than hanging the simulator.
+    localparam WAIT_EDGES = LAT * 4 + 100;
     localparam POWER_TABLE_WORDS = 256;
     // Hex digits of a record's line.
     localparam HD = 154;
@@ -126,6 +130,8 @@ module tb_top_3dc36989;
     integer timing_errors = 0;
     reg load_table;
     integer n_in = 0;
+    // Edges the current beat has waited for its handshake (at most WAIT_EDGES).
+    integer waited = 0;
     integer n_tri = 0;
     integer tri_waits = 0;
     integer n_out = 0;
@@ -305,13 +311,24 @@ module tb_top_3dc36989;
                 // The setup beat: the fragment waits until its triangle is loaded.
                 in_valid = 1'b0;
                 tri_valid = 1'b1;
-                while (!tri_ready) begin @(negedge clk); tri_waits = tri_waits + 1; end
+                waited = 0;
+                while (!tri_ready) begin
+                    if (waited == WAIT_EDGES) stopped("tri_ready", "setups");
+                    @(negedge clk);
+                    tri_waits = tri_waits + 1;
+                    waited = waited + 1;
+                end
                 @(negedge clk);
                 tri_valid = 1'b0;
                 n_tri = n_tri + 1;
             end
             in_valid = 1'b1;
-            while (!in_ready) @(negedge clk);
+            waited = 0;
+            while (!in_ready) begin
+                if (waited == WAIT_EDGES) stopped("in_ready", "fragments");
+                @(negedge clk);
+                waited = waited + 1;
+            end
             @(negedge clk);
             n_in = n_in + 1;
             read_stim;
@@ -322,7 +339,7 @@ module tb_top_3dc36989;
         end
         in_valid = 1'b0;
         cycles = 0;
-        while (n_out < n_in && cycles < LAT * 4 + 100) begin @(negedge clk); cycles = cycles + 1; end
+        while (n_out < n_in && cycles < WAIT_EDGES) begin @(negedge clk); cycles = cycles + 1; end
         if (n_out != n_in) begin
             $display("MISMATCH: %0d fragments went in but %0d came out", n_in, n_out);
             failed = failed + (n_in - n_out);
@@ -341,6 +358,15 @@ module tb_top_3dc36989;
             if (x_reports <= max_errors) $display("MISMATCH unit gbump_pipeline: X on outputs after reset at %0t: out_valid=%b in_ready=%b out_c=%h", $time, out_valid, in_ready, out_c);
         end
     end
+
+    // A handshake the top left low for WAIT_EDGES edges: the run ends failed.
+    task stopped(input [8*16-1:0] ready, input [8*16-1:0] what);
+        begin
+            $display("FATAL: %0s stayed low for %0d edges before record %0d: the top stopped taking %0s", ready, WAIT_EDGES, n_in, what);
+            gave_up = 1'b1;
+            finish_run;
+        end
+    endtask
 
     task timing_error(input integer got, input integer want, input [8*64-1:0] what);
         begin
