@@ -343,7 +343,7 @@ pub unsafe extern "C" fn gbump_column(
 }
 
 /// Column `column` of `target` (`target` and `column` C strings).
-unsafe fn column_of<'h>(h: &'h GbumpConfig, target: *const c_char, column: *const c_char) -> Result<&'h crate::vectors::layout::Column> {
+unsafe fn column_of(h: &GbumpConfig, target: *const c_char, column: *const c_char) -> Result<&crate::vectors::layout::Column> {
     let t = h.target(str_arg(target, "target")?)?;
     let name = str_arg(column, "column")?;
     t.layout.columns.iter().find(|c| c.name == name).ok_or_else(|| {
