@@ -225,7 +225,8 @@ fn a_missing_file_or_a_moved_column_is_named() {
     assert!(e.contains(&format!("column 2 is `{name}` at lsb {}", m.columns[2].lsb)), "{e}");
 }
 
-/// A text set converted to CRLF line ends is named as such, and a manifest with a wrong
+/// A text set converted to CRLF line ends, saved with a byte-order mark or with an empty
+/// line at its end is named as such, and a manifest with a wrong
 /// latency names the field `latency` (not the module beside it).
 #[test]
 fn crlf_line_ends_and_a_wrong_latency_are_named() {
@@ -236,6 +237,16 @@ fn crlf_line_ends_and_a_wrong_latency_are_named() {
     std::fs::write(&hex, text.replace('\n', "\r\n")).unwrap();
     let e = gbump::vectors::verify(&man).unwrap_err().to_string();
     assert!(e.contains("CRLF") && e.contains("dos2unix"), "{e}");
+    // A byte-order mark and an empty last line (the manifest made to agree, as an editing
+    // user would) are named as such, by line.
+    let original = std::fs::read_to_string(&man).unwrap();
+    edit(&man, &format!("\u{feff}{text}"));
+    let e = gbump::vectors::verify(&man).unwrap_err().to_string();
+    assert!(e.contains("byte-order mark") && e.contains(":1"), "{e}");
+    edit(&man, &format!("{text}\n"));
+    let e = gbump::vectors::verify(&man).unwrap_err().to_string();
+    assert!(e.contains("an empty line"), "{e}");
+    std::fs::write(&man, original).unwrap();
     std::fs::write(&hex, text).unwrap();
     let mut m = read_manifest(&man);
     m.latency += 1;

@@ -578,8 +578,22 @@ fn check_hex_records(p: &Path, bin: Option<&Path>, m: &Manifest, regen: &str) ->
     for line in std::io::BufReader::with_capacity(1 << 20, f).split(b'\n') {
         let line = line.map_err(|e| Error::io(p, e))?;
         n += 1;
+        if line.is_empty() || line == b"\r" {
+            // A blank line (an editor's extra newline at the end, say) is not a record.
+            return Err(bad(
+                n,
+                format!("an empty line; every line is one record of {digits} hex digits (delete the empty line, or regenerate the set)"),
+            ));
+        }
         if n > m.count {
             return Err(bad(n, format!("more records than the {} the manifest counts", m.count)));
+        }
+        if n == 1 && line.starts_with(b"\xEF\xBB\xBF") {
+            // An editor that saved the file as "UTF-8 with BOM".
+            return Err(bad(
+                n,
+                "the file starts with a UTF-8 byte-order mark (3 bytes before the first digit); gbump writes none: save it without the mark, or regenerate the set".to_string(),
+            ));
         }
         if line.len() == digits + 1 && line.last() == Some(&b'\r') {
             // An editor or a transfer that wrote Windows line ends.
