@@ -182,7 +182,14 @@ impl Config {
     }
 
     #[setter]
-    fn set_shininess(&mut self, n: i64) -> PyResult<()> {
+    fn set_shininess(&mut self, n: crate::Int) -> PyResult<()> {
+        let n = i64::try_from(n.0).map_err(|_| {
+            crate::fail(format!(
+                "shininess {}: does not fit 64 bits\n  fix: use 0..={}",
+                n.0,
+                gbump::limits::MAX_SHININESS
+            ))
+        })?;
         self.h.set_shininess(n).map_err(crate::err)
     }
 
@@ -202,8 +209,9 @@ impl Config {
     /// layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
     /// configuration's own (its TOML field, as `gbump rom` does; not the `shininess`
     /// property, the model's current table), `cube_size` to gbump rom's.
-    #[pyo3(signature = (name, shininess = None, cube_size = 32))]
-    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<i128>, cube_size: i128) -> PyResult<Bound<'py, PyDict>> {
+    #[pyo3(signature = (name, shininess = None, cube_size = crate::Int(32)))]
+    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<crate::Int>, cube_size: crate::Int) -> PyResult<Bound<'py, PyDict>> {
+        let (shininess, cube_size) = (shininess.map(|n| n.0), cube_size.0);
         use gbump::limits::{MAX_CUBE_SIDE, MAX_SHININESS};
         use gbump::rtlgen::rom;
         let cfg = self.cfg();
@@ -331,9 +339,9 @@ impl Config {
 
     /// The seeded random stimulus stream of `gbump vectors --source random:N --seed SEED`
     /// (the same default seed, 1).
-    #[pyo3(signature = (seed = 1))]
-    fn stimulus(&self, seed: i128) -> PyResult<crate::vectors::Stimulus> {
-        let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
+    #[pyo3(signature = (seed = crate::Int(1)))]
+    fn stimulus(&self, seed: crate::Int) -> PyResult<crate::vectors::Stimulus> {
+        let seed = crate::arg("seed", seed.0, 0, u64::MAX, "")?;
         Ok(crate::vectors::Stimulus::new(&self.h, seed))
     }
 
@@ -345,16 +353,17 @@ impl Config {
     /// (its TOML field, what `gbump vectors` uses; not the model's current table, which the
     /// `shininess` property reads and sets); scenes their objects'. `size` is a scene's image
     /// size as a (width, height) tuple in pixels (by default the scene's own).
-    #[pyo3(signature = (source, seed = 1, shininess = None, size = None))]
+    #[pyo3(signature = (source, seed = crate::Int(1), shininess = None, size = None))]
     fn vectors<'py>(
         &self,
         py: Python<'py>,
         source: &str,
-        seed: i128,
-        shininess: Option<i128>,
-        size: Option<(i128, i128)>,
+        seed: crate::Int,
+        shininess: Option<crate::Int>,
+        size: Option<(crate::Int, crate::Int)>,
     ) -> PyResult<Bound<'py, PyList>> {
         use gbump::limits::{MAX_IMAGE_SIDE, MAX_SHININESS};
+        let (seed, shininess, size) = (seed.0, shininess.map(|n| n.0), size.map(|(w, h)| (w.0, h.0)));
         let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
         let shininess = match shininess {
             Some(n) => Some(crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32),

@@ -35,6 +35,23 @@ pub(crate) fn arg(name: &str, v: i128, lo: u64, hi: u64, limit: &str) -> PyResul
     Ok(v)
 }
 
+/// A Python integer argument, refusing a bool: `True` is 1 to Python, but no count, seed or
+/// shininess of gbump is a flag, so a bool there is a mistake (pyo3 names the argument).
+pub(crate) struct Int(pub i128);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Int {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        if obj.is_instance_of::<pyo3::types::PyBool>() {
+            return Err(pyo3::exceptions::PyTypeError::new_err(
+                "a bool, where an integer is wanted\n  fix: pass an int",
+            ));
+        }
+        Ok(Int(obj.extract::<i128>()?))
+    }
+}
+
 /// A message of this module's own as a `GbumpError`.
 pub(crate) fn fail(msg: String) -> PyErr {
     GbumpError::new_err(msg)

@@ -32,9 +32,9 @@ impl Stimulus {
 #[pymethods]
 impl Stimulus {
     /// The next `n` records, uint32 shape (n, words).
-    #[pyo3(signature = (n = 1))]
-    fn next<'py>(&mut self, py: Python<'py>, n: i128) -> PyResult<Bound<'py, PyAny>> {
-        let n = crate::arg("Stimulus.next: n", n, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
+    #[pyo3(signature = (n = crate::Int(1)))]
+    fn next<'py>(&mut self, py: Python<'py>, n: crate::Int) -> PyResult<Bound<'py, PyAny>> {
+        let n = crate::arg("Stimulus.next: n", n.0, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
         let w = self.s.layout.words32();
         let mut out = Vec::with_capacity(n as usize * w);
         for _ in 0..n {

@@ -151,6 +151,23 @@ bad = dict(stim_fields, **{k_col: stim_fields[k_col] + 10000})
 check(raises(lambda: model.pack("top", bad), k_col, "fix:"), "a value outside its format")
 check(raises(lambda: model.vectors("random:0"), "fix:"), "an empty random set")
 check(raises(lambda: model.rom("nonesuch"), "fix:"), "an unknown ROM")
+
+
+def type_error(f):
+    try:
+        f()
+    except TypeError as e:
+        return "bool" in str(e) and "fix:" in str(e)
+    return False
+
+
+# True is 1 to Python, but no count, seed or shininess of gbump is a flag.
+shininess_before = model.shininess
+check(type_error(lambda: setattr(model, "shininess", True)), "a bool shininess is refused")
+check(model.shininess == shininess_before, "a refused shininess leaves the table as it was")
+check(type_error(lambda: model.stimulus(seed=True)), "a bool seed is refused")
+check(type_error(lambda: model.vectors("random:5", seed=False)), "a bool seed of vectors is refused")
+check(type_error(lambda: model.rom("power_table", shininess=True)), "a bool ROM shininess is refused")
 forged = os.path.join(work, "forged.json")
 with open(forged, "w") as f:
     json.dump(dict(iface, config_hash="0" * 16), f)
