@@ -50,7 +50,7 @@ fn probe(prog: &str) -> Probe {
         else {
             continue;
         };
-        let watchdog = Watchdog::with_limit(child.id(), Some(PROBE_LIMIT));
+        let watchdog = Watchdog::start(child.id(), Some(PROBE_LIMIT));
         let ended = child.wait().is_ok();
         if watchdog.finish() {
             return Probe::Hung;
@@ -177,10 +177,6 @@ pub struct Watchdog {
 impl Watchdog {
     /// Watch process `pid` under `limit` (nothing, without one).
     pub fn start(pid: u32, limit: Option<std::time::Duration>) -> Watchdog {
-        Watchdog::with_limit(pid, limit)
-    }
-
-    fn with_limit(pid: u32, limit: Option<std::time::Duration>) -> Watchdog {
         let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let Some(limit) = limit else {
             return Watchdog {
