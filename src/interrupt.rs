@@ -10,11 +10,9 @@ use crate::error::{Error, Result};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
-/// Set as the handler starts, before anything else: a tool the same signal ended may be
-/// seen ended before the handler has run (`settle`).
-static SIGNALLED: AtomicBool = AtomicBool::new(false);
 /// Set once the handler has decided (the run stops through its error path: `INTERRUPTED`
-/// is set), so `settle` reads the decision, not a flag still on its way.
+/// is set): a tool the same signal ended may be seen ended before that, so `settle` waits
+/// for the decision, not a flag still on its way.
 static HANDLED: AtomicBool = AtomicBool::new(false);
 static CLEANUPS: AtomicUsize = AtomicUsize::new(0);
 /// Tools running now (`tool::run_cmd`): a signal that ends gbump ends them too.
@@ -130,7 +128,6 @@ pub fn install() {
         // The handler runs on a thread of its own, not in signal context: it may read /proc,
         // print and signal. The tools end on the first signal too: a run stopping through its
         // error path must not wait for a whole build first.
-        SIGNALLED.store(true, Ordering::SeqCst);
         end_descendants();
         if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             stop_now();
@@ -189,17 +186,11 @@ const SETTLE: std::time::Duration = std::time::Duration::from_secs(1);
 #[cfg(unix)]
 pub fn settle(sig: i32) -> Result<()> {
     if [libc::SIGINT, libc::SIGTERM, libc::SIGHUP].contains(&sig) {
-        let wait_for = |flag: &AtomicBool| {
-            let t = std::time::Instant::now();
-            while !flag.load(Ordering::SeqCst) && t.elapsed() < SETTLE {
-                std::thread::sleep(std::time::Duration::from_millis(10));
-            }
-        };
-        wait_for(&SIGNALLED);
-        // Once the signal reached gbump, the handler either exits the process (no cleanup to
-        // wait for) or sets INTERRUPTED and then HANDLED: wait for that decision.
-        if SIGNALLED.load(Ordering::SeqCst) {
-            wait_for(&HANDLED);
+        // A signal that reached gbump too ends in the handler's decision: it exits the
+        // process (no cleanup to wait for), or sets INTERRUPTED and then HANDLED.
+        let t = std::time::Instant::now();
+        while !HANDLED.load(Ordering::SeqCst) && t.elapsed() < SETTLE {
+            std::thread::sleep(std::time::Duration::from_millis(10));
         }
     }
     check()

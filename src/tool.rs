@@ -96,22 +96,9 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     let _child = crate::interrupt::child(child.id());
     let watchdog = Watchdog::start(child.id(), limit);
     let out = child.wait_with_output().map_err(|e| Error::Other(format!("{what}: {e}")))?;
-    // Ended before the tool's pid can be reused, and before any wait below.
-    let timed_out = watchdog.finish();
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
-    if timed_out {
-        return Err(time_limit_error(what, &prog, limit, &log));
-    }
-    // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
-    #[cfg(unix)]
-    {
-        use std::os::unix::process::ExitStatusExt;
-        if let Some(sig) = out.status.signal() {
-            crate::interrupt::settle(sig)?;
-            log += &format!("\n{what}: killed by signal {sig}");
-        }
-    }
+    ended(what, &prog, out.status, watchdog, &mut log)?;
     crate::interrupt::check()?;
     Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
 }
@@ -165,10 +152,11 @@ pub fn time_limit() -> Result<Option<std::time::Duration>> {
 const KILL_GRACE: std::time::Duration = std::time::Duration::from_secs(3);
 
 /// Ends a tool, and every process it started, that runs past its time limit. [`finish`]
-/// it as soon as the tool has ended (before its pid could be reused).
+/// it (through [`ended`]) as soon as the tool is reaped and its pipes read.
 ///
 /// [`finish`]: Watchdog::finish
 pub struct Watchdog {
+    limit: Option<std::time::Duration>,
     cancel: Option<std::sync::mpsc::Sender<()>>,
     fired: std::sync::Arc<std::sync::atomic::AtomicBool>,
     thread: Option<std::thread::JoinHandle<()>>,
@@ -180,6 +168,7 @@ impl Watchdog {
         let fired = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
         let Some(limit) = limit else {
             return Watchdog {
+                limit,
                 cancel: None,
                 fired,
                 thread: None,
@@ -210,6 +199,7 @@ impl Watchdog {
             }
         });
         Watchdog {
+            limit: Some(limit),
             cancel: Some(tx),
             fired,
             thread: Some(thread),
@@ -236,13 +226,31 @@ impl Drop for Watchdog {
     }
 }
 
-/// The error of a tool `prog` (run for `what`, its output `log`) stopped at `limit`.
-pub fn time_limit_error(what: &str, prog: &str, limit: Option<std::time::Duration>, log: &str) -> Error {
-    let secs = limit.map_or(0.0, |l| l.as_secs_f64());
-    Error::Other(format!(
-        "{what}: {prog} ran for more than the tool time limit ({secs} s, --tool-timeout or {TIME_LIMIT_VAR}) and was stopped; the end of its output:\n{}\n  fix: if the run is only long (many vectors, a large design), raise the limit; a tool that does not end on a small run is hung: run it again, and report it with the command if it hangs again",
-        tail(log, 10)
-    ))
+/// How tool `prog` (run for `what`), reaped with `status` and its output read whole into
+/// `log`, ended, with its `watchdog` finished here (the tool is gone, and every pipe it held
+/// closed): past the time limit, an error; by a signal, a line on `log`, or the user's stop
+/// when the same signal reached gbump (`interrupt::settle`).
+pub fn ended(what: &str, prog: &str, status: std::process::ExitStatus, watchdog: Watchdog, log: &mut String) -> Result<()> {
+    let limit = watchdog.limit;
+    if watchdog.finish() {
+        let secs = limit.map_or(0.0, |l| l.as_secs_f64());
+        return Err(Error::Other(format!(
+            "{what}: {prog} ran for more than the tool time limit ({secs} s, --tool-timeout or {TIME_LIMIT_VAR}) and was stopped; the end of its output:\n{}\n  fix: if the run is only long (many vectors, a large design), raise the limit; a tool that does not end on a small run is hung: run it again, and report it with the command if it hangs again",
+            tail(log, 10)
+        )));
+    }
+    // A child killed by a signal (a crash, or Ctrl-C reaching the whole process group).
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = status.signal() {
+            crate::interrupt::settle(sig)?;
+            *log += &format!("\n{what}: killed by signal {sig}");
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = status;
+    Ok(())
 }
 
 /// The last `n` lines of a log, for error messages.

@@ -248,8 +248,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         .spawn()
         .map_err(|e| Error::Other(format!("{what}: cannot start {}: {e}", r.exe.display())))?;
     let _registered = crate::interrupt::child(child.id());
-    let limit = crate::tool::time_limit()?;
-    let watchdog = crate::tool::Watchdog::start(child.id(), limit);
+    let watchdog = crate::tool::Watchdog::start(child.id(), crate::tool::time_limit()?);
     let mut stdin = child.stdin.take().expect("piped");
     let mut stdout = child.stdout.take().expect("piped");
     let mut stderr = child.stderr.take().expect("piped");
@@ -322,21 +321,9 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
             let _ = child.kill();
         }
         let status = child.wait().map_err(|e| Error::Other(format!("{what}: {e}")))?;
-        // Ended before the harness's pid can be reused, and before any wait below.
-        let timed_out = watchdog.finish();
         let mut log = String::from_utf8_lossy(&out.join().unwrap_or_default()).into_owned();
         log += &String::from_utf8_lossy(&err.join().unwrap_or_default());
-        if timed_out {
-            return Err(crate::tool::time_limit_error(&what, &r.exe.display().to_string(), limit, &log));
-        }
-        #[cfg(unix)]
-        {
-            use std::os::unix::process::ExitStatusExt;
-            if let Some(sig) = status.signal() {
-                crate::interrupt::settle(sig)?;
-                log += &format!("\n{what}: killed by signal {sig}");
-            }
-        }
+        crate::tool::ended(&what, &r.exe.display().to_string(), status, watchdog, &mut log)?;
         result?;
         Ok((status.success(), log))
     })?;
