@@ -363,7 +363,12 @@ impl FastModel {
             let bypass = self.skip_flat & (v[0] == self.flat[0]) & (v[1] == self.flat[1]) & (v[2] == self.flat[2]);
             dmask[i] = -i64::from(self.diffuse & f.diffuse_en & !bypass);
             smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
-            let v = self.dot_normal(v, frame);
+            // As in `one`: through `dot_normal`'s match, `v` went by the stack and stalled.
+            let v = if self.frame.is_none() && self.renorm_b.is_none() {
+                v
+            } else {
+                self.dot_normal(v, frame)
+            };
             for ch in 0..3 {
                 b[ch][i] = v[ch];
                 c_src[ch][i] = (f.c_src[ch] as i64) << self.guard;
@@ -408,8 +413,10 @@ impl FastModel {
             self.texture_block(&mut c, &tex);
             self.close_block(&mut c, &sacc);
         }
+        // Written out: `[0, 1, 2].map(..)` stayed a call per fragment, through the stack.
+        let r = |x: i64| self.round.apply(x) as u32;
         for (i, o) in out.iter_mut().enumerate().take(LANES) {
-            *o = [0, 1, 2].map(|ch| self.round.apply(c[ch][i]) as u32);
+            *o = [r(c[0][i]), r(c[1][i]), r(c[2][i])];
         }
     }
 
