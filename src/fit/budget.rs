@@ -57,15 +57,17 @@ impl Budget {
                 "--budget `{text}` is not a budget\n  fix: use max<=LSB (against the f64 Gouraud image), psnr>=DB, or exact<=LSB (against exact arithmetic), e.g. max<=2"
             ))
         };
-        let t = text.replace(' ', "");
-        let (kind, value) = if let Some(v) = t.strip_prefix("max<=") {
-            ("max", v)
-        } else if let Some(v) = t.strip_prefix("psnr>=") {
-            ("psnr", v)
-        } else if let Some(v) = t.strip_prefix("exact<=") {
-            ("exact", v)
-        } else {
-            return Err(bad());
+        // Spaces around the name, the operator and the bound, not inside them: `max< =2` or
+        // `ma x<=2` is a typo to name, not a budget to guess.
+        let (name, op, value) = match text.find(['<', '>']) {
+            Some(i) => (text[..i].trim(), text[i..].get(..2).unwrap_or(""), text[i..].get(2..).unwrap_or("").trim()),
+            None => return Err(bad()),
+        };
+        let kind = match (name, op) {
+            ("max", "<=") => "max",
+            ("psnr", ">=") => "psnr",
+            ("exact", "<=") => "exact",
+            _ => return Err(bad()),
         };
         let v: f64 = value.parse().map_err(|_| bad())?;
         // An error in LSBs cannot exceed the widest colour's range.
@@ -124,7 +126,9 @@ mod tests {
         assert_eq!(Budget::parse("max<=2").unwrap(), Budget::Max(2.0));
         assert_eq!(Budget::parse("psnr >= 50").unwrap(), Budget::Psnr(50.0));
         assert_eq!(Budget::parse("exact<=1").unwrap(), Budget::Exact(1.0));
-        for bad in ["max<2", "psnr>=", "exact<=NaN", "max<=-1", "lsb<=2"] {
+        assert_eq!(Budget::parse(" max <= 2.5 ").unwrap(), Budget::Max(2.5));
+        // A space inside the name, the operator or the number is a typo, not a budget.
+        for bad in ["max<2", "psnr>=", "exact<=NaN", "max<=-1", "lsb<=2", "max< =2", "ma x<=2", "max<=2 5", "max>=2", "psnr<=50", "max<<=2"] {
             let e = Budget::parse(bad).unwrap_err().to_string();
             assert!(e.contains("fix:"), "{bad}: {e}");
         }
