@@ -924,6 +924,14 @@ pub fn run() -> anyhow::Result<()> {
             };
             // A target the configuration lacks is refused before the work folder is touched.
             crate::vectors::targets::resolve(&cfg, &opts.targets)?;
+            if let (Some(sz), true, None) = (&scene_size, cfg.palette, &stream) {
+                // The suite makes no scene sets for a palette configuration (`scene_sets_made`).
+                return Err(Error::Other(format!(
+                    "--scene-size {sz}: no effect on this run: a palette configuration ({}) makes no scene vector sets\n  fix: drop --scene-size, or regress a configuration with palette = false",
+                    cfg.hash()
+                ))
+                .into());
+            }
             not_inputs(&[junit.as_deref()])?;
             if let Some(src) = stream {
                 if matches!(sim, SimChoice::Icarus) {

@@ -1005,6 +1005,12 @@ fn cases() -> Vec<Case> {
             vec!["--scene-size 8x8", "--no-scenes", "fix:"],
         ),
         (
+            "regress --scene-size for a palette configuration",
+            cfg("palette = true\n"),
+            vec!["regress", "--config", "c.toml", "--scene-size", "8x8", "--work", "w"],
+            vec!["--scene-size 8x8", "palette configuration", "fix:"],
+        ),
+        (
             "--size for a source without an image",
             vec![],
             vec!["vectors", "--source", "corners", "--size", "64x64", "--out", "out"],
