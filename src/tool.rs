@@ -7,9 +7,15 @@ use crate::error::{Error, Result};
 use crate::limits::{MAX_TOOL_TIMEOUT_SECONDS, TOOL_PROBE_SECONDS};
 use std::process::Command;
 
-/// Whether `prog` runs (and answers `--version` or `-V` within [`PROBE_LIMIT`]).
-pub fn have(prog: &str) -> bool {
-    probe(prog) == Probe::Runs
+/// Why `prog` cannot be used, as a table cell says it: None when it runs (and answers
+/// `--version` or `-V` within [`PROBE_LIMIT`]); an optional tool's absence is reported, not
+/// an error, but a hung one is not called missing.
+pub fn unusable(prog: &str) -> Option<&'static str> {
+    match probe(prog) {
+        Probe::Runs => None,
+        Probe::Missing => Some("not installed"),
+        Probe::Hung => Some("hangs answering --version"),
+    }
 }
 
 /// Error unless `prog` is installed and answers (and the tool time limit, which every run
@@ -271,5 +277,28 @@ pub fn build_fix(tool: &str, log: &str) -> String {
         format!("  fix: {tool} or a compiler it ran was killed (a crash, or memory ran out): check free memory, reinstall it if it happens again (scripts/install-tools.sh), and run again")
     } else {
         format!("  fix: {tool} refused the sources for the reasons above; gbump's own RTL and testbenches compile on the versions scripts/install-tools.sh installs, so an error in them is a gbump bug: report it with the configuration")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// An optional tool is named missing only when it is: one that hangs on `--version` says
+    /// so (after the probe's limit), one that answers is usable.
+    #[test]
+    fn an_unusable_tool_says_why() {
+        let dir = tempfile::tempdir().unwrap();
+        let script = |name: &str, body: &str| {
+            use std::os::unix::fs::PermissionsExt;
+            let p = dir.path().join(name);
+            std::fs::write(&p, format!("#!/bin/sh\n{body}\n")).unwrap();
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
+            p.to_str().unwrap().to_string()
+        };
+        assert_eq!(super::unusable(&dir.path().join("absent").to_string_lossy()), Some("not installed"));
+        assert_eq!(super::unusable(&script("answers", "echo 1.0")), None);
+        assert_eq!(
+            super::unusable(&script("hangs", "exec sleep 60")),
+            Some("hangs answering --version")
+        );
     }
 }

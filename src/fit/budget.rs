@@ -60,7 +60,11 @@ impl Budget {
         // Spaces around the name, the operator and the bound, not inside them: `max< =2` or
         // `ma x<=2` is a typo to name, not a budget to guess.
         let (name, op, value) = match text.find(['<', '>']) {
-            Some(i) => (text[..i].trim(), text[i..].get(..2).unwrap_or(""), text[i..].get(2..).unwrap_or("").trim()),
+            Some(i) => (
+                text[..i].trim(),
+                text[i..].get(..2).unwrap_or(""),
+                text[i..].get(2..).unwrap_or("").trim(),
+            ),
             None => return Err(bad()),
         };
         let kind = match (name, op) {
@@ -128,7 +132,19 @@ mod tests {
         assert_eq!(Budget::parse("exact<=1").unwrap(), Budget::Exact(1.0));
         assert_eq!(Budget::parse(" max <= 2.5 ").unwrap(), Budget::Max(2.5));
         // A space inside the name, the operator or the number is a typo, not a budget.
-        for bad in ["max<2", "psnr>=", "exact<=NaN", "max<=-1", "lsb<=2", "max< =2", "ma x<=2", "max<=2 5", "max>=2", "psnr<=50", "max<<=2"] {
+        for bad in [
+            "max<2",
+            "psnr>=",
+            "exact<=NaN",
+            "max<=-1",
+            "lsb<=2",
+            "max< =2",
+            "ma x<=2",
+            "max<=2 5",
+            "max>=2",
+            "psnr<=50",
+            "max<<=2",
+        ] {
             let e = Budget::parse(bad).unwrap_err().to_string();
             assert!(e.contains("fix:"), "{bad}: {e}");
         }

@@ -99,7 +99,8 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     progress.done("vector dump");
     progress.start("Verilator");
     let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
-    if crate::tool::have("verilator") {
+    let verilator_unusable = crate::tool::unusable("verilator");
+    if verilator_unusable.is_none() {
         let mut configs = vec![PipelineConfig::from_toml("one_light_parallel", super::configs::ONE_LIGHT_PARALLEL)?];
         if cfg.hash() != configs[0].hash() {
             configs.push(cfg.clone());
@@ -114,12 +115,16 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
         }
         harness_table = t + HARNESS_NOTE + &ratios(&speeds, &dump);
     } else {
-        s += "| Verilator | not installed | scripts/install-tools.sh |\n";
+        s += &format!(
+            "| Verilator | {} | scripts/install-tools.sh |\n",
+            verilator_unusable.unwrap_or_default()
+        );
         harness_table = ratios(&[], &dump);
     }
     progress.done("Verilator");
     progress.start("Icarus");
-    if crate::tool::have("iverilog") {
+    let iverilog_unusable = crate::tool::unusable("iverilog");
+    if iverilog_unusable.is_none() {
         let hexdir = work.join("hex");
         let _ = std::fs::remove_dir_all(&hexdir);
         let ho = crate::vectors::DumpOptions {
@@ -147,7 +152,10 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
             out.seconds
         );
     } else {
-        s += "| Icarus | not installed | scripts/install-tools.sh |\n";
+        s += &format!(
+            "| Icarus | {} | scripts/install-tools.sh |\n",
+            iverilog_unusable.unwrap_or_default()
+        );
     }
     progress.done("Icarus");
     let _ = std::fs::remove_dir_all(&vdir);
