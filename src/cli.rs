@@ -97,6 +97,10 @@ pub enum Cmd {
         target: Vec<String>,
         #[command(flatten)]
         pick: ConfigPick,
+        /// Folder for the sets: each set is SET.json (its manifest), SET.hex, SET.bin and
+        /// SET_power_table.hex, SET being SOURCE_TARGET with SOURCE corners, corners_level2,
+        /// random<N>, scene_<NAME> (_nS or _oI added where a scene has several power tables
+        /// or EMBM objects) or exhaustive_<UNIT>, e.g. random1000_top.
         #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Seed of random sources (default 1).

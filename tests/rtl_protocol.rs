@@ -355,19 +355,13 @@ fn reset_takes_no_fragment_and_keeps_the_power_table() {
     assert!(bad.failed > 0, "a fragment taken during reset went unnoticed:\n{}", bad.log);
 }
 
-/// Setup A, then fragment A offered together with setup B (B is taken after A's fragment, so
-/// that fragment keeps A's bank), then setup C, which loads A's bank again, offered from the
-/// edge after B's accept. C must be taken exactly at max(A's accept + bank hold, C's first
-/// offer + setup edges - 1), the interface's numbers, and with two banks the hold binds there.
-fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
-    let cfg = config(cfg_path);
-    assert_eq!(cfg.triangle_banks, 2, "the sequence reuses A's bank with the second setup after it");
-    let w = work(name);
-    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
-    let top = gbump::rtlgen::units_v::module_name(&cfg, "gbump_pipeline");
+/// The top's module name, a `reg` (inputs: `rst` and `out_ready` 1, the rest 0) or `wire`
+/// per port, and the port connections, for a hand-written bench.
+fn top_ports(cfg: &PipelineConfig) -> (String, String, String) {
+    let top = gbump::rtlgen::units_v::module_name(cfg, "gbump_pipeline");
     let mut decl = String::new();
     let mut conn = Vec::new();
-    for p in gbump::rtlgen::top::port_list(&cfg) {
+    for p in gbump::rtlgen::top::port_list(cfg) {
         let kind = if p.dir == gbump::units::Dir::In { "reg" } else { "wire" };
         let init = match (p.dir == gbump::units::Dir::In, p.name.as_str()) {
             (true, "rst") => " = 1'b1".to_string(),
@@ -378,9 +372,54 @@ fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
         decl += &format!("{kind} [{}:0] {}{init};\n", p.width() - 1, p.name);
         conn.push(format!(".{0}({0})", p.name));
     }
+    (top, decl, conn.join(", "))
+}
+
+/// A setup offered while `rst` is high: `tri_ready` stays low through reset, and the setup
+/// is taken at the span's last edge counted from the first edge with `rst` low (the
+/// integration section's rule). Then a fragment is accepted and `rst` pulsed for one edge
+/// before its result is due: the result is discarded (`out_valid` stays low).
+fn setup_during_reset(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let (top, decl, conn) = top_ports(&cfg);
+    let lat = gbump::rtlgen::top::latency(&cfg);
     let tb = format!(
-        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1, idle_any = 0, idle_all = 1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  repeat (6) begin @(negedge clk); idle_any = idle_any | tri_ready; idle_all = idle_all & tri_ready; end\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d idle_any %0d idle_all %0d\", a, b, c_off, c_acc, idle_any, idle_all);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
-        conn.join(", ")
+        "`timescale 1ns / 1ps\nmodule tb_rst;\n{decl}integer cyc = 0, r = -1, t = -1, ready_in_reset = 0, valid_after = 0, k;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  tri_valid = 1'b1;\n  repeat (4) begin @(negedge clk); ready_in_reset = ready_in_reset | tri_ready; end\n  rst = 1'b0;\n  r = cyc + 1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  for (k = 0; k < {lat} + 8; k = k + 1) begin @(negedge clk); valid_after = valid_after | out_valid; end\n  $display(\"r %0d t %0d ready_in_reset %0d valid_after %0d\", r, t, ready_in_reset, valid_after);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+    );
+    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_rst", &tb), &rtl).unwrap();
+    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
+    let line = log.lines().find(|l| l.starts_with("r ")).unwrap_or_else(|| panic!("{log}"));
+    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
+    assert_eq!(v[2], 0, "{line}: tri_ready rose while rst was high");
+    assert_eq!(
+        v[1],
+        v[0] + edges - 1,
+        "{line}: the setup's {edges} edges do not count from the first edge with rst low"
+    );
+    assert_eq!(v[3], 0, "{line}: a result in flight at a reset came out after it");
+}
+
+#[test]
+fn a_setup_offered_in_reset_counts_from_its_end_and_a_reset_discards_results() {
+    setup_during_reset(None, "rst_setup_serial");
+    setup_during_reset(Some("tests/configs/one_light_parallel.toml"), "rst_setup_parallel");
+}
+
+/// Setup A, then fragment A offered together with setup B (B is taken after A's fragment, so
+/// that fragment keeps A's bank), then setup C, which loads A's bank again, offered from the
+/// edge after B's accept. C must be taken exactly at max(A's accept + bank hold, C's first
+/// offer + setup edges - 1), the interface's numbers, and with two banks the hold binds there.
+fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    assert_eq!(cfg.triangle_banks, 2, "the sequence reuses A's bank with the second setup after it");
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let (top, decl, conn) = top_ports(&cfg);
+    let tb = format!(
+        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1, idle_any = 0, idle_all = 1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  repeat (6) begin @(negedge clk); idle_any = idle_any | tri_ready; idle_all = idle_all & tri_ready; end\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d idle_any %0d idle_all %0d\", a, b, c_off, c_acc, idle_any, idle_all);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
     );
     let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_hold", &tb), &rtl).unwrap();
     let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();

@@ -32,7 +32,12 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     );
     s += "**Clock and reset.** One clock, `clk`, rising edge. `rst` is synchronous and active high. ";
     s += &format!(
-        "Holding `rst` high for {RESET_CYCLES} rising edge(s) brings the top from any power-up state to idle: every valid bit is cleared, `out_valid` is low and `out_c` is 0 (no X leaves the top after reset). "
+        "Holding `rst` high for {RESET_CYCLES} rising edge(s) brings the top from any power-up state to idle: every valid bit is cleared, `out_valid` is low and `out_c` is 0 (no X leaves the top after reset, once its memories hold values: a `$readmemh` that cannot open its init file only warns on Icarus, and the unloaded table's X then reaches `out_c`; see INIT_FILE below). A reset in the middle of a run discards every fragment in flight and every result waiting for `out_ready`{}. ",
+        if cfg.per_triangle() {
+            "; the next fragment needs a triangle setup first, as after power-up"
+        } else {
+            ""
+        }
     );
     s += "While `rst` is high no fragment is accepted, whatever `in_valid` and `in_ready` show";
     // A parallel top without back-pressure ties `in_ready` high; any other top drives it
@@ -56,7 +61,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     );
     s += &match super::top::output_depth(cfg) {
         Some(d) => format!(
-            "**Back-pressure.** A result is taken at a rising edge at which `out_valid` and `out_ready` are both high; with `out_ready` held high every result is taken exactly {lat} edges after its accept. With `out_ready` low a result stays offered (`out_ready` may change at any edge, `out_valid` stays high until taken) and waits in an output buffer of **{d}** results; `in_ready` is low while {d} accepted results are untaken, and only then, so no result is ever lost and no pipeline register stalls (`out_ready` reaches the buffer alone). "
+            "**Back-pressure.** A result is taken at a rising edge at which `out_valid` and `out_ready` are both high; with `out_ready` held high every result is taken exactly {lat} edges after its accept. With `out_ready` low a result stays offered (`out_ready` may change at any edge, `out_valid` stays high until taken) and waits in an output buffer of **{d}** results; `in_ready` is low while {d} accepted results are untaken (and otherwise only for the initiation interval below), so no result is ever lost and no pipeline register stalls (`out_ready` reaches the buffer alone). "
         ),
         None => "There is no output back-pressure (`backpressure = false`): every result is taken when offered, one per `out_valid` cycle. ".to_string(),
     };
@@ -73,8 +78,8 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         s += &format!(
             "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight.{}\n\n",
             match super::top::setup_edges(cfg) {
-                1 => String::new(),
-                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges, whether its bank is free yet or not. Count them from the first edge at which `tri_valid` offers the setup; when `tri_valid` stays high from one setup to the next, that is the edge right after the previous setup was taken. The setup is taken at whichever edge comes later: the span's last edge (the first offer + {}) or the end of the bank hold (the last use + {hold}). `tri_ready` is high at that edge only: it depends on `tri_valid`, and stays low while no setup is offered, even with every bank free and long after reset. Raise `tri_valid` without waiting for `tri_ready` (a client that waits for it first never sees it), and hold `tri_*` until the setup is taken (as valid/ready requires anyway).", e - 1),
+                1 => " A setup takes one edge: `tri_ready` is a level, high at every edge at which the next bank is free (the bank hold is over), whether `tri_valid` is high or not, so it is high while idle; a setup offered while it is low is taken at the first edge at which it is high.".to_string(),
+                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges, whether its bank is free yet or not. Count them from the first edge at which `tri_valid` offers the setup (edges with `rst` high do not count: a setup offered during reset counts from the first edge with `rst` low); when `tri_valid` stays high from one setup to the next, that is the edge right after the previous setup was taken. The setup is taken at whichever edge comes later: the span's last edge (the first offer + {}) or the end of the bank hold (the last use + {hold}). `tri_ready` is high at that edge only: it depends on `tri_valid`, and stays low while no setup is offered, even with every bank free and long after reset. Raise `tri_valid` without waiting for `tri_ready` (a client that waits for it first never sees it), and hold `tri_*` until the setup is taken (as valid/ready requires anyway).", e - 1),
             }
         );
     }
@@ -93,7 +98,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         );
     } else {
         s += &format!(
-        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{0}` entry written as its raw {2}-bit word, the value times 2^{3}; the i-th data line of a `_power_table.hex` file, after its `//` header, which `$readmemh` skips, is the word for address i) for one rising edge per word, {1} words. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. Results waiting in the output buffer for `out_ready` are not in flight (each read the table before its `out_valid`). Writes are taken while `rst` is high too, and `rst` does not undo them.\n\n",
+        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{0}` entry written as its raw {2}-bit word, the value times 2^{3}; the i-th data line of a `_power_table.hex` file, after its `//` header, which `$readmemh` skips, is the word for address i) for one rising edge per word, {1} words. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. Results waiting in the output buffer for `out_ready` are not in flight (each read the table before its `out_valid`). Writes are taken while `rst` is high too, and `rst` does not undo them. A triangle setup may be taken while the table is written (the banks are not the table).\n\n",
         cfg.power_fmt().name(),
         cfg.power_depth(),
         cfg.power_frac_bits + 1,
@@ -265,7 +270,7 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
     );
     if cfg.per_triangle() {
         s += &format!(
-            "Every record is a whole fragment with its triangle's state, so any record can be evaluated alone. A record whose `{0}` is 1 starts a triangle: drive a setup beat from its `tri_*` columns (with `in_valid` low), then its fragment. A record whose `{0}` is 0 repeats its triangle's state, which the top already holds. Scene vectors keep the scene's triangles (each triangle's visible fragments together); random vectors draw triangles of 1 to {1} fragments: {2:.0} % of them are drawn as one fragment, the rest a length uniform in 1..s for s a power of two from 1 to {1} (each of the {3} equally likely), so {4:.0} % of triangles are one fragment and a triangle has {5:.1} fragments on average; every {6} records start a new triangle (a chunk of the stream, generated on its own); every corner record is a triangle of its own.\n",
+            "Every record is a whole fragment with its triangle's state, so any record can be evaluated alone. A record whose `{0}` is 1 starts a triangle: drive a setup from its `tri_*` columns (taken as Triangle setup says, over one or more edges; the previous triangle's last fragment may still be accepted at the setup's edge), then its fragment. A record whose `{0}` is 0 repeats its triangle's state, which the top already holds. Scene vectors keep the scene's triangles (each triangle's visible fragments together); random vectors draw triangles of 1 to {1} fragments: {2:.0} % of them are drawn as one fragment, the rest a length uniform in 1..s for s a power of two from 1 to {1} (each of the {3} equally likely), so {4:.0} % of triangles are one fragment and a triangle has {5:.1} fragments on average; every {6} records start a new triangle (a chunk of the stream, generated on its own); every corner record is a triangle of its own.\n",
             crate::vectors::targets::TRI_START,
             crate::vectors::sources::TRIANGLE_MAX_FRAGMENTS,
             100.0 * crate::vectors::sources::ONE_FRAGMENT_SHARE,
