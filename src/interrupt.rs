@@ -1,8 +1,10 @@
 //! Ctrl-C, SIGTERM and SIGHUP (a CI runner's timeout, a closed terminal). Where a run holds a
 //! [`Cleanup`] (writing vector files, output folders, a streamed regression), the first
 //! signal sets a flag that its loops check, so they stop through their normal error path and
-//! remove what they wrote; a second exits at once, and so does the first after
-//! [`STOP_GRACE`] when the run is blocked where no loop looks. Anywhere else the first exits at once, as
+//! remove what they wrote; a second exits at once (unless it comes within [`SAME_STOP`] of
+//! the first: the same stop, sent to the process and to its group), and so does the first
+//! after [`STOP_GRACE`] when the run is blocked where no loop looks. An exit at once removes
+//! whatever is still under this process's temporary names. Anywhere else the first exits at once, as
 //! the signal's default would, so a long computation is not finished only to be thrown away.
 //! A signal that was ignored when gbump started (`nohup`'s SIGHUP) stays ignored.
 
@@ -105,11 +107,19 @@ impl Drop for Child {
 /// How long a run stopping through its error path may take before the signal ends it.
 pub const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(10);
 
-/// Exit as a signal's default would, saying what is left behind.
+/// Exit as a signal's default would, removing what is still under a temporary name (the
+/// run's own cleanup does not get to run) and saying what is left behind.
 fn stop_now() -> ! {
-    eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files go at the next run in that folder)");
+    crate::temp_files::remove_own();
+    eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files were removed)");
     std::process::exit(130);
 }
+
+/// A second signal this soon after the first is the same stop, not a second request: GNU
+/// `timeout` and process managers signal the process and then its group, milliseconds
+/// apart, and that pair must not cut the run's own cleanup short.
+pub const SAME_STOP: std::time::Duration = std::time::Duration::from_secs(1);
+static FIRST_SIGNAL: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
 
 /// Install the handler (once, from `main`).
 pub fn install() {
@@ -129,7 +139,14 @@ pub fn install() {
         // print and signal. The tools end on the first signal too: a run stopping through its
         // error path must not wait for a whole build first.
         end_descendants();
-        if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
+        let first = *FIRST_SIGNAL.get_or_init(std::time::Instant::now);
+        if CLEANUPS.load(Ordering::SeqCst) == 0 {
+            stop_now();
+        }
+        if INTERRUPTED.swap(true, Ordering::SeqCst) {
+            if first.elapsed() < SAME_STOP {
+                return;
+            }
             stop_now();
         }
         HANDLED.store(true, Ordering::SeqCst);

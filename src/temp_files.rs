@@ -2,12 +2,37 @@
 //! into place, so a killed run leaves only such names behind; any run that later writes into
 //! the same folder removes those whose process is gone.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Every temporary name this process has handed out, so that a forced exit (a signal that
+/// cannot wait for the run's own cleanup) removes what is left under them.
+static HANDED_OUT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
 
 /// The temporary sibling of `path` for this process.
 pub fn temp_path(path: &Path) -> PathBuf {
     let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!("{name}.tmp{}", std::process::id()))
+    let tmp = path.with_file_name(format!("{name}.tmp{}", std::process::id()));
+    let mut set = HANDED_OUT.lock().unwrap_or_else(|e| e.into_inner());
+    set.get_or_insert_with(HashSet::new)
+        .insert(std::path::absolute(&tmp).unwrap_or_else(|_| tmp.clone()));
+    tmp
+}
+
+/// Remove whatever is still under a temporary name this process handed out (those renamed
+/// into place are gone from there already); returns how many were removed. For an exit
+/// that skips the run's own cleanup: the next run in the folder would remove them anyway,
+/// but a dump's are hundreds of megabytes.
+pub fn remove_own() -> usize {
+    let set = HANDED_OUT.lock().unwrap_or_else(|e| e.into_inner()).clone().unwrap_or_default();
+    set.iter()
+        .filter(|p| match std::fs::symlink_metadata(p) {
+            Ok(m) if m.is_dir() => std::fs::remove_dir_all(p).is_ok(),
+            Ok(_) => std::fs::remove_file(p).is_ok(),
+            Err(_) => false,
+        })
+        .count()
 }
 
 /// The process id a temporary name belongs to, if `name` is one.
@@ -57,6 +82,29 @@ pub fn clean_stale(dir: &Path, depth: u32) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What is still under a handed-out temporary name goes; what was renamed into place,
+    /// and files this process did not name, stay.
+    #[test]
+    fn a_forced_exit_removes_this_processs_temporary_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let (left, kept, other) = (
+            dir.path().join("left.bin"),
+            dir.path().join("kept.bin"),
+            dir.path().join("other.tmp1"),
+        );
+        let t = temp_path(&left);
+        std::fs::write(&t, b"partial").unwrap();
+        let folder = temp_path(&dir.path().join("sets"));
+        std::fs::create_dir_all(folder.join("inner")).unwrap();
+        let k = temp_path(&kept);
+        std::fs::write(&k, b"done").unwrap();
+        std::fs::rename(&k, &kept).unwrap();
+        std::fs::write(&other, b"not ours").unwrap();
+        assert!(remove_own() >= 2);
+        assert!(!t.exists() && !folder.exists(), "a temporary file or folder was left");
+        assert!(kept.exists() && other.exists(), "a finished file or another's was removed");
+    }
 
     #[test]
     fn only_names_of_dead_processes_are_removed() {
