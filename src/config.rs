@@ -265,7 +265,8 @@ pub struct PipelineConfig {
     pub cube_map_face: u32,
     /// Geometric self-shadowing (Cg Tutorial §8.5.3): a light whose direction L (as the dot
     /// products see it) points below the surface adds nothing, and its highlight is cut where
-    /// the bump normal faces away from it (B·L clamped to 0), so no highlight shows on a bump
+    /// the bump normal faces away from it (its fd, B·L as `dot_clamp` rounds and clamps it, is 0,
+    /// read before `in_diffuse_en` masks it), so no highlight shows on a bump
     /// the light cannot reach. Below the surface is L_z <= 0 in bump space; under
     /// `frame_transform` it is N·L clamped to 0, N the unperturbed normal (0, 0, 1) placed in
     /// the fragment's frame by a second `frame_transform` instance and N·L one more
