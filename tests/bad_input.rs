@@ -186,6 +186,42 @@ fn cases() -> Vec<Case> {
             vec!["s.toml", "camera.up", "parallel to the view", "fix:"],
         ),
         (
+            "point light without a position",
+            scene(r("kind = \"point\"\nposition = [0.0, 0.0, 3.0]", "kind = \"point\"")),
+            render(&[]),
+            vec!["s.toml", "lights[0]", "needs `position`", "fix:"],
+        ),
+        (
+            "spot light without a direction",
+            scene(r("kind = \"point\"", "kind = \"spot\"")),
+            render(&[]),
+            vec!["s.toml", "lights[0]", "needs `direction`", "fix:"],
+        ),
+        (
+            "a direction on a point light",
+            scene(r(
+                "kind = \"point\"\nposition = [0.0, 0.0, 3.0]",
+                "kind = \"point\"\nposition = [0.0, 0.0, 3.0]\ndirection = [0.0, 0.0, -1.0]",
+            )),
+            render(&[]),
+            vec!["s.toml", "lights[0].direction", "does nothing on a point light", "fix:"],
+        ),
+        (
+            "a cut-off on a directional light",
+            scene(r(
+                "kind = \"point\"\nposition = [0.0, 0.0, 3.0]",
+                "kind = \"directional\"\ndirection = [0.0, 0.0, 1.0]\ncutoff_deg = 20.0",
+            )),
+            render(&[]),
+            vec!["s.toml", "lights[0].cutoff_deg", "does nothing on a directional light", "fix:"],
+        ),
+        (
+            "bump cylinder_sides past MAX_CYLINDER_SIDES",
+            scene(r("strength = 10.0", "strength = 10.0, cylinder_sides = 4294967295")),
+            render(&[]),
+            vec!["s.toml", "objects[0].bump.cylinder_sides", "MAX_CYLINDER_SIDES", "fix:"],
+        ),
+        (
             "k above 1",
             scene(r("colour = [0.95, 0.95, 0.95]", "colour = [0.95, 0.95, 0.95]\nk = 1.5")),
             render(&[]),

@@ -92,8 +92,55 @@ fn no_extra_values(s: &Scene, text: &str) -> Result<()> {
     }
 }
 
+/// Each light's fields as its kind reads them: a point or spot light without `position`
+/// (it would sit at the origin, default values, unannounced), a directional or spot light
+/// without `direction`, and a field the kind never reads (`direction` on a point light,
+/// `cutoff_deg` on a directional one) are named rather than passed over.
+fn light_fields(s: &Scene, text: &str) -> Result<()> {
+    let Ok(given) = toml::from_str::<toml::Table>(text) else {
+        return Ok(());
+    };
+    let Some(lights) = given.get("lights").and_then(|l| l.as_array()) else {
+        return Ok(());
+    };
+    let c = Checker { s, text };
+    for (i, (l, read)) in lights.iter().zip(&s.lights).enumerate() {
+        let Some(l) = l.as_table() else { continue };
+        let (kind, needs, unused): (&str, &[&str], &[&str]) = match read.kind {
+            LightKind::Directional => ("directional", &["direction"], &["position", "cutoff_deg", "exponent"]),
+            LightKind::Point => ("point", &["position"], &["direction", "cutoff_deg", "exponent"]),
+            LightKind::Spot => ("spot", &["position", "direction"], &[]),
+        };
+        if let Some(k) = needs.iter().find(|k| !l.contains_key(**k)) {
+            return Err(c.fail(
+                &format!("lights[{i}]"),
+                format!("a {kind} light needs `{k}`"),
+                &format!("give {k} = [x, y, z]"),
+            ));
+        }
+        if let Some(k) = unused.iter().find(|k| l.contains_key(**k)) {
+            return Err(c.fail(
+                &format!("lights[{i}].{k}"),
+                format!("`{k}` does nothing on a {kind} light"),
+                &format!(
+                    "remove it, or set the kind that reads it (`{k}` is read by {})",
+                    if *k == "position" {
+                        "point and spot lights"
+                    } else if *k == "direction" {
+                        "directional and spot lights"
+                    } else {
+                        "spot lights"
+                    }
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub fn validate(s: &Scene, text: &str) -> Result<()> {
     no_extra_values(s, text)?;
+    light_fields(s, text)?;
     let c = Checker { s, text };
     let bump = s.bump_lights().count();
     let max_lights = crate::config::limit("lights").1;
@@ -232,11 +279,11 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             ));
         }
         c.num(&format!("{p}.bump.strength"), b.strength, 0.0, 1e4)?;
-        if b.cylinder_sides == 1 || b.cylinder_sides == 2 {
+        if b.cylinder_sides == 1 || b.cylinder_sides == 2 || b.cylinder_sides > MAX_CYLINDER_SIDES {
             return Err(c.fail(
                 &format!("{p}.bump.cylinder_sides"),
-                "fewer than 3 sides".into(),
-                "use 0 or 3 and more",
+                format!("{} sides is out of range", b.cylinder_sides),
+                &format!("use 0 (none) or 3..={MAX_CYLINDER_SIDES} (MAX_CYLINDER_SIDES)"),
             ));
         }
         use crate::bumpmap::HeightSource as H;
