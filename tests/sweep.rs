@@ -64,6 +64,39 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     }
     let svg = std::fs::read_to_string(dir.path().join("model/tiny.svg")).unwrap();
     assert!(svg.contains("(area model)"), "the plot does not say its area is the model's");
+    // Cached points edited (another hash, an impossible area and error) are measured again,
+    // never served: both runs give what they gave.
+    let before = (
+        std::fs::read_to_string(dir.path().join("out/tiny.json")).unwrap(),
+        std::fs::read_to_string(dir.path().join("model/tiny.json")).unwrap(),
+    );
+    let mut edited = 0;
+    for e in std::fs::read_dir(work.join("points")).unwrap() {
+        let path = e.unwrap().path();
+        let mut p: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+        p["config_hash"] = "4ac26b256a9a0341".into();
+        p["top_ge"] = 1.0.into();
+        p["max_error_lsb"] = (-5.0).into();
+        std::fs::write(&path, serde_json::to_vec(&p).unwrap()).unwrap();
+        edited += 1;
+    }
+    assert_eq!(edited, 4, "two points, each sized by Yosys and by the model");
+    run();
+    Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["sweep", "--space"])
+        .arg(&space)
+        .arg("--out")
+        .arg(dir.path().join("model"))
+        .arg("--work")
+        .arg(&work)
+        .assert()
+        .success();
+    let after = (
+        std::fs::read_to_string(dir.path().join("out/tiny.json")).unwrap(),
+        std::fs::read_to_string(dir.path().join("model/tiny.json")).unwrap(),
+    );
+    assert!(after == before, "an edited cache entry was served");
 }
 
 #[test]

@@ -348,7 +348,7 @@ pub fn measure(
     let cache = work.join("points").join(format!("{}.json", point_key(cfg, &s, target, yosys)?));
     if let Ok(text) = std::fs::read_to_string(&cache) {
         if let Ok(p) = serde_json::from_str::<Point>(&text) {
-            if p.config == *cfg {
+            if cached_point_fits(&p, cfg, yosys) {
                 return Ok(Point {
                     label: label.to_string(),
                     ..p
@@ -412,6 +412,32 @@ pub fn measure(
     std::fs::create_dir_all(cache.parent().expect("dir")).map_err(|e| Error::io(&cache, e))?;
     crate::render::output::write_atomic(&cache, serde_json::to_string_pretty(&p).expect("json").as_bytes())?;
     Ok(p)
+}
+
+/// Whether a cached point is this configuration's, whole: every field that follows from the
+/// configuration alone agrees with it (its hash, rate, latency, and the area model's figures
+/// where the model sized it), and every measured figure is a possible one. Anything else is
+/// measured again, so a cache entry edited or left by another version is never served.
+fn cached_point_fits(p: &Point, cfg: &PipelineConfig, yosys: bool) -> bool {
+    let by = if yosys { "yosys" } else { "model" };
+    let sane = |v: f64| v.is_finite() && v >= 0.0;
+    let derived = p.config == *cfg
+        && p.config_hash == cfg.hash()
+        && p.area_by == by
+        && p.fragments_per_clock == 1.0 / cfg.initiation_interval() as f64
+        && p.latency == crate::rtlgen::top::latency(cfg);
+    let area = if yosys {
+        p.top_ge > 0.0 && sane(p.top_ge) && sane(p.blend_ge) && p.blend_ge <= p.top_ge
+    } else {
+        let m = super::area_model::model_area(cfg);
+        p.top_ge == m.top_ge && p.blend_ge == m.blend_ge && p.flip_flops == m.flip_flops && p.memory_bits == m.memory_bits
+    };
+    let errors = sane(p.max_error_lsb)
+        && sane(p.mean_error_lsb)
+        && p.mean_error_lsb <= p.max_error_lsb
+        && !p.psnr_vs_reference_db.is_nan()
+        && p.psnr_vs_reference_db > 0.0;
+    derived && area && errors && !p.pareto
 }
 
 /// Mark the points no other point beats on both area and mean error.
