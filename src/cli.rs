@@ -138,8 +138,9 @@ pub enum Cmd {
         /// Random top vectors on Icarus (0 skips the random sets).
         #[arg(long, default_value_t = 100_000, conflicts_with_all = ["vectors", "stream"])]
         random_icarus: u64,
-        #[arg(long, default_value_t = 1, conflicts_with = "vectors")]
-        seed: u64,
+        /// Seed of the random sets, or of `--stream random:N` (default 1).
+        #[arg(long, conflicts_with = "vectors")]
+        seed: Option<u64>,
         /// Skip the built-in scenes' fragments.
         #[arg(long, conflicts_with_all = ["vectors", "stream"])]
         no_scenes: bool,
@@ -852,7 +853,7 @@ pub fn run() -> anyhow::Result<()> {
                 sims: sim.sims(),
                 random_verilator: random,
                 random_icarus,
-                seed,
+                seed: seed.unwrap_or(1),
                 scenes: !no_scenes,
                 own_scenes,
                 scene_size: scene_size
@@ -873,6 +874,22 @@ pub fn run() -> anyhow::Result<()> {
             // name it), and check_sets refuses any set of another. Nothing is written or
             // said until every given set has been checked whole (`regress`'s `announce`).
             let stream = stream.map(|s| crate::sim::stream::StreamSource::parse(&s)).transpose()?;
+            // What a stream does not use is refused, not passed over.
+            if let Some(src) = &stream {
+                let random = matches!(src, crate::sim::stream::StreamSource::Random(_));
+                if let (Some(n), false) = (seed, random) {
+                    return Err(Error::Other(format!(
+                        "--seed {n}: no effect on this run: a --stream of corners or of a scene draws nothing at random\n  fix: drop --seed, or stream random:N"
+                    ))
+                    .into());
+                }
+                if waves {
+                    return Err(Error::Other(
+                        "--waves: the streamed harness writes no waveforms\n  fix: drop --waves, or write the records with `gbump vectors` and run them with --vectors DIR --waves".into(),
+                    )
+                    .into());
+                }
+            }
             // --scene-size sizes scene fragments: refused where this run makes none, rather
             // than passed over.
             if let Some(sz) = &scene_size {

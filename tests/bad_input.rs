@@ -1041,6 +1041,18 @@ fn cases() -> Vec<Case> {
             vec!["--scene-size 8x8", "--no-scenes", "fix:"],
         ),
         (
+            "regress --seed on a stream that draws nothing at random",
+            vec![],
+            vec!["regress", "--stream", "corners", "--seed", "5", "--work", "w"],
+            vec!["--seed 5", "no effect", "fix:"],
+        ),
+        (
+            "regress --waves on a stream",
+            vec![],
+            vec!["regress", "--stream", "random:100", "--waves", "--work", "w"],
+            vec!["--waves", "no waveforms", "fix:"],
+        ),
+        (
             "regress --scene-size for a palette configuration",
             cfg("palette = true\n"),
             vec!["regress", "--config", "c.toml", "--scene-size", "8x8", "--work", "w"],
