@@ -1000,6 +1000,17 @@ fn cases() -> Vec<Case> {
             vec!["m.json", "hex.name", "../corners_top.hex"],
         ),
         (
+            "manifest column whose role alone was edited",
+            vec![(
+                "m.json",
+                include_str!("../vectors/corners_top.json")
+                    .replacen("\"role\": \"expected\"", "\"role\": \"stimulus\"", 1)
+                    .into(),
+            )],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
+            vec!["m.json", "columns", "(stimulus, u8.0)", "(expected, u8.0)"],
+        ),
+        (
             "manifest with a key gbump does not write",
             vec![(
                 "m.json",

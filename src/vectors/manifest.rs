@@ -303,8 +303,8 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
                 let say = |c: Option<&ColumnEntry>| {
                     c.map_or("nothing".to_string(), |c| {
                         format!(
-                            "`{}` at lsb {}, {} bits x {} lanes, entering {} edge(s) late",
-                            c.name, c.lsb, c.width, c.lanes, c.enters
+                            "`{}` ({}, {}) at lsb {}, {} bits x {} lanes, entering {} edge(s) late",
+                            c.name, c.role, c.format, c.lsb, c.width, c.lanes, c.enters
                         )
                     })
                 };
