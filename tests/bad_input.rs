@@ -2084,3 +2084,28 @@ fn a_link_into_a_missing_folder_is_refused_without_making_it() {
         assert!(!gone.exists(), "{} made the link's missing folder", args[0]);
     }
 }
+
+/// A folder `gbump vectors` writes but `gbump regress` refuses (make reads `=` and `:`) is
+/// written with a note saying so, and regress then refuses it, as the note said.
+#[test]
+fn a_folder_regress_refuses_is_named_when_the_vectors_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("e=q");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .args(["vectors", "--source", "random:5", "--target", "top", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("will refuse this folder") && err.contains("'='"), "{err}");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .args(["regress", "--sim", "icarus", "--vectors"])
+        .arg(&out)
+        .arg("--work")
+        .arg(dir.path().join("w"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("'='") && err.contains("fix:"), "{err}");
+}

@@ -84,7 +84,17 @@ pub fn check_out_path(p: &Path) -> Result<()> {
         "--out",
         |c| c.is_whitespace() || "\"'`".contains(c),
         "Verilator and Icarus filelists and plusargs split or misread\n  fix: give a folder whose path has no spaces or quotes",
-    )
+    )?;
+    // Characters a filelist takes but `gbump regress` and `cosim` refuse (make reads `:`
+    // and `=`): written all the same, for the user's own flow, with a word on what follows.
+    if let Err(e) = check_tool_path(p, "--out") {
+        let why = e.to_string();
+        crate::warn::warn(format!(
+            "note: `gbump regress --vectors` and `gbump cosim --rtl` will refuse this folder: {}; your own filelists and testbench can take it",
+            why.lines().next().unwrap_or_default()
+        ));
+    }
+    Ok(())
 }
 
 /// Refuse `p` when its absolute path holds a character `bad` names; the message says which,
