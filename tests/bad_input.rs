@@ -1052,6 +1052,12 @@ fn cases() -> Vec<Case> {
             vec!["--scene-size 8x8", "--no-scenes", "fix:"],
         ),
         (
+            "a scene's fragments at a size too small for any object",
+            vec![],
+            vec!["vectors", "--source", "scene:torus_caps", "--size", "1x1", "--out", "out"],
+            vec!["torus_caps at 1x1", "give a larger size", "256x192"],
+        ),
+        (
             "regress --seed on a stream that draws nothing at random",
             vec![],
             vec!["regress", "--stream", "corners", "--seed", "5", "--work", "w"],

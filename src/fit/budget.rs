@@ -111,12 +111,14 @@ impl Budget {
     }
 }
 
+use crate::scene::validate::short;
+
 impl std::fmt::Display for Budget {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Budget::Max(x) => write!(f, "max<={x}"),
-            Budget::Psnr(x) => write!(f, "psnr>={x}"),
-            Budget::Exact(x) => write!(f, "exact<={x}"),
+            Budget::Max(x) => write!(f, "max<={}", short(*x)),
+            Budget::Psnr(x) => write!(f, "psnr>={}", short(*x)),
+            Budget::Exact(x) => write!(f, "exact<={}", short(*x)),
         }
     }
 }
@@ -131,6 +133,9 @@ mod tests {
         assert_eq!(Budget::parse("psnr >= 50").unwrap(), Budget::Psnr(50.0));
         assert_eq!(Budget::parse("exact<=1").unwrap(), Budget::Exact(1.0));
         assert_eq!(Budget::parse(" max <= 2.5 ").unwrap(), Budget::Max(2.5));
+        // A bound prints as it was given, not as hundreds of digits.
+        assert_eq!(Budget::parse("max<=1e-300").unwrap().to_string(), "max<=1e-300");
+        assert_eq!(Budget::parse("psnr>=50").unwrap().to_string(), "psnr>=50");
         // A space inside the name, the operator or the number is a typo, not a budget.
         for bad in [
             "max<2",

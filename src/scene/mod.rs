@@ -10,7 +10,7 @@ pub mod mesh;
 pub mod needs;
 pub mod sphere_map;
 pub mod teapot;
-mod validate;
+pub(crate) mod validate;
 
 use crate::bumpmap::{Filter, HeightSource, NormalMethod};
 use crate::config::PipelineConfig;

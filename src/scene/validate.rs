@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::limits::{MAX_BUMP_SIDE, MAX_CYLINDER_SIDES, MAX_IMAGE_SIDE, MAX_SEGMENTS, MAX_SHININESS, MAX_TRIANGLES};
 
 /// A number as a person reads it: 1e300 as `1e300`, not as 301 digits.
-fn short(v: f64) -> String {
+pub(crate) fn short(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) {
         format!("{v:e}")
     } else {

@@ -505,7 +505,16 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
     crate::limits::check_render(&s.file, w, h, s.triangles())?;
     let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
-    let gb = crate::raster::rasterise::rasterise(&p)?;
+    let gb = crate::raster::rasterise::rasterise(&p).map_err(|e| match size {
+        // The size was the caller's, not the scene's: that is what to change.
+        Some(_) => Error::Other(format!(
+            "scene {name} at {w}x{h}: {}\n  fix: give a larger size (the scene's own is {}x{})",
+            e.to_string().lines().next().unwrap_or_default(),
+            s.size[0],
+            s.size[1]
+        )),
+        None => e,
+    })?;
     let frags = crate::raster::fragment::fragments(&p, &gb);
     let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
     // `fragments` gives each triangle's fragments together: a setup starts each run.
