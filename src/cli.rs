@@ -922,8 +922,9 @@ pub fn run() -> anyhow::Result<()> {
                     };
                     let c = own.resolve()?;
                     eprintln!(
-                        "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
-                        c.hash()
+                        "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene={}` prints it); pass --config to target another",
+                        c.hash(),
+                        crate::shell::quoted(name)
                     );
                     (c, own)
                 }

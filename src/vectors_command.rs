@@ -63,8 +63,9 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         (Source::Scene(name), None, None) => {
             let c = Scene::load(name)?.derive_config()?;
             eprintln!(
-                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene {name}` prints it); pass --config to target another",
-                c.hash()
+                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene={}` prints it); pass --config to target another",
+                c.hash(),
+                crate::shell::quoted(name)
             );
             c
         }
