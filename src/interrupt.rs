@@ -139,14 +139,13 @@ pub fn install() {
         // print and signal. The tools end on the first signal too: a run stopping through its
         // error path must not wait for a whole build first.
         end_descendants();
-        let first = *FIRST_SIGNAL.get_or_init(std::time::Instant::now);
-        if CLEANUPS.load(Ordering::SeqCst) == 0 {
-            stop_now();
+        // The second of a pair is passed over before anything else is decided: the run may
+        // have dropped its Cleanup on its way out, and an exit now would cut that short.
+        if FIRST_SIGNAL.get().is_some_and(|t| t.elapsed() < SAME_STOP) {
+            return;
         }
-        if INTERRUPTED.swap(true, Ordering::SeqCst) {
-            if first.elapsed() < SAME_STOP {
-                return;
-            }
+        FIRST_SIGNAL.get_or_init(std::time::Instant::now);
+        if CLEANUPS.load(Ordering::SeqCst) == 0 || INTERRUPTED.swap(true, Ordering::SeqCst) {
             stop_now();
         }
         HANDLED.store(true, Ordering::SeqCst);

@@ -6,31 +6,59 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// Every temporary name this process has handed out, so that a forced exit (a signal that
-/// cannot wait for the run's own cleanup) removes what is left under them.
-static HANDED_OUT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+/// Every temporary name this process has made (by [`temp_path`], or built elsewhere and
+/// [`register`]ed), so that a forced exit (a signal that cannot wait for the run's own
+/// cleanup) removes what is left under them. A replaced result's backup (`commit`) is not
+/// among them: removing it mid-commit would lose the old result.
+static MADE: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
 
 /// The temporary sibling of `path` for this process.
 pub fn temp_path(path: &Path) -> PathBuf {
     let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
     let tmp = path.with_file_name(format!("{name}.tmp{}", std::process::id()));
-    let mut set = HANDED_OUT.lock().unwrap_or_else(|e| e.into_inner());
-    set.get_or_insert_with(HashSet::new)
-        .insert(std::path::absolute(&tmp).unwrap_or_else(|_| tmp.clone()));
+    register(&tmp);
     tmp
 }
 
-/// Remove whatever is still under a temporary name this process handed out (those renamed
-/// into place are gone from there already); returns how many were removed. For an exit
-/// that skips the run's own cleanup: the next run in the folder would remove them anyway,
-/// but a dump's are hundreds of megabytes.
+/// Note `tmp`, a temporary name of this process built elsewhere (a vector file's, an output
+/// file's, a wave file's), for [`remove_own`].
+pub fn register(tmp: &Path) {
+    let mut set = MADE.lock().unwrap_or_else(|e| e.into_inner());
+    set.get_or_insert_with(HashSet::new)
+        .insert(std::path::absolute(tmp).unwrap_or_else(|_| tmp.to_path_buf()));
+}
+
+/// Remove whatever is still under a temporary name this process made (those renamed into
+/// place are gone from there already); returns how many were removed. For an exit that skips
+/// the run's own cleanup: the next run in the folder would remove them anyway, but a dump's
+/// are hundreds of megabytes.
 pub fn remove_own() -> usize {
-    let set = HANDED_OUT.lock().unwrap_or_else(|e| e.into_inner()).clone().unwrap_or_default();
+    remove_own_under(Path::new("/"))
+}
+
+/// [`remove_own`] for the names under `dir` alone.
+pub fn remove_own_under(dir: &Path) -> usize {
+    let set = MADE.lock().unwrap_or_else(|e| e.into_inner()).clone().unwrap_or_default();
     set.iter()
-        .filter(|p| match std::fs::symlink_metadata(p) {
-            Ok(m) if m.is_dir() => std::fs::remove_dir_all(p).is_ok(),
-            Ok(_) => std::fs::remove_file(p).is_ok(),
-            Err(_) => false,
+        .filter(|p| p.starts_with(dir))
+        .filter(|p| {
+            // Renamed aside first: a thread renaming the name into place at this moment wins
+            // or loses that race whole, and a finished result is never emptied.
+            // Itself a temporary name of this process, so a removal that fails now (a tool
+            // still writing into the folder) is cleared by the next run in the folder.
+            let aside = p.with_file_name(format!(
+                "{}.del.tmp{}",
+                p.file_name().unwrap_or_default().to_string_lossy(),
+                std::process::id()
+            ));
+            if std::fs::rename(p, &aside).is_err() {
+                return false;
+            }
+            match std::fs::symlink_metadata(&aside) {
+                Ok(m) if m.is_dir() => std::fs::remove_dir_all(&aside).is_ok(),
+                Ok(_) => std::fs::remove_file(&aside).is_ok(),
+                Err(_) => false,
+            }
         })
         .count()
 }
@@ -101,7 +129,7 @@ mod tests {
         std::fs::write(&k, b"done").unwrap();
         std::fs::rename(&k, &kept).unwrap();
         std::fs::write(&other, b"not ours").unwrap();
-        assert!(remove_own() >= 2);
+        assert_eq!(remove_own_under(dir.path()), 2);
         assert!(!t.exists() && !folder.exists(), "a temporary file or folder was left");
         assert!(kept.exists() && other.exists(), "a finished file or another's was removed");
     }

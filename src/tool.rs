@@ -275,9 +275,14 @@ pub fn build_fix(tool: &str, log: &str) -> String {
         .any(|k| log.contains(k))
     {
         format!("  fix: {tool} or a compiler it ran was killed (a crash, or memory ran out): check free memory, reinstall it if it happens again (scripts/install-tools.sh), and run again")
-    } else if !log.contains("%Error") && log.contains("make") && log.contains("Error") {
-        // Verilator took the sources (its own errors start with %Error); the C++ build of the
-        // model it wrote failed: the machine's compiler or make, not the RTL.
+    } else if !log.contains("%Error")
+        && !log.lines().any(|l| l.contains("error") && l.contains("harness.cpp"))
+        && log.contains("make")
+        && log.contains("Error")
+    {
+        // Verilator took the sources (its own errors start with %Error) and gbump's own C++
+        // (the harness) is not what the compiler refused: the C++ build of the model failed
+        // on the machine's compiler or make, not on the RTL.
         format!("  fix: {tool} accepted the sources, but the C++ compiler or make it ran failed (the lines above): check that `${{CXX:-g++}} --version` answers and compiles a file, that CXX names a working compiler, and that the work folder's disk has room; scripts/install-tools.sh installs a known-good g++")
     } else {
         format!("  fix: {tool} refused the sources for the reasons above; gbump's own RTL and testbenches compile on the versions scripts/install-tools.sh installs, so an error in them is a gbump bug: report it with the configuration")
@@ -291,12 +296,18 @@ mod tests {
     #[test]
     fn a_build_fix_names_what_failed() {
         let ours = super::build_fix("verilator", "%Error: top.v:3: syntax error\n%Error: Exiting due to 1 error(s)");
-        assert!(ours.contains("gbump bug"), "{ours}");
+        assert!(ours.contains("bug: report it"), "{ours}");
         let cxx = super::build_fix(
             "verilator",
             "g++: error: unrecognized command-line option\nmake: *** [Vtop__ALL.o] Error 1\nmake: *** Waiting for unfinished jobs",
         );
-        assert!(cxx.contains("C++ compiler") && !cxx.contains("gbump bug"), "{cxx}");
+        assert!(cxx.contains("C++ compiler") && !cxx.contains("bug: report it"), "{cxx}");
+        // gbump's own C++ refused by the compiler is gbump's to fix.
+        let harness = super::build_fix(
+            "verilator",
+            "../harness.cpp:12:5: error: 'foo' was not declared in this scope\nmake: *** [harness.o] Error 1",
+        );
+        assert!(harness.contains("bug: report it"), "{harness}");
         let killed = super::build_fix("verilator", "g++: fatal error: Killed signal terminated program cc1plus");
         assert!(killed.contains("memory"), "{killed}");
     }

@@ -64,39 +64,70 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     }
     let svg = std::fs::read_to_string(dir.path().join("model/tiny.svg")).unwrap();
     assert!(svg.contains("(area model)"), "the plot does not say its area is the model's");
-    // Cached points edited (another hash, an impossible area and error) are measured again,
-    // never served: both runs give what they gave.
+    // A run with the cache whole is served from it (no point file is written again); a
+    // cached point with any one field edited (its hash, an impossible area, error or PSNR) is
+    // measured again, never served: both runs then give what they gave.
     let before = (
         std::fs::read_to_string(dir.path().join("out/tiny.json")).unwrap(),
         std::fs::read_to_string(dir.path().join("model/tiny.json")).unwrap(),
     );
-    let mut edited = 0;
-    for e in std::fs::read_dir(work.join("points")).unwrap() {
-        let path = e.unwrap().path();
-        let mut p: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-        p["config_hash"] = "4ac26b256a9a0341".into();
-        p["top_ge"] = 1.0.into();
-        p["max_error_lsb"] = (-5.0).into();
-        std::fs::write(&path, serde_json::to_vec(&p).unwrap()).unwrap();
-        edited += 1;
-    }
-    assert_eq!(edited, 4, "two points, each sized by Yosys and by the model");
+    let points = || {
+        let mut v: Vec<_> = std::fs::read_dir(work.join("points"))
+            .unwrap()
+            .map(|e| {
+                let p = e.unwrap().path();
+                let m = std::fs::metadata(&p).unwrap().modified().unwrap();
+                (p, m)
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let model_run = || {
+        Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["sweep", "--space"])
+            .arg(&space)
+            .arg("--out")
+            .arg(dir.path().join("model"))
+            .arg("--work")
+            .arg(&work)
+            .assert()
+            .success();
+    };
+    let cached = points();
+    assert_eq!(cached.len(), 4, "two points, each sized by Yosys and by the model");
+    std::thread::sleep(std::time::Duration::from_millis(20));
     run();
-    Command::cargo_bin("gbump")
-        .unwrap()
-        .args(["sweep", "--space"])
-        .arg(&space)
-        .arg("--out")
-        .arg(dir.path().join("model"))
-        .arg("--work")
-        .arg(&work)
-        .assert()
-        .success();
+    model_run();
+    assert_eq!(points(), cached, "a whole cache entry was measured again");
+    // The model's area is checked against the model; Yosys's cannot be without Yosys.
+    let (mut yosys_edits, mut model_edits): (Vec<(&str, serde_json::Value)>, Vec<(&str, serde_json::Value)>) = (
+        vec![("config_hash", "4ac26b256a9a0341".into()), ("max_error_lsb", (-5.0).into())],
+        vec![("top_ge", 1.0.into()), ("mean_error_lsb", 1e9.into())],
+    );
+    for (path, _) in &cached {
+        let mut p: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+        let (field, value) = if p["area_by"] == "model" {
+            model_edits.pop()
+        } else {
+            yosys_edits.pop()
+        }
+        .expect("two of each");
+        p[field] = value;
+        std::fs::write(path, serde_json::to_vec(&p).unwrap()).unwrap();
+    }
+    run();
+    model_run();
     let after = (
         std::fs::read_to_string(dir.path().join("out/tiny.json")).unwrap(),
         std::fs::read_to_string(dir.path().join("model/tiny.json")).unwrap(),
     );
     assert!(after == before, "an edited cache entry was served");
+    assert!(
+        points().iter().zip(&cached).all(|(now, then)| now.1 != then.1),
+        "an edited cache entry was not measured again"
+    );
 }
 
 #[test]

@@ -245,7 +245,7 @@ fn self_shadowing(cfg: &PipelineConfig) -> String {
     } else {
         format!("the z lane of {l} is above 0 (bump space: z is the surface normal)")
     };
-    format!("**Self-shadowing** (`self_shadow`, Cg Tutorial §8.5.3). Light i is above the surface where {test}. A light below it gives the fragment neither a diffuse nor a specular term; a light above it gives no specular term where its diffuse product B·L_i clamps to 0 (the bump faces away from it). No port is added: the test reads what the fragment already carries.\n\n")
+    format!("**Self-shadowing** (`self_shadow`, Cg Tutorial §8.5.3). Light i is above the surface where {test}. A light below it gives the fragment neither a diffuse nor a specular term; a light above it gives no specular term where its diffuse product fd_i, B·L_i as `dot_clamp` rounds and clamps it, is 0 (the bump faces away from it, or so nearly that the product rounds to 0); the test reads fd_i before `in_diffuse_en` = 0 forces the diffuse factor to 0, so turning a fragment's diffuse term off keeps its highlights. No port is added: the test reads what the fragment already carries.\n\n")
 }
 
 /// The vector record layout and one record decoded field by field.

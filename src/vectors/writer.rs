@@ -77,6 +77,7 @@ impl Sink {
             path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
             std::process::id()
         ));
+        crate::temp_files::register(&tmp);
         let f = StagedFile::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
         Ok(Sink {
             name,
