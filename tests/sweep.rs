@@ -45,16 +45,19 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
     assert!(second.contains("2 configurations"));
     // The same grid sized by the area model (the default): the same error columns, each top
     // within 25 % of Yosys, and the plot says which area it shows.
-    Command::cargo_bin("gbump")
-        .unwrap()
-        .args(["sweep", "--space"])
-        .arg(&space)
-        .arg("--out")
-        .arg(dir.path().join("model"))
-        .arg("--work")
-        .arg(&work)
-        .assert()
-        .success();
+    let model_run = || {
+        Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["sweep", "--space"])
+            .arg(&space)
+            .arg("--out")
+            .arg(dir.path().join("model"))
+            .arg("--work")
+            .arg(&work)
+            .assert()
+            .success();
+    };
+    model_run();
     let model: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.path().join("model/tiny.json")).unwrap()).unwrap();
     for (m, y) in model.as_array().unwrap().iter().zip(pts.as_array().unwrap()) {
         assert_eq!((m["area_by"].as_str(), y["area_by"].as_str()), (Some("model"), Some("yosys")));
@@ -82,18 +85,6 @@ fn a_small_sweep_writes_tables_and_a_plot_and_resumes() {
             .collect();
         v.sort();
         v
-    };
-    let model_run = || {
-        Command::cargo_bin("gbump")
-            .unwrap()
-            .args(["sweep", "--space"])
-            .arg(&space)
-            .arg("--out")
-            .arg(dir.path().join("model"))
-            .arg("--work")
-            .arg(&work)
-            .assert()
-            .success();
     };
     let cached = points();
     assert_eq!(cached.len(), 4, "two points, each sized by Yosys and by the model");
