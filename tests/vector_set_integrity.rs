@@ -221,8 +221,11 @@ fn a_missing_file_or_a_moved_column_is_named() {
     m.columns[2].lsb += 1;
     write_manifest(&manifest, &m);
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
-    let name = &m.columns[2].name;
-    assert!(e.contains(&format!("column 2 is `{name}` at lsb {}", m.columns[2].lsb)), "{e}");
+    let c = &m.columns[2];
+    assert!(
+        e.contains(&format!("column 2 is `{}` ({}, {}) at lsb {}", c.name, c.role, c.format, c.lsb)),
+        "{e}"
+    );
 }
 
 /// A text set converted to CRLF line ends, saved with a byte-order mark or with an empty
