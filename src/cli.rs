@@ -921,11 +921,7 @@ pub fn run() -> anyhow::Result<()> {
                         scene: Some(name.clone()),
                     };
                     let c = own.resolve()?;
-                    eprintln!(
-                        "note: --stream scene:{name} targets the scene's own configuration {} (`gbump config --scene={}` prints it); pass --config to target another",
-                        c.hash(),
-                        crate::shell::quoted(name)
-                    );
+                    crate::vectors_command::own_config_note(&format!("--stream scene:{name}"), name, &c);
                     (c, own)
                 }
                 (None, None, false, _) => {

@@ -6,23 +6,31 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// Every temporary name this process has made (by [`temp_path`], or built elsewhere and
-/// [`register`]ed), so that a forced exit (a signal that cannot wait for the run's own
+/// Every temporary name this process has made ([`temp_path`], [`hidden_temp_path`]), so that a forced exit (a signal that cannot wait for the run's own
 /// cleanup) removes what is left under them. A replaced result's backup (`commit`) is not
 /// among them: removing it mid-commit would lose the old result.
 static MADE: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
 
 /// The temporary sibling of `path` for this process.
 pub fn temp_path(path: &Path) -> PathBuf {
+    named(path, "")
+}
+
+/// [`temp_path`] as a hidden file (`.NAME.tmpPID`): a result written beside the user's own
+/// files (an output file, a wave file), out of a plain listing while it is written.
+pub fn hidden_temp_path(path: &Path) -> PathBuf {
+    named(path, ".")
+}
+
+fn named(path: &Path, prefix: &str) -> PathBuf {
     let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = path.with_file_name(format!("{name}.tmp{}", std::process::id()));
+    let tmp = path.with_file_name(format!("{prefix}{name}.tmp{}", std::process::id()));
     register(&tmp);
     tmp
 }
 
-/// Note `tmp`, a temporary name of this process built elsewhere (a vector file's, an output
-/// file's, a wave file's), for [`remove_own`].
-pub fn register(tmp: &Path) {
+/// Note `tmp`, a temporary name of this process, for [`remove_own`].
+fn register(tmp: &Path) {
     let mut set = MADE.lock().unwrap_or_else(|e| e.into_inner());
     set.get_or_insert_with(HashSet::new)
         .insert(std::path::absolute(tmp).unwrap_or_else(|_| tmp.to_path_buf()));

@@ -62,11 +62,7 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     let cfg = match (&src, r.config, r.scene) {
         (Source::Scene(name), None, None) => {
             let c = Scene::load(name)?.derive_config()?;
-            eprintln!(
-                "note: --source {source} targets the scene's own configuration {} (`gbump config --scene={}` prints it); pass --config to target another",
-                c.hash(),
-                crate::shell::quoted(name)
-            );
+            own_config_note(&format!("--source {source}"), name, &c);
             c
         }
         _ => crate::scene::pick_config(r.config, r.scene)?,
@@ -121,4 +117,15 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     }
     let total: u64 = sets.iter().map(|s| s.count).sum();
     say(&format!("{total} vectors for config {} in {secs:.2} s", cfg.hash()))
+}
+
+/// Say that `what` (`--source scene:NAME`, `--stream scene:NAME`) runs under scene `name`'s
+/// own configuration `cfg`, with the command that prints it (pasted back whole: a scene file
+/// named `-x.toml` or with spaces is given as `--scene=NAME`, shell-quoted).
+pub fn own_config_note(what: &str, name: &str, cfg: &crate::config::PipelineConfig) {
+    eprintln!(
+        "note: {what} targets the scene's own configuration {} (`gbump config --scene={}` prints it); pass --config to target another",
+        cfg.hash(),
+        crate::shell::quoted(name)
+    );
 }

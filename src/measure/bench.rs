@@ -99,8 +99,10 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     progress.done("vector dump");
     progress.start("Verilator");
     let rtl = crate::sim::rtl_files::write_rtl(cfg, &work.join("rtl"), "gbump bench")?;
-    let verilator_unusable = crate::tool::unusable("verilator");
-    if verilator_unusable.is_none() {
+    if let Some(why) = crate::tool::unusable("verilator") {
+        s += &format!("| Verilator | {why} | scripts/install-tools.sh |\n");
+        harness_table = ratios(&[], &dump);
+    } else {
         let mut configs = vec![PipelineConfig::from_toml("one_light_parallel", super::configs::ONE_LIGHT_PARALLEL)?];
         if cfg.hash() != configs[0].hash() {
             configs.push(cfg.clone());
@@ -114,17 +116,12 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
             speeds.push((c, h));
         }
         harness_table = t + HARNESS_NOTE + &ratios(&speeds, &dump);
-    } else {
-        s += &format!(
-            "| Verilator | {} | scripts/install-tools.sh |\n",
-            verilator_unusable.unwrap_or_default()
-        );
-        harness_table = ratios(&[], &dump);
     }
     progress.done("Verilator");
     progress.start("Icarus");
-    let iverilog_unusable = crate::tool::unusable("iverilog");
-    if iverilog_unusable.is_none() {
+    if let Some(why) = crate::tool::unusable("iverilog") {
+        s += &format!("| Icarus | {why} | scripts/install-tools.sh |\n");
+    } else {
         let hexdir = work.join("hex");
         let _ = std::fs::remove_dir_all(&hexdir);
         let ho = crate::vectors::DumpOptions {
@@ -150,11 +147,6 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
             out.passed as f64 / out.seconds,
             out.passed,
             out.seconds
-        );
-    } else {
-        s += &format!(
-            "| Icarus | {} | scripts/install-tools.sh |\n",
-            iverilog_unusable.unwrap_or_default()
         );
     }
     progress.done("Icarus");

@@ -69,9 +69,7 @@ fn temp_beside(path: &Path) -> Result<(std::path::PathBuf, std::path::PathBuf)> 
         .file_name()
         .ok_or_else(|| Error::Other(format!("{}: not a file path", path.display())))?;
     make_folder(dir)?;
-    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
-    crate::temp_files::register(&tmp);
-    Ok((dir.to_path_buf(), tmp))
+    Ok((dir.to_path_buf(), crate::temp_files::hidden_temp_path(&dir.join(name))))
 }
 
 /// Where an output path really leads: `path` itself, or the file at the end of its chain of

@@ -103,14 +103,22 @@ fn light_fields(s: &Scene, text: &str) -> Result<()> {
     let Some(lights) = given.get("lights").and_then(|l| l.as_array()) else {
         return Ok(());
     };
+    // Each kind: its name, the fields it needs, and the optional ones it reads; a field of
+    // another kind's is unused on it.
+    const READS: [(LightKind, &str, &[&str], &[&str]); 3] = [
+        (LightKind::Directional, "directional", &["direction"], &[]),
+        (LightKind::Point, "point", &["position"], &[]),
+        (LightKind::Spot, "spot", &["position", "direction"], &["cutoff_deg", "exponent"]),
+    ];
+    let reads = |r: &(LightKind, &str, &[&str], &[&str]), k: &str| r.2.contains(&k) || r.3.contains(&k);
     let c = Checker { s, text };
     for (i, (l, read)) in lights.iter().zip(&s.lights).enumerate() {
         let Some(l) = l.as_table() else { continue };
-        let (kind, needs, unused): (&str, &[&str], &[&str]) = match read.kind {
-            LightKind::Directional => ("directional", &["direction"], &["position", "cutoff_deg", "exponent"]),
-            LightKind::Point => ("point", &["position"], &["direction", "cutoff_deg", "exponent"]),
-            LightKind::Spot => ("spot", &["position", "direction"], &[]),
-        };
+        let this = READS.iter().find(|r| r.0 == read.kind).expect("every kind is listed");
+        let (kind, needs) = (this.1, this.2);
+        let unused = ["position", "direction", "cutoff_deg", "exponent"]
+            .into_iter()
+            .find(|k| l.contains_key(*k) && !reads(this, k));
         if let Some(k) = needs.iter().find(|k| !l.contains_key(**k)) {
             return Err(c.fail(
                 &format!("lights[{i}]"),
@@ -118,19 +126,14 @@ fn light_fields(s: &Scene, text: &str) -> Result<()> {
                 &format!("give {k} = [x, y, z]"),
             ));
         }
-        if let Some(k) = unused.iter().find(|k| l.contains_key(**k)) {
+        if let Some(k) = unused {
+            let readers: Vec<&str> = READS.iter().filter(|r| reads(r, k)).map(|r| r.1).collect();
             return Err(c.fail(
                 &format!("lights[{i}].{k}"),
                 format!("`{k}` does nothing on a {kind} light"),
                 &format!(
-                    "remove it, or set the kind that reads it (`{k}` is read by {})",
-                    if *k == "position" {
-                        "point and spot lights"
-                    } else if *k == "direction" {
-                        "directional and spot lights"
-                    } else {
-                        "spot lights"
-                    }
+                    "remove it, or set the kind that reads it (`{k}` is read by {} lights)",
+                    readers.join(" and ")
                 ),
             ));
         }

@@ -60,9 +60,7 @@ pub trait Simulator: Sync {
             return outcome(ok, log, secs, what);
         };
         let w = crate::render::output::link_target(w)?;
-        let name = w.file_name().map_or_else(|| "waves".into(), |n| n.to_string_lossy().into_owned());
-        let tmp = w.with_file_name(format!(".{name}.tmp{}", std::process::id()));
-        crate::temp_files::register(&tmp);
+        let tmp = crate::temp_files::hidden_temp_path(&w);
         let (ok, log, secs) = self.run_log(exe, plusargs, Some(&tmp), cwd, what).inspect_err(|_| {
             let _ = std::fs::remove_file(&tmp);
         })?;

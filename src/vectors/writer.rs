@@ -72,12 +72,7 @@ impl Sink {
     fn new(path: PathBuf) -> Result<Sink> {
         let name = path.file_name().expect("a file name").to_string_lossy().into_owned();
         let path = crate::render::output::streamed_result_path(&path)?;
-        let tmp = path.with_extension(format!(
-            "{}.tmp{}",
-            path.extension().map_or(String::new(), |e| e.to_string_lossy().into()),
-            std::process::id()
-        ));
-        crate::temp_files::register(&tmp);
+        let tmp = crate::temp_files::temp_path(&path);
         let f = StagedFile::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
         Ok(Sink {
             name,
