@@ -25,9 +25,9 @@ impl SplitMix64 {
     /// operations where the caller is compiled for them).
     #[inline(always)]
     pub fn next_block<const K: usize>(&mut self) -> [u64; K] {
-        let s = self.0;
-        self.0 = s.wrapping_add((K as u64).wrapping_mul(GAMMA));
-        std::array::from_fn(|k| mix(s.wrapping_add((k as u64 + 1).wrapping_mul(GAMMA))))
+        let block = self.peek_block::<K>();
+        self.skip(K as u64);
+        block
     }
 
     /// The next `K` values without taking them: `take` of them are taken with
@@ -35,8 +35,15 @@ impl SplitMix64 {
     /// records run in vector registers when fewer are needed than the block holds.
     #[inline(always)]
     pub fn peek_block<const K: usize>(&self) -> [u64; K] {
-        let s = self.0;
-        std::array::from_fn(|k| mix(s.wrapping_add((k as u64 + 1).wrapping_mul(GAMMA))))
+        // A loop over an array, not `array::from_fn`: past a few dozen values that became a
+        // call, compiled without the caller's vector instructions, a mix at a time.
+        let mut block = [0u64; K];
+        let mut x = self.0;
+        for b in block.iter_mut() {
+            x = x.wrapping_add(GAMMA);
+            *b = mix(x);
+        }
+        block
     }
 
     /// Take `n` values unseen (the state `n` calls of [`next_u64`](Self::next_u64) leave).
@@ -72,6 +79,41 @@ pub fn range_of(x: u64, lo: i64, hi: i64) -> i64 {
     lo + if span.is_power_of_two() { x & (span - 1) } else { x % span } as i64
 }
 
+/// [`range_of`] for one range, its remainder formed by multiplications (Lemire, Kaser and
+/// Kurz, "Faster remainder by direct computation", 2019: exact for every 64-bit value with a
+/// 128-bit constant), where `%` by a span known only at run time is a 64-bit division.
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    lo: i64,
+    span: u64,
+    /// ceil(2^128 / span); 0 for a power-of-two span, which is a mask.
+    m: u128,
+}
+
+impl Span {
+    #[inline(always)]
+    pub fn new(lo: i64, hi: i64) -> Span {
+        let span = (hi - lo) as u64 + 1;
+        let m = if span.is_power_of_two() { 0 } else { u128::MAX / span as u128 + 1 };
+        Span { lo, span, m }
+    }
+
+    /// `range_of(x, lo, hi)`.
+    #[inline(always)]
+    pub fn of(&self, x: u64) -> i64 {
+        if self.m == 0 {
+            return self.lo + (x & self.span.wrapping_sub(1)) as i64;
+        }
+        // x mod span = floor(frac(x·m / 2^128)·span): the high 64 bits of the 192-bit
+        // product of the low 128 bits of x·m and the span.
+        let low = self.m.wrapping_mul(x as u128);
+        let (lo_part, hi_part) = (low as u64 as u128, low >> 64);
+        let d = self.span as u128;
+        let top = (hi_part * d + ((lo_part * d) >> 64)) >> 64;
+        self.lo + top as i64
+    }
+}
+
 /// [`SplitMix64::unit`] of the drawn value `x`.
 #[inline(always)]
 pub fn unit_of(x: u64) -> f64 {
@@ -81,6 +123,30 @@ pub fn unit_of(x: u64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A span's remainder by multiplication is `%`'s, for every span shape and the values
+    /// at the edges of the 64-bit range.
+    #[test]
+    fn a_span_is_range_of() {
+        let mut rng = SplitMix64(0x5BA);
+        let spans = [
+            (0, 256),
+            (0, 255),
+            (-5, 5),
+            (0, 1),
+            (0, 0),
+            (3, 3),
+            (0, (1 << 40) + 7),
+            (i64::MIN / 2, i64::MAX / 2 - 1),
+        ];
+        for (lo, hi) in spans {
+            let s = Span::new(lo, hi);
+            let edges = [0, 1, u64::MAX, u64::MAX - 1, 1 << 63, (1 << 63) - 1];
+            for x in edges.into_iter().chain((0..20_000).map(|_| rng.next_u64())) {
+                assert_eq!(s.of(x), range_of(x, lo, hi), "{x} in {lo}..={hi}");
+            }
+        }
+    }
 
     /// A block is the values one call at a time gives, and leaves the same state.
     #[test]

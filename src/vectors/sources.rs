@@ -1,7 +1,7 @@
 //! Where stimuli come from: fragments of real scenes, a catalogue of corner cases, seeded
 //! random cases, and exhaustive sweeps of the units small enough to sweep.
 
-use super::rng::SplitMix64;
+use super::rng::{Span, SplitMix64};
 use super::targets::{TopStim, UnitStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -110,60 +110,60 @@ pub fn random_state(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
 /// the same configuration (every field this configuration draws is written; the rest stay
 /// as they were): a triangle's state is made in place, not copied.
 pub fn random_state_into(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
+    random_state_with(cfg, &k_range(cfg), rng, state)
+}
+
+/// The range k is drawn over, 0 to one: its constant costs a 128-bit division, once per
+/// stream rather than per triangle.
+fn k_range(cfg: &PipelineConfig) -> Span {
+    Span::new(0, 1i64 << cfg.k_frac_bits)
+}
+
+/// [`random_state_into`] with `cfg`'s [`k_range`].
+fn random_state_with(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
     match crate::simd::level() {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `simd::level` names only what this CPU has.
-        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, rng, state) },
+        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, k, rng, state) },
         #[cfg(target_arch = "x86_64")]
         // SAFETY: as above.
-        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, rng, state) },
-        _ => fill_state(cfg, rng, state),
+        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, k, rng, state) },
+        _ => fill_state(cfg, k, rng, state),
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-unsafe fn state_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
-    fill_state(cfg, rng, state)
+unsafe fn state_avx512(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
+    fill_state(cfg, k, rng, state)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,bmi2")]
-unsafe fn state_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
-    fill_state(cfg, rng, state)
+unsafe fn state_avx2(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
+    fill_state(cfg, k, rng, state)
 }
 
-/// [`random_state`]'s draws, a light's ten fixed ones (L, H, Lc and k's coin) as one block.
-/// The draws are sequential (k's second draw moves the stream); the unit vectors are then
-/// made for every light at once, lane by lane, so the square roots and divisions of all of
-/// them run side by side. Each lane is the same IEEE operations in the same order as one
-/// vector alone, so the codes do not depend on how many lanes run at once.
+/// [`random_state`]'s draws: every light's ([`light_draws`]), then its unit vectors made
+/// for every light at once, lane by lane, so the square roots and divisions of all of them
+/// run side by side. Each lane is the same IEEE operations in the same order as one vector
+/// alone, so the codes do not depend on how many lanes run at once.
 #[inline(always)]
-fn fill_state(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState) {
-    use super::rng::{range_of, unit_of};
+fn fill_state(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
+    use super::rng::range_of;
     if cfg.embm() {
         state.env = random_env(cfg, rng);
         return;
     }
-    let cmax = cfg.colour_max() as i64;
-    let kone = 1i64 << cfg.k_frac_bits;
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
     let n = cfg.lights as usize;
     // Each light's L and H draws: vector 2i is light i's L, 2i + 1 its H.
     let mut x = [[0u64; 3]; 2 * MAX_LIGHTS];
-    for (i, s) in state.lights.iter_mut().take(n).enumerate() {
-        let b = rng.next_block::<10>();
-        x[2 * i] = [b[0], b[1], b[2]];
-        x[2 * i + 1] = [b[3], b[4], b[5]];
-        // Written out: `[6, 7, 8].map(..)` stayed a call whose three narrow stores were read
-        // back as one wide load, a store-forwarding stall per light.
-        s.lc = [
-            range_of(b[6], 0, cmax) as u32,
-            range_of(b[7], 0, cmax) as u32,
-            range_of(b[8], 0, cmax) as u32,
-        ];
-        s.k = if unit_of(b[9]) < 0.5 { kone } else { rng.range(0, kone) };
+    if n <= MAX_LIGHTS / 2 {
+        light_draws::<{ LIGHT_DRAWS_MOST * MAX_LIGHTS / 2 }>(cfg, k, rng, &mut state.lights[..n], &mut x);
+    } else {
+        light_draws::<{ LIGHT_DRAWS_MOST * MAX_LIGHTS }>(cfg, k, rng, &mut state.lights[..n], &mut x);
     }
     let mut v = [[0i64; 3]; 2 * MAX_LIGHTS];
     if raw {
@@ -184,6 +184,47 @@ fn fill_state(cfg: &PipelineConfig, rng: &mut SplitMix64, state: &mut BumpState)
         // Drawn after the lights, so a configuration without a frame draws what it drew.
         state.frame = random_frame(cfg, rng, raw);
     }
+}
+
+/// The most draws one light takes: L, H, Lc and k's coin, and k where the coin says so.
+const LIGHT_DRAWS_MOST: usize = 11;
+
+/// Each light's draws in turn (L and H into `x`, Lc and k into its slot), from one block of
+/// `B` values (at least [`LIGHT_DRAWS_MOST`] a light) drawn ahead: a light's draws start
+/// where the one before it stopped, one further on when its k took a draw of its own. Drawn
+/// light by light, each light's mixes waited for the coin before them (a branch wrong half
+/// the time); from the block, they all run at once and a coin only moves an index.
+#[inline(always)]
+fn light_draws<const B: usize>(
+    cfg: &PipelineConfig,
+    k_range: &Span,
+    rng: &mut SplitMix64,
+    slots: &mut [LightSlot],
+    x: &mut [[u64; 3]; 2 * MAX_LIGHTS],
+) {
+    use super::rng::{range_of, unit_of};
+    let cmax = cfg.colour_max() as i64;
+    let kone = 1i64 << cfg.k_frac_bits;
+    let block = rng.peek_block::<B>();
+    let mut at = 0;
+    for (i, s) in slots.iter_mut().enumerate() {
+        let b = &block[at..at + LIGHT_DRAWS_MOST];
+        x[2 * i] = [b[0], b[1], b[2]];
+        x[2 * i + 1] = [b[3], b[4], b[5]];
+        // Written out: `[6, 7, 8].map(..)` stayed a call whose three narrow stores were read
+        // back as one wide load, a store-forwarding stall per light.
+        s.lc = [
+            range_of(b[6], 0, cmax) as u32,
+            range_of(b[7], 0, cmax) as u32,
+            range_of(b[8], 0, cmax) as u32,
+        ];
+        // Heads (half the time) k is drawn, else it is one.
+        let drawn = unit_of(b[9]) >= 0.5;
+        let k = k_range.of(b[10]);
+        s.k = if drawn { k } else { kone };
+        at += LIGHT_DRAWS_MOST - 1 + drawn as usize;
+    }
+    rng.skip(at as u64);
 }
 
 /// EMBM's random state: half the time raw codes over the whole L/H format (clamping at
@@ -356,6 +397,8 @@ pub struct RandomTriangles {
     rng: SplitMix64,
     state: BumpState,
     left: u64,
+    /// The configuration's [`k_range`], with the k fraction bits it is of.
+    k: Option<(u32, Span)>,
 }
 
 impl RandomTriangles {
@@ -364,6 +407,7 @@ impl RandomTriangles {
             rng,
             state: BumpState::default(),
             left: 0,
+            k: None,
         }
     }
 
@@ -409,7 +453,11 @@ impl RandomTriangles {
                 let span = 1i64 << self.rng.range(0, TRIANGLE_MAX_FRAGMENTS.ilog2() as i64);
                 1 + self.rng.range(0, span - 1) as u64
             };
-            random_state_into(cfg, &mut self.rng, &mut self.state);
+            let k = match self.k {
+                Some((bits, k)) if bits == cfg.k_frac_bits => k,
+                _ => self.k.insert((cfg.k_frac_bits, k_range(cfg))).1,
+            };
+            random_state_with(cfg, &k, &mut self.rng, &mut self.state);
         }
         tri_start
     }
