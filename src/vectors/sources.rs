@@ -471,16 +471,33 @@ fn fragments(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut V
         frags.extend((0..k).map(|_| random_fragment(cfg, rng)));
         return;
     }
-    // Eight fragments' draws at a time, one fixed-size block (the last block is drawn whole
-    // and only its fragments' part taken): the same values as one fragment at a time.
+    // Up to eight fragments' draws at a time, as one fixed-size block of the fewest fragments
+    // that hold them (the block is drawn whole and only its fragments' part taken): the same
+    // values as one fragment at a time. Most triangles are short, and a block of eight for
+    // one fragment spent most of its mixes on nothing.
     const AT_ONCE: usize = 8;
     let mut left = k;
     while left > 0 {
         let m = left.min(AT_ONCE);
-        let x = rng.peek_block::<{ AT_ONCE * FRAGMENT_DRAWS }>();
-        rng.skip((m * FRAGMENT_DRAWS) as u64);
-        frags.extend(x.chunks_exact(FRAGMENT_DRAWS).take(m).map(|x| rgb_fragment(cfg, x)));
+        match m {
+            1 => take_fragments::<{ FRAGMENT_DRAWS }>(cfg, rng, m, frags),
+            2 => take_fragments::<{ 2 * FRAGMENT_DRAWS }>(cfg, rng, m, frags),
+            3 | 4 => take_fragments::<{ 4 * FRAGMENT_DRAWS }>(cfg, rng, m, frags),
+            _ => take_fragments::<{ AT_ONCE * FRAGMENT_DRAWS }>(cfg, rng, m, frags),
+        }
         left -= m;
+    }
+}
+
+/// `m` fragments from one block of `B` draws (at least `m` fragments' worth).
+#[inline(always)]
+fn take_fragments<const B: usize>(cfg: &PipelineConfig, rng: &mut SplitMix64, m: usize, frags: &mut Vec<FragmentIn>) {
+    let x = rng.peek_block::<B>();
+    rng.skip((m * FRAGMENT_DRAWS) as u64);
+    // A loop, not `extend` of a `map`: that became a call of its own, compiled without the
+    // caller's vector instructions.
+    for x in x.chunks_exact(FRAGMENT_DRAWS).take(m) {
+        frags.push(rgb_fragment(cfg, x));
     }
 }
 
