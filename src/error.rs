@@ -227,6 +227,11 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
         path.join(".")
     });
     let mut msg = e.message().trim().to_string();
+    // A date or time arrives as serde's map of one private key, which the message calls a
+    // map: say what was written.
+    if let Some(dt) = datetime_at(after).filter(|_| msg.contains("invalid type: map")) {
+        msg = msg.replace("invalid type: map", &format!("invalid type: date-time `{dt}`"));
+    }
     if let Some(k) = key {
         if before.trim_end().ends_with('=') && after.trim().is_empty() {
             msg = format!("`{k}` has no value after `=`");
@@ -291,6 +296,14 @@ fn shorten_quoted(msg: &str) -> String {
         }
     }
     out
+}
+
+/// The TOML date or time `text` starts with (ended by a comma, a closing bracket or a
+/// comment), as written.
+fn datetime_at(text: &str) -> Option<&str> {
+    let end = text.find([',', '}', ']', '#']).unwrap_or(text.len());
+    let value = text[..end].trim();
+    value.parse::<toml::value::Datetime>().is_ok().then_some(value)
 }
 
 /// Where, in the text of an inline table `span` (`{ kind = "torus", major = "big" }`), the

@@ -75,6 +75,22 @@ pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     found
 }
 
+/// Whether process `pid` still runs (a zombie, waiting to be reaped, has ended).
+#[cfg(target_os = "linux")]
+pub fn running(pid: u32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
+        let state = stat.rsplit_once(')').map_or("", |(_, rest)| rest.trim_start());
+        !(state.starts_with('Z') || state.starts_with('X'))
+    })
+}
+
+/// Whether process `pid` still exists.
+#[cfg(all(unix, not(target_os = "linux")))]
+pub fn running(pid: u32) -> bool {
+    // SAFETY: signal 0 only checks that the process exists.
+    unsafe { libc::kill(pid as libc::pid_t, 0) == 0 }
+}
+
 /// `root` alone where the process tree cannot be read.
 #[cfg(all(unix, not(target_os = "linux")))]
 pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {

@@ -193,13 +193,34 @@ impl Watchdog {
                 // The processes found now are killed later even if the tool itself has gone
                 // by then (a child that ignored SIGTERM, now an orphan, holding its pipes).
                 let tree = crate::interrupt::end_tree(pid, libc::SIGTERM);
+                let deadline = std::time::Instant::now() + KILL_GRACE;
                 if rx.recv_timeout(KILL_GRACE) == Err(Timeout) {
-                    for p in tree {
+                    for &p in &tree {
                         // SAFETY: a plain kill(2) of a process of the tool's tree, still
                         // unreaped (the tool is waited for only after this thread is told).
                         unsafe {
                             libc::kill(p as libc::pid_t, libc::SIGKILL);
                         }
+                    }
+                }
+                // The tool's end does not wait for what it started: a process of its tree
+                // may still be ending when the tool is reaped. Each gets what is left of the
+                // grace period, then SIGKILL, so nothing of a stopped tool outlives the
+                // run (a flaky test saw the tool's `sleep` alive after gbump had exited).
+                let ends_by = |p: u32, by: std::time::Instant| {
+                    while crate::interrupt::running(p) && std::time::Instant::now() < by {
+                        std::thread::sleep(std::time::Duration::from_millis(5));
+                    }
+                };
+                for p in tree.into_iter().filter(|&p| p != pid) {
+                    ends_by(p, deadline);
+                    if crate::interrupt::running(p) {
+                        // SAFETY: a plain kill(2) of a process of the tool's tree that
+                        // outlived its grace period.
+                        unsafe {
+                            libc::kill(p as libc::pid_t, libc::SIGKILL);
+                        }
+                        ends_by(p, std::time::Instant::now() + KILL_GRACE);
                     }
                 }
             }

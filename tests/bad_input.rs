@@ -111,6 +111,12 @@ fn cases() -> Vec<Case> {
             vec!["s.toml:", "invalid type"],
         ),
         (
+            "a date where a number goes (TOML reads it as a date-time, not a map)",
+            scene(r("height = 2.0", "height = 1979-05-27")),
+            render(&[]),
+            vec!["s.toml:", "camera.height", "date-time `1979-05-27`"],
+        ),
+        (
             "NaN",
             scene(r("height = 2.0", "height = nan")),
             render(&[]),
