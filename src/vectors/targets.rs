@@ -140,6 +140,10 @@ pub struct TopEncoder<'a> {
     /// [`fill_fragment`](Self::fill_fragment)'s order within 120 bits (the default layout
     /// and most others): they are then packed in one word pair instead of lane by lane.
     packed_from: Option<u32>,
+    /// Where the lights' columns start, when L, H, Lc and k follow one another (every layout
+    /// gbump makes): [`fill_state`](Self::fill_state) then writes their lanes as one stream
+    /// of bits.
+    lights_from: Option<u32>,
 }
 
 /// A column's lanes: where lane 0 starts, their width and the values that fit them.
@@ -238,6 +242,11 @@ impl<'a> TopEncoder<'a> {
             frame: c.frame.map(Lanes::of),
             out: Lanes::of(c.out),
             packed_from: packed_from(&c),
+            lights_from: c.lights.and_then(|cols| {
+                let follow = cols.windows(2).all(|w| w[0].lsb + w[0].width == w[1].lsb);
+                let narrow = cols.iter().all(|c| c.lanes > 0 && (1..64).contains(&(c.width / c.lanes)));
+                (follow && narrow).then_some(cols[0].lsb)
+            }),
         }
     }
 
@@ -256,13 +265,43 @@ impl<'a> TopEncoder<'a> {
     /// [`fill`](Self::fill) from the result colour alone (what the fast model gives).
     pub fn fill_colour(&self, s: &TopStim, colour: [u32; 3], r: &mut Record) {
         r.words.fill(0);
-        self.fill_state(&s.state, r);
+        self.fill_state_lanes(&s.state, r);
         self.fill_fragment(&s.frag, s.tri_start, colour, r);
     }
 
     /// The bump-state columns, into `r` (whose state columns are zero): a triangle's
     /// records share them, so a run of its fragments starts from one record holding them.
+    /// The lights' lanes go as one stream of bits where their columns follow one another;
+    /// [`fill_state_lanes`](Self::fill_state_lanes), which sets them lane by lane, is what
+    /// the tests hold it to.
     pub fn fill_state(&self, state: &BumpState, r: &mut Record) {
+        let (Some(from), Some([l, h, lc, k])) = (self.lights_from, &self.lights) else {
+            return self.fill_state_lanes(state, r);
+        };
+        let n = self.cfg.lights as usize;
+        let mut bits = BitStream::at(&mut r.words, from);
+        let mut put = |c: &Lanes, i: usize, v: i64| {
+            c.check(i as u32, v);
+            bits.push(v as u64 & (u64::MAX >> (64 - c.width)), c.width);
+        };
+        for (j, s) in state.lights.iter().take(n).enumerate() {
+            (0..3).for_each(|ch| put(l, 3 * j + ch, s.l[ch]));
+        }
+        for (j, s) in state.lights.iter().take(n).enumerate() {
+            (0..3).for_each(|ch| put(h, 3 * j + ch, s.h[ch]));
+        }
+        for (j, s) in state.lights.iter().take(n).enumerate() {
+            (0..3).for_each(|ch| put(lc, 3 * j + ch, s.lc[ch] as i64));
+        }
+        for (j, s) in state.lights.iter().take(n).enumerate() {
+            put(k, j, s.k);
+        }
+        bits.flush();
+        self.fill_rest_of_state(state, r);
+    }
+
+    /// [`fill_state`](Self::fill_state) a lane at a time, for any layout.
+    pub fn fill_state_lanes(&self, state: &BumpState, r: &mut Record) {
         if let Some([l, h, lc, k]) = &self.lights {
             for j in 0..self.cfg.lights as usize {
                 let ls = &state.lights[j];
@@ -273,6 +312,11 @@ impl<'a> TopEncoder<'a> {
                 k.set(r, j as u32, ls.k);
             }
         }
+        self.fill_rest_of_state(state, r);
+    }
+
+    /// The state's columns other than the lights': EMBM's and the frame.
+    fn fill_rest_of_state(&self, state: &BumpState, r: &mut Record) {
         if let Some([st, m]) = &self.env {
             for (i, v) in state.env.st.iter().enumerate() {
                 st.set(r, i as u32, *v);
@@ -404,6 +448,49 @@ fn packed_from(c: &TopColumns) -> Option<u32> {
     }
     // Each value, shifted to its byte, in one u128.
     (c.out.lanes == 3 && c.out.width <= 63 && at - from <= 120).then_some(from)
+}
+
+/// Values of up to 63 bits written one after another into a record's words from a bit on
+/// (the words there zero), a word at a time.
+struct BitStream<'w> {
+    words: &'w mut [u64],
+    /// The word being filled, and how many of its bits are.
+    at: usize,
+    fill: u32,
+    acc: u64,
+}
+
+impl<'w> BitStream<'w> {
+    fn at(words: &'w mut [u64], lsb: u32) -> BitStream<'w> {
+        BitStream {
+            at: (lsb / 64) as usize,
+            fill: lsb % 64,
+            acc: 0,
+            words,
+        }
+    }
+
+    /// Append `v` (`width` < 64 bits, the rest of `v` zero).
+    #[inline(always)]
+    fn push(&mut self, v: u64, width: u32) {
+        let f = self.fill;
+        self.acc |= v << f;
+        if f + width >= 64 {
+            self.words[self.at] |= self.acc;
+            self.at += 1;
+            // The bits of `v` that did not fit (`f` is at least 1 here, as `width` < 64).
+            self.acc = v >> (64 - f);
+            self.fill = f + width - 64;
+        } else {
+            self.fill = f + width;
+        }
+    }
+
+    fn flush(self) {
+        if self.fill > 0 {
+            self.words[self.at] |= self.acc;
+        }
+    }
 }
 
 /// Where a packed layout's fragment columns lie: the stimulus columns one after another from
@@ -801,6 +888,35 @@ pub fn resolve(cfg: &PipelineConfig, args: &[String]) -> crate::error::Result<Ve
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The lights' columns written as one stream of bits are the columns set lane by lane,
+    /// over random configurations (the default's among those streamed).
+    #[test]
+    fn a_streamed_state_is_the_lane_by_lane_one() {
+        let mut rng = crate::vectors::rng::SplitMix64(0x57A7E);
+        let mut streamed = 0;
+        for i in 0..200 {
+            let cfg = crate::sim::fuzz::random_config(&mut rng);
+            let layout = top_layout(&cfg);
+            let enc = TopEncoder::new(&cfg, &layout);
+            streamed += enc.lights_from.is_some() as usize;
+            let mut draws = crate::vectors::rng::SplitMix64(i);
+            for _ in 0..20 {
+                let state = crate::vectors::sources::random_state(&cfg, &mut draws);
+                let (mut a, mut b) = (Record::new(&layout), Record::new(&layout));
+                enc.fill_state(&state, &mut a);
+                enc.fill_state_lanes(&state, &mut b);
+                assert_eq!(a.words, b.words, "config {}:\n{}", cfg.hash(), cfg.to_toml());
+            }
+        }
+        assert!(streamed > 100, "only {streamed} of 200 configurations streamed");
+        let cfg = PipelineConfig::default();
+        let layout = top_layout(&cfg);
+        assert!(
+            TopEncoder::new(&cfg, &layout).lights_from.is_some(),
+            "the default layout is not streamed"
+        );
+    }
 
     /// A fragment stored through its windows is the state with both values ORed in, wherever
     /// the two values lie: apart, in overlapping windows, in one window, at the record's end.
