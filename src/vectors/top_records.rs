@@ -216,7 +216,8 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
             enc,
             colours: vec![[0; 3]; BATCH],
             state: r.clone(),
-            bytes: vec![0; 8 * r.words.len()],
+            // Whole 16-byte pieces, so a record is copied in fixed-size moves (`push_padded`).
+            bytes: vec![0; (8 * r.words.len()).next_multiple_of(16)],
             r,
             maker,
         }
@@ -252,7 +253,7 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
                 if let (Some(bin), Some(p)) = (bin.as_deref_mut(), packed) {
                     let (stim, colour) = self.enc.fragment_bits(f, tri_start, *c);
                     let at = bin.len();
-                    bin.extend_from_slice(&self.bytes[..bytes]);
+                    push_padded(bin, &self.bytes, bytes);
                     match &windows {
                         Some(w) => w.put(&mut bin[at..], stim, colour),
                         None => p.or_into(&mut bin[at..], stim, colour),
@@ -278,6 +279,26 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// Append the first `bytes` of `record` (a whole number of 16-byte pieces long) to `bin`,
+/// copied a piece at a time into its spare room: `extend_from_slice` of a length known only
+/// at run time was a call to `memmove` per record.
+#[inline(always)]
+fn push_padded(bin: &mut Vec<u8>, record: &[u8], bytes: usize) {
+    let at = bin.len();
+    let padded = bytes.next_multiple_of(16);
+    bin.reserve(padded);
+    assert!(record.len() >= padded, "a record of whole pieces");
+    // SAFETY: `reserve` made room for `padded` bytes after `at`, and `record` holds as many;
+    // the `padded` bytes are written before the length takes in `bytes` of them.
+    unsafe {
+        let (src, dst) = (record.as_ptr() as *const [u8; 16], bin.as_mut_ptr().add(at) as *mut [u8; 16]);
+        for k in 0..padded / 16 {
+            dst.add(k).write_unaligned(src.add(k).read_unaligned());
+        }
+        bin.set_len(at + bytes);
     }
 }
 
