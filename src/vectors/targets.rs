@@ -387,20 +387,27 @@ impl<'a> TopEncoder<'a> {
             for (i, &x) in v.iter().enumerate() {
                 l.check(i as u32, x as i64);
             }
-            (((v[2] as u64) << l.width | v[1] as u64) << l.width | v[0] as u64) as u128
+            ((v[2] as u64) << l.width | v[1] as u64) << l.width | v[0] as u64
         };
         let bump = match frag.bump {
             BumpTexel::Rgb(codes) => three(&self.bump, codes),
             BumpTexel::Index(ix) => {
                 self.bump.check(0, ix as i64);
-                ix as u128
+                ix as u64
             }
         };
         // `tri_start` has a column only where the layout holds one.
-        let flags = frag.diffuse_en as u128 | (frag.specular_en as u128) << 1 | ((tri_start & self.start.is_some()) as u128) << 2;
+        let flags = frag.diffuse_en as u64 | (frag.specular_en as u64) << 1 | ((tri_start & self.start.is_some()) as u64) << 2;
         let (wb, wc, wt) = (self.bump.col.width, self.c_src.col.width, self.tex.col.width);
-        let stim = bump | three(&self.c_src, frag.c_src) << wb | three(&self.tex, frag.tex) << (wb + wc) | flags << (wb + wc + wt);
-        (stim, three(&self.out, colour))
+        let (c_src, tex) = (three(&self.c_src, frag.c_src), three(&self.tex, frag.tex));
+        let stim = if wb + wc <= 64 && wt + 3 <= 64 {
+            // Two u64 halves and one u128 shift (the usual widths): each u128 shift by a
+            // run-time amount is a handful of instructions.
+            (bump | c_src << wb) as u128 | ((tex | flags << wt) as u128) << (wb + wc)
+        } else {
+            bump as u128 | (c_src as u128) << wb | (tex as u128) << (wb + wc) | (flags as u128) << (wb + wc + wt)
+        };
+        (stim, three(&self.out, colour) as u128)
     }
 
     /// [`fill_fragment`](Self::fill_fragment) a lane at a time, for any layout.
