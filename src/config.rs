@@ -1202,18 +1202,22 @@ impl PipelineConfig {
     }
 
     /// Expanded bump-normal component: `s0.(nb-1)` in `nb` bits.
+    #[inline]
     pub fn normal_fmt(&self) -> Format {
         Format::s(self.normal_bits, self.normal_bits - 1)
     }
     /// L/H component: `s1.(w-2)`.
+    #[inline]
     pub fn lh_fmt(&self) -> Format {
         Format::s(self.lh_bits, self.lh_bits - 2)
     }
     /// Exact B·V before clamping.
+    #[inline]
     pub fn dot_exact_fmt(&self) -> Format {
         self.normal_fmt().product(self.lh_fmt()).sum(3)
     }
     /// Clamped dot product fd / power index: `u1.F`.
+    #[inline]
     pub fn dot_fmt(&self) -> Format {
         Format::u(self.dot_frac_bits + 1, self.dot_frac_bits)
     }
@@ -1230,6 +1234,7 @@ impl PipelineConfig {
         Format::u(self.colour_bits, 0)
     }
     /// Largest colour code (1.0).
+    #[inline]
     pub fn colour_max(&self) -> u32 {
         (1u32 << self.colour_bits) - 1
     }
@@ -1249,10 +1254,12 @@ impl PipelineConfig {
         }
     }
     /// Largest stage colour code (1.0 in [`Self::stage_colour_fmt`]).
+    #[inline]
     pub fn stage_colour_max(&self) -> i64 {
         (self.colour_max() as i64) << self.colour_guard_bits
     }
     /// Fraction bits of the blend factor (fd or fs) feeding the blend units.
+    #[inline]
     pub fn factor_frac(&self) -> u32 {
         self.dot_frac_bits.max(self.power_frac_bits)
     }
@@ -1373,6 +1380,7 @@ impl PipelineConfig {
             }
         }
     }
+    #[inline]
     pub fn flat_normal(&self) -> [i64; 3] {
         [0, 0, self.normal_fmt().max_raw()]
     }

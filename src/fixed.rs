@@ -46,6 +46,7 @@ pub const MAX_WIDTH: u32 = 62;
 
 impl Format {
     /// A format; `None` when the width is 0, above [`MAX_WIDTH`], or (signed) 1 bit of sign only.
+    #[inline]
     pub fn new(width: u32, frac: u32, signed: bool) -> Option<Format> {
         if width == 0 || width > MAX_WIDTH || (signed && width < 2) {
             return None;
@@ -54,16 +55,19 @@ impl Format {
     }
 
     /// Signed format; panics on an impossible width (a programming error, not user input).
+    #[inline]
     pub fn s(width: u32, frac: u32) -> Format {
         Format::new(width, frac, true).unwrap_or_else(|| panic!("bad signed format {width}.{frac}"))
     }
 
     /// Unsigned format; panics on an impossible width.
+    #[inline]
     pub fn u(width: u32, frac: u32) -> Format {
         Format::new(width, frac, false).unwrap_or_else(|| panic!("bad unsigned format {width}.{frac}"))
     }
 
     /// Smallest raw value.
+    #[inline]
     pub fn min_raw(self) -> i64 {
         if self.signed {
             -(1i64 << (self.width - 1))
@@ -73,6 +77,7 @@ impl Format {
     }
 
     /// Largest raw value.
+    #[inline]
     pub fn max_raw(self) -> i64 {
         if self.signed {
             (1i64 << (self.width - 1)) - 1
@@ -97,6 +102,7 @@ impl Format {
     }
 
     /// The format of an exact product `self * other`.
+    #[inline]
     pub fn product(self, other: Format) -> Format {
         let signed = self.signed || other.signed;
         // An unsigned operand gains a sign bit when it meets a signed one.
@@ -106,6 +112,7 @@ impl Format {
     }
 
     /// The format of an exact sum of `terms` values of this format.
+    #[inline]
     pub fn sum(self, terms: u32) -> Format {
         let grow = 32 - (terms.max(1) - 1).leading_zeros();
         Format::new(self.width + grow, self.frac, self.signed).expect("sum wider than MAX_WIDTH")
@@ -125,6 +132,7 @@ impl fmt::Display for Format {
 }
 
 /// `x / 2^shift` rounded as `rnd` says.
+#[inline]
 pub fn shift_round(x: i128, shift: u32, rnd: Rounding) -> i128 {
     if shift == 0 {
         return x;
@@ -146,6 +154,7 @@ pub fn shift_round(x: i128, shift: u32, rnd: Rounding) -> i128 {
 }
 
 /// Fit an integer into `fmt`'s width.
+#[inline]
 pub fn fit(x: i128, fmt: Format, ovf: Overflow) -> i64 {
     match ovf {
         Overflow::Saturate => x.clamp(fmt.min_raw() as i128, fmt.max_raw() as i128) as i64,
@@ -162,6 +171,7 @@ pub fn fit(x: i128, fmt: Format, ovf: Overflow) -> i64 {
 
 /// Convert `raw` in `from` to `to`: align the binary point (rounding as `rnd` says when bits
 /// are dropped), then fit the width (as `ovf` says).
+#[inline]
 pub fn requant(raw: i64, from: Format, to: Format, rnd: Rounding, ovf: Overflow) -> i64 {
     let x = raw as i128;
     let aligned = if to.frac >= from.frac {

@@ -105,6 +105,7 @@ impl Shaded {
 /// `interpolate = "hl"`; a per-triangle L is a unit vector already). Under `pixel_lh` the
 /// H lanes carry the viewer direction V, and H is the `normalise` of the normalised L and V
 /// halved ([`half_sum`]).
+#[inline]
 pub fn dot_vectors(cfg: &PipelineConfig, s: &LightSlot) -> ([i64; 3], [i64; 3]) {
     use super::normalise::{normalise, renormalised};
     let (nl, nh) = renormalised(cfg);
