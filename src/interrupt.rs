@@ -75,18 +75,36 @@ pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     found
 }
 
-/// Whether process `pid` still runs (a zombie, waiting to be reaped, has ended).
+/// When process `pid` started (clock ticks since boot, `/proc/PID/stat` field 22): with the
+/// pid, it names one process, where a pid alone may be reused once the process is reaped.
 #[cfg(target_os = "linux")]
-pub fn running(pid: u32) -> bool {
+pub fn started(pid: u32) -> Option<u64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // Fields after the command's closing parenthesis start at field 3, the state.
+    stat.rsplit_once(')')?.1.split_whitespace().nth(19)?.parse().ok()
+}
+
+/// Whether process `pid`, started at `start` ([`started`]), still runs: a zombie, waiting to
+/// be reaped, has ended, and a process that took its pid since is another one.
+#[cfg(target_os = "linux")]
+pub fn running(pid: u32, start: Option<u64>) -> bool {
     std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
-        let state = stat.rsplit_once(')').map_or("", |(_, rest)| rest.trim_start());
-        !(state.starts_with('Z') || state.starts_with('X'))
+        let fields: Vec<&str> = stat.rsplit_once(')').map_or("", |(_, rest)| rest).split_whitespace().collect();
+        let state = fields.first().copied().unwrap_or("");
+        let same = start.is_none() || fields.get(19).and_then(|f| f.parse().ok()) == start;
+        same && !(state.starts_with('Z') || state.starts_with('X'))
     })
+}
+
+/// Where the process table cannot be read, a start time is not known.
+#[cfg(all(unix, not(target_os = "linux")))]
+pub fn started(_pid: u32) -> Option<u64> {
+    None
 }
 
 /// Whether process `pid` still exists.
 #[cfg(all(unix, not(target_os = "linux")))]
-pub fn running(pid: u32) -> bool {
+pub fn running(pid: u32, _start: Option<u64>) -> bool {
     // SAFETY: signal 0 only checks that the process exists.
     unsafe { libc::kill(pid as libc::pid_t, 0) == 0 }
 }
@@ -236,5 +254,24 @@ pub fn check() -> Result<()> {
         ))
     } else {
         Ok(())
+    }
+}
+
+#[cfg(all(test, target_os = "linux"))]
+mod tests {
+    /// A process is running as the one started at its start time: not under another start
+    /// time (a reused pid), and not once it has ended.
+    #[test]
+    fn a_process_is_known_by_its_pid_and_start_time() {
+        let mut child = std::process::Command::new("sleep").arg("30").spawn().expect("sleep runs");
+        let pid = child.id();
+        let start = super::started(pid);
+        assert!(start.is_some(), "no start time for a running process");
+        assert!(super::running(pid, start));
+        assert!(!super::running(pid, start.map(|s| s + 1)), "another start time is another process");
+        child.kill().unwrap();
+        child.wait().unwrap();
+        assert!(!super::running(pid, start), "a reaped process still runs");
+        assert_eq!(super::started(pid), None);
     }
 }

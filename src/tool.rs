@@ -193,13 +193,22 @@ impl Watchdog {
                 // The processes found now are killed later even if the tool itself has gone
                 // by then (a child that ignored SIGTERM, now an orphan, holding its pipes).
                 let tree = crate::interrupt::end_tree(pid, libc::SIGTERM);
+                // Each process with its start time, so that a pid reused by another process
+                // once this one is reaped (by init, for an orphan) is never signalled.
+                let tree: Vec<(u32, Option<u64>)> = tree.into_iter().map(|p| (p, crate::interrupt::started(p))).collect();
                 let deadline = std::time::Instant::now() + KILL_GRACE;
+                let kill = |p: u32| {
+                    // SAFETY: a plain kill(2) of a process of the tool's tree: the tool itself
+                    // (unreaped until this thread is told), or one that still runs as the
+                    // process it was (`running` compares its start time).
+                    unsafe {
+                        libc::kill(p as libc::pid_t, libc::SIGKILL);
+                    }
+                };
                 if rx.recv_timeout(KILL_GRACE) == Err(Timeout) {
-                    for &p in &tree {
-                        // SAFETY: a plain kill(2) of a process of the tool's tree, still
-                        // unreaped (the tool is waited for only after this thread is told).
-                        unsafe {
-                            libc::kill(p as libc::pid_t, libc::SIGKILL);
+                    for &(p, start) in &tree {
+                        if p == pid || crate::interrupt::running(p, start) {
+                            kill(p);
                         }
                     }
                 }
@@ -207,20 +216,16 @@ impl Watchdog {
                 // may still be ending when the tool is reaped. Each gets what is left of the
                 // grace period, then SIGKILL, so nothing of a stopped tool outlives the
                 // run (a flaky test saw the tool's `sleep` alive after gbump had exited).
-                let ends_by = |p: u32, by: std::time::Instant| {
-                    while crate::interrupt::running(p) && std::time::Instant::now() < by {
+                let ends_by = |p: u32, start: Option<u64>, by: std::time::Instant| {
+                    while crate::interrupt::running(p, start) && std::time::Instant::now() < by {
                         std::thread::sleep(std::time::Duration::from_millis(5));
                     }
                 };
-                for p in tree.into_iter().filter(|&p| p != pid) {
-                    ends_by(p, deadline);
-                    if crate::interrupt::running(p) {
-                        // SAFETY: a plain kill(2) of a process of the tool's tree that
-                        // outlived its grace period.
-                        unsafe {
-                            libc::kill(p as libc::pid_t, libc::SIGKILL);
-                        }
-                        ends_by(p, std::time::Instant::now() + KILL_GRACE);
+                for (p, start) in tree.into_iter().filter(|&(p, _)| p != pid) {
+                    ends_by(p, start, deadline);
+                    if crate::interrupt::running(p, start) {
+                        kill(p);
+                        ends_by(p, start, std::time::Instant::now() + KILL_GRACE);
                     }
                 }
             }

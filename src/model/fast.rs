@@ -299,6 +299,18 @@ impl FastModel {
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
+        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
+    }
+
+    /// Each fragment on its own ([`one`](Self::one)): the body of every short run's loop.
+    #[inline(always)]
+    fn each_alone<const N: usize, const TEXTURE_LAST: bool>(
+        &self,
+        lights: &[Light; N],
+        frame: &Frame,
+        frags: &[FragmentIn],
+        out: &mut [[u32; 3]],
+    ) {
         for (f, o) in frags.iter().zip(out.iter_mut()) {
             *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
         }
@@ -315,9 +327,7 @@ impl FastModel {
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
-        for (f, o) in frags.iter().zip(out.iter_mut()) {
-            *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
-        }
+        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -329,9 +339,7 @@ impl FastModel {
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
-        for (f, o) in frags.iter().zip(out.iter_mut()) {
-            *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
-        }
+        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -371,9 +379,7 @@ impl FastModel {
         for (f, o) in frags.chunks(LANES).zip(out.chunks_mut(LANES)) {
             if f.len() <= SCALAR_MAX {
                 // Too few to fill a block: each alone costs less than a block of padding.
-                for (f, o) in f.iter().zip(o.iter_mut()) {
-                    *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
-                }
+                self.each_alone::<N, TEXTURE_LAST>(lights, frame, f, o);
             } else {
                 self.block::<N, TEXTURE_LAST>(lights, frame, f, o);
             }

@@ -138,6 +138,9 @@ mod tests {
             (3, 3),
             (0, (1 << 40) + 7),
             (i64::MIN / 2, i64::MAX / 2 - 1),
+            // 2^63, the widest span `range_of` takes, a power of two two ways.
+            (i64::MIN / 2, i64::MAX / 2),
+            (i64::MIN, -1),
         ];
         for (lo, hi) in spans {
             let s = Span::new(lo, hi);

@@ -279,6 +279,8 @@ impl<'a> TopEncoder<'a> {
             return self.fill_state_lanes(state, r);
         };
         let n = self.cfg.lights as usize;
+        // `top_layout`'s columns: three lanes a light for L, H and Lc, one for k.
+        debug_assert!([l, h, lc].iter().all(|c| c.col.lanes as usize == 3 * n) && k.col.lanes as usize == n);
         let mut bits = BitStream::at(&mut r.words, from);
         let mut put = |c: &Lanes, i: usize, v: i64| {
             c.check(i as u32, v);
@@ -480,6 +482,7 @@ impl<'w> BitStream<'w> {
     /// Append `v` (`width` < 64 bits, the rest of `v` zero).
     #[inline(always)]
     fn push(&mut self, v: u64, width: u32) {
+        debug_assert!((1..64).contains(&width) && v >> width == 0, "{width}-bit value {v}");
         let f = self.fill;
         self.acc |= v << f;
         if f + width >= 64 {

@@ -237,7 +237,9 @@ impl<'m, 'a> RunEncoder<'m, 'a> {
         }
         let (bytes, digits) = (m.layout.bytes(), m.layout.hex_digits());
         if let Some(bin) = bin.as_deref_mut() {
-            bin.reserve(bytes * run.frags.len());
+            // Room for the run's records and for the last one's whole 16-byte pieces
+            // (`push_padded`), so the buffer is not grown for the padding.
+            bin.reserve(bytes * run.frags.len() + 16);
         }
         // A packed layout's binary record is the state's bytes with the fragment's two
         // values ORed in: no record of words in between.
