@@ -45,16 +45,14 @@ fn end_descendants() {
 #[cfg(target_os = "linux")]
 pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     let me = std::process::id();
-    // (pid, parent) of every process, from /proc/PID/stat ("pid (comm) state ppid ...";
-    // comm may hold spaces and parentheses, so the fields are read after its last `)`).
+    // (pid, parent) of every process.
     let procs: Vec<(u32, u32)> = std::fs::read_dir("/proc")
         .into_iter()
         .flatten()
         .flatten()
         .filter_map(|e| {
             let pid: u32 = e.file_name().to_str()?.parse().ok()?;
-            let stat = std::fs::read_to_string(e.path().join("stat")).ok()?;
-            let ppid = stat.rsplit_once(')')?.1.split_whitespace().nth(1)?.parse().ok()?;
+            let ppid = stat(pid)?.get(STAT_PPID)?.parse().ok()?;
             Some((pid, ppid))
         })
         .collect();
@@ -75,23 +73,37 @@ pub fn end_tree(root: u32, signal: libc::c_int) -> Vec<u32> {
     found
 }
 
-/// When process `pid` started (clock ticks since boot, `/proc/PID/stat` field 22): with the
-/// pid, it names one process, where a pid alone may be reused once the process is reaped.
+/// Process `pid`'s `/proc/PID/stat` fields from its state on ("pid (comm) state ppid ...";
+/// comm may hold spaces and parentheses, so the fields are read after its last `)`).
+#[cfg(target_os = "linux")]
+fn stat(pid: u32) -> Option<Vec<String>> {
+    let text = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    Some(text.rsplit_once(')')?.1.split_whitespace().map(str::to_string).collect())
+}
+
+/// Places in [`stat`]'s fields: the state (field 3 of the file), the parent (4) and the
+/// start time (22).
+#[cfg(target_os = "linux")]
+const STAT_STATE: usize = 0;
+#[cfg(target_os = "linux")]
+const STAT_PPID: usize = 1;
+#[cfg(target_os = "linux")]
+const STAT_START: usize = 19;
+
+/// When process `pid` started (clock ticks since boot): with the pid, it names one process,
+/// where a pid alone may be reused once the process is reaped.
 #[cfg(target_os = "linux")]
 pub fn started(pid: u32) -> Option<u64> {
-    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
-    // Fields after the command's closing parenthesis start at field 3, the state.
-    stat.rsplit_once(')')?.1.split_whitespace().nth(19)?.parse().ok()
+    stat(pid)?.get(STAT_START)?.parse().ok()
 }
 
 /// Whether process `pid`, started at `start` ([`started`]), still runs: a zombie, waiting to
 /// be reaped, has ended, and a process that took its pid since is another one.
 #[cfg(target_os = "linux")]
 pub fn running(pid: u32, start: Option<u64>) -> bool {
-    std::fs::read_to_string(format!("/proc/{pid}/stat")).is_ok_and(|stat| {
-        let fields: Vec<&str> = stat.rsplit_once(')').map_or("", |(_, rest)| rest).split_whitespace().collect();
-        let state = fields.first().copied().unwrap_or("");
-        let same = start.is_none() || fields.get(19).and_then(|f| f.parse().ok()) == start;
+    stat(pid).is_some_and(|f| {
+        let state = f.get(STAT_STATE).map_or("", |s| s.as_str());
+        let same = start.is_none() || f.get(STAT_START).and_then(|s| s.parse().ok()) == start;
         same && !(state.starts_with('Z') || state.starts_with('X'))
     })
 }

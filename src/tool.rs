@@ -206,15 +206,11 @@ impl Watchdog {
                     }
                 };
                 if rx.recv_timeout(KILL_GRACE) == Err(Timeout) {
-                    for &(p, start) in &tree {
-                        if p == pid || crate::interrupt::running(p, start) {
-                            kill(p);
-                        }
-                    }
+                    kill(pid);
                 }
-                // The tool's end does not wait for what it started: a process of its tree
-                // may still be ending when the tool is reaped. Each gets what is left of the
-                // grace period, then SIGKILL, so nothing of a stopped tool outlives the
+                // The rest of the tree, whether or not the tool ended in its grace period:
+                // the tool's end does not wait for what it started. Each gets what is left of
+                // the grace period, then SIGKILL, so nothing of a stopped tool outlives the
                 // run (a flaky test saw the tool's `sleep` alive after gbump had exited).
                 let ends_by = |p: u32, start: Option<u64>, by: std::time::Instant| {
                     while crate::interrupt::running(p, start) && std::time::Instant::now() < by {

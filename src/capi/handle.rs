@@ -248,14 +248,14 @@ impl GbumpStim {
             layout: top_layout(&h.cfg),
             seed,
             index: 0,
-            tris: RandomTriangles::new(chunk_rng(seed, 0)),
+            tris: RandomTriangles::new(&h.cfg, chunk_rng(seed, 0)),
         }
     }
 
     /// The next record's stimulus (expected columns zero): record `index` of `random:N`.
     pub fn next_record(&mut self) -> Record {
         if self.index > 0 && self.index.is_multiple_of(RANDOM_CHUNK) {
-            self.tris = RandomTriangles::new(chunk_rng(self.seed, self.index / RANDOM_CHUNK));
+            self.tris = RandomTriangles::new(&self.cfg, chunk_rng(self.seed, self.index / RANDOM_CHUNK));
         }
         self.index += 1;
         let s = self.tris.next(&self.cfg);

@@ -452,7 +452,7 @@ pub fn model_speed(cfg: &PipelineConfig) -> (f64, f64) {
     let fast = crate::model::FastModel::of(cfg, &contents.view());
     let mut runs: Vec<(BumpState, Vec<FragmentIn>)> = Vec::new();
     for c in 0..MODEL_RECORDS / RANDOM_CHUNK {
-        let mut tris = RandomTriangles::new(chunk_rng(1, c));
+        let mut tris = RandomTriangles::new(cfg, chunk_rng(1, c));
         let mut done = 0;
         while done < RANDOM_CHUNK as usize {
             let mut frags = Vec::new();

@@ -185,6 +185,32 @@ impl FastModel {
         }
     }
 
+    /// A fragment's bump normal as the dot products see it, and its diffuse and specular
+    /// masks: all ones where the blend adds, zero where it is off (an enable, or the flat
+    /// bypass), so the factors are masked rather than branched on.
+    #[inline(always)]
+    fn normal_and_masks(&self, f: &FragmentIn, frame: &Frame) -> ([i64; 3], i64, i64) {
+        let b = match f.bump {
+            BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
+            BumpTexel::Index(x) => self.palette[x as usize],
+        };
+        // Compared a component at a time: an array compare read the three just stored as one
+        // wide load, which stalled on store forwarding for a sixth of the model's time.
+        let bypass = self.skip_flat & (b[0] == self.flat[0]) & (b[1] == self.flat[1]) & (b[2] == self.flat[2]);
+        let dmask = -i64::from(self.diffuse & f.diffuse_en & !bypass);
+        let smask = -i64::from(self.specular & f.specular_en & !bypass);
+        // Neither a frame nor a renormaliser: `b` as it is, kept in registers (through
+        // `dot_normal`'s match it was copied on the stack and read back wider than written,
+        // a store-forwarding stall on every fragment). Tested here, not in `dot_normal`:
+        // there it made one-fragment runs 10 ns slower.
+        let b = if self.frame.is_none() && self.renorm_b.is_none() {
+            b
+        } else {
+            self.dot_normal(b, frame)
+        };
+        (b, dmask, smask)
+    }
+
     /// The colours of `frags`, fragments of one triangle with bump state `state`, into `out`:
     /// the state's per-light products are formed once for the whole run.
     ///
@@ -398,21 +424,8 @@ impl FastModel {
         let (mut dmask, mut smask) = ([0i64; LANES], [0i64; LANES]);
         let (mut c_src, mut tex) = ([[0i64; LANES]; 3], [[0i64; LANES]; 3]);
         for (i, f) in frags.iter().enumerate().take(LANES) {
-            let v = match f.bump {
-                BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
-                BumpTexel::Index(x) => self.palette[x as usize],
-            };
-            // Compared a component at a time: an array compare read the three just stored as one
-            // wide load, which stalled on store forwarding for a sixth of the model's time.
-            let bypass = self.skip_flat & (v[0] == self.flat[0]) & (v[1] == self.flat[1]) & (v[2] == self.flat[2]);
-            dmask[i] = -i64::from(self.diffuse & f.diffuse_en & !bypass);
-            smask[i] = -i64::from(self.specular & f.specular_en & !bypass);
-            // As in `one`: through `dot_normal`'s match, `v` went by the stack and stalled.
-            let v = if self.frame.is_none() && self.renorm_b.is_none() {
-                v
-            } else {
-                self.dot_normal(v, frame)
-            };
+            let v;
+            (v, dmask[i], smask[i]) = self.normal_and_masks(f, frame);
             for ch in 0..3 {
                 b[ch][i] = v[ch];
                 c_src[ch][i] = (f.c_src[ch] as i64) << self.guard;
@@ -579,23 +592,7 @@ impl FastModel {
 
     #[inline(always)]
     fn one<const N: usize, const TEXTURE_LAST: bool>(&self, lights: &[Light; N], frame: &Frame, frag: &FragmentIn) -> [u32; 3] {
-        let b = match frag.bump {
-            BumpTexel::Rgb(c) => [c[0] as i64 - self.half, c[1] as i64 - self.half, c[2] as i64 - self.half],
-            BumpTexel::Index(i) => self.palette[i as usize],
-        };
-        let bypass = self.skip_flat & (b[0] == self.flat[0]) & (b[1] == self.flat[1]) & (b[2] == self.flat[2]);
-        // All ones where the blend adds, zero where it is off: the factors are masked.
-        let dmask = -i64::from(self.diffuse & frag.diffuse_en & !bypass);
-        let smask = -i64::from(self.specular & frag.specular_en & !bypass);
-        // Neither a frame nor a renormaliser: `b` as it is, kept in registers (through
-        // `dot_normal`'s match it was copied on the stack and read back wider than written,
-        // a store-forwarding stall on every fragment). Tested here, not in `dot_normal`:
-        // there it made one-fragment runs 10 ns slower.
-        let b = if self.frame.is_none() && self.renorm_b.is_none() {
-            b
-        } else {
-            self.dot_normal(b, frame)
-        };
+        let (b, dmask, smask) = self.normal_and_masks(frag, frame);
         let (mut dacc, mut sacc) = ([0i64; 3], [0i64; 3]);
         for s in lights {
             let dl = self.dot(b, s.l);

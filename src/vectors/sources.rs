@@ -371,7 +371,7 @@ pub fn random_stim(cfg: &PipelineConfig, rng: &mut SplitMix64) -> TopStim {
 /// chunk of `RANDOM_CHUNK` records starts a new triangle, so chunks stay independent.
 /// Records `c * RANDOM_CHUNK ..` of `random:count` with `seed`: chunk `c` of the stream.
 pub fn random_chunk(cfg: &PipelineConfig, seed: u64, c: u64, count: u64) -> Vec<TopStim> {
-    let mut tris = RandomTriangles::new(chunk_rng(seed, c));
+    let mut tris = RandomTriangles::new(cfg, chunk_rng(seed, c));
     (0..RANDOM_CHUNK.min(count - c * RANDOM_CHUNK)).map(|_| tris.next(cfg)).collect()
 }
 
@@ -397,17 +397,18 @@ pub struct RandomTriangles {
     rng: SplitMix64,
     state: BumpState,
     left: u64,
-    /// The configuration's [`k_range`], with the k fraction bits it is of.
-    k: Option<(u32, Span)>,
+    /// The configuration's [`k_range`].
+    k: Span,
 }
 
 impl RandomTriangles {
-    pub fn new(rng: SplitMix64) -> RandomTriangles {
+    /// The triangles of `cfg` (the configuration every later call is given) drawn from `rng`.
+    pub fn new(cfg: &PipelineConfig, rng: SplitMix64) -> RandomTriangles {
         RandomTriangles {
             rng,
             state: BumpState::default(),
             left: 0,
-            k: None,
+            k: k_range(cfg),
         }
     }
 
@@ -453,11 +454,7 @@ impl RandomTriangles {
                 let span = 1i64 << self.rng.range(0, TRIANGLE_MAX_FRAGMENTS.ilog2() as i64);
                 1 + self.rng.range(0, span - 1) as u64
             };
-            let k = match self.k {
-                Some((bits, k)) if bits == cfg.k_frac_bits => k,
-                _ => self.k.insert((cfg.k_frac_bits, k_range(cfg))).1,
-            };
-            random_state_with(cfg, &k, &mut self.rng, &mut self.state);
+            random_state_with(cfg, &self.k, &mut self.rng, &mut self.state);
         }
         tri_start
     }
@@ -1025,7 +1022,7 @@ mod triangle_tests {
     #[test]
     fn random_triangles_have_the_documented_lengths() {
         let cfg = PipelineConfig::default();
-        let mut t = RandomTriangles::new(chunk_rng(7, 0));
+        let mut t = RandomTriangles::new(&cfg, chunk_rng(7, 0));
         let mut lens: Vec<u64> = Vec::new();
         let mut prev: Option<TopStim> = None;
         for _ in 0..200_000 {

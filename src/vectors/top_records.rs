@@ -164,7 +164,7 @@ impl<'a> TopRecords<'a> {
         keep: bool,
     ) -> Result<(u64, Vec<TopStim>)> {
         let len = RANDOM_CHUNK.min(count - c * RANDOM_CHUNK);
-        let mut tris = RandomTriangles::new(chunk_rng(seed, c));
+        let mut tris = RandomTriangles::new(self.cfg, chunk_rng(seed, c));
         let mut enc = RunEncoder::new(self);
         let mut kept = Vec::new();
         let mut frags = Vec::with_capacity(BATCH);
