@@ -98,12 +98,13 @@ pub fn started(pid: u32) -> Option<u64> {
 }
 
 /// Whether process `pid`, started at `start` ([`started`]), still runs: a zombie, waiting to
-/// be reaped, has ended, and a process that took its pid since is another one.
+/// be reaped, has ended, and a process that took its pid since is another one. No start time
+/// means the process had ended when it was read: whatever has the pid now is another.
 #[cfg(target_os = "linux")]
 pub fn running(pid: u32, start: Option<u64>) -> bool {
     stat(pid).is_some_and(|f| {
         let state = f.get(STAT_STATE).map_or("", |s| s.as_str());
-        let same = start.is_none() || f.get(STAT_START).and_then(|s| s.parse().ok()) == start;
+        let same = start.is_some() && f.get(STAT_START).and_then(|s| s.parse().ok()) == start;
         same && !(state.starts_with('Z') || state.starts_with('X'))
     })
 }
@@ -281,6 +282,7 @@ mod tests {
         assert!(start.is_some(), "no start time for a running process");
         assert!(super::running(pid, start));
         assert!(!super::running(pid, start.map(|s| s + 1)), "another start time is another process");
+        assert!(!super::running(pid, None), "a process whose start was not read may be another");
         child.kill().unwrap();
         child.wait().unwrap();
         assert!(!super::running(pid, start), "a reaped process still runs");
