@@ -81,9 +81,15 @@ fn three<T>(mut f: impl FnMut() -> T) -> [T; 3] {
 
 /// `x.round() as i64` for the |x| ≤ 2^52 (and NaN, as 0) that `unit_codes` makes, without the
 /// library call `round` is on a baseline CPU: the truncation and the remainder are exact there.
+/// Beyond 2^62 it gives ±2^62 (every caller clamps to a narrower range).
 #[inline(always)]
 fn round_half_away(x: f64) -> i64 {
-    let t = x as i64;
+    const WIDE: f64 = (1u64 << 62) as f64;
+    // `as` saturates, which kept every conversion scalar (a compare and two moves per value);
+    // with NaN and the out-of-range already mapped, the conversion is one vector instruction.
+    let x = if x.is_nan() { 0.0 } else { x.clamp(-WIDE, WIDE) };
+    // SAFETY: `x` is finite and within ±2^62, so its truncation is an i64.
+    let t: i64 = unsafe { x.to_int_unchecked() };
     let f = x - t as f64;
     t + i64::from(f >= 0.5) - i64::from(f <= -0.5)
 }
@@ -158,17 +164,20 @@ fn fill_state(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut 
     let raw = rng.chance(0.5);
     let lh = cfg.lh_fmt();
     let n = cfg.lights as usize;
-    // Each light's L and H draws: vector 2i is light i's L, 2i + 1 its H.
-    let mut x = [[0u64; 3]; 2 * MAX_LIGHTS];
+    // Each light's L and H draws, a component a row (so a row is one vector register):
+    // vector 2i is light i's L, 2i + 1 its H.
+    let mut x = [[0u64; 2 * MAX_LIGHTS]; 3];
     if n <= MAX_LIGHTS / 2 {
         light_draws::<{ LIGHT_DRAWS_MOST * MAX_LIGHTS / 2 }>(cfg, k, rng, &mut state.lights[..n], &mut x);
     } else {
         light_draws::<{ LIGHT_DRAWS_MOST * MAX_LIGHTS }>(cfg, k, rng, &mut state.lights[..n], &mut x);
     }
-    let mut v = [[0i64; 3]; 2 * MAX_LIGHTS];
+    let mut v = [[0i64; 2 * MAX_LIGHTS]; 3];
     if raw {
-        for (v, x) in v.iter_mut().zip(&x).take(2 * n) {
-            *v = x.map(|x| range_of(x, lh.min_raw(), lh.max_raw()));
+        for (v, x) in v.iter_mut().zip(&x) {
+            for (v, x) in v.iter_mut().zip(x).take(2 * n) {
+                *v = range_of(*x, lh.min_raw(), lh.max_raw());
+            }
         }
     } else if n <= MAX_LIGHTS / 2 {
         // Half the lanes hold every vector of up to four lights: one register's worth.
@@ -177,8 +186,8 @@ fn fill_state(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut 
         unit_codes::<{ 2 * MAX_LIGHTS }>(cfg, &x, &mut v);
     }
     for (i, s) in state.lights.iter_mut().take(n).enumerate() {
-        s.l = v[2 * i];
-        s.h = v[2 * i + 1];
+        s.l = [v[0][2 * i], v[1][2 * i], v[2][2 * i]];
+        s.h = [v[0][2 * i + 1], v[1][2 * i + 1], v[2][2 * i + 1]];
     }
     if cfg.frame_transform {
         // Drawn after the lights, so a configuration without a frame draws what it drew.
@@ -200,7 +209,7 @@ fn light_draws<const B: usize>(
     k_range: &Span,
     rng: &mut SplitMix64,
     slots: &mut [LightSlot],
-    x: &mut [[u64; 3]; 2 * MAX_LIGHTS],
+    x: &mut [[u64; 2 * MAX_LIGHTS]; 3],
 ) {
     use super::rng::{range_of, unit_of};
     let cmax = cfg.colour_max() as i64;
@@ -209,8 +218,10 @@ fn light_draws<const B: usize>(
     let mut at = 0;
     for (i, s) in slots.iter_mut().enumerate() {
         let b = &block[at..at + LIGHT_DRAWS_MOST];
-        x[2 * i] = [b[0], b[1], b[2]];
-        x[2 * i + 1] = [b[3], b[4], b[5]];
+        for c in 0..3 {
+            x[c][2 * i] = b[c];
+            x[c][2 * i + 1] = b[3 + c];
+        }
         // Written out: `[6, 7, 8].map(..)` stayed a call whose three narrow stores were read
         // back as one wide load, a store-forwarding stall per light.
         s.lc = [
@@ -287,27 +298,25 @@ fn random_frame(cfg: &PipelineConfig, rng: &mut SplitMix64, raw: bool) -> crate:
 }
 
 /// Every drawn vector (`u(0)·2 − 1, u(1)·2 − 1, u(2)·1.2 − 0.2`) scaled to unit length and
-/// rounded to L/H codes (half away from zero, clamped), a component a lane: straight-line arithmetic over fixed-size arrays, which the compiler runs in vector
+/// rounded to L/H codes (half away from zero, clamped), a vector a lane and a component a
+/// row: straight-line arithmetic over fixed-size arrays, which the compiler runs in vector
 /// registers where the caller is compiled for them.
 #[inline(always)]
-fn unit_codes<const V: usize>(cfg: &PipelineConfig, x: &[[u64; 3]; 2 * MAX_LIGHTS], out: &mut [[i64; 3]; 2 * MAX_LIGHTS]) {
+fn unit_codes<const V: usize>(cfg: &PipelineConfig, x: &[[u64; 2 * MAX_LIGHTS]; 3], out: &mut [[i64; 2 * MAX_LIGHTS]; 3]) {
     use super::rng::unit_of;
-    let mut c = [[0f64; V]; 3];
-    for (k, x) in x.iter().enumerate().take(V) {
-        c[0][k] = unit_of(x[0]) * 2.0 - 1.0;
-        c[1][k] = unit_of(x[1]) * 2.0 - 1.0;
-        c[2][k] = unit_of(x[2]) * 1.2 - 0.2;
-    }
-    let mut len = [0f64; V];
-    for k in 0..V {
-        len[k] = (c[0][k] * c[0][k] + c[1][k] * c[1][k] + c[2][k] * c[2][k]).sqrt();
-    }
     let one = one(cfg) as f64;
     let (lo, hi) = (cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw());
-    for (i, c) in c.iter().enumerate() {
-        for k in 0..V {
-            out[k][i] = round_half_away(c[k] / len[k] * one).clamp(lo, hi);
-        }
+    let [o0, o1, o2] = out;
+    // One loop over the lanes, every access a lane's own: split into a loop per step, the
+    // compiler vectorised across the components instead, with gathers and scatters.
+    for k in 0..V {
+        let c0 = unit_of(x[0][k]) * 2.0 - 1.0;
+        let c1 = unit_of(x[1][k]) * 2.0 - 1.0;
+        let c2 = unit_of(x[2][k]) * 1.2 - 0.2;
+        let len = (c0 * c0 + c1 * c1 + c2 * c2).sqrt();
+        o0[k] = round_half_away(c0 / len * one).clamp(lo, hi);
+        o1[k] = round_half_away(c1 / len * one).clamp(lo, hi);
+        o2[k] = round_half_away(c2 / len * one).clamp(lo, hi);
     }
 }
 
@@ -1066,7 +1075,8 @@ mod state_tests {
     fn one_light_at_a_time(cfg: &PipelineConfig, rng: &mut SplitMix64) -> BumpState {
         let q_vec = |v: [f64; 3]| {
             let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            v.map(|c| round_half_away(c / len * one(cfg) as f64))
+            // The library's rounding, not the lanes' own, so the two are checked apart.
+            v.map(|c| (c / len * one(cfg) as f64).round() as i64)
                 .map(|c| c.clamp(cfg.lh_fmt().min_raw(), cfg.lh_fmt().max_raw()))
         };
         let (cmax, kone) = (cfg.colour_max() as i64, 1i64 << cfg.k_frac_bits);
@@ -1091,6 +1101,34 @@ mod state_tests {
             };
         }
         state
+    }
+
+    /// The lanes' rounding is the library's, half away from zero, on every value it is
+    /// given, NaN (0) and the edges of its range among them.
+    #[test]
+    fn round_half_away_is_round() {
+        let mut rng = SplitMix64(0x0DD);
+        let two52 = (1u64 << 52) as f64;
+        let edges = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+            two52,
+            -two52,
+            two52 - 0.5,
+        ];
+        let drawn = (0..100_000).map(|i| (unit_of(rng.next_u64()) * 2.0 - 1.0) * (1u64 << (i % 53)) as f64);
+        for x in edges.into_iter().chain(drawn) {
+            assert_eq!(round_half_away(x), x.round() as i64, "{x}");
+        }
+        assert_eq!(round_half_away(f64::NAN), 0);
+        let wide = 1i64 << 62;
+        assert_eq!((round_half_away(1e300), round_half_away(-f64::INFINITY)), (wide, -wide));
     }
 
     #[test]
