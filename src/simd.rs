@@ -66,3 +66,36 @@ fn detected() -> Level {
 fn detected() -> Level {
     Level::Baseline
 }
+
+/// `body` compiled for the vector extensions of `level` (which the CPU must have: [`level`]
+/// or a [`supported`] one) and run: the macro writes the body into one function per level,
+/// each compiled with its level's `target_feature`, and calls the one `level` names. The body
+/// is a call of an `#[inline(always)]` function, which each copy then holds whole.
+///
+/// `[generic parameters] [their names]` are the enclosing function's, repeated because a
+/// nested function cannot see them; the parameters are variables of the caller, passed by
+/// name (a method passes `self` as a named variable).
+macro_rules! at_level {
+    ($level:expr, [$($gen:tt)*] [$($garg:tt)*] fn($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {{
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
+        unsafe fn avx512<$($gen)*>($($arg: $ty),*) $(-> $ret)? $body
+        #[cfg(target_arch = "x86_64")]
+        #[target_feature(enable = "avx2,bmi2")]
+        unsafe fn avx2<$($gen)*>($($arg: $ty),*) $(-> $ret)? $body
+        // A call of its own on every level, so the body is compiled the same way in each.
+        #[inline(never)]
+        fn baseline<$($gen)*>($($arg: $ty),*) $(-> $ret)? $body
+        match $level {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU has every extension `avx512` is compiled for (the caller's
+            // contract on `level`).
+            $crate::simd::Level::Avx512 => unsafe { avx512::<$($garg)*>($($arg),*) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above.
+            $crate::simd::Level::Avx2 => unsafe { avx2::<$($garg)*>($($arg),*) },
+            _ => baseline::<$($garg)*>($($arg),*),
+        }
+    }};
+}
+pub(crate) use at_level;

@@ -292,40 +292,31 @@ impl FastModel {
         frags: &[FragmentIn],
         out: &mut [[u32; 3]],
     ) {
+        let m = self;
         if frags.len() <= SCALAR_MAX {
-            return match level {
-                #[cfg(target_arch = "x86_64")]
-                // SAFETY: as below.
-                Level::Avx512 => unsafe { self.scalar_avx512::<N, TEXTURE_LAST>(lights, frame, frags, out) },
-                #[cfg(target_arch = "x86_64")]
-                // SAFETY: as below.
-                Level::Avx2 => unsafe { self.scalar_avx2::<N, TEXTURE_LAST>(lights, frame, frags, out) },
-                _ => self.run_scalar::<N, TEXTURE_LAST>(lights, frame, frags, out),
-            };
+            // A run too short for a block, a fragment at a time, apart from the vector loop
+            // (whose entry broadcasts every constant to a register, more than such a run
+            // costs). Compiled for the level too: the baseline build of it, across the lights,
+            // was a ninth of a vector dump's time.
+            return crate::simd::at_level!(level, [const N: usize, const TEXTURE_LAST: bool] [N, TEXTURE_LAST] fn(
+                m: &FastModel,
+                lights: &[Light; N],
+                frame: &Frame,
+                frags: &[FragmentIn],
+                out: &mut [[u32; 3]],
+            ) {
+                m.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
+            });
         }
-        match level {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: the CPU has every feature the function is compiled for (the caller's
-            // contract).
-            Level::Avx512 => unsafe { self.run_avx512::<N, TEXTURE_LAST>(lights, frame, frags, out) },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: as above.
-            Level::Avx2 => unsafe { self.run_avx2::<N, TEXTURE_LAST>(lights, frame, frags, out) },
-            _ => self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out),
-        }
-    }
-
-    /// A run too short for a block, a fragment at a time, apart from the vector loop (whose
-    /// entry broadcasts every constant to a register, more than such a run costs).
-    #[inline(never)]
-    fn run_scalar<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        lights: &[Light; N],
-        frame: &Frame,
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
+        crate::simd::at_level!(level, [const N: usize, const TEXTURE_LAST: bool] [N, TEXTURE_LAST] fn(
+            m: &FastModel,
+            lights: &[Light; N],
+            frame: &Frame,
+            frags: &[FragmentIn],
+            out: &mut [[u32; 3]],
+        ) {
+            m.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
+        })
     }
 
     /// Each fragment on its own ([`one`](Self::one)): the body of every short run's loop.
@@ -340,56 +331,6 @@ impl FastModel {
         for (f, o) in frags.iter().zip(out.iter_mut()) {
             *o = self.one::<N, TEXTURE_LAST>(lights, frame, f);
         }
-    }
-
-    /// [`run_scalar`](Self::run_scalar) compiled for AVX-512, whose instructions it takes
-    /// across the lights (the baseline build of it was a ninth of a vector dump's time).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn scalar_avx512<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        lights: &[Light; N],
-        frame: &Frame,
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn scalar_avx2<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        lights: &[Light; N],
-        frame: &Frame,
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        self.each_alone::<N, TEXTURE_LAST>(lights, frame, frags, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn run_avx512<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        lights: &[Light; N],
-        frame: &Frame,
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn run_avx2<const N: usize, const TEXTURE_LAST: bool>(
-        &self,
-        lights: &[Light; N],
-        frame: &Frame,
-        frags: &[FragmentIn],
-        out: &mut [[u32; 3]],
-    ) {
-        self.run_blocks::<N, TEXTURE_LAST>(lights, frame, frags, out)
     }
 
     /// One triangle's fragments a block of [`LANES`] at a time, each value of the block in

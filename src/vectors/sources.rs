@@ -127,27 +127,9 @@ fn k_range(cfg: &PipelineConfig) -> Span {
 
 /// [`random_state_into`] with `cfg`'s [`k_range`].
 fn random_state_with(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
-    match crate::simd::level() {
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: `simd::level` names only what this CPU has.
-        crate::simd::Level::Avx512 => unsafe { state_avx512(cfg, k, rng, state) },
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: as above.
-        crate::simd::Level::Avx2 => unsafe { state_avx2(cfg, k, rng, state) },
-        _ => fill_state(cfg, k, rng, state),
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-unsafe fn state_avx512(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
-    fill_state(cfg, k, rng, state)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,bmi2")]
-unsafe fn state_avx2(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
-    fill_state(cfg, k, rng, state)
+    crate::simd::at_level!(crate::simd::level(), [] [] fn(cfg: &PipelineConfig, k: &Span, rng: &mut SplitMix64, state: &mut BumpState) {
+        fill_state(cfg, k, rng, state)
+    })
 }
 
 /// [`random_state`]'s draws: every light's ([`light_draws`]), then its unit vectors made
@@ -439,15 +421,10 @@ impl RandomTriangles {
         let tri_start = self.start(cfg);
         let k = (self.left as usize).min(max);
         frags.clear();
-        match crate::simd::level() {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `simd::level` names only what this CPU has.
-            crate::simd::Level::Avx512 => unsafe { fragments_avx512(cfg, &mut self.rng, k, frags) },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: as above.
-            crate::simd::Level::Avx2 => unsafe { fragments_avx2(cfg, &mut self.rng, k, frags) },
-            _ => fragments(cfg, &mut self.rng, k, frags),
-        }
+        let rng = &mut self.rng;
+        crate::simd::at_level!(crate::simd::level(), [] [] fn(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
+            fragments(cfg, rng, k, frags)
+        });
         self.left -= k as u64;
         (&self.state, tri_start)
     }
@@ -505,18 +482,6 @@ fn take_fragments<const B: usize>(cfg: &PipelineConfig, rng: &mut SplitMix64, m:
     for x in x.chunks_exact(FRAGMENT_DRAWS).take(m) {
         frags.push(rgb_fragment(cfg, x));
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-unsafe fn fragments_avx512(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
-    fragments(cfg, rng, k, frags)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,bmi2")]
-unsafe fn fragments_avx2(cfg: &PipelineConfig, rng: &mut SplitMix64, k: usize, frags: &mut Vec<FragmentIn>) {
-    fragments(cfg, rng, k, frags)
 }
 
 /// Refuse scene vectors for a palette configuration, whose memory a scene would load per

@@ -113,46 +113,21 @@ impl<'a> TopRecords<'a> {
         hex: Option<&mut String>,
         keep: bool,
     ) -> Result<(u64, Vec<TopStim>)> {
-        match crate::simd::level() {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `simd::level` names only what this CPU has.
-            crate::simd::Level::Avx512 => unsafe { self.random_chunk_avx512(seed, c, count, bin, hex, keep) },
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: as above.
-            crate::simd::Level::Avx2 => unsafe { self.random_chunk_avx2(seed, c, count, bin, hex, keep) },
-            _ => self.random_chunk_at(seed, c, count, bin, hex, keep),
-        }
+        let m = self;
+        crate::simd::at_level!(crate::simd::level(), [] [] fn(
+            m: &TopRecords<'_>,
+            seed: u64,
+            c: u64,
+            count: u64,
+            bin: Option<&mut Vec<u8>>,
+            hex: Option<&mut String>,
+            keep: bool,
+        ) -> Result<(u64, Vec<TopStim>)> {
+            m.random_chunk_at(seed, c, count, bin, hex, keep)
+        })
     }
 
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx512bw,avx2,bmi2")]
-    unsafe fn random_chunk_avx512(
-        &self,
-        seed: u64,
-        c: u64,
-        count: u64,
-        bin: Option<&mut Vec<u8>>,
-        hex: Option<&mut String>,
-        keep: bool,
-    ) -> Result<(u64, Vec<TopStim>)> {
-        self.random_chunk_at(seed, c, count, bin, hex, keep)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,bmi2")]
-    unsafe fn random_chunk_avx2(
-        &self,
-        seed: u64,
-        c: u64,
-        count: u64,
-        bin: Option<&mut Vec<u8>>,
-        hex: Option<&mut String>,
-        keep: bool,
-    ) -> Result<(u64, Vec<TopStim>)> {
-        self.random_chunk_at(seed, c, count, bin, hex, keep)
-    }
-
-    /// [`random_chunk`](Self::random_chunk)'s loop, compiled into each level's wrapper.
+    /// [`random_chunk`](Self::random_chunk)'s loop, compiled into each level's copy.
     #[inline(always)]
     fn random_chunk_at(
         &self,
