@@ -349,13 +349,18 @@ module tb_top_3dc36989;
 
     always @(negedge clk) if (OUT_DEPTH > 0 && stall > 0) out_ready_r = (cyc % stall) > (cyc / stall) % 3;
 
-    // After reset no output may be X or Z, valid or not.
-    integer x_reports = 0;
+    // After reset no output may be X or Z, valid or not, and out_c is 0 while out_valid is
+    // low (the integration notes promise both).
+    integer x_reports = 0, gate_reports = 0;
     always @(negedge clk) begin
         if (!rst && ((^{out_valid, in_ready, out_c}) === 1'bx)) begin
             failed = failed + 1;
             x_reports = x_reports + 1;
             if (x_reports <= max_errors) $display("MISMATCH unit gbump_pipeline: X on outputs after reset at %0t: out_valid=%b in_ready=%b out_c=%h", $time, out_valid, in_ready, out_c);
+        end else if (!rst && out_valid === 1'b0 && out_c !== 0) begin
+            failed = failed + 1;
+            gate_reports = gate_reports + 1;
+            if (gate_reports <= max_errors) $display("MISMATCH unit gbump_pipeline: out_c is not 0 while out_valid is low at %0t: out_c=%h", $time, out_c);
         end
     end
 

@@ -413,6 +413,39 @@ fn a_setup_offered_in_reset_counts_from_its_end_and_a_reset_discards_results() {
     setup_during_reset(Some("tests/configs/one_light_parallel.toml"), "rst_setup_parallel");
 }
 
+/// Two reset rules of the integration notes. A reset ends every bank hold: a fragment is
+/// accepted, `rst` pulsed at the next edge, and the first setup after it is taken when its
+/// span allows, not a bank hold after that fragment. And at the first edge at which `rst` is
+/// sampled high, `out_valid` still shows a result held for `out_ready`; from the next edge on
+/// it is low.
+fn reset_edges(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let w = work(name);
+    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
+    let (top, decl, conn) = top_ports(&cfg);
+    let tb = format!(
+        "`timescale 1ns / 1ps\nmodule tb_redge;\n{decl}integer cyc = 0, a = -1, t = -1, at_edge = -1, after = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  a = cyc + 1;\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  out_ready = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  while (!out_valid) @(negedge clk);\n  repeat (3) @(negedge clk);\n  rst = 1'b1;\n  out_ready = 1'b1;\n  at_edge = out_valid;\n  @(negedge clk);\n  after = out_valid;\n  rst = 1'b0;\n  $display(\"a %0d t %0d at_edge %0d after %0d\", a, t, at_edge, after);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+    );
+    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_redge", &tb), &rtl).unwrap();
+    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
+    let line = log.lines().find(|l| l.starts_with("a ")).unwrap_or_else(|| panic!("{log}"));
+    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
+    let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
+    let (a, t) = (v[0], v[1]);
+    // Offered from a + 2 (a + 1 is the reset edge): taken at its span's last edge.
+    assert!(a + hold > a + 1 + edges, "a hold that had not ended would not bind: {line}");
+    assert_eq!(t, a + 1 + edges, "{line}: the first setup after a reset waited for a bank hold");
+    assert_eq!(v[2], 1, "{line}: out_valid fell before the first reset edge");
+    assert_eq!(v[3], 0, "{line}: out_valid stayed high after the first reset edge");
+}
+
+#[test]
+fn a_reset_ends_bank_holds_and_its_first_edge_still_shows_the_output() {
+    reset_edges(None, "reset_edges_serial");
+    reset_edges(Some("tests/configs/one_light_parallel.toml"), "reset_edges_parallel");
+}
+
 /// Setup A, then fragment A offered together with setup B (B is taken after A's fragment, so
 /// that fragment keeps A's bank), then setup C, which loads A's bank again, offered from the
 /// edge after B's accept. C must be taken exactly at max(A's accept + bank hold, C's first

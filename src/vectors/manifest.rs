@@ -43,6 +43,8 @@ pub struct Manifest {
     pub command: String,
     pub target: String,
     pub module: String,
+    /// The source as the command line spells it (`random:N`, `scene:NAME`, `corners`);
+    /// manifests before it were spelled `Random(N)`, `Scene("NAME")`, `Corners(1)`.
     pub source: String,
     pub seed: u64,
     pub count: u64,
@@ -215,7 +217,7 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     // An EMBM scene's top set runs on its object's maps, one for each map the top has; no
     // other set names any.
-    let scene_top = m.config.embm() && m.target == "top" && m.source.starts_with("Scene(");
+    let scene_top = m.config.embm() && m.target == "top" && (m.source.starts_with("scene:") || m.source.starts_with("Scene(\""));
     let want: Vec<&str> = crate::rtlgen::top::env_map_memories(&m.config).iter().map(|x| x.prefix).collect();
     let have: Vec<&str> = m
         .env_maps

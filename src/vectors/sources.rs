@@ -67,6 +67,20 @@ impl Source {
     }
 }
 
+/// The source as the command line spells it (`--source` and, for a corner level above 1,
+/// `--level`), which manifests record.
+impl std::fmt::Display for Source {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Source::Scene(n) => write!(f, "scene:{n}"),
+            Source::Corners(1) => write!(f, "corners"),
+            Source::Corners(l) => write!(f, "corners --level {l}"),
+            Source::Random(n) => write!(f, "random:{n}"),
+            Source::Exhaustive(u) => write!(f, "exhaustive:{u}"),
+        }
+    }
+}
+
 fn one(cfg: &PipelineConfig) -> i64 {
     1 << (cfg.lh_bits - 2)
 }

@@ -250,7 +250,7 @@ impl SetWriter {
             command: o.command.clone(),
             target: self.target.clone(),
             module,
-            source: format!("{src:?}"),
+            source: src.to_string(),
             seed: o.seed,
             count: self.count,
             config_hash: cfg.hash(),
