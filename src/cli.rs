@@ -845,7 +845,7 @@ pub fn run() -> anyhow::Result<()> {
             check_count("--max-errors", max_errors.into(), 1, u64::MAX, "")?;
             if let (Some(sz), false) = (&scene_size, no_scenes) {
                 let (w, h) = crate::limits::parse_size("--scene-size", sz)?;
-                crate::measure::scene_error::check_builtin_renders(w, h)?;
+                crate::measure::scene_error::check_builtin_renders(crate::limits::PixelUse::SceneVectors, w, h)?;
             }
             // A configuration derived from a scene file is regressed on that scene too.
             let own_scenes = crate::scene::builtin::files_among(pick.scene.iter());
@@ -1048,7 +1048,7 @@ pub fn run() -> anyhow::Result<()> {
             not_inputs(&[json.as_deref()])?;
             let (w, h) = crate::limits::parse_size("--size", &size)?;
             crate::limits::check_count("--random", random, 1, crate::limits::MAX_ERROR_STIMULI, "MAX_ERROR_STIMULI")?;
-            crate::measure::scene_error::check_builtin_renders(w, h)?;
+            crate::measure::scene_error::check_builtin_renders(crate::limits::PixelUse::Error, w, h)?;
             // Everything is measured and written before anything is printed: a run that fails
             // prints no report. A built-in scene that covers no pixel at this size is the
             // size's fault, not the scene file's.

@@ -21,8 +21,17 @@ pub const MAX_BUMP_SIDE: u32 = 4096;
 pub const MAX_INPUT_BYTES: u64 = 1 << 20;
 /// Memory a render or an error run may plan to use; less if `/proc/meminfo` says less is available.
 pub const MAX_MEMORY_BYTES: u64 = 8 << 30;
-/// Planned bytes per rendered pixel (three images, hits, fragments, heat map, PNG buffers).
-pub const RENDER_BYTES_PER_PIXEL: u64 = 300;
+/// Planned bytes per pixel of `gbump render` (three images, hits, fragments with their
+/// per-unit traces, heat map, PNG buffers). Each per-pixel figure is the peak resident memory
+/// a fully covered scene was measured to take, with a margin; `tests/memory_plan.rs` runs each
+/// command and fails when its peak exceeds its plan.
+pub const RENDER_BYTES_PER_PIXEL: u64 = 1500;
+/// Planned bytes per pixel of a scene's error (`gbump error --scene`).
+pub const ERROR_BYTES_PER_PIXEL: u64 = 1600;
+/// Planned bytes per pixel of a scene's vector sets (`gbump vectors --source scene:NAME`).
+pub const SCENE_VECTOR_BYTES_PER_PIXEL: u64 = 2000;
+/// Planned bytes per pixel of `gbump engines` (every engine's image of the scene at once).
+pub const ENGINES_BYTES_PER_PIXEL: u64 = 2500;
 /// Planned bytes per triangle (mesh, tangent frames, fixed-point bump state).
 pub const RENDER_BYTES_PER_TRIANGLE: u64 = 1200;
 /// Configurations in a sweep grid (the product of its array lengths).
@@ -87,6 +96,21 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "RENDER_BYTES_PER_PIXEL",
         RENDER_BYTES_PER_PIXEL,
         "planned bytes per pixel of a render",
+    ),
+    (
+        "ERROR_BYTES_PER_PIXEL",
+        ERROR_BYTES_PER_PIXEL,
+        "planned bytes per pixel of a scene's error",
+    ),
+    (
+        "SCENE_VECTOR_BYTES_PER_PIXEL",
+        SCENE_VECTOR_BYTES_PER_PIXEL,
+        "planned bytes per pixel of a scene's vector sets",
+    ),
+    (
+        "ENGINES_BYTES_PER_PIXEL",
+        ENGINES_BYTES_PER_PIXEL,
+        "planned bytes per pixel of `gbump engines`",
     ),
     (
         "RENDER_BYTES_PER_TRIANGLE",
@@ -242,20 +266,42 @@ pub fn check_memory(what: &str, bytes: u64, fix: &str) -> Result<()> {
     Ok(())
 }
 
-/// Planned memory of rendering `triangles` at `w`×`h`.
-pub fn render_bytes(w: u32, h: u32, triangles: u64) -> u64 {
-    w as u64 * h as u64 * RENDER_BYTES_PER_PIXEL + triangles * RENDER_BYTES_PER_TRIANGLE
+/// What a command keeps per pixel of a scene it rasterises.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelUse {
+    Render,
+    Error,
+    SceneVectors,
+    Engines,
 }
 
-/// Refuse rendering `what` (a scene file) at `w`×`h` with `triangles` before anything is allocated.
-pub fn check_render(what: &str, w: u32, h: u32, triangles: u64) -> Result<()> {
+impl PixelUse {
+    /// Planned bytes per pixel.
+    pub fn bytes(self) -> u64 {
+        match self {
+            PixelUse::Render => RENDER_BYTES_PER_PIXEL,
+            PixelUse::Error => ERROR_BYTES_PER_PIXEL,
+            PixelUse::SceneVectors => SCENE_VECTOR_BYTES_PER_PIXEL,
+            PixelUse::Engines => ENGINES_BYTES_PER_PIXEL,
+        }
+    }
+}
+
+/// Planned memory of `use_` of `triangles` at `w`×`h`.
+pub fn render_bytes(use_: PixelUse, w: u32, h: u32, triangles: u64) -> u64 {
+    w as u64 * h as u64 * use_.bytes() + triangles * RENDER_BYTES_PER_TRIANGLE
+}
+
+/// Refuse rasterising `what` (a scene file) at `w`×`h` with `triangles` for `use_` before
+/// anything is allocated.
+pub fn check_render(use_: PixelUse, what: &str, w: u32, h: u32, triangles: u64) -> Result<()> {
     let side = u64::from(MAX_IMAGE_SIDE);
     check_count(&format!("{what}: image width"), w.into(), 1, side, "MAX_IMAGE_SIDE")?;
     check_count(&format!("{what}: image height"), h.into(), 1, side, "MAX_IMAGE_SIDE")?;
     check_count(&format!("{what}: triangles"), triangles, 1, MAX_TRIANGLES, "MAX_TRIANGLES")?;
     check_memory(
         &format!("rendering {what} at {w}x{h} ({triangles} triangles)"),
-        render_bytes(w, h, triangles),
+        render_bytes(use_, w, h, triangles),
         "render a smaller --size, or lower the scene's `segments`",
     )
 }

@@ -179,7 +179,7 @@ pub fn measure(scenes: &[String], engines: &[&'static Engine], size: Option<(u32
         let s = Scene::load(name)?;
         lights.push(s.bump_lights().count() as u32);
         let (w, h) = size.unwrap_or((s.size[0] / 2, s.size[1] / 2));
-        crate::limits::check_render(&s.file, w, h, s.triangles())?;
+        crate::limits::check_render(crate::limits::PixelUse::Engines, &s.file, w, h, s.triangles())?;
         let imgs = render(&s, &list, w.max(1), h.max(1), maps)?;
         errors.push(imgs.iter().map(|i| compare(i, &imgs[0])).collect());
         fixeds.push(list.iter().map(|e| fixed(&s, e, &imgs[0])).collect::<Result<Vec<_>>>()?);

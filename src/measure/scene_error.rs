@@ -31,10 +31,10 @@ pub type SceneError = (
 );
 
 /// Refuse a size at which some built-in scene cannot be rendered, before any is.
-pub fn check_builtin_renders(w: u32, h: u32) -> Result<()> {
+pub fn check_builtin_renders(use_: crate::limits::PixelUse, w: u32, h: u32) -> Result<()> {
     for (name, _) in builtin::ALL {
         let s = Scene::load(name)?;
-        crate::limits::check_render(&s.file, w, h, s.triangles())?;
+        crate::limits::check_render(use_, &s.file, w, h, s.triangles())?;
     }
     Ok(())
 }

@@ -34,7 +34,8 @@ pub struct Prepared<'a> {
 
 impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene, cfg: &'a PipelineConfig, w: u32, h: u32) -> Result<Prepared<'a>> {
-        crate::limits::check_render(&scene.file, w, h, scene.triangles())?;
+        // The least any command keeps a pixel (each checks its own plan first).
+        crate::limits::check_render(crate::limits::PixelUse::Render, &scene.file, w, h, scene.triangles())?;
         let camera = Camera::new(&scene.camera, w, h);
         let mut objects = Vec::new();
         let mut tables = BTreeMap::new();

@@ -553,7 +553,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     let s = crate::scene::Scene::load(name)?;
     s.check_config(cfg, &crate::config::origin())?;
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
-    crate::limits::check_render(&s.file, w, h, s.triangles())?;
+    crate::limits::check_render(crate::limits::PixelUse::SceneVectors, &s.file, w, h, s.triangles())?;
     let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
     let gb = crate::raster::rasterise::rasterise(&p).map_err(|e| match size {
         // The size was the caller's and below the scene's own: that is what to change (at

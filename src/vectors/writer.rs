@@ -416,7 +416,7 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, &crate::config::origin())?;
             let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
-            crate::limits::check_render(&s.file, w, h, s.triangles())
+            crate::limits::check_render(crate::limits::PixelUse::SceneVectors, &s.file, w, h, s.triangles())
         }
         Source::Corners(_) | Source::Random(_) => Ok(()),
     }
