@@ -168,3 +168,69 @@ fn junit_over_a_sets_data_file_is_refused_first() {
         assert_eq!(std::fs::read(&target).unwrap(), before, "{data} was changed");
     }
 }
+
+/// A regression that runs and finds mismatches reports every run, the failing one as a
+/// `<failure>` with its counts, not one error in place of the table (a CI server shows
+/// which set failed). The set is made to disagree with the RTL in one expected colour bit,
+/// its manifest's checksum brought along, so it passes every check before the run.
+#[test]
+fn a_regression_with_mismatches_reports_each_run() {
+    use sha2::Digest;
+    let d = tempfile::tempdir().unwrap();
+    let v = d.path().join("v");
+    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+        .args(["vectors", "--source", "random:20", "--target", "top", "--format", "hex", "--out"])
+        .arg(&v)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let (hex, json) = (v.join("random20_top.hex"), v.join("random20_top.json"));
+    let mut m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let out_c = m["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["name"] == "out_c")
+        .unwrap()
+        .clone();
+    let bits = m["record_bits"].as_u64().unwrap() as usize;
+    let digits = bits.div_ceil(4);
+    // One bit inside out_c, in the third record (lines are most significant digit first).
+    let bit = out_c["lsb"].as_u64().unwrap() as usize + 9;
+    let text = std::fs::read_to_string(&hex).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let data: Vec<usize> = (0..lines.len()).filter(|&i| !lines[i].starts_with("//")).collect();
+    let line = &mut lines[data[2]];
+    assert_eq!(line.len(), digits);
+    let at = digits - 1 - bit / 4;
+    let flipped = u8::from_str_radix(&line[at..at + 1], 16).unwrap() ^ (1 << (bit % 4));
+    line.replace_range(at..at + 1, &format!("{flipped:x}"));
+    let text = lines.join("\n") + "\n";
+    std::fs::write(&hex, &text).unwrap();
+    let sha: String = sha2::Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect();
+    m["hex"]["sha256"] = sha.into();
+    m["hex"]["bytes"] = text.len().into();
+    std::fs::write(&json, serde_json::to_string_pretty(&m).unwrap()).unwrap();
+    let junit = d.path().join("junit.xml");
+    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+        .args(["regress", "--sim", "icarus", "--vectors"])
+        .arg(&json)
+        .arg("--work")
+        .arg(d.path().join("work"))
+        .arg("--junit")
+        .arg(&junit)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{out}");
+    assert!(out.contains("19 passed, 1 failed"), "the edit did not make one mismatch:\n{out}");
+    let report = std::fs::read_to_string(&junit).unwrap();
+    // The set runs on the loaded table and on the power-up one: two runs, both failing.
+    assert!(report.contains("tests=\"2\" failures=\"2\""), "{report}");
+    assert_eq!(report.matches("<failure message=\"19 passed, 1 failed\"").count(), 2, "{report}");
+    assert!(
+        report.contains("name=\"icarus.random20_top\"") && report.contains("name=\"icarus.random20_top+power-up\""),
+        "{report}"
+    );
+    assert!(!report.contains("<error"), "{report}");
+}

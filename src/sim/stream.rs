@@ -342,6 +342,27 @@ pub fn regress_stream(
     lock: impl FnOnce() -> Result<WorkLock>,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
+    // A stream that fails or is stopped before its table leaves no earlier report behind.
+    let mut reported = false;
+    let r = stream_runs(cfg, pick_args, src, o, junit, lock, say, &mut reported);
+    if !reported {
+        super::regress_cmd::report_failure(cfg, junit, &r);
+    }
+    r
+}
+
+/// [`regress_stream`]'s work; `reported` is set once the run's own report is written.
+#[allow(clippy::too_many_arguments)]
+fn stream_runs(
+    cfg: &PipelineConfig,
+    pick_args: &str,
+    src: &StreamSource,
+    o: &RegressOptions,
+    junit: Option<&Path>,
+    lock: impl FnOnce() -> Result<WorkLock>,
+    say: &mut dyn FnMut(&str) -> Result<()>,
+    reported: &mut bool,
+) -> Result<()> {
     super::require(Sim::Verilator)?;
     // A signal ends the stream through its error path: the harness stops, the seed is said.
     let _cleanup = crate::interrupt::cleanup();
@@ -391,6 +412,7 @@ pub fn regress_stream(
     let t = super::summary::table(&results, say)?;
     if let Some(j) = junit {
         crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
+        *reported = true;
     }
     for r in &replays {
         say(r)?;
