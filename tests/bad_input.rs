@@ -656,6 +656,18 @@ fn cases() -> Vec<Case> {
             vec!["scene:NAME", "my scene", "fix:"],
         ),
         (
+            "scene file stem too long for its sets' file names",
+            vec![("cccccccccccccccccccccccccc.toml", WALL.into())],
+            vec!["vectors", "--source", "scene:cccccccccccccccccccccccccc.toml", "--size", "32x24", "--out", "out"],
+            vec!["_env_specular.hex", "MAX_NAME_CHARS", "fix: rename the scene file", "at most"],
+        ),
+        (
+            "scene file with a non-ASCII name regressed as the user's own scene",
+            vec![("scène.toml", WALL.into())],
+            vec!["regress", "--scene", "scène.toml", "--no-scenes", "--random", "10", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
+            vec!["scene_scène", "not plain names", "fix: rename the scene file"],
+        ),
+        (
             "sweep space with a hidden stem",
             vec![(".sp.toml", "[grid]\nlights = [1, 2]\n".into())],
             vec!["sweep", "--space", ".sp.toml", "--out", "out", "--work", "w"],

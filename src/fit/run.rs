@@ -55,6 +55,9 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
     let t0 = std::time::Instant::now();
     let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
     let base = common_base(&scenes)?;
+    // The chosen configuration is regressed on the scene files at the end: a name no set can
+    // carry is refused now, not after the search.
+    crate::sim::regress::check_own_scenes(&base, &crate::scene::builtin::files_among(scene_names))?;
     // A palette is offered when every map fits one exactly at the base's normal width.
     let mut palette_exact = true;
     for s in &scenes {

@@ -54,6 +54,16 @@ pub struct RegressOptions {
     pub targets: Vec<String>,
 }
 
+/// Refuse, before anything runs, a scene file of `own` (`--scene FILE`) whose top sets would
+/// have names no regression reads (`vectors::check_scene_names`).
+pub fn check_own_scenes(cfg: &PipelineConfig, own: &[String]) -> Result<()> {
+    for file in own {
+        let s = crate::scene::Scene::load(file)?;
+        crate::vectors::check_scene_names(cfg, file, &s, &["top".to_string()])?;
+    }
+    Ok(())
+}
+
 /// The default suite: corners, random, every compatible built-in scene, exhaustive sweeps.
 pub fn suite(cfg: &PipelineConfig, o: &RegressOptions, dir: &Path) -> Result<Vec<(PathBuf, Option<Sim>)>> {
     let all = crate::vectors::targets::resolve(cfg, &o.targets)?;

@@ -103,6 +103,9 @@ pub fn regress(
         // folder is taken, and before `announce` writes or says anything.
         let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
         let given = check_sets(cfg, &given, o)?;
+        if vectors.is_empty() {
+            super::regress::check_own_scenes(cfg, &o.own_scenes)?;
+        }
         // The given manifests are read now: --junit may not name one of them.
         if let Some(j) = junit {
             crate::render::output::check_writable(j)?;

@@ -15,4 +15,4 @@ pub mod writer;
 
 pub use manifest::{verify, Manifest};
 pub use sources::Source;
-pub use writer::{dump, DumpOptions, VectorSet};
+pub use writer::{check_scene_names, dump, DumpOptions, VectorSet};

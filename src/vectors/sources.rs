@@ -519,6 +519,19 @@ pub fn scene_sets_made(cfg: &PipelineConfig, what: &str) -> Result<()> {
     )))
 }
 
+/// Every stem a set of scene `s` (loaded from `name`) may take under `cfg`: one per group
+/// key its objects give (`scene_groups` keeps those that hold fragments, and drops the
+/// suffix when one group is left), so a check of these before rasterising covers the names
+/// the dump will make.
+pub fn scene_set_stems(cfg: &PipelineConfig, name: &str, s: &crate::scene::Scene) -> Vec<String> {
+    let stem = Source::Scene(name.to_string()).stem();
+    let keys: std::collections::BTreeSet<u32> = (0..s.objects.len() as u32).map(|o| group_key(cfg, s, o)).collect();
+    let tag = if cfg.embm() { "_o" } else { "_n" };
+    std::iter::once(stem.clone())
+        .chain(keys.iter().filter(|_| keys.len() > 1).map(|k| format!("{stem}{tag}{k}")))
+        .collect()
+}
+
 /// One run of a scene's fragments: those that share the top's memories.
 pub struct SceneGroup {
     /// The power table's shininess.

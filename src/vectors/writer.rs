@@ -141,8 +141,42 @@ struct SetWriter {
     stem: String,
 }
 
+/// Refuse a set whose file names a reader would refuse (`names::is_safe`, which `regress`
+/// applies to every name a manifest lists), before any file of it is made: `what` names the
+/// source; the set's longest name is its environment map's.
+pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str) -> Result<()> {
+    let base = format!("{stem}_{target}");
+    let longest = env_map_name(&base, "specular");
+    if crate::names::is_safe(&longest) {
+        return Ok(());
+    }
+    let max = crate::limits::MAX_NAME_CHARS as usize;
+    let added = longest.len() - stem.len();
+    Err(Error::Other(format!(
+        "{what}: the set `{base}` would have file names such as `{longest}` ({} characters), which are not plain names of at most {max} characters (MAX_NAME_CHARS), so no regression could read it\n  fix: rename {rename} so that the set's stem, now `{stem}`, has at most {} characters, each a letter, digit, `_`, `.` or `-`",
+        longest.chars().count(),
+        max.saturating_sub(added)
+    )))
+}
+
+/// [`check_set_names`] of every set scene `s` (loaded from `name`) may give for `targets`.
+pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Scene, targets: &[String]) -> Result<()> {
+    for stem in super::sources::scene_set_stems(cfg, name, s) {
+        for t in targets {
+            check_set_names(
+                &format!("--source scene:{name}"),
+                "the scene file (the stem is `scene_` and the file's name)",
+                &stem,
+                t,
+            )?;
+        }
+    }
+    Ok(())
+}
+
 impl SetWriter {
     fn new(dir: &Path, stem: &str, target: &str, layout: Layout, o: &DumpOptions, limit: u64) -> Result<SetWriter> {
+        check_set_names(&format!("the set {stem}"), "its source", stem, target)?;
         let base = format!("{stem}_{target}");
         Ok(SetWriter {
             target: target.into(),
@@ -400,7 +434,7 @@ fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: 
 }
 
 /// Refuse, before anything is written, a dump that cannot give a whole, non-empty set.
-fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
+fn check(cfg: &PipelineConfig, src: &Source, targets: &[String], o: &DumpOptions) -> Result<()> {
     if let Source::Scene(name) = src {
         super::sources::scene_sets_made(cfg, &format!("--source scene:{name}"))?;
     }
@@ -415,6 +449,7 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, &crate::config::origin())?;
+            check_scene_names(cfg, name, &s, targets)?;
             let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
             crate::limits::check_render(crate::limits::PixelUse::SceneVectors, &s.file, w, h, s.triangles())
         }
@@ -426,9 +461,9 @@ fn check(cfg: &PipelineConfig, src: &Source, o: &DumpOptions) -> Result<()> {
 pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<Vec<VectorSet>> {
     // A signal stops the dump through its error path, which removes the temporary files.
     let _cleanup = crate::interrupt::cleanup();
-    check(cfg, src, o)?;
-    crate::render::output::make_folder(dir)?;
     let targets: Vec<String> = targets.iter().filter(|t| *t == "top" || unit_present(cfg, t)).cloned().collect();
+    check(cfg, src, &targets, o)?;
+    crate::render::output::make_folder(dir)?;
     if let Source::Random(n) = src {
         check_space(cfg, *n, &targets, dir, o)?;
     }
