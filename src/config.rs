@@ -1340,6 +1340,14 @@ impl PipelineConfig {
             None
         }
     }
+    /// [`fixed_shininess`](Self::fixed_shininess), where a set of `target` reads it: the
+    /// top's, and `power_unit`'s under squaring (its exponent is built into the unit, where a
+    /// ROM unit's table is loaded by its harness as a loadable one's is).
+    pub fn fixed_shininess_of(&self, target: &str) -> Option<FixedShininess> {
+        let reads = target == "top" || (target == "power_unit" && self.power_unit == PowerUnitKind::Squaring);
+        self.fixed_shininess().filter(|_| reads)
+    }
+
     /// Input and output fraction bits of the power unit.
     pub fn power_formats(&self) -> crate::model::power_unit::PowerFormats {
         crate::model::power_unit::PowerFormats {

@@ -92,10 +92,20 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
             ));
         }
     }
-    let writes_top = !matches!(src, Source::Exhaustive(_)) && targets.iter().any(|t| t == "top");
-    if let (Some(n), Some(fixed)) = (r.shininess, cfg.fixed_shininess()) {
-        if n != cfg.shininess && writes_top {
-            // The set would be refused by every regression of this configuration: refuse it now.
+    if r.shininess.is_some() && cfg.embm() {
+        return Err(ignored(
+            "--shininess",
+            "EMBM has no power unit (its specular light comes from the environment map)",
+        ));
+    }
+    // The targets whose sets this dump writes.
+    let written: Vec<&str> = match &src {
+        Source::Exhaustive(u) => vec![u.as_str()],
+        _ => targets.iter().map(String::as_str).collect(),
+    };
+    if let Some(n) = r.shininess.filter(|&n| n != cfg.shininess) {
+        if let Some(fixed) = written.iter().find_map(|t| cfg.fixed_shininess_of(t)) {
+            // The set would fail or be refused by every regression of this configuration.
             return Err(fixed.refuse_flag(n));
         }
     }

@@ -1148,6 +1148,24 @@ fn cases() -> Vec<Case> {
             vec!["--shininess 3", "ROM holding shininess", "fix:"],
         ),
         (
+            "--shininess on a squaring power unit's own unit set",
+            cfg("power_unit = \"squaring\"\n"),
+            vec!["vectors", "--source", "random:10", "--target", "power_unit", "--config", "c.toml", "--shininess", "40", "--out", "out"],
+            vec!["--shininess 40", "squares for shininess", "fix:"],
+        ),
+        (
+            "--shininess on a squaring power unit's exhaustive sweep",
+            cfg("power_unit = \"squaring\"\n"),
+            vec!["vectors", "--source", "exhaustive:power_unit", "--config", "c.toml", "--shininess", "40", "--out", "out"],
+            vec!["--shininess 40", "squares for shininess", "fix:"],
+        ),
+        (
+            "--shininess on EMBM, which has no power unit",
+            cfg(EMBM),
+            vec!["vectors", "--source", "random:10", "--config", "c.toml", "--shininess", "40", "--out", "out"],
+            vec!["--shininess has no effect", "EMBM has no power unit", "fix: drop --shininess"],
+        ),
+        (
             "an exhaustive source with another target",
             vec![],
             vec!["vectors", "--source", "exhaustive:power_unit", "--target", "top", "--out", "out"],

@@ -248,7 +248,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
             )));
         }
         // A ROM power table holds one shininess: a top set for another cannot load its table.
-        if let Some(fixed) = cfg.fixed_shininess().filter(|_| m.target == "top" && m.shininess != cfg.shininess) {
+        if let Some(fixed) = cfg.fixed_shininess_of(&m.target).filter(|_| m.shininess != cfg.shininess) {
             return Err(Error::Other(format!(
                 "{}: vectors for shininess {} but the configuration's {}\n  fix: regenerate the vectors at shininess {} (a scene's specular objects must all have it), or set {}",
                 manifest.display(),
