@@ -659,7 +659,7 @@ fn cases() -> Vec<Case> {
             "scene file stem too long for its sets' file names",
             vec![("cccccccccccccccccccccccccc.toml", WALL.into())],
             vec!["vectors", "--source", "scene:cccccccccccccccccccccccccc.toml", "--size", "32x24", "--out", "out"],
-            vec!["_env_specular.hex", "MAX_NAME_CHARS", "fix: rename the scene file", "at most"],
+            vec!["_light_accumulate_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file", "at most 31 characters"],
         ),
         (
             "scene file with a non-ASCII name regressed as the user's own scene",

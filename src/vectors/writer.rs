@@ -143,10 +143,15 @@ struct SetWriter {
 
 /// Refuse a set whose file names a reader would refuse (`names::is_safe`, which `regress`
 /// applies to every name a manifest lists), before any file of it is made: `what` names the
-/// source; the set's longest name is its environment map's.
-pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str) -> Result<()> {
+/// source; the set's longest name is its environment map's where it has maps (`maps`: an
+/// EMBM scene's top set), else its power table's.
+pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str, maps: bool) -> Result<()> {
     let base = format!("{stem}_{target}");
-    let longest = env_map_name(&base, "specular");
+    let longest = if maps {
+        env_map_name(&base, "specular")
+    } else {
+        format!("{base}_power_table.hex")
+    };
     if crate::names::is_safe(&longest) {
         return Ok(());
     }
@@ -168,6 +173,7 @@ pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Sce
                 "the scene file (the stem is `scene_` and the file's name)",
                 &stem,
                 t,
+                cfg.embm() && t == "top",
             )?;
         }
     }
@@ -176,7 +182,8 @@ pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Sce
 
 impl SetWriter {
     fn new(dir: &Path, stem: &str, target: &str, layout: Layout, o: &DumpOptions, limit: u64) -> Result<SetWriter> {
-        check_set_names(&format!("the set {stem}"), "its source", stem, target)?;
+        // Whether the set gets maps is known at its end; the scene's own check covered them.
+        check_set_names(&format!("the set {stem}"), "its source", stem, target, false)?;
         let base = format!("{stem}_{target}");
         Ok(SetWriter {
             target: target.into(),
