@@ -295,7 +295,7 @@ pub enum Cmd {
         #[arg(long, value_name = "DIR")]
         configs: PathBuf,
         /// How many of them (in order) to fit on; the rest are held out.
-        #[arg(long, default_value_t = 14)]
+        #[arg(long, default_value_t = AREA_MODEL_CALIBRATE)]
         calibrate: usize,
         /// Write every sample (config, Yosys GE, estimate) here, one JSON object a line.
         #[arg(long, value_name = "FILE", value_parser = output_file)]
@@ -493,6 +493,9 @@ fn nearest_folder(p: &Path) -> std::result::Result<PathBuf, String> {
 }
 
 /// The options that name where a command writes.
+/// Configurations `gbump area-model` fits on by default (`--calibrate`).
+const AREA_MODEL_CALIBRATE: usize = 14;
+
 const OUTPUT_OPTIONS: [&str; 5] = ["out", "work", "json", "junit", "write"];
 
 /// Every output option given on the command line (not a default: a command that never writes
@@ -1116,6 +1119,14 @@ pub fn run() -> anyhow::Result<()> {
             write,
             work,
         } => {
+            let coefficients = crate::measure::area_model::REGRESSORS + 1;
+            if calibrate < coefficients {
+                return Err(Error::Other(format!(
+                    "--calibrate {calibrate}: the model has {coefficients} coefficients, and fewer configurations than that cannot determine them\n  fix: --calibrate {coefficients} or more (the default is {})",
+                    AREA_MODEL_CALIBRATE
+                ))
+                .into());
+            }
             let files = crate::measure::area_model::configs_in(&configs)?;
             if files.len() <= calibrate {
                 return Err(Error::Other(format!(

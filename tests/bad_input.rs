@@ -1166,6 +1166,12 @@ fn cases() -> Vec<Case> {
             vec!["--shininess has no effect", "EMBM has no power unit", "fix: drop --shininess"],
         ),
         (
+            "area-model calibrated on fewer configurations than its coefficients",
+            vec![],
+            vec!["area-model", "--configs", "tests/area_model/configs", "--calibrate", "3"],
+            vec!["--calibrate 3", "8 coefficients", "fix: --calibrate 8 or more"],
+        ),
+        (
             "an exhaustive source with another target",
             vec![],
             vec!["vectors", "--source", "exhaustive:power_unit", "--target", "top", "--out", "out"],
@@ -1632,6 +1638,16 @@ fn a_dump_larger_than_the_disk_is_refused_first() {
         .map(|d| d.map(|e| e.unwrap().file_name()).collect())
         .unwrap_or_default();
     assert!(left.is_empty(), "left behind: {left:?}");
+    // A regression dumps for itself into its work folder: its fix names its own options.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .args(["regress", "--random", &n.to_string(), "--sim", "verilator", "--no-scenes", "--work"])
+        .arg(dir.path().join("work"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("B free"), "{err}");
+    assert!(err.contains("--work folder on a larger disk") && err.contains("--stream"), "{err}");
+    assert!(!err.contains("--format") && !err.contains("--out"), "{err}");
 }
 
 /// One SIGTERM ends a run blocked where no loop looks (writing its JUnit report into a

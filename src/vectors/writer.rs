@@ -405,6 +405,17 @@ pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
     }
 }
 
+/// What to change when a dump will not fit, in the options of the command that asked for it
+/// (`DumpOptions::command`, the invocation): `regress` and `fuzz` dump for themselves, into
+/// their work folder, and have neither `--out` nor `--format`.
+fn space_fix(command: &str) -> &'static str {
+    match command.split_whitespace().nth(1) {
+        Some("regress") => "fewer --random or --random-icarus records, fewer --target, a --work folder on a larger disk, or --stream random:N (records piped to the simulator, no file written)",
+        Some("fuzz") => "fewer --random records, or a --work folder on a larger disk",
+        _ => "fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
+    }
+}
+
 /// Refuse, before anything is written, a random dump of `n` records per target whose files
 /// would not fit the free space under `dir` (a dump that fills the disk fails only at the
 /// end, and fills it for everyone else meanwhile).
@@ -430,11 +441,12 @@ fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: 
             ("kB", 1e3)
         };
         return Err(Error::Other(format!(
-            "{}: {n} records of {} target(s) need about {:.1} {unit}, and the disk under it has {:.1} {unit} free\n  fix: fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
+            "{}: {n} records of {} target(s) need about {:.1} {unit}, and the disk under it has {:.1} {unit} free\n  fix: {}",
             dir.display(),
             targets.len(),
             need as f64 / scale,
-            free as f64 / scale
+            free as f64 / scale,
+            space_fix(&o.command)
         )));
     }
     Ok(())
