@@ -685,6 +685,12 @@ impl PipelineConfig {
                 crate::limits::MAX_INPUT_BYTES
             )));
         }
+        if text.trim_start().starts_with('{') {
+            // An interface file or a vector manifest handed over as the configuration.
+            return Err(Error::Other(format!(
+                "{file}: JSON, not a configuration's TOML (an interface file or a vector manifest?)\n  fix: give the configuration's TOML: `gbump config` prints the default, and a manifest's `config` table holds its set's fields"
+            )));
+        }
         check_renamed(file, text)?;
         toml::from_str(text).map_err(|e| {
             let err = toml_error(

@@ -1172,6 +1172,12 @@ fn cases() -> Vec<Case> {
             vec!["--calibrate 3", "8 coefficients", "fix: --calibrate 8 or more"],
         ),
         (
+            "an interface JSON given as the configuration",
+            cfg("{\n  \"top\": \"gbump_pipeline_3dc36989\"\n}\n"),
+            vec!["rtl", "--config", "c.toml", "--out", "out"],
+            vec!["c.toml: JSON, not a configuration's TOML", "fix:"],
+        ),
+        (
             "an exhaustive source with another target",
             vec![],
             vec!["vectors", "--source", "exhaustive:power_unit", "--target", "top", "--out", "out"],

@@ -239,7 +239,9 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         let least = super::mesh::min_segments(&o.shape);
         for (k, v) in o.segments.iter().enumerate() {
             if *v < least[k] || *v > MAX_SEGMENTS {
-                let why = if least[k] > 1 {
+                let why = if *v > MAX_SEGMENTS {
+                    ": more than MAX_SEGMENTS per direction"
+                } else if least[k] > 1 {
                     ": fewer tessellate the shape into slivers of no area"
                 } else {
                     ""
