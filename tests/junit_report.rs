@@ -29,6 +29,16 @@ fn regress(dir: &std::path::Path, junit: &std::path::Path) -> (bool, String) {
     (o.status.success(), text)
 }
 
+/// `random:20`'s top set, text only, into `v`.
+fn random20_text_set(v: &std::path::Path) {
+    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+        .args(["vectors", "--source", "random:20", "--target", "top", "--format", "hex", "--out"])
+        .arg(v)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 #[test]
 fn junit_lands_through_a_link_and_an_unwritable_path_is_refused_first() {
     let d = tempfile::tempdir().unwrap();
@@ -67,12 +77,7 @@ fn a_failed_regression_leaves_no_earlier_green_report() {
     assert!(std::fs::read_to_string(&junit).unwrap().contains("failures=\"0\""));
     // A set with a character that is not a hex digit: refused before anything runs.
     let v = d.path().join("v");
-    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
-        .args(["vectors", "--source", "random:20", "--target", "top", "--format", "hex", "--out"])
-        .arg(&v)
-        .output()
-        .unwrap();
-    assert!(o.status.success());
+    random20_text_set(&v);
     let hex = v.join("random20_top.hex");
     let text = std::fs::read_to_string(&hex).unwrap();
     std::fs::write(&hex, text.replacen(|c: char| c.is_ascii_hexdigit(), "g", 1)).unwrap();
@@ -178,12 +183,7 @@ fn a_regression_with_mismatches_reports_each_run() {
     use sha2::Digest;
     let d = tempfile::tempdir().unwrap();
     let v = d.path().join("v");
-    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
-        .args(["vectors", "--source", "random:20", "--target", "top", "--format", "hex", "--out"])
-        .arg(&v)
-        .output()
-        .unwrap();
-    assert!(o.status.success());
+    random20_text_set(&v);
     let (hex, json) = (v.join("random20_top.hex"), v.join("random20_top.json"));
     let mut m: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let out_c = m["columns"]

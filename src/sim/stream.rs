@@ -343,81 +343,63 @@ pub fn regress_stream(
     say: &mut dyn FnMut(&str) -> Result<()>,
 ) -> Result<()> {
     // A stream that fails or is stopped before its table leaves no earlier report behind.
-    let mut reported = false;
-    let r = stream_runs(cfg, pick_args, src, o, junit, lock, say, &mut reported);
-    if !reported {
-        super::regress_cmd::report_failure(cfg, junit, &r);
-    }
-    r
-}
-
-/// [`regress_stream`]'s work; `reported` is set once the run's own report is written.
-#[allow(clippy::too_many_arguments)]
-fn stream_runs(
-    cfg: &PipelineConfig,
-    pick_args: &str,
-    src: &StreamSource,
-    o: &RegressOptions,
-    junit: Option<&Path>,
-    lock: impl FnOnce() -> Result<WorkLock>,
-    say: &mut dyn FnMut(&str) -> Result<()>,
-    reported: &mut bool,
-) -> Result<()> {
-    super::require(Sim::Verilator)?;
-    // A signal ends the stream through its error path: the harness stops, the seed is said.
-    let _cleanup = crate::interrupt::cleanup();
-    let streams = streams(cfg, src, o.seed, o.scene_size)?;
-    if let Some(j) = junit {
-        crate::render::output::check_writable(j)?;
-    }
-    let _lock = lock()?;
-    let h = &cfg.hash()[..8];
-    let exe = regress_harness(cfg, pick_args, &o.work)?;
-    let mut results = Vec::new();
-    let mut replays = Vec::new();
-    for s in &streams {
-        let table = power_table(cfg, &o.work.join(format!("stream_{h}")), s.shininess, &o.command)?;
-        let run = StreamRun {
-            exe: &exe,
-            table: &table,
-            cwd: &o.work,
-            max_errors: o.max_errors,
-            bubbles: o.bubbles,
-            stall: o.stall,
-            progress: true,
-        };
-        let mut outcome = run_stream(cfg, s, &run).map_err(|e| e.to_string());
-        // A signal that stopped the harness too is the user's stop, not a failing RTL run.
-        crate::interrupt::check()?;
-        let failing = match &mut outcome {
-            Ok(out) if out.failed > 0 => Some(first_failing_record(&out.log)),
-            Ok(_) => None,
-            Err(e) if e.starts_with("interrupted") => return Err(Error::Other(e.clone())),
-            Err(e) => Some(first_failing_record(e)),
-        };
-        if let Some(k) = failing {
-            let line = format!("replay {}: {}", s.set, s.replay(pick_args, k));
-            if let Ok(out) = &mut outcome {
-                out.log += &format!("\n{line}\n");
-            }
-            replays.push(line);
+    super::regress_cmd::reporting(cfg, junit, |reported| {
+        super::require(Sim::Verilator)?;
+        // A signal ends the stream through its error path: the harness stops, the seed is said.
+        let _cleanup = crate::interrupt::cleanup();
+        let streams = streams(cfg, src, o.seed, o.scene_size)?;
+        if let Some(j) = junit {
+            crate::render::output::check_writable(j)?;
         }
-        results.push(RunResult {
-            sim: Sim::Verilator,
-            set: s.set.clone(),
-            target: "top".into(),
-            outcome,
-        });
-    }
-    let t = super::summary::table(&results, say)?;
-    if let Some(j) = junit {
-        crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
-        *reported = true;
-    }
-    for r in &replays {
-        say(r)?;
-    }
-    super::summary::verdict(cfg, " (streamed)", &t, say)
+        let _lock = lock()?;
+        let h = &cfg.hash()[..8];
+        let exe = regress_harness(cfg, pick_args, &o.work)?;
+        let mut results = Vec::new();
+        let mut replays = Vec::new();
+        for s in &streams {
+            let table = power_table(cfg, &o.work.join(format!("stream_{h}")), s.shininess, &o.command)?;
+            let run = StreamRun {
+                exe: &exe,
+                table: &table,
+                cwd: &o.work,
+                max_errors: o.max_errors,
+                bubbles: o.bubbles,
+                stall: o.stall,
+                progress: true,
+            };
+            let mut outcome = run_stream(cfg, s, &run).map_err(|e| e.to_string());
+            // A signal that stopped the harness too is the user's stop, not a failing RTL run.
+            crate::interrupt::check()?;
+            let failing = match &mut outcome {
+                Ok(out) if out.failed > 0 => Some(first_failing_record(&out.log)),
+                Ok(_) => None,
+                Err(e) if e.starts_with("interrupted") => return Err(Error::Other(e.clone())),
+                Err(e) => Some(first_failing_record(e)),
+            };
+            if let Some(k) = failing {
+                let line = format!("replay {}: {}", s.set, s.replay(pick_args, k));
+                if let Ok(out) = &mut outcome {
+                    out.log += &format!("\n{line}\n");
+                }
+                replays.push(line);
+            }
+            results.push(RunResult {
+                sim: Sim::Verilator,
+                set: s.set.clone(),
+                target: "top".into(),
+                outcome,
+            });
+        }
+        let t = super::summary::table(&results, say)?;
+        if let Some(j) = junit {
+            crate::render::output::write_atomic(j, super::summary::junit(cfg, &results).as_bytes())?;
+            *reported = true;
+        }
+        for r in &replays {
+            say(r)?;
+        }
+        super::summary::verdict(cfg, " (streamed)", &t, say)
+    })
 }
 
 /// The harness a streamed regression of `cfg` (selected by `pick_args`) builds in `work`:
