@@ -492,10 +492,10 @@ fn nearest_folder(p: &Path) -> std::result::Result<PathBuf, String> {
     }
 }
 
-/// The options that name where a command writes.
 /// Configurations `gbump area-model` fits on by default (`--calibrate`).
 const AREA_MODEL_CALIBRATE: usize = 14;
 
+/// The options that name where a command writes.
 const OUTPUT_OPTIONS: [&str; 5] = ["out", "work", "json", "junit", "write"];
 
 /// Every output option given on the command line (not a default: a command that never writes
@@ -1189,6 +1189,7 @@ pub fn run() -> anyhow::Result<()> {
                 // not after the search.
                 crate::sim::require(crate::sim::Sim::Icarus)?;
                 crate::sim::require(crate::sim::Sim::Verilator)?;
+                crate::fit::run::check_regressable(&scene)?;
             }
             if yosys {
                 crate::yosys::require()?;

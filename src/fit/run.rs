@@ -49,15 +49,20 @@ pub fn common_base(scenes: &[Scene]) -> Result<PipelineConfig> {
     Ok(base)
 }
 
+/// Refuse, before a search whose choice is then regressed on the scene files, a scene file
+/// whose name no vector set can carry (it would fail only after the search).
+pub fn check_regressable(scene_names: &[String]) -> Result<()> {
+    let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
+    let own = crate::scene::builtin::files_among(scene_names);
+    crate::sim::regress::check_own_scenes(&common_base(&scenes)?, &own, &["all".to_string()])
+}
+
 /// Search for the smallest configuration (by `area`) that renders `scenes` within `budget` with
 /// at least `min_throughput` fragments per clock.
 pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &dyn Fn(&PipelineConfig) -> Result<f64>) -> Result<Fit> {
     let t0 = std::time::Instant::now();
     let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
     let base = common_base(&scenes)?;
-    // The chosen configuration is regressed on the scene files at the end: a name no set can
-    // carry is refused now, not after the search.
-    crate::sim::regress::check_own_scenes(&base, &crate::scene::builtin::files_among(scene_names))?;
     // A palette is offered when every map fits one exactly at the base's normal width.
     let mut palette_exact = true;
     for s in &scenes {

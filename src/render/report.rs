@@ -50,7 +50,12 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
         None => (s.size[0], s.size[1]),
     };
     crate::names::check(&s.file, "name", &s.name)?;
-    crate::limits::check_render(crate::limits::PixelUse::Render, &s.file, w, h, s.triangles())?;
+    let use_ = if r.rtl.is_some() {
+        crate::limits::PixelUse::RenderRtl
+    } else {
+        crate::limits::PixelUse::Render
+    };
+    crate::limits::check_render(use_, &s.file, w, h, s.triangles())?;
     if let Some(work) = r.rtl {
         // Scene fragments reach the RTL as a scene vector set: refused where one is.
         let from = r

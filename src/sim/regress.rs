@@ -56,7 +56,11 @@ pub struct RegressOptions {
 
 /// Refuse, before anything runs, a scene file of `own` (`--scene FILE`) whose top sets would
 /// have names no regression reads (`vectors::check_scene_names`).
-pub fn check_own_scenes(cfg: &PipelineConfig, own: &[String]) -> Result<()> {
+pub fn check_own_scenes(cfg: &PipelineConfig, own: &[String], targets: &[String]) -> Result<()> {
+    // Only the top's sets carry them.
+    if !crate::vectors::targets::resolve(cfg, targets)?.iter().any(|t| t == "top") {
+        return Ok(());
+    }
     for file in own {
         let s = crate::scene::Scene::load(file)?;
         crate::vectors::check_scene_names(cfg, file, &s, &["top".to_string()])?;

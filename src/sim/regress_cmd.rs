@@ -102,7 +102,7 @@ pub fn regress(
         let given: Vec<_> = given_manifests(vectors)?.into_iter().map(|m| (m, None)).collect();
         let given = check_sets(cfg, &given, o)?;
         if vectors.is_empty() {
-            super::regress::check_own_scenes(cfg, &o.own_scenes)?;
+            super::regress::check_own_scenes(cfg, &o.own_scenes, &o.targets)?;
         }
         // The given manifests are read now: --junit may not name one of them.
         if let Some(j) = junit {

@@ -463,39 +463,60 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
     Ok((m, dir))
 }
 
-/// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
-/// its own `--out`, so the fix a failed check prints regenerates the set it found wherever it
-/// now lies: [`regenerate_words`] quoted for a shell, and [`relative_note`].
 /// The command that made `m`, as a fix may repeat it: its recorded `command` when that is a
-/// gbump command (a `gbump vectors` one naming the manifest's own source), else one made
-/// from the manifest's fields, so that an edited manifest's command is never repeated to the
-/// user as a fix.
+/// `gbump vectors` command naming the manifest's own source, else one made from the
+/// manifest's fields, so that an edited manifest's command, or one `gbump vectors` does not
+/// take (a regression's), is never repeated to the user as a fix.
 pub fn recorded_command(m: &Manifest) -> String {
+    use crate::shell::{option_value, quoted, subcommand_at};
+    let source = source_spelling(&m.source);
     let words = shell_words::split(&m.command).unwrap_or_default();
     let gbump = words
         .first()
         .is_some_and(|w| Path::new(w).file_name().is_some_and(|f| f == "gbump"));
-    let named_source = words.windows(2).find(|w| w[0] == "--source").map(|w| w[1].as_str());
-    let same_source = match (words.get(1).map(String::as_str), named_source) {
-        // Older manifests spelled the source `Random(20)`: nothing to compare with.
-        (Some("vectors"), Some(src)) => m.source.contains('(') || m.source.split(' ').next() == Some(src),
-        (Some(_), _) => true,
-        (None, _) => false,
-    };
-    if gbump && same_source {
+    let vectors = subcommand_at(&words).is_some_and(|i| words[i] == "vectors");
+    let named = option_value(&words, "--source").map(|s| match option_value(&words, "--level") {
+        Some(l) if l != "1" => format!("{s} --level {l}"),
+        _ => s.to_string(),
+    });
+    if gbump && vectors && named.as_deref() == Some(source.as_str()) {
         return m.command.clone();
     }
-    let (source, level) = m.source.split_once(' ').unwrap_or((&m.source, ""));
-    let mut cmd = format!("gbump vectors --source {source}");
+    let (source, level) = source.split_once(' ').unwrap_or((&source, ""));
+    let mut cmd = format!("gbump vectors --source {}", quoted(source));
     if !level.is_empty() {
         cmd += &format!(" {level}");
     }
-    if !source.contains('(') && source.starts_with("random:") {
+    if source.starts_with("random:") {
         cmd += &format!(" --seed {}", m.seed);
     }
-    cmd + &format!(" --target {} --config CONFIG.toml", m.target)
+    // A scene's sets take their shininess from its objects.
+    if m.shininess != m.config.shininess && !source.starts_with("scene:") {
+        cmd += &format!(" --shininess {}", m.shininess);
+    }
+    cmd + &format!(" --target {} --config CONFIG.toml", quoted(&m.target))
 }
 
+/// A manifest's source as `--source` spells it: older manifests wrote `Random(20)`,
+/// `Corners(2)`, `Scene("wall")` or `Exhaustive("power")`.
+fn source_spelling(source: &str) -> String {
+    let Some((kind, arg)) = source.strip_suffix(')').and_then(|s| s.split_once('(')) else {
+        return source.to_string();
+    };
+    let arg = arg.trim_matches('"');
+    match kind {
+        "Random" => format!("random:{arg}"),
+        "Corners" if arg == "1" => "corners".to_string(),
+        "Corners" => format!("corners --level {arg}"),
+        "Scene" => format!("scene:{arg}"),
+        "Exhaustive" => format!("exhaustive:{arg}"),
+        _ => source.to_string(),
+    }
+}
+
+/// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
+/// its own `--out`, so the fix a failed check prints regenerates the set it found wherever it
+/// now lies: [`regenerate_words`] quoted for a shell, and [`relative_note`].
 pub fn regenerate_into(command: &str, dir: &Path) -> String {
     let words = regenerate_words(command, dir);
     quoted_words(&words) + &relative_note(&words)

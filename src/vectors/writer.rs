@@ -146,36 +146,42 @@ struct SetWriter {
 /// source; the set's longest name is its environment map's where it has maps (`maps`: an
 /// EMBM scene's top set), else its power table's.
 pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str, maps: bool) -> Result<()> {
-    let base = format!("{stem}_{target}");
-    let longest = if maps {
-        env_map_name(&base, "specular")
-    } else {
-        format!("{base}_power_table.hex")
-    };
+    let longest = longest_set_name(stem, target, maps);
     if crate::names::is_safe(&longest) {
         return Ok(());
     }
-    let max = crate::limits::MAX_NAME_CHARS as usize;
-    let added = longest.len() - stem.len();
+    let (max, n) = (crate::limits::MAX_NAME_CHARS as usize, longest.chars().count());
+    let shorter = if n > max {
+        format!("at least {} character{} shorter, ", n - max, if n - max == 1 { "" } else { "s" })
+    } else {
+        String::new()
+    };
     Err(Error::Other(format!(
-        "{what}: the set `{base}` would have file names such as `{longest}` ({} characters), which are not plain names of at most {max} characters (MAX_NAME_CHARS), so no regression could read it\n  fix: rename {rename} so that the set's stem, now `{stem}`, has at most {} characters, each a letter, digit, `_`, `.` or `-`",
-        longest.chars().count(),
-        max.saturating_sub(added)
+        "{what}: the set `{stem}_{target}` would have file names such as `{longest}` ({n} characters), which are not plain names of at most {max} characters (MAX_NAME_CHARS), so no regression could read it\n  fix: rename {rename}: {shorter}with only letters, digits, `_`, `.` or `-`"
     )))
+}
+
+/// The longest file name of the set of `target` with `stem`: its environment map's where it
+/// has maps, else its power table's.
+fn longest_set_name(stem: &str, target: &str, maps: bool) -> String {
+    let base = format!("{stem}_{target}");
+    if maps {
+        env_map_name(&base, "specular")
+    } else {
+        format!("{base}_power_table.hex")
+    }
 }
 
 /// [`check_set_names`] of every set scene `s` (loaded from `name`) may give for `targets`.
 pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Scene, targets: &[String]) -> Result<()> {
-    for stem in super::sources::scene_set_stems(cfg, name, s) {
-        for t in targets {
-            check_set_names(
-                &format!("--source scene:{name}"),
-                "the scene file (the stem is `scene_` and the file's name)",
-                &stem,
-                t,
-                cfg.embm() && t == "top",
-            )?;
-        }
+    let mut sets: Vec<(String, &String, bool)> = super::sources::scene_set_stems(cfg, name, s)
+        .into_iter()
+        .flat_map(|stem| targets.iter().map(move |t| (stem.clone(), t, cfg.embm() && t == "top")))
+        .collect();
+    // The longest name first, so the fix says by how much the name must shrink for all.
+    sets.sort_by_key(|(stem, t, maps)| std::cmp::Reverse(longest_set_name(stem, t, *maps).len()));
+    for (stem, t, maps) in sets {
+        check_set_names(&format!("--source scene:{name}"), "the scene file", &stem, t, maps)?;
     }
     Ok(())
 }
@@ -409,7 +415,9 @@ pub fn exhaustive_unit_present(cfg: &PipelineConfig, unit: &str) -> Result<()> {
 /// (`DumpOptions::command`, the invocation): `regress` and `fuzz` dump for themselves, into
 /// their work folder, and have neither `--out` nor `--format`.
 fn space_fix(command: &str) -> &'static str {
-    match command.split_whitespace().nth(1) {
+    let words = shell_words::split(command).unwrap_or_default();
+    match crate::shell::subcommand_at(&words).map(|i| words[i].as_str()) {
+        Some("fit") => "a --work folder on a larger disk, or --no-regress (no regression of the chosen configuration)",
         Some("regress") => "fewer --random or --random-icarus records, fewer --target, a --work folder on a larger disk, or --stream random:N (records piped to the simulator, no file written)",
         Some("fuzz") => "fewer --random records, or a --work folder on a larger disk",
         _ => "fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
@@ -633,36 +641,40 @@ fn write_tops(cfg: &PipelineConfig, mem: &Memories, stims: &[TopStim], ws: &mut 
         let mut colours = vec![[0u32; 3]; stims.len()];
         TopRecords::new(cfg, *mem).colours(0, stims, &mut colours)?;
     }
-    let evals: Vec<(Record, Vec<UnitEval>)> = stims
-        .par_iter()
-        .map(|s| {
-            let t = eval_top(cfg, mem, s);
-            let units = if want_units {
-                unit_stims(cfg, s, &t)
-                    .into_iter()
-                    .filter(|u| unit_present(cfg, u.unit))
-                    .map(|u| {
-                        let out = eval_unit(cfg, mem, &u);
-                        (u, out)
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            (top_record(cfg, &tl, s, &t), units)
-        })
-        .collect();
+    // A chunk at a time: a scene's fragments held their every unit evaluation at once, a few
+    // kB a fragment per light, which the memory plan did not count.
     let (mut line, mut bytes) = (String::new(), Vec::new());
-    for (rec, units) in &evals {
-        for w in ws.iter_mut() {
-            if with_top && w.target == "top" {
-                w.put(rec, &mut line, &mut bytes)?;
+    for stims in stims.chunks(RANDOM_CHUNK as usize) {
+        let evals: Vec<(Record, Vec<UnitEval>)> = stims
+            .par_iter()
+            .map(|s| {
+                let t = eval_top(cfg, mem, s);
+                let units = if want_units {
+                    unit_stims(cfg, s, &t)
+                        .into_iter()
+                        .filter(|u| unit_present(cfg, u.unit))
+                        .map(|u| {
+                            let out = eval_unit(cfg, mem, &u);
+                            (u, out)
+                        })
+                        .collect()
+                } else {
+                    Vec::new()
+                };
+                (top_record(cfg, &tl, s, &t), units)
+            })
+            .collect();
+        for (rec, units) in &evals {
+            for w in ws.iter_mut() {
+                if with_top && w.target == "top" {
+                    w.put(rec, &mut line, &mut bytes)?;
+                }
             }
-        }
-        for (u, outs) in units {
-            for w in ws.iter_mut().filter(|w| w.target == u.unit) {
-                let r = unit_record(&w.layout, u, outs);
-                w.put(&r, &mut line, &mut bytes)?;
+            for (u, outs) in units {
+                for w in ws.iter_mut().filter(|w| w.target == u.unit) {
+                    let r = unit_record(&w.layout, u, outs);
+                    w.put(&r, &mut line, &mut bytes)?;
+                }
             }
         }
     }
