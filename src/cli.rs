@@ -35,7 +35,8 @@ pub struct Cli {
     /// Stop any simulator, build or synthesis that runs longer than this, in seconds, and
     /// fail (default: the GBUMP_TOOL_TIMEOUT environment variable, else no limit)
     #[arg(long, global = true, value_name = "SECONDS")]
-    pub tool_timeout: Option<f64>,
+    /// Read as text, so a refusal echoes what was typed (`1e400`, not `inf`).
+    pub tool_timeout: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -356,7 +357,7 @@ pub enum Cmd {
     Report {
         #[arg(long, default_value = "docs", value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
-        #[arg(long, default_value = "sweeps/small.toml", value_name = "FILE")]
+        #[arg(long, default_value = DEFAULT_REPORT_SPACE, value_name = "FILE")]
         space: PathBuf,
         #[arg(long, default_value = "target/gbump-report", value_parser = output_dir)]
         work: PathBuf,
@@ -491,6 +492,9 @@ fn nearest_folder(p: &Path) -> std::result::Result<PathBuf, String> {
         }
     }
 }
+
+/// The sweep space `gbump report` measures by default: the checkout's own.
+const DEFAULT_REPORT_SPACE: &str = "sweeps/small.toml";
 
 /// Configurations `gbump area-model` fits on by default (`--calibrate`).
 const AREA_MODEL_CALIBRATE: usize = 14;
@@ -751,7 +755,7 @@ pub fn run() -> anyhow::Result<()> {
         Ok(c) => c,
         Err(e) => clap_exit(e),
     };
-    crate::tool::set_time_limit(cli.tool_timeout)?;
+    crate::tool::set_time_limit(cli.tool_timeout.as_deref())?;
     match cli.cmd {
         Cmd::Scenes { show } => scenes(show)?,
         Cmd::Render {
@@ -1398,6 +1402,13 @@ pub fn run() -> anyhow::Result<()> {
             out!("{}", crate::measure::bench::bench(&cfg, &work)?)
         }
         Cmd::Report { out, space, work } => {
+            if !space.exists() && space == Path::new(DEFAULT_REPORT_SPACE) {
+                return Err(Error::Other(format!(
+                    "--space {DEFAULT_REPORT_SPACE} (the default): not found from {}; the default space is the gbump checkout's own\n  fix: run gbump report from the checkout, or pass --space FILE (a sweep space, as `gbump sweep --space` takes)",
+                    std::env::current_dir().map(|d| d.display().to_string()).unwrap_or_else(|_| "this folder".into())
+                ))
+                .into());
+            }
             let files = crate::measure::report::report(&out, &work, &space, || lock_work(&work))?;
             crate::render::output::write_files(&out, &files)?;
             outln!(

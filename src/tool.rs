@@ -119,20 +119,22 @@ static FLAG_LIMIT: std::sync::OnceLock<std::time::Duration> = std::sync::OnceLoc
 /// Set the time limit of every tool this process runs from `--tool-timeout` (`None`: the
 /// environment's [`TIME_LIMIT_VAR`], else none), refusing a value that is not a positive
 /// number of seconds up to `MAX_TOOL_TIMEOUT_SECONDS`.
-pub fn set_time_limit(flag: Option<f64>) -> Result<()> {
+pub fn set_time_limit(flag: Option<&str>) -> Result<()> {
     if let Some(v) = flag {
-        let _ = FLAG_LIMIT.set(limit_of(v, "--tool-timeout")?);
+        let _ = FLAG_LIMIT.set(limit_of(v, "--tool-timeout ")?);
     }
     Ok(())
 }
 
-fn limit_of(v: f64, from: &str) -> Result<std::time::Duration> {
-    if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 {
-        return Ok(std::time::Duration::from_secs_f64(v));
+/// `text` (as typed, and echoed so) as a time limit.
+fn limit_of(text: &str, from: &str) -> Result<std::time::Duration> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 => Ok(std::time::Duration::from_secs_f64(v)),
+        _ => Err(Error::Other(format!(
+            "{from}{}: a tool time limit is a number of seconds, more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or leave it out for no limit",
+            crate::shell::quoted(text)
+        ))),
     }
-    Err(Error::Other(format!(
-        "{from} {v}: a tool time limit must be more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} seconds (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds, or leave it out for no limit"
-    )))
 }
 
 /// The limit a tool about to run has: `--tool-timeout`, else [`TIME_LIMIT_VAR`] (read here,
@@ -142,14 +144,7 @@ pub fn time_limit() -> Result<Option<std::time::Duration>> {
         return Ok(Some(*l));
     }
     match std::env::var(TIME_LIMIT_VAR) {
-        Ok(v) if !v.trim().is_empty() => {
-            let secs = v.trim().parse::<f64>().map_err(|_| {
-                Error::Other(format!(
-                    "{TIME_LIMIT_VAR}={v:?}: not a number of seconds\n  fix: set it to the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or unset it for no limit"
-                ))
-            })?;
-            limit_of(secs, TIME_LIMIT_VAR).map(Some)
-        }
+        Ok(v) if !v.trim().is_empty() => limit_of(&v, &format!("{TIME_LIMIT_VAR}=")).map(Some),
         _ => Ok(None),
     }
 }

@@ -680,6 +680,12 @@ fn cases() -> Vec<Case> {
             vec!["scene_scène", "not plain names", "fix: rename the scene file"],
         ),
         (
+            "report run outside the checkout, its default sweep space absent",
+            vec![],
+            vec!["report", "--out", "out", "--work", "w"],
+            vec!["--space sweeps/small.toml (the default): not found", "fix: run gbump report from the checkout, or pass --space FILE"],
+        ),
+        (
             "sweep space with a hidden stem",
             vec![(".sp.toml", "[grid]\nlights = [1, 2]\n".into())],
             vec!["sweep", "--space", ".sp.toml", "--out", "out", "--work", "w"],
@@ -1569,7 +1575,8 @@ fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
     for (limit, env, says) in [
         (&["--tool-timeout", "0"][..], None, "--tool-timeout 0"),
         (&["--tool-timeout", "inf"][..], None, "--tool-timeout inf"),
-        (&[][..], Some("soon"), "GBUMP_TOOL_TIMEOUT=\"soon\""),
+        (&["--tool-timeout", "1e400"][..], None, "--tool-timeout 1e400"),
+        (&[][..], Some("soon"), "GBUMP_TOOL_TIMEOUT=soon"),
     ] {
         let (code, text) = run(limit, env);
         assert!(code == Some(1) && text.contains(says) && text.contains("fix:"), "{text}");
@@ -1751,6 +1758,16 @@ fn an_edited_manifest_is_refused_before_anything_runs() {
             "the target",
             Box::new(|m| m["target"] = "nosuchunit".into()),
             vec!["field `target`", "nosuchunit", "fix: regenerate"],
+        ),
+        (
+            "the target, to another unit of the configuration",
+            Box::new(|m| m["target"] = "power_unit".into()),
+            vec![
+                "field `target`",
+                "`power_unit` is not this set's target",
+                "`top`'s",
+                "fix: regenerate",
+            ],
         ),
         (
             "the shininess",

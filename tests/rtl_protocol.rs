@@ -301,6 +301,24 @@ fn a_set_in_a_format_the_bench_cannot_read_is_refused_or_routed_before_building(
         .success();
     let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
     assert!(out.contains("corners_top") && out.contains(", 0 failing run(s)"), "{out}");
+    // The same set from two folders: each run is named by its folder, so the summary and
+    // the JUnit report tell them apart.
+    let junit = w.join("both.xml");
+    let o = gbump()
+        .args(["regress", "--sim", "verilator", "--work"])
+        .arg(w.join("work_both"))
+        .arg("--vectors")
+        .arg(w.join("hex"))
+        .arg("--vectors")
+        .arg(w.join("bin"))
+        .arg("--junit")
+        .arg(&junit)
+        .assert()
+        .success();
+    let out = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
+    assert!(out.contains("hex/corners_top ") && out.contains("bin/corners_top "), "{out}");
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    assert!(xml.contains("hex/corners_top") && xml.contains("bin/corners_top"), "{xml}");
 }
 
 /// Corner vectors of the top for shininess `n`: (hex, that set's power table).

@@ -46,7 +46,10 @@ fn a_streamed_random_regression_passes_on_the_default_config() {
         .expect(&log);
     let f: Vec<&str> = line.split_whitespace().collect();
     assert_eq!((f[2], f[3]), ("20000", "0"), "{line}");
-    assert!(log.contains("1 runs, 20000 vectors, 0 failing run(s)"), "{log}");
+    assert!(
+        log.contains("1 runs, 20000 vectors passed, 0 failed checks, 0 failing run(s)"),
+        "{log}"
+    );
 }
 
 /// A scene streams under the scene's own configuration, as `gbump vectors` writes it, and

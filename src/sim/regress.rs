@@ -282,20 +282,49 @@ pub fn run_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], rtl: &Rtl
     run_checked(cfg, &check_sets(cfg, sets, o)?, rtl, o)
 }
 
+/// Each set's name in the summary, the JUnit report and its waveform's file name: its file
+/// stem, with its folder's name in front where two given sets share a stem (sets of the same
+/// source from two folders), so that no two runs read alike.
+fn set_names(sets: &[CheckedSet]) -> Vec<String> {
+    let stem = |p: &Path| p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let folder = |p: &Path| {
+        p.parent()
+            .and_then(|d| d.file_name())
+            .map(|d| d.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    let mut names: Vec<String> = sets.iter().map(|s| stem(&s.manifest)).collect();
+    let shared = |names: &[String], i: usize| names.iter().filter(|n| **n == names[i]).count() > 1;
+    let clash: Vec<bool> = (0..names.len()).map(|i| shared(&names, i)).collect();
+    for (i, s) in sets.iter().enumerate() {
+        if clash[i] {
+            names[i] = format!("{}/{}", folder(&s.manifest), names[i]);
+        }
+    }
+    // Folders of the same name too: the whole path.
+    let clash: Vec<bool> = (0..names.len()).map(|i| shared(&names, i)).collect();
+    for (i, s) in sets.iter().enumerate() {
+        if clash[i] {
+            names[i] = s.manifest.with_extension("").display().to_string();
+        }
+    }
+    names
+}
+
 /// `run_sets` on sets `check_sets` has already checked.
 pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &RegressOptions) -> Result<Vec<RunResult>> {
     let build_root = o.work.join("build");
+    let names = set_names(sets);
     let mut results = Vec::new();
     for &sim in &o.sims {
         super::require(sim)?;
         let simulator = sim.simulator();
         let mut exes: Vec<(Bench, PathBuf)> = Vec::new();
         let mut power_up_done = !o.power_up;
-        for CheckedSet { manifest, only, m, dir } in sets {
+        for (CheckedSet { manifest, only, m, dir }, set) in sets.iter().zip(&names) {
             if only.is_some_and(|s| s != sim) {
                 continue;
             }
-            let set = manifest.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
             let bench = bench_for(sim, m, &manifest.display().to_string(), o.waves)?;
             let exe = match exes.iter().find(|e| e.0 == bench) {
                 Some(e) => e.1.clone(),
@@ -328,7 +357,9 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
             for load in loads {
                 let name = if load { set.clone() } else { format!("{set}+power-up") };
                 let what = format!("{} {name}", sim.name());
-                let waves = o.waves.then(|| o.work.join(format!("{name}_{}.fst", sim.name())));
+                let waves = o
+                    .waves
+                    .then(|| o.work.join(format!("{}_{}.fst", name.replace('/', "_"), sim.name())));
                 let table = load.then(|| dir.join(&m.power_table.name).display().to_string());
                 let file = |f: &Option<crate::vectors::manifest::FileEntry>| {
                     f.as_ref().map(|f| dir.join(&f.name).display().to_string()).unwrap_or_default()

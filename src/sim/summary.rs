@@ -10,7 +10,11 @@ use crate::tool::tail;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Totals {
     pub runs: usize,
-    pub vectors: u64,
+    /// Vectors whose every check passed.
+    pub passed: u64,
+    /// Failed checks: a vector's result, and each timing, handshake or X report (a vector
+    /// can fail more than one), so not a count of vectors.
+    pub failed: u64,
     pub failing: usize,
 }
 
@@ -18,7 +22,8 @@ pub struct Totals {
 pub fn table(results: &[RunResult], say: &mut dyn FnMut(&str) -> Result<()>) -> Result<Totals> {
     let mut t = Totals {
         runs: results.len(),
-        vectors: 0,
+        passed: 0,
+        failed: 0,
         failing: 0,
     };
     say(&format!(
@@ -28,7 +33,8 @@ pub fn table(results: &[RunResult], say: &mut dyn FnMut(&str) -> Result<()>) -> 
     for r in results {
         match &r.outcome {
             Ok(out) => {
-                t.vectors += out.passed + out.failed;
+                t.passed += out.passed;
+                t.failed += out.failed;
                 if out.failed > 0 {
                     t.failing += 1;
                     say(&tail(&out.log, 40))?;
@@ -56,10 +62,11 @@ pub fn table(results: &[RunResult], say: &mut dyn FnMut(&str) -> Result<()>) -> 
 /// when any run failed.
 pub fn verdict(cfg: &PipelineConfig, kind: &str, t: &Totals, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
     say(&format!(
-        "regress config {}{kind}: {} runs, {} vectors, {} failing run(s)",
+        "regress config {}{kind}: {} runs, {} vectors passed, {} failed checks, {} failing run(s)",
         cfg.hash(),
         t.runs,
-        t.vectors,
+        t.passed,
+        t.failed,
         t.failing
     ))?;
     if t.failing > 0 {

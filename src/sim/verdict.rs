@@ -86,7 +86,17 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
         )));
     }
     if let Some(fatal) = judged.lines().find(|l| l.trim_start().starts_with("FATAL")) {
-        return Err(Error::Other(format!("{what}: the testbench gave up: {}", fatal.trim())));
+        let fix = if fatal.contains("stayed low") || fatal.contains("in flight") {
+            "the RTL stopped answering its handshake (or answered out of protocol): rerun with --waves and follow the signal the line names"
+        } else if fatal.contains("no vectors") || fatal.contains("no fragments") {
+            "give a set that holds records (its manifest's count above 0)"
+        } else {
+            "a vector, table or map file could not be read as the set's manifest says: check it with `gbump regress --vectors` on its folder, or regenerate it with the command in its manifest"
+        };
+        return Err(Error::Other(format!(
+            "{what}: the testbench gave up: {}\n  fix: {fix}",
+            fatal.trim()
+        )));
     }
     match parse_summary(&log) {
         Some((passed, failed)) => {

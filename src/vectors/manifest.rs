@@ -277,6 +277,22 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     }
     let l = super::targets::layout(&m.config, &m.target);
     let (module, latency, ii) = timing(&m.config, &m.target);
+    // A module of another target of the configuration: the `target` was edited.
+    let owner = super::targets::resolve(&m.config, &["all".to_string()])
+        .unwrap_or_default()
+        .into_iter()
+        .find(|t| t != &m.target && timing(&m.config, t).0 == m.module);
+    if let Some(owner) = owner {
+        return Err(Error::field(
+            &file,
+            "target",
+            format!(
+                "`{}` is not this set's target: its module {} and records are `{owner}`'s",
+                m.target, m.module
+            ),
+            regen,
+        ));
+    }
     if m.module != module || m.latency != latency || m.initiation_interval != ii {
         // The first of the three that differs is the field named.
         let field = if m.module != module {
