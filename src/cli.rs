@@ -35,7 +35,7 @@ pub struct Cli {
     /// Stop any simulator, build or synthesis that runs longer than this, in seconds, and
     /// fail (default: the GBUMP_TOOL_TIMEOUT environment variable, else no limit)
     #[arg(long, global = true, value_name = "SECONDS")]
-    /// Read as text, so a refusal echoes what was typed (`1e400`, not `inf`).
+    // Read as text, so a refusal echoes what was typed (`1e400`, not `inf`).
     pub tool_timeout: Option<String>,
 }
 
