@@ -1404,7 +1404,7 @@ pub fn run() -> anyhow::Result<()> {
         Cmd::Report { out, space, work } => {
             if !space.exists() && space == Path::new(DEFAULT_REPORT_SPACE) {
                 return Err(Error::Other(format!(
-                    "--space {DEFAULT_REPORT_SPACE} (the default): not found from {}; the default space is the gbump checkout's own\n  fix: run gbump report from the checkout, or pass --space FILE (a sweep space, as `gbump sweep --space` takes)",
+                    "--space {DEFAULT_REPORT_SPACE}: not found from {}; it is the default, the gbump checkout's own sweep space\n  fix: run gbump report from the checkout, or pass --space FILE (a sweep space, as `gbump sweep --space` takes)",
                     std::env::current_dir().map(|d| d.display().to_string()).unwrap_or_else(|_| "this folder".into())
                 ))
                 .into());

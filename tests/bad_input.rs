@@ -683,7 +683,7 @@ fn cases() -> Vec<Case> {
             "report run outside the checkout, its default sweep space absent",
             vec![],
             vec!["report", "--out", "out", "--work", "w"],
-            vec!["--space sweeps/small.toml (the default): not found", "fix: run gbump report from the checkout, or pass --space FILE"],
+            vec!["--space sweeps/small.toml: not found from", "fix: run gbump report from the checkout, or pass --space FILE"],
         ),
         (
             "sweep space with a hidden stem",

@@ -247,6 +247,9 @@ fn an_edited_command_is_not_repeated_as_a_fix() {
         ("gbump vectors --source random:7 --out v", false),
         ("gbump vectors --source corners --out v", true),
         ("gbump --tool-timeout 9 vectors --source=corners --out v", true),
+        ("gbump vectors --source corners --level 1 --out v", true),
+        // gbump records itself as plain `gbump`: another program of that name is not it.
+        ("/tmp/x/gbump vectors --source corners --out v", false),
         // Another subcommand's words (a regression's) are not what `gbump vectors` takes.
         ("gbump regress --source corners --out v", false),
         ("gbump vectors --source corners --level 2 --out v", false),

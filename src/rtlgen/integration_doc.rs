@@ -100,11 +100,16 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         );
     } else {
         s += &format!(
-        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{0}` entry written as its raw {2}-bit word, the value times 2^{3}; the i-th data line of a `_power_table.hex` file, after its `//` header, which `$readmemh` skips, is the word for address i) for one rising edge per word, {1} words. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered. Results waiting in the output buffer for `out_ready` are not in flight (each read the table before its `out_valid`). Writes are taken while `rst` is high too, and `rst` does not undo them. A triangle setup may be taken while the table is written (the banks are not the table).\n\n",
+        "**Loading the power table.** Drive `power_table_we` high with `power_table_waddr` and `power_table_wdata` (a `{0}` entry written as its raw {2}-bit word, the value times 2^{3}; the i-th data line of a `_power_table.hex` file, after its `//` header, which `$readmemh` skips, is the word for address i) for one rising edge per word, {1} words. Write only while no fragment is in flight: after the edge at which the last accepted fragment's `out_valid` is sampled (its accept edge + {lat}) and before the next fragment is offered.{4} Writes are taken while `rst` is high too, and `rst` does not undo them. A triangle setup may be taken while the table is written (the banks are not the table).\n\n",
         cfg.power_fmt().name(),
         cfg.power_depth(),
         cfg.power_frac_bits + 1,
-        cfg.power_frac_bits
+        cfg.power_frac_bits,
+        if cfg.backpressure {
+            " Results waiting in the output buffer for `out_ready` are not in flight (each read the table before its `out_valid`)."
+        } else {
+            ""
+        }
     );
     }
     if cfg.embm() {

@@ -446,7 +446,7 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
             Ok(out) if out.failed == 0 => checked += out.passed,
             Ok(out) => {
                 return Err(Error::Other(format!(
-                    "config {h} ({}): {} failed {} vectors:\n{}",
+                    "config {h} ({}): {} failed {} check(s) (results, timing or X reports):\n{}",
                     dir.join("config.toml").display(),
                     r.set,
                     out.failed,

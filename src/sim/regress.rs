@@ -298,11 +298,15 @@ fn set_names(sets: &[CheckedSet]) -> Vec<String> {
     let clash: Vec<bool> = (0..names.len()).map(|i| shared(&names, i)).collect();
     for (i, s) in sets.iter().enumerate() {
         if clash[i] {
-            names[i] = format!("{}/{}", folder(&s.manifest), names[i]);
+            // A folder with no name of its own (`..`): the whole path below.
+            names[i] = match folder(&s.manifest) {
+                f if f.is_empty() || f == ".." => String::new(),
+                f => format!("{f}/{}", names[i]),
+            };
         }
     }
     // Folders of the same name too: the whole path.
-    let clash: Vec<bool> = (0..names.len()).map(|i| shared(&names, i)).collect();
+    let clash: Vec<bool> = (0..names.len()).map(|i| names[i].is_empty() || shared(&names, i)).collect();
     for (i, s) in sets.iter().enumerate() {
         if clash[i] {
             names[i] = s.manifest.with_extension("").display().to_string();
@@ -359,7 +363,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                 let what = format!("{} {name}", sim.name());
                 let waves = o
                     .waves
-                    .then(|| o.work.join(format!("{}_{}.fst", name.replace('/', "_"), sim.name())));
+                    .then(|| o.work.join(format!("{}_{}.fst", name.replace('/', "__"), sim.name())));
                 let table = load.then(|| dir.join(&m.power_table.name).display().to_string());
                 let file = |f: &Option<crate::vectors::manifest::FileEntry>| {
                     f.as_ref().map(|f| dir.join(&f.name).display().to_string()).unwrap_or_default()

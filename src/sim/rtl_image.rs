@@ -25,7 +25,11 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
     let opts = DumpOptions {
         seed: 0,
         size: Some((w, h)),
-        ..DumpOptions::formats(format!("gbump render --rtl --scene {scene_name}"), false, true)
+        ..DumpOptions::formats(
+            format!("gbump render --rtl --scene {}", crate::shell::quoted(scene_name)),
+            false,
+            true,
+        )
     };
     let sets = dump(cfg, &Source::Scene(scene_name.to_string()), &["top".to_string()], &vdir, &opts)?;
     let exe = Verilator.build_harness(

@@ -6,11 +6,11 @@ use crate::config::PipelineConfig;
 use crate::error::Result;
 use crate::tool::tail;
 
-/// Runs, vectors simulated and failing runs.
+/// Runs, vectors whose result matched, failed checks and failing runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Totals {
     pub runs: usize,
-    /// Vectors whose every check passed.
+    /// Vectors whose result matched.
     pub passed: u64,
     /// Failed checks: a vector's result, and each timing, handshake or X report (a vector
     /// can fail more than one), so not a count of vectors.

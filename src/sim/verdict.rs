@@ -86,12 +86,14 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
         )));
     }
     if let Some(fatal) = judged.lines().find(|l| l.trim_start().starts_with("FATAL")) {
+        // `outcome` judges every bench (regress, cosim, a stream, render --rtl): the fix
+        // names what the line says, not one command's options.
         let fix = if fatal.contains("stayed low") || fatal.contains("in flight") {
-            "the RTL stopped answering its handshake (or answered out of protocol): rerun with --waves and follow the signal the line names"
+            "the RTL stopped answering the handshake the line names (or took more than it may hold): a fault of the RTL, not of the stimulus; a waveform of the same records shows where (`gbump regress --waves` on a vector set of the same source and seed)"
         } else if fatal.contains("no vectors") || fatal.contains("no fragments") {
-            "give a set that holds records (its manifest's count above 0)"
+            "nothing was checked: give records to check (a set whose manifest count is above 0, or a count of 1 or more)"
         } else {
-            "a vector, table or map file could not be read as the set's manifest says: check it with `gbump regress --vectors` on its folder, or regenerate it with the command in its manifest"
+            "the line names the input the testbench could not take; correct it (a vector file: regenerate it with the command in its manifest)"
         };
         return Err(Error::Other(format!(
             "{what}: the testbench gave up: {}\n  fix: {fix}",

@@ -277,20 +277,25 @@ fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     }
     let l = super::targets::layout(&m.config, &m.target);
     let (module, latency, ii) = timing(&m.config, &m.target);
-    // A module of another target of the configuration: the `target` was edited.
+    // The module and the columns of another target of the configuration: the `target` was
+    // edited, and the set is that target's (the fix regenerates that one).
     let owner = super::targets::resolve(&m.config, &["all".to_string()])
         .unwrap_or_default()
         .into_iter()
-        .find(|t| t != &m.target && timing(&m.config, t).0 == m.module);
+        .find(|t| t != &m.target && timing(&m.config, t).0 == m.module && columns(&super::targets::layout(&m.config, t)) == m.columns);
     if let Some(owner) = owner {
+        let fixed = Manifest {
+            target: owner.clone(),
+            ..m.clone()
+        };
         return Err(Error::field(
             &file,
             "target",
             format!(
-                "`{}` is not this set's target: its module {} and records are `{owner}`'s",
+                "`{}` is not this set's target: its module {} and record columns are `{owner}`'s",
                 m.target, m.module
             ),
-            regen,
+            format!("regenerate the set with: {}", regenerate_into(&recorded_command(&fixed), &dir)),
         ));
     }
     if m.module != module || m.latency != latency || m.initiation_interval != ii {
@@ -487,18 +492,24 @@ pub fn recorded_command(m: &Manifest) -> String {
     use crate::shell::{option_value, quoted, subcommand_at};
     let source = source_spelling(&m.source);
     let words = shell_words::split(&m.command).unwrap_or_default();
-    let gbump = words
-        .first()
-        .is_some_and(|w| Path::new(w).file_name().is_some_and(|f| f == "gbump"));
+    // gbump records itself as plain `gbump`: a path is an edit.
+    let gbump = words.first().is_some_and(|w| w == "gbump");
     let vectors = subcommand_at(&words).is_some_and(|i| words[i] == "vectors");
-    let named = option_value(&words, "--source").map(|s| match option_value(&words, "--level") {
-        Some(l) if l != "1" => format!("{s} --level {l}"),
-        _ => s.to_string(),
-    });
+    // The source as typed (`random:1_000_000`, `--level 2`), spelt as the manifest spells it.
+    let named = option_value(&words, "--source")
+        .and_then(|s| super::sources::Source::parse(s).ok())
+        .map(|s| match (s, option_value(&words, "--level").and_then(|l| l.parse().ok())) {
+            (super::sources::Source::Corners(_), Some(l)) => super::sources::Source::Corners(l).to_string(),
+            (s, _) => s.to_string(),
+        });
     if gbump && vectors && named.as_deref() == Some(source.as_str()) {
         return m.command.clone();
     }
-    let (source, level) = source.split_once(' ').unwrap_or((&source, ""));
+    // A scene's path may hold spaces: only the level is split off.
+    let (source, level) = match source.split_once(" --level ") {
+        Some((s, l)) => (s, format!("--level {l}")),
+        None => (source.as_str(), String::new()),
+    };
     let mut cmd = format!("gbump vectors --source {}", quoted(source));
     if !level.is_empty() {
         cmd += &format!(" {level}");

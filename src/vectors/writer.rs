@@ -420,6 +420,7 @@ fn space_fix(command: &str) -> &'static str {
         Some("fit") => "a --work folder on a larger disk, or --no-regress (no regression of the chosen configuration)",
         Some("regress") => "fewer --random or --random-icarus records, fewer --target, a --work folder on a larger disk, or --stream random:N (records piped to the simulator, no file written)",
         Some("fuzz") => "fewer --random records, or a --work folder on a larger disk",
+        Some("render") => "a smaller --size, or a --work folder on a larger disk",
         _ => "fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
     }
 }
