@@ -180,12 +180,21 @@ module tb_cosim;
         mismatch_stop();
     endtask
 
-    // No output may be X or Z after reset.
+    // No output may be X or Z after reset, and every data output is 0 while out_valid is low.
+    int gate_reports = 0;
+    task automatic gate_report(input string what);
+        failed = failed + 1;
+        gate_reports = gate_reports + 1;
+        if (gate_reports <= max_errors) $display("MISMATCH: %0s", what);
+        mismatch_stop();
+    endtask
     always @(negedge clk) begin
         if (!rst && ((^{out_valid, in_ready{{OUT_XCHECK}}}) === 1'bx)) begin
             failed = failed + 1;
             if (failed <= max_errors) $display("MISMATCH: X on outputs after reset at %0t", $time);
             mismatch_stop();
+        end else if (!rst && out_valid === 1'b0) begin
+{{OUT_GATE}}
         end
     end
 

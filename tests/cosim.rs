@@ -170,6 +170,31 @@ fn cosim_catches_mutants() {
         !ok && log.contains("not of the one picked") && log.contains("fix:"),
         "another configuration's RTL passed:\n{log}"
     );
+
+    // The top with its output gate removed: out_c holds the last result while out_valid is
+    // low, where the integration notes promise 0 (the other two benches catch it too).
+    let ungated = d.join("ungated");
+    rtl(None, &ungated);
+    let top = std::fs::read_dir(&ungated)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| {
+            let n = p.file_name().unwrap().to_string_lossy().into_owned();
+            n.starts_with("gbump_pipeline_") && n.ends_with(".v")
+        })
+        .unwrap();
+    let text = std::fs::read_to_string(&top).unwrap();
+    let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
+    // `valid ? colour : 0`, where the colour may itself be a conditional (the output buffer).
+    let (_, rhs) = gated.split_once(" ? ").unwrap();
+    let bare = format!("assign out_c = {};", rhs.rsplit_once(" : ").unwrap().0);
+    std::fs::write(&top, text.replace(&gated, &bare)).unwrap();
+    let (ok, log) = gbump(&["cosim", "--rtl", ungated.to_str().unwrap(), "--random", "2000"], &w);
+    assert!(
+        !ok && log.contains("MISMATCH: out_c is not 0 while out_valid is low"),
+        "the ungated top passed:\n{log}"
+    );
 }
 
 /// Verilator's runtime objects are compiled once into the shared cache (`GBUMP_CACHE`) and

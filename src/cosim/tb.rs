@@ -112,6 +112,11 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         if p.output {
             push("DECLS", format!("    wire [{}:0] {n};", w - 1));
             push("OUT_XCHECK", format!(", {n}"));
+            // The integration notes promise every data output 0 while out_valid is low.
+            push(
+                "OUT_GATE",
+                format!("            if ({n} !== '0) gate_report($sformatf(\"{n} is not 0 while out_valid is low at %0t: {n}=%h\", $time, {n}));"),
+            );
             push("OUT_EQUAL", format!("{n} === {slice}"));
             push(
                 "PRINT_OUT",
@@ -176,6 +181,7 @@ pub fn fill(j: &Value, file: &Path, dir: &Path) -> Result<String> {
         ),
         ("TRI_START", if setup { "stim[lsb_tri_start]" } else { "1'b0" }.into()),
         ("OUT_XCHECK", get("OUT_XCHECK", "")),
+        ("OUT_GATE", get("OUT_GATE", "\n")),
         ("OUT_EQUAL", get("OUT_EQUAL", " && ")),
         ("PRINT", print),
     ];
