@@ -1,8 +1,11 @@
 //! Lockstep co-simulation for real (`gbump cosim`, Verilator + libgbump through DPI-C, no
 //! vector file): zero mismatches on the default and a one-light parallel configuration, and
-//! failures for a mutant RTL (one operator flipped in a generated unit) and for the RTL of
+//! failures for mutant RTLs (one operator flipped in a generated unit; the output gate removed) and for the RTL of
 //! another configuration (same ports, truncating instead of rounding), or of one with other
 //! ports (refused at start-up, naming the column).
+
+#[path = "common/mutants.rs"]
+mod mutants;
 
 use assert_cmd::Command as Gbump;
 use std::path::{Path, PathBuf};
@@ -185,11 +188,7 @@ fn cosim_catches_mutants() {
         })
         .unwrap();
     let text = std::fs::read_to_string(&top).unwrap();
-    let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
-    // `valid ? colour : 0`, where the colour may itself be a conditional (the output buffer).
-    let (_, rhs) = gated.split_once(" ? ").unwrap();
-    let bare = format!("assign out_c = {};", rhs.rsplit_once(" : ").unwrap().0);
-    std::fs::write(&top, text.replace(&gated, &bare)).unwrap();
+    std::fs::write(&top, mutants::output_ungated(&text).expect("the output gate")).unwrap();
     let (ok, log) = gbump(&["cosim", "--rtl", ungated.to_str().unwrap(), "--random", "2000"], &w);
     assert!(
         !ok && log.contains("MISMATCH: out_c is not 0 while out_valid is low"),

@@ -479,6 +479,17 @@ fn the_cocotb_example_passes_on_two_configurations_and_rejects_a_mutant() {
                 !ok && log.contains("MISMATCH") && log.contains("out_c expected"),
                 "the mutant passed:\n{log}"
             );
+            // The right rounding, and no output gate: out_c shows its last result while
+            // out_valid is low.
+            std::fs::write(&tm, text).unwrap();
+            let top = dir.join(format!("{}.v", module_name(&cfg, "gbump_pipeline")));
+            let v = std::fs::read_to_string(&top).unwrap();
+            std::fs::write(&top, mutants::output_ungated(&v).expect("the output gate")).unwrap();
+            let (ok, log) = cocotb(&cwd, &iface, &man, None);
+            assert!(
+                !ok && log.contains("out_c is not 0 while out_valid is low"),
+                "the ungated top passed:\n{log}"
+            );
         }
     }
 }

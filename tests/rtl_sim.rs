@@ -1414,10 +1414,6 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
     // The same pipeline with its output gate removed: its X before the first result is reported.
     let top = rtl.sources.iter().find(|p| p.to_string_lossy().contains("gbump_pipeline")).unwrap();
     let text = std::fs::read_to_string(top).unwrap();
-    let gated = text.lines().find(|l| l.starts_with("assign out_c = ")).unwrap().to_string();
-    // `valid ? colour : 0`, where the colour may itself be a conditional (the output buffer).
-    let (_, rhs) = gated.split_once(" ? ").unwrap();
-    let ungated = format!("assign out_c = {};", rhs.rsplit_once(" : ").unwrap().0);
     let mutant_dir = work.join("mutant");
     let rtl2 = write_rtl(&cfg, &mutant_dir, "x").unwrap();
     let top2 = rtl2
@@ -1425,7 +1421,7 @@ fn outputs_are_never_x_after_reset_and_an_ungated_output_is_caught() {
         .iter()
         .find(|p| p.to_string_lossy().contains("gbump_pipeline"))
         .unwrap();
-    std::fs::write(top2, text.replace(&gated, &ungated)).unwrap();
+    std::fs::write(top2, mutants::output_ungated(&text).expect("the output gate")).unwrap();
     let exe2 = Icarus
         .build(
             &work.join("build"),

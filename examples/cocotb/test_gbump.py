@@ -7,7 +7,7 @@ table through the load port (power_table_we/power_table_waddr/power_table_wdata;
 every record with random bubbles ($GBUMP_BUBBLES: chance of a 1-3 cycle gap, seeded by
 $GBUMP_SEED), and checks every out_c, the latency of every vector (rising edges from the
 accepting edge to the edge at which its out_valid is first sampled high) and the spacing of
-accepts (the initiation interval). A per-triangle top (its interface has `bump_state.at` =
+accepts (the initiation interval), and that out_c is 0 whenever out_valid is low. A per-triangle top (its interface has `bump_state.at` =
 "triangle") gets a setup beat on tri_valid/tri_ready, in_valid low, before every record whose
 `tri_start` column is 1. Stops after $GBUMP_MAX_ERRORS (default 20) mismatches.
 
@@ -136,6 +136,9 @@ async def vectors_match_with_bubbles_and_a_loaded_table(dut):
                 else:
                     fields = ", ".join(f"{c['name']}={field(records[i], c):x}" for c in stim)
                     problems.append(f"vector {i}: out_c expected {want:x} got {got:x} ({fields})")
+        elif not dut.out_c.value.is_resolvable or dut.out_c.value.integer != 0:
+            # The integration notes promise out_c = 0 whenever out_valid is low.
+            problems.append(f"out_c is not 0 while out_valid is low: {dut.out_c.value} (edge {edge})")
         await RisingEdge(dut.clk)
         await FallingEdge(dut.clk)
         edge += 1

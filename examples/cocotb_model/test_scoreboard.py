@@ -20,7 +20,8 @@ Stimulus: the module's seeded random stream ($GBUMP_SEED, $GBUMP_COUNT records),
 random bubbles ($GBUMP_BUBBLES: the chance of a 1-3 cycle gap after an accept). The model
 evaluates the ports as sampled at the accepting edge. Every result port is compared, every
 fragment's latency (rising edges from its accept to the edge at which its out_valid is sampled
-high) must be the interface's, and accepts must keep the initiation interval. Stops after
+high) must be the interface's, accepts must keep the initiation interval, and every result
+port must be 0 while out_valid is low. Stops after
 $GBUMP_MAX_ERRORS problems.
 
 Timing: inputs change just after falling edges; after ReadOnly, the values read are the ones
@@ -207,6 +208,15 @@ class Result:
                 bad.append(f"{name} expected {want:x} got {got:x}")
         return bad
 
+    def gated(self, dut):
+        """The outputs that are not 0 while out_valid is low (the integration notes promise 0)."""
+        bad = []
+        for name, _ in self.cols:
+            v = getattr(dut, name).value
+            if not v.is_resolvable or v.integer != 0:
+                bad.append(f"{name} is not 0 while out_valid is low: {v}")
+        return bad
+
 
 KINDS = {"control": Control, "load": Load, "fragment": Fragment, "triangle": Triangle, "result": Result}
 
@@ -302,6 +312,8 @@ async def model_scoreboard_with_bubbles(dut):
                     problems.append(f"fragment {i}: {'; '.join(bad)} ({stim})")
                 else:
                     passed += 1
+        else:
+            problems.extend(f"{b} (edge {edge})" for b in result.gated(dut))
         await RisingEdge(dut.clk)
         await FallingEdge(dut.clk)
         edge += 1

@@ -162,3 +162,13 @@ pub fn ready_stuck_low(text: &str, ready: &str) -> Option<String> {
     let line = text.lines().find(|l| l.starts_with(&format!("assign {ready} = ")))?;
     Some(text.replacen(line, &format!("assign {ready} = 1'b0;"), 1))
 }
+
+/// The top's output gate removed: `out_c` holds its last result while `out_valid` is low,
+/// where the integration notes promise 0. The gate is `valid ? colour : 0`, the colour
+/// itself possibly a conditional (the output buffer). None when the top has no such line.
+pub fn output_ungated(text: &str) -> Option<String> {
+    let gated = text.lines().find(|l| l.starts_with("assign out_c = "))?;
+    let (_, rhs) = gated.split_once(" ? ")?;
+    let bare = format!("assign out_c = {};", rhs.rsplit_once(" : ")?.0);
+    Some(text.replacen(gated, &bare, 1))
+}
