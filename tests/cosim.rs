@@ -98,6 +98,20 @@ fn cosim_matches_the_model() {
     );
 }
 
+/// The Verilog file of generated module `module` (its name carries the configuration's
+/// hash) in RTL folder `dir`.
+fn module_file(dir: &Path, module: &str) -> PathBuf {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| {
+            let n = p.file_name().unwrap().to_string_lossy().into_owned();
+            n.starts_with(&format!("{module}_")) && n.ends_with(".v")
+        })
+        .unwrap_or_else(|| panic!("no {module}_*.v in {}", dir.display()))
+}
+
 #[test]
 fn cosim_catches_mutants() {
     let w = work("mutants");
@@ -106,12 +120,7 @@ fn cosim_catches_mutants() {
     let d = w.clone();
     let mutant = d.join("mutant");
     rtl(None, &mutant);
-    let f = std::fs::read_dir(&mutant)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .find(|p| p.file_name().unwrap().to_string_lossy().starts_with("texture_modulate_"))
-        .unwrap();
+    let f = module_file(&mutant, "texture_modulate");
     let v = std::fs::read_to_string(&f).unwrap();
     let flipped = v.replacen("p1 + (p1 >>", "p1 - (p1 >>", 1);
     assert_ne!(v, flipped, "{}: the operator to flip is gone; pick another", f.display());
@@ -178,15 +187,7 @@ fn cosim_catches_mutants() {
     // low, where the integration notes promise 0 (the other two benches catch it too).
     let ungated = d.join("ungated");
     rtl(None, &ungated);
-    let top = std::fs::read_dir(&ungated)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .find(|p| {
-            let n = p.file_name().unwrap().to_string_lossy().into_owned();
-            n.starts_with("gbump_pipeline_") && n.ends_with(".v")
-        })
-        .unwrap();
+    let top = module_file(&ungated, "gbump_pipeline");
     let text = std::fs::read_to_string(&top).unwrap();
     std::fs::write(&top, mutants::output_ungated(&text).expect("the output gate")).unwrap();
     let (ok, log) = gbump(&["cosim", "--rtl", ungated.to_str().unwrap(), "--random", "2000"], &w);
