@@ -5,7 +5,8 @@
 //! covered scene (`error` also renders the other built-in scenes that fit, at the same size),
 //! and its peak resident memory must stay within its plan (and within a few times of it, so
 //! that a plan far above the truth does not refuse sizes that fit). One test runs them one
-//! after another, so that their peaks do not add up on the machine.
+//! after another, so that their peaks do not add up on the machine. (`render --rtl` plans
+//! the render and the scene set together, both measured here.)
 #![cfg(target_os = "linux")]
 
 use gbump::limits::{render_bytes, PixelUse};
