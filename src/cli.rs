@@ -613,8 +613,8 @@ impl ConfigPick {
     /// The arguments that select this configuration, for regeneration commands in headers.
     pub fn args(&self) -> String {
         match (&self.config, &self.scene) {
-            (Some(p), _) => format!("--config {}", quoted(&p.display().to_string())),
-            (None, Some(s)) => format!("--scene {}", quoted(s)),
+            (Some(p), _) => format!("--config {}", quoted(&recorded_path(&p.display().to_string()))),
+            (None, Some(s)) => format!("--scene {}", quoted(&recorded_path(s))),
             (None, None) => String::new(),
         }
     }
@@ -1536,10 +1536,50 @@ fn scenes(show: Option<String>) -> Result<()> {
 /// The command line as a user would type it (program name `gbump`, whatever the path), so
 /// that generated files do not depend on where the binary lives.
 pub fn invocation() -> String {
+    let args: Vec<String> = std::env::args().skip(1).collect();
     std::iter::once("gbump".to_string())
-        .chain(std::env::args().skip(1).map(|a| quoted(&a)))
+        .chain(recorded_args(&args).iter().map(|a| quoted(a)))
         .collect::<Vec<_>>()
         .join(" ")
+}
+
+/// Options whose value is an input file a recorded command must find again.
+const INPUT_FILE_OPTIONS: [&str; 3] = ["--config", "--scene", "--space"];
+
+/// `args` as a file or a manifest records them: an input file named by a relative path
+/// (`--config`, `--scene`, `--space`, `--source scene:FILE`) by its absolute one, so that the
+/// command repeats from any folder (a set's `command`, an RTL folder's `regenerate`); every
+/// other word as typed.
+pub fn recorded_args(args: &[String]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::with_capacity(args.len());
+    for a in args {
+        let after = out.last().map(String::as_str);
+        let rewritten = if after.is_some_and(|f| INPUT_FILE_OPTIONS.contains(&f)) {
+            recorded_path(a)
+        } else if let Some((f, v)) = a.split_once('=').filter(|(f, _)| INPUT_FILE_OPTIONS.contains(f)) {
+            format!("{f}={}", recorded_path(v))
+        } else if let Some(file) = a.strip_prefix("scene:").filter(|_| after == Some("--source")) {
+            format!("scene:{}", recorded_path(file))
+        } else if let Some(file) = a.strip_prefix("--source=scene:") {
+            format!("--source=scene:{}", recorded_path(file))
+        } else {
+            a.clone()
+        };
+        out.push(rewritten);
+    }
+    out
+}
+
+/// `p` by its absolute path when it names an existing file by a relative one (a built-in
+/// scene's name, or anything else, stays as typed).
+pub fn recorded_path(p: &str) -> String {
+    let path = Path::new(p);
+    if path.is_relative() && path.is_file() {
+        if let Ok(abs) = std::path::absolute(path) {
+            return abs.display().to_string();
+        }
+    }
+    p.to_string()
 }
 
 pub use crate::shell::quoted;

@@ -341,3 +341,46 @@ fn a_set_written_again_in_one_format_leaves_no_older_file_of_the_other() {
     assert_eq!(names(), ["random20_top.hex", "random20_top.json", "random20_top_power_table.hex"]);
     gbump::vectors::verify(&d.path().join("random20_top.json")).unwrap();
 }
+
+/// A set made with a configuration and a scene file named by relative paths records them by
+/// absolute path, so its command, run from another folder, makes the same set; the RTL
+/// folder's `regenerate` does the same.
+#[test]
+fn a_recorded_command_repeats_from_any_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("two.toml"), "lights = 2\n").unwrap();
+    let gbump = |cwd: &Path, args: &[String]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+            .args(args)
+            .current_dir(cwd)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    };
+    let words = |s: &[&str]| s.iter().map(|w| w.to_string()).collect::<Vec<_>>();
+    gbump(
+        d,
+        &words(&[
+            "vectors", "--config", "two.toml", "--source", "corners", "--target", "top", "--out", "a",
+        ]),
+    );
+    gbump(d, &words(&["rtl", "--config=two.toml", "--out", "rtl"]));
+    let m = read_manifest(&d.join("a/corners_top.json"));
+    let abs = d.join("two.toml").display().to_string();
+    assert!(m.command.contains(&format!("--config {abs}")), "{}", m.command);
+    let iface = std::fs::read_dir(d.join("rtl"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|x| x == "json"))
+        .unwrap();
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&iface).unwrap()).unwrap();
+    assert!(j["regenerate"].as_str().unwrap().contains(&abs), "{}", j["regenerate"]);
+    // The recorded command, from elsewhere, into another folder: the same records.
+    let elsewhere = tempfile::tempdir().unwrap();
+    let again = gbump::vectors::manifest::regenerate_words(&m.command, &d.join("b"));
+    gbump(elsewhere.path(), &again[1..]);
+    let bytes = |p: PathBuf| std::fs::read(p).unwrap();
+    assert_eq!(bytes(d.join("a/corners_top.hex")), bytes(d.join("b/corners_top.hex")));
+}
