@@ -1462,7 +1462,7 @@ pub fn run() -> anyhow::Result<()> {
                 );
             }
         },
-        Cmd::Limits => out!("{}", crate::limits::markdown()),
+        Cmd::Limits => out!("{}\n{}", crate::limits::markdown(), crate::config::limits_markdown()),
         Cmd::Timing => out!("{}", crate::units::timing::markdown()),
     }
     Ok(())

@@ -604,6 +604,18 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
 ///
 /// # Panics
 /// If `LIMITS` has no such field.
+/// [`LIMITS`] as a Markdown table, each key with its default (`gbump limits` prints it after
+/// the size limits; the README's Limits section holds it).
+pub fn limits_markdown() -> String {
+    let d = toml::Value::try_from(PipelineConfig::default()).ok();
+    let default = |k: &str| d.as_ref().and_then(|t| t.get(k)).map_or("0".to_string(), |v| v.to_string());
+    let mut s = String::from("| configuration key | range | default | why |\n|---|---|---:|---|\n");
+    for (k, lo, hi, why) in LIMITS {
+        s += &format!("| `{k}` | {lo}..={hi} | {} | {why} |\n", default(k));
+    }
+    s
+}
+
 pub fn limit(name: &str) -> (u32, u32) {
     LIMITS
         .iter()
