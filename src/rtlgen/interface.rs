@@ -56,7 +56,11 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         },
         "output_buffer_results": super::top::output_depth(cfg),
         "backpressure": if cfg.backpressure { "out_ready: a result on out_c is taken at a rising edge at which out_valid && out_ready are high; it is offered from latency_cycles edges after its accept on and stays offered until taken; in_ready is low while output_buffer_results accepted results are untaken (and as the interval says); no pipeline register stalls" } else { "none: every result is taken when offered; the top has no out_ready" },
-        "latency_definition": "rising edges from the edge that accepts a fragment to the edge at which its out_valid is first sampled high",
+        "latency_definition": if cfg.backpressure {
+            "rising edges from the edge that accepts a fragment to the edge at which its out_valid is first sampled high, when every earlier result was taken as it was offered; a result held up behind an untaken one is offered from the edge after that one is taken, never earlier than the latency (see backpressure)"
+        } else {
+            "rising edges from the edge that accepts a fragment to the edge at which its out_valid is sampled high"
+        },
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
