@@ -6,12 +6,12 @@ fn readme_limits_table_is_current() {
     let table = gbump::limits::markdown();
     assert!(
         readme.contains("## Limits\n") && readme.contains(&table),
-        "README's Limits table is stale: paste the output of `gbump limits`"
+        "README's Limits table is stale: run scripts/regen.sh (it pastes `gbump limits`)"
     );
     // The configuration keys' ranges, which `gbump limits` prints after it.
     assert!(
         readme.contains(&gbump::config::limits_markdown()),
-        "README's table of configuration ranges is stale: paste the second table of `gbump limits`"
+        "README's table of configuration ranges is stale: run scripts/regen.sh (it pastes `gbump limits`)"
     );
 }
 
