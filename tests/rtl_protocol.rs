@@ -393,6 +393,22 @@ fn top_ports(cfg: &PipelineConfig) -> (String, String, String) {
     (top, decl, conn.join(", "))
 }
 
+/// A hand-written Icarus bench of `cfg`'s top in work folder `name`: `bench(top, decl, conn)`
+/// (from [`top_ports`]) is its source, module `module`; returns its line that starts with
+/// `tag` and that line's numbers.
+fn directed(cfg: &PipelineConfig, name: &str, module: &str, tag: &str, bench: impl Fn(&str, &str, &str) -> String) -> (String, Vec<i64>) {
+    let w = work(name);
+    let rtl = write_rtl(cfg, &w.join("rtl"), "test").unwrap();
+    let (top, decl, conn) = top_ports(cfg);
+    let exe = Icarus
+        .build(&w.join("build"), &Testbench::new(module, &bench(&top, &decl, &conn)), &rtl)
+        .unwrap();
+    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
+    let line = log.lines().find(|l| l.starts_with(tag)).unwrap_or_else(|| panic!("{log}"));
+    let v = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    (line.to_string(), v)
+}
+
 /// A setup offered while `rst` is high: `tri_ready` stays low through reset, and the setup
 /// is taken at the span's last edge counted from the first edge with `rst` low (the
 /// integration section's rule). Then a fragment is accepted and `rst` pulsed for one edge
@@ -401,17 +417,12 @@ fn top_ports(cfg: &PipelineConfig) -> (String, String, String) {
 /// table load).
 fn setup_during_reset(cfg_path: Option<&str>, name: &str) {
     let cfg = config(cfg_path);
-    let w = work(name);
-    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
-    let (top, decl, conn) = top_ports(&cfg);
     let lat = gbump::rtlgen::top::latency(&cfg);
-    let tb = format!(
-        "`timescale 1ns / 1ps\nmodule tb_rst;\n{decl}integer cyc = 0, r = -1, t = -1, ready_in_reset = 0, valid_after = 0, load_setup = 0, k;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  tri_valid = 1'b1;\n  repeat (4) begin @(negedge clk); ready_in_reset = ready_in_reset | tri_ready; end\n  rst = 1'b0;\n  r = cyc + 1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  for (k = 0; k < {lat} + 8; k = k + 1) begin @(negedge clk); valid_after = valid_after | out_valid; end\n  power_table_we = 1'b1;\n  tri_valid = 1'b1;\n  for (k = 0; k < 16; k = k + 1) begin power_table_waddr = k; #1; if (tri_ready) load_setup = load_setup + 1; @(negedge clk); end\n  power_table_we = 1'b0;\n  tri_valid = 1'b0;\n  $display(\"r %0d t %0d ready_in_reset %0d valid_after %0d load_setup %0d\", r, t, ready_in_reset, valid_after, load_setup);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
-    );
-    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_rst", &tb), &rtl).unwrap();
-    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
-    let line = log.lines().find(|l| l.starts_with("r ")).unwrap_or_else(|| panic!("{log}"));
-    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let (line, v) = directed(&cfg, name, "tb_rst", "r ", |top, decl, conn| {
+        format!(
+            "`timescale 1ns / 1ps\nmodule tb_rst;\n{decl}integer cyc = 0, r = -1, t = -1, ready_in_reset = 0, valid_after = 0, load_setup = 0, k;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  tri_valid = 1'b1;\n  repeat (4) begin @(negedge clk); ready_in_reset = ready_in_reset | tri_ready; end\n  rst = 1'b0;\n  r = cyc + 1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  for (k = 0; k < {lat} + 8; k = k + 1) begin @(negedge clk); valid_after = valid_after | out_valid; end\n  power_table_we = 1'b1;\n  tri_valid = 1'b1;\n  for (k = 0; k < 16; k = k + 1) begin power_table_waddr = k; #1; if (tri_ready) load_setup = load_setup + 1; @(negedge clk); end\n  power_table_we = 1'b0;\n  tri_valid = 1'b0;\n  $display(\"r %0d t %0d ready_in_reset %0d valid_after %0d load_setup %0d\", r, t, ready_in_reset, valid_after, load_setup);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+        )
+    });
     let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
     assert_eq!(v[2], 0, "{line}: tri_ready rose while rst was high");
     assert_eq!(
@@ -438,16 +449,11 @@ fn a_setup_offered_in_reset_counts_from_its_end_and_a_reset_discards_results() {
 /// it is low.
 fn reset_edges(cfg_path: Option<&str>, name: &str) {
     let cfg = config(cfg_path);
-    let w = work(name);
-    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
-    let (top, decl, conn) = top_ports(&cfg);
-    let tb = format!(
-        "`timescale 1ns / 1ps\nmodule tb_redge;\n{decl}integer cyc = 0, a = -1, t = -1, at_edge = -1, after = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  a = cyc + 1;\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  out_ready = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  while (!out_valid) @(negedge clk);\n  repeat (3) @(negedge clk);\n  rst = 1'b1;\n  out_ready = 1'b1;\n  at_edge = out_valid;\n  @(negedge clk);\n  after = out_valid;\n  rst = 1'b0;\n  $display(\"a %0d t %0d at_edge %0d after %0d\", a, t, at_edge, after);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
-    );
-    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_redge", &tb), &rtl).unwrap();
-    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
-    let line = log.lines().find(|l| l.starts_with("a ")).unwrap_or_else(|| panic!("{log}"));
-    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let (line, v) = directed(&cfg, name, "tb_redge", "a ", |top, decl, conn| {
+        format!(
+            "`timescale 1ns / 1ps\nmodule tb_redge;\n{decl}integer cyc = 0, a = -1, t = -1, at_edge = -1, after = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  a = cyc + 1;\n  @(negedge clk);\n  in_valid = 1'b0;\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  out_ready = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  while (!out_valid) @(negedge clk);\n  repeat (3) @(negedge clk);\n  rst = 1'b1;\n  out_ready = 1'b1;\n  at_edge = out_valid;\n  @(negedge clk);\n  after = out_valid;\n  rst = 1'b0;\n  $display(\"a %0d t %0d at_edge %0d after %0d\", a, t, at_edge, after);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+        )
+    });
     let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
     let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
     let (a, t) = (v[0], v[1]);
@@ -471,16 +477,11 @@ fn a_reset_ends_bank_holds_and_its_first_edge_still_shows_the_output() {
 fn bank_hold_binds(cfg_path: Option<&str>, name: &str) {
     let cfg = config(cfg_path);
     assert_eq!(cfg.triangle_banks, 2, "the sequence reuses A's bank with the second setup after it");
-    let w = work(name);
-    let rtl = write_rtl(&cfg, &w.join("rtl"), "test").unwrap();
-    let (top, decl, conn) = top_ports(&cfg);
-    let tb = format!(
-        "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1, idle_any = 0, idle_all = 1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  repeat (6) begin @(negedge clk); idle_any = idle_any | tri_ready; idle_all = idle_all & tri_ready; end\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d idle_any %0d idle_all %0d\", a, b, c_off, c_acc, idle_any, idle_all);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n",
-    );
-    let exe = Icarus.build(&w.join("build"), &Testbench::new("tb_hold", &tb), &rtl).unwrap();
-    let (_, log, _) = Icarus.run_log(&exe, &[], None, &rtl.dir, "vvp").unwrap();
-    let line = log.lines().find(|l| l.starts_with("a ")).unwrap_or_else(|| panic!("{log}"));
-    let v: Vec<i64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let (line, v) = directed(&cfg, name, "tb_hold", "a ", |top, decl, conn| {
+        format!(
+            "`timescale 1ns / 1ps\nmodule tb_hold;\n{decl}integer cyc = 0, a = -1, b = -1, c_off = -1, c_acc = -1, idle_any = 0, idle_all = 1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  repeat (6) begin @(negedge clk); idle_any = idle_any | tri_ready; idle_all = idle_all & tri_ready; end\n  tri_valid = 1'b1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b1;\n  fork\n    begin\n      while (!in_ready) @(negedge clk);\n      a = cyc + 1;\n      @(negedge clk);\n      in_valid = 1'b0;\n    end\n    begin\n      while (!tri_ready) @(negedge clk);\n      b = cyc + 1;\n      @(negedge clk);\n      c_off = cyc + 1;\n      while (!tri_ready) @(negedge clk);\n      c_acc = cyc + 1;\n      @(negedge clk);\n      tri_valid = 1'b0;\n    end\n  join\n  $display(\"a %0d b %0d c_off %0d c_acc %0d idle_any %0d idle_all %0d\", a, b, c_off, c_acc, idle_any, idle_all);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+        )
+    });
     let (a, b, c_off, c_acc) = (v[0], v[1], v[2], v[3]);
     let hold = gbump::rtlgen::top::bank_hold(&cfg).unwrap() as i64;
     let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
