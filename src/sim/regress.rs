@@ -300,7 +300,7 @@ fn set_names(sets: &[CheckedSet]) -> Vec<String> {
         if clash[i] {
             // A folder with no name of its own (`..`): the whole path below.
             names[i] = match folder(&s.manifest) {
-                f if f.is_empty() || f == ".." => String::new(),
+                f if f.is_empty() => f,
                 f => format!("{f}/{}", names[i]),
             };
         }

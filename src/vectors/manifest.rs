@@ -217,7 +217,7 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
     // An EMBM scene's top set runs on its object's maps, one for each map the top has; no
     // other set names any.
-    let scene_top = m.config.embm() && m.target == "top" && (m.source.starts_with("scene:") || m.source.starts_with("Scene(\""));
+    let scene_top = m.config.embm() && m.target == "top" && matches!(manifest_source(&m.source), Some(super::sources::Source::Scene(_)));
     let want: Vec<&str> = crate::rtlgen::top::env_map_memories(&m.config).iter().map(|x| x.prefix).collect();
     let have: Vec<&str> = m
         .env_maps
@@ -489,56 +489,70 @@ fn check_files(manifest: &Path, m: Manifest, dir: PathBuf) -> Result<(Manifest, 
 /// manifest's fields, so that an edited manifest's command, or one `gbump vectors` does not
 /// take (a regression's), is never repeated to the user as a fix.
 pub fn recorded_command(m: &Manifest) -> String {
+    use super::sources::Source;
     use crate::shell::{option_value, quoted, subcommand_at};
-    let source = source_spelling(&m.source);
+    let src = manifest_source(&m.source);
     let words = shell_words::split(&m.command).unwrap_or_default();
     // gbump records itself as plain `gbump`: a path is an edit.
     let gbump = words.first().is_some_and(|w| w == "gbump");
     let vectors = subcommand_at(&words).is_some_and(|i| words[i] == "vectors");
-    // The source as typed (`random:1_000_000`, `--level 2`), spelt as the manifest spells it.
+    // The source as typed (`random:1_000_000`, `--level 2`).
     let named = option_value(&words, "--source")
-        .and_then(|s| super::sources::Source::parse(s).ok())
-        .map(|s| match (s, option_value(&words, "--level").and_then(|l| l.parse().ok())) {
-            (super::sources::Source::Corners(_), Some(l)) => super::sources::Source::Corners(l).to_string(),
-            (s, _) => s.to_string(),
-        });
-    if gbump && vectors && named.as_deref() == Some(source.as_str()) {
+        .and_then(|s| Source::parse(s).ok())
+        .map(|s| with_level(s, option_value(&words, "--level").and_then(|l| l.parse().ok())));
+    if gbump && vectors && src.is_some() && named == src {
         return m.command.clone();
     }
+    let spelt = src.as_ref().map_or(m.source.clone(), Source::to_string);
     // A scene's path may hold spaces: only the level is split off.
-    let (source, level) = match source.split_once(" --level ") {
-        Some((s, l)) => (s, format!("--level {l}")),
-        None => (source.as_str(), String::new()),
+    let (source, level) = match spelt.split_once(" --level ") {
+        Some((s, l)) => (s, format!(" --level {l}")),
+        None => (spelt.as_str(), String::new()),
     };
-    let mut cmd = format!("gbump vectors --source {}", quoted(source));
-    if !level.is_empty() {
-        cmd += &format!(" {level}");
-    }
-    if source.starts_with("random:") {
+    let mut cmd = format!("gbump vectors --source {}{level}", quoted(source));
+    if matches!(src, Some(Source::Random(_))) {
         cmd += &format!(" --seed {}", m.seed);
     }
     // A scene's sets take their shininess from its objects.
-    if m.shininess != m.config.shininess && !source.starts_with("scene:") {
+    if m.shininess != m.config.shininess && !matches!(src, Some(Source::Scene(_))) {
         cmd += &format!(" --shininess {}", m.shininess);
     }
     cmd + &format!(" --target {} --config CONFIG.toml", quoted(&m.target))
 }
 
-/// A manifest's source as `--source` spells it: older manifests wrote `Random(20)`,
-/// `Corners(2)`, `Scene("wall")` or `Exhaustive("power")`.
-fn source_spelling(source: &str) -> String {
-    let Some((kind, arg)) = source.strip_suffix(')').and_then(|s| s.split_once('(')) else {
-        return source.to_string();
-    };
-    let arg = arg.trim_matches('"');
-    match kind {
-        "Random" => format!("random:{arg}"),
-        "Corners" if arg == "1" => "corners".to_string(),
-        "Corners" => format!("corners --level {arg}"),
-        "Scene" => format!("scene:{arg}"),
-        "Exhaustive" => format!("exhaustive:{arg}"),
-        _ => source.to_string(),
+/// `src` at corner level `level`, where one is given (`--level` applies to corners alone).
+fn with_level(src: super::sources::Source, level: Option<u8>) -> super::sources::Source {
+    match (src, level) {
+        (super::sources::Source::Corners(_), Some(l)) => super::sources::Source::Corners(l),
+        (src, _) => src,
     }
+}
+
+/// A manifest's `source` as a [`Source`](super::sources::Source): spelt as the command line
+/// spells it (`random:20`, `corners --level 2`, `scene:FILE`), or as older manifests wrote it
+/// (`Random(20)`, `Corners(2)`, `Scene("wall")`, `Exhaustive("power")`); None for anything
+/// else (an edited manifest).
+fn manifest_source(source: &str) -> Option<super::sources::Source> {
+    use super::sources::Source;
+    // A scene file's path is taken as written, as `--source scene:` took it.
+    if let Some(n) = source.strip_prefix("scene:") {
+        return Some(Source::Scene(n.to_string()));
+    }
+    let old = source.strip_suffix(')').and_then(|s| s.split_once('('));
+    Some(match old.map(|(kind, arg)| (kind, arg.trim_matches('"'))) {
+        Some(("Random", n)) => Source::Random(n.parse().ok()?),
+        Some(("Corners", l)) => Source::Corners(l.parse().ok()?),
+        Some(("Scene", n)) => Source::Scene(n.to_string()),
+        Some(("Exhaustive", u)) => Source::Exhaustive(u.to_string()),
+        Some(_) => return None,
+        None => {
+            let (s, level) = match source.split_once(" --level ") {
+                Some((s, l)) => (s, Some(l.parse().ok()?)),
+                None => (source, None),
+            };
+            with_level(Source::parse(s).ok()?, level)
+        }
+    })
 }
 
 /// `command` (the one that wrote a set, its words shell-quoted) writing into `dir` instead of
