@@ -218,3 +218,44 @@ fn the_dot_corners_hold_rounding_ties() {
         }
     }
 }
+
+/// The top's corner set holds the same two ties on B·L, and where an fd LSB is worth a colour
+/// LSB or more (`dot_frac_bits <= colour_bits`; finer ties round away in the blend) its
+/// colours tell the three roundings apart, so a corner regression alone catches a top built
+/// for another `rounding`.
+#[test]
+fn the_top_corners_tell_the_three_roundings_apart() {
+    for (nb, lh, d, lights) in [(8, 16, 8, 4), (6, 12, 6, 1), (10, 10, 4, 2), (16, 24, 8, 1), (3, 4, 2, 1)] {
+        let base = PipelineConfig {
+            normal_bits: nb,
+            lh_bits: lh,
+            dot_frac_bits: d,
+            lights,
+            ..PipelineConfig::default()
+        };
+        let ties: Vec<_> = gbump::vectors::sources::corners(&base, 1)
+            .into_iter()
+            .filter(|c| c.0.contains("rounding tie"))
+            .collect();
+        assert_eq!(
+            ties.len(),
+            2,
+            "nb {nb} lh {lh} d {d}: {:?}",
+            ties.iter().map(|t| &t.0).collect::<Vec<_>>()
+        );
+        let colours: Vec<Vec<[u32; 3]>> = ROUNDINGS
+            .iter()
+            .map(|&r| {
+                let cfg = with(&base, r);
+                let table = PowerTable::build(&cfg, cfg.shininess);
+                ties.iter()
+                    .map(|(_, s)| shade(&cfg, &table, None, &s.state, &s.frag).colour())
+                    .collect()
+            })
+            .collect();
+        assert!(
+            colours[0] != colours[1] && colours[1] != colours[2] && colours[0] != colours[2],
+            "nb {nb} lh {lh} d {d}: truncate, half up, nearest even give {colours:?}"
+        );
+    }
+}

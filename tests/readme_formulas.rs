@@ -247,3 +247,24 @@ fn the_normalise_unit_is_its_readme_formula() {
         }
     }
 }
+
+/// "Dropping d bits of x": the three roundings as the README defines them on signed values
+/// (floor, floor of x + 1/2, ties to even), its example (-2.5 LSB) among them.
+#[test]
+fn roundings_of_signed_values_are_the_readmes() {
+    use gbump::fixed::{shift_round, Rounding};
+    assert_eq!(shift_round(-5, 1, Rounding::HalfUp), -2, "-2.5 LSB half up");
+    assert_eq!(shift_round(-5, 1, Rounding::Truncate), -3, "-2.5 LSB truncated");
+    for d in 1..6u32 {
+        let one = 1i128 << d;
+        for x in -200i128..200 {
+            let floor = floor_div(x, one);
+            let half_up = floor_div(2 * x + one, 2 * one);
+            let rem2 = 2 * (x - floor * one);
+            let even = if rem2 == one { floor + (floor & 1) } else { half_up };
+            assert_eq!(shift_round(x, d, Rounding::Truncate), floor, "truncate {x} / 2^{d}");
+            assert_eq!(shift_round(x, d, Rounding::HalfUp), half_up, "half_up {x} / 2^{d}");
+            assert_eq!(shift_round(x, d, Rounding::NearestEven), even, "nearest_even {x} / 2^{d}");
+        }
+    }
+}

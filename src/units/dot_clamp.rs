@@ -60,24 +60,8 @@ impl Unit for DotClamp {
         let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());
         let one = 1i64 << (cfg.lh_bits - 2);
         let flat = cfg.flat_normal().to_vec();
-        // Exact ties of the rounding, half an output LSB above an even and above an odd code,
-        // where truncate, half_up and nearest_even all differ: b_x·v_x = (2k+1)·2^(E-F-1) with
-        // E the exact product's fraction bits, F the output's (none when E <= F: no tie exists).
-        let e = (cfg.normal_bits - 1) + (cfg.lh_bits - 2);
-        let ties = (e > cfg.dot_frac_bits).then(|| {
-            let z = e - cfg.dot_frac_bits - 1;
-            let bz = z.min(cfg.normal_bits - 2);
-            [1i64, 3].map(|odd| {
-                (
-                    format!(
-                        "B·V exactly {}/2 output LSB: a rounding tie above an {} code",
-                        odd,
-                        if odd == 1 { "even" } else { "odd" }
-                    ),
-                    vec![vec![1i64 << bz, 0, 0], vec![odd << (z - bz), 0, 0]],
-                )
-            })
-        });
+        let ties =
+            crate::model::dot_clamp::rounding_ties(cfg).map(|t| t.map(|(why, b, v)| (format!("B·V {why}"), vec![b.to_vec(), v.to_vec()])));
         let mut v = vec![
             (
                 "flat normal, V straight up: the largest dot of a unit normal".into(),

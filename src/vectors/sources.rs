@@ -770,7 +770,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let mut v = vec![
         // Each entry: why it is there, then the stimulus.
         (
-            "flat normal, light and half vector straight up: the largest dot (B·L = 1 - 2^-(w-1) under binary normals, 1 under symmetric; bypassed under skip_flat)",
+            "flat normal, light and half vector straight up: the largest dot (B·L = 1 - 2^-(w-1) in both normal ranges: the flat code's B_z is 2^(w-1) - 1; bypassed under skip_flat)",
             base(flat, [0, 0, o], [0, 0, o], cmax, kone, 0, cmax),
         ),
         (
@@ -830,17 +830,21 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     off.frag.diffuse_en = false;
     off.frag.specular_en = false;
     v.push(("both blend enables off: colour passes through texture only", off));
-    // Exact ties of the dot-product rounding: B·L one half LSB of fd above a code.
-    let tie = base(
-        [half + 1, half, half],
-        [o >> (cfg.normal_bits.min(14)), 0, 0],
-        [0, 0, 0],
-        cmax,
-        kone,
-        0,
-        cmax,
-    );
-    v.push(("dot product on a rounding tie", tie));
+    // Exact ties of the dot-product rounding (the dot_clamp unit's), on L with the highlight
+    // off, so the three roundings give three different pairs of colours.
+    for (why, b, l) in crate::model::dot_clamp::rounding_ties(cfg).into_iter().flatten() {
+        let code = |x: i64| (x + half as i64) as u32;
+        let mut tie = base([code(b[0]), code(b[1]), code(b[2])], l, [0, 0, 0], cmax, kone, 0, cmax);
+        tie.frag.specular_en = false;
+        v.push((
+            if why.contains("1/2 ") {
+                "dot product B·L exactly 1/2 fd LSB: a rounding tie above an even code"
+            } else {
+                "dot product B·L exactly 3/2 fd LSB: a rounding tie above an odd code"
+            },
+            tie,
+        ));
+    }
     for slot in 0..cfg.lights as usize {
         let mut s = base(flat, [0, 0, o], [0, 0, o], 0, kone, 0, cmax);
         s.state.lights[slot].lc = [cmax, 0, cmax / 2];

@@ -380,13 +380,17 @@ pub fn unit_present(cfg: &PipelineConfig, unit: &str) -> bool {
 }
 
 /// Top stimuli of a source, grouped by the memories they run on.
-fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path) -> Result<Vec<SceneGroup>> {
+fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path, top: bool) -> Result<Vec<SceneGroup>> {
     Ok(match src {
         Source::Corners(level) => {
             let cat = corners(cfg, *level);
-            // The catalogue beside the vectors: record number and why it is there.
-            let text: String = cat.iter().enumerate().map(|(i, (why, _))| format!("{i}\t{why}\n")).collect();
-            crate::render::output::write_atomic(&dir.join(format!("{}_catalogue.txt", src.stem())), text.as_bytes())?;
+            // The catalogue beside the top set (`top`: it is a target), whose records it
+            // names one for one: record number and why it is there. A unit's corner set
+            // holds its inputs traced from these and then its own corners, not one for one.
+            if top {
+                let text: String = cat.iter().enumerate().map(|(i, (why, _))| format!("{i}\t{why}\n")).collect();
+                crate::render::output::write_atomic(&dir.join(format!("{}_catalogue.txt", src.stem())), text.as_bytes())?;
+            }
             vec![SceneGroup {
                 shininess: o.shininess.unwrap_or(cfg.shininess),
                 stem: src.stem(),
@@ -582,7 +586,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
             }
         }
         _ => {
-            for g in top_groups(cfg, src, o, dir)? {
+            for g in top_groups(cfg, src, o, dir, targets.iter().any(|t| t == "top"))? {
                 let (n, stims) = (g.shininess, &g.stims);
                 let mem = MemoryContents::new(cfg, n).with_env(g.env.as_ref());
                 let mut ws = open(dir, &g.stem, &targets, cfg, o, u64::MAX)?;
