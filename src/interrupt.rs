@@ -159,7 +159,71 @@ pub const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(10);
 fn stop_now() -> ! {
     crate::temp_files::remove_own();
     eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files were removed)");
-    std::process::exit(130);
+    std::process::exit(exit_status());
+}
+
+/// The first stop signal's number (0: none yet), so the exit status is the shell's 128 + n
+/// (130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP), as a process the signal ended would give.
+static SIGNAL: std::sync::atomic::AtomicI32 = std::sync::atomic::AtomicI32::new(0);
+
+/// The exit status of a run a signal stopped: 128 + the signal's number (130 when not known).
+pub fn exit_status() -> i32 {
+    match SIGNAL.load(Ordering::SeqCst) {
+        0 => 130,
+        n => 128 + n,
+    }
+}
+
+/// The handler `ctrlc` installed for each of SIGHUP, SIGINT and SIGTERM (its address and
+/// flags), called after the number is recorded.
+#[cfg(unix)]
+static CHAINED_AT: [std::sync::atomic::AtomicUsize; 3] = [const { std::sync::atomic::AtomicUsize::new(0) }; 3];
+#[cfg(unix)]
+static CHAINED_FLAGS: [std::sync::atomic::AtomicI32; 3] = [const { std::sync::atomic::AtomicI32::new(0) }; 3];
+
+#[cfg(unix)]
+fn slot(sig: libc::c_int) -> Option<usize> {
+    [libc::SIGHUP, libc::SIGINT, libc::SIGTERM].iter().position(|&s| s == sig)
+}
+
+/// Put a handler before `ctrlc`'s for `sig` that records the signal's number (`ctrlc` calls
+/// its closure without it) and then runs `ctrlc`'s, which only wakes its thread.
+#[cfg(unix)]
+fn record_signal_number(sig: libc::c_int) {
+    extern "C" fn first(sig: libc::c_int, info: *mut libc::siginfo_t, ctx: *mut libc::c_void) {
+        // Async-signal-safe: atomics and a call through a plain function pointer.
+        let _ = SIGNAL.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst);
+        let Some(k) = slot(sig) else { return };
+        let at = CHAINED_AT[k].load(Ordering::SeqCst);
+        if at == libc::SIG_DFL || at == libc::SIG_IGN {
+            return;
+        }
+        if CHAINED_FLAGS[k].load(Ordering::SeqCst) & libc::SA_SIGINFO != 0 {
+            // SAFETY: `at` is the handler the kernel would have called with these arguments.
+            let f: extern "C" fn(libc::c_int, *mut libc::siginfo_t, *mut libc::c_void) = unsafe { std::mem::transmute(at) };
+            f(sig, info, ctx);
+        } else {
+            // SAFETY: as above, a handler of one argument (no SA_SIGINFO).
+            let f: extern "C" fn(libc::c_int) = unsafe { std::mem::transmute(at) };
+            f(sig);
+        }
+    }
+    let Some(k) = slot(sig) else { return };
+    // SAFETY: reads the installed action, then installs one that calls it; the old one's
+    // address and flags are stored before the new handler can run.
+    unsafe {
+        let mut old: libc::sigaction = std::mem::zeroed();
+        if libc::sigaction(sig, std::ptr::null(), &mut old) != 0 {
+            return;
+        }
+        CHAINED_AT[k].store(old.sa_sigaction, Ordering::SeqCst);
+        CHAINED_FLAGS[k].store(old.sa_flags, Ordering::SeqCst);
+        let mut new: libc::sigaction = std::mem::zeroed();
+        new.sa_sigaction = first as extern "C" fn(libc::c_int, *mut libc::siginfo_t, *mut libc::c_void) as usize;
+        new.sa_flags = libc::SA_SIGINFO | (old.sa_flags & libc::SA_RESTART);
+        new.sa_mask = old.sa_mask;
+        libc::sigaction(sig, &new, std::ptr::null_mut());
+    }
 }
 
 /// A second signal this soon after the first is the same stop, not a second request: GNU
@@ -209,6 +273,12 @@ pub fn install() {
         });
     });
     #[cfg(unix)]
+    for s in [libc::SIGHUP, libc::SIGINT, libc::SIGTERM] {
+        if !ignored.contains(&s) {
+            record_signal_number(s);
+        }
+    }
+    #[cfg(unix)]
     for s in ignored {
         // SAFETY: restores the ignore disposition the process was started with.
         unsafe {
@@ -233,8 +303,9 @@ impl Drop for Cleanup {
     }
 }
 
-/// Whether a signal asked this run to stop (its error path then exits with 130, as the
-/// shell's convention for Ctrl-C is, whichever step noticed it).
+/// Whether a signal asked this run to stop (its error path then exits with
+/// [`exit_status`], 128 + the signal's number as the shell's convention is, whichever step
+/// noticed it).
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
 }

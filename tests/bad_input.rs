@@ -1390,6 +1390,14 @@ fn every_bad_input_is_refused_cleanly() {
             .filter(|n| n != "case" && n != "out" && !files.iter().any(|f| f.0 == n));
         let problems: Vec<String> = [
             (out.status.success(), "exit status 0".to_string()),
+            // The README's exit statuses: 1 for gbump's own errors, 2 for clap's usage errors.
+            (
+                out.status.code() != Some(if err.contains("gbump: error:") { 1 } else { 2 }),
+                format!(
+                    "exit status {:?} (the README: 1 for an error, 2 for a usage error)",
+                    out.status.code()
+                ),
+            ),
             (err.contains("panicked"), "panic".to_string()),
             (!err.contains("error:"), "no error message".to_string()),
             (!out.stdout.is_empty(), "printed results before refusing".to_string()),
@@ -1621,10 +1629,18 @@ fn an_interrupted_dump_leaves_nothing_behind() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "SIG{signal}: {err}");
         assert!(err.contains("interrupted"), "SIG{signal}: {err}");
+        let want = 128
+            + if signal == "INT" {
+                libc::SIGINT
+            } else if signal == "TERM" {
+                libc::SIGTERM
+            } else {
+                libc::SIGHUP
+            };
         assert_eq!(
             o.status.code(),
-            Some(130),
-            "SIG{signal}: a stopped run exits 130 whichever step noticed: {err}"
+            Some(want),
+            "SIG{signal}: a stopped run exits 128 + the signal's number whichever step noticed: {err}"
         );
         let left: Vec<_> = std::fs::read_dir(dir.path().join("out"))
             .map(|d| d.map(|e| e.unwrap().file_name()).collect())
@@ -1714,7 +1730,11 @@ fn one_signal_ends_a_run_blocked_on_a_named_pipe() {
         );
         std::thread::sleep(std::time::Duration::from_millis(50));
     };
-    assert_eq!(st.code(), Some(130));
+    assert_eq!(
+        st.code(),
+        Some(128 + libc::SIGTERM),
+        "SIGTERM: 143, as the shell reports a process the signal ended"
+    );
 }
 
 fn send(signal: &str, pid: u32) {

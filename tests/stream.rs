@@ -25,6 +25,14 @@ fn gbump(args: &[&str]) -> (bool, String) {
         .output()
         .unwrap();
     let log = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    // The README's exit statuses: 0 for a clean run, 1 for an error or a failed check, 2 for
+    // a usage error (clap's message, not gbump's).
+    let usage = out.status.code() == Some(2) && !log.contains("gbump: error:");
+    assert!(
+        matches!(out.status.code(), Some(0 | 1)) || usage,
+        "exit status {:?}:\n{log}",
+        out.status.code()
+    );
     (out.status.success(), log)
 }
 
