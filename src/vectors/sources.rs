@@ -683,6 +683,17 @@ pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
     if level >= 2 {
         v.extend(corners_level2(cfg));
     }
+    if cfg.skip_flat {
+        // Most corners carry the flat code, which skip_flat bypasses: say so where the reason
+        // would otherwise describe lighting the record does not get.
+        let half = 1u32 << (cfg.normal_bits - 1);
+        let flat = BumpTexel::Rgb([half, half, (1u32 << cfg.normal_bits) - 1]);
+        for (why, s) in &mut v {
+            if s.frag.bump == flat && !why.contains("skip_flat") {
+                why.push_str(" (the flat code: skip_flat bypasses the blends, C_src·T only)");
+            }
+        }
+    }
     v
 }
 
