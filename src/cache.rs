@@ -83,7 +83,7 @@ pub fn tool_version(prog: &str) -> String {
     let v = ["--version", "-V"]
         .iter()
         .find_map(|flag| {
-            let out = std::process::Command::new(prog).arg(flag).output().ok()?;
+            let out = crate::tool::output(std::process::Command::new(prog).arg(flag)).ok()?;
             let text = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
             let line = text.lines().find(|l| !l.trim().is_empty())?.trim().to_string();
             Some(line)

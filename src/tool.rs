@@ -101,12 +101,80 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
     // A signal that ends gbump ends the tool too, rather than leaving it writing on its own.
     let _child = crate::interrupt::child(child.id());
     let watchdog = Watchdog::start(child.id(), limit);
-    let out = child.wait_with_output().map_err(|e| Error::Other(format!("{what}: {e}")))?;
+    let out = wait_capped(child).map_err(|e| Error::Other(format!("{what}: {e}")))?;
     let mut log = String::from_utf8_lossy(&out.stdout).into_owned();
     log += &String::from_utf8_lossy(&out.stderr);
     ended(what, &prog, out.status, watchdog, &mut log)?;
     crate::interrupt::check()?;
     Ok((out.status.success(), log, t0.elapsed().as_secs_f64()))
+}
+
+/// Bytes kept of the start of one output stream of a tool ([`read_capped`]).
+pub const KEPT_HEAD: usize = 1 << 20;
+/// Bytes kept of the end of one output stream of a tool ([`read_capped`]): its verdict is there.
+pub const KEPT_TAIL: usize = 8 << 20;
+
+/// Read `r` to its end, keeping its first [`KEPT_HEAD`] and its last [`KEPT_TAIL`] bytes with
+/// a line between them saying how many were left out: a tool that floods its output (a
+/// runaway `$display`, a `yes`) costs at most this much memory, where reading it whole ran
+/// gbump out of memory and aborted it.
+pub fn read_capped(mut r: impl std::io::Read) -> Vec<u8> {
+    let (mut head, mut tail) = (Vec::new(), Vec::new());
+    let mut dropped = 0u64;
+    let mut buf = vec![0u8; 64 << 10];
+    loop {
+        let n = match r.read(&mut buf) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(_) => break,
+        };
+        let k = KEPT_HEAD.saturating_sub(head.len()).min(n);
+        head.extend_from_slice(&buf[..k]);
+        tail.extend_from_slice(&buf[k..n]);
+        // Trimmed once it is twice the kept length, so each byte is moved at most once.
+        if tail.len() > 2 * KEPT_TAIL {
+            let cut = tail.len() - KEPT_TAIL;
+            dropped += cut as u64;
+            tail.drain(..cut);
+        }
+    }
+    if tail.len() > KEPT_TAIL {
+        let cut = tail.len() - KEPT_TAIL;
+        dropped += cut as u64;
+        tail.drain(..cut);
+    }
+    if dropped > 0 {
+        head.extend_from_slice(format!("\n[gbump: {dropped} bytes of this output left out here]\n").as_bytes());
+    }
+    head.extend_from_slice(&tail);
+    head
+}
+
+/// [`std::process::Child::wait_with_output`] with each stream read by [`read_capped`].
+pub fn wait_capped(mut child: std::process::Child) -> std::io::Result<std::process::Output> {
+    let (so, se) = (child.stdout.take(), child.stderr.take());
+    std::thread::scope(|scope| {
+        let out = scope.spawn(move || so.map(read_capped).unwrap_or_default());
+        let err = scope.spawn(move || se.map(read_capped).unwrap_or_default());
+        let status = child.wait();
+        let (stdout, stderr) = (out.join().unwrap_or_default(), err.join().unwrap_or_default());
+        Ok(std::process::Output {
+            status: status?,
+            stdout,
+            stderr,
+        })
+    })
+}
+
+/// [`std::process::Command::output`], each stream read by [`read_capped`].
+pub fn output(cmd: &mut Command) -> std::io::Result<std::process::Output> {
+    let child = cmd
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()?;
+    wait_capped(child)
 }
 
 /// The environment variable that limits each tool's run, in seconds (`--tool-timeout` sets
@@ -347,5 +415,22 @@ mod tests {
             super::unusable(&script("hangs", "exec sleep 60")),
             Some("hangs answering --version")
         );
+    }
+
+    /// A flood keeps its first and last bytes and says how many went between them; a short
+    /// output is kept whole.
+    #[test]
+    fn output_is_kept_head_and_tail() {
+        let short = b"3 passed, 0 failed\n".to_vec();
+        assert_eq!(super::read_capped(&short[..]), short);
+        let n = super::KEPT_HEAD + 3 * super::KEPT_TAIL + 5;
+        let flood: Vec<u8> = (0..n).map(|i| (i % 251) as u8).collect();
+        let kept = super::read_capped(&flood[..]);
+        assert!(kept.starts_with(&flood[..super::KEPT_HEAD]));
+        assert!(kept.ends_with(&flood[n - super::KEPT_TAIL..]));
+        let left = n - super::KEPT_HEAD - super::KEPT_TAIL;
+        let note = format!("[gbump: {left} bytes of this output left out here]");
+        assert!(String::from_utf8_lossy(&kept).contains(&note), "{note}");
+        assert!(kept.len() < super::KEPT_HEAD + super::KEPT_TAIL + 100);
     }
 }

@@ -1505,6 +1505,44 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
     assert!(text.contains("crashed") && text.contains("signal 11"), "{text}");
 }
 
+/// A simulator that floods its output (a runaway `$display`) costs gbump a bounded amount of
+/// memory: under a 3 GB address-space limit, which reading the output whole passed within
+/// seconds (an allocation failure, an abort with a backtrace), the run is stopped at the tool
+/// time limit and fails as a hung tool does.
+#[test]
+fn a_flooding_simulator_costs_bounded_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
+    let vvp = "#!/bin/sh\nif [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nexec yes 'MISMATCH a line the simulator repeats'\n";
+    for (n, t) in [("iverilog", iverilog), ("vvp", vvp)] {
+        let p = bin.join(n);
+        std::fs::write(&p, t).unwrap();
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    let o = std::process::Command::new("sh")
+        .env("PATH", path)
+        .args(["-c", "ulimit -v 3000000; exec \"$0\" \"$@\""])
+        .arg(env!("CARGO_BIN_EXE_gbump"))
+        .args(["regress", "--sim", "icarus", "--tool-timeout", "4", "--work"])
+        .arg(dir.path().join("w"))
+        .arg("--vectors")
+        .arg(vectors)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{}", &text[text.len().saturating_sub(3000)..]);
+    assert!(
+        !text.contains("memory allocation") && !text.contains("panicked"),
+        "{}",
+        &text[text.len().saturating_sub(3000)..]
+    );
+}
+
 /// A simulator that never ends (here a vvp whose own child sleeps) is stopped at the tool time
 /// limit, with the processes it started, and the run fails naming the limit; a limit that is
 /// not a positive number of seconds is refused before anything runs, from the flag or from

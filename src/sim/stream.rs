@@ -15,7 +15,7 @@ use crate::vectors::targets::TopStim;
 use crate::vectors::top_records::TopRecords;
 use crate::work_lock::WorkLock;
 use rayon::prelude::*;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -250,8 +250,8 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     let _registered = crate::interrupt::child(child.id());
     let watchdog = crate::tool::Watchdog::start(child.id(), crate::tool::time_limit()?);
     let mut stdin = child.stdin.take().expect("piped");
-    let mut stdout = child.stdout.take().expect("piped");
-    let mut stderr = child.stderr.take().expect("piped");
+    let stdout = child.stdout.take().expect("piped");
+    let stderr = child.stderr.take().expect("piped");
     let chunks = s.chunks();
     let steps = chunks.min(100);
     let progress = r
@@ -261,16 +261,8 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     let batch = 2 * rayon::current_num_threads() as u64;
     let (tx, rx) = std::sync::mpsc::sync_channel::<(u64, Vec<u8>)>(2 * batch as usize);
     let (ok, log) = std::thread::scope(|scope| -> Result<(bool, String)> {
-        let out = scope.spawn(move || {
-            let mut b = Vec::new();
-            let _ = stdout.read_to_end(&mut b);
-            b
-        });
-        let err = scope.spawn(move || {
-            let mut b = Vec::new();
-            let _ = stderr.read_to_end(&mut b);
-            b
-        });
+        let out = scope.spawn(move || crate::tool::read_capped(stdout));
+        let err = scope.spawn(move || crate::tool::read_capped(stderr));
         let progress = &progress;
         let writer = scope.spawn(move || {
             let (mut sent, mut shown) = (0u64, 0u64);

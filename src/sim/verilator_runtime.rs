@@ -25,11 +25,7 @@ pub fn runtime_objects(obj: &Path, mk: &str, make_args: &[String]) -> Result<Vec
     let Some(root) = crate::cache::shared_root() else {
         return Ok(Vec::new());
     };
-    let out = Command::new("make")
-        .args(["-n", "-f", mk])
-        .args(make_args)
-        .current_dir(obj)
-        .output()
+    let out = crate::tool::output(Command::new("make").args(["-n", "-f", mk]).args(make_args).current_dir(obj))
         .map_err(|e| Error::Other(format!("make -n in {}: {e}", obj.display())))?;
     if !out.status.success() {
         // The real make reports the problem with its own words.
