@@ -36,6 +36,7 @@ pub mod vectors;
 pub mod vectors_command;
 pub mod warn;
 pub mod work_lock;
+pub mod xml;
 pub mod yosys;
 
 pub use config::PipelineConfig;

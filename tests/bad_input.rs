@@ -4,6 +4,9 @@
 use assert_cmd::Command;
 use std::path::Path;
 
+#[path = "common/fake_icarus.rs"]
+mod fake_icarus;
+
 const WALL: &str = include_str!("../scenes/cg_wall_front.toml");
 const TORUS: &str = include_str!("../scenes/torus_caps.toml");
 
@@ -1478,18 +1481,8 @@ impl CharDev for std::fs::FileType {
 #[test]
 fn a_crashing_simulator_is_reported_as_a_crash() {
     let dir = tempfile::tempdir().unwrap();
-    let bin = dir.path().join("bin");
-    std::fs::create_dir(&bin).unwrap();
-    // A fake iverilog that "compiles" and a vvp that dies of SIGSEGV.
-    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
-    let vvp = "#!/bin/sh\nkill -SEGV $$\n";
-    for (n, t) in [("iverilog", iverilog), ("vvp", vvp)] {
-        let p = bin.join(n);
-        std::fs::write(&p, t).unwrap();
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
-    }
-    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    // A vvp that dies of SIGSEGV.
+    let path = fake_icarus::install(&dir.path().join("bin"), "kill -SEGV $$");
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     let o = Command::cargo_bin("gbump")
         .unwrap()
@@ -1512,17 +1505,10 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
 #[test]
 fn a_flooding_simulator_costs_bounded_memory() {
     let dir = tempfile::tempdir().unwrap();
-    let bin = dir.path().join("bin");
-    std::fs::create_dir(&bin).unwrap();
-    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
-    let vvp = "#!/bin/sh\nif [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nexec yes 'MISMATCH a line the simulator repeats'\n";
-    for (n, t) in [("iverilog", iverilog), ("vvp", vvp)] {
-        let p = bin.join(n);
-        std::fs::write(&p, t).unwrap();
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
-    }
-    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let path = fake_icarus::install(
+        &dir.path().join("bin"),
+        "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nexec yes 'MISMATCH a line the simulator repeats'",
+    );
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     let o = std::process::Command::new("sh")
         .env("PATH", path)
@@ -1550,22 +1536,15 @@ fn a_flooding_simulator_costs_bounded_memory() {
 #[test]
 fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
     let dir = tempfile::tempdir().unwrap();
-    let bin = dir.path().join("bin");
-    std::fs::create_dir(&bin).unwrap();
     let pid_file = dir.path().join("sleeper.pid");
-    let iverilog = "#!/bin/sh\nwhile [ $# -gt 0 ]; do if [ \"$1\" = -o ]; then shift; echo fake-image > \"$1\"; fi; shift; done\nexit 0\n";
     // Answers `--version` (the presence probe) unless HANG_PROBE is set; hangs on a run.
-    let vvp = format!(
-        "#!/bin/sh\nif [ \"$1\" = --version ] && [ -z \"$HANG_PROBE\" ]; then echo fake vvp; exit 0; fi\nsleep 1000 &\necho $! > {}\nwait\n",
-        pid_file.display()
+    let path = fake_icarus::install(
+        &dir.path().join("bin"),
+        &format!(
+            "if [ \"$1\" = --version ] && [ -z \"$HANG_PROBE\" ]; then echo fake vvp; exit 0; fi\nsleep 1000 &\necho $! > {}\nwait",
+            pid_file.display()
+        ),
     );
-    for (n, t) in [("iverilog", iverilog.to_string()), ("vvp", vvp)] {
-        let p = bin.join(n);
-        std::fs::write(&p, t).unwrap();
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
-    }
-    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     let run = |limit: &[&str], env: Option<&str>| {
         let mut c = Command::cargo_bin("gbump").unwrap();

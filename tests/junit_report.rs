@@ -4,6 +4,9 @@
 
 use std::process::Command;
 
+#[path = "common/fake_icarus.rs"]
+mod fake_icarus;
+
 fn regress(dir: &std::path::Path, junit: &std::path::Path) -> (bool, String) {
     let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
         .current_dir(env!("CARGO_MANIFEST_DIR"))
@@ -233,4 +236,42 @@ fn a_regression_with_mismatches_reports_each_run() {
         "{report}"
     );
     assert!(!report.contains("<error"), "{report}");
+}
+
+/// A simulator whose output holds control characters (colour codes, stray bytes) and markup
+/// gets a report that is still well-formed XML: every character is one XML 1.0 allows, and
+/// the markup is escaped.
+#[test]
+fn a_report_of_control_characters_is_well_formed() {
+    let d = tempfile::tempdir().unwrap();
+    let path = fake_icarus::install(
+        &d.path().join("bin"),
+        "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nprintf 'MISMATCH \\001\\002\\033[31m red \\377 ]]> </failure> & <x>\\n0 passed, 1 failed\\n'\nexit 1",
+    );
+    let v = d.path().join("v");
+    random20_text_set(&v);
+    let junit = d.path().join("j.xml");
+    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+        .env("PATH", path)
+        .args(["regress", "--sim", "icarus", "--vectors"])
+        .arg(v.join("random20_top.json"))
+        .arg("--work")
+        .arg(d.path().join("work"))
+        .arg("--junit")
+        .arg(&junit)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    let bad: Vec<char> = xml
+        .chars()
+        .filter(|&c| c.is_control() && !matches!(c, '\n' | '\t' | '\r'))
+        .collect();
+    assert!(bad.is_empty(), "characters XML 1.0 does not allow: {bad:?}\n{xml}");
+    assert!(
+        xml.contains("\\u{1b}[31m red") && xml.contains("&lt;/failure&gt; &amp; &lt;x&gt;"),
+        "{xml}"
+    );
+    assert_eq!(xml.matches("<failure").count(), xml.matches("</failure>").count(), "{xml}");
 }

@@ -54,10 +54,10 @@ pub fn scatter(points: &[Dot], title: &str, x_label: &str, y_label: &str) -> Str
         s += &format!(
             "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"3.5\" fill=\"{}\"><title>{}</title></circle>\n",
             if p.chosen { "#c33" } else { "#246" },
-            esc(&p.label)
+            crate::xml::escape(&p.label)
         );
         if p.front {
-            s += &format!("<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"7\" fill=\"none\" stroke=\"#c33\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"9\">{}</text>\n", cx + 8.0, cy - 6.0, esc(&p.label));
+            s += &format!("<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"7\" fill=\"none\" stroke=\"#c33\"/>\n<text x=\"{:.1}\" y=\"{:.1}\" font-size=\"9\">{}</text>\n", cx + 8.0, cy - 6.0, crate::xml::escape(&p.label));
         }
     }
     s + "</svg>\n"
@@ -66,7 +66,7 @@ pub fn scatter(points: &[Dot], title: &str, x_label: &str, y_label: &str) -> Str
 /// An SVG's head, title, axes, tick labels (x position and text, y position and text) and
 /// axis names, for a `w`×`h` plot with margin `m`; the caller adds the marks and `</svg>`.
 fn axes((w, h, m): (f64, f64, f64), title: &str, x_label: &str, y_label: &str, ticks: &[(f64, String, f64, String)]) -> String {
-    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, esc(title));
+    let mut s = format!("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"22\" font-size=\"14\" text-anchor=\"middle\">{}</text>\n", w / 2.0, crate::xml::escape(title));
     s += &format!("<line x1=\"{m}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"black\"/>\n<line x1=\"{m}\" y1=\"{}\" x2=\"{m}\" y2=\"{}\" stroke=\"black\"/>\n", h - m, w - 0.5 * m, h - m, h - m, 0.8 * m);
     for (x, xt, y, yt) in ticks {
         s += &format!("<text x=\"{x:.1}\" y=\"{}\" text-anchor=\"middle\">{xt}</text>\n", h - m + 16.0);
@@ -76,19 +76,15 @@ fn axes((w, h, m): (f64, f64, f64), title: &str, x_label: &str, y_label: &str, t
         "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
         w / 2.0,
         h - 22.0,
-        esc(x_label)
+        crate::xml::escape(x_label)
     );
     s += &format!(
         "<text x=\"16\" y=\"{}\" transform=\"rotate(-90 16 {})\" text-anchor=\"middle\">{}</text>\n",
         h / 2.0,
         h / 2.0,
-        esc(y_label)
+        crate::xml::escape(y_label)
     );
     s
-}
-
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
 /// One series of a line plot: its label and its points in x order.
@@ -146,7 +142,7 @@ pub fn lines(series: &[Series], title: &str, x_label: &str, y_label: &str, log2_
                 "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"2.5\" fill=\"{c}\"><title>{}: ({}, {:.3})</title></circle>\n",
                 px(p.0),
                 py(p.1),
-                esc(&se.label),
+                crate::xml::escape(&se.label),
                 p.0,
                 p.1
             );
@@ -155,7 +151,7 @@ pub fn lines(series: &[Series], title: &str, x_label: &str, y_label: &str, log2_
             "<text x=\"{}\" y=\"{}\" fill=\"{c}\">{}</text>\n",
             w - 1.5 * m - 150.0,
             0.8 * m + 14.0 * i as f64,
-            esc(&se.label)
+            crate::xml::escape(&se.label)
         );
     }
     s + "</svg>\n"

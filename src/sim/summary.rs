@@ -85,9 +85,9 @@ pub fn junit(cfg: &PipelineConfig, results: &[RunResult]) -> String {
     for r in results {
         let name = format!("{}.{}", r.sim.name(), r.set);
         match &r.outcome {
-            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, xml_escape(&name), o.seconds),
-            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, xml_escape(&name), o.seconds, o.passed, o.failed, xml_escape(&tail(&o.log, 60))),
-            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, xml_escape(&name), xml_escape(e)),
+            Ok(o) if o.failed == 0 => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"/>\n", r.target, crate::xml::escape(&name), o.seconds),
+            Ok(o) => s += &format!("  <testcase classname=\"{}\" name=\"{}\" time=\"{:.3}\"><failure message=\"{} passed, {} failed\">{}</failure></testcase>\n", r.target, crate::xml::escape(&name), o.seconds, o.passed, o.failed, crate::xml::escape(&tail(&o.log, 60))),
+            Err(e) => s += &format!("  <testcase classname=\"{}\" name=\"{}\"><error message=\"simulation error\">{}</error></testcase>\n", r.target, crate::xml::escape(&name), crate::xml::escape(e)),
         }
     }
     s + "</testsuite>\n"
@@ -101,14 +101,6 @@ pub fn is_report(head: &[u8]) -> bool {
     head.starts_with(b"<?xml") && head.windows(SUITE.len()).any(|w| w == SUITE.as_bytes())
 }
 
-/// `s` as XML text or an attribute value.
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
 /// The report of a regression that failed before it had runs to report (a set refused, a
 /// build that failed, a simulator missing): one test case in error, with the message.
 pub fn junit_error(cfg: &PipelineConfig, message: &str) -> String {
@@ -116,7 +108,7 @@ pub fn junit_error(cfg: &PipelineConfig, message: &str) -> String {
     format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{SUITE}{}\" tests=\"1\" failures=\"0\" errors=\"1\">\n  <testcase classname=\"regress\" name=\"gbump regress\"><error message=\"{}\">{}</error></testcase>\n</testsuite>\n",
         cfg.hash(),
-        xml_escape(first),
-        xml_escape(message)
+        crate::xml::escape(first),
+        crate::xml::escape(message)
     )
 }
