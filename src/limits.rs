@@ -63,6 +63,9 @@ pub const MAX_NAME_CHARS: u64 = 64;
 pub const MAX_TOOL_TIMEOUT_SECONDS: u64 = 365 * 86400;
 /// Seconds a tool may take to answer `--version` (whether it is installed).
 pub const TOOL_PROBE_SECONDS: u64 = 10;
+/// Mismatches a bench reports before it stops (`--max-errors`): the Verilog benches count in
+/// a 32-bit signed `integer`, so a larger value wrapped and Icarus stopped at the first.
+pub const MAX_ERRORS_REPORTED: u64 = i32::MAX as u64;
 
 /// (name, value, what it bounds) of every limit, for the README and `gbump limits`.
 pub const ALL: &[(&str, u64, &str)] = &[
@@ -170,6 +173,11 @@ pub const ALL: &[(&str, u64, &str)] = &[
         "TOOL_PROBE_SECONDS",
         TOOL_PROBE_SECONDS,
         "seconds a tool may take to answer `--version`, the check that it is installed; one that takes longer is named as hung",
+    ),
+    (
+        "MAX_ERRORS_REPORTED",
+        MAX_ERRORS_REPORTED,
+        "mismatches a bench reports before it stops (`--max-errors` of `regress` and `cosim`; the Verilog benches count in a 32-bit `integer`)",
     ),
 ];
 

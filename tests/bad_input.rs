@@ -912,6 +912,18 @@ fn cases() -> Vec<Case> {
             vec!["regress", "--max-errors", "0", "--work", "w"],
             vec!["--max-errors", "0 is below 1"],
         ),
+        (
+            "regress --max-errors past a bench's 32-bit count",
+            vec![],
+            vec!["regress", "--max-errors", "2147483648", "--work", "w"],
+            vec!["--max-errors", "2147483648", "MAX_ERRORS_REPORTED"],
+        ),
+        (
+            "cosim --max-errors past a bench's 32-bit count",
+            vec![],
+            vec!["cosim", "--max-errors", "4294967295", "--work", "w"],
+            vec!["--max-errors", "4294967295", "MAX_ERRORS_REPORTED"],
+        ),
         // Messages point at the right line and name the right file (item 9).
         (
             "wrong type in a scene's [pipeline]",
