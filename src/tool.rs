@@ -350,9 +350,47 @@ pub fn tail(log: &str, n: usize) -> String {
     lines[lines.len().saturating_sub(n)..].join("\n")
 }
 
+/// Where `tool` is on PATH (the first match), for messages about which one ran.
+pub fn on_path(tool: &str) -> Option<std::path::PathBuf> {
+    std::env::split_paths(&std::env::var_os("PATH")?)
+        .map(|d| d.join(tool))
+        .find(|p| p.is_file())
+}
+
+/// The last `n` lines of a failed tool's `log`, or a line saying it printed nothing (a
+/// message with an empty gap where the reason goes reads as a gbump bug).
+pub fn log_tail(tool: &str, log: &str, n: usize) -> String {
+    if log.trim().is_empty() {
+        format!("({tool} printed nothing)")
+    } else {
+        tail(log, n)
+    }
+}
+
+/// The fix line of a failed run of `tool` that printed nothing: it is not the tool gbump
+/// knows, or it is broken.
+fn silent_fix(tool: &str) -> String {
+    let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+    format!("  fix: {tool} ({at}) failed without a word and made none of its outputs: it is not a working {tool}; reinstall it (scripts/install-tools.sh) or put a working one first on PATH")
+}
+
+/// The fix line of a synthesis by Yosys that failed with `log`.
+pub fn synthesis_fix(log: &str) -> String {
+    if log.trim().is_empty() {
+        silent_fix("yosys")
+    } else if ["killed by signal", "out of memory", "Killed"].iter().any(|k| log.contains(k)) {
+        "  fix: yosys was killed (a crash, or memory ran out): check free memory, reinstall it if it happens again (scripts/install-tools.sh), and run again".into()
+    } else {
+        "  fix: yosys refused the design for the reasons above; gbump's RTL synthesises on the version scripts/install-tools.sh installs, so an error in it is a gbump bug: report it with the configuration".into()
+    }
+}
+
 /// The fix line of a build by `tool` that failed with `log`: a tool that crashed is reinstalled;
 /// one that refused the sources names what it refused in the log above the line.
 pub fn build_fix(tool: &str, log: &str) -> String {
+    if log.trim().is_empty() {
+        return silent_fix(tool);
+    }
     // Killed itself, or a compiler it ran (gcc's "Killed signal terminated program cc1plus"
     // when memory ran out).
     if ["killed by signal", "Killed signal", "fatal error: Killed", "out of memory"]

@@ -4,8 +4,8 @@
 use assert_cmd::Command;
 use std::path::Path;
 
-#[path = "common/fake_icarus.rs"]
-mod fake_icarus;
+#[path = "common/fake_tools.rs"]
+mod fake_tools;
 
 const WALL: &str = include_str!("../scenes/cg_wall_front.toml");
 const TORUS: &str = include_str!("../scenes/torus_caps.toml");
@@ -1494,7 +1494,7 @@ impl CharDev for std::fs::FileType {
 fn a_crashing_simulator_is_reported_as_a_crash() {
     let dir = tempfile::tempdir().unwrap();
     // A vvp that dies of SIGSEGV.
-    let path = fake_icarus::install(&dir.path().join("bin"), "kill -SEGV $$");
+    let path = fake_tools::icarus(&dir.path().join("bin"), "kill -SEGV $$");
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     let o = Command::cargo_bin("gbump")
         .unwrap()
@@ -1517,7 +1517,7 @@ fn a_crashing_simulator_is_reported_as_a_crash() {
 #[test]
 fn a_flooding_simulator_costs_bounded_memory() {
     let dir = tempfile::tempdir().unwrap();
-    let path = fake_icarus::install(
+    let path = fake_tools::icarus(
         &dir.path().join("bin"),
         "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nexec yes 'MISMATCH a line the simulator repeats'",
     );
@@ -1550,7 +1550,7 @@ fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
     let dir = tempfile::tempdir().unwrap();
     let pid_file = dir.path().join("sleeper.pid");
     // Answers `--version` (the presence probe) unless HANG_PROBE is set; hangs on a run.
-    let path = fake_icarus::install(
+    let path = fake_tools::icarus(
         &dir.path().join("bin"),
         &format!(
             "if [ \"$1\" = --version ] && [ -z \"$HANG_PROBE\" ]; then echo fake vvp; exit 0; fi\nsleep 1000 &\necho $! > {}\nwait",
@@ -2250,4 +2250,41 @@ fn a_folder_regress_refuses_is_named_when_the_vectors_are_written() {
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("'='") && err.contains("fix:"), "{err}");
+}
+
+/// A Verilator or a Yosys that exits 0 having printed and made nothing: the message says it
+/// printed nothing, names the tool that ran and says to reinstall it, where it pointed at
+/// "the reasons above" (none) and called it a gbump bug.
+#[test]
+fn a_silent_tool_that_makes_nothing_is_named_as_broken() {
+    for (tool, args) in [
+        (
+            "verilator",
+            vec!["regress", "--sim", "verilator", "--random", "10", "--no-scenes", "--target", "top"],
+        ),
+        ("yosys", vec!["area"]),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let body = format!("if [ \"$1\" = --version ] || [ \"$1\" = -V ]; then exec /usr/bin/{tool} \"$@\"; fi\nexit 0");
+        let path = fake_tools::tool(&dir.path().join("bin"), tool, &body);
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .env("PATH", path)
+            .env("GBUMP_CACHE", "")
+            .args(&args)
+            .arg("--work")
+            .arg(dir.path().join("w"))
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{tool}: {text}");
+        assert!(
+            text.contains(&format!("({tool} printed nothing)")) && text.contains(&format!("it is not a working {tool}")),
+            "{tool}: {text}"
+        );
+        assert!(
+            text.contains(&dir.path().join("bin").join(tool).display().to_string()),
+            "{tool}: {text}"
+        );
+    }
 }

@@ -4,8 +4,8 @@
 
 use std::process::Command;
 
-#[path = "common/fake_icarus.rs"]
-mod fake_icarus;
+#[path = "common/fake_tools.rs"]
+mod fake_tools;
 
 fn regress(dir: &std::path::Path, junit: &std::path::Path) -> (bool, String) {
     let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
@@ -244,7 +244,7 @@ fn a_regression_with_mismatches_reports_each_run() {
 #[test]
 fn a_report_of_control_characters_is_well_formed() {
     let d = tempfile::tempdir().unwrap();
-    let path = fake_icarus::install(
+    let path = fake_tools::icarus(
         &d.path().join("bin"),
         "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\nprintf 'MISMATCH \\001\\002\\033[31m red \\377 ]]> </failure> & <x>\\n0 passed, 1 failed\\n'\nexit 1",
     );

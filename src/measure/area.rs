@@ -8,7 +8,6 @@
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
 use crate::rtlgen::units_v::module_name;
-use crate::tool::tail;
 use crate::yosys::scripts::cmos_area;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -87,7 +86,13 @@ pub fn area(cfg: &PipelineConfig, work: &Path, command: &str) -> Result<AreaRepo
                 let read = |f: &str| std::fs::read_to_string(sub.join(f)).unwrap_or_default();
                 let (t, ffs, depth, memory_bits) = match (ok, parse_stat(&read("area.json"), &read("area.ltp"), &read("memory.json"))) {
                     (true, Some(x)) => x,
-                    _ => return Err(Error::Other(format!("yosys could not synthesise {module}:\n{}", tail(&log, 15)))),
+                    _ => {
+                        return Err(Error::Other(format!(
+                            "yosys could not synthesise {module}:\n{}\n{}",
+                            crate::tool::log_tail("yosys", &log, 15),
+                            crate::tool::synthesis_fix(&log)
+                        )))
+                    }
                 };
                 progress.done(&format!("{unit}: {:.0} GE", t as f64 / 4.0));
                 Ok(UnitArea {

@@ -239,9 +239,10 @@ fn synth(target: Target, rtl: &crate::sim::rtl_files::Rtl, module: &str, work: &
         let parsed = |f: &str| std::fs::read_to_string(tmp.join(f)).ok().and_then(|t| yosys_stat::parse(&t));
         if !ok || parsed("stat.json").is_none() || parsed("memory.json").is_none() {
             return Err(Error::Other(format!(
-                "yosys could not synthesise {module} for {}:\n{}",
+                "yosys could not synthesise {module} for {}:\n{}\n{}",
                 target.name(),
-                tail(&log, 15)
+                crate::tool::log_tail("yosys", &log, 15),
+                crate::tool::synthesis_fix(&log)
             )));
         }
         Ok(())

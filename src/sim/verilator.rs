@@ -8,7 +8,7 @@ use super::rtl_files::Rtl;
 use super::simulator::{build_key, Simulator, Testbench};
 use super::verilator_runtime::{fetch, record, runtime_objects, store};
 use crate::error::{Error, Result};
-use crate::tool::{run_cmd, tail};
+use crate::tool::run_cmd;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -50,7 +50,7 @@ fn cached_build(
         let Some(mk) = ok.then(|| makefile(&obj)).flatten() else {
             return Err(Error::Other(format!(
                 "verilator failed to build {exe_name}:\n{}\n{}",
-                tail(&log, 25),
+                crate::tool::log_tail("verilator", &log, 25),
                 crate::tool::build_fix("verilator", &log)
             )));
         };
@@ -76,7 +76,7 @@ fn cached_build(
             let log = log + &make_log;
             return Err(Error::Other(format!(
                 "verilator failed to build {exe_name}:\n{}\n{}",
-                tail(&log, 25),
+                crate::tool::log_tail("verilator", &log, 25),
                 crate::tool::build_fix("verilator", &log)
             )));
         }
