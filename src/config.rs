@@ -463,14 +463,29 @@ pub fn note_origin(file: &str) {
     *ORIGIN.lock().unwrap_or_else(|e| e.into_inner()) = Some(file.to_string());
 }
 
-/// The run's configuration file as messages name it: the `--config` file, else "pipeline
-/// config" (the default, or one a scene derived).
+/// The scene whose derived configuration this run uses (`--scene NAME`), when it does.
+static DERIVED: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
+/// Record that this run's configuration is the one scene `name` derives (`--scene`).
+pub fn note_derived(name: &str) {
+    *DERIVED.lock().unwrap_or_else(|e| e.into_inner()) = Some(name.to_string());
+    note_origin(&format!("the configuration --scene {} derives", crate::shell::quoted(name)));
+}
+
+/// Whether this run's configuration was read from a file (`--config`): only then can a
+/// message say to edit a field of it.
+pub fn from_file() -> bool {
+    DERIVED.lock().unwrap_or_else(|e| e.into_inner()).is_none() && ORIGIN.lock().unwrap_or_else(|e| e.into_inner()).is_some()
+}
+
+/// The run's configuration as messages name it: the `--config` file, the one a `--scene`
+/// derives, else "the default configuration".
 pub fn origin() -> String {
     ORIGIN
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .clone()
-        .unwrap_or_else(|| "pipeline config".into())
+        .unwrap_or_else(|| "the default configuration".into())
 }
 
 impl Default for PipelineConfig {

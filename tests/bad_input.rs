@@ -913,6 +913,12 @@ fn cases() -> Vec<Case> {
             vec!["--max-errors", "0 is below 1"],
         ),
         (
+            "a scene the configuration another --scene derives cannot render",
+            vec![],
+            vec!["vectors", "--source", "scene:torus_caps", "--scene", "cg_wall_front", "--size", "16x12", "--out", "out"],
+            vec!["the configuration --scene cg_wall_front derives", "fix: give --scene torus_caps", "gbump config --scene torus_caps"],
+        ),
+        (
             "regress --max-errors past a bench's 32-bit count",
             vec![],
             vec!["regress", "--max-errors", "2147483648", "--work", "w"],

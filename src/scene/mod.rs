@@ -248,7 +248,11 @@ pub fn pick_config(config: Option<&Path>, scene: Option<&str>) -> Result<Pipelin
             crate::config::note_origin(&p.display().to_string());
             Ok(cfg)
         }
-        (None, Some(s)) => Scene::load(s)?.derive_config(),
+        (None, Some(s)) => {
+            let cfg = Scene::load(s)?.derive_config()?;
+            crate::config::note_derived(s);
+            Ok(cfg)
+        }
         (None, None) => Ok(PipelineConfig::default()),
     }
 }
@@ -426,6 +430,25 @@ impl Scene {
 
     /// Check that `cfg` can render this scene.
     pub fn check_config(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
+        // No file to edit when `cfg_file` names this run's default configuration or the one
+        // another scene derives (`config::origin`), rather than a file.
+        let no_file = cfg_file == crate::config::origin() && !crate::config::from_file();
+        self.check_config_fields(cfg, cfg_file).map_err(|e| match no_file {
+            true => {
+                let text = e.to_string();
+                let said: Vec<&str> = text.lines().filter(|l| !l.trim_start().starts_with("fix:")).collect();
+                Error::Other(format!(
+                    "{}\n  fix: give --scene {} for this scene's own configuration, or --config a file that renders both scenes (`gbump config --scene {}` writes one to start from)",
+                    said.join("\n"),
+                    crate::shell::quoted(&self.name),
+                    crate::shell::quoted(&self.name)
+                ))
+            }
+            false => e,
+        })
+    }
+
+    fn check_config_fields(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
         if cfg.embm() {
             // EMBM's lights, any number and colour, are in each object's maps, and it reads
             // no power table.
