@@ -41,7 +41,7 @@ impl WorkLock {
             .create(true)
             .truncate(false)
             .open(path)
-            .map_err(|e| Error::io(path, e))?;
+            .map_err(|e| not_a_lock(dir, path, e))?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
@@ -73,6 +73,18 @@ impl WorkLock {
             dir: dir.to_path_buf(),
         })
     }
+}
+
+/// The error for a lock file at `path` that cannot be opened as one (a folder, a link to
+/// nowhere, a file without permission): it names the work folder's lock, which the user
+/// never gave, and says to remove it.
+fn not_a_lock(dir: &Path, path: &Path, e: std::io::Error) -> Error {
+    Error::Other(format!(
+        "{}: the work folder's lock file ({LOCK_NAME}, which gbump keeps in its work folder {}) cannot be opened: {e}\n  fix: remove it (rm -rf {}) when no gbump run uses this work folder, or give another --work",
+        path.display(),
+        dir.display(),
+        crate::shell::quoted(&path.display().to_string())
+    ))
 }
 
 /// Whether `file` is still the file at `path` (not removed, nor replaced, since it was opened).

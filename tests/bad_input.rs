@@ -2294,3 +2294,34 @@ fn a_silent_tool_that_makes_nothing_is_named_as_broken() {
         );
     }
 }
+
+/// A work folder whose lock file is a folder or a link to nowhere: the message names the
+/// work folder's lock (a path the user never gave) and says to remove it.
+#[test]
+fn a_lock_file_that_is_not_a_file_is_named_as_the_work_folders() {
+    for make in ["folder", "dangling link"] {
+        let dir = tempfile::tempdir().unwrap();
+        let work = dir.path().join("w");
+        std::fs::create_dir(&work).unwrap();
+        let lock = work.join(".gbump.lock");
+        if make == "folder" {
+            std::fs::create_dir(&lock).unwrap();
+        } else {
+            std::os::unix::fs::symlink(dir.path().join("nowhere/x"), &lock).unwrap();
+        }
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["regress", "--sim", "icarus", "--work"])
+            .arg(&work)
+            .arg("--vectors")
+            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{make}: {err}");
+        assert!(
+            err.contains("the work folder's lock file") && err.contains("fix: remove it"),
+            "{make}: {err}"
+        );
+    }
+}
