@@ -220,12 +220,19 @@ pub fn toml_error(file: &str, text: &str, e: &toml::de::Error, fix: &str) -> Err
     let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
     let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
     let (before, after) = (&text[line_start..start], &text[start..line_end]);
-    let key = key_before(before).map(|k| {
-        let mut path: Vec<String> = table_above(&text[..line_start]).into_iter().collect();
-        path.extend(inline_tables(before));
-        path.push(k.to_string());
-        path.join(".")
-    });
+    let key = key_before(before)
+        .map(|k| {
+            let mut path: Vec<String> = table_above(&text[..line_start]).into_iter().collect();
+            path.extend(inline_tables(before));
+            path.push(k.to_string());
+            path.join(".")
+        })
+        // An error at a table header (`[lights]` where a number goes): the header names the key.
+        .or_else(|| {
+            let h = after.trim();
+            (before.trim().is_empty() && h.starts_with('[') && !h.starts_with("[[") && h.ends_with(']'))
+                .then(|| h.trim_matches(['[', ']']).trim().trim_matches('"').to_string())
+        });
     let mut msg = e.message().trim().to_string();
     // A date or time arrives as serde's map of one private key, which the message calls a
     // map: say what was written.

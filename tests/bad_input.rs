@@ -388,6 +388,12 @@ fn cases() -> Vec<Case> {
         ),
         ("lh_bits 33", cfg("lh_bits = 33\n"), render_cfg(), vec!["lh_bits", "4..=24"]),
         (
+            "a table header where a number goes",
+            cfg("[lights]\na = 1\n"),
+            render_cfg(),
+            vec!["c.toml:1:1", "`lights`: invalid type: map", "1..=8"],
+        ),
+        (
             "a renamed field out of range, under its old name",
             cfg("lights = 1\ndot_bits = 99\n"),
             render_cfg(),

@@ -185,6 +185,8 @@ impl Space {
     /// [`Space::configs`] with its notes returned rather than printed.
     fn expand(&self, file: &str) -> Result<(Vec<(String, PipelineConfig)>, Vec<String>)> {
         let mut combos: Vec<(Vec<String>, toml::Table)> = vec![(Vec::new(), self.base.clone())];
+        // Values a grid list gives more than once, said apart from the designs that coincide.
+        let mut repeated = Vec::new();
         for (k, v) in &self.grid {
             let vals = v.as_array().ok_or_else(|| {
                 Error::field(
@@ -196,6 +198,11 @@ impl Space {
             })?;
             if vals.is_empty() {
                 return Err(Error::field(file, &format!("grid.{k}"), "empty array", "give at least one value"));
+            }
+            for (i, x) in vals.iter().enumerate() {
+                if vals[..i].contains(x) && !repeated.iter().any(|r: &String| r.starts_with(&format!("{k} = {x} "))) {
+                    repeated.push(format!("{k} = {x} ({} times)", vals.iter().filter(|y| *y == x).count()));
+                }
             }
             combos = combos
                 .into_iter()
@@ -235,8 +242,13 @@ impl Space {
             ));
         }
         if merged > 0 {
+            let why = if repeated.is_empty() {
+                "a field their other values leave unused".to_string()
+            } else {
+                format!("the grid lists {}", repeated.join(", "))
+            };
             notes.push(format!(
-                "note: {file}: {merged} of {total} grid points repeat another's design (a field their other values leave unused) and are measured once"
+                "note: {file}: {merged} of {total} grid points repeat another's design ({why}) and are measured once"
             ));
         }
         if out.is_empty() {
@@ -566,4 +578,24 @@ pub fn svg(points: &[Point], title: &str) -> String {
         &format!("top area, NAND2 gate equivalents ({by})"),
         "mean error vs exact arithmetic, LSB",
     )
+}
+
+#[cfg(test)]
+mod tests {
+    /// A value a grid list gives twice is named as such in the note, not blamed on a field
+    /// left unused.
+    #[test]
+    fn a_value_listed_twice_is_named_in_the_note() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("sp.toml");
+        std::fs::write(&p, "scene = \"cg_wall_front\"\n[grid]\nlights = [2, 2, 3]\n").unwrap();
+        let (cfgs, notes) = super::Space::load(&p).unwrap().expand("sp.toml").unwrap();
+        assert_eq!(cfgs.len(), 2);
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.contains("1 of 3 grid points repeat") && n.contains("the grid lists lights = 2 (2 times)")),
+            "{notes:?}"
+        );
+    }
 }
