@@ -472,6 +472,11 @@ pub fn note_derived(name: &str) {
     note_origin(&format!("the configuration --scene {} derives", crate::shell::quoted(name)));
 }
 
+/// Whether this run's configuration is the one a `--scene` derives ([`note_derived`]).
+pub fn from_scene() -> bool {
+    DERIVED.lock().unwrap_or_else(|e| e.into_inner()).is_some()
+}
+
 /// Whether this run's configuration was read from a file (`--config`): only then can a
 /// message say to edit a field of it.
 pub fn from_file() -> bool {

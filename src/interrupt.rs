@@ -195,7 +195,17 @@ fn record_signal_number(sig: libc::c_int) {
         let _ = SIGNAL.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst);
         let Some(k) = slot(sig) else { return };
         let at = CHAINED_AT[k].load(Ordering::SeqCst);
-        if at == libc::SIG_DFL || at == libc::SIG_IGN {
+        if at == libc::SIG_IGN {
+            return;
+        }
+        if at == libc::SIG_DFL {
+            // What the signal would have done: end the process (signal and raise are
+            // async-signal-safe).
+            // SAFETY: restores the default disposition and sends the signal again.
+            unsafe {
+                libc::signal(sig, libc::SIG_DFL);
+                libc::raise(sig);
+            }
             return;
         }
         if CHAINED_FLAGS[k].load(Ordering::SeqCst) & libc::SA_SIGINFO != 0 {
@@ -245,7 +255,7 @@ pub fn install() {
             }
         })
         .collect();
-    let _ = ctrlc::set_handler(|| {
+    let installed = ctrlc::set_handler(|| {
         // The handler runs on a thread of its own, not in signal context: it may read /proc,
         // print and signal. The tools end on the first signal too: a run stopping through its
         // error path must not wait for a whole build first.
@@ -272,9 +282,12 @@ pub fn install() {
             stop_now();
         });
     });
+    // Chained only ahead of a handler ctrlc installed: without one the signals keep their
+    // default, which ends the process with the right status by itself. A signal in the
+    // moment between the two installs reaches ctrlc's alone and exits 130.
     #[cfg(unix)]
     for s in [libc::SIGHUP, libc::SIGINT, libc::SIGTERM] {
-        if !ignored.contains(&s) {
+        if installed.is_ok() && !ignored.contains(&s) {
             record_signal_number(s);
         }
     }

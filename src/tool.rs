@@ -114,14 +114,28 @@ pub const KEPT_HEAD: usize = 1 << 20;
 /// Bytes kept of the end of one output stream of a tool ([`read_capped`]): its verdict is there.
 pub const KEPT_TAIL: usize = 8 << 20;
 
-/// Read `r` to its end, keeping its first [`KEPT_HEAD`] and its last [`KEPT_TAIL`] bytes with
-/// a line between them saying how many were left out: a tool that floods its output (a
-/// runaway `$display`, a `yes`) costs at most this much memory, where reading it whole ran
-/// gbump out of memory and aborted it.
+/// Read `r` to its end, keeping its first [`KEPT_HEAD`] and its last [`KEPT_TAIL`] bytes (cut
+/// at line ends) with a line between them saying how many were left out ([`CUT_NOTE`]): a tool
+/// that floods its output (a runaway `$display`, a `yes`) costs about `KEPT_HEAD + 2 KEPT_TAIL`
+/// bytes of memory, where reading it whole ran gbump out of memory and aborted it. A verdict
+/// that finds the note refuses to call the run clean (`sim::verdict`): what was left out is
+/// not read.
 pub fn read_capped(mut r: impl std::io::Read) -> Vec<u8> {
-    let (mut head, mut tail) = (Vec::new(), Vec::new());
-    let mut dropped = 0u64;
+    let mut head = Vec::new();
     let mut buf = vec![0u8; 64 << 10];
+    // Trimmed once it is twice the kept length, so each byte is moved at most once and the
+    // buffer never grows past its first capacity.
+    let mut tail = Vec::with_capacity(2 * KEPT_TAIL + buf.len());
+    let mut dropped = 0u64;
+    let trim = |tail: &mut Vec<u8>, dropped: &mut u64| {
+        let mut cut = tail.len() - KEPT_TAIL;
+        // From the start of a line, so the kept tail holds whole lines.
+        if let Some(nl) = tail[cut..].iter().position(|&b| b == b'\n') {
+            cut += nl + 1;
+        }
+        *dropped += cut as u64;
+        tail.drain(..cut);
+    };
     loop {
         let n = match r.read(&mut buf) {
             Ok(0) => break,
@@ -131,39 +145,44 @@ pub fn read_capped(mut r: impl std::io::Read) -> Vec<u8> {
         };
         let k = KEPT_HEAD.saturating_sub(head.len()).min(n);
         head.extend_from_slice(&buf[..k]);
-        tail.extend_from_slice(&buf[k..n]);
-        // Trimmed once it is twice the kept length, so each byte is moved at most once.
-        if tail.len() > 2 * KEPT_TAIL {
-            let cut = tail.len() - KEPT_TAIL;
-            dropped += cut as u64;
-            tail.drain(..cut);
+        if tail.len() + (n - k) > 2 * KEPT_TAIL {
+            trim(&mut tail, &mut dropped);
         }
+        tail.extend_from_slice(&buf[k..n]);
     }
     if tail.len() > KEPT_TAIL {
-        let cut = tail.len() - KEPT_TAIL;
-        dropped += cut as u64;
-        tail.drain(..cut);
+        trim(&mut tail, &mut dropped);
     }
     if dropped > 0 {
-        head.extend_from_slice(format!("\n[gbump: {dropped} bytes of this output left out here]\n").as_bytes());
+        // The head, too, ends at a line end: the rest of its last line is counted as left out.
+        if let Some(nl) = head.iter().rposition(|&b| b == b'\n') {
+            dropped += (head.len() - nl - 1) as u64;
+            head.truncate(nl + 1);
+        }
+        head.extend_from_slice(format!("\n{CUT_NOTE}{dropped} bytes of this output left out here]\n").as_bytes());
     }
     head.extend_from_slice(&tail);
     head
 }
 
-/// [`std::process::Child::wait_with_output`] with each stream read by [`read_capped`].
+/// How [`read_capped`]'s note on the bytes it left out begins.
+pub const CUT_NOTE: &str = "[gbump: ";
+
+/// [`std::process::Child::wait_with_output`] with each stream read by [`read_capped`]. The
+/// pipes are read to their end before the tool is reaped, as `wait_with_output` does: the
+/// [`Watchdog`] may signal the tool's pid until then, and a reaped pid can be another
+/// process's.
 pub fn wait_capped(mut child: std::process::Child) -> std::io::Result<std::process::Output> {
     let (so, se) = (child.stdout.take(), child.stderr.take());
-    std::thread::scope(|scope| {
+    let (stdout, stderr) = std::thread::scope(|scope| {
         let out = scope.spawn(move || so.map(read_capped).unwrap_or_default());
         let err = scope.spawn(move || se.map(read_capped).unwrap_or_default());
-        let status = child.wait();
-        let (stdout, stderr) = (out.join().unwrap_or_default(), err.join().unwrap_or_default());
-        Ok(std::process::Output {
-            status: status?,
-            stdout,
-            stderr,
-        })
+        (out.join().unwrap_or_default(), err.join().unwrap_or_default())
+    });
+    Ok(std::process::Output {
+        status: child.wait()?,
+        stdout,
+        stderr,
     })
 }
 
@@ -461,14 +480,20 @@ mod tests {
     fn output_is_kept_head_and_tail() {
         let short = b"3 passed, 0 failed\n".to_vec();
         assert_eq!(super::read_capped(&short[..]), short);
-        let n = super::KEPT_HEAD + 3 * super::KEPT_TAIL + 5;
-        let flood: Vec<u8> = (0..n).map(|i| (i % 251) as u8).collect();
+        let mut flood = Vec::new();
+        let mut i = 0;
+        while flood.len() < super::KEPT_HEAD + 3 * super::KEPT_TAIL {
+            flood.extend_from_slice(format!("MISMATCH line {i}\n").as_bytes());
+            i += 1;
+        }
         let kept = super::read_capped(&flood[..]);
-        assert!(kept.starts_with(&flood[..super::KEPT_HEAD]));
-        assert!(kept.ends_with(&flood[n - super::KEPT_TAIL..]));
-        let left = n - super::KEPT_HEAD - super::KEPT_TAIL;
-        let note = format!("[gbump: {left} bytes of this output left out here]");
-        assert!(String::from_utf8_lossy(&kept).contains(&note), "{note}");
-        assert!(kept.len() < super::KEPT_HEAD + super::KEPT_TAIL + 100);
+        let text = String::from_utf8(kept.clone()).unwrap();
+        let (head, rest) = text.split_once(&format!("\n{}", super::CUT_NOTE)).expect("the note");
+        let (count, tail) = rest.split_once(" bytes of this output left out here]\n").expect("the note's end");
+        // Whole lines on both sides, the head the flood's start and the tail its end.
+        assert!(flood.starts_with(head.as_bytes()) && head.ends_with('\n'));
+        assert!(flood.ends_with(tail.as_bytes()) && tail.starts_with("MISMATCH line "));
+        assert!(head.len() <= super::KEPT_HEAD && tail.len() <= super::KEPT_TAIL && tail.len() > super::KEPT_TAIL - 100);
+        assert_eq!(head.len() + count.parse::<usize>().unwrap() + tail.len(), flood.len());
     }
 }

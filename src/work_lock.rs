@@ -41,7 +41,18 @@ impl WorkLock {
             .create(true)
             .truncate(false)
             .open(path)
-            .map_err(|e| not_a_lock(dir, path, e))?;
+            .map_err(|e| {
+                // A folder, or a link to nowhere or to itself, in the lock's place: the user
+                // never named that path, so the message must. Anything else (permissions, a
+                // full disk) is said as it is.
+                let dangling = e.kind() == std::io::ErrorKind::NotFound && path.symlink_metadata().is_ok();
+                let in_place = e.kind() == std::io::ErrorKind::IsADirectory || e.raw_os_error() == Some(libc::ELOOP) || dangling;
+                if in_place {
+                    not_a_lock(dir, path, e)
+                } else {
+                    Error::io(path, e)
+                }
+            })?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {

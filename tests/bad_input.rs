@@ -1551,6 +1551,12 @@ fn a_flooding_simulator_costs_bounded_memory() {
         "{}",
         &text[text.len().saturating_sub(3000)..]
     );
+    // Stopped at the limit while flooding, not refused before it ran.
+    assert!(
+        text.contains("vvp ran for more than the tool time limit") && text.contains("MISMATCH a line the simulator repeats"),
+        "{}",
+        &text[text.len().saturating_sub(3000)..]
+    );
 }
 
 /// A simulator that never ends (here a vvp whose own child sleeps) is stopped at the tool time

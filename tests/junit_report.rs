@@ -32,6 +32,31 @@ fn regress(dir: &std::path::Path, junit: &std::path::Path) -> (bool, String) {
     (o.status.success(), text)
 }
 
+/// `gbump regress --sim icarus` of the set `json` with a JUnit report (and `path` for PATH):
+/// its output, and stdout and stderr as one text.
+fn regress_set(
+    json: &std::path::Path,
+    work: &std::path::Path,
+    junit: &std::path::Path,
+    path: Option<&str>,
+) -> (std::process::Output, String) {
+    let mut c = Command::new(assert_cmd::cargo::cargo_bin("gbump"));
+    if let Some(p) = path {
+        c.env("PATH", p);
+    }
+    let o = c
+        .args(["regress", "--sim", "icarus", "--vectors"])
+        .arg(json)
+        .arg("--work")
+        .arg(work)
+        .arg("--junit")
+        .arg(junit)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    (o, text)
+}
+
 /// `random:20`'s top set, text only, into `v`.
 fn random20_text_set(v: &std::path::Path) {
     let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
@@ -215,16 +240,7 @@ fn a_regression_with_mismatches_reports_each_run() {
     m["hex"]["bytes"] = text.len().into();
     std::fs::write(&json, serde_json::to_string_pretty(&m).unwrap()).unwrap();
     let junit = d.path().join("junit.xml");
-    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
-        .args(["regress", "--sim", "icarus", "--vectors"])
-        .arg(&json)
-        .arg("--work")
-        .arg(d.path().join("work"))
-        .arg("--junit")
-        .arg(&junit)
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    let (o, out) = regress_set(&json, &d.path().join("work"), &junit, None);
     assert!(!o.status.success(), "{out}");
     assert!(out.contains("19 passed, 1 failed"), "the edit did not make one mismatch:\n{out}");
     let report = std::fs::read_to_string(&junit).unwrap();
@@ -251,17 +267,7 @@ fn a_report_of_control_characters_is_well_formed() {
     let v = d.path().join("v");
     random20_text_set(&v);
     let junit = d.path().join("j.xml");
-    let o = Command::new(assert_cmd::cargo::cargo_bin("gbump"))
-        .env("PATH", path)
-        .args(["regress", "--sim", "icarus", "--vectors"])
-        .arg(v.join("random20_top.json"))
-        .arg("--work")
-        .arg(d.path().join("work"))
-        .arg("--junit")
-        .arg(&junit)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    let (o, text) = regress_set(&v.join("random20_top.json"), &d.path().join("work"), &junit, Some(&path));
     assert_eq!(o.status.code(), Some(1), "{text}");
     let xml = std::fs::read_to_string(&junit).unwrap();
     let bad: Vec<char> = xml

@@ -27,14 +27,15 @@ pub fn dot_clamp(cfg: &PipelineConfig, b: [i64; 3], v: [i64; 3]) -> i64 {
 /// with E the exact product's fraction bits and F the output's, b_x a power of two within
 /// the normal's range and v_x the rest within L/H's. As (why, B raw, V raw); none when E <= F
 /// (the exact sum has no bits below fd's LSB, so no tie exists). The unit's corners and the
-/// top's both hold them.
-pub fn rounding_ties(cfg: &PipelineConfig) -> Option<[(String, [i64; 3], [i64; 3]); 2]> {
+/// top's both hold them. The multiple of a half LSB (1 or 3) comes first.
+pub fn rounding_ties(cfg: &PipelineConfig) -> Option<[(i64, String, [i64; 3], [i64; 3]); 2]> {
     let e = cfg.dot_exact_fmt().frac;
     (e > cfg.dot_frac_bits).then(|| {
         let z = e - cfg.dot_frac_bits - 1;
         let bz = z.min(cfg.normal_bits - 2);
         [1i64, 3].map(|odd| {
             (
+                odd,
                 format!(
                     "exactly {odd}/2 output LSB: a rounding tie above an {} code",
                     if odd == 1 { "even" } else { "odd" }

@@ -437,11 +437,12 @@ impl Scene {
             true => {
                 let text = e.to_string();
                 let said: Vec<&str> = text.lines().filter(|l| !l.trim_start().starts_with("fix:")).collect();
+                // The spelling `--scene` loads: a built-in scene's name, else its file.
+                let me = crate::shell::quoted(if builtin::get(&self.name).is_some() { &self.name } else { &self.file });
+                let both = if crate::config::from_scene() { "renders both scenes" } else { "renders it" };
                 Error::Other(format!(
-                    "{}\n  fix: give --scene {} for this scene's own configuration, or --config a file that renders both scenes (`gbump config --scene {}` writes one to start from)",
+                    "{}\n  fix: give --scene {me} for this scene's own configuration, or --config a file that {both} (`gbump config --scene {me}` writes one to start from)",
                     said.join("\n"),
-                    crate::shell::quoted(&self.name),
-                    crate::shell::quoted(&self.name)
                 ))
             }
             false => e,

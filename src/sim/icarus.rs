@@ -4,7 +4,7 @@
 use super::rtl_files::Rtl;
 use super::simulator::{build_key, Simulator, Testbench};
 use crate::error::{Error, Result};
-use crate::tool::{run_cmd, tail};
+use crate::tool::run_cmd;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -35,7 +35,7 @@ impl Simulator for Icarus {
             if !ok {
                 return Err(Error::Other(format!(
                     "iverilog failed to compile {top}:\n{}\n{}",
-                    tail(&log, 20),
+                    crate::tool::log_tail("iverilog", &log, 20),
                     crate::tool::build_fix("iverilog", &log)
                 )));
             }

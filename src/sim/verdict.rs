@@ -51,6 +51,17 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
         Some(at) => &log[..log[..at].rfind('\n').map_or(0, |i| i + 1)],
         None => &log[..],
     };
+    // Output cut by the cap on what gbump reads (`tool::read_capped`): what was left out may
+    // hold a warning or a mismatch, so the run is not judged clean on the rest.
+    if let Some(line) = log
+        .lines()
+        .find(|l| l.starts_with(crate::tool::CUT_NOTE) && l.contains("bytes of this output left out"))
+    {
+        return Err(Error::Other(format!(
+            "{what}: the simulator printed more than gbump reads ({line}), so the run does not count: a testbench run prints a line per mismatch and one summary\n--- last lines ---\n{}\n  fix: lower --max-errors, or find what floods the output (a $display in a loop) in the lines above",
+            crate::tool::tail(&log, 10)
+        )));
+    }
     let warned = simulator_warnings(judged);
     if !warned.is_empty() {
         return Err(Error::Other(format!(
@@ -143,5 +154,15 @@ mod tests {
         assert!(e.contains("2 \"N passed, N failed\" lines") && e.contains("fix:"), "{e}");
         let hidden = "MISMATCH vector 3\n20 passed, 0 failed\n".to_string();
         assert!(super::outcome(true, hidden, 1.0, "run").is_err());
+    }
+
+    /// A log the output cap cut (`tool::read_capped`) is not judged clean on what was kept:
+    /// the part left out may hold the mismatch.
+    #[test]
+    fn a_cut_log_does_not_pass() {
+        let flood = "MISMATCH again\n".repeat((crate::tool::KEPT_HEAD + 2 * crate::tool::KEPT_TAIL) / 15 + 1000) + "20 passed, 0 failed\n";
+        let log = String::from_utf8(crate::tool::read_capped(flood.as_bytes())).unwrap();
+        let e = super::outcome(true, log, 1.0, "run").unwrap_err().to_string();
+        assert!(e.contains("more than gbump reads") && e.contains("fix:"), "{e}");
     }
 }

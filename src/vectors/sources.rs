@@ -842,13 +842,20 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     off.frag.specular_en = false;
     v.push(("both blend enables off: colour passes through texture only", off));
     // Exact ties of the dot-product rounding (the dot_clamp unit's), on L with the highlight
-    // off, so the three roundings give three different pairs of colours.
-    for (why, b, l) in crate::model::dot_clamp::rounding_ties(cfg).into_iter().flatten() {
+    // off, so the three roundings give three different pairs of colours; only where the
+    // fetched B reaches the dot product as it is (renormalising it, or placing it in a frame,
+    // moves it off the tie).
+    let b_as_fetched = !cfg.renormalise_bump && !cfg.frame_transform && !cfg.palette;
+    for (odd, _, b, l) in crate::model::dot_clamp::rounding_ties(cfg)
+        .into_iter()
+        .flatten()
+        .filter(|_| b_as_fetched)
+    {
         let code = |x: i64| (x + half as i64) as u32;
         let mut tie = base([code(b[0]), code(b[1]), code(b[2])], l, [0, 0, 0], cmax, kone, 0, cmax);
         tie.frag.specular_en = false;
         v.push((
-            if why.contains("1/2 ") {
+            if odd == 1 {
                 "dot product B·L exactly 1/2 fd LSB: a rounding tie above an even code"
             } else {
                 "dot product B·L exactly 3/2 fd LSB: a rounding tie above an odd code"
