@@ -848,14 +848,7 @@ pub fn run() -> anyhow::Result<()> {
             use crate::limits::{check_count, MAX_RANDOM_VECTORS};
             check_count("--random", random, 0, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
             check_count("--random-icarus", random_icarus, 0, MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
-            // Stopping after zero mismatches would report nothing about a failing run.
-            check_count(
-                "--max-errors",
-                max_errors.into(),
-                1,
-                crate::limits::MAX_ERRORS_REPORTED,
-                "MAX_ERRORS_REPORTED",
-            )?;
+            crate::limits::check_max_errors(max_errors)?;
             if let (Some(sz), false) = (&scene_size, no_scenes) {
                 let (w, h) = crate::limits::parse_size("--scene-size", sz)?;
                 crate::measure::scene_error::check_builtin_renders(crate::limits::PixelUse::SceneVectors, w, h)?;
@@ -1603,13 +1596,7 @@ fn cosim(
 ) -> Result<()> {
     let cfg = pick.resolve()?;
     crate::limits::check_count("--random", random, 1, crate::limits::MAX_RANDOM_VECTORS, "MAX_RANDOM_VECTORS")?;
-    crate::limits::check_count(
-        "--max-errors",
-        max_errors.into(),
-        1,
-        crate::limits::MAX_ERRORS_REPORTED,
-        "MAX_ERRORS_REPORTED",
-    )?;
+    crate::limits::check_max_errors(max_errors)?;
     let o = crate::cosim::CosimOptions {
         work: std::path::absolute(work).map_err(|e| Error::io(work, e))?,
         rtl,

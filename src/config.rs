@@ -454,43 +454,50 @@ impl PipelineConfig {
     }
 }
 
-/// The file this run's configuration was read from (`--config`), for a message that finds a
-/// clash with it later, away from where it was read (a scene's needs, say).
-static ORIGIN: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+/// Where this run's configuration came from, for a message that finds a clash with it later,
+/// away from where it was read (a scene's needs, say). None: the default.
+enum Origin {
+    /// A `--config` file.
+    File(String),
+    /// The configuration a `--scene` derives, by the name given.
+    Scene(String),
+}
+
+static ORIGIN: std::sync::Mutex<Option<Origin>> = std::sync::Mutex::new(None);
+
+fn set_origin(o: Origin) {
+    *ORIGIN.lock().unwrap_or_else(|e| e.into_inner()) = Some(o);
+}
 
 /// Record `file` as the run's configuration file ([`origin`]).
 pub fn note_origin(file: &str) {
-    *ORIGIN.lock().unwrap_or_else(|e| e.into_inner()) = Some(file.to_string());
+    set_origin(Origin::File(file.to_string()));
 }
-
-/// The scene whose derived configuration this run uses (`--scene NAME`), when it does.
-static DERIVED: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
 
 /// Record that this run's configuration is the one scene `name` derives (`--scene`).
 pub fn note_derived(name: &str) {
-    *DERIVED.lock().unwrap_or_else(|e| e.into_inner()) = Some(name.to_string());
-    note_origin(&format!("the configuration --scene {} derives", crate::shell::quoted(name)));
+    set_origin(Origin::Scene(name.to_string()));
 }
 
 /// Whether this run's configuration is the one a `--scene` derives ([`note_derived`]).
 pub fn from_scene() -> bool {
-    DERIVED.lock().unwrap_or_else(|e| e.into_inner()).is_some()
+    matches!(*ORIGIN.lock().unwrap_or_else(|e| e.into_inner()), Some(Origin::Scene(_)))
 }
 
 /// Whether this run's configuration was read from a file (`--config`): only then can a
 /// message say to edit a field of it.
 pub fn from_file() -> bool {
-    DERIVED.lock().unwrap_or_else(|e| e.into_inner()).is_none() && ORIGIN.lock().unwrap_or_else(|e| e.into_inner()).is_some()
+    matches!(*ORIGIN.lock().unwrap_or_else(|e| e.into_inner()), Some(Origin::File(_)))
 }
 
 /// The run's configuration as messages name it: the `--config` file, the one a `--scene`
 /// derives, else "the default configuration".
 pub fn origin() -> String {
-    ORIGIN
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .clone()
-        .unwrap_or_else(|| "the default configuration".into())
+    match &*ORIGIN.lock().unwrap_or_else(|e| e.into_inner()) {
+        Some(Origin::File(f)) => f.clone(),
+        Some(Origin::Scene(name)) => format!("the configuration --scene {} derives", crate::shell::quoted(name)),
+        None => "the default configuration".into(),
+    }
 }
 
 impl Default for PipelineConfig {
@@ -620,10 +627,6 @@ pub const LIMITS: &[(&str, u32, u32, &str)] = &[
     ),
 ];
 
-/// The valid range `(lo, hi)` of numeric field `name`, from [`LIMITS`].
-///
-/// # Panics
-/// If `LIMITS` has no such field.
 /// [`LIMITS`] as a Markdown table, each key with its default (`gbump limits` prints it after
 /// the size limits; the README's Limits section holds it).
 pub fn limits_markdown() -> String {
@@ -636,6 +639,10 @@ pub fn limits_markdown() -> String {
     s
 }
 
+/// The valid range `(lo, hi)` of numeric field `name`, from [`LIMITS`].
+///
+/// # Panics
+/// If `LIMITS` has no such field.
 pub fn limit(name: &str) -> (u32, u32) {
     LIMITS
         .iter()

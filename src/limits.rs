@@ -207,6 +207,12 @@ pub fn check_count(what: &str, v: u64, lo: u64, hi: u64, limit: &str) -> Result<
     Err(Error::Other(format!("{what}: {v} is below {lo}\n  fix: {fix}")))
 }
 
+/// `--max-errors` of `regress` and `cosim`: at least 1 (stopping after no mismatch would
+/// report nothing about a failing run), at most [`MAX_ERRORS_REPORTED`].
+pub fn check_max_errors(n: u32) -> Result<()> {
+    check_count("--max-errors", n.into(), 1, MAX_ERRORS_REPORTED, "MAX_ERRORS_REPORTED")
+}
+
 /// `what` = `shown` (a number, or digits past any integer type) is above the limit `limit` = `hi`.
 fn above_limit(what: &str, shown: impl std::fmt::Display, lo: u64, hi: u64, limit: &str) -> Error {
     Error::Other(format!(

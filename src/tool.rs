@@ -159,14 +159,20 @@ pub fn read_capped(mut r: impl std::io::Read) -> Vec<u8> {
             dropped += (head.len() - nl - 1) as u64;
             head.truncate(nl + 1);
         }
-        head.extend_from_slice(format!("\n{CUT_NOTE}{dropped} bytes of this output left out here]\n").as_bytes());
+        head.extend_from_slice(format!("\n{CUT_NOTE}{dropped}{CUT_NOTE_END}\n").as_bytes());
     }
     head.extend_from_slice(&tail);
     head
 }
 
-/// How [`read_capped`]'s note on the bytes it left out begins.
+/// How [`read_capped`]'s note on the bytes it left out begins and ends (the count between).
 pub const CUT_NOTE: &str = "[gbump: ";
+const CUT_NOTE_END: &str = " bytes of this output left out here]";
+
+/// [`read_capped`]'s note in `log`, when it cut the output.
+pub fn cut_note(log: &str) -> Option<&str> {
+    log.lines().find(|l| l.starts_with(CUT_NOTE) && l.ends_with(CUT_NOTE_END))
+}
 
 /// [`std::process::Child::wait_with_output`] with each stream read by [`read_capped`]. The
 /// pipes are read to their end before the tool is reaped, as `wait_with_output` does: the

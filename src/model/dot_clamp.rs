@@ -25,25 +25,15 @@ pub fn dot_clamp(cfg: &PipelineConfig, b: [i64; 3], v: [i64; 3]) -> i64 {
 /// Exact ties of the dot product's rounding, half an output LSB above an even and above an
 /// odd code, where truncate, half_up and nearest_even all differ: b_x·v_x = (2k+1)·2^(E-F-1)
 /// with E the exact product's fraction bits and F the output's, b_x a power of two within
-/// the normal's range and v_x the rest within L/H's. As (why, B raw, V raw); none when E <= F
-/// (the exact sum has no bits below fd's LSB, so no tie exists). The unit's corners and the
-/// top's both hold them. The multiple of a half LSB (1 or 3) comes first.
-pub fn rounding_ties(cfg: &PipelineConfig) -> Option<[(i64, String, [i64; 3], [i64; 3]); 2]> {
+/// the normal's range and v_x the rest within L/H's. As (the multiple of a half LSB, 1 or 3;
+/// B raw; V raw); none when E <= F (the exact sum has no bits below fd's LSB, so no tie
+/// exists). The unit's corners and the top's both hold them.
+pub fn rounding_ties(cfg: &PipelineConfig) -> Option<[(i64, [i64; 3], [i64; 3]); 2]> {
     let e = cfg.dot_exact_fmt().frac;
     (e > cfg.dot_frac_bits).then(|| {
         let z = e - cfg.dot_frac_bits - 1;
         let bz = z.min(cfg.normal_bits - 2);
-        [1i64, 3].map(|odd| {
-            (
-                odd,
-                format!(
-                    "exactly {odd}/2 output LSB: a rounding tie above an {} code",
-                    if odd == 1 { "even" } else { "odd" }
-                ),
-                [1i64 << bz, 0, 0],
-                [odd << (z - bz), 0, 0],
-            )
-        })
+        [1i64, 3].map(|odd| (odd, [1i64 << bz, 0, 0], [odd << (z - bz), 0, 0]))
     })
 }
 

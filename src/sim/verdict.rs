@@ -53,10 +53,7 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
     };
     // Output cut by the cap on what gbump reads (`tool::read_capped`): what was left out may
     // hold a warning or a mismatch, so the run is not judged clean on the rest.
-    if let Some(line) = log
-        .lines()
-        .find(|l| l.starts_with(crate::tool::CUT_NOTE) && l.contains("bytes of this output left out"))
-    {
+    if let Some(line) = crate::tool::cut_note(&log) {
         return Err(Error::Other(format!(
             "{what}: the simulator printed more than gbump reads ({line}), so the run does not count: a testbench run prints a line per mismatch and one summary\n--- last lines ---\n{}\n  fix: lower --max-errors, or find what floods the output (a $display in a loop) in the lines above",
             crate::tool::tail(&log, 10)

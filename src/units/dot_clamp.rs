@@ -60,8 +60,15 @@ impl Unit for DotClamp {
         let (nf, lf) = (cfg.normal_fmt(), cfg.lh_fmt());
         let one = 1i64 << (cfg.lh_bits - 2);
         let flat = cfg.flat_normal().to_vec();
-        let ties = crate::model::dot_clamp::rounding_ties(cfg)
-            .map(|t| t.map(|(_, why, b, v)| (format!("B·V {why}"), vec![b.to_vec(), v.to_vec()])));
+        let ties = crate::model::dot_clamp::rounding_ties(cfg).map(|t| {
+            t.map(|(odd, b, v)| {
+                let below = if odd == 1 { "even" } else { "odd" };
+                (
+                    format!("B·V exactly {odd}/2 output LSB: a rounding tie above an {below} code"),
+                    vec![b.to_vec(), v.to_vec()],
+                )
+            })
+        });
         let mut v = vec![
             (
                 "flat normal, V straight up: the largest dot of a unit normal".into(),

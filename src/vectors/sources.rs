@@ -686,8 +686,7 @@ pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
     if cfg.skip_flat {
         // Most corners carry the flat code, which skip_flat bypasses: say so where the reason
         // would otherwise describe lighting the record does not get.
-        let half = 1u32 << (cfg.normal_bits - 1);
-        let flat = BumpTexel::Rgb([half, half, (1u32 << cfg.normal_bits) - 1]);
+        let flat = BumpTexel::Rgb(flat_code(cfg));
         for (why, s) in &mut v {
             if s.frag.bump == flat && !why.contains("skip_flat") {
                 why.push_str(" (the flat code: skip_flat bypasses the blends, C_src·T only)");
@@ -695,6 +694,12 @@ pub fn corners(cfg: &PipelineConfig, level: u8) -> Vec<(String, TopStim)> {
         }
     }
     v
+}
+
+/// The flat normal's stored code (2^(w-1), 2^(w-1), 2^w - 1), in either normal range.
+fn flat_code(cfg: &PipelineConfig) -> [u32; 3] {
+    let half = 1u32 << (cfg.normal_bits - 1);
+    [half, half, (1u32 << cfg.normal_bits) - 1]
 }
 
 /// EMBM's corners: each of `env_coords`' own edges (texel centres, clamps, the truncation
@@ -766,7 +771,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     let half = 1u32 << (cfg.normal_bits - 1);
     let nmax = (1u32 << cfg.normal_bits) - 1;
     let kone = 1i64 << cfg.k_frac_bits;
-    let flat = [half, half, nmax];
+    let flat = flat_code(cfg);
     let lh = cfg.lh_fmt();
     // Colours below are written for 8-bit channels and scaled to the configured width.
     let sc = |x: u32| scale8(x, cmax);
@@ -846,7 +851,7 @@ fn corners_level1(cfg: &PipelineConfig) -> Vec<(&'static str, TopStim)> {
     // fetched B reaches the dot product as it is (renormalising it, or placing it in a frame,
     // moves it off the tie).
     let b_as_fetched = !cfg.renormalise_bump && !cfg.frame_transform && !cfg.palette;
-    for (odd, _, b, l) in crate::model::dot_clamp::rounding_ties(cfg)
+    for (odd, b, l) in crate::model::dot_clamp::rounding_ties(cfg)
         .into_iter()
         .flatten()
         .filter(|_| b_as_fetched)
@@ -888,7 +893,7 @@ fn corners_level2(cfg: &PipelineConfig) -> Vec<(String, TopStim)> {
     let nmax = (1u32 << cfg.normal_bits) - 1;
     let kone = 1i64 << cfg.k_frac_bits;
     let lh = cfg.lh_fmt();
-    let flat = [half, half, nmax];
+    let flat = flat_code(cfg);
     let sc = |x: u32| scale8(x, cmax);
     let mk = |codes: [u32; 3], l: [i64; 3], h: [i64; 3], k: i64, c: u32, t: u32| {
         let (c, t) = (
