@@ -5,10 +5,40 @@
 # nextpnr-ice40 needs the iCE40 chip database (fpga-icestorm-chipdb, a dependency);
 # fpga-icestorm adds icepack and icetime.
 set -euo pipefail
+# Debian packages first: Verilator's C++ builds need make and g++ (the verilator package
+# depends on neither), and the Python tools need python3 with pip (a bare Debian has
+# neither; the rust image has python3 without pip).
+apt_pkgs=()
 missing=()
 for t in iverilog verilator yosys nextpnr-ice40; do
     command -v "$t" >/dev/null 2>&1 || missing+=("$t")
 done
+if [ ${#missing[@]} -gt 0 ]; then
+    apt_pkgs+=(iverilog verilator yosys nextpnr-ice40 fpga-icestorm)
+fi
+for t in make g++; do
+    command -v "$t" >/dev/null 2>&1 || apt_pkgs+=("$t")
+done
+if ! command -v python3 >/dev/null 2>&1; then
+    apt_pkgs+=(python3 python3-pip)
+elif ! python3 -m pip --version >/dev/null 2>&1; then
+    apt_pkgs+=(python3-pip)
+fi
+if [ ${#apt_pkgs[@]} -gt 0 ]; then
+    echo "installing: ${apt_pkgs[*]} (apt-get)" >&2
+    SUDO=""
+    if [ "$(id -u)" -ne 0 ]; then
+        command -v sudo >/dev/null 2>&1 || { echo "error: need root or sudo to apt-get install ${apt_pkgs[*]}" >&2; exit 1; }
+        SUDO="sudo"
+    fi
+    export DEBIAN_FRONTEND=noninteractive
+    $SUDO apt-get update -qq
+    $SUDO apt-get install -y -qq "${apt_pkgs[@]}" >/dev/null
+    for t in iverilog verilator yosys nextpnr-ice40 make g++ python3; do
+        command -v "$t" >/dev/null 2>&1 || { echo "error: $t still missing after apt-get install ${apt_pkgs[*]}" >&2; exit 1; }
+    done
+    python3 -m pip --version >/dev/null 2>&1 || { echo "error: python3 has no pip after apt-get install ${apt_pkgs[*]}" >&2; exit 1; }
+fi
 # FuseSoC (runs the generated .core), cocotb (examples/cocotb*), maturin (builds python/) and
 # NumPy (the module's arrays), pinned, from PyPI.
 PY_PKGS=(fusesoc==2.4.3 cocotb==1.9.2 maturin==1.16.0 numpy==2.3.5)
@@ -19,24 +49,10 @@ python_tools_present() {
 }
 if ! python_tools_present; then
     echo "installing: ${PY_PKGS[*]} (pip)" >&2
-    python3 -m pip install --quiet "${PY_PKGS[@]}"
+    "$(dirname "$0")/pip-install.sh" "${PY_PKGS[@]}"
     # pyenv finds new console scripts only after a rehash.
     if command -v pyenv >/dev/null 2>&1; then pyenv rehash || true; fi
-    python_tools_present || { echo "error: fusesoc, cocotb, maturin or numpy still missing after pip install ${PY_PKGS[*]}" >&2; exit 1; }
+    hash -r
+    python_tools_present || { echo "error: fusesoc, cocotb, maturin or numpy still missing after pip install ${PY_PKGS[*]} (is pip's script folder on PATH?)" >&2; exit 1; }
 fi
 "$(dirname "$0")/python-module.sh"
-if [ ${#missing[@]} -eq 0 ]; then
-    exit 0
-fi
-echo "installing: iverilog verilator yosys nextpnr-ice40 fpga-icestorm (missing: ${missing[*]})" >&2
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then
-    command -v sudo >/dev/null 2>&1 || { echo "error: need root or sudo to apt-get install iverilog verilator yosys nextpnr-ice40 fpga-icestorm" >&2; exit 1; }
-    SUDO="sudo"
-fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq iverilog verilator yosys nextpnr-ice40 fpga-icestorm >/dev/null
-for t in iverilog verilator yosys nextpnr-ice40; do
-    command -v "$t" >/dev/null 2>&1 || { echo "error: $t still missing after apt-get install" >&2; exit 1; }
-done

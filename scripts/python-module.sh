@@ -28,6 +28,6 @@ if [ -n "$dir" ] && [ -f "$dir/gbump.abi3.so" ]; then
 fi
 if [ "$built" != "$installed" ]; then
     echo "installing the Python module gbump ($whl)" >&2
-    python3 -m pip install --quiet --force-reinstall --no-deps "$whl" 2>&1 | grep -v "Running pip as the 'root' user" >&2 || true
+    scripts/pip-install.sh --force-reinstall --no-deps "$whl"
 fi
 python3 -c 'import gbump' || { echo "error: the Python module gbump does not import after installing $whl" >&2; exit 1; }

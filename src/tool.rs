@@ -375,11 +375,18 @@ pub fn tail(log: &str, n: usize) -> String {
     lines[lines.len().saturating_sub(n)..].join("\n")
 }
 
-/// Where `tool` is on PATH (the first match), for messages about which one ran.
+/// Where `tool` is on PATH (the first executable match, the one a search of PATH runs),
+/// for messages about which one ran.
 pub fn on_path(tool: &str) -> Option<std::path::PathBuf> {
-    std::env::split_paths(&std::env::var_os("PATH")?)
+    first_executable(tool, &std::env::var_os("PATH")?)
+}
+
+/// [`on_path`] in the folders of `path`.
+fn first_executable(tool: &str, path: &std::ffi::OsStr) -> Option<std::path::PathBuf> {
+    use std::os::unix::fs::PermissionsExt;
+    std::env::split_paths(path)
         .map(|d| d.join(tool))
-        .find(|p| p.is_file())
+        .find(|p| p.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0))
 }
 
 /// The last `n` lines of a failed tool's `log`, or a line saying it printed nothing (a
@@ -462,6 +469,23 @@ mod tests {
 
     /// An optional tool is named missing only when it is: one that hangs on `--version` says
     /// so (after the probe's limit), one that answers is usable.
+    /// A file of the tool's name without an execute bit is passed over, as a search of PATH
+    /// passes it over, so a message names the one that ran.
+    #[test]
+    fn the_tool_on_path_is_the_first_executable() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+        for (d, mode) in [(&a, 0o644), (&b, 0o755)] {
+            std::fs::create_dir(d).unwrap();
+            std::fs::write(d.join("tooly"), "#!/bin/sh\n").unwrap();
+            std::fs::set_permissions(d.join("tooly"), std::fs::Permissions::from_mode(mode)).unwrap();
+        }
+        let path = std::env::join_paths([&a, &b]).unwrap();
+        assert_eq!(super::first_executable("tooly", &path), Some(b.join("tooly")));
+        assert_eq!(super::first_executable("absent", &path), None);
+    }
+
     #[test]
     fn an_unusable_tool_says_why() {
         let dir = tempfile::tempdir().unwrap();
