@@ -706,11 +706,12 @@ fn refuse_control_characters() -> Result<()> {
     )))
 }
 
-/// Refuse a negative number given to an option (`--random -5`, `--seed=-1`): no option of
-/// gbump takes one, and the parser would otherwise call it an unknown argument.
+/// Refuse a negative number given to an option (`--random -5`, `--seed=-1`, and `-0`): no
+/// option of gbump takes a sign, and the parser would otherwise call it an unknown argument
+/// (or, after `=`, read `-0` as 0).
 fn refuse_negative_numbers() -> Result<()> {
     let args = lossy_arguments();
-    let negative = |v: &str| v.starts_with('-') && v[1..].parse::<f64>().is_ok_and(|x| x > 0.0);
+    let negative = |v: &str| v.starts_with('-') && v[1..].parse::<f64>().is_ok_and(|x| !x.is_nan());
     for (i, a) in args.iter().enumerate() {
         let (flag, value) = match a.split_once('=') {
             Some((f, v)) if f.starts_with("--") => (f, v),

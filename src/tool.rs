@@ -401,7 +401,7 @@ pub fn log_tail(tool: &str, log: &str, n: usize) -> String {
 
 /// The fix line of a failed run of `tool` that printed nothing: it is not the tool gbump
 /// knows, or it is broken.
-fn silent_fix(tool: &str) -> String {
+pub fn silent_fix(tool: &str) -> String {
     let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
     format!("  fix: {tool} ({at}) failed without a word and made none of its outputs: it is not a working {tool}; reinstall it (scripts/install-tools.sh) or put a working one first on PATH")
 }

@@ -1046,6 +1046,18 @@ fn cases() -> Vec<Case> {
             vec!["--random -5: a negative number", "fix: give --random a value in its range"],
         ),
         (
+            "a minus zero, after a space (the parser took it for a flag)",
+            vec![],
+            vec!["rom", "--shininess", "-0", "--out", "out"],
+            vec!["--shininess -0: a negative number", "fix: give --shininess a value in its range"],
+        ),
+        (
+            "a minus zero, after `=` (the parser read it as 0)",
+            vec![],
+            vec!["rom", "--shininess=-0", "--out", "out"],
+            vec!["--shininess -0: a negative number", "fix: give --shininess a value in its range"],
+        ),
+        (
             "unknown field in a sweep base",
             space("[base]\nlights = 2\nbogus = 1\n\n[grid]\nlights = [1, 2]\n"),
             sweep(),
@@ -2270,20 +2282,22 @@ fn a_folder_regress_refuses_is_named_when_the_vectors_are_written() {
     assert!(!o.status.success() && err.contains("'='") && err.contains("fix:"), "{err}");
 }
 
-/// A Verilator or a Yosys that exits 0 having printed and made nothing: the message says it
-/// printed nothing, names the tool that ran and says to reinstall it, where it pointed at
-/// "the reasons above" (none) and called it a gbump bug.
+/// A Verilator or a Yosys that exits 0 having printed and made nothing, or a make that fails
+/// without a word on Verilator's output: the message says it printed nothing, names the tool
+/// that ran and says to reinstall it, where it pointed at "the reasons above" (none) and
+/// called it a gbump bug, or blamed Verilator for make.
 #[test]
 fn a_silent_tool_that_makes_nothing_is_named_as_broken() {
-    for (tool, args) in [
-        (
-            "verilator",
-            vec!["regress", "--sim", "verilator", "--random", "10", "--no-scenes", "--target", "top"],
-        ),
-        ("yosys", vec!["area"]),
-    ] {
+    let regress = vec!["regress", "--sim", "verilator", "--random", "10", "--no-scenes", "--target", "top"];
+    for (tool, args) in [("verilator", regress.clone()), ("yosys", vec!["area"]), ("make", regress)] {
         let dir = tempfile::tempdir().unwrap();
-        let body = format!("if [ \"$1\" = --version ] || [ \"$1\" = -V ]; then exec /usr/bin/{tool} \"$@\"; fi\nexit 0");
+        // A real answer to the version probe (and to make's dry run, which lists Verilator's
+        // runtime objects), silence for the work.
+        let body = if tool == "make" {
+            "for a in \"$@\"; do if [ \"$a\" = -n ]; then exec /usr/bin/make \"$@\"; fi; done\nexit 1".to_string()
+        } else {
+            format!("if [ \"$1\" = --version ] || [ \"$1\" = -V ]; then exec /usr/bin/{tool} \"$@\"; fi\nexit 0")
+        };
         let path = fake_tools::tool(&dir.path().join("bin"), tool, &body);
         let o = Command::cargo_bin("gbump")
             .unwrap()

@@ -73,6 +73,13 @@ fn cached_build(
             (ok, make_log, _) = make()?;
         }
         if !ok || !dir.join(exe_name).exists() {
+            // Verilator's part is done here: a silent failure is make's (or the compiler's).
+            if make_log.trim().is_empty() {
+                return Err(Error::Other(format!(
+                    "make (the C++ build of Verilator's output) failed to build {exe_name}:\n(make printed nothing)\n{}",
+                    crate::tool::silent_fix("make")
+                )));
+            }
             let log = log + &make_log;
             return Err(Error::Other(format!(
                 "verilator failed to build {exe_name}:\n{}\n{}",
