@@ -348,7 +348,9 @@ impl Config {
     /// Vector sets of `source` ("random:N", "corners", "scene:NAME", "exhaustive:UNIT"), the
     /// top's set as `gbump vectors --target top` writes it (an exhaustive source: its unit's
     /// set), with the same default seed, 1: a list of {name, target, shininess, records,
-    /// reasons} (one per power table; `reasons` lists why each corner is there, else None).
+    /// reasons} (one per power table; `reasons` lists why each corner is there, else None);
+    /// a scene's sets also have `pixels`, each record's pixel (uint32 (N, 2), x then y, row 0
+    /// at the top), as the dump's `_pixels.txt` gives it.
     /// Random, corner and exhaustive sets use `shininess`, by default the configuration's own
     /// (its TOML field, what `gbump vectors` uses; not the model's current table, which the
     /// `shininess` property reads and sets); scenes their objects'. `size` is a scene's image

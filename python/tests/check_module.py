@@ -141,6 +141,13 @@ if not config:
     (g,) = sc.vectors("scene:blend_split", size=(32, 32))
     ref = rows_from_hex(os.path.join(vec, g["name"] + "_top.hex"), sc.record_words("top"))
     check(len(ref) > 0 and np.array_equal(g["records"], ref), "scene:blend_split equals the file")
+    px = np.loadtxt(os.path.join(vec, g["name"] + "_top_pixels.txt"), dtype=np.uint32, ndmin=2)
+    check(g["pixels"].shape == (len(ref), 2) and np.array_equal(g["pixels"], px), "scene:blend_split's pixels equal the file")
+    check(len({(int(x), int(y)) for x, y in px}) == len(px) and px.max() < 32, "each record has its own pixel, inside the image")
+    # Within a triangle (records after its first), pixel order: rows from the top, x increasing.
+    at = px[:, 1].astype(np.int64) * 32 + px[:, 0]
+    same = sc.unpack("top", g["records"])["tri_start"].ravel()[1:] == 0
+    check(same.any() and bool(np.all(np.diff(at)[same] > 0)), "a triangle's fragments come in pixel order")
 
 # Bad input: the library's message, with its fix.
 check(raises(lambda: gbump.Config("lights = 9\n", "bad.toml"), "bad.toml", "lights", "fix:"), "an out-of-range field")

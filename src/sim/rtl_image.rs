@@ -7,7 +7,6 @@ use super::testbench::harness_top;
 use super::{Simulator, Verilator};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
-use crate::raster::{fragment::fragments, rasterise::rasterise, Prepared};
 use crate::scene::Scene;
 use crate::vectors::{dump, verify, DumpOptions, Source};
 use std::path::Path;
@@ -38,24 +37,12 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
         &harness_top(cfg),
         &rtl,
     )?;
-    // The same fragments in the same order as the dump, to know where each colour goes.
-    let p = Prepared::new(&scene, cfg, w, h)?;
-    let frags = fragments(&p, &rasterise(&p)?);
     let bg = crate::raster::fragment::colour_codes(glam::DVec3::from_array(scene.camera.background), cfg.colour_max());
     let mut img = vec![bg; (w * h) as usize];
-    // The dump's groups in their order (`scene_groups`): one set each.
-    let key = |obj: u32| crate::vectors::sources::group_key(cfg, &scene, obj);
-    let keys: std::collections::BTreeSet<u32> = frags.iter().map(|f| key(f.obj)).collect();
-    if keys.len() != sets.len() {
-        return Err(Error::Other(format!(
-            "render --rtl: the dump wrote {} top set(s) for {} group(s) of fragments; colours would land on the wrong pixels",
-            sets.len(),
-            keys.len()
-        )));
-    }
-    for (set, k) in sets.into_iter().zip(keys) {
+    for set in sets {
         let (m, dir) = verify(&set.manifest)?;
-        let mine: Vec<_> = frags.iter().filter(|f| key(f.obj) == k).collect();
+        // Where each record's colour goes: the pixels file the dump wrote beside the set.
+        let mine = read_pixels(&m, &dir, w, h)?;
         let out = dir.join(format!("{}.rtl_out", m.module));
         let bin = dir.join(&m.bin.as_ref().expect("binary set").name);
         let args = [
@@ -82,11 +69,40 @@ pub fn rtl_image(scene_name: &str, cfg: &PipelineConfig, w: u32, h: u32, work: &
         }
         let c = cfg.colour_bits;
         let mask = (1u64 << c) - 1;
-        for (f, b) in mine.iter().zip(bytes.chunks_exact(8)) {
+        for ([x, y], b) in mine.iter().zip(bytes.chunks_exact(8)) {
             let v = u64::from_le_bytes(b.try_into().expect("8 bytes"));
-            img[(f.y * w + f.x) as usize] = [0, 1, 2].map(|i| ((v >> (i * c)) & mask) as u32);
+            img[(y * w + x) as usize] = [0, 1, 2].map(|i| ((v >> (i * c)) & mask) as u32);
         }
         let _ = std::fs::remove_file(&out);
     }
     Ok(img)
+}
+
+/// The pixels of a scene set's records (its manifest's `pixels` file): one per record, each
+/// inside the `w` x `h` image.
+fn read_pixels(m: &crate::vectors::Manifest, dir: &Path, w: u32, h: u32) -> Result<Vec<[u32; 2]>> {
+    let entry = m.pixels.as_ref().ok_or_else(|| {
+        Error::Other(format!(
+            "{}: a scene set without a pixels file: its colours have nowhere to go\n  fix: this is a gbump bug; report it with the scene",
+            m.module
+        ))
+    })?;
+    let p = dir.join(&entry.name);
+    let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
+    let bad = |line: usize, why: &str| Error::Other(format!("{}:{line}: {why}\n  fix: this is a gbump bug; report it with the scene", p.display()));
+    let px = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            let v: Vec<u32> = l.split(' ').filter_map(|x| x.parse().ok()).collect();
+            match v[..] {
+                [x, y] if x < w && y < h => Ok([x, y]),
+                _ => Err(bad(i + 1, &format!("`{l}` is not a pixel `x y` of the {w}x{h} image"))),
+            }
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if px.len() as u64 != m.count {
+        return Err(bad(px.len(), &format!("{} pixels for {} records", px.len(), m.count)));
+    }
+    Ok(px)
 }

@@ -65,6 +65,9 @@ pub struct Manifest {
     /// `env_specular_*` ports before the run (other sets run on the power-up maps).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub env_maps: Option<EnvMapFiles>,
+    /// Scene top sets: each record's pixel, `x y` a line (`vectors::writer::write_pixels`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixels: Option<FileEntry>,
 }
 
 /// A set's environment maps, as `gbump rom` writes the power-up ones: one for each blend
@@ -106,6 +109,7 @@ impl Manifest {
             ("hex.name", self.hex.as_ref()),
             ("bin.name", self.bin.as_ref()),
             ("power_table.name", Some(&self.power_table)),
+            ("pixels.name", self.pixels.as_ref()),
         ]
         .into_iter()
         .filter_map(|(k, f)| Some((k, f?)))

@@ -541,6 +541,9 @@ pub struct SceneGroup {
     pub stims: Vec<TopStim>,
     /// EMBM: the object's two maps, which the harness loads before the run.
     pub env: Option<crate::model::env_map::EnvMaps>,
+    /// A scene's groups: each record's pixel, `[x, y]` (row 0 at the top), one for one with
+    /// `stims`; the dump writes them beside the top set (`_pixels.txt`).
+    pub pixels: Option<Vec<[u32; 2]>>,
 }
 
 /// The group a fragment of object `obj` of scene `s` goes with under `cfg`: its object under
@@ -580,24 +583,26 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
         _ => e,
     })?;
     let frags = crate::raster::fragment::fragments(&p, &gb);
-    let mut groups: std::collections::BTreeMap<u32, Vec<TopStim>> = Default::default();
+    let mut groups: std::collections::BTreeMap<u32, (Vec<TopStim>, Vec<[u32; 2]>)> = Default::default();
     // `fragments` gives each triangle's fragments together: a setup starts each run.
     let mut prev: std::collections::BTreeMap<u32, (u32, u32)> = Default::default();
     for f in frags {
         let key = group_key(cfg, &s, f.obj);
         let tri_start = prev.insert(key, (f.obj, f.tri)) != Some((f.obj, f.tri));
-        groups.entry(key).or_default().push(TopStim {
+        let (stims, pixels) = groups.entry(key).or_default();
+        stims.push(TopStim {
             frag: f.frag,
             state: f.state,
             tri_start,
         });
+        pixels.push([f.x, f.y]);
     }
     let stem = Source::Scene(name.to_string()).stem();
     let multi = groups.len() > 1;
     let mut objects: Vec<Option<crate::model::env_map::EnvMaps>> = p.objects.into_iter().map(|o| Some(o.env)).collect();
     Ok(groups
         .into_iter()
-        .map(|(key, stims)| {
+        .map(|(key, (stims, pixels))| {
             let (shininess, tag, env) = match cfg.embm() {
                 true => (cfg.shininess, format!("_o{key}"), objects[key as usize].take()),
                 false => (key, format!("_n{key}"), None),
@@ -607,6 +612,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
                 stem: if multi { format!("{stem}{tag}") } else { stem.clone() },
                 stims,
                 env,
+                pixels: Some(pixels),
             }
         })
         .collect())

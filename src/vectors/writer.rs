@@ -251,7 +251,7 @@ impl SetWriter {
     }
 
     fn finish(self, dir: &Path, cfg: &PipelineConfig, src: &Source, o: &DumpOptions, n: u32) -> Result<VectorSet> {
-        self.finish_with(dir, cfg, src, o, n, None)
+        self.finish_with(dir, cfg, src, o, n, None, None)
     }
 
     /// [`Self::finish`] for a set that runs on its own environment maps `env` (EMBM scene
@@ -264,6 +264,7 @@ impl SetWriter {
         o: &DumpOptions,
         n: u32,
         env: Option<&EnvMaps>,
+        pixels: Option<&[[u32; 2]]>,
     ) -> Result<VectorSet> {
         if self.count == 0 {
             return Err(Error::Other(format!(
@@ -274,21 +275,19 @@ impl SetWriter {
         let hex = self.hex.map(Sink::finish).transpose()?;
         let bin = self.bin.map(Sink::finish).transpose()?;
         let table_name = format!("{}_power_table.hex", self.stem);
-        let tp = dir.join(&table_name);
         let rom = crate::rtlgen::rom::power_rom(cfg, n);
         let text = crate::rtlgen::rom::write(
             &rom,
             crate::rtlgen::rom::RomFormat::Hex,
             &crate::rtlgen::rom::rom_header(&rom, Some(cfg), &o.command, "power table of this vector set"),
         );
-        crate::render::output::write_atomic(&tp, text.as_bytes())?;
-        // From the bytes written: under `commit::together` the file is not in place yet.
-        let (bytes, sha256) = (
-            text.len() as u64,
-            Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
-        );
+        let power_table = write_listed(dir, table_name, &text)?;
         let env_maps = match env {
             Some(maps) => Some(write_env_maps(dir, &self.stem, cfg, maps, &o.command)?),
+            None => None,
+        };
+        let pixels = match pixels {
+            Some(px) => Some(write_pixels(dir, &self.stem, px)?),
             None => None,
         };
         let (module, latency, initiation_interval) = super::manifest::timing(cfg, &self.target);
@@ -308,14 +307,11 @@ impl SetWriter {
             columns: columns(&self.layout),
             hex,
             bin,
-            power_table: FileEntry {
-                name: table_name,
-                bytes,
-                sha256,
-            },
+            power_table,
             latency,
             initiation_interval,
             env_maps,
+            pixels,
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
@@ -326,6 +322,7 @@ impl SetWriter {
             .map(|x| format!("{}.{x}", self.stem))
             .into_iter()
             .chain(["diffuse", "specular"].map(|w| env_map_name(&self.stem, w)))
+            .chain([pixels_name(&self.stem)])
         {
             if !listed.contains(&stale.as_str()) {
                 crate::commit::retire(&dir.join(stale))?;
@@ -340,6 +337,29 @@ impl SetWriter {
 }
 
 /// The file of set `stem`'s `which` (`diffuse`, `specular`) environment map.
+/// Write `text` to `name` in `dir` (atomically) and give its manifest entry, from the bytes
+/// written: under `commit::together` the file is not in place yet.
+fn write_listed(dir: &Path, name: String, text: &str) -> Result<FileEntry> {
+    crate::render::output::write_atomic(&dir.join(&name), text.as_bytes())?;
+    Ok(FileEntry {
+        name,
+        bytes: text.len() as u64,
+        sha256: Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
+    })
+}
+
+/// The pixels file of a scene's top set.
+fn pixels_name(stem: &str) -> String {
+    format!("{stem}_pixels.txt")
+}
+
+/// Each record's pixel (`x y`, decimal, a line a record, in the records' order; row 0 at the
+/// top), beside a scene's top set: where its colour goes in the image.
+fn write_pixels(dir: &Path, stem: &str, pixels: &[[u32; 2]]) -> Result<FileEntry> {
+    let text: String = pixels.iter().map(|[x, y]| format!("{x} {y}\n")).collect();
+    write_listed(dir, pixels_name(stem), &text)
+}
+
 fn env_map_name(stem: &str, which: &str) -> String {
     format!("{stem}_env_{which}.hex")
 }
@@ -355,12 +375,7 @@ pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMa
             crate::rtlgen::rom::RomFormat::Hex,
             &crate::rtlgen::rom::rom_header(&rom, Some(cfg), command, &format!("{which} environment map of this vector set")),
         );
-        crate::render::output::write_atomic(&dir.join(&name), text.as_bytes())?;
-        Ok(FileEntry {
-            name,
-            bytes: text.len() as u64,
-            sha256: Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect(),
-        })
+        write_listed(dir, name, &text)
     };
     // Only the maps the top has a port for (one per blend of the configuration).
     let has = |which: &str| {
@@ -396,6 +411,7 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path, t
                 stem: src.stem(),
                 stims: cat.into_iter().map(|c| c.1).collect(),
                 env: None,
+                pixels: None,
             }]
         }
         Source::Scene(name) => super::sources::scene_groups(cfg, name, o.size)?,
@@ -614,8 +630,12 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                 }
                 for w in ws {
                     // The top loads the maps through its ports; a unit's harness has none.
-                    let env = if w.target == "top" { g.env.as_ref() } else { None };
-                    out.push(w.finish_with(dir, cfg, src, o, n, env)?);
+                    // The pixels are the top's records' (a unit set is not one for one).
+                    let (env, pixels) = match w.target == "top" {
+                        true => (g.env.as_ref(), g.pixels.as_deref()),
+                        false => (None, None),
+                    };
+                    out.push(w.finish_with(dir, cfg, src, o, n, env, pixels)?);
                 }
             }
         }
