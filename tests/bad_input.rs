@@ -282,6 +282,12 @@ fn cases() -> Vec<Case> {
             vec!["s.toml:23:1", "objects[0].segments[0]", "for a sphere", "3..=1024"],
         ),
         (
+            "a prism with a u scale (each facet spans the map's u once)",
+            scene(|t: &str| r("kind = \"plane\", size = [4.0, 2.0]", "kind = \"cylinder\", radius = 1.0, height = 2.0, sides = 6")(t)),
+            render(&[]),
+            vec!["objects[0].uv_scale[0]", "2 on a prism", "fix: drop uv_scale[0]"],
+        ),
+        (
             "quoted keys keep their line",
             scene(r("shape = { kind = \"plane\", size = [4.0, 2.0] }", "\"shape\" = { \"kind\" = \"plane\", \"size\" = [4.0, -2.0] }")),
             render(&[]),

@@ -133,3 +133,24 @@ fn zero_area_coincident_and_mirrored_triangles_leave_no_nan() {
         assert!(gouraud_f64::shade(&p, hit, &g).is_finite() && perpixel::shade(&p, hit, &g).is_finite());
     }
 }
+
+/// A short `up` is a direction like any other: the camera's fallback for an up along the
+/// view (which validation refuses) tests the same thing, relative to up's length. A wall
+/// seen with up = 1e-7·Y is the wall seen with up = Y, not one turned by a fallback axis.
+#[test]
+fn a_short_up_turns_the_camera_as_a_unit_one_does() {
+    let base = gbump::scene::builtin::get("cg_wall_front").unwrap();
+    assert!(base.contains("up = [0.0, 1.0, 0.0]"));
+    let image = |up: &str| {
+        let text = base.replace("up = [0.0, 1.0, 0.0]", up);
+        let s = Scene::from_toml("up.toml", &text, std::path::Path::new("scenes")).unwrap();
+        let cfg = s.derive_config().unwrap();
+        render(&s, &cfg, 64, 32, false).unwrap().golden
+    };
+    let unit = image("up = [0.0, 1.0, 0.0]");
+    for up in ["up = [0.0, 1e-7, 0.0]", "up = [0.0, 3.0, 0.0]", "up = [0.0, 1e-7, 1e-6]"] {
+        let other = image(up);
+        let differ = unit.iter().zip(&other).filter(|(a, b)| a != b).count();
+        assert!(differ <= unit.len() / 100, "{up}: {differ} of {} pixels differ from up = Y", unit.len());
+    }
+}

@@ -185,3 +185,45 @@ fn rom_files_follow_the_configurations_memories() {
         .to_string();
     assert!(e.contains("cube_map_face = 16") && e.contains("fix:"), "{e}");
 }
+
+/// `gbump rom --scene` writes each object's bump map as the texture memory holds it, with the
+/// addressing its header states: the model's own sampler at texel (x, y)'s centre gives word
+/// y·w + x, whatever the filter.
+#[test]
+fn a_scenes_bump_maps_are_its_objects_texture_memory() {
+    use gbump::bumpmap::sample::{sample_codes, Filter};
+    for scene in ["blend_split", "torus_caps", "cg_wall_front"] {
+        let (s, cfg) = gbump::render::report::scene_and_config(scene, None).unwrap();
+        let files = gbump::rtlgen::rom_files::rom_files(&cfg, Some(scene), "", None, None, Path::new("rom")).unwrap();
+        let maps: Vec<&(String, String)> = files
+            .iter()
+            .filter(|(f, _)| f.starts_with(&format!("bump_map_{scene}_o")) && f.ends_with(".hex"))
+            .collect();
+        assert_eq!(maps.len(), s.objects.len(), "{scene}: one map per object");
+        let nb = cfg.normal_bits;
+        let mask = (1u64 << nb) - 1;
+        for (i, (name, text)) in maps.iter().enumerate() {
+            assert!(name.starts_with(&format!("bump_map_{scene}_o{i}_")), "{name}");
+            let p = header_params(text);
+            assert_eq!(p["object"], format!("{scene} object {i}"));
+            assert_eq!(p["normal_bits"], nb.to_string());
+            // "texel (x, y) of the WxH map at word y*W + x (texel centres at ((x + 0.5)/W, ...".
+            let dims = text.split(" of the ").nth(1).and_then(|t| t.split(" map").next()).unwrap();
+            let (w, h) = dims.split_once('x').map(|(a, b)| (a.parse::<usize>().unwrap(), b.parse::<usize>().unwrap())).unwrap();
+            let words = parse(text, RomFormat::Hex).unwrap();
+            assert_eq!(words.len(), w * h, "{name}");
+            let codes: Vec<[u32; 3]> = words.iter().map(|&v| [0, 1, 2].map(|c| ((v >> (c * nb)) & mask) as u32)).collect();
+            let clamp_u = text.contains("u clamped");
+            for (x, y) in [(0, 0), (w - 1, 0), (0, h - 1), (w / 2, h / 3), (w - 1, h - 1)] {
+                let uv = glam::DVec2::new((x as f64 + 0.5) / w as f64, (y as f64 + 0.5) / h as f64);
+                for f in [Filter::Nearest, Filter::Bilinear] {
+                    assert_eq!(sample_codes(&codes, w, h, clamp_u, uv, f), codes[y * w + x], "{name} ({x}, {y}) {f:?}");
+                }
+            }
+            // Not a flat map where the scene bumps its surface.
+            if s.objects[i].bump.strength > 0.0 {
+                assert!(codes.iter().any(|c| *c != codes[0]), "{name}: every texel the same");
+            }
+        }
+    }
+}

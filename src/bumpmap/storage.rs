@@ -22,6 +22,8 @@ pub enum StoredMap {
         h: usize,
         indices: Vec<u8>,
         palette: Palette,
+        /// As an RGB map's: a baked-cylinder map clamps in u, indices as codes.
+        clamp_u: bool,
     },
 }
 
@@ -50,6 +52,7 @@ impl StoredMap {
                 h: map.h,
                 indices,
                 palette,
+                clamp_u: map.clamp_u,
             }
         } else {
             StoredMap::Rgb {

@@ -237,6 +237,45 @@ pub fn palette_rom(cfg: &PipelineConfig, p: &Palette, source: &str) -> Rom {
     }
 }
 
+/// A scene object's bump map as the texture memory before the pipeline holds it (`object`:
+/// its scene and index, `filter` and `clamp_u` how the texture unit samples it): texel
+/// (x, y) at word y·w + x, the `in_bump` lanes' codes {z, y, x} with x in the low bits, or
+/// under a palette the 8-bit index into the object's palette.
+pub fn bump_map_rom(cfg: &PipelineConfig, map: &crate::bumpmap::storage::StoredMap, object: &str, filter: &str) -> Rom {
+    use crate::bumpmap::storage::StoredMap;
+    let nb = cfg.normal_bits;
+    let (w, h) = map.size();
+    let (width, words, texel, wrap_u) = match map {
+        StoredMap::Rgb { codes, clamp_u, .. } => (
+            3 * nb,
+            codes.iter().map(|c| c[0] as u64 | (c[1] as u64) << nb | (c[2] as u64) << (2 * nb)).collect(),
+            format!("{{z, y, x}}, {nb}-bit offset-binary components (the in_bump lanes), x in bits [{}:0]", nb - 1),
+            if *clamp_u { "clamped" } else { "wrapped" },
+        ),
+        StoredMap::Palettised { indices, clamp_u, .. } => (
+            8,
+            indices.iter().map(|&i| i as u64).collect(),
+            "the 8-bit index into the object's bump palette (sampled nearest)".to_string(),
+            if *clamp_u { "clamped" } else { "wrapped" },
+        ),
+    };
+    Rom {
+        name: "bump_map".into(),
+        width,
+        words,
+        layout: format!(
+            "texel (x, y) of the {w}x{h} map at word y*{w} + x (texel centres at ((x + 0.5)/{w}, (y + 0.5)/{h}) in uv; u {wrap_u}, v wrapped): {texel}"
+        ),
+        params: vec![
+            param("normal_bits", nb),
+            param("normal_range", format!("{:?}", cfg.normal_range).to_lowercase()),
+            param("palette", cfg.palette),
+            param("object", object),
+            param("filter", filter),
+        ],
+    }
+}
+
 /// An EMBM environment map (`which`: "diffuse" or "specular") as the `env_fetch` unit's
 /// memory holds it: texel (x, y) at word y·n + x, {B, G, R} with R in the low bits.
 pub fn env_map_rom(cfg: &PipelineConfig, map: &[[u32; 3]], which: &str, source: &str) -> Rom {

@@ -63,6 +63,21 @@ pub fn rom_files(
     .replace("  ", " ");
     let hash = &cfg.hash()[..8];
     let mut files = Vec::new();
+    // A scene's own bump maps, as the texture memory holds them, one per object.
+    let mut maps = Vec::new();
+    if let Some(s) = scene {
+        let scene = Scene::load(s)?;
+        let p = crate::raster::Prepared::new(&scene, cfg, 1, 1)?;
+        for (i, (o, so)) in p.objects.iter().zip(&scene.objects).enumerate() {
+            let object = format!("{} object {i}", scene.name);
+            let filter = format!("{:?}", so.bump.filter).to_lowercase();
+            maps.push((
+                format!("bump_map_{}_o{i}_{hash}", scene.name),
+                crate::rtlgen::rom::bump_map_rom(cfg, &o.stored, &object, &filter),
+                Some(cfg),
+            ));
+        }
+    }
     // A name carries what the contents depend on: the exponent, the palette's source, the
     // cube size; the config hash stands for the widths.
     let table = cfg.power_unit != crate::config::PowerUnitKind::Squaring;
@@ -77,6 +92,7 @@ pub fn rom_files(
     ]
     .into_iter()
     .flatten()
+    .chain(maps)
     {
         let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {

@@ -23,9 +23,12 @@ impl Camera {
         let eye = DVec3::from_array(d.eye);
         let target = DVec3::from_array(d.target);
         let fwd = (target - eye).normalize();
-        let mut right = fwd.cross(DVec3::from_array(d.up));
-        // An up vector parallel to the view falls back to the world axis least aligned with it.
-        if right.length_squared() < 1e-12 {
+        let up = DVec3::from_array(d.up);
+        let mut right = fwd.cross(up);
+        // An up vector parallel to the view falls back to the world axis least aligned with it
+        // (scene validation refuses one, by the same test: relative to up's length, so a short
+        // up is a direction like any other).
+        if right.length_squared() < 1e-12 * up.length_squared() {
             let alt = if fwd.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
             right = fwd.cross(alt);
         }

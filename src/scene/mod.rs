@@ -180,7 +180,8 @@ pub struct Object {
     pub rotate_deg: [f64; 3],
     #[serde(default = "one")]
     pub scale: f64,
-    /// Repeats of the bump map and texture over the surface's [0,1]² parameter square.
+    /// Repeats of the bump map and texture over the surface's [0,1]² parameter square (a
+    /// prism's u is per facet: its `uv_scale[0]` must be 1).
     #[serde(default = "default_uv_scale")]
     pub uv_scale: [f64; 2],
     #[serde(default)]

@@ -258,6 +258,15 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         c.num(&format!("{p}.scale"), o.scale, 1e-6, 1e6)?;
         c.num(&format!("{p}.uv_scale[0]"), o.uv_scale[0], 1e-6, 1e6)?;
         c.num(&format!("{p}.uv_scale[1]"), o.uv_scale[1], 1e-6, 1e6)?;
+        // A prism's facets each take the map's u from 0 to 1 (its baked normals span one
+        // facet), so a u scale would be dropped without a word.
+        if matches!(o.shape, Shape::Cylinder { sides: 1.., .. }) && o.uv_scale[0] != 1.0 {
+            return Err(c.fail(
+                &format!("{p}.uv_scale[0]"),
+                format!("{} on a prism (a cylinder with sides > 0), whose every facet spans u from 0 to 1 of the map", o.uv_scale[0]),
+                "drop uv_scale[0] (1) for a prism, or set sides = 0 for a smooth cylinder that repeats the map around it",
+            ));
+        }
         if o.shininess > MAX_SHININESS {
             return Err(c.fail(
                 &format!("{p}.shininess"),
