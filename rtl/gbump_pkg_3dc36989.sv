@@ -41,8 +41,6 @@ package gbump_pkg_3dc36989;
     localparam int K_BITS = 9; // k_i u1.8
     localparam int DOT_BITS = 9; // clamped dot product u1.8
     localparam int POWER_BITS = 9; // power-table entry u1.8
-    localparam int POWER_TABLE_WORDS = 256; // words of the power table's memory
-    localparam int POWER_TABLE_ADDR_BITS = 8; // power_table_waddr width
     localparam int LIGHTS = 4; // light slots
     localparam int SHININESS = 16; // shininess of the power-up table
     // Timing (rising edges, as the interface JSON defines them).
@@ -53,7 +51,11 @@ package gbump_pkg_3dc36989;
     localparam int TRIANGLE_BANKS = 2; // bump_state.banks (0: the state enters with every fragment)
     localparam int BANK_HOLD_CYCLES = 8; // bump_state.bank_hold_cycles: last use of a bank to the first setup that may load it
     localparam int SETUP_EDGES = 4; // bump_state.setup_edges: the fewest edges a setup spans
-    localparam INIT_FILE = "power_table_3dc36989.hex"; // power-up table, relative to the simulator's working folder
+    // Memories behind the load ports: words, address width and power-up file (the top's
+    // parameter of the same name; relative to the simulator's working folder).
+    localparam int POWER_TABLE_WORDS = 256; // words of the power_table memory
+    localparam int POWER_TABLE_ADDR_BITS = 8; // power_table_waddr width
+    localparam INIT_FILE = "power_table_3dc36989.hex"; // power table entries, u1.P (the shininess is whatever was loaded)
     // Top ports.
     localparam int CLK_BITS = 1; // width of clk
     localparam int RST_BITS = 1; // width of rst
@@ -134,30 +136,31 @@ package gbump_pkg_3dc36989;
         logic [23:0] tex; // bits [47:24], 3 x u8.0 (stimulus)
         logic [23:0] c_in; // bits [23:0], 3 x u8.0 (stimulus)
     } texture_modulate_record_t;
-    // Lane helpers for the top ports: lane 0 in the low bits; per light x, y, z (or R, G, B).
-    function automatic logic [NORMAL_BITS-1:0] in_bump_lane(input logic [IN_BUMP_BITS-1:0] v, input int i);
-        return v[(i) * NORMAL_BITS +: NORMAL_BITS];
+    // Lane helpers for the top's data ports: lane 0 in the low bits; per light x, y, z (or
+    // R, G, B), per frame vector x, y, z.
+    function automatic logic [7:0] in_bump_lane(input logic [IN_BUMP_BITS-1:0] v, input int i); // 3 x u8.0
+        return v[(i) * 8 +: 8];
     endfunction
-    function automatic logic [COLOUR_BITS-1:0] in_c_src_lane(input logic [IN_C_SRC_BITS-1:0] v, input int i);
-        return v[(i) * COLOUR_BITS +: COLOUR_BITS];
+    function automatic logic [7:0] in_c_src_lane(input logic [IN_C_SRC_BITS-1:0] v, input int i); // 3 x u8.0
+        return v[(i) * 8 +: 8];
     endfunction
-    function automatic logic [COLOUR_BITS-1:0] in_tex_lane(input logic [IN_TEX_BITS-1:0] v, input int i);
-        return v[(i) * COLOUR_BITS +: COLOUR_BITS];
+    function automatic logic [7:0] in_tex_lane(input logic [IN_TEX_BITS-1:0] v, input int i); // 3 x u8.0
+        return v[(i) * 8 +: 8];
     endfunction
-    function automatic logic [LH_BITS-1:0] tri_l_lane(input logic [TRI_L_BITS-1:0] v, input int light, input int axis);
-        return v[(3 * light + axis) * LH_BITS +: LH_BITS];
+    function automatic logic [15:0] tri_l_lane(input logic [TRI_L_BITS-1:0] v, input int light, input int axis); // 12 x s1.14
+        return v[(3 * light + axis) * 16 +: 16];
     endfunction
-    function automatic logic [LH_BITS-1:0] tri_h_lane(input logic [TRI_H_BITS-1:0] v, input int light, input int axis);
-        return v[(3 * light + axis) * LH_BITS +: LH_BITS];
+    function automatic logic [15:0] tri_h_lane(input logic [TRI_H_BITS-1:0] v, input int light, input int axis); // 12 x s1.14
+        return v[(3 * light + axis) * 16 +: 16];
     endfunction
-    function automatic logic [COLOUR_BITS-1:0] tri_lc_lane(input logic [TRI_LC_BITS-1:0] v, input int light, input int axis);
-        return v[(3 * light + axis) * COLOUR_BITS +: COLOUR_BITS];
+    function automatic logic [7:0] tri_lc_lane(input logic [TRI_LC_BITS-1:0] v, input int light, input int axis); // 12 x u8.0
+        return v[(3 * light + axis) * 8 +: 8];
     endfunction
-    function automatic logic [K_BITS-1:0] tri_k_lane(input logic [TRI_K_BITS-1:0] v, input int i);
-        return v[(i) * K_BITS +: K_BITS];
+    function automatic logic [8:0] tri_k_lane(input logic [TRI_K_BITS-1:0] v, input int i); // 4 x u1.8
+        return v[(i) * 9 +: 9];
     endfunction
-    function automatic logic [COLOUR_BITS-1:0] out_c_lane(input logic [OUT_C_BITS-1:0] v, input int i);
-        return v[(i) * COLOUR_BITS +: COLOUR_BITS];
+    function automatic logic [7:0] out_c_lane(input logic [OUT_C_BITS-1:0] v, input int i); // 3 x u8.0
+        return v[(i) * 8 +: 8];
     endfunction
 endpackage
 // verilator lint_on UNUSEDPARAM

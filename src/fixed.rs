@@ -125,6 +125,23 @@ impl Format {
     }
 }
 
+impl Format {
+    /// The format a [`name`](Format::name) names (`s1.14`, `u8.0`; an integer part may be
+    /// negative, `u-2.10`), None for anything else.
+    pub fn from_name(name: &str) -> Option<Format> {
+        let signed = match name.as_bytes().first()? {
+            b's' => true,
+            b'u' => false,
+            _ => return None,
+        };
+        let (int, frac) = name[1..].split_once('.')?;
+        let (int, frac): (i64, u32) = (int.parse().ok()?, frac.parse().ok()?);
+        let width = u32::try_from(int + frac as i64 + i64::from(signed)).ok()?;
+        let f = Format::new(width, frac, signed)?;
+        (f.name() == name).then_some(f)
+    }
+}
+
 impl fmt::Display for Format {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{} ({} bits)", self.name(), self.width)
@@ -272,6 +289,18 @@ pub fn colour_codes(c: glam::DVec3, max: u32) -> [u32; 3] {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    /// A format's name reads back as that format; other text is no format.
+    #[test]
+    fn a_format_name_reads_back() {
+        for f in [Format::s(16, 14), Format::u(9, 8), Format::u(8, 0), Format::u(10, 12), Format::s(2, 0), Format::u(62, 3)] {
+            assert_eq!(Format::from_name(&f.name()), Some(f), "{}", f.name());
+        }
+        for bad in ["", "s", "x1.2", "s1", "s1.x", "u0.0", "s-1.0", "u1.2.3", "s+1.14", "s01.14", "u99.0"] {
+            assert_eq!(Format::from_name(bad), None, "{bad}");
+        }
+    }
     use super::*;
 
     /// The constant-reciprocal division against the division, for every product a stage

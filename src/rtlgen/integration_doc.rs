@@ -49,10 +49,27 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     } else {
         " (`in_ready` comes from registers: at the first edge at which `rst` is sampled high it still shows the state from before, undefined after power-up; from the next edge on it is high while `rst` stays high). "
     };
-    s += &format!(
-        "`rst` does **not** restore the power table: it keeps what was last written; its power-up contents come from the `INIT_FILE` parameter (default `{}`, a `$readmemh` file; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere).\n\n",
-        rom_file_name(cfg, "power_table", "hex")
-    );
+    // Every memory a load port writes keeps its words through a reset; the unused power table
+    // port (EMBM, a squaring unit) is no memory to speak of.
+    let mems: Vec<String> = super::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != "power_table" || super::top::unused_load_docs(cfg).is_none())
+        .map(|m| {
+            let file = match m.init_param {
+                "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
+                p => super::top::memory_inits(cfg).into_iter().find(|i| i.0 == p).map(|i| i.2).expect("an init file"),
+            };
+            format!("the {} memory (power-up contents from the `{}` parameter, default `{file}`)", m.prefix.replace('_', " "), m.init_param)
+        })
+        .collect();
+    if !mems.is_empty() {
+        s += &format!(
+            "`rst` does **not** restore {}: each keeps what was last written through its load port. Each power-up file is a `$readmemh` file; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere.\n\n",
+            mems.join(", ")
+        );
+    } else {
+        s += "\n\n";
+    }
     s += &format!(
         "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}){}; results leave in the order fragments entered. ",
         if super::top::output_depth(cfg).is_some() {
@@ -78,10 +95,10 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     if let Some(hold) = super::top::bank_hold(cfg) {
         let k = cfg.triangle_banks;
         s += &format!(
-            "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight. A reset ends every bank hold: the first setup after it waits for no earlier fragment. Offer a triangle's setup only once the previous triangle's last fragment has been accepted: a setup taken while that fragment still waits for `in_ready` makes it the new triangle's (valid/ready lets neither offer be withdrawn, so the top cannot tell them apart).{}\n\n",
+            "**Triangle setup** (`bump_state = \"triangle\"`, {k} banks). Before a triangle's first fragment, offer its bump state on `tri_l`, `tri_h`, `tri_lc` and `tri_k` with `tri_valid` high. It is taken at a rising edge at which `tri_valid` and `tri_ready` are both high, into the next of {k} banks, which becomes the current one. Every fragment accepted after that edge, up to the next setup, is shaded with it; a fragment accepted at the same edge as a setup belongs to the previous triangle. `tri_*` need not hold after the setup edge. No fragment may be accepted before the first setup after reset (its state would be undefined). `tri_ready` is low while `rst` is high, and while the bank the setup would load may still be read: setup number m (counting from 1 after reset) loads bank m mod {k}, and is taken from **{hold}** edges after the accept edge of the last fragment that used that bank (the bank hold) on, never before; with one-fragment triangles back to back, {k} banks keep {k} triangles in flight. A reset ends every bank hold: the first setup after it waits for no earlier fragment. Offer a triangle's setup only once the previous triangle's last fragment has been accepted: a setup taken while that fragment still waits for `in_ready` makes it the new triangle's (valid/ready lets neither offer be withdrawn, so the top cannot tell them apart). Likewise hold `in_valid` low from a setup's first offer until the edge after it is taken: `in_ready` does not look at a pending setup, so the triangle's first fragment offered beside its setup may be accepted before it, and is shaded with another bank's state (gbump's testbenches offer a fragment only after its setup is taken).{}\n\n",
             match super::top::setup_edges(cfg) {
                 1 => " A setup takes one edge: `tri_ready` is a level, high at every edge at which the next bank is free (the bank hold is over), whether `tri_valid` is high or not, so it is high while idle; a setup offered while it is low is taken at the first edge at which it is high.".to_string(),
-                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges, whether its bank is free yet or not. Count them from the first edge at which `tri_valid` offers the setup (edges with `rst` high do not count: a setup offered during reset counts from the first edge with `rst` low). The setup is taken at whichever edge comes later: the span's last edge (the first offer + {}) or the end of the bank hold (the last use + {hold}). `tri_ready` is high at that edge only: it depends on `tri_valid`, and stays low while no setup is offered, even with every bank free and long after reset. Raise `tri_valid` without waiting for `tri_ready` (a client that waits for it first never sees it), and hold `tri_*` until the setup is taken (as valid/ready requires anyway).", e - 1),
+                e => format!(" The banks are one RAM (block RAM on an FPGA) written one light slot per edge, so a setup spans **{e}** edges, whether its bank is free yet or not. Count them from the first edge at which `tri_valid` offers the setup (edges with `rst` high do not count: a setup offered during reset counts from the first edge with `rst` low, and a reset restarts the count of a setup not yet taken). The setup is taken at whichever edge comes later: the span's last edge (the first offer + {}) or the end of the bank hold (the last use + {hold}). `tri_ready` is high at that edge only: it depends on `tri_valid`, and stays low while no setup is offered, even with every bank free and long after reset. Raise `tri_valid` without waiting for `tri_ready` (a client that waits for it first never sees it), and hold `tri_*` until the setup is taken (as valid/ready requires anyway).", e - 1),
             }
         );
     }
@@ -115,7 +132,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     if cfg.embm() {
         let n = cfg.env_map_side();
         s += &format!(
-            "**Loading the environment maps** (EMBM, `env_map_bits = {e}`). Each map present (`env_diffuse_*`, `env_specular_*`) is written like the power table, one texel per rising edge with its `_we` high: texel (x, y) of the {n}x{n} map at address y*{n} + x, a {w}-bit word {{B, G, R}} with R in the low {cb} bits (the i-th data line of a `_env_diffuse.hex` or `_env_specular.hex` file, after its `//` header, is the word for address i), {words} words a map, under the same rule: only while no fragment is in flight. A port writes all four copies of its map at once. A scene's vector set (`gbump vectors --source scene:NAME`) runs on its object's own maps, one set per object, which its manifest names (`env_maps`); the top testbench loads them with `+env_diffuse=FILE +env_specular=FILE` and the C++ harness with `--env-diffuse FILE --env-specular FILE`. Every other set runs on the power-up maps (the init files).\n\n",
+            "**Loading the environment maps** (EMBM, `env_map_bits = {e}`). Each map present (`env_diffuse_*`, `env_specular_*`) is written like the power table, one texel per rising edge with its `_we` high: texel (x, y) of the {n}x{n} map at address y*{n} + x, a {w}-bit word {{B, G, R}} with R in the low {cb} bits (the i-th data line of a `_env_diffuse.hex` or `_env_specular.hex` file, after its `//` header, is the word for address i), {words} words a map, under the same rule: only while no fragment is in flight. A port writes all four copies of its map at once. A scene's vector set (`gbump vectors --source scene:NAME`) runs on its object's own maps, one set per object (`scene_NAME_oI_top`, the `_oI` only where the scene has several objects), which its manifest names: `env_maps` is `{{\"diffuse\": {{\"name\", \"bytes\", \"sha256\"}}, \"specular\": {{...}}}}`, one entry per map the top has, each file beside the manifest; the top testbench loads them with `+env_diffuse=FILE +env_specular=FILE` and the C++ harness with `--env-diffuse FILE --env-specular FILE`. Every other set runs on the power-up maps (the init files).\n\n",
             e = cfg.env_map_bits,
             w = 3 * cfg.colour_bits,
             cb = cfg.colour_bits,
@@ -301,14 +318,8 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         let raw: Vec<u64> = (0..c.lanes).map(|i| rec.get_lane(c, i)).collect();
         let digits = (c.width / c.lanes).div_ceil(4) as usize;
         let hex = raw.iter().map(|v| format!("{v:0digits$x}")).collect::<Vec<_>>().join(" ");
-        let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
-        let fmt = if c.name == st("l") || c.name == st("h") || c.name == crate::vectors::targets::FRAME {
-            Some(cfg.lh_fmt())
-        } else if c.name == st("k") {
-            Some(cfg.k_fmt())
-        } else {
-            None
-        };
+        // A fixed-point or signed column's lanes as values (`s1.14`, `u1.8`), the rest as codes.
+        let fmt = crate::fixed::Format::from_name(&c.format).filter(|f| f.frac > 0 || f.signed);
         let value = match fmt {
             Some(f) => {
                 let sign = |v: u64| {

@@ -32,7 +32,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "config_hash": cfg.hash(),
         "config": cfg,
         "top": module_name(cfg, "gbump_pipeline"),
-        "clock": "clk, rising edge; rst synchronous, active high: reset_cycles rising edge(s) with rst high clear the valid bits (the power table and palette keep their contents)",
+        "clock": "clk, rising edge; rst synchronous, active high: reset_cycles rising edge(s) with rst high clear the valid bits (every memory behind a load port, the power table, palette and environment maps, keeps its contents)",
         "reset_cycles": super::top::RESET_CYCLES,
         "latency_cycles": latency(cfg),
         "initiation_interval": cfg.initiation_interval(),

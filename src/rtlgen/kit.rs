@@ -198,18 +198,6 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         cfg.power_fmt().width.into(),
         &format!("power-table entry {}", cfg.power_fmt().name()),
     );
-    p(
-        &mut s,
-        "POWER_TABLE_WORDS",
-        cfg.power_depth().into(),
-        "words of the power table's memory",
-    );
-    p(
-        &mut s,
-        "POWER_TABLE_ADDR_BITS",
-        cfg.power_addr_bits().into(),
-        "power_table_waddr width",
-    );
     p(&mut s, "LIGHTS", cfg.lights.into(), "light slots");
     p(&mut s, "SHININESS", cfg.shininess.into(), "shininess of the power-up table");
     s += "    // Timing (rising edges, as the interface JSON defines them).\n";
@@ -258,10 +246,23 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         if tri { super::top::setup_edges(cfg).into() } else { 0 },
         "bump_state.setup_edges: the fewest edges a setup spans",
     );
-    s += &format!(
-        "    localparam INIT_FILE = \"{}\"; // power-up table, relative to the simulator's working folder\n",
-        rom_file_name(cfg, "power_table", "hex")
-    );
+    s += "    // Memories behind the load ports: words, address width and power-up file (the top's\n    // parameter of the same name; relative to the simulator's working folder).\n";
+    let inits = super::top::memory_inits(cfg);
+    for m in super::top::memories(cfg) {
+        let up = m.prefix.to_uppercase();
+        p(&mut s, &format!("{up}_WORDS"), m.depth.into(), &format!("words of the {} memory", m.prefix));
+        p(&mut s, &format!("{up}_ADDR_BITS"), m.addr_bits.into(), &format!("{}_waddr width", m.prefix));
+        let file = match m.init_param {
+            "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
+            param => inits.iter().find(|i| i.0 == param).map(|i| i.2.clone()).expect("an init file"),
+        };
+        // The power table's port is on every top; where nothing reads it, its doc says so.
+        let doc = match m.prefix {
+            "power_table" => super::top::unused_load_docs(cfg).map_or(m.doc, |u| u.1),
+            _ => m.doc,
+        };
+        s += &format!("    localparam {} = \"{file}\"; // {doc}\n", m.init_param);
+    }
     s += "    // Top ports.\n";
     for (n, _, w) in super::top::top_ports(cfg) {
         p(&mut s, &format!("{}_BITS", n.to_uppercase()), w.into(), &format!("width of {n}"));
@@ -294,32 +295,32 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         }
         s += &format!("    }} {what}_record_t;\n");
     }
-    s += "    // Lane helpers for the top ports: lane 0 in the low bits; per light x, y, z (or R, G, B).\n";
-    // lanes_per_light: 3 (per light x, y, z or R, G, B), 9 (the frame: vector T, B, N, then
-    // x, y, z), else one index.
-    let lane = |s: &mut String, port: &str, lb: &str, lanes_per_light: u32| {
-        let w = format!("{}_BITS", port.to_uppercase());
-        let (args, idx) = match lanes_per_light {
-            3 => ("input int light, input int axis", "3 * light + axis"),
-            9 => ("input int vector, input int axis", "3 * vector + axis"),
-            _ => ("input int i", "i"),
-        };
-        *s += &format!(
-            "    function automatic logic [{lb}-1:0] {port}_lane(input logic [{w}-1:0] v, {args});\n        return v[({idx}) * {lb} +: {lb}];\n    endfunction\n"
-        );
-    };
-    lane(&mut s, "in_bump", "NORMAL_BITS", 1);
-    lane(&mut s, "in_c_src", "COLOUR_BITS", 1);
-    lane(&mut s, "in_tex", "COLOUR_BITS", 1);
+    s += "    // Lane helpers for the top's data ports: lane 0 in the low bits; per light x, y, z (or\n    // R, G, B), per frame vector x, y, z.\n";
     let st = |f: &str| crate::vectors::targets::state_column(cfg, f);
-    lane(&mut s, &st("l"), "LH_BITS", 3);
-    lane(&mut s, &st("h"), "LH_BITS", 3);
-    lane(&mut s, &st("lc"), "COLOUR_BITS", 3);
-    lane(&mut s, &st("k"), "K_BITS", 1);
-    if cfg.frame_transform {
-        lane(&mut s, crate::vectors::targets::FRAME, "LH_BITS", 9);
+    let per_light = [st("l"), st("h"), st("lc")];
+    for port in super::top::port_list(cfg) {
+        use super::top::PortKind;
+        let data = matches!(port.kind, PortKind::Fragment | PortKind::Triangle | PortKind::Result)
+            || (port.kind == PortKind::Load && port.lanes > 1);
+        if !data || port.fmt.width == 1 {
+            continue;
+        }
+        let (args, idx) = if per_light.contains(&port.name) {
+            ("input int light, input int axis", "3 * light + axis")
+        } else if port.name == crate::vectors::targets::FRAME {
+            ("input int vector, input int axis", "3 * vector + axis")
+        } else {
+            ("input int i", "i")
+        };
+        let (name, lb) = (&port.name, port.fmt.width);
+        let w = format!("{}_BITS", name.to_uppercase());
+        s += &format!(
+            "    function automatic logic [{}:0] {name}_lane(input logic [{w}-1:0] v, {args}); // {} x {}\n        return v[({idx}) * {lb} +: {lb}];\n    endfunction\n",
+            lb - 1,
+            port.lanes,
+            port.fmt.name()
+        );
     }
-    lane(&mut s, "out_c", "COLOUR_BITS", 1);
     s += "endpackage\n// verilator lint_on UNUSEDPARAM\n`default_nettype wire\n";
     s
 }

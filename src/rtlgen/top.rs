@@ -104,7 +104,7 @@ pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
 
 /// The power table's load-port docs where the port is unused: (write enable, address and
 /// data).
-fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {
+pub fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {
     if cfg.embm() {
         let doc = "unused: env_map_bits > 0 (EMBM: the specular light comes from its map, not a power table)";
         Some((doc, doc))
@@ -167,8 +167,8 @@ pub fn port_list(cfg: &PipelineConfig) -> Vec<TopPort> {
             &format!("{}_wdata", m.prefix),
             Dir::In,
             PortKind::Load,
-            Format::u(m.data_bits, m.data_frac),
-            1,
+            Format::u(m.data_bits / m.data_lanes, m.data_frac),
+            m.data_lanes,
             unused.map_or(m.doc, |u| u.1),
         ));
     }

@@ -80,6 +80,7 @@ impl Unit for EnvFetch {
             addr_bits: 2 * e,
             data_bits: 3 * cfg.colour_bits,
             data_frac: 0,
+            data_lanes: 3,
             doc: if self.specular {
                 "specular map texel (x, y) at address y n + x: {B, G, R}, R in the low bits"
             } else {

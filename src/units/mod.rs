@@ -96,6 +96,9 @@ pub struct Memory {
     pub data_bits: u32,
     /// Fraction bits of a word (the power table's entries are u1.P; colours are integers).
     pub data_frac: u32,
+    /// Fields of a word, each `data_bits / data_lanes` wide, the first in the low bits (a
+    /// palette entry's x, y, z; a map texel's R, G, B): the load port's data lanes.
+    pub data_lanes: u32,
     pub doc: &'static str,
 }
 

@@ -43,6 +43,7 @@ impl Unit for PaletteFetch {
             addr_bits: 8,
             data_bits: 3 * cfg.normal_bits,
             data_frac: 0,
+            data_lanes: 3,
             doc: "palette entries {z, y, x}, offset-binary components, x in the low bits",
         })
     }

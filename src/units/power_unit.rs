@@ -24,7 +24,12 @@ pub fn table_memory(cfg: &PipelineConfig) -> Memory {
         addr_bits: cfg.power_addr_bits(),
         data_bits: cfg.power_frac_bits + 1,
         data_frac: cfg.power_frac_bits,
-        doc: "power table entries, u1.P (the shininess is whatever was loaded)",
+        data_lanes: 1,
+        doc: if cfg.power_rom {
+            "power table entries, u1.P (a ROM: the shininess is the configuration's, its load port unused)"
+        } else {
+            "power table entries, u1.P (the shininess is whatever was loaded)"
+        },
     }
 }
 
