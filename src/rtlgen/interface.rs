@@ -64,7 +64,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
-        "power_table": {"init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
+        "power_table": {"present": !cfg.embm() && cfg.power_unit != crate::config::PowerUnitKind::Squaring, "init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
         "files": {
             "filelist": super::kit::filelist_names(cfg).0,
             "filelist_icarus": super::kit::filelist_names(cfg).1,
