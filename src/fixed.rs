@@ -294,10 +294,19 @@ mod tests {
     /// A format's name reads back as that format; other text is no format.
     #[test]
     fn a_format_name_reads_back() {
-        for f in [Format::s(16, 14), Format::u(9, 8), Format::u(8, 0), Format::u(10, 12), Format::s(2, 0), Format::u(62, 3)] {
+        for f in [
+            Format::s(16, 14),
+            Format::u(9, 8),
+            Format::u(8, 0),
+            Format::u(10, 12),
+            Format::s(2, 0),
+            Format::u(62, 3),
+        ] {
             assert_eq!(Format::from_name(&f.name()), Some(f), "{}", f.name());
         }
-        for bad in ["", "s", "x1.2", "s1", "s1.x", "u0.0", "s-1.0", "u1.2.3", "s+1.14", "s01.14", "u99.0"] {
+        for bad in [
+            "", "s", "x1.2", "s1", "s1.x", "u0.0", "s-1.0", "u1.2.3", "s+1.14", "s01.14", "u99.0",
+        ] {
             assert_eq!(Format::from_name(bad), None, "{bad}");
         }
     }

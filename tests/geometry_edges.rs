@@ -151,6 +151,10 @@ fn a_short_up_turns_the_camera_as_a_unit_one_does() {
     for up in ["up = [0.0, 1e-7, 0.0]", "up = [0.0, 3.0, 0.0]", "up = [0.0, 1e-7, 1e-6]"] {
         let other = image(up);
         let differ = unit.iter().zip(&other).filter(|(a, b)| a != b).count();
-        assert!(differ <= unit.len() / 100, "{up}: {differ} of {} pixels differ from up = Y", unit.len());
+        assert!(
+            differ <= unit.len() / 100,
+            "{up}: {differ} of {} pixels differ from up = Y",
+            unit.len()
+        );
     }
 }

@@ -605,12 +605,18 @@ fn every_package_compiles_and_names_its_tops_memories_and_lanes() {
         let cfg = cfg_of(Some(config));
         let json = tmp.path().join("rtl").join(format!("{}.json", module_name(&cfg, "gbump_pipeline")));
         let pkg = tmp.path().join("rtl").join(kit::package_file_name(&cfg));
-        let (ok, log) = run(Command::new("verilator").args(["--lint-only", "-Wall", "-sv"]).arg(&pkg), tmp.path());
+        let (ok, log) = run(
+            Command::new("verilator").args(["--lint-only", "-Wall", "-sv"]).arg(&pkg),
+            tmp.path(),
+        );
         assert!(ok, "{config}: verilator:\n{log}");
         // Icarus wants a top module: one that imports the package.
         let user = tmp.path().join("u.sv");
         std::fs::write(&user, format!("module u;\n    import {}::*;\nendmodule\n", kit::package_name(&cfg))).unwrap();
-        let (ok, log) = run(Command::new("iverilog").args(["-g2012", "-o", "p.vvp"]).arg(&pkg).arg(&user), tmp.path());
+        let (ok, log) = run(
+            Command::new("iverilog").args(["-g2012", "-o", "p.vvp"]).arg(&pkg).arg(&user),
+            tmp.path(),
+        );
         assert!(ok, "{config}: iverilog -g2012:\n{log}");
         let text = std::fs::read_to_string(&pkg).unwrap();
         let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
@@ -619,18 +625,28 @@ fn every_package_compiles_and_names_its_tops_memories_and_lanes() {
         for (name, m) in j["memories"].as_object().unwrap() {
             let up = name.to_uppercase();
             for (k, v) in [("WORDS", &m["words"]), ("ADDR_BITS", &m["addr_bits"])] {
-                assert!(text.contains(&format!("localparam int {up}_{k} = {v};")), "{config}: {up}_{k} = {v}");
+                assert!(
+                    text.contains(&format!("localparam int {up}_{k} = {v};")),
+                    "{config}: {up}_{k} = {v}"
+                );
             }
         }
         for (param, p) in j["parameters"].as_object().unwrap() {
-            assert!(text.contains(&format!("localparam {param} = {};", p["default"])), "{config}: {param}");
+            assert!(
+                text.contains(&format!("localparam {param} = {};", p["default"])),
+                "{config}: {param}"
+            );
         }
         for port in j["ports"].as_array().unwrap() {
             let f = &port["field"];
             let data = ["fragment", "triangle", "result"].contains(&port["kind"].as_str().unwrap())
                 || (port["kind"] == "load" && f["lanes"].as_u64() > Some(1));
             if data && f["lane_bits"].as_u64() > Some(1) {
-                let helper = format!("function automatic logic [{}:0] {}_lane(", f["lane_bits"].as_u64().unwrap() - 1, port["name"].as_str().unwrap());
+                let helper = format!(
+                    "function automatic logic [{}:0] {}_lane(",
+                    f["lane_bits"].as_u64().unwrap() - 1,
+                    port["name"].as_str().unwrap()
+                );
                 assert!(text.contains(&helper), "{config}: no {helper}");
             }
         }

@@ -172,7 +172,11 @@ fn the_scene_reference_rebuilds_every_scenes_records() {
     for (tag, pipeline) in variants {
         let p = dir.path().join(format!("mixed{tag}.toml"));
         let text = base.replacen("name = \"mixed\"", &format!("name = \"mixed{tag}\""), 1);
-        let text = if pipeline.is_empty() { text } else { format!("{text}[pipeline]\n{pipeline}") };
+        let text = if pipeline.is_empty() {
+            text
+        } else {
+            format!("{text}[pipeline]\n{pipeline}")
+        };
         std::fs::write(&p, text).unwrap();
         scenes.push(p.display().to_string());
     }

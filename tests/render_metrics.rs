@@ -57,7 +57,13 @@ fn the_metrics_and_pngs_are_what_the_readme_defines() {
         cmd.args(["render", "--scene", scene, "--size", "64x48", "--out"]).arg(dir.path());
         if let Some(extra) = extra {
             let text = toml::to_string(&cfg).unwrap();
-            let text = text.lines().filter(|l| !l.starts_with("colour_bits")).collect::<Vec<_>>().join("\n") + "\n" + extra;
+            let text = text
+                .lines()
+                .filter(|l| !l.starts_with("colour_bits"))
+                .collect::<Vec<_>>()
+                .join("\n")
+                + "\n"
+                + extra;
             let f = dir.path().join("c.toml");
             std::fs::write(&f, &text).unwrap();
             cfg = gbump::PipelineConfig::from_toml("c.toml", &text).unwrap();
@@ -69,19 +75,44 @@ fn the_metrics_and_pngs_are_what_the_readme_defines() {
         let written: serde_json::Value =
             serde_json::from_slice(&std::fs::read(dir.path().join(format!("{scene}_metrics.json"))).unwrap()).unwrap();
         let top = (1u64 << c) - 1;
-        let rounded: Vec<[u32; 3]> = img.gouraud.iter().map(|p| p.map(|v| (v.clamp(0.0, 1.0) * top as f64).round() as u32)).collect();
-        close(&written["golden_vs_reference"], &figures(&img.golden, &img.reference, &img.covered, c), "golden_vs_reference");
-        close(&written["golden_vs_gouraud_f64"], &figures(&img.golden, &img.gouraud, &img.covered, c), "golden_vs_gouraud_f64");
-        close(&written["gouraud_f64_vs_reference"], &figures(&rounded, &img.reference, &img.covered, c), "gouraud_f64_vs_reference");
+        let rounded: Vec<[u32; 3]> = img
+            .gouraud
+            .iter()
+            .map(|p| p.map(|v| (v.clamp(0.0, 1.0) * top as f64).round() as u32))
+            .collect();
+        close(
+            &written["golden_vs_reference"],
+            &figures(&img.golden, &img.reference, &img.covered, c),
+            "golden_vs_reference",
+        );
+        close(
+            &written["golden_vs_gouraud_f64"],
+            &figures(&img.golden, &img.gouraud, &img.covered, c),
+            "golden_vs_gouraud_f64",
+        );
+        close(
+            &written["gouraud_f64_vs_reference"],
+            &figures(&rounded, &img.reference, &img.covered, c),
+            "gouraud_f64_vs_reference",
+        );
         // The PNGs: codes scaled to 8 bits as the README says, f64 values rounded to nearest.
-        let png = |f: &str| image::open(dir.path().join(format!("{scene}_{f}.png"))).unwrap().to_rgb8().into_raw();
+        let png = |f: &str| {
+            image::open(dir.path().join(format!("{scene}_{f}.png")))
+                .unwrap()
+                .to_rgb8()
+                .into_raw()
+        };
         let golden: Vec<u8> = img
             .golden
             .iter()
             .flat_map(|p| p.map(|x| ((255 * x as u64 + top / 2) / top) as u8))
             .collect();
         assert_eq!(png("golden"), golden, "{scene}: the golden PNG");
-        let f64_png = |v: &[[f64; 3]]| -> Vec<u8> { v.iter().flat_map(|p| p.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8)).collect() };
+        let f64_png = |v: &[[f64; 3]]| -> Vec<u8> {
+            v.iter()
+                .flat_map(|p| p.map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8))
+                .collect()
+        };
         assert_eq!(png("gouraud_f64"), f64_png(&img.gouraud), "{scene}: the f64 Gouraud PNG");
         assert_eq!(png("reference"), f64_png(&img.reference), "{scene}: the reference PNG");
     }

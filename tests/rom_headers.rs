@@ -209,7 +209,10 @@ fn a_scenes_bump_maps_are_its_objects_texture_memory() {
             assert_eq!(p["normal_bits"], nb.to_string());
             // "texel (x, y) of the WxH map at word y*W + x (texel centres at ((x + 0.5)/W, ...".
             let dims = text.split(" of the ").nth(1).and_then(|t| t.split(" map").next()).unwrap();
-            let (w, h) = dims.split_once('x').map(|(a, b)| (a.parse::<usize>().unwrap(), b.parse::<usize>().unwrap())).unwrap();
+            let (w, h) = dims
+                .split_once('x')
+                .map(|(a, b)| (a.parse::<usize>().unwrap(), b.parse::<usize>().unwrap()))
+                .unwrap();
             let words = parse(text, RomFormat::Hex).unwrap();
             assert_eq!(words.len(), w * h, "{name}");
             let codes: Vec<[u32; 3]> = words.iter().map(|&v| [0, 1, 2].map(|c| ((v >> (c * nb)) & mask) as u32)).collect();
@@ -217,7 +220,11 @@ fn a_scenes_bump_maps_are_its_objects_texture_memory() {
             for (x, y) in [(0, 0), (w - 1, 0), (0, h - 1), (w / 2, h / 3), (w - 1, h - 1)] {
                 let uv = glam::DVec2::new((x as f64 + 0.5) / w as f64, (y as f64 + 0.5) / h as f64);
                 for f in [Filter::Nearest, Filter::Bilinear] {
-                    assert_eq!(sample_codes(&codes, w, h, clamp_u, uv, f), codes[y * w + x], "{name} ({x}, {y}) {f:?}");
+                    assert_eq!(
+                        sample_codes(&codes, w, h, clamp_u, uv, f),
+                        codes[y * w + x],
+                        "{name} ({x}, {y}) {f:?}"
+                    );
                 }
             }
             // Not a flat map where the scene bumps its surface.

@@ -72,7 +72,9 @@ pub fn sample_codes(codes: &[[u32; 3]], w: usize, h: usize, clamp_u: bool, uv: D
 pub fn sample_bump(map: &StoredMap, uv: DVec2, filter: Filter) -> BumpTexel {
     match map {
         StoredMap::Rgb { w, h, codes, clamp_u } => BumpTexel::Rgb(sample_codes(codes, *w, *h, *clamp_u, uv, filter)),
-        StoredMap::Palettised { w, h, indices, clamp_u, .. } => BumpTexel::Index(indices[nearest_index(uv, *w, *h, *clamp_u)]),
+        StoredMap::Palettised {
+            w, h, indices, clamp_u, ..
+        } => BumpTexel::Index(indices[nearest_index(uv, *w, *h, *clamp_u)]),
     }
 }
 

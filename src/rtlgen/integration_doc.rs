@@ -57,9 +57,17 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
         .map(|m| {
             let file = match m.init_param {
                 "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
-                p => super::top::memory_inits(cfg).into_iter().find(|i| i.0 == p).map(|i| i.2).expect("an init file"),
+                p => super::top::memory_inits(cfg)
+                    .into_iter()
+                    .find(|i| i.0 == p)
+                    .map(|i| i.2)
+                    .expect("an init file"),
             };
-            format!("the {} memory (power-up contents from the `{}` parameter, default `{file}`)", m.prefix.replace('_', " "), m.init_param)
+            format!(
+                "the {} memory (power-up contents from the `{}` parameter, default `{file}`)",
+                m.prefix.replace('_', " "),
+                m.init_param
+            )
         })
         .collect();
     if !mems.is_empty() {

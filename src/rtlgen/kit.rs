@@ -250,8 +250,18 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
     let inits = super::top::memory_inits(cfg);
     for m in super::top::memories(cfg) {
         let up = m.prefix.to_uppercase();
-        p(&mut s, &format!("{up}_WORDS"), m.depth.into(), &format!("words of the {} memory", m.prefix));
-        p(&mut s, &format!("{up}_ADDR_BITS"), m.addr_bits.into(), &format!("{}_waddr width", m.prefix));
+        p(
+            &mut s,
+            &format!("{up}_WORDS"),
+            m.depth.into(),
+            &format!("words of the {} memory", m.prefix),
+        );
+        p(
+            &mut s,
+            &format!("{up}_ADDR_BITS"),
+            m.addr_bits.into(),
+            &format!("{}_waddr width", m.prefix),
+        );
         let file = match m.init_param {
             "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
             param => inits.iter().find(|i| i.0 == param).map(|i| i.2.clone()).expect("an init file"),

@@ -248,8 +248,14 @@ pub fn bump_map_rom(cfg: &PipelineConfig, map: &crate::bumpmap::storage::StoredM
     let (width, words, texel, wrap_u) = match map {
         StoredMap::Rgb { codes, clamp_u, .. } => (
             3 * nb,
-            codes.iter().map(|c| c[0] as u64 | (c[1] as u64) << nb | (c[2] as u64) << (2 * nb)).collect(),
-            format!("{{z, y, x}}, {nb}-bit offset-binary components (the in_bump lanes), x in bits [{}:0]", nb - 1),
+            codes
+                .iter()
+                .map(|c| c[0] as u64 | (c[1] as u64) << nb | (c[2] as u64) << (2 * nb))
+                .collect(),
+            format!(
+                "{{z, y, x}}, {nb}-bit offset-binary components (the in_bump lanes), x in bits [{}:0]",
+                nb - 1
+            ),
             if *clamp_u { "clamped" } else { "wrapped" },
         ),
         StoredMap::Palettised { indices, clamp_u, .. } => (

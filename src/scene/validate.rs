@@ -263,7 +263,10 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
         if matches!(o.shape, Shape::Cylinder { sides: 1.., .. }) && o.uv_scale[0] != 1.0 {
             return Err(c.fail(
                 &format!("{p}.uv_scale[0]"),
-                format!("{} on a prism (a cylinder with sides > 0), whose every facet spans u from 0 to 1 of the map", o.uv_scale[0]),
+                format!(
+                    "{} on a prism (a cylinder with sides > 0), whose every facet spans u from 0 to 1 of the map",
+                    o.uv_scale[0]
+                ),
                 "drop uv_scale[0] (1) for a prism, or set sides = 0 for a smooth cylinder that repeats the map around it",
             ));
         }

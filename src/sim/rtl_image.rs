@@ -89,7 +89,12 @@ fn read_pixels(m: &crate::vectors::Manifest, dir: &Path, w: u32, h: u32) -> Resu
     })?;
     let p = dir.join(&entry.name);
     let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
-    let bad = |line: usize, why: &str| Error::Other(format!("{}:{line}: {why}\n  fix: this is a gbump bug; report it with the scene", p.display()));
+    let bad = |line: usize, why: &str| {
+        Error::Other(format!(
+            "{}:{line}: {why}\n  fix: this is a gbump bug; report it with the scene",
+            p.display()
+        ))
+    };
     let px = text
         .lines()
         .enumerate()
