@@ -99,9 +99,11 @@ pub enum Cmd {
         #[command(flatten)]
         pick: ConfigPick,
         /// Folder for the sets: each set is SET.json (its manifest), SET.hex, SET.bin and
-        /// SET_power_table.hex, SET being SOURCE_TARGET with SOURCE corners, corners_level2,
-        /// random<N>, scene_<NAME> (_nS or _oI added where a scene has several power tables
-        /// or EMBM objects) or exhaustive_<UNIT>, e.g. random1000_top.
+        /// SET_power_table.hex (a scene's top set also SET_pixels.txt, each record's pixel,
+        /// and under EMBM SET_env_diffuse.hex and SET_env_specular.hex), SET being
+        /// SOURCE_TARGET with SOURCE corners, corners_level2, random<N>, scene_<NAME> (_nS or
+        /// _oI added where a scene has several power tables or EMBM objects) or
+        /// exhaustive_<UNIT>, e.g. random1000_top.
         #[arg(long, value_name = "DIR", value_parser = output_dir)]
         out: PathBuf,
         /// Seed of random sources (default 1).

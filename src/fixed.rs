@@ -136,7 +136,7 @@ impl Format {
         };
         let (int, frac) = name[1..].split_once('.')?;
         let (int, frac): (i64, u32) = (int.parse().ok()?, frac.parse().ok()?);
-        let width = u32::try_from(int + frac as i64 + i64::from(signed)).ok()?;
+        let width = u32::try_from(int.checked_add(frac as i64)?.checked_add(i64::from(signed))?).ok()?;
         let f = Format::new(width, frac, signed)?;
         (f.name() == name).then_some(f)
     }
@@ -305,12 +305,22 @@ mod tests {
             assert_eq!(Format::from_name(&f.name()), Some(f), "{}", f.name());
         }
         for bad in [
-            "", "s", "x1.2", "s1", "s1.x", "u0.0", "s-1.0", "u1.2.3", "s+1.14", "s01.14", "u99.0",
+            "",
+            "s",
+            "x1.2",
+            "s1",
+            "s1.x",
+            "u0.0",
+            "s-1.0",
+            "u1.2.3",
+            "s+1.14",
+            "s01.14",
+            "u99.0",
+            "u9223372036854775807.1",
         ] {
             assert_eq!(Format::from_name(bad), None, "{bad}");
         }
     }
-    use super::*;
 
     /// The constant-reciprocal division against the division, for every product a stage
     /// colour of up to 4 guard bits and a texture colour can make, at every colour width up

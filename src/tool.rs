@@ -467,8 +467,6 @@ mod tests {
         assert!(killed.contains("memory"), "{killed}");
     }
 
-    /// An optional tool is named missing only when it is: one that hangs on `--version` says
-    /// so (after the probe's limit), one that answers is usable.
     /// A file of the tool's name without an execute bit is passed over, as a search of PATH
     /// passes it over, so a message names the one that ran.
     #[test]
@@ -486,6 +484,8 @@ mod tests {
         assert_eq!(super::first_executable("absent", &path), None);
     }
 
+    /// An optional tool is named missing only when it is: one that hangs on `--version` says
+    /// so (after the probe's limit), one that answers is usable.
     #[test]
     fn an_unusable_tool_says_why() {
         let dir = tempfile::tempdir().unwrap();

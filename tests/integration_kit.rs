@@ -599,6 +599,8 @@ fn every_package_compiles_and_names_its_tops_memories_and_lanes() {
         "tests/configs/harmony_frame.toml",
         "tests/configs/power_rom.toml",
         "tests/configs/fragment_state.toml",
+        "tests/configs/cg_per_fragment.toml",
+        "tests/configs/one_light_parallel.toml",
     ] {
         let tmp = tempfile::tempdir().unwrap();
         rtl(Some(config), &tmp.path().join("rtl"));
@@ -620,8 +622,14 @@ fn every_package_compiles_and_names_its_tops_memories_and_lanes() {
         assert!(ok, "{config}: iverilog -g2012:\n{log}");
         let text = std::fs::read_to_string(&pkg).unwrap();
         let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-        // EMBM's top reads no power table, though its port stays.
-        assert_eq!(j["power_table"]["present"], !config.contains("embm"), "{config}");
+        // EMBM's top and a squaring unit read no power table, though its port stays.
+        let read = !cfg.embm() && cfg.power_unit != gbump::config::PowerUnitKind::Squaring;
+        assert_eq!(j["power_table"]["present"], read, "{config}");
+        assert_eq!(
+            text.contains("INIT_FILE = ") && !text.contains("// unused"),
+            read,
+            "{config}: the package's INIT_FILE"
+        );
         for (name, m) in j["memories"].as_object().unwrap() {
             let up = name.to_uppercase();
             for (k, v) in [("WORDS", &m["words"]), ("ADDR_BITS", &m["addr_bits"])] {

@@ -187,49 +187,84 @@ fn rom_files_follow_the_configurations_memories() {
 }
 
 /// `gbump rom --scene` writes each object's bump map as the texture memory holds it, with the
-/// addressing its header states: the model's own sampler at texel (x, y)'s centre gives word
-/// y·w + x, whatever the filter.
+/// addressing its header states: decoded as the header says, word y·w + x is the model's
+/// stored texel (x, y) (the model's sampler at that texel's centre gives it, whatever the
+/// filter); under a palette each object's map indexes its own palette, written beside it.
 #[test]
 fn a_scenes_bump_maps_are_its_objects_texture_memory() {
-    use gbump::bumpmap::sample::{sample_codes, Filter};
-    for scene in ["blend_split", "torus_caps", "cg_wall_front"] {
-        let (s, cfg) = gbump::render::report::scene_and_config(scene, None).unwrap();
+    use gbump::bumpmap::sample::sample_bump;
+    use gbump::bumpmap::Filter;
+    use gbump::model::BumpTexel;
+    for (scene, palette) in [
+        ("blend_split", false),
+        ("torus_caps", false),
+        ("cg_wall_floor", false),
+        ("cg_wall_floor", true),
+    ] {
+        let (s, mut cfg) = gbump::render::report::scene_and_config(scene, None).unwrap();
+        cfg.palette = palette;
         let files = gbump::rtlgen::rom_files::rom_files(&cfg, Some(scene), "", None, None, Path::new("rom")).unwrap();
+        let text_of = |name: &str| files.iter().find(|(f, _)| f == name).map(|(_, t)| t.clone());
         let maps: Vec<&(String, String)> = files
             .iter()
             .filter(|(f, _)| f.starts_with(&format!("bump_map_{scene}_o")) && f.ends_with(".hex"))
             .collect();
         assert_eq!(maps.len(), s.objects.len(), "{scene}: one map per object");
+        let p = gbump::raster::Prepared::new(&s, &cfg, 1, 1).unwrap();
         let nb = cfg.normal_bits;
         let mask = (1u64 << nb) - 1;
         for (i, (name, text)) in maps.iter().enumerate() {
             assert!(name.starts_with(&format!("bump_map_{scene}_o{i}_")), "{name}");
-            let p = header_params(text);
-            assert_eq!(p["object"], format!("{scene} object {i}"));
-            assert_eq!(p["normal_bits"], nb.to_string());
+            let h = header_params(text);
+            assert_eq!(h["object"], format!("{scene} object {i}"));
             // "texel (x, y) of the WxH map at word y*W + x (texel centres at ((x + 0.5)/W, ...".
             let dims = text.split(" of the ").nth(1).and_then(|t| t.split(" map").next()).unwrap();
-            let (w, h) = dims
+            let (w, hh) = dims
                 .split_once('x')
                 .map(|(a, b)| (a.parse::<usize>().unwrap(), b.parse::<usize>().unwrap()))
                 .unwrap();
             let words = parse(text, RomFormat::Hex).unwrap();
-            assert_eq!(words.len(), w * h, "{name}");
-            let codes: Vec<[u32; 3]> = words.iter().map(|&v| [0, 1, 2].map(|c| ((v >> (c * nb)) & mask) as u32)).collect();
-            let clamp_u = text.contains("u clamped");
-            for (x, y) in [(0, 0), (w - 1, 0), (0, h - 1), (w / 2, h / 3), (w - 1, h - 1)] {
-                let uv = glam::DVec2::new((x as f64 + 0.5) / w as f64, (y as f64 + 0.5) / h as f64);
-                for f in [Filter::Nearest, Filter::Bilinear] {
-                    assert_eq!(
-                        sample_codes(&codes, w, h, clamp_u, uv, f),
-                        codes[y * w + x],
-                        "{name} ({x}, {y}) {f:?}"
-                    );
+            assert_eq!(words.len(), w * hh, "{name}");
+            let stored = &p.objects[i].stored;
+            assert_eq!(stored.size(), (w, hh), "{name}");
+            let mut differ = 0;
+            for y in 0..hh {
+                for x in 0..w {
+                    let uv = glam::DVec2::new((x as f64 + 0.5) / w as f64, (y as f64 + 0.5) / hh as f64);
+                    let v = words[y * w + x];
+                    let want = if palette {
+                        BumpTexel::Index(v as u8)
+                    } else {
+                        BumpTexel::Rgb([0, 1, 2].map(|c| ((v >> (c * nb)) & mask) as u32))
+                    };
+                    for f in [Filter::Nearest, Filter::Bilinear] {
+                        differ += usize::from(sample_bump(stored, uv, f) != want);
+                    }
                 }
             }
-            // Not a flat map where the scene bumps its surface.
-            if s.objects[i].bump.strength > 0.0 {
-                assert!(codes.iter().any(|c| *c != codes[0]), "{name}: every texel the same");
+            assert_eq!(differ, 0, "{name}: texels differ from the model's stored map");
+            if palette {
+                // Its palette: object 0's is the scene's, each other object's its own.
+                let pal = if i == 0 {
+                    format!("bump_palette_{scene}_{}.hex", &cfg.hash()[..8])
+                } else {
+                    format!("bump_palette_{scene}_o{i}_{}.hex", &cfg.hash()[..8])
+                };
+                assert!(h["filter"].contains(pal.trim_end_matches(".hex")), "{name}: {}", h["filter"]);
+                let want: Vec<u64> = stored
+                    .palette()
+                    .unwrap()
+                    .0
+                    .iter()
+                    .map(|e| e[0] as u64 | (e[1] as u64) << nb | (e[2] as u64) << (2 * nb))
+                    .collect();
+                assert_eq!(
+                    parse(&text_of(&pal).unwrap_or_else(|| panic!("{pal} not written")), RomFormat::Hex).unwrap(),
+                    want,
+                    "{pal}"
+                );
+            } else if s.objects[i].bump.strength > 0.0 {
+                assert!(words.iter().any(|v| *v != words[0]), "{name}: every texel the same");
             }
         }
     }

@@ -3,7 +3,7 @@
 //! it cannot drift from the RTL; `tests/generated_current.rs` checks the README holds it.
 
 use super::top::{latency, RESET_CYCLES};
-use super::units_v::{module_name, rom_file_name};
+use super::units_v::module_name;
 use crate::config::{LightMode, PipelineConfig};
 use crate::vectors::layout::Role;
 use crate::vectors::targets::{eval_top, top_layout, top_record};
@@ -49,34 +49,14 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     } else {
         " (`in_ready` comes from registers: at the first edge at which `rst` is sampled high it still shows the state from before, undefined after power-up; from the next edge on it is high while `rst` stays high). "
     };
-    // Every memory a load port writes keeps its words through a reset; the unused power table
-    // port (EMBM, a squaring unit) is no memory to speak of.
-    let mems: Vec<String> = super::top::memories(cfg)
-        .iter()
-        .filter(|m| m.prefix != "power_table" || super::top::unused_load_docs(cfg).is_none())
-        .map(|m| {
-            let file = match m.init_param {
-                "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
-                p => super::top::memory_inits(cfg)
-                    .into_iter()
-                    .find(|i| i.0 == p)
-                    .map(|i| i.2)
-                    .expect("an init file"),
-            };
-            format!(
-                "the {} memory (power-up contents from the `{}` parameter, default `{file}`)",
-                m.prefix.replace('_', " "),
-                m.init_param
-            )
-        })
-        .collect();
-    if !mems.is_empty() {
+    let mems = super::top::kept_memories(cfg);
+    if mems.is_empty() {
+        s += "\n\n";
+    } else {
         s += &format!(
-            "`rst` does **not** restore {}: each keeps what was last written through its load port. Each power-up file is a `$readmemh` file; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere.\n\n",
+            "`rst` does **not** restore {}: each keeps what was last written through its load port (a ROM is never written). Each power-up file is read by `$readmemh`; a relative path resolves against the simulator's working folder, so pass an absolute one from elsewhere.\n\n",
             mems.join(", ")
         );
-    } else {
-        s += "\n\n";
     }
     s += &format!(
         "**Handshake and timing.** A fragment is accepted at a rising edge at which `in_valid` and `in_ready` are both high. Its result is on `out_c`, with `out_valid` high, when sampled at the rising edge exactly **{lat}** edges later (latency {lat}){}; results leave in the order fragments entered. ",
@@ -140,7 +120,7 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     if cfg.embm() {
         let n = cfg.env_map_side();
         s += &format!(
-            "**Loading the environment maps** (EMBM, `env_map_bits = {e}`). Each map present (`env_diffuse_*`, `env_specular_*`) is written like the power table, one texel per rising edge with its `_we` high: texel (x, y) of the {n}x{n} map at address y*{n} + x, a {w}-bit word {{B, G, R}} with R in the low {cb} bits (the i-th data line of a `_env_diffuse.hex` or `_env_specular.hex` file, after its `//` header, is the word for address i), {words} words a map, under the same rule: only while no fragment is in flight. A port writes all four copies of its map at once. A scene's vector set (`gbump vectors --source scene:NAME`) runs on its object's own maps, one set per object (`scene_NAME_oI_top`, the `_oI` only where the scene has several objects), which its manifest names: `env_maps` is `{{\"diffuse\": {{\"name\", \"bytes\", \"sha256\"}}, \"specular\": {{...}}}}`, one entry per map the top has, each file beside the manifest; the top testbench loads them with `+env_diffuse=FILE +env_specular=FILE` and the C++ harness with `--env-diffuse FILE --env-specular FILE`. Every other set runs on the power-up maps (the init files).\n\n",
+            "**Loading the environment maps** (EMBM, `env_map_bits = {e}`). Each map present (`env_diffuse_*`, `env_specular_*`) is written like the power table, one texel per rising edge with its `_we` high: texel (x, y) of the {n}x{n} map at address y*{n} + x, a {w}-bit word {{B, G, R}} with R in the low {cb} bits (the i-th data line of a `_env_diffuse.hex` or `_env_specular.hex` file, after its `//` header, is the word for address i), {words} words a map, under the same rule: only while no fragment is in flight. A port writes all four copies of its map at once. A scene's vector set (`gbump vectors --source scene:NAME`) runs on its object's own maps, one set per object with visible fragments (`scene_NAME_oI_top`, the `_oI` only where more than one object has them), which its manifest names: `env_maps` is `{{\"diffuse\": {{\"name\", \"bytes\", \"sha256\"}}, \"specular\": {{...}}}}`, one entry per map the top has, each file beside the manifest; the top testbench loads them with `+env_diffuse=FILE +env_specular=FILE` and the C++ harness with `--env-diffuse FILE --env-specular FILE`. Every other set runs on the power-up maps (the init files).\n\n",
             e = cfg.env_map_bits,
             w = 3 * cfg.colour_bits,
             cb = cfg.colour_bits,
@@ -292,13 +272,18 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         s += &format!("| `{}` | {role} | {} | {} | {} | {} |\n", c.name, c.lsb, c.width, c.lanes, c.format);
     }
     s += &format!(
-        "\nText (`.hex`): one record per line, {} hex digits, most significant digit first (what `$readmemh` and `$fscanf(\"%h\")` read){}. Binary (`.bin`): the same bits as {} little-endian bytes per record (bit k of the record is bit k % 8 of byte k / 8), records back to back. The power table a set was made for is beside it as `<set>_power_table.hex`; the manifest's top-level `shininess` names it, while `config.shininess` is the configuration's own table, the one the top powers up with (they differ for a set made with `--shininess`). `gbump regress` runs the text records on Icarus (the Verilog testbench) and the binary ones on Verilator (its C++ harness), so before either simulator runs it checks each file against the manifest's size and sha256, the two files against each other record by record, and the power table against the manifest's shininess: a file edited or cut short after the dump is refused. The digests prove the files are the ones the manifest lists, not that the manifest came from gbump: a set edited throughout (both files, and the manifest's sizes and digests) is run as given, and a mismatch it causes is reported against the RTL, so rebuild a set you did not make yourself with the command its manifest records (`command`: its configuration, scene and other input files by absolute path, so it repeats from any folder of the machine that made the set). A corner set's top records come with `corners_catalogue.txt` (`corners_levelN_catalogue.txt` at level N > 1), one line per record, `i<TAB>why`: record i of the top set and why it is there; it is written only when the top is a target, and a unit's corner set has none (its records are the unit's inputs traced from the top corners, then its own corners, not one for one). A scene's top set comes with `<set>_pixels.txt` (the manifest's `pixels`, checked against its size and sha256 as the other files are): one line per record, `x y` in decimal, the pixel of the image (`--size`, else the scene's own; row 0 at the top) where the record's colour goes, so a testbench can rebuild the image from the top's results. A scene's records come object by object in the scene's order, each object's triangles in its mesh's order, and a triangle's visible fragments together in pixel order (row by row from the top, x increasing); a scene whose objects need different power tables (or, under EMBM, maps) has one set per table, each in that order.\n\n",
+        "\nText (`.hex`): one record per line, {} hex digits, most significant digit first (what `$readmemh` and `$fscanf(\"%h\")` read){}. Binary (`.bin`): the same bits as {} little-endian bytes per record (bit k of the record is bit k % 8 of byte k / 8), records back to back. The power table a set was made for is beside it as `<set>_power_table.hex`; the manifest's top-level `shininess` names it, while `config.shininess` is the configuration's own table, the one the top powers up with (they differ for a set made with `--shininess`). `gbump regress` runs the text records on Icarus (the Verilog testbench) and the binary ones on Verilator (its C++ harness), so before either simulator runs it checks each file against the manifest's size and sha256, the two files against each other record by record, and the power table against the manifest's shininess: a file edited or cut short after the dump is refused. The digests prove the files are the ones the manifest lists, not that the manifest came from gbump: a set edited throughout (both files, and the manifest's sizes and digests) is run as given, and a mismatch it causes is reported against the RTL, so rebuild a set you did not make yourself with the command its manifest records (`command`: its configuration, scene and other input files by absolute path, so it repeats from any folder of the machine that made the set). A corner set's top records come with `corners_catalogue.txt` (`corners_levelN_catalogue.txt` at level N > 1), one line per record, `i<TAB>why`: record i of the top set and why it is there; it is written only when the top is a target, and a unit's corner set has none (its records are the unit's inputs traced from the top corners, then its own corners, not one for one).{}\n\n",
         l.hex_digits(),
         match 4 * l.hex_digits() - l.bits as usize {
             0 => String::new(),
             pad => format!(" ({} bits; the top {pad} bit(s) beyond the record's {} are 0)", 4 * l.hex_digits(), l.bits),
         },
-        l.bytes()
+        l.bytes(),
+        if cfg.palette {
+            " Scene sets are refused under a palette (each palettised map has its own palette, which no harness loads per object)."
+        } else {
+            " A scene's top set comes with `<set>_pixels.txt` (the manifest's `pixels`, checked against its size and sha256 as the other files are): one line per record, `x y` in decimal, the pixel of the image (`--size`, else the scene's own; row 0 at the top) where the record's colour goes, so a testbench can rebuild the image from the top's results. A scene's records come object by object in the scene's order, each object's triangles in its mesh's order, and a triangle's visible fragments together in pixel order (row by row from the top, x increasing); a scene whose objects need different power tables (or, under EMBM, their own maps) has one set per table (per object), each in that order."
+        }
     );
     if cfg.per_triangle() {
         s += &format!(

@@ -32,7 +32,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "config_hash": cfg.hash(),
         "config": cfg,
         "top": module_name(cfg, "gbump_pipeline"),
-        "clock": "clk, rising edge; rst synchronous, active high: reset_cycles rising edge(s) with rst high clear the valid bits (every memory behind a load port, the power table, palette and environment maps, keeps its contents)",
+        "clock": clock_doc(cfg),
         "reset_cycles": super::top::RESET_CYCLES,
         "latency_cycles": latency(cfg),
         "initiation_interval": cfg.initiation_interval(),
@@ -64,7 +64,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
-        "power_table": {"present": !cfg.embm() && cfg.power_unit != crate::config::PowerUnitKind::Squaring, "init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
+        "power_table": {"present": super::top::power_table_read(cfg), "init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
         "files": {
             "filelist": super::kit::filelist_names(cfg).0,
             "filelist_icarus": super::kit::filelist_names(cfg).1,
@@ -108,4 +108,20 @@ fn load_port(cfg: &PipelineConfig, prefix: &str) -> String {
     } else {
         format!("{prefix}_we, {prefix}_waddr, {prefix}_wdata; write when idle")
     }
+}
+
+/// The `clock` key: the reset, and the memories it leaves as they are.
+fn clock_doc(cfg: &PipelineConfig) -> String {
+    let kept: Vec<String> = super::top::memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != "power_table" || super::top::power_table_read(cfg))
+        .map(|m| m.prefix.replace('_', " "))
+        .collect();
+    format!(
+        "clk, rising edge; rst synchronous, active high: reset_cycles rising edge(s) with rst high clear the valid bits{}",
+        match kept.len() {
+            0 => String::new(),
+            _ => format!(" (and leave every memory as it is: {})", kept.join(", ")),
+        }
+    )
 }

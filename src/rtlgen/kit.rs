@@ -247,7 +247,6 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
         "bump_state.setup_edges: the fewest edges a setup spans",
     );
     s += "    // Memories behind the load ports: words, address width and power-up file (the top's\n    // parameter of the same name; relative to the simulator's working folder).\n";
-    let inits = super::top::memory_inits(cfg);
     for m in super::top::memories(cfg) {
         let up = m.prefix.to_uppercase();
         p(
@@ -262,13 +261,10 @@ pub fn package(cfg: &PipelineConfig, command: &str) -> String {
             m.addr_bits.into(),
             &format!("{}_waddr width", m.prefix),
         );
-        let file = match m.init_param {
-            "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
-            param => inits.iter().find(|i| i.0 == param).map(|i| i.2.clone()).expect("an init file"),
-        };
+        let file = super::top::memory_init_file(cfg, &m);
         // The power table's port is on every top; where nothing reads it, its doc says so.
         let doc = match m.prefix {
-            "power_table" => super::top::unused_load_docs(cfg).map_or(m.doc, |u| u.1),
+            "power_table" if !super::top::power_table_read(cfg) => super::top::unused_load_docs(cfg).map_or(m.doc, |u| u.1),
             _ => m.doc,
         };
         s += &format!("    localparam {} = \"{file}\"; // {doc}\n", m.init_param);

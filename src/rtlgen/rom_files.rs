@@ -43,6 +43,12 @@ pub fn rom_files(
         (None, face) => face,
     };
     check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    let hash = &cfg.hash()[..8];
+    // A scene's palette is its first object's, as a palette configuration would store its map
+    // (`palette` forced on); each object's bump map as the texture memory holds it, and
+    // under a palette configuration every further object's own palette, which its map's
+    // indices point into.
+    let mut maps = Vec::new();
     let (palette, source) = match scene {
         Some(s) => {
             let scene = Scene::load(s)?;
@@ -50,8 +56,31 @@ pub fn rom_files(
                 palette: true,
                 ..cfg.clone()
             };
-            let p = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
-            (p.objects[0].stored.palette().cloned().expect("palette mode"), scene.name.clone())
+            let pp = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
+            let palette_of = |i: usize| pp.objects[i].stored.palette().cloned().expect("palette mode");
+            let p = crate::raster::Prepared::new(&scene, cfg, 1, 1)?;
+            for (i, (o, so)) in p.objects.iter().zip(&scene.objects).enumerate() {
+                let object = format!("{} object {i}", scene.name);
+                let palette_stem = match i {
+                    0 => format!("bump_palette_{}_{hash}", scene.name),
+                    _ => format!("bump_palette_{}_o{i}_{hash}", scene.name),
+                };
+                let filter = match &o.stored {
+                    crate::bumpmap::storage::StoredMap::Palettised { .. } => {
+                        if i > 0 {
+                            maps.push((palette_stem.clone(), palette_rom(cfg, &palette_of(i), &object), Some(cfg)));
+                        }
+                        format!("nearest (a palette index); its palette is {palette_stem}")
+                    }
+                    _ => format!("{:?}", so.bump.filter).to_lowercase(),
+                };
+                maps.push((
+                    format!("bump_map_{}_o{i}_{hash}", scene.name),
+                    crate::rtlgen::rom::bump_map_rom(cfg, &o.stored, &object, &filter),
+                    Some(cfg),
+                ));
+            }
+            (palette_of(0), scene.name.clone())
         }
         None => (default_palette(cfg), DEFAULT_PALETTE.to_string()),
     };
@@ -61,23 +90,7 @@ pub fn rom_files(
         crate::shell::quoted(&out.display().to_string())
     )
     .replace("  ", " ");
-    let hash = &cfg.hash()[..8];
     let mut files = Vec::new();
-    // A scene's own bump maps, as the texture memory holds them, one per object.
-    let mut maps = Vec::new();
-    if let Some(s) = scene {
-        let scene = Scene::load(s)?;
-        let p = crate::raster::Prepared::new(&scene, cfg, 1, 1)?;
-        for (i, (o, so)) in p.objects.iter().zip(&scene.objects).enumerate() {
-            let object = format!("{} object {i}", scene.name);
-            let filter = format!("{:?}", so.bump.filter).to_lowercase();
-            maps.push((
-                format!("bump_map_{}_o{i}_{hash}", scene.name),
-                crate::rtlgen::rom::bump_map_rom(cfg, &o.stored, &object, &filter),
-                Some(cfg),
-            ));
-        }
-    }
     // A name carries what the contents depend on: the exponent, the palette's source, the
     // cube size; the config hash stands for the widths.
     let table = cfg.power_unit != crate::config::PowerUnitKind::Squaring;

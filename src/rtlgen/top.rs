@@ -102,6 +102,45 @@ pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {
         .collect()
 }
 
+/// Whether the top reads a power table (a RAM, or a ROM under `power_rom`): not under EMBM
+/// or a squaring power unit, whose table port stays on the interface unused.
+pub fn power_table_read(cfg: &PipelineConfig) -> bool {
+    !cfg.embm() && cfg.power_unit != crate::config::PowerUnitKind::Squaring
+}
+
+/// The power-up file of memory `m` of the top (its `init_param`'s default).
+pub fn memory_init_file(cfg: &PipelineConfig, m: &units::Memory) -> String {
+    match m.init_param {
+        "INIT_FILE" => rom_file_name(cfg, "power_table", "hex"),
+        param => memory_inits(cfg)
+            .into_iter()
+            .find(|i| i.0 == param)
+            .map(|i| i.2)
+            .expect("every memory but the table has an init parameter"),
+    }
+}
+
+/// The memories a reset leaves as they are, as a sentence lists them: each memory the top
+/// reads, with its power-up parameter and default file (none for EMBM's or a squaring unit's
+/// unused table port).
+pub fn kept_memories(cfg: &PipelineConfig) -> Vec<String> {
+    memories(cfg)
+        .iter()
+        .filter(|m| m.prefix != "power_table" || power_table_read(cfg))
+        .map(|m| {
+            let what = match m.prefix {
+                "power_table" if cfg.power_rom => "the power table (a ROM)".to_string(),
+                p => format!("the {} memory", p.replace('_', " ")),
+            };
+            format!(
+                "{what} (power-up contents from the `{}` parameter, default `{}`)",
+                m.init_param,
+                memory_init_file(cfg, m)
+            )
+        })
+        .collect()
+}
+
 /// The power table's load-port docs where the port is unused: (write enable, address and
 /// data).
 pub fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {

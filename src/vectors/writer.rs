@@ -336,7 +336,6 @@ impl SetWriter {
     }
 }
 
-/// The file of set `stem`'s `which` (`diffuse`, `specular`) environment map.
 /// Write `text` to `name` in `dir` (atomically) and give its manifest entry, from the bytes
 /// written: under `commit::together` the file is not in place yet.
 fn write_listed(dir: &Path, name: String, text: &str) -> Result<FileEntry> {
@@ -360,6 +359,7 @@ fn write_pixels(dir: &Path, stem: &str, pixels: &[[u32; 2]]) -> Result<FileEntry
     write_listed(dir, pixels_name(stem), &text)
 }
 
+/// The file of set `stem`'s `which` (`diffuse`, `specular`) environment map.
 fn env_map_name(stem: &str, which: &str) -> String {
     format!("{stem}_env_{which}.hex")
 }

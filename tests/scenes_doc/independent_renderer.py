@@ -395,6 +395,9 @@ def run(name):
         groups.setdefault(key, []).append((f, start))
     got = cfg.vectors(f'scene:{name}')
     ok = True
+    if len(got) != len(groups):
+        print(name, 'sets differ: gbump wrote', len(got), 'here', len(groups)); ok = False
+    stimulus = [c['name'] for c in cfg.columns('top') if c['role'] == 'stimulus']
     for (key, recs), gs in zip(sorted(groups.items()), got):
         u = cfg.unpack('top', gs['records'])
         assert gs['shininess'] == key, (gs['shininess'], key)
@@ -410,14 +413,27 @@ def run(name):
             'tri_lc': np.array([sum((s[2] for s in r[0][9]), []) for r in recs]),
             'tri_k': np.array([[s[3] for s in r[0][9]] for r in recs]),
         }
+        # Each record's pixel, as the set's `pixels` gives it.
+        px = np.array([r[0][2:4] for r in recs])
+        if not np.array_equal(gs['pixels'], px):
+            ok = False
+            print(name, key, 'pixels differ')
+        compared = set()
         for col, arr in mine.items():
             if col.startswith('tri_') and col != 'tri_start' and col not in u: col = 'in_' + col[4:]
             if col not in u: continue
+            compared.add(col)
             bad = np.nonzero((u[col] != arr).any(axis=1))[0]
             if len(bad):
                 ok = False
                 j = bad[0]
                 print(name, key, col, f'{len(bad)}/{n} differ; first at record {j} pixel {recs[j][0][2:4]}: gbump {u[col][j].tolist()} mine {arr[j].tolist()}')
+        # Every stimulus column of the records is one rebuilt here (a column this front end
+        # does not make, a frame's or EMBM's, is not a pass).
+        missing = [c for c in stimulus if c not in compared]
+        if missing:
+            ok = False
+            print(name, key, 'stimulus columns not rebuilt here:', missing)
     print(name, 'OK' if ok else 'DIFFERS', sum(len(r) for r in groups.values()), 'records')
 
 if __name__ == '__main__':
