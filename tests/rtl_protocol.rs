@@ -464,6 +464,34 @@ fn reset_edges(cfg_path: Option<&str>, name: &str) {
     assert_eq!(v[3], 0, "{line}: out_valid stayed high after the first reset edge");
 }
 
+/// A reset restarts the span of a setup not yet taken (the integration notes): a setup
+/// offered for two edges, then one reset edge, then offered on, is taken at the first edge
+/// with `rst` low + setup_edges - 1, as if first offered there.
+fn reset_restarts_a_setup(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let (line, v) = directed(&cfg, name, "tb_rsetup", "r ", |top, decl, conn| {
+        format!(
+            "`timescale 1ns / 1ps\nmodule tb_rsetup;\n{decl}integer cyc = 0, r = -1, t = -1, early = 0;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  repeat (2) begin @(negedge clk); early = early | tri_ready; end\n  rst = 1'b1;\n  @(negedge clk);\n  rst = 1'b0;\n  r = cyc + 1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  t = cyc + 1;\n  @(negedge clk);\n  tri_valid = 1'b0;\n  $display(\"r %0d t %0d early %0d\", r, t, early);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+        )
+    });
+    let edges = gbump::rtlgen::top::setup_edges(&cfg) as i64;
+    let (r, t, early) = (v[0], v[1], v[2]);
+    if edges > 2 {
+        assert_eq!(early, 0, "{line}: the setup was taken before the reset");
+    }
+    assert_eq!(
+        t,
+        r + edges - 1,
+        "{line}: a setup offered before a reset counted edges from before it"
+    );
+}
+
+#[test]
+fn a_reset_restarts_a_setup_not_yet_taken() {
+    reset_restarts_a_setup(None, "rst_restart_serial");
+    reset_restarts_a_setup(Some("tests/configs/three_banks_serial.toml"), "rst_restart_serial3");
+}
+
 #[test]
 fn a_reset_ends_bank_holds_and_its_first_edge_still_shows_the_output() {
     reset_edges(None, "reset_edges_serial");
