@@ -486,6 +486,31 @@ fn reset_restarts_a_setup(cfg_path: Option<&str>, name: &str) {
     );
 }
 
+/// Why the integration notes say to hold `in_valid` low while a setup is pending: `in_ready`
+/// does not look at it, so a triangle's fragment offered beside its setup enters first, or
+/// at the setup's own edge, and belongs to the previous triangle. If the top ever gated
+/// `in_ready` with a pending setup, this fails and the notes' rule can go.
+fn a_fragment_beside_its_setup_enters_first(cfg_path: Option<&str>, name: &str) {
+    let cfg = config(cfg_path);
+    let (line, v) = directed(&cfg, name, "tb_beside", "t ", |top, decl, conn| {
+        format!(
+            "`timescale 1ns / 1ps\nmodule tb_beside;\n{decl}integer cyc = 0, t = -1, f = -1;\nalways #5 clk = ~clk;\nalways @(posedge clk) cyc <= cyc + 1;\n{top} dut ({conn});\ninitial begin\n  repeat (3) @(negedge clk);\n  rst = 1'b0;\n  tri_valid = 1'b1;\n  #1;\n  while (!tri_ready) @(negedge clk);\n  @(negedge clk);\n  tri_valid = 1'b0;\n  in_valid = 1'b1;\n  #1;\n  while (!in_ready) @(negedge clk);\n  @(negedge clk);\n  in_valid = 1'b0;\n  repeat (40) @(negedge clk);\n  tri_valid = 1'b1;\n  in_valid = 1'b1;\n  fork\n    begin #1; while (!tri_ready) @(negedge clk); t = cyc + 1; @(negedge clk); tri_valid = 1'b0; end\n    begin #1; while (!in_ready) @(negedge clk); f = cyc + 1; @(negedge clk); in_valid = 1'b0; end\n  join\n  $display(\"t %0d f %0d\", t, f);\n  $finish;\nend\ninitial begin #100000 $display(\"FATAL: timeout\"); $finish; end\nendmodule\n"
+        )
+    });
+    let (t, f) = (v[0], v[1]);
+    assert!(t > 0 && f > 0, "{line}: the setup or the fragment was never taken");
+    assert!(
+        f <= t,
+        "{line}: the fragment waited for its setup (in_ready now looks at tri_valid: update the integration notes)"
+    );
+}
+
+#[test]
+fn a_fragment_offered_beside_its_setup_enters_first() {
+    a_fragment_beside_its_setup_enters_first(None, "beside_serial");
+    a_fragment_beside_its_setup_enters_first(Some("tests/configs/one_light_parallel.toml"), "beside_parallel");
+}
+
 #[test]
 fn a_reset_restarts_a_setup_not_yet_taken() {
     reset_restarts_a_setup(None, "rst_restart_serial");
