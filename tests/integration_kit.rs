@@ -662,3 +662,38 @@ fn every_package_compiles_and_names_its_tops_memories_and_lanes() {
         }
     }
 }
+
+/// The integration notes of every kept configuration state the numbers its interface JSON
+/// holds (latency, interval, output buffer, bank hold, setup span), where a reader looks for
+/// them: the notes are written per configuration, and a number in one branch of the text
+/// could drift from the generator's.
+#[test]
+fn every_configurations_integration_notes_state_its_interface_numbers() {
+    let mut n = 0;
+    for e in std::fs::read_dir("tests/configs").unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let cfg = PipelineConfig::load(&p).unwrap();
+        let doc = gbump::rtlgen::integration_doc::markdown(&cfg);
+        let j: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(&cfg, "test")).unwrap();
+        let name = p.display();
+        let lat = &j["latency_cycles"];
+        assert!(doc.contains(&format!("(latency {lat})")), "{name}: latency {lat}");
+        let ii = &j["initiation_interval"];
+        assert!(doc.contains(&format!("Initiation interval **{ii}**")), "{name}: interval {ii}");
+        if let Some(d) = j["output_buffer_results"].as_u64() {
+            assert!(doc.contains(&format!("buffer of **{d}**")), "{name}: buffer {d}");
+        }
+        let bs = &j["bump_state"];
+        if let Some(hold) = bs["bank_hold_cycles"].as_u64() {
+            assert!(doc.contains(&format!("from **{hold}**")), "{name}: bank hold {hold}");
+        }
+        if let Some(e) = bs["setup_edges"].as_u64().filter(|e| *e > 1) {
+            assert!(doc.contains(&format!("spans **{e}**")), "{name}: setup span {e}");
+        }
+        n += 1;
+    }
+    assert!(n >= 20);
+}
