@@ -180,7 +180,7 @@ fn cases() -> Vec<Case> {
                 "kind = \"directional\"\ndirection = [0.0, 0.0, 0.0]",
             )),
             render(&[]),
-            vec!["lights[0].direction", "non-zero"],
+            vec!["lights[0].direction", "shorter than 1e-12"],
         ),
         (
             "eye on the target",
@@ -280,6 +280,12 @@ fn cases() -> Vec<Case> {
             scene(|t: &str| r("kind = \"plane\", size = [4.0, 2.0]", "kind = \"sphere\", radius = 1.0")(t).replace("segments = [16, 8]", "segments = [1, 8]")),
             render(&[]),
             vec!["s.toml:23:1", "objects[0].segments[0]", "for a sphere", "3..=1024"],
+        ),
+        (
+            "an up vector too short to give a direction",
+            scene(r("up = [0.0, 1.0, 0.0]", "up = [0.0, 1e-13, 0.0]")),
+            render(&[]),
+            vec!["camera.up", "shorter than 1e-12", "fix: give a vector of length 1e-12 or more"],
         ),
         (
             "a prism with a u scale (each facet spans the map's u once)",

@@ -384,3 +384,52 @@ fn a_recorded_command_repeats_from_any_folder() {
     let bytes = |p: PathBuf| std::fs::read(p).unwrap();
     assert_eq!(bytes(d.join("a/corners_top.hex")), bytes(d.join("b/corners_top.hex")));
 }
+
+/// A scene dumped again into the same folder, its objects now grouped otherwise (one power
+/// table where there were two), leaves no set of the earlier dump: a regression would run
+/// them and a testbench rebuilding the image from every pixels file would mix two scenes.
+/// Files that are not that scene's sets stay.
+#[test]
+fn a_scene_dumped_again_leaves_none_of_its_earlier_sets() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("mx.toml");
+    let text = std::fs::read_to_string(root().join("tests/scenes_doc/mixed.toml")).unwrap();
+    assert!(text.contains("shininess = 30") && text.contains("shininess = 12"));
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.path().join("v");
+    let dump = || {
+        assert_cmd::Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["vectors", "--target", "top", "--format", "hex", "--out"])
+            .arg(&out)
+            .arg(format!("--source=scene:{}", scene.display()))
+            .assert()
+            .success();
+    };
+    dump();
+    let names = || -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    assert!(names().iter().any(|n| n == "scene_mx_n30_top_pixels.txt"), "{:?}", names());
+    // Not this scene's sets: another scene's, and a file of a set-like name that is no manifest.
+    std::fs::write(out.join("scene_mx_n7_top.json"), "not a manifest").unwrap();
+    std::fs::write(out.join("scene_other_top.json"), "{}").unwrap();
+    std::fs::write(&scene, text.replace("shininess = 30", "shininess = 12")).unwrap();
+    dump();
+    assert_eq!(
+        names(),
+        [
+            "scene_mx_n7_top.json",
+            "scene_mx_top.hex",
+            "scene_mx_top.json",
+            "scene_mx_top_pixels.txt",
+            "scene_mx_top_power_table.hex",
+            "scene_other_top.json"
+        ]
+    );
+}

@@ -125,6 +125,7 @@ pub fn vectors<'py>(
                 // Each record's pixel, as the dump's `_pixels.txt` gives it: uint32 (N, 2), x y.
                 let px: Vec<u32> = g.pixels.iter().flatten().flatten().copied().collect();
                 d.set_item("pixels", records_out(py, px, 2, false)?)?;
+                d.set_item("image_size", g.image)?;
                 if let Some(e) = &g.env {
                     // EMBM: the object's maps, as RAM words for the env_*_wdata ports.
                     for (which, map) in [("diffuse", &e.diffuse), ("specular", &e.specular)] {

@@ -143,6 +143,8 @@ if not config:
     check(len(ref) > 0 and np.array_equal(g["records"], ref), "scene:blend_split equals the file")
     px = np.loadtxt(os.path.join(vec, g["name"] + "_top_pixels.txt"), dtype=np.uint32, ndmin=2)
     check(g["pixels"].shape == (len(ref), 2) and np.array_equal(g["pixels"], px), "scene:blend_split's pixels equal the file")
+    with open(os.path.join(vec, g["name"] + "_top.json")) as f:
+        check(json.load(f)["image_size"] == [32, 32] and list(g["image_size"]) == [32, 32], "the image size is the manifest's")
     check(len({(int(x), int(y)) for x, y in px}) == len(px) and px.max() < 32, "each record has its own pixel, inside the image")
     # Within a triangle (records after its first), pixel order: rows from the top, x increasing.
     at = px[:, 1].astype(np.int64) * 32 + px[:, 0]

@@ -282,7 +282,7 @@ fn vector_layout(cfg: &PipelineConfig) -> String {
         if cfg.palette {
             " Scene sets are refused under a palette (each palettised map has its own palette, which no harness loads per object)."
         } else {
-            " A scene's top set comes with `<set>_pixels.txt` (the manifest's `pixels`, checked against its size and sha256 as the other files are): one line per record, `x y` in decimal, the pixel of the image (`--size`, else the scene's own; row 0 at the top) where the record's colour goes, so a testbench can rebuild the image from the top's results. A scene's records come object by object in the scene's order, each object's triangles in its mesh's order, and a triangle's visible fragments together in pixel order (row by row from the top, x increasing); a scene whose objects need different power tables (or, under EMBM, their own maps) has one set per table (per object), each in that order."
+            " A scene's top set comes with `<set>_pixels.txt` (the manifest's `pixels`, checked against its size and sha256 as the other files are): one line per record, `x y` in decimal, the pixel of the image (`--size`, else the scene's own, the manifest's `image_size` [width, height]; row 0 at the top) where the record's colour goes, so a testbench can rebuild the image from the top's results. A scene's records come object by object in the scene's order, each object's triangles in its mesh's order, and a triangle's visible fragments together in pixel order (row by row from the top, x increasing); a scene whose objects need different power tables (or, under EMBM, their own maps) has one set per table (per object), each in that order."
         }
     );
     if cfg.per_triangle() {

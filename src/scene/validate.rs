@@ -48,7 +48,11 @@ impl Checker<'_> {
     fn dir(&self, path: &str, v: [f64; 3]) -> Result<()> {
         self.vec3(path, v, -1e6, 1e6)?;
         if v.iter().map(|c| c * c).sum::<f64>() < 1e-24 {
-            return Err(self.fail(path, "zero-length direction".into(), "give a non-zero vector"));
+            return Err(self.fail(
+                path,
+                format!("{v:?} is shorter than 1e-12, too short to give a direction"),
+                "give a vector of length 1e-12 or more (its length does not matter, only its direction)",
+            ));
         }
         Ok(())
     }

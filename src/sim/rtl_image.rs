@@ -87,6 +87,12 @@ fn read_pixels(m: &crate::vectors::Manifest, dir: &Path, w: u32, h: u32) -> Resu
             m.module
         ))
     })?;
+    if m.image_size.is_some_and(|s| s != [w, h]) {
+        return Err(Error::Other(format!(
+            "{}: its pixels lie in a {:?} image, not the {w}x{h} one rendered\n  fix: this is a gbump bug; report it with the scene",
+            m.module, m.image_size
+        )));
+    }
     let p = dir.join(&entry.name);
     let text = std::fs::read_to_string(&p).map_err(|e| Error::io(&p, e))?;
     let bad = |line: usize, why: &str| {

@@ -68,6 +68,9 @@ pub struct Manifest {
     /// Scene top sets: each record's pixel, `x y` a line (`vectors::writer::write_pixels`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pixels: Option<FileEntry>,
+    /// Scene top sets: the image the pixels lie in, [width, height].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image_size: Option<[u32; 2]>,
 }
 
 /// A set's environment maps, as `gbump rom` writes the power-up ones: one for each blend

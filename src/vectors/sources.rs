@@ -544,6 +544,8 @@ pub struct SceneGroup {
     /// A scene's groups: each record's pixel, `[x, y]` (row 0 at the top), one for one with
     /// `stims`; the dump writes them beside the top set (`_pixels.txt`).
     pub pixels: Option<Vec<[u32; 2]>>,
+    /// A scene's groups: the image those pixels lie in, [width, height].
+    pub image: Option<[u32; 2]>,
 }
 
 /// The group a fragment of object `obj` of scene `s` goes with under `cfg`: its object under
@@ -613,6 +615,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
                 stims,
                 env,
                 pixels: Some(pixels),
+                image: Some([w, h]),
             }
         })
         .collect())

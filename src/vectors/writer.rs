@@ -264,7 +264,7 @@ impl SetWriter {
         o: &DumpOptions,
         n: u32,
         env: Option<&EnvMaps>,
-        pixels: Option<&[[u32; 2]]>,
+        pixels: Option<(&[[u32; 2]], [u32; 2])>,
     ) -> Result<VectorSet> {
         if self.count == 0 {
             return Err(Error::Other(format!(
@@ -286,9 +286,9 @@ impl SetWriter {
             Some(maps) => Some(write_env_maps(dir, &self.stem, cfg, maps, &o.command)?),
             None => None,
         };
-        let pixels = match pixels {
-            Some(px) => Some(write_pixels(dir, &self.stem, px)?),
-            None => None,
+        let (pixels, image_size) = match pixels {
+            Some((px, image)) => (Some(write_pixels(dir, &self.stem, px)?), Some(image)),
+            None => (None, None),
         };
         let (module, latency, initiation_interval) = super::manifest::timing(cfg, &self.target);
         let m = Manifest {
@@ -312,6 +312,7 @@ impl SetWriter {
             initiation_interval,
             env_maps,
             pixels,
+            image_size,
         };
         let mp = dir.join(format!("{}.json", self.stem));
         crate::render::output::write_atomic(&mp, (serde_json::to_string_pretty(&m).expect("json") + "\n").as_bytes())?;
@@ -412,6 +413,7 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path, t
                 stims: cat.into_iter().map(|c| c.1).collect(),
                 env: None,
                 pixels: None,
+                image: None,
             }]
         }
         Source::Scene(name) => super::sources::scene_groups(cfg, name, o.size)?,
@@ -632,15 +634,63 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     // The top loads the maps through its ports; a unit's harness has none.
                     // The pixels are the top's records' (a unit set is not one for one).
                     let (env, pixels) = match w.target == "top" {
-                        true => (g.env.as_ref(), g.pixels.as_deref()),
+                        true => (g.env.as_ref(), g.pixels.as_deref().zip(g.image)),
                         false => (None, None),
                     };
                     out.push(w.finish_with(dir, cfg, src, o, n, env, pixels)?);
                 }
             }
+            if matches!(src, Source::Scene(_)) {
+                retire_other_scene_sets(dir, src, &targets, &out)?;
+            }
         }
     }
     Ok(out)
+}
+
+/// A scene's sets of an earlier dump into `dir` that this one did not write again (the
+/// scene's objects grouped otherwise since: one power table where there were two), with
+/// every file their manifests list: left beside the new sets, a regression would run them
+/// and a testbench rebuilding the image from every pixels file would mix two scenes. Only a
+/// manifest gbump wrote for the same source and one of `targets` is taken for one.
+fn retire_other_scene_sets(dir: &Path, src: &Source, targets: &[String], written: &[VectorSet]) -> Result<()> {
+    let base = src.stem();
+    let ours: Vec<&std::ffi::OsStr> = written.iter().filter_map(|v| v.manifest.file_name()).collect();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let n = name.to_string_lossy();
+        // `{base}_{target}.json` or `{base}_nS_{target}.json` / `{base}_oI_{target}.json`.
+        let Some(rest) = n.strip_prefix(&format!("{base}_")).and_then(|r| r.strip_suffix(".json")) else {
+            continue;
+        };
+        let group = |g: &str| {
+            g.is_empty() || (g.len() > 1 && (g.starts_with('n') || g.starts_with('o')) && g[1..].bytes().all(|b| b.is_ascii_digit()))
+        };
+        let set_of = |t: &String| rest == t.as_str() || rest.strip_suffix(&format!("_{t}")).is_some_and(group);
+        if ours.contains(&name.as_os_str()) || !targets.iter().any(set_of) {
+            continue;
+        }
+        let Ok(m) = std::fs::read_to_string(e.path())
+            .map_err(|_| ())
+            .and_then(|t| serde_json::from_str::<Manifest>(&t).map_err(|_| ()))
+        else {
+            continue;
+        };
+        if m.source != src.to_string() || !targets.contains(&m.target) {
+            continue;
+        }
+        for f in m.files() {
+            // A listed name is a plain file name (`verify` refuses any other); never a path.
+            if Path::new(&f.name).file_name() == Some(std::ffi::OsStr::new(&f.name)) {
+                crate::commit::retire(&dir.join(&f.name))?;
+            }
+        }
+        crate::commit::retire(&e.path())?;
+    }
+    Ok(())
 }
 
 fn open(dir: &Path, stem: &str, targets: &[String], cfg: &PipelineConfig, o: &DumpOptions, limit: u64) -> Result<Vec<SetWriter>> {
