@@ -801,8 +801,18 @@ pub fn run() -> anyhow::Result<()> {
         } => {
             let cfg = pick.resolve()?;
             let files = crate::rtlgen::rom_files::rom_files(&cfg, pick.scene.as_deref(), &pick.args(), shininess, cube_size, &out)?;
+            let stale = match &pick.scene {
+                Some(s) => crate::rtlgen::rom_files::stale_scene_roms(&out, s, &cfg, &files),
+                None => Vec::new(),
+            };
             crate::render::output::write_files(&out, &files)?;
+            for p in &stale {
+                crate::commit::retire(p)?;
+            }
             outln!("wrote {} ROM files to {}", files.len(), out.display());
+            if !stale.is_empty() {
+                outln!("removed {} ROM file(s) of objects the scene no longer has", stale.len());
+            }
         }
         Cmd::Vectors {
             source,

@@ -269,3 +269,55 @@ fn a_scenes_bump_maps_are_its_objects_texture_memory() {
         }
     }
 }
+
+/// `gbump rom --scene` writes a power table for each shininess the scene's objects read (a
+/// vector dump makes one set per table), and a scene that lost an object since an earlier
+/// run into the same folder leaves no map of that object behind.
+#[test]
+fn a_scenes_roms_follow_its_objects() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes_doc/mixed.toml")).unwrap();
+    let scene = dir.path().join("mx.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.path().join("rom");
+    let rom = || {
+        assert_cmd::Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["rom", "--out"])
+            .arg(&out)
+            .arg(format!("--scene={}", scene.display()))
+            .assert()
+            .success()
+    };
+    rom();
+    let names = || -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    let tables: Vec<String> = names()
+        .into_iter()
+        .filter(|n| n.starts_with("power_table_n") && n.ends_with(".hex"))
+        .collect();
+    assert_eq!(tables.len(), 2, "{tables:?}");
+    assert!(
+        tables[0].starts_with("power_table_n12_") && tables[1].starts_with("power_table_n30_"),
+        "{tables:?}"
+    );
+    assert_eq!(names().iter().filter(|n| n.starts_with("bump_map_mixed_o2_")).count(), 3);
+    // The last object dropped: its three map files go, the others stay.
+    let last = text.rfind("[[objects]]").unwrap();
+    std::fs::write(&scene, &text[..last]).unwrap();
+    let o = rom();
+    assert!(String::from_utf8_lossy(&o.get_output().stdout).contains("removed 3 ROM file(s)"));
+    assert_eq!(
+        names().iter().filter(|n| n.starts_with("bump_map_mixed_o2_")).count(),
+        0,
+        "{:?}",
+        names()
+    );
+    assert_eq!(names().iter().filter(|n| n.starts_with("bump_map_mixed_o")).count(), 6);
+}

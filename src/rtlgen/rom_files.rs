@@ -49,9 +49,15 @@ pub fn rom_files(
     // under a palette configuration every further object's own palette, which its map's
     // indices point into.
     let mut maps = Vec::new();
+    // The power tables: the one asked for, or each one a scene's objects read (a vector dump
+    // of the scene makes one set per table).
+    let mut tables = std::collections::BTreeSet::from([n]);
     let (palette, source) = match scene {
         Some(s) => {
             let scene = Scene::load(s)?;
+            if shininess.is_none() && !cfg.embm() {
+                tables.extend((0..scene.objects.len() as u32).map(|i| crate::vectors::sources::group_key(cfg, &scene, i)));
+            }
             let pcfg = PipelineConfig {
                 palette: true,
                 ..cfg.clone()
@@ -95,7 +101,6 @@ pub fn rom_files(
     // cube size; the config hash stands for the widths.
     let table = cfg.power_unit != crate::config::PowerUnitKind::Squaring;
     for (stem, rom, of) in [
-        table.then(|| (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg))),
         Some((
             format!("bump_palette_{source}_{hash}"),
             palette_rom(cfg, &palette, &source),
@@ -105,6 +110,12 @@ pub fn rom_files(
     ]
     .into_iter()
     .flatten()
+    .chain(
+        tables
+            .into_iter()
+            .filter(|_| table)
+            .map(|n| (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg))),
+    )
     .chain(maps)
     {
         let hl = rom_header(&rom, of, &cmd, &rom.name);
@@ -113,4 +124,30 @@ pub fn rom_files(
         }
     }
     Ok(files)
+}
+
+/// The files of an earlier `gbump rom --scene` into `out` that this one's `files` leave out:
+/// an object's bump map or palette past the scene's objects now (the scene lost an object),
+/// which would otherwise pass for the scene's.
+pub fn stale_scene_roms(out: &Path, scene: &str, cfg: &PipelineConfig, files: &[(String, String)]) -> Vec<std::path::PathBuf> {
+    let Ok(scene) = Scene::load(scene) else {
+        return Vec::new();
+    };
+    let hash = &cfg.hash()[..8];
+    let Ok(entries) = std::fs::read_dir(out) else {
+        return Vec::new();
+    };
+    entries
+        .flatten()
+        .filter_map(|e| {
+            let n = e.file_name().to_string_lossy().into_owned();
+            let object = ["bump_map", "bump_palette"].iter().find_map(|kind| {
+                let rest = n.strip_prefix(&format!("{kind}_{}_o", scene.name))?;
+                let (i, tail) = rest.split_once('_')?;
+                let ext = tail.strip_prefix(hash)?.strip_prefix('.')?;
+                (["hex", "mif", "coe"].contains(&ext) && i.bytes().all(|b| b.is_ascii_digit())).then_some(())
+            });
+            (object.is_some() && !files.iter().any(|(f, _)| *f == n)).then(|| e.path())
+        })
+        .collect()
 }
