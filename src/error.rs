@@ -31,7 +31,7 @@ pub enum Error {
     #[error("{path}: {msg}")]
     Io { path: PathBuf, msg: String },
 
-    #[error("{path}: cannot read image: {msg}\n  fix: give a readable greyscale or RGB PNG file")]
+    #[error("{path}: cannot read image: {msg}\n  fix: give a readable PNG file (greyscale, RGB or RGBA; its luminance is the height, alpha is ignored)")]
     Image { path: PathBuf, msg: String },
 
     #[error("{0}")]

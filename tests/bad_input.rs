@@ -366,7 +366,7 @@ fn cases() -> Vec<Case> {
                 ("bad.png", "\u{89}PNG not really".into()),
             ],
             render(&[]),
-            vec!["bad.png", "PNG"],
+            vec!["bad.png", "PNG", "field `objects[0].bump.source.path`"],
         ),
         (
             "unknown scene name",
