@@ -2,6 +2,9 @@
 //! --shininess 8` once wrote a table for n = 8 whose header said `shininess = 16` (the
 //! config's). Each header is read back here and checked against the file name and the words.
 
+#[path = "common/file_names.rs"]
+mod file_names;
+
 use gbump::cli::ConfigPick;
 use gbump::config::PowerUnitKind;
 use gbump::rtlgen::rom::{parse, RomFormat};
@@ -290,14 +293,7 @@ fn a_scenes_roms_follow_its_objects() {
             .success()
     };
     rom();
-    let names = || -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&out)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    };
+    let names = || file_names::file_names(&out);
     let tables: Vec<String> = names()
         .into_iter()
         .filter(|n| n.starts_with("power_table_n") && n.ends_with(".hex"))

@@ -2,6 +2,9 @@
 //! manifest agrees with an edited file (checksums prove only that the two match), and a
 //! failed check's fix regenerates the set where it now lies.
 
+#[path = "common/file_names.rs"]
+mod file_names;
+
 use gbump::vectors::manifest::{sha256_file, Manifest};
 use std::path::{Path, PathBuf};
 
@@ -407,14 +410,7 @@ fn a_scene_dumped_again_leaves_none_of_its_earlier_sets() {
             .success();
     };
     dump();
-    let names = || -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&out)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    };
+    let names = || file_names::file_names(&out);
     assert!(names().iter().any(|n| n == "scene_mx_n30_top_pixels.txt"), "{:?}", names());
     // Not this scene's sets: another scene's, and a file of a set-like name that is no manifest.
     std::fs::write(out.join("scene_mx_n7_top.json"), "not a manifest").unwrap();
