@@ -123,9 +123,9 @@ pub fn vectors<'py>(
                 let words = py.detach(|| top_words(cfg, &g.stims, g.shininess, g.env.as_ref()));
                 let d = set(py, &g.stem, "top", g.shininess, words, top_w, None)?;
                 // Each record's pixel, as the dump's `_pixels.txt` gives it: uint32 (N, 2), x y.
-                let px: Vec<u32> = g.pixels.iter().flatten().flatten().copied().collect();
+                let px: Vec<u32> = g.pixels.iter().flat_map(|(px, _)| px).flatten().copied().collect();
                 d.set_item("pixels", records_out(py, px, 2, false)?)?;
-                d.set_item("image_size", g.image)?;
+                d.set_item("image_size", g.pixels.as_ref().map(|p| p.1))?;
                 if let Some(e) = &g.env {
                     // EMBM: the object's maps, as RAM words for the env_*_wdata ports.
                     for (which, map) in [("diffuse", &e.diffuse), ("specular", &e.specular)] {

@@ -39,8 +39,8 @@ impl<'a> Prepared<'a> {
         let camera = Camera::new(&scene.camera, w, h);
         let mut objects = Vec::new();
         let mut tables = BTreeMap::new();
-        for o in &scene.objects {
-            let normals = scene.normal_map(o)?;
+        for (i, o) in scene.objects.iter().enumerate() {
+            let normals = scene.normal_map(i)?;
             let stored = StoredMap::store(cfg, &normals);
             let mesh = tessellate(o);
             mirrored_refused(scene, cfg, objects.len(), &mesh)?;

@@ -112,11 +112,7 @@ fn load_port(cfg: &PipelineConfig, prefix: &str) -> String {
 
 /// The `clock` key: the reset, and the memories it leaves as they are.
 fn clock_doc(cfg: &PipelineConfig) -> String {
-    let kept: Vec<String> = super::top::memories(cfg)
-        .iter()
-        .filter(|m| m.prefix != "power_table" || super::top::power_table_read(cfg))
-        .map(|m| m.prefix.replace('_', " "))
-        .collect();
+    let kept: Vec<String> = super::top::read_memories(cfg).iter().map(|m| m.prefix.replace('_', " ")).collect();
     format!(
         "clk, rising edge; rst synchronous, active high: reset_cycles rising edge(s) with rst high clear the valid bits{}",
         match kept.len() {

@@ -64,7 +64,15 @@ pub fn rom_files(
             };
             let pp = crate::raster::Prepared::new(&scene, &pcfg, 1, 1)?;
             let palette_of = |i: usize| pp.objects[i].stored.palette().cloned().expect("palette mode");
-            let p = crate::raster::Prepared::new(&scene, cfg, 1, 1)?;
+            // The configuration's own maps: the palettised ones above where it has a palette.
+            let own;
+            let p = match cfg.palette {
+                true => &pp,
+                false => {
+                    own = crate::raster::Prepared::new(&scene, cfg, 1, 1)?;
+                    &own
+                }
+            };
             for (i, (o, so)) in p.objects.iter().zip(&scene.objects).enumerate() {
                 let object = format!("{} object {i}", scene.name);
                 let palette_stem = match i {

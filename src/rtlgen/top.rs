@@ -120,13 +120,20 @@ pub fn memory_init_file(cfg: &PipelineConfig, m: &units::Memory) -> String {
     }
 }
 
-/// The memories a reset leaves as they are, as a sentence lists them: each memory the top
-/// reads, with its power-up parameter and default file (none for EMBM's or a squaring unit's
-/// unused table port).
-pub fn kept_memories(cfg: &PipelineConfig) -> Vec<String> {
+/// The memories the top reads: [`memories`] less the power table where its port is unused
+/// (EMBM, a squaring unit).
+pub fn read_memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
     memories(cfg)
-        .iter()
+        .into_iter()
         .filter(|m| m.prefix != "power_table" || power_table_read(cfg))
+        .collect()
+}
+
+/// The memories a reset leaves as they are, as a sentence lists them: each memory the top
+/// reads, with its power-up parameter and default file.
+pub fn kept_memories(cfg: &PipelineConfig) -> Vec<String> {
+    read_memories(cfg)
+        .iter()
         .map(|m| {
             let what = match m.prefix {
                 "power_table" if cfg.power_rom => "the power table (a ROM)".to_string(),

@@ -418,22 +418,16 @@ impl Scene {
         }
     }
 
-    /// Object `o`'s f64 normal map: its height field, differentiated, curved for a
+    /// Object `i`'s f64 normal map: its height field, differentiated, curved for a
     /// facet-baked cylinder.
-    pub fn normal_map(&self, o: &Object) -> Result<crate::bumpmap::NormalMap> {
+    pub fn normal_map(&self, i: usize) -> Result<crate::bumpmap::NormalMap> {
+        let o = &self.objects[i];
         // A height map that does not decode is named with the scene field that gave it.
         let hf = o.bump.source.generate(o.bump.size as usize, &self.base).map_err(|e| match e {
-            Error::Image { path, msg } => {
-                let i = self
-                    .objects
-                    .iter()
-                    .position(|x| std::ptr::eq(x, o))
-                    .map_or("?".to_string(), |i| i.to_string());
-                Error::Image {
-                    path,
-                    msg: format!("{msg} (scene {}, field `objects[{i}].bump.source.path`)", self.file),
-                }
-            }
+            Error::Image { path, msg } => Error::Image {
+                path,
+                msg: format!("{msg} (scene {}, field `objects[{i}].bump.source.path`)", self.file),
+            },
             e => e,
         })?;
         let mut normals = crate::bumpmap::NormalMap::from_height(&hf, o.bump.method, o.bump.strength);

@@ -37,8 +37,8 @@ pub fn distinct_normals(scene: &Scene, cfg: &PipelineConfig) -> Result<Vec<usize
         ..cfg.clone()
     };
     let mut out = Vec::new();
-    for o in &scene.objects {
-        let normals = scene.normal_map(o)?;
+    for i in 0..scene.objects.len() {
+        let normals = scene.normal_map(i)?;
         out.push(match StoredMap::store(&plain, &normals) {
             StoredMap::Rgb { codes, .. } => codes.into_iter().collect::<HashSet<_>>().len(),
             StoredMap::Palettised { .. } => unreachable!("stored without a palette"),

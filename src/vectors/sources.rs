@@ -542,10 +542,9 @@ pub struct SceneGroup {
     /// EMBM: the object's two maps, which the harness loads before the run.
     pub env: Option<crate::model::env_map::EnvMaps>,
     /// A scene's groups: each record's pixel, `[x, y]` (row 0 at the top), one for one with
-    /// `stims`; the dump writes them beside the top set (`_pixels.txt`).
-    pub pixels: Option<Vec<[u32; 2]>>,
-    /// A scene's groups: the image those pixels lie in, [width, height].
-    pub image: Option<[u32; 2]>,
+    /// `stims`, and the image they lie in, [width, height]; the dump writes them beside the
+    /// top set (`_pixels.txt`).
+    pub pixels: Option<(Vec<[u32; 2]>, [u32; 2])>,
 }
 
 /// The group a fragment of object `obj` of scene `s` goes with under `cfg`: its object under
@@ -614,8 +613,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
                 stem: if multi { format!("{stem}{tag}") } else { stem.clone() },
                 stims,
                 env,
-                pixels: Some(pixels),
-                image: Some([w, h]),
+                pixels: Some((pixels, [w, h])),
             }
         })
         .collect())

@@ -413,7 +413,6 @@ fn top_groups(cfg: &PipelineConfig, src: &Source, o: &DumpOptions, dir: &Path, t
                 stims: cat.into_iter().map(|c| c.1).collect(),
                 env: None,
                 pixels: None,
-                image: None,
             }]
         }
         Source::Scene(name) => super::sources::scene_groups(cfg, name, o.size)?,
@@ -634,7 +633,7 @@ pub fn dump(cfg: &PipelineConfig, src: &Source, targets: &[String], dir: &Path, 
                     // The top loads the maps through its ports; a unit's harness has none.
                     // The pixels are the top's records' (a unit set is not one for one).
                     let (env, pixels) = match w.target == "top" {
-                        true => (g.env.as_ref(), g.pixels.as_deref().zip(g.image)),
+                        true => (g.env.as_ref(), g.pixels.as_ref().map(|(px, image)| (&px[..], *image))),
                         false => (None, None),
                     };
                     out.push(w.finish_with(dir, cfg, src, o, n, env, pixels)?);
@@ -662,15 +661,9 @@ fn retire_other_scene_sets(dir: &Path, src: &Source, targets: &[String], written
     for e in entries.flatten() {
         let name = e.file_name();
         let n = name.to_string_lossy();
-        // `{base}_{target}.json` or `{base}_nS_{target}.json` / `{base}_oI_{target}.json`.
-        let Some(rest) = n.strip_prefix(&format!("{base}_")).and_then(|r| r.strip_suffix(".json")) else {
-            continue;
-        };
-        let group = |g: &str| {
-            g.is_empty() || (g.len() > 1 && (g.starts_with('n') || g.starts_with('o')) && g[1..].bytes().all(|b| b.is_ascii_digit()))
-        };
-        let set_of = |t: &String| rest == t.as_str() || rest.strip_suffix(&format!("_{t}")).is_some_and(group);
-        if ours.contains(&name.as_os_str()) || !targets.iter().any(set_of) {
+        // A manifest of one of the scene's sets (`{base}_{target}.json`, `{base}_nS_...`);
+        // its own source and target below say whether it is one this dump replaces.
+        if !(n.starts_with(&format!("{base}_")) && n.ends_with(".json")) || ours.contains(&name.as_os_str()) {
             continue;
         }
         let Ok(m) = std::fs::read_to_string(e.path())
