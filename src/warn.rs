@@ -9,10 +9,23 @@ thread_local! {
 }
 
 /// Say `msg`: on stderr, or into the collection of the [`capture`] running on this thread.
+/// Each message is said once: a command reads its scene or configuration several times (to
+/// check it, size the pipeline, render it), and a warning repeated per read is noise.
 pub fn warn(msg: String) {
     CAPTURED.with(|c| match &mut *c.borrow_mut() {
-        Some(list) => list.push(msg),
-        None => eprintln!("{msg}"),
+        Some(list) => {
+            if !list.contains(&msg) {
+                list.push(msg)
+            }
+        }
+        None => {
+            static SAID: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+            let mut said = SAID.lock().unwrap_or_else(|e| e.into_inner());
+            if !said.contains(&msg) {
+                eprintln!("{msg}");
+                said.push(msg);
+            }
+        }
     })
 }
 
@@ -46,5 +59,15 @@ mod tests {
         });
         assert_eq!(inner, vec!["b".to_string()]);
         assert_eq!(outer, vec!["a".to_string(), "c".to_string()]);
+    }
+
+    #[test]
+    fn a_warning_given_twice_is_collected_once() {
+        let ((), got) = super::capture(|| {
+            for m in ["a", "b", "a", "b", "c"] {
+                super::warn(m.into());
+            }
+        });
+        assert_eq!(got, ["a", "b", "c"]);
     }
 }

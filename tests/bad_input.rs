@@ -294,6 +294,16 @@ fn cases() -> Vec<Case> {
             vec!["objects[0].uv_scale[0]", "2 on a prism", "fix: drop uv_scale[0]"],
         ),
         (
+            "a prism whose baked cylinder normals count other sides",
+            scene(|t: &str| {
+                r("kind = \"plane\", size = [4.0, 2.0]", "kind = \"cylinder\", radius = 1.0, height = 2.0, sides = 6")(t)
+                    .replace("uv_scale = [2.0, 1.0]", "uv_scale = [1.0, 1.0]")
+                    .replace("strength = 10.0", "strength = 10.0, cylinder_sides = 8")
+            }),
+            render(&[]),
+            vec!["objects[0].bump.cylinder_sides", "8 on a prism of 6 sides", "fix: set cylinder_sides = 6"],
+        ),
+        (
             "quoted keys keep their line",
             scene(r("shape = { kind = \"plane\", size = [4.0, 2.0] }", "\"shape\" = { \"kind\" = \"plane\", \"size\" = [4.0, -2.0] }")),
             render(&[]),

@@ -274,6 +274,20 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 "drop uv_scale[0] (1) for a prism, or set sides = 0 for a smooth cylinder that repeats the map around it",
             ));
         }
+        // Baked cylinder normals curve each facet through 360°/cylinder_sides: on a prism of
+        // another count the facets' shading no longer meets at their edges.
+        if let Shape::Cylinder { sides: sides @ 1.., .. } = o.shape {
+            if o.bump.cylinder_sides > 0 && o.bump.cylinder_sides != sides {
+                return Err(c.fail(
+                    &format!("{p}.bump.cylinder_sides"),
+                    format!(
+                        "{} on a prism of {sides} sides: the map's normals would curve each facet through 360°/{}, not 360°/{sides}",
+                        o.bump.cylinder_sides, o.bump.cylinder_sides
+                    ),
+                    &format!("set cylinder_sides = {sides} (the shape's sides), or 0 for flat facets"),
+                ));
+            }
+        }
         if o.shininess > MAX_SHININESS {
             return Err(c.fail(
                 &format!("{p}.shininess"),
