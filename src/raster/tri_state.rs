@@ -48,6 +48,7 @@ pub fn send_matrix(cfg: &PipelineConfig, cam: &Camera, v: &[crate::scene::mesh::
 pub fn tri_states(scene: &Scene, cfg: &PipelineConfig, cam: &Camera, mesh: &Mesh) -> Result<Vec<TriState>> {
     let lights: Vec<_> = scene.bump_lights().collect();
     scene.check_config(cfg, &crate::config::origin())?;
+    scene.warn_config(cfg, &crate::config::origin());
     let q = |x: f64| send_lh(cfg, x).ok_or_else(|| Error::Other("non-finite light vector".into()));
     let max = cfg.colour_max() as f64;
     let mut out = Vec::with_capacity(mesh.tris.len());

@@ -34,9 +34,14 @@ pub fn scene_and_config(scene: &str, config: Option<&Path>) -> Result<(Scene, Pi
         Some(p) => {
             let c = PipelineConfig::load(p)?;
             s.check_config(&c, &p.display().to_string())?;
+            crate::config::note_origin(&p.display().to_string());
             c
         }
-        None => s.derive_config()?,
+        None => {
+            let c = s.derive_config()?;
+            crate::config::note_derived(scene);
+            c
+        }
     };
     Ok((s, cfg))
 }

@@ -458,6 +458,21 @@ impl Scene {
         })
     }
 
+    /// Say what `cfg` costs this scene without refusing it. Zero k fraction bits are a
+    /// precision a sweep may well ask for: each k_i is then 0 or 1 on every triangle.
+    pub fn warn_config(&self, cfg: &PipelineConfig, cfg_file: &str) {
+        if cfg.k_frac_bits == 0 && !cfg.embm() {
+            if let Some((i, why)) = needs::SceneNeeds::of(self).graded_k.first() {
+                crate::warn::warn(format!(
+                    "warning: {cfg_file}: k_frac_bits = 0 rounds each k_i to 0 or 1, but scene `{}` ({}) grades lights[{i}] ({why})\n  fix: set k_frac_bits = {} (the default) or more to keep the grades, or leave it at 0 to take the on/off error",
+                    self.name,
+                    self.file,
+                    PipelineConfig::default().k_frac_bits
+                ));
+            }
+        }
+    }
+
     fn check_config_fields(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
         if cfg.embm() {
             // EMBM's lights, any number and colour, are in each object's maps, and it reads
