@@ -60,6 +60,13 @@ fn torus_caps_within_max_2_is_fitted_regressed_and_written() {
     let t = text(o.get_output());
     assert!(printed(&t, "per clock): max") <= 2.0, "{t}");
     assert!(t.contains("passes on Icarus and Verilator"), "{t}");
+    // ARCHITECTURE.md states this run's candidate count.
+    let measured = t.split(" configurations measured").next().unwrap().rsplit(' ').next().unwrap();
+    let arch = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/ARCHITECTURE.md")).unwrap();
+    assert!(
+        arch.contains(&format!("measures {measured} candidates")),
+        "ARCHITECTURE.md should say `measures {measured} candidates`: {t}"
+    );
     // The written configuration is the one printed, and loads.
     let toml = std::fs::read_to_string(out.join("fit.toml")).unwrap();
     let cfg = gbump::config::PipelineConfig::from_toml("fit.toml", &toml).unwrap();

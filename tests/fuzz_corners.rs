@@ -26,3 +26,13 @@ fn corner_configurations_generate_lint_and_simulate_clean() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
+
+/// The README's guarantee table names the corners this suite runs, in order, and their
+/// count, from the list the test above runs.
+#[test]
+fn the_readme_lists_every_corner_the_suite_runs() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let names: Vec<&str> = corner_configs().iter().map(|(n, _)| *n).collect();
+    let want = format!("plus {} fixed corners (`tests/fuzz_corners.rs`: {})", names.len(), names.join("; "));
+    assert!(readme.contains(&want), "README.md should say: {want}");
+}

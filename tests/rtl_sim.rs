@@ -1503,6 +1503,17 @@ fn the_segmented_power_unit_in_the_pipeline_matches_the_model() {
 
 #[test]
 fn the_palette_unit_matches_the_model_on_both_tops() {
+    // Random vectors on Verilator and on Icarus, as the README's guarantee table states them.
+    const RANDOM: u32 = 30_000;
+    const RANDOM_ICARUS: u32 = 2_000;
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let thousands = |n: u32| format!("{},{:03}", n / 1000, n % 1000);
+    let said = format!(
+        "{} / {} random vectors (Verilator / Icarus)",
+        thousands(RANDOM),
+        thousands(RANDOM_ICARUS)
+    );
+    assert!(readme.contains(&said), "README.md should say: {said}");
     for (cfg, work, scenes) in [
         ("tests/configs/palette_serial.toml", "palette_serial", "--no-scenes"),
         // Without --no-scenes: the built-in scene sets are skipped, and regress says so.
@@ -1515,9 +1526,9 @@ fn the_palette_unit_matches_the_model_on_both_tops() {
                 "--config",
                 cfg,
                 "--random",
-                "30000",
+                &RANDOM.to_string(),
                 "--random-icarus",
-                "2000",
+                &RANDOM_ICARUS.to_string(),
                 scenes,
             ],
             work,
@@ -1580,7 +1591,7 @@ fn random_configurations_generate_lint_and_simulate_clean() {
         .assert()
         .success();
     let text = String::from_utf8_lossy(&o.get_output().stdout).into_owned();
-    // Two random draws here; the six extreme corners run in tests/fuzz_corners.rs.
+    // Two random draws here; the fixed corners (`fuzz::corner_configs`) run in tests/fuzz_corners.rs.
     assert!(text.contains("fuzz: 2 configurations"), "{text}");
 }
 
