@@ -1,5 +1,6 @@
-//! Every command a message or the README tells the user to run must exist: each
-//! "`gbump SUB --flag`" quoted in src/ and README.md is checked against clap's definition.
+//! Every command a message or a document tells the user to run must exist: each
+//! "`gbump SUB --flag`" quoted in src/, README.md, ARCHITECTURE.md and docs/, and each
+//! `gbump` command line in them, scripts/ and examples/, is checked against clap's definition.
 
 use clap::CommandFactory;
 use std::path::Path;
@@ -24,6 +25,17 @@ fn quoted_commands(text: &str) -> Vec<String> {
             let rest = &text[i + pat.len()..];
             let end = rest.find([open, '\n']).unwrap_or(rest.len());
             v.push(rest[..end].to_string());
+        }
+    }
+    // A command line of its own, in a fenced example or a script (where a Markdown file has
+    // no fence, prose lines start with "gbump" too): up to its comment.
+    let fenced = text.contains("\n```");
+    let mut inside = !fenced;
+    for line in text.lines() {
+        if fenced && line.trim_start().starts_with("```") {
+            inside = !inside;
+        } else if let Some(rest) = line.trim_start().strip_prefix("gbump ").filter(|_| inside) {
+            v.push(rest.split(" #").next().unwrap().to_string());
         }
     }
     v
@@ -59,7 +71,19 @@ fn every_command_named_in_a_message_or_the_readme_exists() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
     sources(&root.join("src"), &mut files);
-    files.push(("README.md".into(), std::fs::read_to_string(root.join("README.md")).unwrap()));
+    for doc in ["README.md", "ARCHITECTURE.md", "docs/SCENES.md", "docs/REPORT.md"] {
+        files.push((doc.into(), std::fs::read_to_string(root.join(doc)).unwrap()));
+    }
+    for dir in ["scripts", "examples"] {
+        for e in std::fs::read_dir(root.join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_file() {
+                if let Ok(text) = std::fs::read_to_string(&p) {
+                    files.push((p.display().to_string(), text));
+                }
+            }
+        }
+    }
     let cli = gbump::cli::Cli::command();
     let mut checked = 0;
     let mut bad = Vec::new();
@@ -81,6 +105,12 @@ fn the_checker_catches_a_wrong_flag() {
     assert!(problems(&cli, "scenes --show NAME").is_empty());
     assert!(problems(&cli, "--version").is_empty());
     assert!(!problems(&cli, "--nosuch").is_empty());
+    // A command on a line of its own is found, up to its comment.
+    assert_eq!(
+        quoted_commands("x\n  gbump fit --budget 'max<=2'   # --nosuch\n"),
+        ["fit --budget 'max<=2'  "]
+    );
+    assert_eq!(quoted_commands("gbump checks\n```sh\ngbump fit --x\n```\n"), ["fit --x"]);
 }
 
 /// Every file the README's commands name with `--config` or `--space` exists in the
