@@ -29,6 +29,7 @@ pub mod shell;
 pub mod sim;
 pub mod simd;
 pub mod temp_files;
+pub mod thread_pool;
 pub mod toml_line;
 pub mod tool;
 pub mod units;

@@ -389,3 +389,200 @@ fn every_column_enters_as_its_manifest_says() {
         gbump_config_free(h);
     }
 }
+
+/// The header's rule for which unit records are refused names every bound a unit holds its
+/// inputs to, under every configuration the suite carries.
+#[test]
+fn the_header_names_every_bounded_unit_input() {
+    let mut cfgs = vec![PipelineConfig::default()];
+    for e in std::fs::read_dir(root().join("tests/configs")).unwrap() {
+        cfgs.push(PipelineConfig::load(&e.unwrap().path()).unwrap());
+    }
+    let text = gbump::capi::CONVENTIONS
+        .replace('\n', " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let mut seen = 0;
+    for cfg in &cfgs {
+        for u in gbump::units::included(cfg) {
+            for (port, _, _) in u.input_max(cfg) {
+                seen += 1;
+                let family = u.name().trim_end_matches("_diffuse").trim_end_matches("_specular");
+                let at = text
+                    .find(&format!("{family}'s"))
+                    .unwrap_or_else(|| panic!("CONVENTIONS does not name {family}'s bound: {text}"));
+                assert!(
+                    text[at..].split(';').next().unwrap().contains(port),
+                    "CONVENTIONS: {family}'s {port}: {text}"
+                );
+            }
+        }
+    }
+    assert!(seen > 3, "{seen}");
+}
+
+/// The header's gbump_config_toml names every field the canonical TOML leaves out at its
+/// default, read from what it leaves out of the default configuration's.
+#[test]
+fn the_header_names_every_field_the_toml_leaves_out() {
+    let err = toml::from_str::<PipelineConfig>("not_a_field = 1").unwrap_err().to_string();
+    let fields: Vec<&str> = gbump::error::expected_names(&err)
+        .into_iter()
+        .filter(|x| !gbump::error::RETIRED_NAMES.contains(x))
+        .collect();
+    let h = gbump_config_default();
+    let toml = s(unsafe { gbump_config_toml(h) });
+    unsafe { gbump_config_free(h) };
+    let header = std::fs::read_to_string(root().join("include/gbump.h")).unwrap();
+    let doc = header
+        .split("const char *gbump_config_toml")
+        .next()
+        .unwrap()
+        .rsplit("/**")
+        .next()
+        .unwrap()
+        .replace(['\n', '*'], " ");
+    let mut left_out = 0;
+    for f in fields {
+        if !toml.lines().any(|l| l.split(" = ").next() == Some(f)) {
+            left_out += 1;
+            assert!(
+                doc.contains(&format!(" {f},")) || doc.contains(&format!(" {f})")) || doc.contains(&format!("({f},")),
+                "gbump_config_toml's doc does not name `{f}`: {doc}"
+            );
+        }
+    }
+    assert!(left_out > 10, "{left_out}: {toml}");
+}
+
+/// The DPI-C forms the package binds: "" where C gives NULL, and the whole 2048-bit vector
+/// written, zero above the record, the record itself as C's.
+#[test]
+fn the_dpi_forms_never_give_null_and_write_the_whole_vector() {
+    use gbump::capi::dpi::*;
+    let null = std::ptr::null();
+    for p in unsafe {
+        [
+            gbump_dpi_config_hash(null),
+            gbump_dpi_config_toml(null),
+            gbump_dpi_config_warnings(null),
+            gbump_dpi_module_name(null),
+            gbump_dpi_target_name(null, 0),
+            gbump_dpi_port_name(null, 0),
+            gbump_dpi_column_name(null, c("top").as_ptr(), 0),
+        ]
+    } {
+        assert_eq!(s(p), "");
+        assert!(s(gbump_last_error()).contains("fix:"), "{}", s(gbump_last_error()));
+    }
+    let h = gbump_config_default();
+    assert_eq!(s(unsafe { gbump_dpi_target_name(h, 99) }), "");
+    assert_eq!(s(unsafe { gbump_dpi_config_hash(h) }), s(unsafe { gbump_config_hash(h) }));
+    let words = unsafe { gbump_record_words(h, c("top").as_ptr()) } as usize;
+    let max = (gbump::capi::MAX_RECORD_BITS / 32) as usize;
+    let g = unsafe { gbump_stim_new(h, 7) };
+    for _ in 0..100 {
+        let (mut dpi, mut plain) = (vec![u32::MAX; max], vec![0u32; max]);
+        assert_eq!(unsafe { gbump_dpi_stim_next(g, dpi.as_mut_ptr()) }, 0);
+        assert!(dpi[words..].iter().all(|&w| w == 0));
+        let stim = dpi.clone();
+        dpi.fill(u32::MAX);
+        assert_eq!(unsafe { gbump_dpi_eval(h, c("top").as_ptr(), stim.as_ptr(), dpi.as_mut_ptr()) }, 0);
+        assert_eq!(unsafe { gbump_eval(h, c("top").as_ptr(), stim.as_ptr(), plain.as_mut_ptr()) }, 0);
+        assert_eq!(&dpi[..words], &plain[..words]);
+        assert!(dpi[words..].iter().all(|&w| w == 0), "bits above the record");
+    }
+    unsafe {
+        gbump_stim_free(g);
+        gbump_config_free(h);
+    }
+    // Every function of the header that needs a DPI-C form has one the package binds.
+    for (f, dpi) in WRAPPED {
+        assert!(
+            gbump::capi::DPI_PACKAGE.contains(&format!("import \"DPI-C\" {dpi} = function ")),
+            "{f}"
+        );
+        assert!(gbump::capi::HEADER.contains(&format!("{f}(")), "{f}");
+    }
+}
+
+/// `gbump_power_table_present` is the interface JSON's `power_table.present`.
+#[test]
+fn the_power_table_is_present_where_the_interface_says() {
+    let mut n = [0; 2];
+    for e in std::fs::read_dir(root().join("tests/configs")).unwrap() {
+        let text = std::fs::read_to_string(e.unwrap().path()).unwrap();
+        let cfg = PipelineConfig::from_toml("c.toml", &text).unwrap();
+        if cfg.palette {
+            continue;
+        }
+        let json: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(&cfg, "test")).unwrap();
+        let present = json["power_table"]["present"].as_bool().unwrap();
+        let h = unsafe { gbump_config_from_toml(c(&text).as_ptr(), c("c.toml").as_ptr()) };
+        assert_eq!(unsafe { gbump_power_table_present(h) }, present as i32, "{text}");
+        unsafe { gbump_config_free(h) };
+        n[present as usize] += 1;
+    }
+    assert!(n[0] > 0 && n[1] > 0, "{n:?}");
+    assert_eq!(unsafe { gbump_power_table_present(std::ptr::null()) }, -1);
+}
+
+/// A child of fork() evaluates a batch after its parent ran one on the pool (the child has
+/// none of the parent's threads: the parent's pool would take the work and never do it).
+#[test]
+fn a_forked_child_runs_a_batch_after_its_parent_did() {
+    let lib = gbump::cosim::library_beside(Path::new(env!("CARGO_BIN_EXE_gbump"))).unwrap();
+    let d = tempfile::tempdir().unwrap();
+    let src = d.path().join("fork.c");
+    std::fs::write(
+        &src,
+        r#"#define _DEFAULT_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <sys/wait.h>
+#include "gbump.h"
+#define N 20000
+int main(void) {
+    GbumpConfig *h = gbump_config_default();
+    int w = gbump_record_words(h, "top");
+    uint32_t *a = calloc((size_t)N * w, 4), *b = calloc((size_t)N * w, 4), *c = calloc((size_t)N * w, 4);
+    GbumpStim *g = gbump_stim_new(h, 3);
+    for (int i = 0; i < N; i++) gbump_stim_next(g, a + (size_t)i * w);
+    if (gbump_eval_batch(h, "top", a, b, N)) return 2;
+    pid_t pid = fork();
+    if (pid == 0) {
+        alarm(60);
+        if (gbump_eval_batch(h, "top", a, c, N)) _exit(3);
+        _exit(memcmp(b, c, (size_t)N * w * 4) ? 4 : 0);
+    }
+    int st;
+    waitpid(pid, &st, 0);
+    if (!WIFEXITED(st)) { printf("child killed by signal %d\n", WTERMSIG(st)); return 5; }
+    printf("child %d\n", WEXITSTATUS(st));
+    return WEXITSTATUS(st);
+}
+"#,
+    )
+    .unwrap();
+    let exe = d.path().join("fork");
+    let out = std::process::Command::new("cc")
+        .args(["-std=c99", "-Wall", "-Werror", "-I"])
+        .arg(root().join("include"))
+        .arg(&src)
+        .arg(&lib)
+        .arg("-o")
+        .arg(&exe)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    let run = std::process::Command::new(&exe).output().unwrap();
+    assert!(
+        run.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+}

@@ -306,7 +306,7 @@ impl Config {
         let n = t.layout.words32();
         let r = records_in(records, n, target)?;
         let mut out = vec![0u32; r.words.len()];
-        py.detach(|| self.h.eval_words(t, &r.words, &mut out)).map_err(crate::err)?;
+        crate::detach(py, || self.h.eval_words(t, &r.words, &mut out)).map_err(crate::err)?;
         records_out(py, out, n, r.single)
     }
 
@@ -333,7 +333,7 @@ impl Config {
         let t = self.h.target(target).map_err(crate::err)?;
         let (count, words) = crate::fields::pack(t, fields)?;
         let mut out = vec![0u32; words.len()];
-        py.detach(|| self.h.eval_words(t, &words, &mut out)).map_err(crate::err)?;
+        crate::detach(py, || self.h.eval_words(t, &words, &mut out)).map_err(crate::err)?;
         crate::fields::unpack(py, t, &out, count)
     }
 

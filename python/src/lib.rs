@@ -18,6 +18,12 @@ pyo3::create_exception!(
     "A gbump error: the library's message, naming the input, the place and the fix."
 );
 
+/// `f` with the GIL released, on the library's pool (`gbump::thread_pool`, made again in a
+/// process `os.fork()` started, where the parent's pool has no threads).
+pub(crate) fn detach<R: Send>(py: Python<'_>, f: impl FnOnce() -> R + Send) -> R {
+    py.detach(|| gbump::thread_pool::install(f))
+}
+
 /// The library's error as a Python exception, with its message unchanged.
 pub(crate) fn err(e: gbump::Error) -> PyErr {
     GbumpError::new_err(e.to_string())

@@ -102,7 +102,7 @@ pub fn vectors<'py>(
         Source::Random(count) => {
             crate::arrays::check_records("random:N", *count, 1)?;
             let count = *count;
-            let words = py.detach(|| {
+            let words = crate::detach(py, || {
                 let chunks: Vec<Vec<TopStim>> = (0..count.div_ceil(RANDOM_CHUNK))
                     .into_par_iter()
                     .map(|c| random_chunk(cfg, seed, c, count))
@@ -113,14 +113,14 @@ pub fn vectors<'py>(
         }
         Source::Corners(level) => {
             let (reasons, stims): (Vec<String>, Vec<TopStim>) = corners(cfg, *level).into_iter().unzip();
-            let words = py.detach(|| top_words(cfg, &stims, n, None));
+            let words = crate::detach(py, || top_words(cfg, &stims, n, None));
             out.append(set(py, &src.stem(), "top", n, words, top_w, Some(reasons))?)?;
         }
         Source::Scene(name) => {
-            let groups = py.detach(|| scene_groups(cfg, name, size)).map_err(crate::err)?;
+            let groups = crate::detach(py, || scene_groups(cfg, name, size)).map_err(crate::err)?;
             for g in groups {
                 check_batch("scene fragments", g.stims.len() as u64)?;
-                let words = py.detach(|| top_words(cfg, &g.stims, g.shininess, g.env.as_ref()));
+                let words = crate::detach(py, || top_words(cfg, &g.stims, g.shininess, g.env.as_ref()));
                 let d = set(py, &g.stem, "top", g.shininess, words, top_w, None)?;
                 // Each record's pixel, as the dump's `_pixels.txt` gives it: uint32 (N, 2), x y.
                 let px: Vec<u32> = g.pixels.iter().flat_map(|(px, _)| px).flatten().copied().collect();
@@ -142,7 +142,7 @@ pub fn vectors<'py>(
             exhaustive_count(cfg, unit).map_err(crate::err)?;
             let l = unit_layout(cfg, t.name);
             let w = l.words32();
-            let words = py.detach(|| -> gbump::Result<Vec<u32>> {
+            let words = crate::detach(py, || -> gbump::Result<Vec<u32>> {
                 let mem = MemoryContents::new(cfg, n);
                 Ok(exhaustive(cfg, unit)?
                     .iter()

@@ -212,4 +212,16 @@ check(
 )
 check(raises(lambda: model.stimulus(1).next(-1), f"0..={2**24}"), "a negative count names the batch limit")
 check(raises(lambda: model.vectors("random:0"), "1..="), "random:0 names the range it takes")
+# A child of os.fork() evaluates a large batch after its parent ran one (the parent's pool
+# threads are not in the child; the module makes the child a pool of its own).
+many = model.stimulus(seed=5).next(5000)
+want = model.eval("top", many)
+child = os.fork()
+if child == 0:
+    import signal
+
+    signal.alarm(60)
+    os._exit(0 if (model.eval("top", many) == want).all() else 3)
+_, status = os.waitpid(child, 0)
+check(status == 0, f"a forked child evaluates a batch after its parent (wait status {status})")
 print(f"module check: {passed} passed, 0 failed")

@@ -141,8 +141,9 @@ pub unsafe extern "C" fn gbump_config_hash(h: *const GbumpConfig) -> *const c_ch
 /// The configuration as canonical TOML (the input of the hash): every field, except that
 /// the fields added after the first release (interpolate, colour_guard_bits, white_lights,
 /// power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face, self_shadow,
-/// frame_transform, frame_build, triangle_frame, frame_quaternion, pixel_lh) are left out at their defaults ("none", 0 or false), so hashes made
-/// before they existed stay.
+/// frame_transform, frame_build, triangle_frame, frame_quaternion, pixel_lh, env_map_bits)
+/// are left out at their defaults ("none", 0 or false), so hashes made before they existed
+/// stay.
 ///
 /// # Safety
 /// `h` is a live handle.
@@ -443,6 +444,21 @@ pub unsafe extern "C" fn gbump_set_shininess(h: *mut GbumpConfig, n: i32) -> i32
 #[no_mangle]
 pub unsafe extern "C" fn gbump_shininess(h: *const GbumpConfig) -> i32 {
     with("gbump_shininess", h, -1, |h| Ok(h.mem.table.n as i32))
+}
+
+/// 1 when the top reads a power table (its `power_table_*` load port writes it, and
+/// `gbump_set_shininess` changes what it holds), 0 when it has none (a squaring power unit
+/// computes x^n, EMBM takes its specular light from the environment map): the interface
+/// JSON's `power_table.present`. The table functions below still describe the table the
+/// configuration would have.
+///
+/// # Safety
+/// `h` is a live handle.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_power_table_present(h: *const GbumpConfig) -> i32 {
+    with("gbump_power_table_present", h, -1, |h| {
+        Ok(crate::rtlgen::top::power_table_read(&h.cfg) as i32)
+    })
 }
 
 /// Words of the power table memory (what the top's load port addresses).

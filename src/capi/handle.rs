@@ -177,12 +177,14 @@ where
 {
     use rayon::prelude::*;
     let failed = if parallel {
-        input
-            .par_chunks(words)
-            .zip(out.par_chunks_mut(words))
-            .enumerate()
-            .filter_map(|(k, io)| f((k, io)).err().map(|e| (k, e)))
-            .min_by_key(|(k, _)| *k)
+        crate::thread_pool::install(|| {
+            input
+                .par_chunks(words)
+                .zip(out.par_chunks_mut(words))
+                .enumerate()
+                .filter_map(|(k, io)| f((k, io)).err().map(|e| (k, e)))
+                .min_by_key(|(k, _)| *k)
+        })
     } else {
         input
             .chunks(words)

@@ -9,6 +9,7 @@
 //! LSB first. No panic crosses the boundary: each function catches it and reports it through
 //! [`ffi::gbump_last_error`].
 
+pub mod dpi;
 pub mod dpi_pkg;
 pub mod ffi;
 mod guard;
@@ -44,18 +45,28 @@ Conventions of every function below:
   file packs its records back to back in gbump_record_bits / 8 bytes each (rounded up), so
   copy each into a zeroed buffer of whole words. Targets are \"top\" and the units the
   configuration has, which gbump_target_count and gbump_target_name list. Bits above a
-  record's last bit are ignored. A unit record the pipeline could never feed the unit where
-  the model would index a memory with it (a table index above 1.0, a texel block beyond the
-  map) is refused with the port and bound, as is one whose result overflows its output;
-  every other input is taken over its whole format, as the unit's RTL takes it (a blend
-  factor or k above 1.0 included), though the pipeline feeds at most 1.0 there, and
-  light_accumulate's running sum wraps at the accumulator's width as its adder does. In a
-  stream of one record per edge, a column enters gbump_column_enters edges after the rest.
+  record's last bit are ignored. A unit input the pipeline never gives above a bound its
+  unit relies on is refused above it, with the port and the bound: power_unit's x above 1.0
+  (a clamped dot product; the table has no word past it), env_fetch's texel block past the
+  map's last two columns or rows (x0, y0), colour_round's c_in above full scale (a stage
+  colour saturates there); so is a record whose result overflows its output. Every other
+  input is taken over its whole format, as the unit's RTL takes it (a blend factor or k
+  above 1.0 included), though the pipeline feeds at most 1.0 there, and light_accumulate's
+  running sum wraps at the accumulator's width as its adder does. In a stream of one record
+  per edge, a column enters gbump_column_enters edges after the rest.
 - Palette configurations (palette = true) are refused by gbump_config_* for now.
 - Batches: gbump_eval_batch takes 0..=GBUMP_MAX_BATCH_RECORDS records per call (the
   limit the Python module's arrays have too).
 - Threads: a handle may be read from several threads at once, but not while
-  gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread.";
+  gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread. A batch
+  of 1024 records or more runs on the library's own thread pool, one thread per core, or
+  RAYON_NUM_THREADS threads when that is set before the first such batch; its threads stay
+  for the process's life. A child of fork() gets a pool of its own at its first batch (it
+  has none of its parent's threads).
+- DPI-C: include/gbump_dpi_pkg.sv imports these functions, but binds the string functions
+  that may give NULL, gbump_eval and gbump_stim_next to gbump_dpi_* symbols the library
+  also exports (\"\" for NULL, and the whole GBUMP_MAX_BITS vector written, zero above the
+  record); a C program calls the functions here.";
 
 /// Bumped whenever a function's signature or a record's meaning changes.
 pub const ABI_VERSION: i32 = 1;
