@@ -19,6 +19,8 @@ fi
 for t in make g++; do
     command -v "$t" >/dev/null 2>&1 || apt_pkgs+=("$t")
 done
+# strace: the suite kills a run at its k-th rename (tests/output_commit.rs).
+command -v strace >/dev/null 2>&1 || apt_pkgs+=(strace)
 if ! command -v python3 >/dev/null 2>&1; then
     apt_pkgs+=(python3 python3-pip)
 elif ! python3 -m pip --version >/dev/null 2>&1; then
@@ -34,7 +36,7 @@ if [ ${#apt_pkgs[@]} -gt 0 ]; then
     export DEBIAN_FRONTEND=noninteractive
     $SUDO apt-get update -qq
     $SUDO apt-get install -y -qq "${apt_pkgs[@]}" >/dev/null
-    for t in iverilog verilator yosys nextpnr-ice40 make g++ python3; do
+    for t in iverilog verilator yosys nextpnr-ice40 make g++ python3 strace; do
         command -v "$t" >/dev/null 2>&1 || { echo "error: $t still missing after apt-get install ${apt_pkgs[*]}" >&2; exit 1; }
     done
     python3 -m pip --version >/dev/null 2>&1 || { echo "error: python3 has no pip after apt-get install ${apt_pkgs[*]}" >&2; exit 1; }

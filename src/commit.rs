@@ -77,14 +77,33 @@ pub fn retire(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// The name a replaced result waits under (a temporary name, so a killed run's is cleared).
-fn backup_of(path: &Path) -> PathBuf {
-    let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    path.with_file_name(format!(".{name}.old.tmp{}", std::process::id()))
+use crate::commit_journal::{backup_of, Journal};
+
+/// Rename every pair into place, or none; a process killed in between leaves a journal the
+/// next run in the folder undoes (`commit_journal`).
+fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
+    let is_file = |p: &Path| std::fs::symlink_metadata(p).is_ok_and(|m| m.is_file());
+    let entries: Vec<(&Path, bool)> = staged
+        .iter()
+        .filter(|(tmp, path)| !tmp.as_os_str().is_empty() || is_file(path))
+        .map(|(_, path)| (path.as_path(), is_file(path)))
+        .collect();
+    let journal = match Journal::write(&entries) {
+        Ok(j) => j,
+        Err(e) => {
+            for (tmp, _) in staged {
+                let _ = std::fs::remove_file(tmp);
+            }
+            let at = entries.first().map_or(Path::new("."), |e| e.0);
+            return Err(Error::io(at.parent().unwrap_or(Path::new(".")), e));
+        }
+    };
+    let r = apply_journalled(staged, &journal);
+    journal.close();
+    r
 }
 
-/// Rename every pair into place, or none.
-fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
+fn apply_journalled(staged: &[(PathBuf, PathBuf)], journal: &Journal) -> Result<()> {
     let mut done: Vec<(&Path, Option<PathBuf>)> = Vec::new();
     let undo = |done: &[(&Path, Option<PathBuf>)], from: usize| {
         for (path, backup) in done.iter().rev() {
@@ -131,6 +150,7 @@ fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
         }
         done.push((path, backup));
     }
+    journal.done();
     for (_, b) in done {
         if let Some(b) = b {
             let _ = std::fs::remove_file(b);
@@ -178,7 +198,7 @@ mod tests {
             write_atomic(&a, b"newer")?;
             write_atomic(&c, b"newer")?;
             // Staged by hand: write_atomic itself refuses a folder before the scope ends.
-            let t = d.path().join(".x.tmp1");
+            let t = d.path().join(".x.gbump.tmp1");
             std::fs::write(&t, "newer").unwrap();
             assert!(defer(&t, &x));
             Ok(())

@@ -7,6 +7,7 @@ pub mod cache;
 pub mod capi;
 pub mod cli;
 pub mod commit;
+pub mod commit_journal;
 pub mod config;
 pub mod cosim;
 pub mod engines;

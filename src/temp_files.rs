@@ -1,4 +1,4 @@
-//! Temporary names. Everything gbump writes goes to `<name>.tmp<pid>` first and is renamed
+//! Temporary names. Everything gbump writes goes to `<name>.gbump.tmp<pid>` first and is renamed
 //! into place, so a killed run leaves only such names behind; any run that later writes into
 //! the same folder removes those whose process is gone.
 
@@ -22,9 +22,18 @@ pub fn hidden_temp_path(path: &Path) -> PathBuf {
     named(path, ".")
 }
 
+/// What ends every temporary name gbump makes, before the process id: distinct enough that
+/// no one else's file is taken for one (a plain `.tmp<digits>` was, and removed).
+const MARK: &str = ".gbump.tmp";
+
 fn named(path: &Path, prefix: &str) -> PathBuf {
+    // A commit a killed run left half done in this folder is undone before anything new is
+    // written into it.
+    if let Some(dir) = path.parent() {
+        crate::commit_journal::recover(if dir.as_os_str().is_empty() { Path::new(".") } else { dir });
+    }
     let name = path.file_name().map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = path.with_file_name(format!("{prefix}{name}.tmp{}", std::process::id()));
+    let tmp = path.with_file_name(format!("{prefix}{name}{MARK}{}", std::process::id()));
     register(&tmp);
     tmp
 }
@@ -55,7 +64,7 @@ pub fn remove_own_under(dir: &Path) -> usize {
             // Itself a temporary name of this process, so a removal that fails now (a tool
             // still writing into the folder) is cleared by the next run in the folder.
             let aside = p.with_file_name(format!(
-                "{}.del.tmp{}",
+                "{}.del{MARK}{}",
                 p.file_name().unwrap_or_default().to_string_lossy(),
                 std::process::id()
             ));
@@ -71,26 +80,22 @@ pub fn remove_own_under(dir: &Path) -> usize {
         .count()
 }
 
-/// The process id a temporary name belongs to, if `name` is one.
+/// The process id a temporary name belongs to, if `name` is one gbump made.
 fn owner(name: &str) -> Option<u32> {
-    let (_, pid) = name.rsplit_once(".tmp")?;
+    let (_, pid) = name.rsplit_once(MARK)?;
     if pid.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
     pid.parse().ok()
 }
 
-fn alive(pid: u32) -> bool {
-    if pid == std::process::id() {
-        return true;
-    }
-    // Without /proc (not Linux) nothing is known to be dead, so nothing is removed.
-    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
-}
+use crate::commit_journal::alive;
 
 /// Remove the temporary files and folders of dead processes in `dir`, and in its subfolders
-/// down to `depth` levels. Returns how many were removed.
+/// down to `depth` levels, after undoing their half-done commits. Returns how many were
+/// removed.
 pub fn clean_stale(dir: &Path, depth: u32) -> usize {
+    crate::commit_journal::recover(dir);
     let Ok(entries) = std::fs::read_dir(dir) else {
         return 0;
     };
@@ -127,7 +132,7 @@ mod tests {
         let (left, kept, other) = (
             dir.path().join("left.bin"),
             dir.path().join("kept.bin"),
-            dir.path().join("other.tmp1"),
+            dir.path().join("other.gbump.tmp1"),
         );
         let t = temp_path(&left);
         std::fs::write(&t, b"partial").unwrap();
@@ -148,12 +153,17 @@ mod tests {
         let mine = temp_path(&d.path().join("a.bin"));
         std::fs::write(&mine, b"x").unwrap();
         // pid 0 is never a user process: its temporary files are stale.
-        std::fs::write(d.path().join("b.bin.tmp0"), b"x").unwrap();
-        std::fs::create_dir_all(d.path().join("sub/build_1.tmp0/obj")).unwrap();
+        std::fs::write(d.path().join("b.bin.gbump.tmp0"), b"x").unwrap();
+        std::fs::create_dir_all(d.path().join("sub/build_1.gbump.tmp0/obj")).unwrap();
         std::fs::write(d.path().join("keep.tmpfile"), b"x").unwrap();
+        // A user's own names that merely end in `.tmp<digits>` are not gbump's.
+        std::fs::create_dir_all(d.path().join("thesis.tmp999999")).unwrap();
+        std::fs::write(d.path().join("thesis.tmp999999/chapter1.tex"), b"x").unwrap();
+        std::fs::write(d.path().join("draft.tmp0"), b"x").unwrap();
         assert_eq!(clean_stale(d.path(), 2), 2);
         assert!(mine.exists());
         assert!(d.path().join("keep.tmpfile").exists());
-        assert!(!d.path().join("sub/build_1.tmp0").exists());
+        assert!(!d.path().join("sub/build_1.gbump.tmp0").exists());
+        assert!(d.path().join("thesis.tmp999999/chapter1.tex").exists() && d.path().join("draft.tmp0").exists());
     }
 }

@@ -313,3 +313,15 @@ fn an_edited_interface_json_is_refused_by_field() {
     }
     std::fs::write(&jf, original).unwrap();
 }
+
+/// The DPI-C package alone is clean under `verilator --lint-only -Wall`, as a testbench that
+/// imports it for a few functions is linted.
+#[test]
+fn the_dpi_package_lints_clean_under_wall() {
+    let out = std::process::Command::new("verilator")
+        .args(["--lint-only", "-Wall"])
+        .arg(root().join("include/gbump_dpi_pkg.sv"))
+        .output()
+        .expect("verilator (scripts/install-tools.sh installs it)");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

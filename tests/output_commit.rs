@@ -148,3 +148,63 @@ fn a_vector_file_behind_a_symbolic_link_keeps_its_name_in_the_manifest() {
     let (man, _) = gbump::vectors::verify(&vs.join("random10_top.json")).unwrap();
     assert_eq!(man.count, 10);
 }
+
+/// A run killed (SIGKILL, no cleanup) at each rename of its commit in turn leaves the folder
+/// for the next run in it to put back whole: the set there afterwards is one run's, every
+/// file matching its manifest, and no backup or journal is left. strace injects the kill at
+/// the k-th rename (scripts/install-tools.sh installs it).
+#[test]
+fn a_run_killed_between_its_renames_is_undone_by_the_next() {
+    assert!(
+        gbump::tool::on_path("strace").is_some(),
+        "strace is missing: run scripts/install-tools.sh"
+    );
+    let exe = assert_cmd::cargo::cargo_bin("gbump");
+    let mut killed = 0;
+    for k in 1..=6 {
+        let d = tempfile::tempdir().unwrap();
+        let out = d.path().join("v");
+        let dump = |seed: &'static str| {
+            vec![
+                "vectors",
+                "--source",
+                "random:1000",
+                "--seed",
+                seed,
+                "--target",
+                "top",
+                "--format",
+                "both",
+                "--out",
+            ]
+        };
+        assert!(gbump().args(dump("1")).arg(&out).status().unwrap().success());
+        let inject = format!("inject=rename,renameat,renameat2:signal=SIGKILL:when={k}");
+        let s = Command::new("strace")
+            .args(["-f", "-o", "/dev/null", "-e", "trace=rename,renameat,renameat2", "-e", &inject])
+            .arg(&exe)
+            .args(dump("2"))
+            .arg(&out)
+            .output()
+            .unwrap();
+        killed += !s.status.success() as usize;
+        // The next run writing into the folder: another set beside it.
+        assert!(gbump()
+            .args(["vectors", "--source", "random:10", "--target", "top", "--out"])
+            .arg(&out)
+            .status()
+            .unwrap()
+            .success());
+        let manifest = out.join("random1000_top.json");
+        let verified = gbump::vectors::verify(&manifest);
+        assert!(verified.is_ok(), "kill at rename {k}: {:?}", verified.err().map(|e| e.to_string()));
+        let left: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains(".gbump"))
+            .collect();
+        assert!(left.is_empty(), "kill at rename {k}: left {left:?}");
+    }
+    assert!(killed >= 3, "only {killed} of the runs were killed: the renames were not reached");
+}
