@@ -11,14 +11,14 @@ use clap::{Parser, Subcommand};
 macro_rules! outln {
     ($($t:tt)*) => {{
         use std::io::Write as _;
-        writeln!(std::io::stdout(), $($t)*).map_err(|e| Error::io("<standard output>", e))?
+        writeln!(std::io::stdout(), $($t)*).map_err(|e| Error::io(crate::error::STDOUT, e))?
     }};
 }
 
 macro_rules! out {
     ($($t:tt)*) => {{
         use std::io::Write as _;
-        write!(std::io::stdout(), $($t)*).and_then(|_| std::io::stdout().flush()).map_err(|e| Error::io("<standard output>", e))?
+        write!(std::io::stdout(), $($t)*).and_then(|_| std::io::stdout().flush()).map_err(|e| Error::io(crate::error::STDOUT, e))?
     }};
 }
 use std::path::{Path, PathBuf};

@@ -40,6 +40,16 @@ pub enum Error {
 
 pub type Result<T> = std::result::Result<T, Error>;
 
+/// The name standard output has in messages.
+pub const STDOUT: &str = "<standard output>";
+
+/// Whether `e` is a write to standard output whose reader had closed it (a broken pipe).
+pub fn is_closed_stdout(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        matches!(c.downcast_ref::<Error>(), Some(Error::Io { path, msg }) if path.as_os_str() == STDOUT && msg.starts_with("Broken pipe"))
+    })
+}
+
 impl Error {
     /// An I/O error on `path`, with the OS message.
     pub fn io(path: impl Into<PathBuf>, e: std::io::Error) -> Error {
@@ -55,6 +65,7 @@ impl Error {
             K::AlreadyExists => "\n  fix: a file is in the way of a folder gbump makes here; move it, or give another path",
             K::NotADirectory => "\n  fix: a part of the path is a file, not a folder; give a path through folders",
             K::StorageFull | K::QuotaExceeded => "\n  fix: free space on that disk, or write elsewhere",
+            K::FileTooLarge => "\n  fix: a file-size limit stopped the write (`ulimit -f`): raise it, or write less (fewer records)",
             K::ReadOnlyFilesystem => "\n  fix: write to a writable folder",
             K::InvalidData => "\n  fix: give a text file in UTF-8",
             K::BrokenPipe => "\n  fix: the program reading this output closed it early; let it read to the end",

@@ -40,6 +40,19 @@ fn end_descendants() {
     end_tree(std::process::id(), libc::SIGTERM);
 }
 
+/// After a stop signal, as the run exits: SIGKILL whatever it started that outlived the
+/// SIGTERM it got at the signal (a tool that ignores SIGTERM would go on, orphaned).
+pub fn kill_remaining() {
+    if interrupted() {
+        kill_tree();
+    }
+}
+
+fn kill_tree() {
+    #[cfg(target_os = "linux")]
+    end_tree(std::process::id(), libc::SIGKILL);
+}
+
 /// Send `signal` to every process under `root` (its children and theirs), and to `root`
 /// itself unless it is this process; the processes signalled.
 #[cfg(target_os = "linux")]
@@ -157,6 +170,7 @@ pub const STOP_GRACE: std::time::Duration = std::time::Duration::from_secs(10);
 /// Exit as a signal's default would, removing what is still under a temporary name (the
 /// run's own cleanup does not get to run) and saying what is left behind.
 fn stop_now() -> ! {
+    kill_tree();
     crate::temp_files::remove_own();
     eprintln!("gbump: interrupted: stopped (outputs written so far are complete files; temporary files were removed)");
     std::process::exit(exit_status());
@@ -244,6 +258,14 @@ static FIRST_SIGNAL: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLo
 
 /// Install the handler (once, from `main`).
 pub fn install() {
+    // Past a file-size limit (`ulimit -f`) a write fails with EFBIG, which names the file and
+    // goes through the run's cleanup, instead of SIGXFSZ ending the process without a word
+    // and with its temporary files left.
+    #[cfg(unix)]
+    // SAFETY: sets a disposition; no handler runs.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
     #[cfg(unix)]
     let ignored: Vec<libc::c_int> = [libc::SIGHUP, libc::SIGINT, libc::SIGTERM]
         .into_iter()

@@ -406,10 +406,31 @@ pub fn silent_fix(tool: &str) -> String {
     format!("  fix: {tool} ({at}) failed without a word and made none of its outputs: it is not a working {tool}; reinstall it (scripts/install-tools.sh) or put a working one first on PATH")
 }
 
+/// The fix line of a tool that failed because of the machine, not the sources: a full disk,
+/// a file-size limit, an unusable TMPDIR, a folder it may not write. None when `log` shows
+/// none of these.
+pub fn environment_fix(tool: &str, log: &str) -> Option<String> {
+    let has = |keys: &[&str]| keys.iter().any(|k| log.contains(k));
+    Some(if has(&["No space left on device", "Disk quota exceeded"]) {
+        format!("  fix: {tool} ran out of disk space (the lines above): free space on the work folder's disk and on TMPDIR's (`df -h`), or give --work on a larger disk, and run again")
+    } else if has(&["File size limit exceeded", "File too large"]) {
+        format!("  fix: a file-size limit (`ulimit -f`) stopped {tool} (the lines above): raise it and run again")
+    } else if has(&["TMPDIR", "temporary file", "mkstemp"]) {
+        let at = std::env::var("TMPDIR").map_or("unset: /tmp".to_string(), |t| format!("`{t}`"));
+        format!("  fix: {tool} could not write its temporary files (TMPDIR is {at}): point TMPDIR at a writable folder with room, and run again")
+    } else if has(&["Permission denied", "Read-only file system"]) {
+        format!("  fix: {tool} may not write a file it needs (the lines above): check the work folder's permissions, and run again")
+    } else {
+        return None;
+    })
+}
+
 /// The fix line of a synthesis by Yosys that failed with `log`.
 pub fn synthesis_fix(log: &str) -> String {
     if log.trim().is_empty() {
         silent_fix("yosys")
+    } else if let Some(fix) = environment_fix("yosys", log) {
+        fix
     } else if ["killed by signal", "out of memory", "Killed"].iter().any(|k| log.contains(k)) {
         "  fix: yosys was killed (a crash, or memory ran out): check free memory, reinstall it if it happens again (scripts/install-tools.sh), and run again".into()
     } else {
@@ -422,6 +443,14 @@ pub fn synthesis_fix(log: &str) -> String {
 pub fn build_fix(tool: &str, log: &str) -> String {
     if log.trim().is_empty() {
         return silent_fix(tool);
+    }
+    if let Some(fix) = environment_fix(tool, log) {
+        return fix;
+    }
+    // make found nothing to build: the tool before it wrote no makefile and said why nowhere.
+    if log.contains("No targets") && !log.contains("%Error") {
+        let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+        return format!("  fix: make found no makefile: {tool} ({at}) wrote none of its outputs without an error of its own; check the work folder's free disk space (`df -h`) and that `{tool} --version` answers, reinstall it if need be (scripts/install-tools.sh), and run again");
     }
     // Killed itself, or a compiler it ran (gcc's "Killed signal terminated program cc1plus"
     // when memory ran out).
@@ -450,6 +479,18 @@ mod tests {
     /// compiler or make it ran (the machine), or a kill (memory).
     #[test]
     fn a_build_fix_names_what_failed() {
+        // The machine, not the sources: never called a gbump bug.
+        for (log, says) in [
+            ("ld: final link failed: No space left on device\nmake: *** Error 1", "disk space"),
+            ("OSError: [Errno 28] No space left on device", "disk space"),
+            ("iverilog: Please check TMP or TMPDIR", "TMPDIR"),
+            ("sh: line 1: 123 File size limit exceeded", "ulimit -f"),
+            ("make: *** No targets.  Stop.", "make found no makefile"),
+        ] {
+            let fix = super::build_fix("verilator", log);
+            assert!(fix.contains(says) && !fix.contains("gbump bug"), "{log}: {fix}");
+        }
+        assert!(super::synthesis_fix("ERROR: No space left on device").contains("disk space"));
         let ours = super::build_fix("verilator", "%Error: top.v:3: syntax error\n%Error: Exiting due to 1 error(s)");
         assert!(ours.contains("bug: report it"), "{ours}");
         let cxx = super::build_fix(

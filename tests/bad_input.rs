@@ -1497,6 +1497,17 @@ fn a_full_stdout_and_an_unwritable_folder_are_errors() {
         .output()
         .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("No space left"));
+    // A reader that closed standard output (`gbump config | head -1`): quiet, with the
+    // status of a tool killed by SIGPIPE, not an error.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .arg("config")
+        .stdout(writer)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(141), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.stderr.is_empty(), "{}", String::from_utf8_lossy(&o.stderr));
     let o = Command::cargo_bin("gbump")
         .unwrap()
         .args(["rtl", "--out", "/proc/gbump-no"])
@@ -2372,4 +2383,72 @@ fn a_lock_file_that_is_not_a_file_is_named_as_the_work_folders() {
             "{make}: {err}"
         );
     }
+}
+
+/// A simulator that ignores SIGTERM does not outlive a run stopped by a signal: the run
+/// sends SIGTERM at the signal and SIGKILL to whatever is left as it exits.
+#[test]
+fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let pid_file = dir.path().join("sleeper.pid");
+    let path = fake_tools::icarus(
+        &dir.path().join("bin"),
+        &format!(
+            "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\ntrap '' TERM INT HUP\nsleep 300 &\necho $! > {}.tmp && mv {0}.tmp {0}\nwait",
+            pid_file.display()
+        ),
+    );
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .env("PATH", &path)
+        .env_remove("GBUMP_TOOL_TIMEOUT")
+        .args(["regress", "--sim", "icarus", "--work"])
+        .arg(dir.path().join("w"))
+        .arg("--vectors")
+        .arg(&vectors)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t = std::time::Instant::now();
+    while !pid_file.exists() {
+        assert!(child.try_wait().unwrap().is_none(), "gbump ended before the simulator ran");
+        assert!(t.elapsed().as_secs() < 60, "the simulator did not start in 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    send("INT", child.id());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", String::from_utf8_lossy(&out.stderr));
+    let sleeper = std::fs::read_to_string(&pid_file).unwrap();
+    let mut stat = String::new();
+    for _ in 0..20 {
+        stat = std::fs::read_to_string(format!("/proc/{}/stat", sleeper.trim())).unwrap_or_default();
+        // Gone, or a zombie waiting for init to reap it.
+        if stat.is_empty() || stat.rsplit_once(')').unwrap().1.trim_start().starts_with('Z') {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let _ = std::process::Command::new("kill").args(["-KILL", sleeper.trim()]).status();
+    panic!("the simulator's child outlived the run: {stat}");
+}
+
+/// Past a file-size limit (`ulimit -f`) a write fails with a message naming the file and
+/// the limit, and the run removes what it wrote (SIGXFSZ had ended it without a word).
+#[test]
+fn a_file_size_limit_is_an_error_that_names_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -f 8; exec '{}' rtl --out out", env!("CARGO_BIN_EXE_gbump")))
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("File too large") && err.contains("ulimit -f"), "{err}");
+    let left: Vec<String> = std::fs::read_dir(dir.path().join("out"))
+        .map(|d| d.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+        .unwrap_or_default();
+    assert!(left.iter().all(|n| !n.contains(".gbump.tmp")), "{left:?}");
 }

@@ -65,6 +65,11 @@ pub fn model_rate(lights: usize, side: u32) -> (f64, f64, usize) {
 /// Every figure as a Markdown table.
 pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let work = std::path::absolute(work).map_err(|e| Error::io(work, e))?;
+    // The dump and the disk probe after it, refused now rather than after the model's
+    // minute of measurements.
+    std::fs::create_dir_all(&work).map_err(|e| Error::io(&work, e))?;
+    let o = crate::vectors::DumpOptions::formats("gbump bench", false, true);
+    crate::vectors::writer::check_space(cfg, 2 * DUMP_RECORDS, &["top".to_string()], &work, &o)?;
     let mut s = format!("Speed on this machine ({} threads), config `{}` ({:?} lights x{}) for the simulators\n\n| measurement | figure | how |\n|---|---:|---|\n", rayon::current_num_threads(), cfg.hash(), cfg.light_mode, cfg.lights);
     let progress = crate::progress::Progress::new("bench", 5);
     let harness_table;
@@ -78,7 +83,6 @@ pub fn bench(cfg: &PipelineConfig, work: &Path) -> Result<String> {
     let vdir = work.join("vectors");
     let _ = std::fs::remove_dir_all(&vdir);
     let all = ["top".to_string()];
-    let o = crate::vectors::DumpOptions::formats("gbump bench", false, true);
     let t = Instant::now();
     let sets = crate::vectors::dump(cfg, &crate::vectors::Source::Random(DUMP_RECORDS), &all, &vdir, &o)?;
     let secs = t.elapsed().as_secs_f64();

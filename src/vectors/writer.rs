@@ -442,6 +442,7 @@ fn space_fix(command: &str) -> &'static str {
         Some("regress") => "fewer --random or --random-icarus records, fewer --target, a --work folder on a larger disk, or --stream random:N (records piped to the simulator, no file written)",
         Some("fuzz") => "fewer --random records, or a --work folder on a larger disk",
         Some("render") => "a smaller --size, or a --work folder on a larger disk",
+        Some("bench") => "a --work folder on a larger disk (bench writes its dump, then as many bytes again to time the disk)",
         _ => "fewer records, --format bin (the text files are the larger part), fewer --target, or an --out on a larger disk",
     }
 }
@@ -449,7 +450,7 @@ fn space_fix(command: &str) -> &'static str {
 /// Refuse, before anything is written, a random dump of `n` records per target whose files
 /// would not fit the free space under `dir` (a dump that fills the disk fails only at the
 /// end, and fills it for everyone else meanwhile).
-fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<()> {
+pub fn check_space(cfg: &PipelineConfig, n: u64, targets: &[String], dir: &Path, o: &DumpOptions) -> Result<()> {
     let per_record: u64 = targets
         .iter()
         .map(|t| {
