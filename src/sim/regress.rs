@@ -262,6 +262,9 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
                 fixed.release
             )));
         }
+        // Its expected values are the model's, or the RTL would be judged by others.
+        let regen = crate::vectors::manifest::regenerate_into(&crate::vectors::manifest::recorded_command(&m), &dir);
+        crate::vectors::model_check::check_expected(&m, &dir, &regen)?;
         for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {
             bench_for(sim, &m, &manifest.display().to_string(), o.waves)?;
         }

@@ -6,6 +6,7 @@
 
 pub mod layout;
 pub mod manifest;
+pub mod model_check;
 pub mod rng;
 pub mod sources;
 pub mod staged_file;
