@@ -399,6 +399,16 @@ pub fn log_tail(tool: &str, log: &str, n: usize) -> String {
     }
 }
 
+/// A tool that exited 0 without the output that proves it did its work (`evidence` says
+/// which): a lint or check that looked at nothing is not clean.
+pub fn did_not_run(tool: &str, evidence: &str, log: &str) -> String {
+    let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+    format!(
+        "{tool} ({at}) exited 0 but did not do its work ({evidence}, and it did not){}\n  fix: it is not a working {tool}: reinstall it (scripts/install-tools.sh) or put a working one first on PATH",
+        if log.trim().is_empty() { String::new() } else { format!(":\n{}", tail(log, 10)) }
+    )
+}
+
 /// The fix line of a failed run of `tool` that printed nothing: it is not the tool gbump
 /// knows, or it is broken.
 pub fn silent_fix(tool: &str) -> String {
@@ -488,7 +498,7 @@ mod tests {
             ("make: *** No targets.  Stop.", "make found no makefile"),
         ] {
             let fix = super::build_fix("verilator", log);
-            assert!(fix.contains(says) && !fix.contains("gbump bug"), "{log}: {fix}");
+            assert!(fix.contains(says) && !fix.contains("bug: report"), "{log}: {fix}");
         }
         assert!(super::synthesis_fix("ERROR: No space left on device").contains("disk space"));
         let ours = super::build_fix("verilator", "%Error: top.v:3: syntax error\n%Error: Exiting due to 1 error(s)");

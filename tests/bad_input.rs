@@ -2452,3 +2452,33 @@ fn a_file_size_limit_is_an_error_that_names_it() {
         .unwrap_or_default();
     assert!(left.iter().all(|n| !n.contains(".gbump.tmp")), "{left:?}");
 }
+
+/// `gbump lint` is clean only when each linter shows it read the design: a Verilator, Icarus
+/// or Yosys that exits 0 without doing its work (here: answers its version, then does
+/// nothing) makes the lint fail, naming the tool, instead of reporting a clean design.
+#[test]
+fn a_linter_that_does_nothing_is_not_a_clean_lint() {
+    for tool in ["verilator", "iverilog", "yosys"] {
+        let real = gbump::tool::on_path(tool).unwrap_or_else(|| panic!("{tool} missing: scripts/install-tools.sh"));
+        let dir = tempfile::tempdir().unwrap();
+        let path = fake_tools::tool(
+            &dir.path().join("bin"),
+            tool,
+            &format!("case \"$1\" in -V|--version) exec '{}' \"$@\";; esac\nexit 0", real.display()),
+        );
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .env("PATH", &path)
+            .args(["lint", "--work"])
+            .arg(dir.path().join("w"))
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{tool}: {text}");
+        assert!(
+            text.contains(&format!("{tool} (")) && text.contains("did not do its work") && text.contains("fix:"),
+            "{tool}: {text}"
+        );
+        assert!(!text.contains(": clean"), "{tool}: {text}");
+    }
+}

@@ -59,14 +59,27 @@ impl Simulator for Icarus {
     }
 
     /// Icarus has no waiver files; anything it prints is a problem.
+    /// Its compiled image is the evidence that it read the design: an `iverilog` that exits
+    /// 0 without compiling leaves none, and a lint that looked at nothing is not clean.
     fn lint(&self, cwd: &Path, files: &[String], _waivers: &[String], top: Option<&str>) -> Result<Option<String>> {
+        let image = cwd.join("lint_icarus.vvp");
+        let _ = std::fs::remove_file(&image);
         let mut c = Command::new("iverilog");
-        c.args(["-g2005", "-Wall", "-o", "/dev/null"]);
+        c.args(["-g2005", "-Wall", "-o"]).arg(&image);
         if let Some(t) = top {
             c.args(["-s", t]);
         }
         c.args(files).current_dir(cwd);
         let (ok, log, _) = run_cmd(&mut c, "iverilog -Wall")?;
+        let read = std::fs::read_to_string(&image).is_ok_and(|t| top.is_none_or(|t2| t.contains(t2)));
+        let _ = std::fs::remove_file(&image);
+        if ok && log.trim().is_empty() && !read {
+            return Ok(Some(crate::tool::did_not_run(
+                "iverilog",
+                &format!("it compiles {} with the design's top", image.display()),
+                &log,
+            )));
+        }
         Ok((!ok || !log.trim().is_empty()).then_some(log))
     }
 }

@@ -47,9 +47,17 @@ pub fn lint(cfg: &PipelineConfig, work: &Path, pick_args: &str, say: &mut dyn Fn
     progress.start("yosys synthesis check");
     let top = module_name(cfg, "gbump_pipeline");
     let sp = dir.join("lint.ys");
+    let done = dir.join(crate::yosys::scripts::CHECK_DONE);
+    let _ = std::fs::remove_file(&done);
     let (ok, log) = crate::yosys::run(&crate::yosys::scripts::check(&files, &top), Path::new("lint.ys"), &dir, &[])?;
     if !ok {
         problems.push(format!("yosys synthesis check ({}):\n{}", sp.display(), tail(&log, 20)));
+    } else if !std::fs::read_to_string(&done).is_ok_and(|t| t.contains(&top)) {
+        problems.push(crate::tool::did_not_run(
+            "yosys",
+            &format!("its script's last step writes {}", done.display()),
+            &log,
+        ));
     }
     progress.done("yosys synthesis check");
     drop(progress);

@@ -204,14 +204,31 @@ impl Simulator for Verilator {
     }
 
     /// A `%Warning` fails it even when Verilator exits 0.
+    /// Its statistics file (`--stats`) is the evidence that it read the design: a
+    /// `verilator` that exits 0 without linting writes none.
     fn lint(&self, cwd: &Path, files: &[String], waivers: &[String], top: Option<&str>) -> Result<Option<String>> {
+        let mdir = cwd.join(format!("lint_verilator_{}", top.unwrap_or("all")));
+        let _ = std::fs::remove_dir_all(&mdir);
         let mut c = Command::new("verilator");
-        c.args(["--lint-only", "-Wall"]);
+        c.args(["--lint-only", "-Wall", "--stats", "--Mdir"]).arg(&mdir);
         if let Some(t) = top {
             c.args(["--top-module", t]);
         }
         c.args(waivers).args(files).current_dir(cwd);
         let (ok, log, _) = run_cmd(&mut c, "verilator --lint-only")?;
+        let stats = std::fs::read_dir(&mdir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .any(|e| e.file_name().to_string_lossy().ends_with("__stats.txt") && e.metadata().is_ok_and(|m| m.len() > 0));
+        let _ = std::fs::remove_dir_all(&mdir);
+        if ok && !log.contains("%Warning") && !stats {
+            return Ok(Some(crate::tool::did_not_run(
+                "verilator",
+                &format!("--stats writes its statistics under {}", mdir.display()),
+                &log,
+            )));
+        }
         Ok((!ok || log.contains("%Warning")).then_some(log))
     }
 }

@@ -16,8 +16,15 @@ pub fn check(files: &[String], top: &str) -> String {
         s += &format!("read_verilog -defer {f}\n");
     }
     s += &format!("hierarchy -check -top {top}\nproc\nflatten\nopt_clean\ncheck -assert\nselect -assert-none t:$dlatch t:$adlatch t:$dlatchsr\nmemory -nomap\nopt_clean\ncheck -assert\n");
+    // Evidence that the script ran to its end on this design: a Yosys that exits 0 without
+    // reading it leaves no such file.
+    s += &format!("tee -q -o {CHECK_DONE} stat\n");
     s
 }
+
+/// The file [`check`]'s last step writes: the elaborated design's statistics, which name
+/// its top.
+pub const CHECK_DONE: &str = "lint_yosys_stat.txt";
 
 /// Gate-level area of one module: the bits of its RAMs (`rtlgen::ram`) counted first into
 /// `memory.json`, then every RAM made a black box, so the logic's NAND/NOR/NOT cells (`abc -g
