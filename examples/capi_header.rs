@@ -37,9 +37,23 @@ pub fn generate(root: &Path) -> Vec<(String, String)> {
         .generate()
         .expect("cbindgen reads src/capi")
         .write(&mut text);
-    let header = String::from_utf8(text).expect("UTF-8 header");
+    let header = c89_comments(&String::from_utf8(text).expect("UTF-8 header"));
     let pkg = gbump::capi::dpi_pkg::package(&header, REGENERATE).unwrap_or_else(|e| panic!("{e}"));
     vec![("gbump.h".into(), header), ("gbump_dpi_pkg.sv".into(), pkg)]
+}
+
+/// cbindgen closes its `#ifdef __cplusplus` blocks with `//` comments, which C89 (`-std=c89
+/// -pedantic`, still some vendors' default) refuses; every other comment it writes is `/* */`.
+fn c89_comments(header: &str) -> String {
+    header
+        .lines()
+        .map(|l| match l.split_once("  // ").or_else(|| l.split_once(" // ")) {
+            Some((code, note)) if code.starts_with('#') || code.starts_with('}') => format!("{code}  /* {note} */"),
+            _ => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + "\n"
 }
 
 #[allow(dead_code)]

@@ -75,7 +75,7 @@ typedef struct GbumpStim GbumpStim;
 
 #ifdef __cplusplus
 extern "C" {
-#endif // __cplusplus
+#endif  /* __cplusplus */
 
 /**
  * The ABI version (`ABI_VERSION`): compare with the header's `GBUMP_ABI_VERSION`.
@@ -444,7 +444,7 @@ int32_t gbump_stim_next(struct GbumpStim *g, uint32_t *rec_out);
 int64_t gbump_stim_index(const struct GbumpStim *g);
 
 #ifdef __cplusplus
-}  // extern "C"
-#endif  // __cplusplus
+}  /* extern "C" */
+#endif  /* __cplusplus */
 
 #endif  /* GBUMP_H */

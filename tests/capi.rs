@@ -226,6 +226,7 @@ fn warnings_stay_in_the_handle() {
 
 #[test]
 fn errors_come_back_as_status_and_message() {
+    use std::ptr::null_mut;
     unsafe {
         // A range error names its line, as one read from a file does.
         let bad = c("\n\nlights = 9\n");
@@ -270,9 +271,41 @@ fn errors_come_back_as_status_and_message() {
         let cr = c("colour_round");
         let mut w = vec![0u32; gbump_record_words(g, cr.as_ptr()) as usize];
         w[0] = 0x1ff;
-        assert_eq!(gbump_eval_batch(g, cr.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr(), 1), -1);
+        // A batch names the record that failed; a single gbump_eval has no record to name.
+        let mut two = [w.clone(), vec![0; w.len()]].concat();
+        assert_eq!(gbump_eval_batch(g, cr.as_ptr(), two.clone().as_ptr(), two.as_mut_ptr(), 2), -1);
         let e = s(gbump_last_error());
         assert!(e.contains("record 0") && e.contains("colour_round: input `c_in`"), "{e}");
+        assert_eq!(gbump_eval(g, cr.as_ptr(), w.as_ptr(), w.clone().as_mut_ptr()), -1);
+        let e = s(gbump_last_error());
+        assert!(!e.contains("record 0") && e.contains("colour_round: input `c_in`"), "{e}");
+        // A line break in a caller's name cannot start a line of the message (a forged fix).
+        let forged = c("top\n  fix: rm -rf ~");
+        assert_eq!(gbump_record_words(g, forged.as_ptr()), -1);
+        let e = s(gbump_last_error());
+        assert!(
+            e.contains(r#""top\n  fix: rm -rf ~""#) && e.lines().filter(|l| l.trim_start().starts_with("fix:")).count() == 1,
+            "{e}"
+        );
+        assert_eq!(
+            gbump_column(
+                g,
+                c("top").as_ptr(),
+                c("out_c\tx").as_ptr(),
+                null_mut(),
+                null_mut(),
+                null_mut(),
+                null_mut()
+            ),
+            -1
+        );
+        assert!(s(gbump_last_error()).contains("control character"), "{}", s(gbump_last_error()));
+        assert!(gbump_config_from_toml(c("lights = 9\n").as_ptr(), c("a\n  fix: forged").as_ptr()).is_null());
+        let e = s(gbump_last_error());
+        assert!(
+            e.contains("a\\n  fix: forged") && !e.lines().any(|l| l.starts_with("  fix: forged")),
+            "{e}"
+        );
         gbump_config_free(g);
         gbump_config_free(h);
         gbump_config_free(std::ptr::null_mut());
@@ -585,4 +618,30 @@ int main(void) {
         String::from_utf8_lossy(&run.stdout),
         String::from_utf8_lossy(&run.stderr)
     );
+}
+
+/// The header compiles alone as every C a client may build with (C89 with `-pedantic`, still
+/// some vendors' default, refuses `//` comments) and as C++.
+#[test]
+fn the_header_compiles_under_c89_c99_c11_and_cpp() {
+    let d = tempfile::tempdir().unwrap();
+    let src = d.path().join("use.c");
+    std::fs::write(
+        &src,
+        "#include \"gbump.h\"\nint main(void) { return gbump_abi_version() == GBUMP_ABI_VERSION ? 0 : 1; }\n",
+    )
+    .unwrap();
+    for (cc, std) in [("cc", "-std=c89"), ("cc", "-std=c99"), ("cc", "-std=c11"), ("c++", "-std=c++11")] {
+        let mut cmd = std::process::Command::new(cc);
+        cmd.args([std, "-pedantic", "-Wall", "-Wextra", "-Werror", "-fsyntax-only", "-I"])
+            .arg(root().join("include"));
+        if cc == "c++" {
+            cmd.args(["-x", "c++"]);
+        }
+        let out = cmd
+            .arg(&src)
+            .output()
+            .unwrap_or_else(|e| panic!("{cc}: {e} (scripts/install-tools.sh installs g++)"));
+        assert!(out.status.success(), "{cc} {std}: {}", String::from_utf8_lossy(&out.stderr));
+    }
 }

@@ -3,7 +3,7 @@
 //! messages, string ownership, records, threads) are [`super::CONVENTIONS`], which the header
 //! opens with.
 
-use super::guard::{guard, handle, handle_mut, last_error, str_arg, words, words_mut};
+use super::guard::{guard, handle, handle_mut, last_error, name_arg, str_arg, words, words_mut};
 use super::handle::{GbumpConfig, GbumpStim};
 use crate::config::PipelineConfig;
 use crate::error::{Error, Result};
@@ -58,8 +58,8 @@ pub extern "C" fn gbump_config_default() -> *mut GbumpConfig {
 pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *const c_char) -> *mut GbumpConfig {
     guard("gbump_config_from_toml", std::ptr::null_mut(), || {
         let text = str_arg(text, "text")?;
-        let name = str_arg(name, "name")?;
-        boxed(GbumpConfig::read(|| PipelineConfig::from_toml(name, text)))
+        let name = super::guard::one_line(str_arg(name, "name")?);
+        boxed(GbumpConfig::read(|| PipelineConfig::from_toml(&name, text)))
     })
 }
 
@@ -206,7 +206,7 @@ pub unsafe extern "C" fn gbump_reset_cycles(h: *const GbumpConfig) -> i32 {
 #[no_mangle]
 pub unsafe extern "C" fn gbump_unit_latency(h: *const GbumpConfig, unit: *const c_char) -> i32 {
     with("gbump_unit_latency", h, -1, |h| {
-        let t = h.target(str_arg(unit, "unit")?)?;
+        let t = h.target(name_arg(unit, "unit")?)?;
         let u = crate::units::unit(t.name).ok_or_else(|| Error::Other("`top`: use gbump_latency\n  fix: pass a unit name".into()))?;
         Ok(u.latency(&h.cfg) as i32)
     })
@@ -264,7 +264,7 @@ pub unsafe extern "C" fn gbump_port_is_output(h: *const GbumpConfig, i: i32) -> 
 #[no_mangle]
 pub unsafe extern "C" fn gbump_record_bits(h: *const GbumpConfig, target: *const c_char) -> i32 {
     with("gbump_record_bits", h, -1, |h| {
-        Ok(h.target(str_arg(target, "target")?)?.layout.bits as i32)
+        Ok(h.target(name_arg(target, "target")?)?.layout.bits as i32)
     })
 }
 
@@ -275,7 +275,7 @@ pub unsafe extern "C" fn gbump_record_bits(h: *const GbumpConfig, target: *const
 #[no_mangle]
 pub unsafe extern "C" fn gbump_record_words(h: *const GbumpConfig, target: *const c_char) -> i32 {
     with("gbump_record_words", h, -1, |h| {
-        Ok(h.target(str_arg(target, "target")?)?.layout.words32() as i32)
+        Ok(h.target(name_arg(target, "target")?)?.layout.words32() as i32)
     })
 }
 
@@ -286,7 +286,7 @@ pub unsafe extern "C" fn gbump_record_words(h: *const GbumpConfig, target: *cons
 #[no_mangle]
 pub unsafe extern "C" fn gbump_column_count(h: *const GbumpConfig, target: *const c_char) -> i32 {
     with("gbump_column_count", h, -1, |h| {
-        Ok(h.target(str_arg(target, "target")?)?.layout.columns.len() as i32)
+        Ok(h.target(name_arg(target, "target")?)?.layout.columns.len() as i32)
     })
 }
 
@@ -297,7 +297,7 @@ pub unsafe extern "C" fn gbump_column_count(h: *const GbumpConfig, target: *cons
 #[no_mangle]
 pub unsafe extern "C" fn gbump_column_name(h: *const GbumpConfig, target: *const c_char, i: i32) -> *const c_char {
     with("gbump_column_name", h, std::ptr::null(), |h| {
-        let t = h.target(str_arg(target, "target")?)?;
+        let t = h.target(name_arg(target, "target")?)?;
         let n = t.column_names.len();
         t.column_names
             .get(usize::try_from(i).unwrap_or(usize::MAX))
@@ -345,8 +345,8 @@ pub unsafe extern "C" fn gbump_column(
 
 /// Column `column` of `target` (`target` and `column` C strings).
 unsafe fn column_of(h: &GbumpConfig, target: *const c_char, column: *const c_char) -> Result<&crate::vectors::layout::Column> {
-    let t = h.target(str_arg(target, "target")?)?;
-    let name = str_arg(column, "column")?;
+    let t = h.target(name_arg(target, "target")?)?;
+    let name = name_arg(column, "column")?;
     t.layout.columns.iter().find(|c| c.name == name).ok_or_else(|| {
         let names: Vec<&str> = t.layout.columns.iter().map(|c| c.name.as_str()).collect();
         Error::Other(format!(
@@ -405,7 +405,7 @@ pub unsafe extern "C" fn gbump_eval_batch(
 /// `gbump_eval_batch`, its errors named after the function the caller called (`what`).
 unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, rec_in: *const u32, rec_out: *mut u32, count: i64) -> i32 {
     with(what, h, -1, |h| {
-        let t = h.target(str_arg(target, "target")?)?;
+        let t = h.target(name_arg(target, "target")?)?;
         let n = t.layout.words32();
         let count =
             u64::try_from(count).map_err(|_| Error::Other(format!("count {count}: negative\n  fix: pass the number of records")))?;

@@ -96,6 +96,28 @@ pub unsafe fn str_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
         .map_err(|_| Error::Other(format!("{arg} is not UTF-8\n  fix: pass UTF-8 text")))
 }
 
+/// A name argument (a target, a column, a unit): [`str_arg`], refused when it holds a control
+/// character, since a line break in a name a message quotes would start a line of its own
+/// (a forged `fix:` line in the caller's log).
+///
+/// # Safety
+/// As [`str_arg`].
+pub unsafe fn name_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
+    let s = str_arg(p, arg)?;
+    match s.chars().any(char::is_control) {
+        true => Err(Error::Other(format!(
+            "{arg} {s:?} holds a control character (a line break, a tab, an escape)\n  fix: pass the name alone, as gbump_target_name and gbump_column_name give it"
+        ))),
+        false => Ok(s),
+    }
+}
+
+/// The same text with its line breaks and tabs shown as `\n`, `\r` and `\t`, for a caller's
+/// string a message quotes inside one of its lines.
+pub fn one_line(s: &str) -> String {
+    s.replace('\n', "\\n").replace('\r', "\\r").replace('\t', "\\t")
+}
+
 /// A handle argument; `arg` names it in errors.
 ///
 /// # Safety

@@ -156,10 +156,13 @@ impl GbumpConfig {
         if t.name == "top" {
             return self.eval_top_words(t, input, out);
         }
+        // A call of one record (`gbump_eval`) is not told which record failed.
+        let many = input.len() > n;
         let eval = |(k, (i, o)): (usize, (&[u32], &mut [u32]))| -> Result<()> {
-            let r = self
-                .eval(t, &Record::from_words32(i))
-                .map_err(|e| Error::Other(format!("record {k}: {e}")))?;
+            let r = self.eval(t, &Record::from_words32(i)).map_err(|e| match many {
+                true => Error::Other(format!("record {k}: {e}")),
+                false => e,
+            })?;
             o.copy_from_slice(&r.to_words32(n));
             Ok(())
         };
