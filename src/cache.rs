@@ -137,7 +137,14 @@ pub fn build_dir(dir: &Path, outputs: &[&str], build: impl FnOnce(&Path) -> Resu
             let p = tmp.join(o);
             let d = sha256_file(&p)
                 .filter(|_| p.metadata().is_ok_and(|m| m.len() > 0))
-                .ok_or_else(|| Error::Other(format!("{}: the build did not produce {o}", tmp.display())))?;
+                .ok_or_else(|| {
+                    // Named by the entry it was for: the temporary folder is gone by the time
+                    // the message is read.
+                    Error::Other(format!(
+                        "{}: the build exited 0 but did not produce {o}\n  fix: a tool it ran is not working (`which` it and check `--version` answers); reinstall it (scripts/install-tools.sh) or put a working one first on PATH",
+                        dir.display()
+                    ))
+                })?;
             marker += &format!("{d}  {o}\n");
         }
         let m = tmp.join(COMPLETE);

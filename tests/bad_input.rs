@@ -2290,6 +2290,33 @@ fn a_link_into_a_missing_folder_is_refused_without_making_it() {
     }
 }
 
+/// An output folder that is a loop of symbolic links (a -> b -> a) is named as a loop, not
+/// as a link to something missing to be created.
+#[test]
+fn an_output_folder_in_a_loop_of_links_is_named_as_a_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink("b", dir.path().join("a")).unwrap();
+    std::os::unix::fs::symlink("a", dir.path().join("b")).unwrap();
+    for args in [
+        vec!["vectors", "--source", "random:10", "--target", "top", "--out", "a"],
+        vec!["rtl", "--out", "a"],
+    ] {
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(&args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("a: a loop of symbolic links") && err.contains("fix:"),
+            "{}: {err}",
+            args[0]
+        );
+        assert!(!err.contains("does not exist"), "{}: {err}", args[0]);
+    }
+}
+
 /// A folder `gbump vectors` writes but `gbump regress` refuses (make reads `=` and `:`) is
 /// written with a note saying so, and regress then refuses it, as the note said.
 #[test]
@@ -2480,5 +2507,71 @@ fn a_linter_that_does_nothing_is_not_a_clean_lint() {
             "{tool}: {text}"
         );
         assert!(!text.contains(": clean"), "{tool}: {text}");
+    }
+}
+
+/// A closed standard input, output or error is not taken over by a file gbump opens (the
+/// lowest free descriptor; Rust's start-up points a closed one at /dev/null): the run succeeds
+/// and writes what a run with all three open writes.
+#[test]
+fn closed_standard_descriptors_leave_the_outputs_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |at: &str, redirect: &str| {
+        let cwd = dir.path().join(at);
+        std::fs::create_dir(&cwd).unwrap();
+        let o = std::process::Command::new("sh")
+            .args([
+                "-c",
+                &format!("exec \"$0\" vectors --source random:300 --target all --seed 3 --out d {redirect}"),
+                env!("CARGO_BIN_EXE_gbump"),
+            ])
+            .current_dir(&cwd)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{redirect}: {}", String::from_utf8_lossy(&o.stderr));
+        cwd.join("d")
+    };
+    let open = run("open", "");
+    let closed = run("closed", ">&- 2>&- <&-");
+    let mut names: Vec<_> = std::fs::read_dir(&open).unwrap().map(|e| e.unwrap().file_name()).collect();
+    names.sort();
+    assert!(names.len() > 10, "{names:?}");
+    for n in &names {
+        let a = std::fs::read(open.join(n)).unwrap();
+        let b = std::fs::read(closed.join(n)).unwrap();
+        assert!(a == b, "{n:?} differs with the standard descriptors closed");
+    }
+}
+
+/// A build tool that exits 0 without making its output (iverilog with no image, make with no
+/// linked model) is named with its path and a fix, not as "the build did not produce" inside
+/// a temporary folder that is gone by the time the message is read.
+#[test]
+fn a_build_tool_that_makes_nothing_is_named() {
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    for (sim, tool) in [("icarus", "iverilog"), ("verilator", "make")] {
+        let real = gbump::tool::on_path(tool).unwrap_or_else(|| panic!("{tool} missing: scripts/install-tools.sh"));
+        let dir = tempfile::tempdir().unwrap();
+        let path = fake_tools::tool(
+            &dir.path().join("bin"),
+            tool,
+            &format!("case \"$1\" in -V|--version) exec '{}' \"$@\";; esac\nexit 0", real.display()),
+        );
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .env("PATH", &path)
+            .args(["regress", "--sim", sim, "--vectors"])
+            .arg(&vectors)
+            .arg("--work")
+            .arg(dir.path().join("w"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{sim}: {err}");
+        assert!(
+            err.contains(&format!("{tool} (")) && err.contains("did not do its work") && err.contains("fix:"),
+            "{sim}: {err}"
+        );
+        assert!(!err.contains(".gbump.tmp"), "{sim}: the message names a temporary folder: {err}");
     }
 }

@@ -234,13 +234,21 @@ pub fn remove_made_folders(own: &[&str]) {
 /// (`--out /proc/x` reads as "no such file" in the OS's words). The folders it makes are
 /// recorded for [`remove_made_folders`].
 pub fn make_folder(dir: &Path) -> Result<()> {
-    if let (Ok(m), Err(_)) = (std::fs::symlink_metadata(dir), std::fs::metadata(dir)) {
+    if let (Ok(m), Err(e)) = (std::fs::symlink_metadata(dir), std::fs::metadata(dir)) {
         if m.file_type().is_symlink() {
             let to = std::fs::read_link(dir).map(|t| t.display().to_string()).unwrap_or_default();
-            return Err(Error::Other(format!(
-                "{}: a symbolic link to {to}, which does not exist\n  fix: create {to}, or remove the link",
-                dir.display()
-            )));
+            return Err(match e.kind() {
+                std::io::ErrorKind::NotFound => Error::Other(format!(
+                    "{}: a symbolic link to {to}, which does not exist\n  fix: create {to}, or remove the link",
+                    dir.display()
+                )),
+                // ELOOP: the chain comes back to itself (a -> b -> a); nothing at its end to create.
+                _ if e.raw_os_error() == Some(libc::ELOOP) => Error::Other(format!(
+                    "{}: a loop of symbolic links (it leads to {to}, which leads back)\n  fix: point the link at a folder, or give the output another path",
+                    dir.display()
+                )),
+                _ => Error::io(dir, e),
+            });
         }
     }
     // Below the deepest folder that was there before, every one is this call's.

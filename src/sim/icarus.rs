@@ -39,6 +39,13 @@ impl Simulator for Icarus {
                     crate::tool::build_fix("iverilog", &log)
                 )));
             }
+            if !dir.join(&exe_name).is_file() {
+                return Err(Error::Other(crate::tool::did_not_run(
+                    "iverilog",
+                    &format!("it compiles {exe_name}"),
+                    &log,
+                )));
+            }
             Ok(())
         })?;
         Ok(dir.join(exe_name))

@@ -62,7 +62,10 @@ fn cached_build(
             run_cmd(&mut make, "make (Verilator's C++)")
         };
         let (mut ok, mut make_log, _) = make()?;
-        if (!ok || !dir.join(exe_name).exists()) && missing.len() < runtime.len() {
+        // A full disk, a file-size limit or an unwritable TMPDIR fails the link whatever the
+        // cached objects hold: they are kept, not blamed.
+        let machine = crate::tool::environment_fix("make", &make_log).is_some();
+        if (!ok || !dir.join(exe_name).exists()) && missing.len() < runtime.len() && !machine {
             // A cached object that does not link (damaged in a way its digest cannot see, or
             // made by another compiler that prints the same version): compile them all here
             // once more, and replace their entries.
@@ -74,6 +77,9 @@ fn cached_build(
         }
         if !ok || !dir.join(exe_name).exists() {
             // Verilator's part is done here: a silent failure is make's (or the compiler's).
+            if ok && make_log.trim().is_empty() {
+                return Err(Error::Other(crate::tool::did_not_run("make", &format!("it links {exe_name}"), "")));
+            }
             if make_log.trim().is_empty() {
                 return Err(Error::Other(format!(
                     "make (the C++ build of Verilator's output) failed to build {exe_name}:\n(make printed nothing)\n{}",
