@@ -279,7 +279,7 @@ fn verilators_runtime_objects_come_from_the_shared_cache() {
 
 /// An RTL folder whose interface JSON was edited is refused before anything is built, naming
 /// the field: a file name that leads out of the folder (whose contents must not be read, nor
-/// echoed), an empty one, and a `top` that is not the configuration's module.
+/// echoed), an empty one, a `top` that is not the configuration's module, and a latency.
 #[test]
 fn an_edited_interface_json_is_refused_by_field() {
     let w = work("edited_json");
@@ -311,6 +311,19 @@ fn an_edited_interface_json_is_refused_by_field() {
         assert!(!ok && log.contains(says) && log.contains("fix:"), "{value}:\n{log}");
         assert!(!log.contains("root:"), "{value}: a file outside the folder was read:\n{log}");
     }
+    // A number the testbench is made from, edited with the hash left alone: refused, naming
+    // the field and both values, not simulated into mismatches blamed on the RTL.
+    let mut e = j.clone();
+    let latency = e["latency_cycles"].as_u64().unwrap();
+    e["latency_cycles"] = serde_json::json!(latency - 1);
+    std::fs::write(&jf, serde_json::to_string_pretty(&e).unwrap()).unwrap();
+    let (ok, log) = gbump(&["cosim", "--rtl", dir.to_str().unwrap(), "--random", "10"], &w);
+    assert!(
+        !ok && log.contains(&format!("`latency_cycles` is {}", latency - 1))
+            && log.contains(&format!("has {latency}"))
+            && log.contains("was edited"),
+        "{log}"
+    );
     std::fs::write(&jf, original).unwrap();
 }
 

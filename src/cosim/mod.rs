@@ -241,7 +241,56 @@ fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json
             cfg.hash()
         )));
     }
+    // The testbench is made from this file (latency, ports, lanes): an edit that kept the hash
+    // would be blamed on the RTL as mismatches or a timeout.
+    let mut want: serde_json::Value = serde_json::from_str(&crate::rtlgen::interface::interface_json(cfg, "")).expect("gbump writes JSON");
+    let mut got = j.clone();
+    for v in [&mut want, &mut got] {
+        if let Some(o) = v.as_object_mut() {
+            o.remove("regenerate");
+        }
+    }
+    if let Some((at, g, w)) = first_difference(&got, &want, String::new()) {
+        return Err(Error::Other(format!(
+            "{}: `{at}` is {g}, but configuration {}'s interface has {w}: the interface JSON was edited after `gbump rtl` wrote it\n  fix: {fix}",
+            jf.display(),
+            &cfg.hash()[..8]
+        )));
+    }
     Ok((jf, j))
+}
+
+/// The first place (a dotted path, `[i]` for an array's element) where `got` differs from
+/// `want`, with both values there as JSON (`absent` where one has no such key).
+fn first_difference(got: &serde_json::Value, want: &serde_json::Value, at: String) -> Option<(String, String, String)> {
+    use serde_json::Value as V;
+    // A whole port list is not a message: long values are cut.
+    let shown = |v: Option<&V>| {
+        v.map_or("absent".to_string(), |v| {
+            let t = v.to_string();
+            match t.char_indices().nth(80) {
+                Some((i, _)) => format!("{}...", &t[..i]),
+                None => t,
+            }
+        })
+    };
+    let join = |k: &str| if at.is_empty() { k.to_string() } else { format!("{at}.{k}") };
+    match (got, want) {
+        (V::Object(g), V::Object(w)) => {
+            let mut keys: Vec<&String> = w.keys().chain(g.keys().filter(|k| !w.contains_key(*k))).collect();
+            keys.dedup();
+            keys.into_iter().find_map(|k| match (g.get(k), w.get(k)) {
+                (Some(a), Some(b)) => first_difference(a, b, join(k)),
+                (a, b) => Some((join(k), shown(a), shown(b))),
+            })
+        }
+        (V::Array(g), V::Array(w)) if g.len() == w.len() => g
+            .iter()
+            .zip(w)
+            .enumerate()
+            .find_map(|(i, (a, b))| first_difference(a, b, format!("{at}[{i}]"))),
+        _ => (got != want).then(|| (at.clone(), shown(Some(got)), shown(Some(want)))),
+    }
 }
 
 /// Everything `cosim` checks that needs no work folder (the simulator, the configuration,
