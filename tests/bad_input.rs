@@ -1355,7 +1355,7 @@ fn cases() -> Vec<Case> {
         (
             // An ELF file without this gbump's source hash: a library of another build.
             "cosim --lib of another build",
-            vec![("lib.so", "\u{7f}ELF a library of other sources".into())],
+            vec![("lib.so", "\u{7f}ELF a library of other sources, gbump_abi_version\0".into())],
             vec!["cosim", "--lib", "lib.so", "--work", "w"],
             vec!["lib.so", "built from other sources than this gbump", "gbump --version", "fix:"],
         ),
@@ -2573,5 +2573,42 @@ fn a_build_tool_that_makes_nothing_is_named() {
             "{sim}: {err}"
         );
         assert!(!err.contains(".gbump.tmp"), "{sim}: the message names a temporary folder: {err}");
+    }
+}
+
+/// `cosim --lib` with a damaged copy of the real library says what is wrong with it: cut
+/// short (the headers place data past its end), or a library without gbump's entry points;
+/// neither is "built from other sources".
+#[test]
+fn a_damaged_or_foreign_library_is_named_for_what_it_is() {
+    let real = Path::new(env!("CARGO_BIN_EXE_gbump")).with_file_name("libgbump.so");
+    let image = std::fs::read(&real).unwrap_or_else(|e| panic!("{}: {e} (cargo build --release)", real.display()));
+    let dir = tempfile::tempdir().unwrap();
+    let foreign = {
+        let mut b = image.clone();
+        let name = b"gbump_abi_version";
+        let mut i = 0;
+        while i + name.len() <= b.len() {
+            if &b[i..i + name.len()] == name {
+                b[i] = b'x';
+            }
+            i += 1;
+        }
+        b
+    };
+    for (file, bytes, says) in [
+        ("cut.so", image[..image.len() / 2].to_vec(), "cut short"),
+        ("foreign.so", foreign, "not the gbump C library (it defines no gbump_abi_version)"),
+    ] {
+        std::fs::write(dir.path().join(file), &bytes).unwrap();
+        let o = Command::cargo_bin("gbump")
+            .unwrap()
+            .args(["cosim", "--lib", file, "--work", "w"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(says) && err.contains("fix:"), "{file}: {err}");
+        assert!(!err.contains("other sources"), "{file}: {err}");
     }
 }

@@ -56,6 +56,30 @@ pub fn built_from_these_sources(lib: &Path) -> bool {
     std::fs::read(lib).is_ok_and(|b| b.windows(needle.len()).any(|w| w == needle.as_bytes()))
 }
 
+/// The byte just past the furthest data ELF image `b`'s headers place in the file (its
+/// section header table, each segment's file contents), for a file cut short; None for an
+/// image that is not 64-bit little-endian ELF.
+pub fn elf_end(b: &[u8]) -> Option<usize> {
+    let u16_at = |o: usize| b.get(o..o + 2).map(|x| u16::from_le_bytes([x[0], x[1]]) as usize);
+    let u64_at = |o: usize| b.get(o..o + 8).map(|x| u64::from_le_bytes(x.try_into().expect("8 bytes")) as usize);
+    if b.get(..4) != Some(b"\x7fELF") || b.get(4) != Some(&2) || b.get(5) != Some(&1) {
+        return None;
+    }
+    let (phoff, shoff) = (u64_at(0x20)?, u64_at(0x28)?);
+    let (phentsize, phnum, shentsize, shnum) = (u16_at(0x36)?, u16_at(0x38)?, u16_at(0x3A)?, u16_at(0x3C)?);
+    let mut end = shoff
+        .saturating_add(shentsize.saturating_mul(shnum))
+        .max(phoff.saturating_add(phentsize.saturating_mul(phnum)));
+    for i in 0..phnum {
+        let h = phoff.saturating_add(i * phentsize);
+        // A segment's file offset and size (p_offset, p_filesz), where the header is present.
+        if let (Some(off), Some(size)) = (u64_at(h + 8), u64_at(h + 32)) {
+            end = end.max(off.saturating_add(size));
+        }
+    }
+    Some(end)
+}
+
 /// Whether ELF image `b` is a program rather than a shared library: of type EXEC, or with a
 /// PT_INTERP program header (a position-independent executable is of type DYN, as a library
 /// is, but names its loader). 64-bit little-endian images only; anything else is left to
@@ -114,7 +138,26 @@ pub fn check_library(lib: &Path) -> Result<()> {
             lib.display()
         )));
     }
-    if std::fs::read(lib).is_ok_and(|b| elf_executable(&b)) {
+    let image = std::fs::read(lib).map_err(|e| Error::io(lib, e))?;
+    if let Some(end) = elf_end(&image).filter(|&end| end > image.len()) {
+        return Err(Error::Other(format!(
+            "{}: cut short ({} bytes, where its ELF headers place data up to byte {end}): a copy or a build that did not finish\n  fix: cargo build --release -j 1 (it rebuilds libgbump.so beside the gbump executable), or pass --lib with a whole copy",
+            lib.display(),
+            image.len()
+        )));
+    }
+    let exports = |name: &str| {
+        image
+            .windows(name.len() + 1)
+            .any(|w| &w[..name.len()] == name.as_bytes() && w[name.len()] == 0)
+    };
+    if !elf_executable(&image) && !exports("gbump_abi_version") {
+        return Err(Error::Other(format!(
+            "{}: a shared library, but not the gbump C library (it defines no gbump_abi_version)\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
+            lib.display()
+        )));
+    }
+    if elf_executable(&image) {
         return Err(Error::Other(format!(
             "{}: an executable (it names a program interpreter), not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
             lib.display()
