@@ -89,7 +89,7 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
     }
     if parse_summary(&log) == Some((0, 0)) {
         return Err(Error::Other(format!(
-            "{what}: the testbench checked no vectors\n{}",
+            "{what}: the testbench checked no vectors\n{}\n  fix: {NO_VECTORS_FIX}",
             tail(&log, 10)
         )));
     }
@@ -111,7 +111,7 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
     match parse_summary(&log) {
         Some((passed, failed)) => {
             if passed + failed == 0 {
-                return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}", tail(&log, 10))));
+                return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}\n  fix: {NO_VECTORS_FIX}", tail(&log, 10))));
             }
             // A clean summary is a pass only from a process that then exited cleanly: one
             // that crashed or was killed after printing it (its waves or coverage unwritten,
@@ -124,13 +124,21 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
             }
             Ok(Outcome { passed, failed, seconds: secs, log })
         }
+        // Exiting 0 without the summary every testbench prints is not a crash: something
+        // other than the testbench ran, or its output went elsewhere.
+        None if ok => Err(Error::Other(format!(
+            "{what}: the simulator exited 0 without the testbench's \"N passed, N failed\" line, so what ran was not gbump's testbench (a wrapper or another program in the simulator's place), or its output went elsewhere\n--- last lines ---\n{}\n  fix: run the simulator as installed (scripts/install-tools.sh; `which vvp verilator` shows which runs), and run again",
+            tail(&log, 15)
+        ))),
         None => Err(Error::Other(format!(
-            "{what}: the simulation ended without a \"N passed, N failed\" line (exit {}): it crashed or was cut short\n--- last lines ---\n{}",
-            if ok { "ok" } else { "non-zero" },
+            "{what}: the simulation exited with an error before the testbench's \"N passed, N failed\" line: it crashed or was cut short\n--- last lines ---\n{}\n  fix: the last lines say where; rerun it, and if the simulator itself crashes again, reinstall it (scripts/install-tools.sh)",
             tail(&log, 15)
         ))),
     }
 }
+
+/// A run that checked nothing: the records it was given were none, or it never read them.
+const NO_VECTORS_FIX: &str = "give it records (a set whose manifest count is above 0); if the set has records, the testbench did not read them: regenerate its vector file with the command in its manifest";
 
 #[cfg(test)]
 mod tests {
@@ -151,6 +159,22 @@ mod tests {
         assert!(e.contains("2 \"N passed, N failed\" lines") && e.contains("fix:"), "{e}");
         let hidden = "MISMATCH vector 3\n20 passed, 0 failed\n".to_string();
         assert!(super::outcome(true, hidden, 1.0, "run").is_err());
+    }
+
+    /// A run without the summary line says what it was by its exit: a clean exit is not a
+    /// crash (something else ran), a failing one is; both with a fix.
+    #[test]
+    fn a_run_without_a_summary_is_named_by_its_exit() {
+        let e = super::outcome(true, "PASS\n".into(), 1.0, "run").unwrap_err().to_string();
+        assert!(e.contains("exited 0") && !e.contains("crashed") && e.contains("fix:"), "{e}");
+        let e = super::outcome(false, "Segmentation fault\n".into(), 1.0, "run")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("crashed") && e.contains("fix:"), "{e}");
+        let e = super::outcome(true, "0 passed, 0 failed\n".into(), 1.0, "run")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("checked no vectors") && e.contains("fix:"), "{e}");
     }
 
     /// A log the output cap cut (`tool::read_capped`) is not judged clean on what was kept:
