@@ -169,6 +169,11 @@ fn the_scene_reference_rebuilds_every_scenes_records() {
         ("h", "bump_state = \"fragment\"\ninterpolate = \"h\"\n"),
     ];
     let mut scenes: Vec<String> = gbump::scene::builtin::ALL.iter().map(|(s, _)| s.to_string()).collect();
+    // docs/SCENES.md states how many built-in scenes this test rebuilds.
+    let doc = std::fs::read_to_string(root().join("docs/SCENES.md")).unwrap();
+    let flat = doc.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!("runs it on all {} built-in scenes", scenes.len());
+    assert!(flat.contains(&want), "docs/SCENES.md should say: {want}");
     for (tag, pipeline) in variants {
         let p = dir.path().join(format!("mixed{tag}.toml"));
         let text = base.replacen("name = \"mixed\"", &format!("name = \"mixed{tag}\""), 1);

@@ -68,6 +68,13 @@ fn self_shadowing_cuts_light_exactly_where_the_geometric_normal_faces_away() {
         .flat_map(|(a, o)| a.iter().zip(o).map(|(x, y)| (y - x) * 255.0))
         .fold(0.0, f64::max);
     println!("{cut} pixels cut, {equal} pixels facing every light; largest change {max_lsb:.0} LSB");
+    // The README states the largest change measured here.
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let want = format!(
+        "on the torus it changes the reference by up to {max_lsb:.0} LSB at the shadow boundary (`tests/self_shadowing.rs`, at {W}x{H})"
+    );
+    assert!(flat.contains(&want), "README should say: {want}");
     assert!(
         cut > 50 && equal > 1000,
         "the scene must exercise both sides: {cut} cut, {equal} equal"
