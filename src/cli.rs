@@ -163,7 +163,7 @@ pub enum Cmd {
         /// Dump waveforms (FST) of every run.
         #[arg(long)]
         waves: bool,
-        #[arg(long, default_value_t = 20)]
+        #[arg(long, default_value_t = crate::sim::regress::MAX_ERRORS)]
         max_errors: u32,
     },
     /// Lint the generated RTL: verilator --lint-only -Wall, iverilog -Wall, and Yosys synthesis checks.
@@ -378,9 +378,9 @@ pub enum Cmd {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Idle in_valid for 1-3 cycles before every Nth fragment (0: never).
-        #[arg(long, default_value_t = 29)]
+        #[arg(long, default_value_t = crate::sim::regress::BUBBLES)]
         bubbles: u32,
-        #[arg(long, default_value_t = 20)]
+        #[arg(long, default_value_t = crate::sim::regress::MAX_ERRORS)]
         max_errors: u32,
         /// The gbump C library (default: libgbump.so beside this executable).
         #[arg(long, value_name = "FILE")]
@@ -499,7 +499,7 @@ fn nearest_folder(p: &Path) -> std::result::Result<PathBuf, String> {
 const DEFAULT_REPORT_SPACE: &str = "sweeps/small.toml";
 
 /// Configurations `gbump area-model` fits on by default (`--calibrate`).
-const AREA_MODEL_CALIBRATE: usize = 14;
+pub const AREA_MODEL_CALIBRATE: usize = 14;
 
 /// The options that name where a command writes.
 const OUTPUT_OPTIONS: [&str; 5] = ["out", "work", "json", "junit", "write"];
@@ -883,8 +883,8 @@ pub fn run() -> anyhow::Result<()> {
                 waves,
                 max_errors,
                 command: invocation(),
-                bubbles: 29,
-                stall: 13,
+                bubbles: crate::sim::regress::BUBBLES,
+                stall: crate::sim::regress::STALL,
                 power_up: true,
                 targets: target,
             };

@@ -1508,6 +1508,47 @@ fn at_line(text: &str, e: Error) -> Error {
 mod tests {
     use super::*;
 
+    /// Every one of EMBM's rules refuses its configuration with the field it names and a fix,
+    /// and the README states the ones a designer picks by.
+    #[test]
+    fn every_embm_rule_refuses_naming_its_field() {
+        let base = "lights = 4\nlight_mode = \"parallel\"\nbump_state = \"fragment\"\nenv_map_bits = 4\n";
+        assert!(PipelineConfig::from_toml("e.toml", base).is_ok());
+        let breaks = [
+            ("env_map_bits = 1", "env_map_bits"),
+            ("lights = 2", "lights"),
+            ("light_mode = \"serial\"", "light_mode"),
+            ("bump_state = \"triangle\"", "bump_state"),
+            ("palette = true", "palette"),
+            ("interpolate = \"h\"", "interpolate"),
+            ("renormalise = true", "renormalise"),
+            ("interpolate_k = true", "interpolate_k"),
+            ("renormalise_bump = true", "renormalise_bump"),
+            ("frame_transform = true", "frame_transform"),
+            ("self_shadow = true", "self_shadow"),
+            ("white_lights = true", "white_lights"),
+            ("power_rom = true", "power_rom"),
+            ("dot_frac_bits = 7", "dot_frac_bits"),
+            ("power_frac_bits = 7", "power_frac_bits"),
+        ];
+        for (line, field) in breaks {
+            // A later line of the same key replaces the base's.
+            let text = base
+                .lines()
+                .filter(|l| l.split(" =").next() != line.split(" =").next())
+                .chain([line])
+                .collect::<Vec<_>>()
+                .join("\n");
+            let e = PipelineConfig::from_toml("e.toml", &text).expect_err(line).to_string();
+            assert!(e.contains(field) && e.contains("fix:"), "{line}: {e}");
+        }
+        let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+        let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+        let (lo, hi) = (2, LIMITS.iter().find(|l| l.0 == "env_map_bits").map(|l| l.2).expect("a limit"));
+        let want = format!("`env_map_bits = E` ({lo} to {hi}, with `lights = 4`, `light_mode = \"parallel\"`, `bump_state = \"fragment\"` and `dot_frac_bits` and `power_frac_bits` of at least 8;");
+        assert!(flat.contains(&want), "README should say: {want}");
+    }
+
     #[test]
     fn default_round_trips_and_hash_is_stable() {
         let c = PipelineConfig::default();

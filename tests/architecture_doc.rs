@@ -72,3 +72,20 @@ fn the_default_depth_is_where_the_reports_fmax_stops_rising() {
         );
     }
 }
+
+/// The fast model's check against the readable model, as the constants of
+/// `vectors::top_records` set it.
+#[test]
+fn the_fast_models_check_is_stated_by_its_constants() {
+    use gbump::vectors::sources::RANDOM_CHUNK;
+    use gbump::vectors::top_records::{CHECK_SAMPLE, FULL_CHECK_RECORDS};
+    let flat = read("ARCHITECTURE.md").split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(FULL_CHECK_RECORDS.is_power_of_two() && RANDOM_CHUNK % 1024 == 0);
+    let share = 100.0 * CHECK_SAMPLE as f64 / RANDOM_CHUNK as f64;
+    let want = format!(
+        "every record of the first 2^{e} of a set and on the first {CHECK_SAMPLE} of every later {}k-record chunk (so a set of up to 2^{e} records is checked whole, and a longer one on its first 2^{e} and a sample of {share:.1} % after them)",
+        RANDOM_CHUNK / 1024,
+        e = FULL_CHECK_RECORDS.ilog2()
+    );
+    assert!(flat.contains(&want), "ARCHITECTURE.md should say: {want}");
+}

@@ -53,11 +53,30 @@ fn configs() -> Vec<PipelineConfig> {
     ]
 }
 
+/// Each case's shininess and cube-map size.
+const CASES: [(u32, usize); 6] = [(0, 1), (1, 4), (8, 32), (16, 32), (255, 7), (1024, 2)];
+
+/// The README's guarantee table names the shininesses and the number of configurations.
+#[test]
+fn the_readme_states_the_cases_checked_here() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let ns: Vec<String> = CASES.iter().map(|c| c.0.to_string()).collect();
+    let words = ["no", "one", "two", "three", "four", "five", "six"];
+    let want = format!(
+        "power tables for n = {} and {} under {} configurations",
+        ns[..ns.len() - 1].join(", "),
+        ns[ns.len() - 1],
+        words[configs().len()]
+    );
+    assert!(flat.contains(&want), "README should say: {want}");
+}
+
 #[test]
 fn every_rom_header_states_the_parameters_of_its_contents() {
     let pick = ConfigPick { config: None, scene: None };
     for cfg in configs() {
-        for (n, cube) in [(0, 1), (1, 4), (8, 32), (16, 32), (255, 7), (1024, 2)] {
+        for (n, cube) in CASES {
             let files = rom_files(&cfg, &pick, Some(n), cube, Path::new("rom")).unwrap();
             for (name, text) in files.iter().filter(|(f, _)| f.ends_with(".hex")) {
                 let p = header_params(text);

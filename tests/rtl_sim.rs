@@ -117,6 +117,28 @@ fn regress_default_config_on_both_simulators() {
     }
 }
 
+/// The README's guarantee table states the counts the default regression runs here and the
+/// command's own defaults.
+#[test]
+fn the_readme_states_the_default_regressions_counts() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let power = |n: u64| {
+        let e = n.ilog10();
+        assert_eq!(10u64.pow(e), n, "{n} is a power of ten");
+        format!("10^{e}")
+    };
+    let want = format!(
+        "the default configuration {},{:03} on Icarus / {} on Verilator per target, the others fewer, each test stating its own; `gbump regress --sim both` runs {} / {}",
+        SHORT.0 / 1000,
+        SHORT.0 % 1000,
+        power(FULL.1),
+        power(FULL.0),
+        power(FULL.1)
+    );
+    assert!(flat.contains(&want), "README should say: {want}");
+}
+
 /// Short regressions of the other configurations (see [`SHORT`]).
 fn regress_short(config: &str, work: &str, min_scenes: usize) {
     let t = regress_small_scenes(config, work, SHORT, &[]);

@@ -166,7 +166,7 @@ impl GbumpConfig {
             o.copy_from_slice(&r.to_words32(n));
             Ok(())
         };
-        each_chunk(input, out, n, input.len() / n >= 1024, eval)
+        each_chunk(input, out, n, input.len() / n >= super::PARALLEL_RECORDS, eval)
     }
 }
 
@@ -222,7 +222,7 @@ impl GbumpConfig {
             }
             Ok(())
         };
-        each_chunk(input, out, n * BATCH, input.len() / n >= 1024, run)
+        each_chunk(input, out, n * BATCH, input.len() / n >= super::PARALLEL_RECORDS, run)
     }
 }
 

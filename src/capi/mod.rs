@@ -79,3 +79,7 @@ pub const DPI_PACKAGE: &str = include_str!("../../include/gbump_dpi_pkg.sv");
 /// The widest record any valid configuration has, rounded up to a power of two: the width of
 /// the DPI package's record vectors (`GBUMP_MAX_BITS`).
 pub const MAX_RECORD_BITS: u32 = 2048;
+
+/// Records of one call from which it runs on the library's thread pool (fewer run on the
+/// caller's thread: handing them to the pool costs more than they do).
+pub const PARALLEL_RECORDS: usize = 1024;

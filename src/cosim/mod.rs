@@ -286,7 +286,8 @@ fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json
     }
     // The testbench is made from this file (latency, ports, lanes): an edit that kept the hash
     // would be blamed on the RTL as mismatches or a timeout.
-    let mut want: serde_json::Value = serde_json::from_str(&crate::rtlgen::interface::interface_json(cfg, "")).expect("gbump writes JSON");
+    let mut want: serde_json::Value =
+        serde_json::from_str(&crate::rtlgen::interface::interface_json(cfg, "")).expect("the interface is JSON");
     let mut got = j.clone();
     for v in [&mut want, &mut got] {
         if let Some(o) = v.as_object_mut() {

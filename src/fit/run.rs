@@ -119,10 +119,10 @@ pub fn regress_options(work: &std::path::Path, command: String, scenes: &[String
         scene_size: Some((64, 48)),
         work: std::path::absolute(work).map_err(|e| crate::error::Error::io(work, e))?,
         waves: false,
-        max_errors: 20,
+        max_errors: crate::sim::regress::MAX_ERRORS,
         command,
-        bubbles: 29,
-        stall: 13,
+        bubbles: crate::sim::regress::BUBBLES,
+        stall: crate::sim::regress::STALL,
         power_up: true,
         targets: vec!["all".into()],
     })

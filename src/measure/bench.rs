@@ -378,7 +378,7 @@ pub fn harness_speed(cfg: &PipelineConfig, work: &Path) -> Result<HarnessSpeed> 
         exe: &exe,
         table: &table,
         cwd: work,
-        max_errors: 20,
+        max_errors: crate::sim::regress::MAX_ERRORS,
         bubbles: 0,
         stall: 0,
         progress: false,

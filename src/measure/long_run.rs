@@ -40,7 +40,7 @@ pub fn long_run(cfg: &PipelineConfig, pick_args: &str, work: &Path, count: u64) 
         exe: &exe,
         table: &table,
         cwd: &work,
-        max_errors: 20,
+        max_errors: crate::sim::regress::MAX_ERRORS,
         bubbles: LONG_RUN_BUBBLES,
         stall: LONG_RUN_STALL,
         progress: true,

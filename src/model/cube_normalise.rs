@@ -152,7 +152,7 @@ mod tests {
     #[test]
     fn agrees_with_the_f64_cube_map_and_stays_within_its_bound() {
         let mut rng = crate::vectors::rng::SplitMix64(5);
-        for face in [4u32, 8, 32, 128] {
+        for face in [4u32, 8, 16, 32, 64, 128] {
             let c = cfg(face);
             let one = (1i64 << (c.lh_bits - 2)) as f64;
             for _ in 0..20_000 {

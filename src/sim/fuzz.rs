@@ -435,8 +435,8 @@ pub fn check_config(cfg: &PipelineConfig, work: &Path, random: u64, seed: u64) -
         waves: false,
         max_errors: 10,
         command: "gbump fuzz".into(),
-        bubbles: 29,
-        stall: 13,
+        bubbles: crate::sim::regress::BUBBLES,
+        stall: crate::sim::regress::STALL,
         power_up: true,
         targets: vec!["all".into()],
     };

@@ -69,7 +69,8 @@ impl Simulator for Icarus {
     /// Its compiled image is the evidence that it read the design: an `iverilog` that exits
     /// 0 without compiling leaves none, and a lint that looked at nothing is not clean.
     fn lint(&self, cwd: &Path, files: &[String], _waivers: &[String], top: Option<&str>) -> Result<Option<String>> {
-        let image = cwd.join("lint_icarus.vvp");
+        // Absolute, since iverilog runs in `cwd`.
+        let image = std::path::absolute(cwd.join("lint_icarus.vvp")).map_err(|e| Error::io(cwd, e))?;
         let _ = std::fs::remove_file(&image);
         let mut c = Command::new("iverilog");
         c.args(["-g2005", "-Wall", "-o"]).arg(&image);

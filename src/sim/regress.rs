@@ -23,6 +23,14 @@ pub struct RunResult {
     pub outcome: std::result::Result<Outcome, String>,
 }
 
+/// A regression's stream, as every command that regresses runs it: `in_valid` idle for 1-3
+/// cycles before every [`BUBBLES`]th record, `out_ready` low for 1-3 edges every [`STALL`]th
+/// edge (primes, so the two patterns drift against each other and against the interval).
+pub const BUBBLES: u32 = 29;
+pub const STALL: u32 = 13;
+/// Mismatches a bench reports before it stops (`--max-errors`' default).
+pub const MAX_ERRORS: u32 = 20;
+
 /// What to regress.
 #[derive(Clone, Debug)]
 pub struct RegressOptions {

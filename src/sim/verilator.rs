@@ -213,8 +213,10 @@ impl Simulator for Verilator {
     /// Its statistics file (`--stats`) is the evidence that it read the design: a
     /// `verilator` that exits 0 without linting writes none.
     fn lint(&self, cwd: &Path, files: &[String], waivers: &[String], top: Option<&str>) -> Result<Option<String>> {
-        let mdir = cwd.join(format!("lint_verilator_{}", top.unwrap_or("all")));
+        // Absolute, since Verilator runs in `cwd`; made here, since --lint-only makes none.
+        let mdir = std::path::absolute(cwd.join(format!("lint_verilator_{}", top.unwrap_or("all")))).map_err(|e| Error::io(cwd, e))?;
         let _ = std::fs::remove_dir_all(&mdir);
+        std::fs::create_dir_all(&mdir).map_err(|e| Error::io(&mdir, e))?;
         let mut c = Command::new("verilator");
         c.args(["--lint-only", "-Wall", "--stats", "--Mdir"]).arg(&mdir);
         if let Some(t) = top {

@@ -3,10 +3,9 @@
 //! --stream`, the bench and the C ABI make their top records here, so every set they produce
 //! passes the same check.
 //!
-//! The check: every record of the first [`FULL_CHECK_RECORDS`] of a set (the whole of every
-//! set the test suite writes), then the first [`CHECK_SAMPLE`] of every later
-//! `RANDOM_CHUNK`, so a 10^8-record stream pays about 2 % for it rather than the readable
-//! model's whole cost.
+//! The check: every record of the first [`FULL_CHECK_RECORDS`] of a set (the whole of a set
+//! up to that size), then the first [`CHECK_SAMPLE`] of every later `RANDOM_CHUNK`, so a
+//! long stream pays for a 1.6 % sample rather than the readable model's whole cost.
 
 use super::layout::{Layout, Record};
 use super::sources::{chunk_rng, RandomTriangles, RANDOM_CHUNK};
