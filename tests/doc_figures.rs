@@ -166,3 +166,46 @@ fn the_cube_map_holds_a_quarter_face() {
     }
     says("README.md", "(`(face/2)²` words of three components, a constant table in logic)");
 }
+
+/// The normalise unit's exhaustive set: made up to the width its description states, not past.
+#[test]
+fn the_normalise_units_exhaustive_width_is_its_descriptions() {
+    let u = gbump::units::unit("normalise").unwrap();
+    let when = u.exhaustive_when().unwrap();
+    let bits: u32 = when
+        .strip_prefix("lh_bits <= ")
+        .and_then(|r| r.split(' ').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    for (lh_bits, made) in [(bits, true), (bits + 1, false)] {
+        let cfg = PipelineConfig {
+            lh_bits,
+            renormalise: true,
+            interpolate: gbump::config::Interpolate::Hl,
+            bump_state: gbump::config::BumpStateAt::Fragment,
+            ..PipelineConfig::default()
+        };
+        assert_eq!(u.exhaustive_count(&cfg).is_some(), made, "lh_bits = {lh_bits}");
+    }
+    says("README.md", &format!("exhaustive for `lh_bits <= {bits}`"));
+}
+
+/// The deepest pipeline's cost over the default depth on the two tops whose Fmax chose the
+/// default, as ARCHITECTURE.md weighs it.
+#[test]
+fn depth_four_costs_two_cycles_over_three() {
+    for cfg in [
+        config("tests/configs/one_light_parallel.toml"),
+        config("tests/configs/paper_sample_one_light.toml"),
+    ] {
+        let at = |pipeline_depth| {
+            latency(&PipelineConfig {
+                pipeline_depth,
+                ..cfg.clone()
+            })
+        };
+        assert_eq!(at(4), at(3) + 2, "{:?}", cfg.light_mode);
+    }
+    says("ARCHITECTURE.md", "for two more cycles of latency and more logic cells");
+}
