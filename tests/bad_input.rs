@@ -2480,19 +2480,31 @@ fn a_file_size_limit_is_an_error_that_names_it() {
     assert!(left.iter().all(|n| !n.contains(".gbump.tmp")), "{left:?}");
 }
 
+/// Whether `text` names `tool` (with its path) as having exited 0 without its work, with a fix.
+fn did_not_run(tool: &str, text: &str) -> bool {
+    text.contains(&format!("{tool} (")) && text.contains("did not do its work") && text.contains("fix:")
+}
+
+/// A `tool` in a fresh folder's `bin` that answers its version as the real one and otherwise
+/// exits 0 having done nothing; the folder and the PATH to run gbump with.
+fn idle_tool(tool: &str) -> (tempfile::TempDir, String) {
+    let real = gbump::tool::on_path(tool).unwrap_or_else(|| panic!("{tool} missing: scripts/install-tools.sh"));
+    let dir = tempfile::tempdir().unwrap();
+    let path = fake_tools::tool(
+        &dir.path().join("bin"),
+        tool,
+        &format!("case \"$1\" in -V|--version) exec '{}' \"$@\";; esac\nexit 0", real.display()),
+    );
+    (dir, path)
+}
+
 /// `gbump lint` is clean only when each linter shows it read the design: a Verilator, Icarus
 /// or Yosys that exits 0 without doing its work (here: answers its version, then does
 /// nothing) makes the lint fail, naming the tool, instead of reporting a clean design.
 #[test]
 fn a_linter_that_does_nothing_is_not_a_clean_lint() {
     for tool in ["verilator", "iverilog", "yosys"] {
-        let real = gbump::tool::on_path(tool).unwrap_or_else(|| panic!("{tool} missing: scripts/install-tools.sh"));
-        let dir = tempfile::tempdir().unwrap();
-        let path = fake_tools::tool(
-            &dir.path().join("bin"),
-            tool,
-            &format!("case \"$1\" in -V|--version) exec '{}' \"$@\";; esac\nexit 0", real.display()),
-        );
+        let (dir, path) = idle_tool(tool);
         let o = Command::cargo_bin("gbump")
             .unwrap()
             .env("PATH", &path)
@@ -2502,10 +2514,7 @@ fn a_linter_that_does_nothing_is_not_a_clean_lint() {
             .unwrap();
         let text = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{tool}: {text}");
-        assert!(
-            text.contains(&format!("{tool} (")) && text.contains("did not do its work") && text.contains("fix:"),
-            "{tool}: {text}"
-        );
+        assert!(did_not_run(tool, &text), "{tool}: {text}");
         assert!(!text.contains(": clean"), "{tool}: {text}");
     }
 }
@@ -2550,13 +2559,7 @@ fn closed_standard_descriptors_leave_the_outputs_alone() {
 fn a_build_tool_that_makes_nothing_is_named() {
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     for (sim, tool) in [("icarus", "iverilog"), ("verilator", "make")] {
-        let real = gbump::tool::on_path(tool).unwrap_or_else(|| panic!("{tool} missing: scripts/install-tools.sh"));
-        let dir = tempfile::tempdir().unwrap();
-        let path = fake_tools::tool(
-            &dir.path().join("bin"),
-            tool,
-            &format!("case \"$1\" in -V|--version) exec '{}' \"$@\";; esac\nexit 0", real.display()),
-        );
+        let (dir, path) = idle_tool(tool);
         let o = Command::cargo_bin("gbump")
             .unwrap()
             .env("PATH", &path)
@@ -2568,10 +2571,7 @@ fn a_build_tool_that_makes_nothing_is_named() {
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success(), "{sim}: {err}");
-        assert!(
-            err.contains(&format!("{tool} (")) && err.contains("did not do its work") && err.contains("fix:"),
-            "{sim}: {err}"
-        );
+        assert!(did_not_run(tool, &err), "{sim}: {err}");
         assert!(!err.contains(".gbump.tmp"), "{sim}: the message names a temporary folder: {err}");
     }
 }

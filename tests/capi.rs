@@ -345,17 +345,7 @@ int main(void) {
 "#,
     )
     .unwrap();
-    let exe = d.path().join("main");
-    let out = std::process::Command::new("cc")
-        .args(["-std=c99", "-Wall", "-Werror", "-I"])
-        .arg(root().join("include"))
-        .arg(&src)
-        .arg(&lib)
-        .arg("-o")
-        .arg(&exe)
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    let exe = compile_c(&src, &lib, &d.path().join("main"));
     let run = std::process::Command::new(&exe).output().unwrap();
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{text}{}", String::from_utf8_lossy(&run.stderr));
@@ -600,17 +590,7 @@ int main(void) {
 "#,
     )
     .unwrap();
-    let exe = d.path().join("fork");
-    let out = std::process::Command::new("cc")
-        .args(["-std=c99", "-Wall", "-Werror", "-I"])
-        .arg(root().join("include"))
-        .arg(&src)
-        .arg(&lib)
-        .arg("-o")
-        .arg(&exe)
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    let exe = compile_c(&src, &lib, &d.path().join("fork"));
     let run = std::process::Command::new(&exe).output().unwrap();
     assert!(
         run.status.success(),
@@ -618,6 +598,21 @@ int main(void) {
         String::from_utf8_lossy(&run.stdout),
         String::from_utf8_lossy(&run.stderr)
     );
+}
+
+/// `src` compiled against the header and linked with `lib` into `exe`, as a C99 user would.
+fn compile_c(src: &Path, lib: &Path, exe: &Path) -> PathBuf {
+    let out = std::process::Command::new("cc")
+        .args(["-std=c99", "-Wall", "-Werror", "-I"])
+        .arg(root().join("include"))
+        .arg(src)
+        .arg(lib)
+        .arg("-o")
+        .arg(exe)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "cc: {}", String::from_utf8_lossy(&out.stderr));
+    exe.to_path_buf()
 }
 
 /// The header compiles alone as every C a client may build with (C89 with `-pedantic`, still
