@@ -57,9 +57,13 @@ pub fn shared_root() -> Option<PathBuf> {
     if let Err(e) = std::fs::create_dir_all(&root) {
         // Nothing is shared then; said once, since every build is slower for it.
         static SAID: OnceLock<()> = OnceLock::new();
+        let why = match std::fs::metadata(&root) {
+            Ok(m) if !m.is_dir() => "it is a file, not a folder".to_string(),
+            _ => e.to_string(),
+        };
         SAID.get_or_init(|| {
             crate::warn::warn(format!(
-                "gbump: warning: the shared cache {} cannot be used ({e}): every build compiles all it needs\n  fix: point GBUMP_CACHE at a folder (or set it empty to share nothing, silently)",
+                "gbump: warning: the shared cache {} cannot be used ({why}): every build compiles all it needs\n  fix: point GBUMP_CACHE at a folder (or set it empty to share nothing, silently)",
                 root.display()
             ))
         });

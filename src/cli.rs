@@ -754,6 +754,7 @@ pub fn run() -> anyhow::Result<()> {
         .unwrap_or_else(|e| clap_exit(e));
     refuse_control_characters()?;
     probe_outputs(&matches)?;
+    record_given(&matches);
     let cli = match <Cli as clap::FromArgMatches>::from_arg_matches(&matches) {
         Ok(c) => c,
         Err(e) => clap_exit(e),
@@ -906,6 +907,31 @@ pub fn run() -> anyhow::Result<()> {
                     return Err(Error::Other(
                         "--waves: the streamed harness writes no waveforms\n  fix: drop --waves, or write the records with `gbump vectors` and run them with --vectors DIR --waves".into(),
                     )
+                    .into());
+                }
+            }
+            // A simulator's random count, and the seed, where this run does not use them:
+            // refused, not passed over.
+            if stream.is_none() {
+                let sims = sim.sims();
+                let (verilator, icarus) = (sims.contains(&crate::sim::Sim::Verilator), sims.contains(&crate::sim::Sim::Icarus));
+                for (id, flag, n, runs, other) in [
+                    ("random", "--random", random, verilator, "--random-icarus is Icarus's"),
+                    ("random_icarus", "--random-icarus", random_icarus, icarus, "--random is Verilator's"),
+                ] {
+                    // A count of 0 asks for nothing, so it contradicts nothing.
+                    if given(id) && n > 0 && !runs {
+                        return Err(Error::Other(format!(
+                            "{flag} {n}: no effect on this run: it counts the random vectors of the simulator --sim leaves out\n  fix: drop {flag} ({other}), or add that simulator with --sim"
+                        ))
+                        .into());
+                    }
+                }
+                let random_runs = (verilator && random > 0) || (icarus && random_icarus > 0);
+                if let (Some(n), false) = (seed, random_runs) {
+                    return Err(Error::Other(format!(
+                        "--seed {n}: no effect on this run: no simulator it runs has random vectors (their counts are 0)\n  fix: drop --seed, or give --random / --random-icarus a count above 0"
+                    ))
                     .into());
                 }
             }
@@ -1547,6 +1573,25 @@ fn scenes(show: Option<String>) -> Result<()> {
 
 /// The command line as a user would type it (program name `gbump`, whatever the path), so
 /// that generated files do not depend on where the binary lives.
+/// The subcommand's options typed on the command line (not defaulted), by their field names.
+static GIVEN: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+
+fn record_given(matches: &clap::ArgMatches) {
+    if let Some((_, sub)) = matches.subcommand() {
+        let ids = sub
+            .ids()
+            .filter(|id| sub.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine))
+            .map(|id| id.to_string())
+            .collect();
+        let _ = GIVEN.set(ids);
+    }
+}
+
+/// Whether the option of field `id` was typed, rather than left at its default.
+fn given(id: &str) -> bool {
+    GIVEN.get().is_some_and(|g| g.iter().any(|x| x == id))
+}
+
 pub fn invocation() -> String {
     let args: Vec<String> = std::env::args().skip(1).collect();
     std::iter::once("gbump".to_string())

@@ -219,12 +219,18 @@ pub fn set_time_limit(flag: Option<&str>) -> Result<()> {
     Ok(())
 }
 
+/// The shortest tool time limit: a limit that rounds to no time at all (`1e-300`) would stop
+/// every tool as it starts, which no one means.
+pub const MIN_TOOL_TIMEOUT_SECONDS: f64 = 0.001;
+
 /// `text` (as typed, and echoed so) as a time limit.
 fn limit_of(text: &str, from: &str) -> Result<std::time::Duration> {
     match text.trim().parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 => Ok(std::time::Duration::from_secs_f64(v)),
+        Ok(v) if v.is_finite() && v >= MIN_TOOL_TIMEOUT_SECONDS && v <= MAX_TOOL_TIMEOUT_SECONDS as f64 => {
+            Ok(std::time::Duration::from_secs_f64(v))
+        }
         _ => Err(Error::Other(format!(
-            "{from}{}: a tool time limit is a number of seconds, more than 0 and at most {MAX_TOOL_TIMEOUT_SECONDS} (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or leave it out for no limit",
+            "{from}{}: a tool time limit is a number of seconds, at least {MIN_TOOL_TIMEOUT_SECONDS} and at most {MAX_TOOL_TIMEOUT_SECONDS} (MAX_TOOL_TIMEOUT_SECONDS)\n  fix: give the longest one simulator, build or synthesis may run, in seconds (e.g. 3600), or leave it out for no limit",
             crate::shell::quoted(text)
         ))),
     }

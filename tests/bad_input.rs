@@ -684,7 +684,7 @@ fn cases() -> Vec<Case> {
             "scene file stem with a space as a vector source",
             vec![("my scene.toml", WALL.into())],
             vec!["vectors", "--source", "scene:my scene.toml", "--target", "top", "--out", "out"],
-            vec!["scene:NAME", "my scene", "fix:"],
+            vec!["--source scene:my scene.toml", "holding ' '", "fix: rename the scene file"],
         ),
         (
             "scene file stem too long for its sets' file names",
@@ -695,8 +695,8 @@ fn cases() -> Vec<Case> {
         (
             "scene file regressed with a stem too long for its top set's file names",
             vec![("cccccccccccccccccccccccccccccccccccccccc.toml", WALL.into())],
-            vec!["regress", "--scene", "cccccccccccccccccccccccccccccccccccccccc.toml", "--no-scenes", "--random", "10", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
-            vec!["_top_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file: at least"],
+            vec!["regress", "--scene", "cccccccccccccccccccccccccccccccccccccccc.toml", "--no-scenes", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
+            vec!["--scene cccccccccccccccccccccccccccccccccccccccc.toml:", "_top_power_table.hex", "MAX_NAME_CHARS", "fix: rename the scene file: at least"],
         ),
         (
             "scene file given to a fit (regressed at the end) with a stem too long for its sets",
@@ -707,8 +707,8 @@ fn cases() -> Vec<Case> {
         (
             "scene file with a non-ASCII name regressed as the user's own scene",
             vec![("scène.toml", WALL.into())],
-            vec!["regress", "--scene", "scène.toml", "--no-scenes", "--random", "10", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
-            vec!["scene_scène", "not plain names", "fix: rename the scene file"],
+            vec!["regress", "--scene", "scène.toml", "--no-scenes", "--random-icarus", "10", "--target", "top", "--sim", "icarus", "--work", "w"],
+            vec!["--scene scène.toml:", "scene_scène", "holding 'è', which a plain name may not", "fix: rename the scene file"],
         ),
         (
             "report run outside the checkout, its default sweep space absent",
@@ -1263,6 +1263,30 @@ fn cases() -> Vec<Case> {
             vec!["--target", "power_unit", "fix:"],
         ),
         (
+            "regress --random on Icarus alone, which runs no Verilator",
+            vec![],
+            vec!["regress", "--sim", "icarus", "--random", "7", "--no-scenes", "--work", "w"],
+            vec!["--random 7: no effect on this run", "fix: drop --random (--random-icarus is Icarus's)"],
+        ),
+        (
+            "regress --random-icarus on Verilator alone",
+            vec![],
+            vec!["regress", "--sim", "verilator", "--random-icarus", "9", "--no-scenes", "--work", "w"],
+            vec!["--random-icarus 9: no effect on this run", "fix: drop --random-icarus"],
+        ),
+        (
+            "regress --seed with no random vectors to draw",
+            vec![],
+            vec!["regress", "--random", "0", "--random-icarus", "0", "--seed", "5", "--work", "w"],
+            vec!["--seed 5: no effect on this run", "fix: drop --seed"],
+        ),
+        (
+            "rom --cube-size other than the configuration's normalisation cube map",
+            cfg("renormalise = true\ninterpolate = \"hl\"\nbump_state = \"fragment\"\nlight_mode = \"parallel\"\ncube_map_face = 32\n"),
+            vec!["rom", "--config", "c.toml", "--cube-size", "6", "--out", "out"],
+            vec!["--cube-size 6", "fix: drop --cube-size", "whose cube_map_face is the size you want"],
+        ),
+        (
             "regress --vectors with --random",
             vec![],
             vec!["regress", "--vectors", "x.json", "--random", "5", "--work", "w"],
@@ -1676,6 +1700,9 @@ fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
         (&["--tool-timeout", "0"][..], None, "--tool-timeout 0"),
         (&["--tool-timeout", "inf"][..], None, "--tool-timeout inf"),
         (&["--tool-timeout", "1e400"][..], None, "--tool-timeout 1e400"),
+        // A limit that rounds to no time at all would stop every tool as it starts.
+        (&["--tool-timeout", "1e-300"][..], None, "--tool-timeout 1e-300"),
+        (&[][..], Some("0.0000001"), "GBUMP_TOOL_TIMEOUT=0.0000001"),
         (&[][..], Some("soon"), "GBUMP_TOOL_TIMEOUT=soon"),
     ] {
         let (code, text) = run(limit, env);

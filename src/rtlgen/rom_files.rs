@@ -35,7 +35,7 @@ pub fn rom_files(
     let cube = match (cube, cfg.cube_map_face as usize) {
         (Some(c), face) if face != 0 && c != face => {
             return Err(crate::error::Error::Other(format!(
-                "--cube-size {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop --cube-size, or use a configuration with cube_map_face = {c}"
+                "--cube-size {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop --cube-size (the map is the configuration's), or give a configuration whose cube_map_face is the size you want"
             )))
         }
         (Some(c), _) => c,

@@ -71,7 +71,7 @@ pub fn check_own_scenes(cfg: &PipelineConfig, own: &[String], targets: &[String]
     }
     for file in own {
         let s = crate::scene::Scene::load(file)?;
-        crate::vectors::check_scene_names(cfg, file, &s, &["top".to_string()])?;
+        crate::vectors::check_scene_names(cfg, &format!("--scene {file}"), file, &s, &["top".to_string()])?;
     }
     Ok(())
 }

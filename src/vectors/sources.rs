@@ -28,8 +28,9 @@ impl Source {
             None if s == "corners" => Source::Corners(1),
             Some(("scene", n)) if !n.is_empty() => {
                 let src = Source::Scene(n.to_string());
-                // The scene file's stem names every file of the set.
-                crate::names::check("--source", "scene:NAME", &src.stem())?;
+                // The scene file's stem names every file of the set: the fix is to rename the
+                // file (a built-in scene's name is always plain).
+                super::writer::check_set_names(&format!("--source {s}"), "the scene file", &src.stem(), "top", false)?;
                 src
             }
             Some(("random", n)) => {

@@ -156,8 +156,25 @@ pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str, maps:
     } else {
         String::new()
     };
+    // Say what is wrong with it: its length, the characters a plain name may not hold, or both.
+    let mut odd: Vec<char> = longest
+        .chars()
+        .filter(|c| !(c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '-')))
+        .collect();
+    odd.dedup();
+    let mut why = Vec::new();
+    if n > max {
+        why.push(format!("{n} characters, more than the {max} of a plain name (MAX_NAME_CHARS)"));
+    }
+    if !odd.is_empty() {
+        why.push(format!(
+            "holding {}, which a plain name may not",
+            odd.iter().map(|c| format!("{c:?}")).collect::<Vec<_>>().join(", ")
+        ));
+    }
     Err(Error::Other(format!(
-        "{what}: the set `{stem}_{target}` would have file names such as `{longest}` ({n} characters), which are not plain names of at most {max} characters (MAX_NAME_CHARS), so no regression could read it\n  fix: rename {rename}: {shorter}with only letters, digits, `_`, `.` or `-`"
+        "{what}: the set `{stem}_{target}` would have file names such as `{longest}` ({}), so no regression could read it\n  fix: rename {rename}: {shorter}with only letters, digits, `_`, `.` or `-`",
+        why.join("; ")
     )))
 }
 
@@ -173,7 +190,8 @@ fn longest_set_name(stem: &str, target: &str, maps: bool) -> String {
 }
 
 /// [`check_set_names`] of every set scene `s` (loaded from `name`) may give for `targets`.
-pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Scene, targets: &[String]) -> Result<()> {
+/// `what` says how the user named the scene (`--source scene:NAME`, `--scene FILE`).
+pub fn check_scene_names(cfg: &PipelineConfig, what: &str, name: &str, s: &crate::scene::Scene, targets: &[String]) -> Result<()> {
     let mut sets: Vec<(String, &String, bool)> = super::sources::scene_set_stems(cfg, name, s)
         .into_iter()
         .flat_map(|stem| targets.iter().map(move |t| (stem.clone(), t, cfg.embm() && t == "top")))
@@ -181,7 +199,7 @@ pub fn check_scene_names(cfg: &PipelineConfig, name: &str, s: &crate::scene::Sce
     // The longest name first, so the fix says by how much the name must shrink for all.
     sets.sort_by_key(|(stem, t, maps)| std::cmp::Reverse(longest_set_name(stem, t, *maps).len()));
     for (stem, t, maps) in sets {
-        check_set_names(&format!("--source scene:{name}"), "the scene file", &stem, t, maps)?;
+        check_set_names(what, "the scene file", &stem, t, maps)?;
     }
     Ok(())
 }
@@ -499,7 +517,7 @@ fn check(cfg: &PipelineConfig, src: &Source, targets: &[String], o: &DumpOptions
         Source::Scene(name) => {
             let s = crate::scene::Scene::load(name)?;
             s.check_config(cfg, &crate::config::origin())?;
-            check_scene_names(cfg, name, &s, targets)?;
+            check_scene_names(cfg, &format!("--source scene:{name}"), name, &s, targets)?;
             let (w, h) = o.size.unwrap_or((s.size[0], s.size[1]));
             crate::limits::check_render(crate::limits::PixelUse::SceneVectors, &s.file, w, h, s.triangles())
         }
