@@ -209,3 +209,29 @@ fn depth_four_costs_two_cycles_over_three() {
     }
     says("ARCHITECTURE.md", "for two more cycles of latency and more logic cells");
 }
+
+/// ARCHITECTURE.md's counterexamples to the add-and-shift identity for a guarded colour's
+/// products (why the texture stage divides through a constant reciprocal): each fails as
+/// stated, while every product of two w-bit codes holds.
+#[test]
+fn the_add_and_shift_counterexamples_fail_as_stated() {
+    use gbump::fixed::{unorm_div_round, unorm_mul};
+    let three_terms = |a: u64, b: u64, w: u32| {
+        let t = a * b + (1 << (w - 1));
+        (t + (t >> w) + (t >> (2 * w))) >> w
+    };
+    for (w, g, a, b, terms) in [(8, 1, 304, 242, 2), (6, 2, 199, 41, 3), (8, 3, 1427, 229, 3)] {
+        assert!(a < 1 << (w + g) && b < 1 << w, "{a}·{b} is a guarded colour times a code");
+        let got = if terms == 2 { unorm_mul(a, b, w) } else { three_terms(a, b, w) };
+        assert_ne!(got, unorm_div_round(a * b, w), "w = {w}, g = {g} at {a}·{b}");
+        let at = format!("w = {w}, g = {g} at {a}·{b}");
+        assert!(flat("ARCHITECTURE.md").contains(&at), "ARCHITECTURE.md should say: {at}");
+    }
+    for w in [6, 8] {
+        for a in 0..1u64 << w {
+            for b in 0..1u64 << w {
+                assert_eq!(unorm_mul(a, b, w), unorm_div_round(a * b, w), "w = {w}: {a}·{b}");
+            }
+        }
+    }
+}
