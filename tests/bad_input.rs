@@ -2639,3 +2639,42 @@ fn a_damaged_or_foreign_library_is_named_for_what_it_is() {
         assert!(!err.contains("other sources"), "{file}: {err}");
     }
 }
+
+/// A Verilator too old for the benches (4.x: no --timing, no --main) is refused by its
+/// version before any build, naming it, where it had failed on an option error.
+#[test]
+fn a_verilator_too_old_for_the_benches_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = fake_tools::tool(
+        &dir.path().join("bin"),
+        "verilator",
+        "case \"$1\" in -V|--version) echo 'Verilator 4.038 2020-07-11 rev v4.036-114-g0cd4a57ad';; esac\nexit 0",
+    );
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    let o = Command::cargo_bin("gbump")
+        .unwrap()
+        .env("PATH", &path)
+        .args(["regress", "--sim", "verilator", "--vectors"])
+        .arg(&vectors)
+        .arg("--work")
+        .arg(dir.path().join("w"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("Verilator 4.038") && err.contains("need Verilator 5 or later") && err.contains("fix:"),
+        "{err}"
+    );
+    assert!(!dir.path().join("w").exists(), "the work folder was taken before the refusal");
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let want = format!("The benches need Verilator {} or later", gbump::sim::MIN_VERILATOR_MAJOR);
+    assert!(readme.contains(&want), "README should say: {want}");
+    for ok in [
+        "Verilator 5.006 2023-01-22 rev (Debian 5.006-3)",
+        "Verilator 6.0 devel",
+        "verilator (custom build)",
+    ] {
+        gbump::sim::verilator_recent_enough(ok).unwrap_or_else(|e| panic!("{ok}: {e}"));
+    }
+}

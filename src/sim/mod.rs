@@ -51,6 +51,7 @@ impl Sim {
 pub fn require(sim: Sim) -> Result<()> {
     sim.simulator().programs().iter().try_for_each(|p| crate::tool::require(p))?;
     if sim == Sim::Verilator {
+        verilator_recent_enough(&crate::cache::tool_version("verilator"))?;
         // Verilator builds its model with make and the C++ compiler make calls: $CXX, else g++.
         let cxx = std::env::var("CXX")
             .ok()
@@ -60,6 +61,27 @@ pub fn require(sim: Sim) -> Result<()> {
         crate::tool::require(&prog)?;
     }
     Ok(())
+}
+
+/// The oldest Verilator major release gbump's benches build under: 4.x has no `--timing`
+/// or `--main`, and failed on them with an option error that did not name its version.
+pub const MIN_VERILATOR_MAJOR: u32 = 5;
+
+/// Refuse a Verilator whose `--version` line (`Verilator 4.038 2020-07-11 ...`) names a
+/// release older than [`MIN_VERILATOR_MAJOR`]; a line that names none is let through.
+pub fn verilator_recent_enough(version: &str) -> Result<()> {
+    let major = version
+        .split_whitespace()
+        .nth(1)
+        .and_then(|v| v.split('.').next())
+        .and_then(|m| m.parse::<u32>().ok());
+    match major {
+        Some(m) if m < MIN_VERILATOR_MAJOR => Err(Error::Other(format!(
+            "verilator ({}) is `{version}`: gbump's testbenches need Verilator {MIN_VERILATOR_MAJOR} or later (they build with --timing and --main; the suite runs Debian bookworm's 5.006)\n  fix: install Verilator {MIN_VERILATOR_MAJOR} or later (scripts/install-tools.sh on Debian bookworm; elsewhere a newer package or a build from source) and put it first on PATH",
+            crate::tool::on_path("verilator").map_or("not found on PATH".to_string(), |p| p.display().to_string())
+        ))),
+        _ => Ok(()),
+    }
 }
 
 /// Refuse a folder or file the simulators would be handed that they cannot take whole:
