@@ -242,6 +242,8 @@ pub struct CheckedSet {
     pub only: Option<Sim>,
     m: crate::vectors::manifest::Manifest,
     dir: PathBuf,
+    /// What its testbench's digest of the records it checked must be.
+    digest: crate::vectors::digest::Digest,
 }
 
 /// Check every set against `cfg` and the simulators before anything is built: its files
@@ -272,7 +274,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
         }
         // Its expected values are the model's, or the RTL would be judged by others.
         let regen = crate::vectors::manifest::regenerate_into(&crate::vectors::manifest::recorded_command(&m), &dir);
-        crate::vectors::model_check::check_expected(&m, &dir, &regen)?;
+        let digest = crate::vectors::model_check::check_expected(&m, &dir, &regen)?;
         for &sim in o.sims.iter().filter(|s| only.is_none_or(|x| x == **s)) {
             bench_for(sim, &m, &manifest.display().to_string(), o.waves)?;
         }
@@ -281,6 +283,7 @@ pub fn check_sets(cfg: &PipelineConfig, sets: &[(PathBuf, Option<Sim>)], o: &Reg
             only: *only,
             m,
             dir,
+            digest,
         });
     }
     Ok(out)
@@ -336,7 +339,17 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
         let simulator = sim.simulator();
         let mut exes: Vec<(Bench, PathBuf)> = Vec::new();
         let mut power_up_done = !o.power_up;
-        for (CheckedSet { manifest, only, m, dir }, set) in sets.iter().zip(&names) {
+        for (
+            CheckedSet {
+                manifest,
+                only,
+                m,
+                dir,
+                digest,
+            },
+            set,
+        ) in sets.iter().zip(&names)
+        {
             if only.is_some_and(|s| s != sim) {
                 continue;
             }
@@ -419,7 +432,7 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
                         simulator.run(&exe, &plus, waves.as_deref(), &o.work, &what)
                     }
                 };
-                let outcome = outcome.and_then(|out| every_record(out, m.count, &what));
+                let outcome = outcome.and_then(|out| every_record(out, m.count, *digest, &what));
                 results.push(RunResult {
                     sim,
                     set: name,
@@ -432,19 +445,38 @@ pub fn run_checked(cfg: &PipelineConfig, sets: &[CheckedSet], rtl: &Rtl, o: &Reg
     Ok(results)
 }
 
-/// A clean run must have checked every record of its set: a testbench that stops early,
-/// skips records or prints a summary of its own is a failing run, not a pass. (A run with
-/// mismatches may stop at --max-errors; it fails anyway.)
-fn every_record(out: super::verdict::Outcome, count: u64, what: &str) -> Result<super::verdict::Outcome> {
-    if out.failed == 0 && out.passed != count {
+/// A clean run must have checked every record of its set, and those records: a testbench that
+/// stops early, skips records, prints a summary of its own or read another file of the same
+/// length is a failing run, not a pass. (A run with mismatches may stop at --max-errors; it
+/// fails anyway.)
+pub fn every_record(out: super::verdict::Outcome, count: u64, digest: Digest, what: &str) -> Result<super::verdict::Outcome> {
+    if out.failed != 0 {
+        return Ok(out);
+    }
+    if out.passed != count {
         return Err(Error::Other(format!(
             "{what}: the testbench reports {} vectors checked, and the set holds {count}\n  fix: a run must check every record; look at the simulator's log below for where it stopped\n{}",
             out.passed,
             crate::tool::tail(&out.log, 15)
         )));
     }
-    Ok(out)
+    match Digest::of_log(&out.log) {
+        Some(d) if d == digest => Ok(out),
+        Some(d) => Err(Error::Other(format!(
+            "{what}: the testbench's digest of the records it checked is {:016x}, the set's is {:016x}: it read other records than the set's (another file of the same length, or its records altered on the way)\n  fix: run the set's own files (regenerate them with the command in its manifest); look at the log below for the file it opened\n{}",
+            d.0,
+            digest.0,
+            crate::tool::tail(&out.log, 15)
+        ))),
+        None => Err(Error::Other(format!(
+            "{what}: the testbench printed no digest of the records it checked (a `{}` line beside its summary), so nothing shows it read the set\n  fix: run gbump's own testbench (`gbump rtl` writes it; a testbench of your own prints the digest as the kit's does, README \"Integrating the RTL\"), not a wrapper or another program in the simulator's place\n{}",
+            crate::vectors::digest::PREFIX.trim(),
+            crate::tool::tail(&out.log, 15)
+        ))),
+    }
 }
+
+use crate::vectors::digest::Digest;
 
 /// A set's environment maps in `dir` as (load-port prefix, path): `env_diffuse` is
 /// `+env_diffuse=` for the testbench; none for a set on the power-up maps.

@@ -260,16 +260,20 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     // Chunks in flight: a batch being encoded and two waiting for the pipe.
     let batch = 2 * rayon::current_num_threads() as u64;
     let (tx, rx) = std::sync::mpsc::sync_channel::<(u64, Vec<u8>)>(2 * batch as usize);
-    let (ok, log) = std::thread::scope(|scope| -> Result<(bool, String)> {
+    let (ok, log, digest) = std::thread::scope(|scope| -> Result<(bool, String, crate::vectors::digest::Digest)> {
         let out = scope.spawn(move || crate::tool::read_capped(stdout));
         let err = scope.spawn(move || crate::tool::read_capped(stderr));
         let progress = &progress;
+        let record_bytes = maker.layout.bytes();
         let writer = scope.spawn(move || {
             let (mut sent, mut shown) = (0u64, 0u64);
+            // What the harness's digest of the records it checks must be.
+            let mut digest = crate::vectors::digest::Digest::default();
             for (records, bytes) in rx {
+                digest.records(&bytes, record_bytes);
                 // A harness that stopped reading (after --max-errors mismatches) ends the stream.
                 if stdin.write_all(&bytes).is_err() {
-                    return;
+                    return digest;
                 }
                 sent += records;
                 while let Some(p) = progress.as_ref().filter(|_| (shown + 1) * s.count <= sent * steps) {
@@ -277,6 +281,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
                     p.done(&format!("{sent} of {} records", s.count));
                 }
             }
+            digest
         });
         let mut c0 = 0;
         let mut result = Ok(());
@@ -308,7 +313,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
             c0 = c1;
         }
         drop(tx);
-        let _ = writer.join();
+        let digest = writer.join().unwrap_or_default();
         if result.is_err() {
             let _ = child.kill();
         }
@@ -317,9 +322,10 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
         log += &String::from_utf8_lossy(&err.join().unwrap_or_default());
         crate::tool::ended(&what, &r.exe.display().to_string(), status, watchdog, &mut log)?;
         result?;
-        Ok((status.success(), log))
+        Ok((status.success(), log, digest))
     })?;
-    super::outcome(ok, log, t0.elapsed().as_secs_f64(), &what)
+    let out = super::outcome(ok, log, t0.elapsed().as_secs_f64(), &what)?;
+    super::regress::every_record(out, s.count, digest, &what)
 }
 
 /// Run `o`'s Verilator regression on `src`, streamed: the table and totals to `say` as
