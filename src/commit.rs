@@ -90,12 +90,11 @@ fn apply(staged: &[(PathBuf, PathBuf)]) -> Result<()> {
         .collect();
     let journal = match Journal::write(&entries) {
         Ok(j) => j,
-        Err(e) => {
+        Err((at, e)) => {
             for (tmp, _) in staged {
                 let _ = std::fs::remove_file(tmp);
             }
-            let at = entries.first().map_or(Path::new("."), |e| e.0);
-            return Err(Error::io(at.parent().unwrap_or(Path::new(".")), e));
+            return Err(Error::io(at, e));
         }
     };
     let r = apply_journalled(staged, &journal);

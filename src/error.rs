@@ -104,6 +104,13 @@ pub fn shown(msg: &str) -> String {
         .collect()
 }
 
+/// The same text with its line breaks and tabs shown as `\n`, `\r` and `\t`, for a caller's
+/// string a message quotes inside one of its lines (a name given through the C library or
+/// Python, where a line break would start a line of the message, a forged `fix:` among them).
+pub fn one_line(s: &str) -> String {
+    s.replace('\n', "\\n").replace('\r', "\\r").replace('\t', "\\t")
+}
+
 /// Line and column (1-based) of a byte offset in `text`.
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];

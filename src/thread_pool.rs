@@ -21,7 +21,8 @@ pub fn install<R: Send>(f: impl FnOnce() -> R + Send) -> R {
 fn pool() -> &'static rayon::ThreadPool {
     let pid = std::process::id();
     let p = POOL.load(Ordering::Acquire);
-    // SAFETY: a pointer stored here comes from `Box::leak` and is never freed.
+    // SAFETY: a pointer stored here comes from `Box::leak` and is never freed (only a pool
+    // that lost the race to be stored is).
     if let Some(p) = unsafe { p.as_ref() }.filter(|p| p.pid == pid) {
         return &p.pool;
     }
@@ -35,7 +36,11 @@ fn pool() -> &'static rayon::ThreadPool {
     }));
     match POOL.compare_exchange(p, built, Ordering::AcqRel, Ordering::Acquire) {
         Ok(_) => &built.pool,
-        // Another thread of this process made one first: use it (this one's threads idle).
-        Err(won) => &unsafe { &*won }.pool,
+        // Another thread of this process made one first: use it, and end this one's threads.
+        Err(won) => {
+            // SAFETY: `built` came from `Box::leak` above and was never shared.
+            drop(unsafe { Box::from_raw(built as *mut Pool) });
+            &unsafe { &*won }.pool
+        }
     }
 }

@@ -515,6 +515,11 @@ fn the_dpi_forms_never_give_null_and_write_the_whole_vector() {
         assert_eq!(unsafe { gbump_eval(h, c("top").as_ptr(), stim.as_ptr(), plain.as_mut_ptr()) }, 0);
         assert_eq!(&dpi[..words], &plain[..words]);
         assert!(dpi[words..].iter().all(|&w| w == 0), "bits above the record");
+        // One vector as both input and output, as gbump_eval allows: the stimulus is read
+        // before the output is written.
+        let mut both = stim.clone();
+        assert_eq!(unsafe { gbump_dpi_eval(h, c("top").as_ptr(), both.as_ptr(), both.as_mut_ptr()) }, 0);
+        assert_eq!(&both[..words], &plain[..words], "the stimulus was zeroed before it was read");
     }
     unsafe {
         gbump_stim_free(g);

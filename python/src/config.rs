@@ -49,7 +49,8 @@ impl Config {
     fn new(py: Python<'_>, toml: Option<&str>, name: &str) -> PyResult<Self> {
         read(py, || match toml {
             None => Ok(PipelineConfig::default()),
-            Some(t) => PipelineConfig::from_toml(name, t),
+            // Quoted in messages: a line break in it would start a line of its own.
+            Some(t) => PipelineConfig::from_toml(&gbump::error::one_line(name), t),
         })
     }
 

@@ -65,9 +65,14 @@ unsafe fn whole_vector(rec_out: *mut u32, f: impl FnOnce() -> i32) -> i32 {
 /// As `gbump_eval`, with `rec_out` a whole `gbump_record_t`.
 #[no_mangle]
 pub unsafe extern "C" fn gbump_dpi_eval(h: *const GbumpConfig, target: *const c_char, rec_in: *const u32, rec_out: *mut u32) -> i32 {
-    // A DPI input and output are two vectors: the input is read before the output is zeroed
-    // only if they could alias, which they cannot here.
-    unsafe { whole_vector(rec_out, || gbump_eval(h, target, rec_in, rec_out)) }
+    // The input copied first: a caller may pass one vector as both (gbump_eval allows it), and
+    // zeroing the output would have zeroed the stimulus.
+    if rec_in.is_null() {
+        return unsafe { whole_vector(rec_out, || gbump_eval(h, target, rec_in, rec_out)) };
+    }
+    let mut input = [0u32; RECORD_WORDS];
+    unsafe { std::ptr::copy_nonoverlapping(rec_in, input.as_mut_ptr(), RECORD_WORDS) };
+    unsafe { whole_vector(rec_out, || gbump_eval(h, target, input.as_ptr(), rec_out)) }
 }
 
 /// # Safety

@@ -58,7 +58,7 @@ pub extern "C" fn gbump_config_default() -> *mut GbumpConfig {
 pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *const c_char) -> *mut GbumpConfig {
     guard("gbump_config_from_toml", std::ptr::null_mut(), || {
         let text = str_arg(text, "text")?;
-        let name = super::guard::one_line(str_arg(name, "name")?);
+        let name = crate::error::one_line(str_arg(name, "name")?);
         boxed(GbumpConfig::read(|| PipelineConfig::from_toml(&name, text)))
     })
 }
@@ -71,6 +71,12 @@ pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *cons
 pub unsafe extern "C" fn gbump_config_from_file(path: *const c_char) -> *mut GbumpConfig {
     guard("gbump_config_from_file", std::ptr::null_mut(), || {
         let path = str_arg(path, "path")?;
+        // Messages quote the path: a line break in it would start a line of its own.
+        if path.chars().any(char::is_control) {
+            return Err(Error::Other(format!(
+                "path {path:?} holds a control character (a line break, a tab, an escape)\n  fix: give the file a name without one"
+            )));
+        }
         boxed(GbumpConfig::read(|| PipelineConfig::load(std::path::Path::new(path))))
     })
 }

@@ -112,12 +112,6 @@ pub unsafe fn name_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
     }
 }
 
-/// The same text with its line breaks and tabs shown as `\n`, `\r` and `\t`, for a caller's
-/// string a message quotes inside one of its lines.
-pub fn one_line(s: &str) -> String {
-    s.replace('\n', "\\n").replace('\r', "\\r").replace('\t', "\\t")
-}
-
 /// A handle argument; `arg` names it in errors.
 ///
 /// # Safety

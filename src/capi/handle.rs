@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::model::PowerTable;
 use crate::vectors::layout::{Layout, Record};
 use crate::vectors::sources::{chunk_rng, RandomTriangles, RANDOM_CHUNK};
-use crate::vectors::targets::{eval_top, eval_unit, top_layout, top_record, top_stim, unit_layout, unit_record, unit_stim};
+use crate::vectors::targets::{eval_top, top_layout, top_record, top_stim, unit_layout, unit_stim};
 use crate::vectors::writer::unit_present;
 use std::ffi::CString;
 
@@ -131,11 +131,7 @@ impl GbumpConfig {
             Ok(top_record(&self.cfg, &t.layout, &s, &eval_top(&self.cfg, &self.mem.view(), &s)))
         } else {
             let s = unit_stim(&t.layout, t.name, input);
-            let u = crate::units::unit(t.name).expect("a target is a unit");
-            crate::units::check_domain(u, &self.cfg, &s.inputs)?;
-            let outs = eval_unit(&self.cfg, &self.mem.view(), &s);
-            crate::units::check_outputs(u, &self.cfg, &outs)?;
-            Ok(unit_record(&t.layout, &s, &outs))
+            crate::vectors::targets::checked_unit_record(&self.cfg, &self.mem.view(), &t.layout, &s)
         }
     }
 }

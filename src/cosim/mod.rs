@@ -71,9 +71,10 @@ pub fn elf_end(b: &[u8]) -> Option<usize> {
         .saturating_add(shentsize.saturating_mul(shnum))
         .max(phoff.saturating_add(phentsize.saturating_mul(phnum)));
     for i in 0..phnum {
-        let h = phoff.saturating_add(i * phentsize);
+        let h = phoff.saturating_add(i.saturating_mul(phentsize));
         // A segment's file offset and size (p_offset, p_filesz), where the header is present.
-        if let (Some(off), Some(size)) = (u64_at(h + 8), u64_at(h + 32)) {
+        let field = |o: usize| h.checked_add(o).and_then(u64_at);
+        if let (Some(off), Some(size)) = (field(8), field(32)) {
             end = end.max(off.saturating_add(size));
         }
     }
@@ -289,6 +290,15 @@ fn interface_of(cfg: &PipelineConfig, dir: &Path) -> Result<(PathBuf, serde_json
     let mut want: serde_json::Value =
         serde_json::from_str(&crate::rtlgen::interface::interface_json(cfg, "")).expect("the interface is JSON");
     let mut got = j.clone();
+    // A folder another gbump wrote differs in its notes as well: that is what to say.
+    if let (Some(g), Some(w)) = (got.get("generator"), want.get("generator")) {
+        if g != w {
+            return Err(Error::Other(format!(
+                "{}: written by {g}, and this is {w}: its testbench and notes are another gbump's\n  fix: {fix}",
+                jf.display()
+            )));
+        }
+    }
     for v in [&mut want, &mut got] {
         if let Some(o) = v.as_object_mut() {
             o.remove("regenerate");

@@ -110,9 +110,6 @@ pub fn outcome(ok: bool, log: String, secs: f64, what: &str) -> Result<Outcome> 
     }
     match parse_summary(&log) {
         Some((passed, failed)) => {
-            if passed + failed == 0 {
-                return Err(Error::Other(format!("{what}: the testbench checked no vectors\n{}\n  fix: {NO_VECTORS_FIX}", tail(&log, 10))));
-            }
             // A clean summary is a pass only from a process that then exited cleanly: one
             // that crashed or was killed after printing it (its waves or coverage unwritten,
             // a later check never run) does not count.

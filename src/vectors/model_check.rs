@@ -8,7 +8,7 @@
 
 use super::layout::{Layout, Record, Role};
 use super::manifest::Manifest;
-use super::targets::{eval_unit, top_stim, unit_record, unit_stim, TopEncoder};
+use super::targets::{top_stim, unit_stim, TopEncoder};
 use crate::error::{Error, Result};
 use crate::units::MemoryContents;
 use rayon::prelude::*;
@@ -58,8 +58,7 @@ pub fn check_expected(m: &Manifest, dir: &Path, regen: &str) -> Result<super::di
                     let u = unit?;
                     chunk.iter().enumerate().find_map(|(k, r)| {
                         let s = unit_stim(&layout, u.name(), r);
-                        let want =
-                            crate::units::check_domain(u, cfg, &s.inputs).map(|_| unit_record(&layout, &s, &eval_unit(cfg, &view, &s)));
+                        let want = super::targets::checked_unit_record(cfg, &view, &layout, &s);
                         match want {
                             Ok(w) if w.words == r.words => None,
                             w => Some((first + k, r.clone(), w)),

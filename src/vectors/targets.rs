@@ -671,6 +671,18 @@ pub fn eval_unit(cfg: &PipelineConfig, mem: &Memories, s: &UnitStim) -> Vec<Vec<
 }
 
 /// Fill a unit record from its stimulus and outputs.
+/// The record of `s` as the unit gives it back, for a caller's record: refused where the
+/// stimulus is outside the unit's domain or the result outside its ports (a record of one's
+/// own, or an edited set), which `unit_record` would not hold. The C library and regress's
+/// check of a set's expected values both evaluate through it.
+pub fn checked_unit_record(cfg: &PipelineConfig, mem: &Memories, l: &Layout, s: &UnitStim) -> crate::error::Result<Record> {
+    let u = crate::units::unit(s.unit).unwrap_or_else(|| panic!("no unit {}", s.unit));
+    crate::units::check_domain(u, cfg, &s.inputs)?;
+    let outs = eval_unit(cfg, mem, s);
+    crate::units::check_outputs(u, cfg, &outs)?;
+    Ok(unit_record(l, s, &outs))
+}
+
 pub fn unit_record(l: &Layout, s: &UnitStim, outs: &[Vec<i64>]) -> Record {
     let mut r = Record::new(l);
     let (ins, exps): (Vec<_>, Vec<_>) = l.columns.iter().partition(|c| c.role == Role::Stimulus);
