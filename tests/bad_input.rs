@@ -2608,8 +2608,10 @@ fn a_build_tool_that_makes_nothing_is_named() {
 /// neither is "built from other sources".
 #[test]
 fn a_damaged_or_foreign_library_is_named_for_what_it_is() {
-    let real = Path::new(env!("CARGO_BIN_EXE_gbump")).with_file_name("libgbump.so");
-    let image = std::fs::read(&real).unwrap_or_else(|e| panic!("{}: {e} (cargo build --release)", real.display()));
+    // Beside the binary, or in deps/ where a test build leaves it.
+    let real =
+        gbump::cosim::library_beside(Path::new(env!("CARGO_BIN_EXE_gbump"))).expect("cargo builds libgbump.so with the gbump binary");
+    let image = std::fs::read(&real).unwrap_or_else(|e| panic!("{}: {e}", real.display()));
     let dir = tempfile::tempdir().unwrap();
     let foreign = {
         let mut b = image.clone();
