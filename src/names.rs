@@ -8,10 +8,12 @@ use crate::limits::MAX_NAME_CHARS;
 /// Whether `name` is safe inside a path: `[A-Za-z0-9_.-]`, not starting with `.` or `-`,
 /// 1..=[`MAX_NAME_CHARS`] characters.
 pub fn is_safe(name: &str) -> bool {
-    !name.is_empty()
-        && name.len() as u64 <= MAX_NAME_CHARS
-        && !name.starts_with(['.', '-'])
-        && name.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '-'))
+    !name.is_empty() && name.len() as u64 <= MAX_NAME_CHARS && !name.starts_with(['.', '-']) && name.chars().all(plain_char)
+}
+
+/// Whether `c` may be in a plain name: `[A-Za-z0-9_.-]`.
+pub fn plain_char(c: char) -> bool {
+    c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '-')
 }
 
 /// Refuse `name` (the value of `field` in `file`) unless [`is_safe`].

@@ -405,10 +405,15 @@ pub fn log_tail(tool: &str, log: &str, n: usize) -> String {
     }
 }
 
+/// Where `tool` runs from, for a message: its path on PATH, or that it is not there.
+pub fn located(tool: &str) -> String {
+    on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string())
+}
+
 /// A tool that exited 0 without the output that proves it did its work (`evidence` says
 /// which): a lint or check that looked at nothing is not clean.
 pub fn did_not_run(tool: &str, evidence: &str, log: &str) -> String {
-    let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+    let at = located(tool);
     format!(
         "{tool} ({at}) exited 0 but did not do its work ({evidence}, and it did not){}\n  fix: it is not a working {tool}: reinstall it (scripts/install-tools.sh) or put a working one first on PATH",
         if log.trim().is_empty() { String::new() } else { format!(":\n{}", tail(log, 10)) }
@@ -418,7 +423,7 @@ pub fn did_not_run(tool: &str, evidence: &str, log: &str) -> String {
 /// The fix line of a failed run of `tool` that printed nothing: it is not the tool gbump
 /// knows, or it is broken.
 pub fn silent_fix(tool: &str) -> String {
-    let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+    let at = located(tool);
     format!("  fix: {tool} ({at}) failed without a word and made none of its outputs: it is not a working {tool}; reinstall it (scripts/install-tools.sh) or put a working one first on PATH")
 }
 
@@ -465,7 +470,7 @@ pub fn build_fix(tool: &str, log: &str) -> String {
     }
     // make found nothing to build: the tool before it wrote no makefile and said why nowhere.
     if log.contains("No targets") && !log.contains("%Error") {
-        let at = on_path(tool).map_or("not found on PATH".to_string(), |p| p.display().to_string());
+        let at = located(tool);
         return format!("  fix: make found no makefile: {tool} ({at}) wrote none of its outputs without an error of its own; check the work folder's free disk space (`df -h`) and that `{tool} --version` answers, reinstall it if need be (scripts/install-tools.sh), and run again");
     }
     // Killed itself, or a compiler it ran (gcc's "Killed signal terminated program cc1plus"

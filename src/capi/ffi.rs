@@ -70,13 +70,7 @@ pub unsafe extern "C" fn gbump_config_from_toml(text: *const c_char, name: *cons
 #[no_mangle]
 pub unsafe extern "C" fn gbump_config_from_file(path: *const c_char) -> *mut GbumpConfig {
     guard("gbump_config_from_file", std::ptr::null_mut(), || {
-        let path = str_arg(path, "path")?;
-        // Messages quote the path: a line break in it would start a line of its own.
-        if path.chars().any(char::is_control) {
-            return Err(Error::Other(format!(
-                "path {path:?} holds a control character (a line break, a tab, an escape)\n  fix: give the file a name without one"
-            )));
-        }
+        let path = super::guard::one_line_arg(str_arg(path, "path")?, "path", "give the file a name without one")?;
         boxed(GbumpConfig::read(|| PipelineConfig::load(std::path::Path::new(path))))
     })
 }

@@ -97,16 +97,24 @@ pub unsafe fn str_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
 }
 
 /// A name argument (a target, a column, a unit): [`str_arg`], refused when it holds a control
-/// character, since a line break in a name a message quotes would start a line of its own
-/// (a forged `fix:` line in the caller's log).
+/// character (see [`one_line_arg`]).
 ///
 /// # Safety
 /// As [`str_arg`].
 pub unsafe fn name_arg<'a>(p: *const c_char, arg: &str) -> Result<&'a str> {
-    let s = str_arg(p, arg)?;
+    one_line_arg(
+        str_arg(p, arg)?,
+        arg,
+        "pass the name alone, as gbump_target_name and gbump_column_name give it",
+    )
+}
+
+/// `s` (argument `arg`), refused when it holds a control character: a message quotes it, and a
+/// line break in it would start a line of its own (a forged `fix:` line in the caller's log).
+pub fn one_line_arg<'a>(s: &'a str, arg: &str, fix: &str) -> Result<&'a str> {
     match s.chars().any(char::is_control) {
         true => Err(Error::Other(format!(
-            "{arg} {s:?} holds a control character (a line break, a tab, an escape)\n  fix: pass the name alone, as gbump_target_name and gbump_column_name give it"
+            "{arg} {s:?} holds a control character (a line break, a tab, an escape)\n  fix: {fix}"
         ))),
         false => Ok(s),
     }

@@ -52,33 +52,61 @@ pub fn library_beside(exe: &Path) -> Option<PathBuf> {
 /// Whether `lib` carries the running gbump's source hash (`gbump_source()` returns it, so it
 /// is in the file as a NUL-terminated string): the model it holds is this gbump's.
 pub fn built_from_these_sources(lib: &Path) -> bool {
-    let needle = format!("{}\0", crate::SOURCE_HASH);
-    std::fs::read(lib).is_ok_and(|b| b.windows(needle.len()).any(|w| w == needle.as_bytes()))
+    std::fs::read(lib).is_ok_and(|b| holds_cstr(&b, crate::SOURCE_HASH))
+}
+
+/// Whether `image` holds `s` as a NUL-terminated string (a symbol name, a string constant).
+fn holds_cstr(image: &[u8], s: &str) -> bool {
+    image.windows(s.len() + 1).any(|w| &w[..s.len()] == s.as_bytes() && w[s.len()] == 0)
+}
+
+/// A 64-bit little-endian ELF image's header fields, each None past the end of the file.
+struct Elf<'a>(&'a [u8]);
+
+impl Elf<'_> {
+    /// The image, when it is 64-bit little-endian ELF.
+    fn of(b: &[u8]) -> Option<Elf<'_>> {
+        (b.get(..4) == Some(b"\x7fELF") && b.get(4) == Some(&2) && b.get(5) == Some(&1)).then_some(Elf(b))
+    }
+    fn field<const N: usize>(&self, at: usize) -> Option<[u8; N]> {
+        self.0.get(at..at.checked_add(N)?)?.try_into().ok()
+    }
+    fn u16(&self, at: usize) -> Option<usize> {
+        self.field(at).map(|x| u16::from_le_bytes(x) as usize)
+    }
+    fn u32(&self, at: usize) -> Option<u32> {
+        self.field(at).map(u32::from_le_bytes)
+    }
+    fn u64(&self, at: usize) -> Option<usize> {
+        self.field(at).map(|x| u64::from_le_bytes(x) as usize)
+    }
+    /// Where each program header starts (the header's own count and size, however corrupt).
+    fn program_headers(&self) -> impl Iterator<Item = usize> + '_ {
+        let (off, size, n) = (
+            self.u64(0x20).unwrap_or(0),
+            self.u16(0x36).unwrap_or(0),
+            self.u16(0x38).unwrap_or(0),
+        );
+        (0..n).map(move |i| off.saturating_add(i.saturating_mul(size)))
+    }
 }
 
 /// The byte just past the furthest data ELF image `b`'s headers place in the file (its
 /// section header table, each segment's file contents), for a file cut short; None for an
 /// image that is not 64-bit little-endian ELF.
 pub fn elf_end(b: &[u8]) -> Option<usize> {
-    let u16_at = |o: usize| b.get(o..o + 2).map(|x| u16::from_le_bytes([x[0], x[1]]) as usize);
-    let u64_at = |o: usize| b.get(o..o + 8).map(|x| u64::from_le_bytes(x.try_into().expect("8 bytes")) as usize);
-    if b.get(..4) != Some(b"\x7fELF") || b.get(4) != Some(&2) || b.get(5) != Some(&1) {
-        return None;
-    }
-    let (phoff, shoff) = (u64_at(0x20)?, u64_at(0x28)?);
-    let (phentsize, phnum, shentsize, shnum) = (u16_at(0x36)?, u16_at(0x38)?, u16_at(0x3A)?, u16_at(0x3C)?);
-    let mut end = shoff
+    let e = Elf::of(b)?;
+    let (phoff, shoff) = (e.u64(0x20)?, e.u64(0x28)?);
+    let (phentsize, phnum, shentsize, shnum) = (e.u16(0x36)?, e.u16(0x38)?, e.u16(0x3A)?, e.u16(0x3C)?);
+    let tables = shoff
         .saturating_add(shentsize.saturating_mul(shnum))
         .max(phoff.saturating_add(phentsize.saturating_mul(phnum)));
-    for i in 0..phnum {
-        let h = phoff.saturating_add(i.saturating_mul(phentsize));
-        // A segment's file offset and size (p_offset, p_filesz), where the header is present.
-        let field = |o: usize| h.checked_add(o).and_then(u64_at);
-        if let (Some(off), Some(size)) = (field(8), field(32)) {
-            end = end.max(off.saturating_add(size));
-        }
-    }
-    Some(end)
+    // Each segment's file offset and size (p_offset, p_filesz), where its header is present.
+    let segments = e.program_headers().filter_map(|h| {
+        let field = |o: usize| h.checked_add(o).and_then(|at| e.u64(at));
+        Some(field(8)?.saturating_add(field(32)?))
+    });
+    Some(segments.fold(tables, usize::max))
 }
 
 /// Whether ELF image `b` is a program rather than a shared library: of type EXEC, or with a
@@ -86,20 +114,10 @@ pub fn elf_end(b: &[u8]) -> Option<usize> {
 /// is, but names its loader). 64-bit little-endian images only; anything else is left to
 /// the checks after this one.
 pub fn elf_executable(b: &[u8]) -> bool {
-    let u16_at = |o: usize| b.get(o..o + 2).map(|x| u16::from_le_bytes([x[0], x[1]]) as usize);
-    let u32_at = |o: usize| b.get(o..o + 4).map(|x| u32::from_le_bytes([x[0], x[1], x[2], x[3]]));
-    let u64_at = |o: usize| b.get(o..o + 8).map(|x| u64::from_le_bytes(x.try_into().expect("8 bytes")) as usize);
-    // ELFCLASS64, little-endian.
-    if b.get(4) != Some(&2) || b.get(5) != Some(&1) {
-        return false;
-    }
-    if u16_at(16) == Some(2) {
-        return true;
-    }
-    let (Some(phoff), Some(phentsize), Some(phnum)) = (u64_at(0x20), u16_at(0x36), u16_at(0x38)) else {
+    let Some(e) = Elf::of(b) else {
         return false;
     };
-    (0..phnum).any(|i| u32_at(phoff + i * phentsize) == Some(3))
+    e.u16(16) == Some(2) || e.program_headers().any(|h| e.u32(h) == Some(3))
 }
 
 /// The C library of the running gbump (see [`library_beside`]).
@@ -147,24 +165,19 @@ pub fn check_library(lib: &Path) -> Result<()> {
             image.len()
         )));
     }
-    let exports = |name: &str| {
-        image
-            .windows(name.len() + 1)
-            .any(|w| &w[..name.len()] == name.as_bytes() && w[name.len()] == 0)
-    };
-    if !elf_executable(&image) && !exports("gbump_abi_version") {
-        return Err(Error::Other(format!(
-            "{}: a shared library, but not the gbump C library (it defines no gbump_abi_version)\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
-            lib.display()
-        )));
-    }
     if elf_executable(&image) {
         return Err(Error::Other(format!(
             "{}: an executable (it names a program interpreter), not the gbump C library\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
             lib.display()
         )));
     }
-    if !built_from_these_sources(lib) {
+    if !holds_cstr(&image, "gbump_abi_version") {
+        return Err(Error::Other(format!(
+            "{}: a shared library, but not the gbump C library (it defines no gbump_abi_version)\n  fix: pass the libgbump.so that cargo build --release writes beside the gbump executable",
+            lib.display()
+        )));
+    }
+    if !holds_cstr(&image, crate::SOURCE_HASH) {
         return Err(Error::Other(format!(
             "{}: built from other sources than this gbump (source {}, `gbump --version`), so its model is not the one this gbump generates RTL for\n  fix: cargo build --release -j 1 (it rebuilds the library with the gbump executable), or pass --lib with the library of this build",
             lib.display(),

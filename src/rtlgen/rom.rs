@@ -115,7 +115,8 @@ pub fn write(rom: &Rom, fmt: RomFormat, header: &[String]) -> String {
     s
 }
 
-/// Parse any of the three formats back to words (for the round-trip tests).
+/// Parse any of the three formats back to words (the round-trip tests; regress reading a
+/// set's environment maps).
 pub fn parse(text: &str, fmt: RomFormat) -> Result<Vec<u64>, String> {
     let mut out = Vec::new();
     let hex = |t: &str, line: usize| u64::from_str_radix(t.trim(), 16).map_err(|e| format!("line {line}: `{t}`: {e}"));

@@ -78,7 +78,7 @@ pub fn verilator_recent_enough(version: &str) -> Result<()> {
     match major {
         Some(m) if m < MIN_VERILATOR_MAJOR => Err(Error::Other(format!(
             "verilator ({}) is `{version}`: gbump's testbenches need Verilator {MIN_VERILATOR_MAJOR} or later (they build with --timing and --main; the suite runs Debian bookworm's 5.006)\n  fix: install Verilator {MIN_VERILATOR_MAJOR} or later (scripts/install-tools.sh on Debian bookworm; elsewhere a newer package or a build from source) and put it first on PATH",
-            crate::tool::on_path("verilator").map_or("not found on PATH".to_string(), |p| p.display().to_string())
+            crate::tool::located("verilator")
         ))),
         _ => Ok(()),
     }

@@ -136,12 +136,10 @@ fn read_records(m: &Manifest, dir: &Path, layout: &Layout) -> Result<Vec<Record>
 fn env_map(p: &Path, colour_bits: u32) -> Result<Vec<[u32; 3]>> {
     let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
     let mask = (1u64 << colour_bits) - 1;
-    text.lines()
-        .map(|l| l.split("//").next().unwrap_or("").trim())
-        .filter(|l| !l.is_empty())
-        .map(|w| {
-            let v = u64::from_str_radix(w, 16).map_err(|_| Error::Other(format!("{}: `{w}` is not a texel word", p.display())))?;
-            Ok([0, 1, 2].map(|i| ((v >> (i * colour_bits)) & mask) as u32))
-        })
-        .collect()
+    let words = crate::rtlgen::rom::parse(&text, crate::rtlgen::rom::RomFormat::Hex)
+        .map_err(|e| Error::Other(format!("{}: {e}: not a texel word", p.display())))?;
+    Ok(words
+        .into_iter()
+        .map(|v| [0, 1, 2].map(|i| ((v >> (i * colour_bits)) & mask) as u32))
+        .collect())
 }

@@ -157,10 +157,7 @@ pub fn check_set_names(what: &str, rename: &str, stem: &str, target: &str, maps:
         String::new()
     };
     // Say what is wrong with it: its length, the characters a plain name may not hold, or both.
-    let mut odd: Vec<char> = longest
-        .chars()
-        .filter(|c| !(c.is_ascii_alphanumeric() || matches!(c, '_' | '.' | '-')))
-        .collect();
+    let mut odd: Vec<char> = longest.chars().filter(|&c| !crate::names::plain_char(c)).collect();
     odd.dedup();
     let mut why = Vec::new();
     if n > max {
