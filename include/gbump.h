@@ -365,6 +365,37 @@ int32_t gbump_eval_batch(const struct GbumpConfig *h,
 int32_t gbump_set_shininess(struct GbumpConfig *h, int32_t n);
 
 /**
+ * Load environment map `which` ("diffuse" or "specular") of an EMBM configuration into the
+ * model, as the top's `env_<which>_we`/`_wdata` port would: `count` words, the map's n x n
+ * texels (n = 2^env_map_bits), texel (x, y) at word y*n + x, {B, G, R} of colour_bits each, R
+ * lowest; what `gbump rom` and an EMBM scene set's map files hold (its manifest's
+ * `env_maps`). A scene's objects each light with their own maps: load a set's before
+ * evaluating its records. The handle powers up with the maps random and corner sets use.
+ * Refused (-1) for a configuration without maps, another count, or a word wider than a
+ * texel; the map is then unchanged.
+ *
+ * # Safety
+ * `h` is a live handle, not in use by another thread; `words` points to `count` words.
+ */
+int32_t gbump_set_env_map(struct GbumpConfig *h,
+                          const char *which,
+                          const uint64_t *words,
+                          int64_t count);
+
+/**
+ * Write texel `index` (0..n*n-1, texel (x, y) at y*n + x) of environment map `which`
+ * ("diffuse" or "specular") of an EMBM configuration: one write of the top's
+ * `env_<which>_we`/`_waddr`/`_wdata` port, `word` its `{B, G, R}` data word (R lowest), as
+ * `gbump_set_env_map` takes a whole map a word at a time (and the DPI-C package can call).
+ * Refused (-1) for a configuration without maps, an index outside the map or a word wider
+ * than a texel; the map is then unchanged.
+ *
+ * # Safety
+ * `h` is a live handle, not in use by another thread.
+ */
+int32_t gbump_set_env_texel(struct GbumpConfig *h, const char *which, int32_t index, uint64_t word);
+
+/**
  * The shininess of the model's power table (the configuration's until `gbump_set_shininess`).
  *
  * # Safety

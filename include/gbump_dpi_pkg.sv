@@ -2,7 +2,7 @@
 // Regenerate: cargo run --release -j 1 --example capi_header
 // SystemVerilog DPI-C declarations of the gbump golden model (include/gbump.h); link
 // libgbump (Verilator: -LDFLAGS /path/to/libgbump.so; Icarus has no DPI-C). Records are
-// packed LSB first, as in the vector files; C-only functions (arrays of records): gbump_eval_batch
+// packed LSB first, as in the vector files; C-only functions (arrays of records): gbump_eval_batch gbump_set_env_map
 // A string that fails is "" here (NULL in C), and a record output is zero above the
 // record: those functions bind the library's gbump_dpi_* symbols, not in the C header. A C++
 // file that includes gbump.h must not also include Verilator's V*__Dpi.h (the two declare
@@ -110,6 +110,13 @@ package gbump_dpi_pkg;
     // memory's contents, not the hardware. Refused (-1) where the hardware has no loadable table
     // (`power_rom = true`, `power_unit = "squaring"`) for any n but the configuration's.
     import "DPI-C" function int gbump_set_shininess(input chandle h, input int n);
+    // Write texel `index` (0..n*n-1, texel (x, y) at y*n + x) of environment map `which`
+    // ("diffuse" or "specular") of an EMBM configuration: one write of the top's
+    // `env_<which>_we`/`_waddr`/`_wdata` port, `word` its `{B, G, R}` data word (R lowest), as
+    // `gbump_set_env_map` takes a whole map a word at a time (and the DPI-C package can call).
+    // Refused (-1) for a configuration without maps, an index outside the map or a word wider than
+    // a texel; the map is then unchanged.
+    import "DPI-C" function int gbump_set_env_texel(input chandle h, input string which, input int index, input longint word);
     // The shininess of the model's power table (the configuration's until `gbump_set_shininess`).
     import "DPI-C" function int gbump_shininess(input chandle h);
     // 1 when the top reads a power table (its `power_table_*` load port writes it, and

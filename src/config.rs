@@ -64,9 +64,11 @@ pub struct FixedShininess {
 
 impl FixedShininess {
     /// The refusal of `--shininess n` for another shininess than the one the hardware serves.
-    pub fn refuse_flag(&self, n: u32) -> Error {
+    /// `choice` is how the caller spells it: `--shininess`, `shininess=`.
+    pub fn refuse(&self, choice: &str, n: u32) -> Error {
+        let sep = if choice.ends_with('=') { "" } else { " " };
         Error::Other(format!(
-            "--shininess {n}: the configuration's {}\n  fix: drop --shininess, or use a configuration with {}",
+            "{choice}{sep}{n}: the configuration's {}\n  fix: drop {choice}, or use a configuration with {}",
             self.what, self.release
         ))
     }

@@ -94,7 +94,7 @@ pub const ALL: &[(&str, u64, &str)] = &[
     (
         "MAX_MEMORY_BYTES",
         MAX_MEMORY_BYTES,
-        "planned memory of a command that rasterises a scene (or MemAvailable, if lower)",
+        "planned memory of a command that rasterises a scene, or of a batch of the C library or Python module (or MemAvailable, or the room `ulimit -v` leaves, if lower)",
     ),
     (
         "RENDER_BYTES_PER_PIXEL",
@@ -253,14 +253,37 @@ pub fn parse_size(flag: &str, s: &str) -> Result<(u32, u32)> {
     Ok((w, h))
 }
 
-/// Bytes of memory a plan may use: [`MAX_MEMORY_BYTES`], or less if the machine has less free.
+/// Bytes of memory a plan may use: [`MAX_MEMORY_BYTES`], or less if the machine has less free
+/// or the process may map less (`ulimit -v`: an allocation past it fails, and a failed
+/// allocation aborts the process rather than returning an error).
 pub fn memory_budget() -> u64 {
-    let avail = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
-        t.lines()
-            .find(|l| l.starts_with("MemAvailable:"))
-            .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
-    });
-    avail.map_or(MAX_MEMORY_BYTES, |kb| MAX_MEMORY_BYTES.min(kb * 1024))
+    let kb_field = |file: &str, field: &str| {
+        std::fs::read_to_string(file).ok().and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with(field))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<u64>().ok())
+        })
+    };
+    let avail = kb_field("/proc/meminfo", "MemAvailable:").map(|kb| kb * 1024);
+    let room = address_space_limit().map(|max| max.saturating_sub(kb_field("/proc/self/status", "VmSize:").unwrap_or(0) * 1024));
+    [Some(MAX_MEMORY_BYTES), avail, room]
+        .into_iter()
+        .flatten()
+        .min()
+        .unwrap_or(MAX_MEMORY_BYTES)
+}
+
+/// The process's address-space limit (`ulimit -v`), when it has one.
+fn address_space_limit() -> Option<u64> {
+    #[cfg(unix)]
+    {
+        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        // SAFETY: `r` is a valid rlimit for getrlimit to fill.
+        if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0 && r.rlim_cur != libc::RLIM_INFINITY {
+            return Some(r.rlim_cur as u64);
+        }
+    }
+    None
 }
 
 /// Refuse a plan of `bytes` that will not fit in [`memory_budget`].
@@ -273,7 +296,7 @@ pub fn check_memory(what: &str, bytes: u64, fix: &str) -> Result<()> {
             .find(|&p| format!("{:.p$}", gib(bytes)) != format!("{:.p$}", gib(budget)))
             .unwrap_or(6);
         return Err(Error::Other(format!(
-            "{what} would need about {:.places$} GiB of memory, more than the {:.places$} GiB allowed (MAX_MEMORY_BYTES or MemAvailable, whichever is lower)\n  fix: {fix}",
+            "{what} would need about {:.places$} GiB of memory, more than the {:.places$} GiB allowed (the lowest of MAX_MEMORY_BYTES, MemAvailable and the room `ulimit -v` leaves)\n  fix: {fix}",
             gib(bytes),
             gib(budget)
         )));

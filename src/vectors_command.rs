@@ -36,26 +36,18 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     let source = r.source;
     let mut src = Source::parse(source)?;
     let ignored = |flag: &str, why: &str| Error::Other(format!("{flag} has no effect on --source {source}: {why}\n  fix: drop {flag}"));
-    match &mut src {
-        Source::Corners(l) => *l = r.level.unwrap_or(1),
-        _ if r.level.is_some() => return Err(ignored("--level", "only the corner catalogue has levels")),
-        _ => {}
-    }
-    if r.seed.is_some() && !matches!(src, Source::Random(_)) {
-        return Err(ignored("--seed", "only random sources draw from a seed"));
-    }
-    if r.shininess.is_some() && matches!(src, Source::Scene(_)) {
-        return Err(ignored(
-            "--shininess",
-            "a scene's objects carry their own shininess, and the scene writes one set per shininess",
-        ));
+    let spelling = crate::vectors::choices::Spelling::cli(source);
+    let asked = crate::vectors::choices::Asked {
+        seed: r.seed.is_some(),
+        shininess: r.shininess,
+        size: r.size.is_some(),
+        level: r.level.is_some(),
+    };
+    crate::vectors::choices::refuse_ignored(&src, &asked, &spelling)?;
+    if let Source::Corners(l) = &mut src {
+        *l = r.level.unwrap_or(1);
     }
     let seed = r.seed.unwrap_or(1);
-    if r.size.is_some() && !matches!(src, Source::Scene(_)) {
-        return Err(Error::Other(format!(
-            "--size: only scene sources render an image, not --source {source}\n  fix: drop --size, or use --source scene:NAME"
-        )));
-    }
     // Every flag is checked before anything is loaded or said.
     let size = r.size.map(|s| crate::limits::parse_size("--size", s)).transpose()?;
     // A scene source renders under the scene's own configuration unless one is given, and says so.
@@ -92,23 +84,12 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
             ));
         }
     }
-    if r.shininess.is_some() && cfg.embm() {
-        return Err(ignored(
-            "--shininess",
-            "EMBM has no power unit (its specular light comes from the environment map)",
-        ));
-    }
     // The targets whose sets this dump writes.
     let written: Vec<&str> = match &src {
         Source::Exhaustive(u) => vec![u.as_str()],
         _ => targets.iter().map(String::as_str).collect(),
     };
-    if let Some(n) = r.shininess.filter(|&n| n != cfg.shininess) {
-        if let Some(fixed) = written.iter().find_map(|t| cfg.fixed_shininess_of(t)) {
-            // The set would fail or be refused by every regression of this configuration.
-            return Err(fixed.refuse_flag(n));
-        }
-    }
+    crate::vectors::choices::refuse_unservable(&cfg, &written, &asked, &spelling)?;
     let opts = DumpOptions {
         text: r.text,
         binary: r.binary,

@@ -645,3 +645,121 @@ fn the_header_compiles_under_c89_c99_c11_and_cpp() {
         assert!(out.status.success(), "{cc} {std}: {}", String::from_utf8_lossy(&out.stderr));
     }
 }
+
+/// An EMBM scene set's objects light with their own maps: `gbump_set_env_map` loads a set's
+/// map files (the manifest's `env_maps`) and `gbump_eval_batch` then gives back every record
+/// of the set `gbump vectors` wrote; with the power-up maps it does not. A map of another
+/// count, a word wider than a texel, an unknown map and a configuration without maps are
+/// refused, and a refused load leaves the map as it was.
+#[test]
+fn an_embm_scene_set_evaluates_with_its_own_maps() {
+    let path = root().join("tests/configs/embm.toml");
+    let cfg = PipelineConfig::load(&path).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let o = DumpOptions {
+        size: Some((24, 24)),
+        ..DumpOptions::formats("test", true, false)
+    };
+    let sets = dump(
+        &cfg,
+        &Source::parse("scene:cg_wall_floor").unwrap(),
+        &["top".to_string()],
+        tmp.path(),
+        &o,
+    )
+    .unwrap();
+    assert_eq!(sets.len(), 2, "cg_wall_floor's two objects, each with its own maps");
+    let open = || unsafe { gbump_config_from_file(c(path.to_str().unwrap()).as_ptr()) };
+    let (h, fresh) = (open(), open());
+    assert!(!h.is_null() && !fresh.is_null());
+    let top = c("top");
+    let n = unsafe { gbump_record_words(h, top.as_ptr()) } as usize;
+    let file = |name: &str| std::fs::read_to_string(tmp.path().join(name)).unwrap();
+    // A set's records as 32-bit words, and its two maps' words.
+    let read = |manifest: &Path| {
+        let m: gbump::vectors::Manifest = serde_json::from_str(&std::fs::read_to_string(manifest).unwrap()).unwrap();
+        let records: Vec<u32> = file(&m.hex.as_ref().unwrap().name)
+            .lines()
+            .flat_map(|l| Record::from_hex(l).unwrap().to_words32(n))
+            .collect();
+        let maps = m.env_maps.as_ref().expect("an EMBM scene set names its maps");
+        let words = |f: &Option<gbump::vectors::manifest::FileEntry>| {
+            gbump::rtlgen::rom::parse(&file(&f.as_ref().unwrap().name), gbump::rtlgen::rom::RomFormat::Hex).unwrap()
+        };
+        (records, words(&maps.diffuse), words(&maps.specular))
+    };
+    let eval = |h: *const gbump::capi::GbumpConfig, want: &[u32]| {
+        let mut got = vec![0u32; want.len()];
+        let status = unsafe { gbump_eval_batch(h, top.as_ptr(), want.as_ptr(), got.as_mut_ptr(), (want.len() / n) as i64) };
+        assert_eq!(status, 0, "{}", s(gbump_last_error()));
+        got
+    };
+    for (k, set) in sets.iter().enumerate() {
+        let (want, d, sp) = read(&set.manifest);
+        unsafe {
+            if k == 0 {
+                assert_eq!(
+                    gbump_set_env_map(h, c("diffuse").as_ptr(), d.as_ptr(), d.len() as i64),
+                    0,
+                    "{}",
+                    s(gbump_last_error())
+                );
+                assert_eq!(gbump_set_env_map(h, c("specular").as_ptr(), sp.as_ptr(), sp.len() as i64), 0);
+            } else {
+                // A texel at a time, as a SystemVerilog testbench writes the port.
+                for (which, words) in [("diffuse", &d), ("specular", &sp)] {
+                    for (i, w) in words.iter().enumerate() {
+                        assert_eq!(
+                            gbump_set_env_texel(h, c(which).as_ptr(), i as i32, *w),
+                            0,
+                            "{}",
+                            s(gbump_last_error())
+                        );
+                    }
+                }
+                assert_eq!(gbump_set_env_texel(h, c("diffuse").as_ptr(), d.len() as i32, 0), -1);
+                assert!(
+                    s(gbump_last_error()).contains("outside the map's 0..=255"),
+                    "{}",
+                    s(gbump_last_error())
+                );
+                assert_eq!(gbump_set_env_texel(h, c("diffuse").as_ptr(), 0, 1 << 24), -1);
+            }
+        }
+        assert!(
+            eval(h, &want) == want,
+            "{}: records differ with the set's own maps",
+            set.manifest.display()
+        );
+        unsafe {
+            assert_eq!(gbump_set_env_map(h, c("diffuse").as_ptr(), d.as_ptr(), d.len() as i64 - 1), -1);
+            assert!(
+                s(gbump_last_error()).contains("255 words, not the 16x16 map's 256"),
+                "{}",
+                s(gbump_last_error())
+            );
+            let wide = vec![1u64 << 24; d.len()];
+            assert_eq!(gbump_set_env_map(h, c("specular").as_ptr(), wide.as_ptr(), wide.len() as i64), -1);
+            assert!(s(gbump_last_error()).contains("wider than a texel's 24 bits"));
+            assert_eq!(gbump_set_env_map(h, c("ambient").as_ptr(), d.as_ptr(), d.len() as i64), -1);
+            assert_eq!(gbump_set_env_map(h, c("diffuse").as_ptr(), std::ptr::null(), d.len() as i64), -1);
+            assert!(s(gbump_last_error()).contains("words is NULL"));
+        }
+        assert!(eval(h, &want) == want, "a refused load changed a map");
+        // The power-up maps light the set otherwise, or this test would show nothing.
+        assert!(
+            eval(fresh, &want) != want,
+            "{}: the power-up maps give the same records",
+            set.manifest.display()
+        );
+    }
+    let d = gbump_config_default();
+    let one = [0u64];
+    assert_eq!(unsafe { gbump_set_env_map(d, c("diffuse").as_ptr(), one.as_ptr(), 1) }, -1);
+    assert!(s(gbump_last_error()).contains("not EMBM"));
+    unsafe {
+        gbump_config_free(h);
+        gbump_config_free(fresh);
+        gbump_config_free(d);
+    }
+}

@@ -2,6 +2,7 @@
 //! `(words,)` for one record; each row is one record of the vector files, 32-bit words LSB
 //! first. Other dtypes are refused rather than cast, since a cast can drop bits silently.
 
+use gbump::capi::{GbumpConfig, Target};
 use numpy::ndarray::{Array1, Array2};
 use numpy::{IntoPyArray, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -15,14 +16,18 @@ pub struct Records {
 }
 
 /// The records of `a`, each `words` words of a `target` record.
-pub fn records_in(a: &Bound<'_, PyAny>, words: usize, target: &str) -> PyResult<Records> {
+pub fn records_in(a: &Bound<'_, PyAny>, h: &GbumpConfig, t: &Target) -> PyResult<Records> {
+    let (words, target) = (t.layout.words32(), t.name);
     let arr: PyReadonlyArrayDyn<'_, u32> = a.extract().map_err(|_| {
         // What was given, as numpy names it (a list, a float or int64 array, a uint32 array
         // in the other byte order all land here): a GbumpError like every other bad input.
-        let given = a
-            .getattr("dtype")
-            .and_then(|d| d.str())
-            .map_or_else(|_| format!("a {}", a.get_type().name().map_or("value".into(), |n| n.to_string())), |d| format!("dtype {d}"));
+        let kind = a.get_type().name().map_or("value".into(), |n| n.to_string());
+        let given = match a.getattr("dtype").and_then(|d| d.str()) {
+            Ok(d) if kind == "ndarray" => format!("dtype {d}"),
+            // A numpy scalar has a dtype too, but is no array.
+            Ok(d) => format!("a numpy scalar ({kind}, dtype {d})"),
+            Err(_) => format!("a {kind}"),
+        };
         crate::fail(format!(
             "records: {given}, not a numpy uint32 array in this machine's byte order\n  fix: pass numpy.asarray(records, dtype=numpy.uint32), shape (N, {words}) for `{target}` records"
         ))
@@ -38,11 +43,10 @@ pub fn records_in(a: &Bound<'_, PyAny>, words: usize, target: &str) -> PyResult<
         }
     };
     check_batch("records", count as u64)?;
-    Ok(Records {
-        words: arr.as_array().iter().copied().collect(),
-        count,
-        single,
-    })
+    plan(h, t, "records", count as u64)?;
+    let mut words = with_room(count * words, "records")?;
+    words.extend(arr.as_array().iter().copied());
+    Ok(Records { words, count, single })
 }
 
 /// Records as a NumPy array: 1-D for a single record the caller gave as 1-D, else `(N, words)`.
@@ -64,4 +68,29 @@ pub fn check_batch(what: &str, n: u64) -> PyResult<()> {
 pub fn check_records(what: &str, n: u64, lo: u64) -> PyResult<()> {
     use gbump::limits::{check_count, MAX_BATCH_RECORDS};
     check_count(what, n, lo, MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS").map_err(crate::err)
+}
+
+/// Refuse `count` records of `t` that would not fit in memory (`GbumpConfig::plan_batch`): an
+/// allocation that fails aborts the Python process, where this raises a `GbumpError`.
+pub fn plan(h: &GbumpConfig, t: &Target, what: &str, count: u64) -> PyResult<()> {
+    h.plan_batch(t, count, what).map_err(crate::err)
+}
+
+/// An empty vector with room for `n` values, or a `GbumpError` where the room cannot be had
+/// (an infallible allocation that fails aborts the Python process).
+pub fn with_room<T>(n: usize, what: &str) -> PyResult<Vec<T>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| {
+        crate::fail(format!(
+            "{what}: no memory for {n} values\n  fix: pass fewer records per call (split the batch), or free memory"
+        ))
+    })?;
+    Ok(v)
+}
+
+/// `n` zeros, as [`with_room`].
+pub fn zeros(n: usize, what: &str) -> PyResult<Vec<u32>> {
+    let mut v = with_room(n, what)?;
+    v.resize(n, 0);
+    Ok(v)
 }

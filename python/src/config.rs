@@ -42,6 +42,16 @@ fn json_to_py<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// `slf` for a change of its model (a table or map load), or a `GbumpError` when another
+/// thread's call holds it: Python's own `RuntimeError: Already borrowed` names neither.
+fn exclusive<'py>(slf: &Bound<'py, Config>, what: &str) -> PyResult<PyRefMut<'py, Config>> {
+    slf.try_borrow_mut().map_err(|_| {
+        crate::fail(format!(
+            "{what}: this Config is in use by another thread (an eval, vectors or other call on it is running)\n  fix: change it when no call on it runs, or give each thread a Config of its own"
+        ))
+    })
+}
+
 #[pymethods]
 impl Config {
     #[new]
@@ -108,10 +118,9 @@ impl Config {
     }
 
     /// Canonical TOML of the configuration (the input of the hash): every field, except that
-    /// the fields added after the first release (interpolate, colour_guard_bits,
-    /// white_lights, power_rom, renormalise, interpolate_k, renormalise_bump, cube_map_face,
-    /// self_shadow, frame_transform, frame_build, triangle_frame, frame_quaternion, pixel_lh) are left out at their defaults ("none", 0 or false), so
-    /// hashes made before they existed stay.
+    /// a field added after the first release is left out at its default ("none", 0 or
+    /// false), so hashes made before it existed stay (`gbump config` prints those fields
+    /// commented out, and the C header's `gbump_config_toml` names them).
     #[getter]
     fn toml(&self) -> String {
         self.cfg().to_toml()
@@ -183,7 +192,7 @@ impl Config {
     }
 
     #[setter]
-    fn set_shininess(&mut self, n: crate::Int) -> PyResult<()> {
+    fn set_shininess(slf: &Bound<'_, Self>, n: crate::Int) -> PyResult<()> {
         let n = i64::try_from(n.0).map_err(|_| {
             crate::fail(format!(
                 "shininess {}: does not fit 64 bits\n  fix: use 0..={}",
@@ -191,7 +200,19 @@ impl Config {
                 gbump::limits::MAX_SHININESS
             ))
         })?;
-        self.h.set_shininess(n).map_err(crate::err)
+        exclusive(slf, "shininess")?.h.set_shininess(n).map_err(crate::err)
+    }
+
+    /// Load environment map `which` ("diffuse" or "specular") of an EMBM configuration from
+    /// its RAM words (ints), as the top's `env_<which>_we`/`_wdata` port would; `eval` then
+    /// lights with it. An EMBM scene set's objects each light with their own maps, which
+    /// `vectors` gives as the set's `env_diffuse` and `env_specular`: load both before
+    /// evaluating that set's records. The model powers up with the maps random and corner
+    /// sets use. The words are the map's n x n texels (n = 2^env_map_bits), texel (x, y) at
+    /// word y*n + x, {B, G, R} of colour_bits each, R lowest; another count, a word wider than
+    /// a texel or a configuration without maps is refused, and the map is then unchanged.
+    fn set_env_map(slf: &Bound<'_, Self>, which: &str, words: Vec<u64>) -> PyResult<()> {
+        exclusive(slf, "set_env_map")?.h.set_env_map(which, &words).map_err(crate::err)
     }
 
     /// Words of the power-table memory (what its load port addresses).
@@ -209,24 +230,34 @@ impl Config {
     /// ROM `name` ("power_table", "bump_palette" or "cube_map") as {name, width, words,
     /// layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
     /// configuration's own (its TOML field, as `gbump rom` does; not the `shininess`
-    /// property, the model's current table), `cube_size` to gbump rom's.
-    #[pyo3(signature = (name, shininess = None, cube_size = crate::Int(32)))]
-    fn rom<'py>(&self, py: Python<'py>, name: &str, shininess: Option<crate::Int>, cube_size: crate::Int) -> PyResult<Bound<'py, PyDict>> {
-        let (shininess, cube_size) = (shininess.map(|n| n.0), cube_size.0);
+    /// property, the model's current table), `cube_size` to the configuration's
+    /// `cube_map_face`, else gbump rom's 32. A shininess a ROM table or squaring unit does not
+    /// hold, or a cube size other than the configuration's map, is refused, as `gbump rom`
+    /// refuses it.
+    #[pyo3(signature = (name, shininess = None, cube_size = None))]
+    fn rom<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        shininess: Option<crate::Int>,
+        cube_size: Option<crate::Int>,
+    ) -> PyResult<Bound<'py, PyDict>> {
         use gbump::limits::{MAX_CUBE_SIDE, MAX_SHININESS};
         use gbump::rtlgen::rom;
         let cfg = self.cfg();
-        let cube_size = crate::arg("cube_size", cube_size, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")? as u32;
+        // Bounded here first, so a value past 32 bits is named rather than cut.
+        let shininess = shininess
+            .map(|n| crate::arg("shininess", n.0, 0, MAX_SHININESS.into(), "MAX_SHININESS").map(|n| n as u32))
+            .transpose()?;
+        let cube_size = cube_size
+            .map(|c| crate::arg("cube_size", c.0, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE").map(|c| c as usize))
+            .transpose()?;
+        let (n, cube_size) =
+            gbump::rtlgen::rom_files::rom_choices(cfg, shininess, cube_size, ["shininess", "cube_size"]).map_err(crate::err)?;
         let r = match name {
-            "power_table" => {
-                let n = match shininess {
-                    Some(n) => crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32,
-                    None => cfg.shininess,
-                };
-                rom::power_rom(cfg, n)
-            }
+            "power_table" => rom::power_rom(cfg, n),
             "bump_palette" => rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE),
-            "cube_map" => rom::cube_map_rom(cube_size as usize),
+            "cube_map" => rom::cube_map_rom(cube_size),
             _ => {
                 return Err(crate::fail(format!(
                     "rom `{name}`: unknown\n  fix: one of power_table, bump_palette, cube_map"
@@ -262,7 +293,9 @@ impl Config {
     }
 
     /// The columns of a `target` record: [{name, role, lsb, width, lanes, lane_bits, format,
-    /// signed}], stimulus first, as the vector manifests list them.
+    /// enters, signed}], stimulus first, as the vector manifests list them (`enters`: edges
+    /// after the rest of its record at which a column enters a unit streamed one record per
+    /// edge).
     fn columns<'py>(&self, py: Python<'py>, target: &str) -> PyResult<Bound<'py, PyList>> {
         let t = self.h.target(target).map_err(crate::err)?;
         let l = PyList::empty(py);
@@ -305,8 +338,8 @@ impl Config {
     fn eval<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let t = self.h.target(target).map_err(crate::err)?;
         let n = t.layout.words32();
-        let r = records_in(records, n, target)?;
-        let mut out = vec![0u32; r.words.len()];
+        let r = records_in(records, &self.h, t)?;
+        let mut out = crate::arrays::zeros(r.words.len(), "eval")?;
         crate::detach(py, || self.h.eval_words(t, &r.words, &mut out)).map_err(crate::err)?;
         records_out(py, out, n, r.single)
     }
@@ -324,7 +357,7 @@ impl Config {
     /// sign-extended.
     fn unpack<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
         let t = self.h.target(target).map_err(crate::err)?;
-        let r = records_in(records, t.layout.words32(), target)?;
+        let r = records_in(records, &self.h, t)?;
         crate::fields::unpack(py, t, &r.words, r.count)
     }
 
@@ -333,14 +366,15 @@ impl Config {
     fn eval_fields<'py>(&self, py: Python<'py>, target: &str, fields: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
         let t = self.h.target(target).map_err(crate::err)?;
         let (count, words) = crate::fields::pack(t, fields)?;
-        let mut out = vec![0u32; words.len()];
+        crate::arrays::plan(&self.h, t, "eval_fields", count as u64)?;
+        let mut out = crate::arrays::zeros(words.len(), "eval_fields")?;
         crate::detach(py, || self.h.eval_words(t, &words, &mut out)).map_err(crate::err)?;
         crate::fields::unpack(py, t, &out, count)
     }
 
     /// The seeded random stimulus stream of `gbump vectors --source random:N --seed SEED`
     /// (the same default seed, 1).
-    #[pyo3(signature = (seed = crate::Int(1)))]
+    #[pyo3(signature = (seed = crate::Int(1)), text_signature = "(self, seed=1)")]
     fn stimulus(&self, seed: crate::Int) -> PyResult<crate::vectors::Stimulus> {
         let seed = crate::arg("seed", seed.0, 0, u64::MAX, "")?;
         Ok(crate::vectors::Stimulus::new(&self.h, seed))
@@ -351,23 +385,28 @@ impl Config {
     /// set), with the same default seed, 1: a list of {name, target, shininess, records,
     /// reasons} (one per power table; `reasons` lists why each corner is there, else None);
     /// a scene's sets also have `pixels`, each record's pixel (uint32 (N, 2), x then y, row 0
-    /// at the top), as the dump's `_pixels.txt` gives it.
+    /// at the top), as the dump's `_pixels.txt` gives it, and `image_size` [width, height];
+    /// an EMBM scene's sets `env_diffuse` and `env_specular`, their object's maps
+    /// (`set_env_map` loads them for `eval`).
     /// Random, corner and exhaustive sets use `shininess`, by default the configuration's own
     /// (its TOML field, what `gbump vectors` uses; not the model's current table, which the
     /// `shininess` property reads and sets); scenes their objects'. `size` is a scene's image
     /// size as a (width, height) tuple in pixels (by default the scene's own).
-    #[pyo3(signature = (source, seed = crate::Int(1), shininess = None, size = None))]
+    /// A choice the source ignores (`seed` but for random sources, `shininess` for a scene,
+    /// `size` but for a scene) or that the hardware cannot serve (another `shininess` than a
+    /// ROM table's or a squaring unit's, any under EMBM) is refused, as `gbump vectors` refuses it.
+    #[pyo3(signature = (source, seed = None, shininess = None, size = None))]
     fn vectors<'py>(
         &self,
         py: Python<'py>,
         source: &str,
-        seed: crate::Int,
+        seed: Option<crate::Int>,
         shininess: Option<crate::Int>,
         size: Option<(crate::Int, crate::Int)>,
     ) -> PyResult<Bound<'py, PyList>> {
         use gbump::limits::{MAX_IMAGE_SIDE, MAX_SHININESS};
-        let (seed, shininess, size) = (seed.0, shininess.map(|n| n.0), size.map(|(w, h)| (w.0, h.0)));
-        let seed = crate::arg("seed", seed, 0, u64::MAX, "")?;
+        let (seed, shininess, size) = (seed.map(|s| s.0), shininess.map(|n| n.0), size.map(|(w, h)| (w.0, h.0)));
+        let seed = seed.map(|s| crate::arg("seed", s, 0, u64::MAX, "")).transpose()?;
         let shininess = match shininess {
             Some(n) => Some(crate::arg("shininess", n, 0, MAX_SHININESS.into(), "MAX_SHININESS")? as u32),
             None => None,

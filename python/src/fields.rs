@@ -104,7 +104,7 @@ pub fn pack(t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>
     let n = count.unwrap_or(0);
     crate::arrays::check_batch("pack: records", n as u64)?;
     let w = t.layout.words32();
-    let mut out = vec![0u32; n * w];
+    let mut out = crate::arrays::zeros(n * w, "pack")?;
     for (i, rec) in out.chunks_mut(w).enumerate() {
         let mut r = Record::new(&t.layout);
         for (c, vals) in &given {
@@ -125,15 +125,27 @@ pub fn pack(t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>
     Ok((n, out))
 }
 
-/// Every column of `count` records of `t` as `int64` arrays `(N, lanes)`.
+/// Every column of `count` records of `t` as `int64` arrays `(N, lanes)`: each column's
+/// array reserved whole first (`arrays::with_room`: a `GbumpError`, not an abort), then
+/// filled a record at a time.
 pub fn unpack<'py>(py: Python<'py>, t: &Target, words: &[u32], count: usize) -> PyResult<Bound<'py, PyDict>> {
     let w = t.layout.words32();
-    let recs: Vec<Record> = words.chunks(w).map(Record::from_words32).collect();
-    let d = PyDict::new(py);
+    let mut cols: Vec<Vec<i64>> = Vec::with_capacity(t.layout.columns.len());
     for c in &t.layout.columns {
-        let lanes = c.lanes as usize;
-        let vals: Vec<i64> = recs.iter().flat_map(|r| (0..c.lanes).map(|l| r.lane_value(c, l))).collect();
-        let a = Array2::from_shape_vec((count, lanes), vals).map_err(|e| crate::fail(format!("column `{}`: {e}", c.name)))?;
+        cols.push(crate::arrays::with_room(
+            count * c.lanes as usize,
+            &format!("unpack: column `{}`", c.name),
+        )?);
+    }
+    for chunk in words.chunks(w) {
+        let r = Record::from_words32(chunk);
+        for (c, v) in t.layout.columns.iter().zip(&mut cols) {
+            v.extend((0..c.lanes).map(|l| r.lane_value(c, l)));
+        }
+    }
+    let d = PyDict::new(py);
+    for (c, vals) in t.layout.columns.iter().zip(cols) {
+        let a = Array2::from_shape_vec((count, c.lanes as usize), vals).map_err(|e| crate::fail(format!("column `{}`: {e}", c.name)))?;
         d.set_item(&c.name, a.into_pyarray(py))?;
     }
     Ok(d)

@@ -32,10 +32,16 @@ impl Stimulus {
 #[pymethods]
 impl Stimulus {
     /// The next `n` records, uint32 shape (n, words).
-    #[pyo3(signature = (n = crate::Int(1)))]
+    #[pyo3(signature = (n = crate::Int(1)), text_signature = "(self, n=1)")]
     fn next<'py>(&mut self, py: Python<'py>, n: crate::Int) -> PyResult<Bound<'py, PyAny>> {
         let n = crate::arg("Stimulus.next: n", n.0, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
         let w = self.s.layout.words32();
+        gbump::limits::check_memory(
+            &format!("Stimulus.next: {n} records"),
+            n * w as u64 * 4,
+            "take fewer records per call",
+        )
+        .map_err(crate::err)?;
         let mut out = Vec::with_capacity(n as usize * w);
         for _ in 0..n {
             out.extend(self.s.next_record().to_words32(w));
@@ -89,12 +95,29 @@ pub fn vectors<'py>(
     py: Python<'py>,
     h: &GbumpConfig,
     source: &str,
-    seed: u64,
+    seed: Option<u64>,
     shininess: Option<u32>,
     size: Option<(u32, u32)>,
 ) -> PyResult<Bound<'py, PyList>> {
+    use gbump::vectors::choices::{refuse_ignored, refuse_unservable, Asked, Spelling};
     let cfg = &h.cfg;
     let src = Source::parse(source).map_err(crate::err)?;
+    let (asked, spelling) = (
+        Asked {
+            seed: seed.is_some(),
+            shininess,
+            size: size.is_some(),
+            level: false,
+        },
+        Spelling::keywords(source),
+    );
+    refuse_ignored(&src, &asked, &spelling).map_err(crate::err)?;
+    let written = match &src {
+        Source::Exhaustive(u) => u.as_str(),
+        _ => "top",
+    };
+    refuse_unservable(cfg, &[written], &asked, &spelling).map_err(crate::err)?;
+    let seed = seed.unwrap_or(1);
     let n = shininess.unwrap_or(cfg.shininess);
     let top_w = gbump::vectors::targets::top_layout(cfg).words32();
     let out = PyList::empty(py);
@@ -102,12 +125,14 @@ pub fn vectors<'py>(
         Source::Random(count) => {
             crate::arrays::check_records("random:N", *count, 1)?;
             let count = *count;
+            crate::arrays::plan(h, h.target("top").map_err(crate::err)?, "vectors", count)?;
+            // A chunk's stimuli at a time: held all at once they took several times the records' memory.
             let words = crate::detach(py, || {
-                let chunks: Vec<Vec<TopStim>> = (0..count.div_ceil(RANDOM_CHUNK))
+                let chunks: Vec<Vec<u32>> = (0..count.div_ceil(RANDOM_CHUNK))
                     .into_par_iter()
-                    .map(|c| random_chunk(cfg, seed, c, count))
+                    .map(|c| top_words(cfg, &random_chunk(cfg, seed, c, count), n, None))
                     .collect();
-                top_words(cfg, &chunks.concat(), n, None)
+                chunks.concat()
             });
             out.append(set(py, &src.stem(), "top", n, words, top_w, None)?)?;
         }

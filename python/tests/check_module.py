@@ -212,6 +212,69 @@ check(
 )
 check(raises(lambda: model.stimulus(1).next(-1), f"0..={2**24}"), "a negative count names the batch limit")
 check(raises(lambda: model.vectors("random:0"), "1..="), "random:0 names the range it takes")
+# A choice the source ignores, or a shininess the hardware cannot hold, is refused as
+# `gbump vectors` refuses it (a set made without it would pass for what was asked).
+check(raises(lambda: model.vectors("corners", seed=3), "seed=", "fix:"), "a seed of a corner set is refused")
+check(raises(lambda: model.vectors("random:5", size=(8, 8)), "size=", "fix:"), "a size of a random set is refused")
+check(raises(lambda: model.vectors("scene:blend_split", shininess=40), "shininess=", "fix:"), "a scene's shininess is refused")
+rom_top = gbump.Config(model.toml + "power_rom = true\n", "rom.toml")
+other = rom_top.shininess + 1
+check(raises(lambda: rom_top.vectors("random:5", shininess=other), "ROM holding", "fix:"), "a ROM top's set of another shininess is refused")
+check(raises(lambda: rom_top.rom("power_table", shininess=other), "ROM holding", "fix:"), "a ROM top's table of another shininess is refused")
+check(rom_top.vectors("random:5", shininess=rom_top.shininess)[0]["shininess"] == rom_top.shininess, "a ROM top's own shininess is served")
+# Changing the model while another thread's call holds it is a GbumpError naming the cause.
+import threading
+
+busy = model.stimulus(seed=9).next(200000)
+done = threading.Event()
+
+
+def evals():
+    for _ in range(30):
+        model.eval("top", busy)
+    done.set()
+
+
+worker = threading.Thread(target=evals)
+worker.start()
+refused, other_errors = 0, []
+while not done.is_set():
+    try:
+        model.shininess = model.shininess
+    except gbump.GbumpError as e:
+        refused += "another thread" in str(e) and "fix:" in str(e)
+    except Exception as e:
+        other_errors.append(repr(e))
+worker.join()
+check(refused > 0 and not other_errors, f"a table load during another thread's eval is a GbumpError ({refused} refused, others {other_errors[:1]})")
+# A batch that would not fit in memory is refused before it is allocated: the process lives.
+code = f"""
+import resource, gbump, numpy as np
+with open("/proc/self/status") as f:
+    vm = next(int(l.split()[1]) for l in f if l.startswith("VmSize:")) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + (1 << 30), resource.RLIM_INFINITY))
+m = gbump.Config({model.toml!r}, "plan.toml")
+recs = np.zeros((1 << 23, m.record_words("top")), np.uint32)
+try:
+    m.unpack("top", recs)
+except gbump.GbumpError as e:
+    print("refused:", e)
+"""
+planned = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+check(planned.returncode == 0 and "ulimit -v" in planned.stdout and "fix:" in planned.stdout, f"a batch past the memory budget is refused: {planned.stdout}{planned.stderr[-400:]}")
+# An EMBM scene set lights each object with its own maps: loaded with set_env_map, eval gives
+# back every record of the set; refused loads name the fix and change nothing.
+embm_toml = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "configs", "embm.toml")
+embm = gbump.Config.load(embm_toml)
+for g in embm.vectors("scene:cg_wall_floor", size=(24, 24)):
+    blank = cleared(embm, "top", g["records"])
+    embm.set_env_map("diffuse", g["env_diffuse"])
+    embm.set_env_map("specular", g["env_specular"])
+    check(np.array_equal(embm.eval("top", blank), g["records"]), f"{g['name']} evaluates with its own maps")
+    check(raises(lambda: embm.set_env_map("diffuse", g["env_diffuse"][:-1]), "words, not the", "fix:"), "a short map is refused")
+    check(raises(lambda: embm.set_env_map("specular", [1 << 40] * len(g["env_diffuse"])), "wider than a texel", "fix:"), "a wide texel is refused")
+    check(np.array_equal(embm.eval("top", blank), g["records"]), "a refused load leaves the maps as they were")
+check(raises(lambda: model.set_env_map("diffuse", [0]), "not EMBM", "fix:"), "maps on a configuration without them are refused")
 # A child of os.fork() evaluates a large batch after its parent ran one (the parent's pool
 # threads are not in the child; the module makes the child a pool of its own).
 many = model.stimulus(seed=5).next(5000)

@@ -6,7 +6,8 @@
 //! `chandle`, `const char *` to `string`, `int32_t` to `int`, 64-bit integers to `longint`,
 //! a record buffer (`const uint32_t *` / `uint32_t *`) to an input / output
 //! `bit [GBUMP_MAX_BITS-1:0]` (`svBitVecVal *`, 32-bit words LSB first), `int32_t *` to
-//! `output int`. Functions named `*_batch` take arrays of records and are C-only.
+//! `output int`. Functions named `*_batch` take arrays of records, and those taking a
+//! `const uint64_t *` arrays of words: they are C-only.
 
 use crate::error::{Error, Result};
 
@@ -157,9 +158,10 @@ fn sv_type(c: &str, arg: bool) -> Option<String> {
 /// "" before any failure).
 const NEVER_NULL: &[&str] = &["gbump_version", "gbump_source", "gbump_last_error"];
 
-/// Whether `f` is declared in the package (array functions are C-only).
+/// Whether `f` is declared in the package: functions of arrays (of records, `*_batch`, or of
+/// 64-bit words) are C-only; a testbench takes them an element at a time.
 pub fn is_dpi(f: &CFn) -> bool {
-    !f.name.ends_with("_batch")
+    !f.name.ends_with("_batch") && !f.args.iter().any(|(t, _)| t == "const uint64_t *")
 }
 
 /// The package text for the functions of `header`.

@@ -413,6 +413,7 @@ unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, r
         if count == 0 {
             return Ok(0);
         }
+        h.plan_batch(t, count, what)?;
         let total = n * count as usize;
         // Copied first, so `rec_out` may alias `rec_in`.
         let input = words(rec_in, total, "rec_in")?.to_vec();
@@ -433,6 +434,54 @@ unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, r
 pub unsafe extern "C" fn gbump_set_shininess(h: *mut GbumpConfig, n: i32) -> i32 {
     guard("gbump_set_shininess", -1, || {
         handle_mut(h, "config handle")?.set_shininess(n.into())?;
+        Ok(0)
+    })
+}
+
+/// Load environment map `which` ("diffuse" or "specular") of an EMBM configuration into the
+/// model, as the top's `env_<which>_we`/`_wdata` port would: `count` words, the map's n x n
+/// texels (n = 2^env_map_bits), texel (x, y) at word y*n + x, {B, G, R} of colour_bits each, R
+/// lowest; what `gbump rom` and an EMBM scene set's map files hold (its manifest's
+/// `env_maps`). A scene's objects each light with their own maps: load a set's before
+/// evaluating its records. The handle powers up with the maps random and corner sets use.
+/// Refused (-1) for a configuration without maps, another count, or a word wider than a
+/// texel; the map is then unchanged.
+///
+/// # Safety
+/// `h` is a live handle, not in use by another thread; `words` points to `count` words.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_set_env_map(h: *mut GbumpConfig, which: *const c_char, words: *const u64, count: i64) -> i32 {
+    guard("gbump_set_env_map", -1, || {
+        let h = handle_mut(h, "config handle")?;
+        let which = name_arg(which, "which")?;
+        let count = usize::try_from(count)
+            .ok()
+            .filter(|&c| c as u64 <= crate::limits::MAX_BATCH_RECORDS)
+            .ok_or_else(|| {
+                Error::Other(format!(
+                    "count {count}: out of range\n  fix: pass the map's word count, 2^(2*env_map_bits)"
+                ))
+            })?;
+        let w = super::guard::words(words, count, "words")?.to_vec();
+        h.set_env_map(which, &w)?;
+        Ok(0)
+    })
+}
+
+/// Write texel `index` (0..n*n-1, texel (x, y) at y*n + x) of environment map `which`
+/// ("diffuse" or "specular") of an EMBM configuration: one write of the top's
+/// `env_<which>_we`/`_waddr`/`_wdata` port, `word` its `{B, G, R}` data word (R lowest), as
+/// `gbump_set_env_map` takes a whole map a word at a time (and the DPI-C package can call).
+/// Refused (-1) for a configuration without maps, an index outside the map or a word wider
+/// than a texel; the map is then unchanged.
+///
+/// # Safety
+/// `h` is a live handle, not in use by another thread.
+#[no_mangle]
+pub unsafe extern "C" fn gbump_set_env_texel(h: *mut GbumpConfig, which: *const c_char, index: i32, word: u64) -> i32 {
+    guard("gbump_set_env_texel", -1, || {
+        let h = handle_mut(h, "config handle")?;
+        h.set_env_texel(name_arg(which, "which")?, index.into(), word)?;
         Ok(0)
     })
 }

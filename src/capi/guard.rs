@@ -144,13 +144,14 @@ pub unsafe fn handle_mut<'a, T>(p: *mut T, arg: &str) -> Result<&'a mut T> {
     })
 }
 
-/// A record buffer argument of `n` 32-bit words.
+/// A buffer argument of `n` words: a record's 32-bit ones, a map's 64-bit ones.
 ///
 /// # Safety
 /// `p` is null or points to at least `n` readable words.
-pub unsafe fn words<'a>(p: *const u32, n: usize, arg: &str) -> Result<&'a [u32]> {
+pub unsafe fn words<'a, T>(p: *const T, n: usize, arg: &str) -> Result<&'a [T]> {
     if p.is_null() {
-        return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a buffer of {n} 32-bit words")));
+        let bits = 8 * std::mem::size_of::<T>();
+        return Err(Error::Other(format!("{arg} is NULL\n  fix: pass a buffer of {n} {bits}-bit words")));
     }
     Ok(std::slice::from_raw_parts(p, n))
 }

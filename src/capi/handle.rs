@@ -93,6 +93,8 @@ impl GbumpConfig {
 
     /// The target called `name`, or an error listing the ones there are.
     pub fn target(&self, name: &str) -> Result<&Target> {
+        // Quoted in the message below: a control character would break its line.
+        super::guard::one_line_arg(name, "target", "pass the name alone, as gbump_target_name gives it")?;
         self.targets.iter().find(|t| t.name == name).ok_or_else(|| {
             let names: Vec<&str> = self.targets.iter().map(|t| t.name).collect();
             Error::Other(format!(
@@ -120,6 +122,80 @@ impl GbumpConfig {
         self.mem.table = PowerTable::build(&self.cfg, n as u32);
         self.fast = crate::model::FastModel::of(&self.cfg, &self.mem.view());
         Ok(())
+    }
+
+    /// Refuse a batch of `count` records of `t` that would not fit in memory
+    /// (`limits::memory_budget`): a failed allocation aborts the caller's whole process.
+    /// Counted per record, the most any call holds at once: the input's copy and the output
+    /// (32-bit words), a record of 64-bit words, and every lane as a 64-bit value (Python's
+    /// per-field arrays).
+    pub fn plan_batch(&self, t: &Target, count: u64, what: &str) -> Result<()> {
+        let lanes: u64 = t.layout.columns.iter().map(|c| c.lanes as u64).sum();
+        let per = 8 * t.layout.words32() as u64 + 8 * t.layout.bits.div_ceil(64) as u64 + 48 + 8 * lanes;
+        crate::limits::check_memory(
+            &format!("{what}: {count} `{}` records", t.name),
+            count.saturating_mul(per),
+            "pass fewer records per call (split the batch), or free memory",
+        )
+    }
+
+    /// Load environment map `which` ("diffuse" or "specular") from its RAM words, as the top's
+    /// `env_<which>_we`/`_wdata` port would (`model::env_map::word_layout`): an EMBM scene
+    /// set's objects each light with their own maps (its manifest's `env_maps`, the Python
+    /// module's `env_diffuse`/`env_specular`), the power-up maps being the random and corner
+    /// sets'. Refused, the map unchanged, where the configuration has none or a word does not
+    /// fit.
+    pub fn set_env_map(&mut self, which: &str, words: &[u64]) -> Result<()> {
+        let specular = self.env_map_named(which)?;
+        let what = format!("env map `{which}`");
+        let texels = crate::model::env_map::texels_of_words(&self.cfg, words, &what)?;
+        for (i, t) in texels.iter().enumerate() {
+            self.fast.set_env_texel(specular, i, *t);
+        }
+        *self.env_map_mut(specular) = texels;
+        Ok(())
+    }
+
+    /// Write texel `index` of environment map `which`, as one write of the top's
+    /// `env_<which>_we`/`_waddr`/`_wdata` port: `word` is the texel's RAM word.
+    pub fn set_env_texel(&mut self, which: &str, index: i64, word: u64) -> Result<()> {
+        let specular = self.env_map_named(which)?;
+        let n = self.env_map_mut(specular).len();
+        let i = usize::try_from(index).ok().filter(|&i| i < n).ok_or_else(|| {
+            Error::Other(format!(
+                "env map `{which}`: texel {index} is outside the map's 0..={}\n  fix: {}",
+                n - 1,
+                crate::model::env_map::word_layout(&self.cfg)
+            ))
+        })?;
+        let texel = crate::model::env_map::texel_of_word(&self.cfg, word, &format!("env map `{which}`: texel {index}'s word"))?;
+        self.env_map_mut(specular)[i] = texel;
+        self.fast.set_env_texel(specular, i, texel);
+        Ok(())
+    }
+
+    /// Whether map `which` is the specular one; refused for another name or a configuration
+    /// without maps.
+    fn env_map_named(&self, which: &str) -> Result<bool> {
+        if !self.cfg.embm() {
+            return Err(Error::Other(
+                "env map: this configuration has none (env_map_bits = 0: it is not EMBM)\n  fix: load maps into an EMBM configuration (env_map_bits > 0)".into(),
+            ));
+        }
+        match which {
+            "diffuse" => Ok(false),
+            "specular" => Ok(true),
+            _ => Err(Error::Other(format!(
+                "env map `{which}`: no such map\n  fix: \"diffuse\" or \"specular\""
+            ))),
+        }
+    }
+
+    fn env_map_mut(&mut self, specular: bool) -> &mut Vec<[u32; 3]> {
+        match specular {
+            true => &mut self.mem.env.specular,
+            false => &mut self.mem.env.diffuse,
+        }
     }
 
     /// Evaluate one record of `t`: the stimulus columns of `input` are read, and the whole

@@ -38,6 +38,52 @@ pub struct EnvSample {
     pub w: [i64; 4],
 }
 
+/// The RAM word layout of an environment map, as `gbump rom` writes it and the top's
+/// `env_<which>_wdata` port takes it (`rtlgen::rom::env_map_rom`), for messages.
+pub fn word_layout(cfg: &PipelineConfig) -> String {
+    let (cb, n) = (cfg.colour_bits, cfg.env_map_side());
+    format!(
+        "{} words of {} bits, texel (x, y) at word y*{n} + x, {{B, G, R}} of {cb} bits each, R lowest",
+        n * n,
+        3 * cb
+    )
+}
+
+/// One texel from its RAM word (R in the lowest `colour_bits`), or an error when the word is
+/// wider than the three channels; `what` names the word in it.
+pub fn texel_of_word(cfg: &PipelineConfig, w: u64, what: &str) -> crate::error::Result<[u32; 3]> {
+    let cb = cfg.colour_bits;
+    if w >> (3 * cb) != 0 {
+        return Err(crate::error::Error::Other(format!(
+            "{what} is {w:#x}, wider than a texel's {} bits\n  fix: {}",
+            3 * cb,
+            word_layout(cfg)
+        )));
+    }
+    let mask = (1u64 << cb) - 1;
+    Ok([0, 1, 2].map(|c| ((w >> (c * cb)) & mask) as u32))
+}
+
+/// The texels of one environment map from its RAM words ([`word_layout`]): exactly n² words,
+/// none wider than a texel. `what` names the words' source in an error.
+pub fn texels_of_words(cfg: &PipelineConfig, words: &[u64], what: &str) -> crate::error::Result<Vec<[u32; 3]>> {
+    let n = cfg.env_map_side() as usize;
+    if words.len() != n * n {
+        return Err(crate::error::Error::Other(format!(
+            "{what}: {} words, not the {n}x{n} map's {}\n  fix: give the whole map: {} (env_map_bits = {})",
+            words.len(),
+            n * n,
+            word_layout(cfg),
+            cfg.env_map_bits
+        )));
+    }
+    words
+        .iter()
+        .enumerate()
+        .map(|(i, &w)| texel_of_word(cfg, w, &format!("{what}: word {i}")))
+        .collect()
+}
+
 /// The two environment maps, texel (x, y) at `y·n + x`: colour codes R, G, B.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct EnvMaps {

@@ -25,24 +25,8 @@ pub fn rom_files(
     cube: Option<usize>,
     out: &Path,
 ) -> Result<Vec<(String, String)>> {
-    use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
     use crate::rtlgen::rom::{cube_map_rom, default_palette, palette_rom, power_rom, rom_header, write, RomFormat, DEFAULT_PALETTE};
-    let n = shininess.unwrap_or(cfg.shininess);
-    check_count("--shininess", n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
-    if let Some(fixed) = cfg.fixed_shininess().filter(|_| n != cfg.shininess) {
-        return Err(fixed.refuse_flag(n));
-    }
-    let cube = match (cube, cfg.cube_map_face as usize) {
-        (Some(c), face) if face != 0 && c != face => {
-            return Err(crate::error::Error::Other(format!(
-                "--cube-size {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop --cube-size (the map is the configuration's), or give a configuration whose cube_map_face is the size you want"
-            )))
-        }
-        (Some(c), _) => c,
-        (None, 0) => DEFAULT_CUBE,
-        (None, face) => face,
-    };
-    check_count("--cube-size", cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    let (n, cube) = rom_choices(cfg, shininess, cube, ["--shininess", "--cube-size"])?;
     let hash = &cfg.hash()[..8];
     // A scene's palette is its first object's, as a palette configuration would store its map
     // (`palette` forced on); each object's bump map as the texture memory holds it, and
@@ -132,6 +116,33 @@ pub fn rom_files(
         }
     }
     Ok(files)
+}
+
+/// The shininess and cube-map size a ROM request comes to, whoever asks (`gbump rom`, the
+/// Python module's `Config.rom`): `shininess` (default the configuration's) must be one its
+/// hardware serves, `cube` (default the configuration's `cube_map_face`, else
+/// [`DEFAULT_CUBE`]) the map its `normalise_cube` unit reads. `names` spells the two choices
+/// as the caller does (`--shininess` and `--cube-size`, or `shininess=` and `cube_size=`).
+pub fn rom_choices(cfg: &PipelineConfig, shininess: Option<u32>, cube: Option<usize>, names: [&str; 2]) -> Result<(u32, usize)> {
+    use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
+    let [sn, cn] = names;
+    let n = shininess.unwrap_or(cfg.shininess);
+    check_count(sn, n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
+    if let Some(fixed) = cfg.fixed_shininess().filter(|_| n != cfg.shininess) {
+        return Err(fixed.refuse(sn, n));
+    }
+    let cube = match (cube, cfg.cube_map_face as usize) {
+        (Some(c), face) if face != 0 && c != face => {
+            return Err(crate::error::Error::Other(format!(
+                "{cn} {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop {cn} (the map is the configuration's), or give a configuration whose cube_map_face is the size you want"
+            )))
+        }
+        (Some(c), _) => c,
+        (None, 0) => DEFAULT_CUBE,
+        (None, face) => face,
+    };
+    check_count(cn, cube as u64, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE")?;
+    Ok((n, cube))
 }
 
 /// The files of an earlier `gbump rom --scene` into `out` that this one's `files` leave out:

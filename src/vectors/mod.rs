@@ -4,6 +4,7 @@
 //! column layout, sha256 of every file). Seeded and deterministic: the same command gives the
 //! same bytes.
 
+pub mod choices;
 pub mod digest;
 pub mod layout;
 pub mod manifest;

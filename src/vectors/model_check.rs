@@ -27,10 +27,10 @@ pub fn check_expected(m: &Manifest, dir: &Path, regen: &str) -> Result<super::di
     let mut mem = MemoryContents::new(cfg, m.shininess);
     if let Some(e) = &m.env_maps {
         if let Some(f) = &e.diffuse {
-            mem.env.diffuse = env_map(&dir.join(&f.name), cfg.colour_bits)?;
+            mem.env.diffuse = env_map(&dir.join(&f.name), cfg)?;
         }
         if let Some(f) = &e.specular {
-            mem.env.specular = env_map(&dir.join(&f.name), cfg.colour_bits)?;
+            mem.env.specular = env_map(&dir.join(&f.name), cfg)?;
         }
     }
     let view = mem.view();
@@ -133,13 +133,9 @@ fn read_records(m: &Manifest, dir: &Path, layout: &Layout) -> Result<Vec<Record>
 
 /// An environment map file's texels: one {B, G, R} word a line after its `//` header, R in
 /// the low `colour_bits`.
-fn env_map(p: &Path, colour_bits: u32) -> Result<Vec<[u32; 3]>> {
+fn env_map(p: &Path, cfg: &crate::config::PipelineConfig) -> Result<Vec<[u32; 3]>> {
     let text = std::fs::read_to_string(p).map_err(|e| Error::io(p, e))?;
-    let mask = (1u64 << colour_bits) - 1;
     let words = crate::rtlgen::rom::parse(&text, crate::rtlgen::rom::RomFormat::Hex)
         .map_err(|e| Error::Other(format!("{}: {e}: not a texel word", p.display())))?;
-    Ok(words
-        .into_iter()
-        .map(|v| [0, 1, 2].map(|i| ((v >> (i * colour_bits)) & mask) as u32))
-        .collect())
+    crate::model::env_map::texels_of_words(cfg, &words, &p.display().to_string())
 }
