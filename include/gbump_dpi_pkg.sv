@@ -2,7 +2,7 @@
 // Regenerate: cargo run --release -j 1 --example capi_header
 // SystemVerilog DPI-C declarations of the gbump golden model (include/gbump.h); link
 // libgbump (Verilator: -LDFLAGS /path/to/libgbump.so; Icarus has no DPI-C). Records are
-// packed LSB first, as in the vector files; C-only functions (arrays of records): gbump_eval_batch gbump_set_env_map
+// packed LSB first, as in the vector files; C-only functions (arrays of records or words): gbump_eval_batch gbump_set_env_map
 // A string that fails is "" here (NULL in C), and a record output is zero above the
 // record: those functions bind the library's gbump_dpi_* symbols, not in the C header. A C++
 // file that includes gbump.h must not also include Verilator's V*__Dpi.h (the two declare

@@ -66,10 +66,11 @@ impl FixedShininess {
     /// The refusal of `--shininess n` for another shininess than the one the hardware serves.
     /// `choice` is how the caller spells it: `--shininess`, `shininess=`.
     pub fn refuse(&self, choice: &str, n: u32) -> Error {
-        let sep = if choice.ends_with('=') { "" } else { " " };
         Error::Other(format!(
-            "{choice}{sep}{n}: the configuration's {}\n  fix: drop {choice}, or use a configuration with {}",
-            self.what, self.release
+            "{}: the configuration's {}\n  fix: drop {choice}, or use a configuration with {}",
+            crate::names::choice(choice, n),
+            self.what,
+            self.release
         ))
     }
 }

@@ -57,3 +57,12 @@ mod tests {
         }
     }
 }
+
+/// A choice and its value as the caller spells them: `--shininess 40` on the command line,
+/// `shininess=40` for a keyword argument.
+pub fn choice(name: &str, value: impl std::fmt::Display) -> String {
+    match name.ends_with('=') {
+        true => format!("{name}{value}"),
+        false => format!("{name} {value}"),
+    }
+}

@@ -757,6 +757,24 @@ fn an_embm_scene_set_evaluates_with_its_own_maps() {
     let one = [0u64];
     assert_eq!(unsafe { gbump_set_env_map(d, c("diffuse").as_ptr(), one.as_ptr(), 1) }, -1);
     assert!(s(gbump_last_error()).contains("not EMBM"));
+    // A map the top has no port for (no specular blend) is refused, not loaded unseen.
+    let toml = std::fs::read_to_string(&path).unwrap() + "specular = false\n";
+    let diffuse_only = unsafe { gbump_config_from_toml(c(&toml).as_ptr(), c("embm_diffuse_only.toml").as_ptr()) };
+    assert!(!diffuse_only.is_null(), "{}", s(gbump_last_error()));
+    unsafe {
+        assert_eq!(gbump_set_env_texel(diffuse_only, c("specular").as_ptr(), 0, 1), -1);
+        assert!(s(gbump_last_error()).contains("has no such map"), "{}", s(gbump_last_error()));
+        assert_eq!(gbump_set_env_texel(diffuse_only, c("diffuse").as_ptr(), 0, 1), 0);
+        // A count of bytes, not words, is refused before a word is read.
+        let words = vec![0u64; 256];
+        assert_eq!(gbump_set_env_map(diffuse_only, c("diffuse").as_ptr(), words.as_ptr(), 8 * 256), -1);
+        assert!(
+            s(gbump_last_error()).contains("2048 words, not the 16x16 map's 256"),
+            "{}",
+            s(gbump_last_error())
+        );
+        gbump_config_free(diffuse_only);
+    }
     unsafe {
         gbump_config_free(h);
         gbump_config_free(fresh);

@@ -150,8 +150,8 @@ fn rom_files(
 }
 
 /// `gbump rom` writes what the configuration's hardware reads and refuses what it cannot:
-/// no power table for a squaring unit, the configuration's own shininess for a power ROM or
-/// squaring unit, its own cube map size.
+/// no power table for a squaring unit or EMBM (whose maps it writes), the configuration's own
+/// shininess for a power ROM or squaring unit, none under EMBM, its own cube map size.
 #[test]
 fn rom_files_follow_the_configurations_memories() {
     use gbump::config::PowerUnitKind;
@@ -206,6 +206,48 @@ fn rom_files_follow_the_configurations_memories() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("cube_map_face = 16") && e.contains("fix:"), "{e}");
+    // EMBM reads no power table: its maps instead, one per blend it has (the power-up maps,
+    // or each object's of a scene, the words `gbump rtl`'s init files and a scene set's map
+    // files hold), and a shininess is refused.
+    let embm = PipelineConfig::load(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/configs/embm.toml"))).unwrap();
+    let no_specular = PipelineConfig {
+        specular: false,
+        ..embm.clone()
+    };
+    no_specular.validate("t").unwrap();
+    let maps = gbump::model::env_map::default_maps(&embm);
+    for (cfg, have) in [(&embm, vec!["diffuse", "specular"]), (&no_specular, vec!["diffuse"])] {
+        let files = gbump::rtlgen::rom_files::rom_files(cfg, None, "", None, None, Path::new("rom")).unwrap();
+        assert!(!files.iter().any(|f| f.0.starts_with("power_table")), "EMBM reads no power table");
+        for which in ["diffuse", "specular"] {
+            let name = format!("env_{which}_default_{}.hex", &cfg.hash()[..8]);
+            let file = files.iter().find(|f| f.0 == name);
+            assert_eq!(file.is_some(), have.contains(&which), "{name}");
+            if let Some((_, text)) = file {
+                let map = if which == "diffuse" { &maps.diffuse } else { &maps.specular };
+                let words = parse(text, RomFormat::Hex).unwrap();
+                let texels = gbump::model::env_map::texels_of_words(cfg, &words, &name).unwrap();
+                assert!(&texels == map, "{name}: not the power-up map");
+            }
+        }
+        let e = rom_files(cfg, &pick, Some(8), 32, Path::new("rom")).unwrap_err().to_string();
+        assert!(e.contains("--shininess 8: EMBM has no power unit") && e.contains("fix:"), "{e}");
+    }
+    // A scene's objects each with their own maps: the maps its vector sets carry.
+    let scene = gbump::rtlgen::rom_files::rom_files(&embm, Some("cg_wall_floor"), "", None, None, Path::new("rom")).unwrap();
+    let wall = gbump::scene::Scene::load("cg_wall_floor").unwrap();
+    let prepared = gbump::raster::Prepared::new(&wall, &embm, 1, 1).unwrap();
+    for (i, o) in prepared.objects.iter().enumerate() {
+        for (which, map) in [("diffuse", &o.env.diffuse), ("specular", &o.env.specular)] {
+            let name = format!("env_{which}_cg_wall_floor_o{i}_{}.hex", &embm.hash()[..8]);
+            let (_, text) = scene.iter().find(|f| f.0 == name).unwrap_or_else(|| panic!("no {name}"));
+            let words = parse(text, RomFormat::Hex).unwrap();
+            assert!(
+                &gbump::model::env_map::texels_of_words(&embm, &words, &name).unwrap() == map,
+                "{name}"
+            );
+        }
+    }
 }
 
 /// `gbump rom --scene` writes each object's bump map as the texture memory holds it, with the

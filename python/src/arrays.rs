@@ -16,16 +16,24 @@ pub struct Records {
 }
 
 /// The records of `a`, each `words` words of a `target` record.
-pub fn records_in(a: &Bound<'_, PyAny>, h: &GbumpConfig, t: &Target) -> PyResult<Records> {
+/// `per_record` is what the caller will hold per record while it runs, its copy of the input
+/// among it ([`plan`]).
+pub fn records_in(a: &Bound<'_, PyAny>, h: &GbumpConfig, t: &Target, per_record: u64) -> PyResult<Records> {
     let (words, target) = (t.layout.words32(), t.name);
     let arr: PyReadonlyArrayDyn<'_, u32> = a.extract().map_err(|_| {
         // What was given, as numpy names it (a list, a float or int64 array, a uint32 array
         // in the other byte order all land here): a GbumpError like every other bad input.
         let kind = a.get_type().name().map_or("value".into(), |n| n.to_string());
+        // A numpy scalar has a dtype too, but is no array (an ndarray subclass is one).
+        let scalar = a
+            .py()
+            .import("numpy")
+            .and_then(|np| np.getattr("generic"))
+            .and_then(|g| a.is_instance(&g))
+            .unwrap_or(false);
         let given = match a.getattr("dtype").and_then(|d| d.str()) {
-            Ok(d) if kind == "ndarray" => format!("dtype {d}"),
-            // A numpy scalar has a dtype too, but is no array.
-            Ok(d) => format!("a numpy scalar ({kind}, dtype {d})"),
+            Ok(d) if scalar => format!("a numpy scalar ({kind}, dtype {d})"),
+            Ok(d) => format!("dtype {d}"),
             Err(_) => format!("a {kind}"),
         };
         crate::fail(format!(
@@ -43,7 +51,7 @@ pub fn records_in(a: &Bound<'_, PyAny>, h: &GbumpConfig, t: &Target) -> PyResult
         }
     };
     check_batch("records", count as u64)?;
-    plan(h, t, "records", count as u64)?;
+    plan(h, t, "records", count as u64, per_record)?;
     let mut words = with_room(count * words, "records")?;
     words.extend(arr.as_array().iter().copied());
     Ok(Records { words, count, single })
@@ -70,10 +78,21 @@ pub fn check_records(what: &str, n: u64, lo: u64) -> PyResult<()> {
     check_count(what, n, lo, MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS").map_err(crate::err)
 }
 
-/// Refuse `count` records of `t` that would not fit in memory (`GbumpConfig::plan_batch`): an
-/// allocation that fails aborts the Python process, where this raises a `GbumpError`.
-pub fn plan(h: &GbumpConfig, t: &Target, what: &str, count: u64) -> PyResult<()> {
-    h.plan_batch(t, count, what).map_err(crate::err)
+/// Refuse `count` records of `t` holding `per_record` bytes each that would not fit in memory
+/// (`GbumpConfig::plan_batch`): an allocation that fails aborts the Python process, where
+/// this raises a `GbumpError`.
+pub fn plan(h: &GbumpConfig, t: &Target, what: &str, count: u64, per_record: u64) -> PyResult<()> {
+    h.plan_batch(t, count, per_record, what).map_err(crate::err)
+}
+
+/// Bytes of one record of `t` as 32-bit words (a copy in or out of the library).
+pub fn words_bytes(t: &Target) -> u64 {
+    4 * t.layout.words32() as u64
+}
+
+/// Bytes of one record of `t` in the per-field form: every lane an int64.
+pub fn fields_bytes(t: &Target) -> u64 {
+    8 * t.layout.columns.iter().map(|c| c.lanes as u64).sum::<u64>()
 }
 
 /// An empty vector with room for `n` values, or a `GbumpError` where the room cannot be had

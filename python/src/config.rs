@@ -211,7 +211,12 @@ impl Config {
     /// sets use. The words are the map's n x n texels (n = 2^env_map_bits), texel (x, y) at
     /// word y*n + x, {B, G, R} of colour_bits each, R lowest; another count, a word wider than
     /// a texel or a configuration without maps is refused, and the map is then unchanged.
-    fn set_env_map(slf: &Bound<'_, Self>, which: &str, words: Vec<u64>) -> PyResult<()> {
+    fn set_env_map(slf: &Bound<'_, Self>, which: &str, words: Vec<crate::Int>) -> PyResult<()> {
+        let words = words
+            .iter()
+            .enumerate()
+            .map(|(i, w)| crate::arg(&format!("set_env_map: word {i}"), w.0, 0, u64::MAX, ""))
+            .collect::<PyResult<Vec<u64>>>()?;
         exclusive(slf, "set_env_map")?.h.set_env_map(which, &words).map_err(crate::err)
     }
 
@@ -227,8 +232,9 @@ impl Config {
         numpy::PyArray1::from_vec(py, v).into_any()
     }
 
-    /// ROM `name` ("power_table", "bump_palette" or "cube_map") as {name, width, words,
-    /// layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
+    /// ROM `name` ("power_table" where the top reads one, "bump_palette", "cube_map", and
+    /// under EMBM "env_diffuse" and "env_specular" where the top has them, the power-up maps)
+    /// as {name, width, words, layout, params}: the words of the file `gbump rom` writes. `shininess` defaults to the
     /// configuration's own (its TOML field, as `gbump rom` does; not the `shininess`
     /// property, the model's current table), `cube_size` to the configuration's
     /// `cube_map_face`, else gbump rom's 32. A shininess a ROM table or squaring unit does not
@@ -253,15 +259,36 @@ impl Config {
             .map(|c| crate::arg("cube_size", c.0, 1, MAX_CUBE_SIDE.into(), "MAX_CUBE_SIDE").map(|c| c as usize))
             .transpose()?;
         let (n, cube_size) =
-            gbump::rtlgen::rom_files::rom_choices(cfg, shininess, cube_size, ["shininess", "cube_size"]).map_err(crate::err)?;
+            gbump::rtlgen::rom_files::rom_choices(cfg, shininess, cube_size, ["shininess=", "cube_size="]).map_err(crate::err)?;
+        // The ROMs `gbump rom` writes for this configuration, by the names this takes.
+        let envs: Vec<&str> = gbump::rtlgen::top::env_map_memories(cfg).iter().map(|m| m.prefix).collect();
+        let table = gbump::rtlgen::top::power_table_read(cfg);
         let r = match name {
-            "power_table" => rom::power_rom(cfg, n),
+            "power_table" if table => rom::power_rom(cfg, n),
             "bump_palette" => rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE),
             "cube_map" => rom::cube_map_rom(cube_size),
+            _ if envs.contains(&name) => {
+                let maps = gbump::model::env_map::default_maps(cfg);
+                let which = name.trim_start_matches("env_");
+                let map = if which == "specular" { &maps.specular } else { &maps.diffuse };
+                rom::env_map_rom(cfg, map, which, rom::DEFAULT_ENV_MAPS)
+            }
             _ => {
+                let names: Vec<&str> = ["power_table"]
+                    .into_iter()
+                    .filter(|_| table)
+                    .chain(["bump_palette", "cube_map"])
+                    .chain(envs.iter().copied())
+                    .collect();
+                let why = match (name, cfg.power_table_unused()) {
+                    ("power_table", Some(why)) => format!("the top reads no power table ({why})"),
+                    _ => "not a ROM of this configuration".to_string(),
+                };
                 return Err(crate::fail(format!(
-                    "rom `{name}`: unknown\n  fix: one of power_table, bump_palette, cube_map"
-                )))
+                    "rom `{}`: {why}\n  fix: one of {}",
+                    gbump::error::one_line(name),
+                    names.join(", ")
+                )));
             }
         };
         let d = PyDict::new(py);
@@ -338,7 +365,8 @@ impl Config {
     fn eval<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let t = self.h.target(target).map_err(crate::err)?;
         let n = t.layout.words32();
-        let r = records_in(records, &self.h, t)?;
+        // The input's copy and the output.
+        let r = records_in(records, &self.h, t, 2 * crate::arrays::words_bytes(t))?;
         let mut out = crate::arrays::zeros(r.words.len(), "eval")?;
         crate::detach(py, || self.h.eval_words(t, &r.words, &mut out)).map_err(crate::err)?;
         records_out(py, out, n, r.single)
@@ -349,7 +377,7 @@ impl Config {
     /// or (N,) for a one-lane column; each value is checked against its column's format.
     fn pack<'py>(&self, py: Python<'py>, target: &str, fields: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyAny>> {
         let t = self.h.target(target).map_err(crate::err)?;
-        let (_, words) = crate::fields::pack(t, fields)?;
+        let (_, words) = crate::fields::pack(&self.h, t, fields)?;
         records_out(py, words, t.layout.words32(), false)
     }
 
@@ -357,7 +385,8 @@ impl Config {
     /// sign-extended.
     fn unpack<'py>(&self, py: Python<'py>, target: &str, records: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
         let t = self.h.target(target).map_err(crate::err)?;
-        let r = records_in(records, &self.h, t)?;
+        let per = crate::arrays::words_bytes(t) + crate::arrays::fields_bytes(t);
+        let r = records_in(records, &self.h, t, per)?;
         crate::fields::unpack(py, t, &r.words, r.count)
     }
 
@@ -365,8 +394,10 @@ impl Config {
     /// evaluated records).
     fn eval_fields<'py>(&self, py: Python<'py>, target: &str, fields: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
         let t = self.h.target(target).map_err(crate::err)?;
-        let (count, words) = crate::fields::pack(t, fields)?;
-        crate::arrays::plan(&self.h, t, "eval_fields", count as u64)?;
+        let (count, words) = crate::fields::pack(&self.h, t, fields)?;
+        // The packed input, the output and its per-field form, beside the fields given.
+        let per = 2 * crate::arrays::words_bytes(t) + crate::arrays::fields_bytes(t);
+        crate::arrays::plan(&self.h, t, "eval_fields", count as u64, per)?;
         let mut out = crate::arrays::zeros(words.len(), "eval_fields")?;
         crate::detach(py, || self.h.eval_words(t, &words, &mut out)).map_err(crate::err)?;
         crate::fields::unpack(py, t, &out, count)

@@ -3,7 +3,7 @@
 //! files' (lane 0 in the low bits). Packing checks every value against its column's format, so
 //! a value out of range is an error naming the column, record and lane, never masked.
 
-use gbump::capi::Target;
+use gbump::capi::{GbumpConfig, Target};
 use gbump::vectors::layout::{Column, Record};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -59,12 +59,14 @@ fn column_values(v: &Bound<'_, PyAny>, c: &Column) -> PyResult<(usize, Vec<i64>)
             )))
         }
     };
-    Ok((n, arr.as_array().iter().copied().collect()))
+    let mut vals = crate::arrays::with_room(n * c.lanes as usize, &format!("column `{}`", c.name))?;
+    vals.extend(arr.as_array().iter().copied());
+    Ok((n, vals))
 }
 
 /// Pack `fields` into `t`'s records: every stimulus column must be given, expected columns
 /// may be (zero otherwise), and no other name is accepted.
-pub fn pack(t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>)> {
+pub fn pack(h: &GbumpConfig, t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>)> {
     let cols = &t.layout.columns;
     for k in fields.keys() {
         let k: String = k.extract()?;
@@ -89,6 +91,17 @@ pub fn pack(t: &Target, fields: &Bound<'_, PyDict>) -> PyResult<(usize, Vec<u32>
             }
             continue;
         };
+        // Planned once the count is known, before the first column is copied.
+        if count.is_none() {
+            let n = v
+                .py()
+                .import("numpy")?
+                .call_method1("shape", (&v,))?
+                .get_item(0)
+                .and_then(|n| n.extract::<u64>())
+                .unwrap_or(0);
+            crate::arrays::plan(h, t, "pack", n, crate::arrays::fields_bytes(t) + 4 * t.layout.words32() as u64)?;
+        }
         let (n, vals) = column_values(&v, c)?;
         match count {
             Some(m) if m != n => {

@@ -36,12 +36,11 @@ impl Stimulus {
     fn next<'py>(&mut self, py: Python<'py>, n: crate::Int) -> PyResult<Bound<'py, PyAny>> {
         let n = crate::arg("Stimulus.next: n", n.0, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
         let w = self.s.layout.words32();
-        gbump::limits::check_memory(
-            &format!("Stimulus.next: {n} records"),
-            n * w as u64 * 4,
-            "take fewer records per call",
-        )
-        .map_err(crate::err)?;
+        let bytes = n * w as u64 * 4;
+        if bytes >= gbump::capi::PLAN_FREE_BYTES {
+            gbump::limits::check_memory(&format!("Stimulus.next: {n} records"), bytes, "take fewer records per call")
+                .map_err(crate::err)?;
+        }
         let mut out = Vec::with_capacity(n as usize * w);
         for _ in 0..n {
             out.extend(self.s.next_record().to_words32(w));
@@ -113,7 +112,8 @@ pub fn vectors<'py>(
     );
     refuse_ignored(&src, &asked, &spelling).map_err(crate::err)?;
     let written = match &src {
-        Source::Exhaustive(u) => u.as_str(),
+        // The unit must exist before its shininess is judged (as `gbump vectors` does).
+        Source::Exhaustive(u) => h.target(u).map_err(crate::err)?.name,
         _ => "top",
     };
     refuse_unservable(cfg, &[written], &asked, &spelling).map_err(crate::err)?;
@@ -125,7 +125,9 @@ pub fn vectors<'py>(
         Source::Random(count) => {
             crate::arrays::check_records("random:N", *count, 1)?;
             let count = *count;
-            crate::arrays::plan(h, h.target("top").map_err(crate::err)?, "vectors", count)?;
+            let top = h.target("top").map_err(crate::err)?;
+            // Each chunk's words, then all of them together.
+            crate::arrays::plan(h, top, "vectors", count, 2 * crate::arrays::words_bytes(top))?;
             // A chunk's stimuli at a time: held all at once they took several times the records' memory.
             let words = crate::detach(py, || {
                 let chunks: Vec<Vec<u32>> = (0..count.div_ceil(RANDOM_CHUNK))

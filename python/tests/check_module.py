@@ -261,7 +261,13 @@ except gbump.GbumpError as e:
     print("refused:", e)
 """
 planned = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
-check(planned.returncode == 0 and "ulimit -v" in planned.stdout and "fix:" in planned.stdout, f"a batch past the memory budget is refused: {planned.stdout}{planned.stderr[-400:]}")
+import re
+
+allowed = re.search(r"more than the ([0-9.]+) GiB allowed", planned.stdout)
+check(
+    planned.returncode == 0 and allowed is not None and float(allowed.group(1)) < 1.0 and "fix:" in planned.stdout,
+    f"a batch past the room `ulimit -v` leaves is refused: {planned.stdout}{planned.stderr[-400:]}",
+)
 # An EMBM scene set lights each object with its own maps: loaded with set_env_map, eval gives
 # back every record of the set; refused loads name the fix and change nothing.
 embm_toml = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "configs", "embm.toml")
@@ -275,6 +281,14 @@ for g in embm.vectors("scene:cg_wall_floor", size=(24, 24)):
     check(raises(lambda: embm.set_env_map("specular", [1 << 40] * len(g["env_diffuse"])), "wider than a texel", "fix:"), "a wide texel is refused")
     check(np.array_equal(embm.eval("top", blank), g["records"]), "a refused load leaves the maps as they were")
 check(raises(lambda: model.set_env_map("diffuse", [0]), "not EMBM", "fix:"), "maps on a configuration without them are refused")
+# `rom` gives what `gbump rom` writes: EMBM's power-up maps, and no table where the top reads none.
+embm_roms = os.path.join(work, "embm_rom")
+subprocess.run([exe, "rom", "--config", embm_toml, "--out", embm_roms], check=True, stdout=subprocess.DEVNULL)
+for which in ["diffuse", "specular"]:
+    name = f"env_{which}_default_{embm.hash[:8]}.hex"
+    check(embm.rom(f"env_{which}")["words"].tolist() == hex_words(os.path.join(embm_roms, name)), f"rom env_{which} is {name}")
+check(raises(lambda: embm.rom("power_table"), "reads no power table", "fix:"), "EMBM's absent power table is refused")
+check(raises(lambda: embm.rom("bump_palette", shininess=3), "shininess=3", "EMBM", "fix:"), "a shininess under EMBM is refused")
 # A child of os.fork() evaluates a large batch after its parent ran one (the parent's pool
 # threads are not in the child; the module makes the child a pool of its own).
 many = model.stimulus(seed=5).next(5000)

@@ -413,7 +413,8 @@ unsafe fn eval_batch(what: &str, h: *const GbumpConfig, target: *const c_char, r
         if count == 0 {
             return Ok(0);
         }
-        h.plan_batch(t, count, what)?;
+        // What the call holds beside the caller's buffers: the input's copy.
+        h.plan_batch(t, count, 4 * n as u64, "batch")?;
         let total = n * count as usize;
         // Copied first, so `rec_out` may alias `rec_in`.
         let input = words(rec_in, total, "rec_in")?.to_vec();
@@ -453,17 +454,11 @@ pub unsafe extern "C" fn gbump_set_shininess(h: *mut GbumpConfig, n: i32) -> i32
 pub unsafe extern "C" fn gbump_set_env_map(h: *mut GbumpConfig, which: *const c_char, words: *const u64, count: i64) -> i32 {
     guard("gbump_set_env_map", -1, || {
         let h = handle_mut(h, "config handle")?;
-        let which = name_arg(which, "which")?;
-        let count = usize::try_from(count)
-            .ok()
-            .filter(|&c| c as u64 <= crate::limits::MAX_BATCH_RECORDS)
-            .ok_or_else(|| {
-                Error::Other(format!(
-                    "count {count}: out of range\n  fix: pass the map's word count, 2^(2*env_map_bits)"
-                ))
-            })?;
-        let w = super::guard::words(words, count, "words")?.to_vec();
-        h.set_env_map(which, &w)?;
+        let which = str_arg(which, "which")?;
+        h.env_map_named(which)?;
+        // The count is checked before a word is read: a byte count would read past the map.
+        crate::model::env_map::check_word_count(&h.cfg, count, &format!("env map `{which}`"))?;
+        h.set_env_map(which, super::guard::words(words, count as usize, "words")?)?;
         Ok(0)
     })
 }
@@ -481,7 +476,7 @@ pub unsafe extern "C" fn gbump_set_env_map(h: *mut GbumpConfig, which: *const c_
 pub unsafe extern "C" fn gbump_set_env_texel(h: *mut GbumpConfig, which: *const c_char, index: i32, word: u64) -> i32 {
     guard("gbump_set_env_texel", -1, || {
         let h = handle_mut(h, "config handle")?;
-        h.set_env_texel(name_arg(which, "which")?, index.into(), word)?;
+        h.set_env_texel(str_arg(which, "which")?, index.into(), word)?;
         Ok(0)
     })
 }

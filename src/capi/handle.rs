@@ -11,6 +11,9 @@ use crate::vectors::targets::{eval_top, top_layout, top_record, top_stim, unit_l
 use crate::vectors::writer::unit_present;
 use std::ffi::CString;
 
+/// Bytes a batch may hold without being planned against the machine's memory.
+pub const PLAN_FREE_BYTES: u64 = 64 << 20;
+
 /// One evaluation target: `top` or a unit the configuration has.
 pub struct Target {
     pub name: &'static str,
@@ -124,17 +127,18 @@ impl GbumpConfig {
         Ok(())
     }
 
-    /// Refuse a batch of `count` records of `t` that would not fit in memory
-    /// (`limits::memory_budget`): a failed allocation aborts the caller's whole process.
-    /// Counted per record, the most any call holds at once: the input's copy and the output
-    /// (32-bit words), a record of 64-bit words, and every lane as a 64-bit value (Python's
-    /// per-field arrays).
-    pub fn plan_batch(&self, t: &Target, count: u64, what: &str) -> Result<()> {
-        let lanes: u64 = t.layout.columns.iter().map(|c| c.lanes as u64).sum();
-        let per = 8 * t.layout.words32() as u64 + 8 * t.layout.bits.div_ceil(64) as u64 + 48 + 8 * lanes;
+    /// Refuse a batch of `count` records that holds `per_record` bytes each while it runs
+    /// and would not fit in memory (`limits::memory_budget`): a failed allocation aborts the
+    /// caller's whole process. A batch under [`PLAN_FREE_BYTES`] is not planned (the
+    /// per-record calls of a scoreboard would each read /proc).
+    pub fn plan_batch(&self, t: &Target, count: u64, per_record: u64, what: &str) -> Result<()> {
+        let bytes = count.saturating_mul(per_record);
+        if bytes < PLAN_FREE_BYTES {
+            return Ok(());
+        }
         crate::limits::check_memory(
             &format!("{what}: {count} `{}` records", t.name),
-            count.saturating_mul(per),
+            bytes,
             "pass fewer records per call (split the batch), or free memory",
         )
     }
@@ -163,9 +167,10 @@ impl GbumpConfig {
         let n = self.env_map_mut(specular).len();
         let i = usize::try_from(index).ok().filter(|&i| i < n).ok_or_else(|| {
             Error::Other(format!(
-                "env map `{which}`: texel {index} is outside the map's 0..={}\n  fix: {}",
+                "env map `{which}`: texel {index} is outside the map's 0..={}\n  fix: pass an index in 0..={} (texel (x, y) at y*{} + x)",
                 n - 1,
-                crate::model::env_map::word_layout(&self.cfg)
+                n - 1,
+                self.cfg.env_map_side()
             ))
         })?;
         let texel = crate::model::env_map::texel_of_word(&self.cfg, word, &format!("env map `{which}`: texel {index}'s word"))?;
@@ -176,19 +181,26 @@ impl GbumpConfig {
 
     /// Whether map `which` is the specular one; refused for another name or a configuration
     /// without maps.
-    fn env_map_named(&self, which: &str) -> Result<bool> {
+    pub fn env_map_named(&self, which: &str) -> Result<bool> {
         if !self.cfg.embm() {
             return Err(Error::Other(
                 "env map: this configuration has none (env_map_bits = 0: it is not EMBM)\n  fix: load maps into an EMBM configuration (env_map_bits > 0)".into(),
             ));
         }
-        match which {
-            "diffuse" => Ok(false),
-            "specular" => Ok(true),
-            _ => Err(Error::Other(format!(
-                "env map `{which}`: no such map\n  fix: \"diffuse\" or \"specular\""
-            ))),
+        super::guard::one_line_arg(which, "env map", "\"diffuse\" or \"specular\"")?;
+        // The maps the top has a port for: one per blend the configuration has.
+        let has: Vec<&str> = crate::rtlgen::top::env_map_memories(&self.cfg)
+            .iter()
+            .map(|m| m.prefix.trim_start_matches("env_"))
+            .collect();
+        if !has.contains(&which) {
+            let names: Vec<String> = has.iter().map(|h| format!("\"{h}\"")).collect();
+            return Err(Error::Other(format!(
+                "env map `{which}`: this configuration has no such map\n  fix: {} (a map per blend the configuration has)",
+                names.join(" or ")
+            )));
         }
+        Ok(which == "specular")
     }
 
     fn env_map_mut(&mut self, specular: bool) -> &mut Vec<[u32; 3]> {

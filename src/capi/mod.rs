@@ -15,7 +15,7 @@ pub mod ffi;
 mod guard;
 mod handle;
 
-pub use handle::{GbumpConfig, GbumpStim, Target};
+pub use handle::{GbumpConfig, GbumpStim, Target, PLAN_FREE_BYTES};
 
 /// The calling conventions, stated once: the header opens with them and `ffi`'s functions
 /// follow them.
@@ -25,7 +25,8 @@ Conventions of every function below:
   NULL means failure. A NULL handle passed in is refused like any bad argument (it is never
   dereferenced); a freed handle, or one of the other type, is undefined behaviour, as in C.
 - Status: functions returning int32_t give 0 on success and -1 on failure (gbump_eval,
-  gbump_eval_batch, gbump_set_shininess, gbump_stim_next); counts, widths, offsets and
+  gbump_eval_batch, gbump_set_shininess, gbump_set_env_map, gbump_set_env_texel,
+  gbump_stim_next); counts, widths, offsets and
   words (gbump_record_words, gbump_column, gbump_power_word, ...) are -1 on failure;
   functions returning a string give NULL on failure (an index out of range, a bad handle).
 - Errors: gbump_last_error() says why the last failing call on this thread failed, with
@@ -56,9 +57,11 @@ Conventions of every function below:
   per edge, a column enters gbump_column_enters edges after the rest.
 - Palette configurations (palette = true) are refused by gbump_config_* for now.
 - Batches: gbump_eval_batch takes 0..=GBUMP_MAX_BATCH_RECORDS records per call (the
-  limit the Python module's arrays have too).
+  limit the Python module's arrays have too); one whose copy of its input would not fit
+  in memory (MAX_MEMORY_BYTES, MemAvailable, or what ulimit -v leaves) is refused before
+  anything is allocated, rather than abort the process.
 - Threads: a handle may be read from several threads at once, but not while
-  gbump_set_shininess or _free runs on it; a stimulus stream belongs to one thread. A batch
+  gbump_set_shininess, gbump_set_env_map, gbump_set_env_texel or _free runs on it; a stimulus stream belongs to one thread. A batch
   of 1024 records or more runs on the library's own thread pool, one thread per core, or
   RAYON_NUM_THREADS threads when that is set before the first such batch; its threads stay
   for the process's life. A child of fork() gets a pool of its own at its first batch (it

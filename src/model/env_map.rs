@@ -64,19 +64,24 @@ pub fn texel_of_word(cfg: &PipelineConfig, w: u64, what: &str) -> crate::error::
     Ok([0, 1, 2].map(|c| ((w >> (c * cb)) & mask) as u32))
 }
 
-/// The texels of one environment map from its RAM words ([`word_layout`]): exactly n² words,
-/// none wider than a texel. `what` names the words' source in an error.
-pub fn texels_of_words(cfg: &PipelineConfig, words: &[u64], what: &str) -> crate::error::Result<Vec<[u32; 3]>> {
-    let n = cfg.env_map_side() as usize;
-    if words.len() != n * n {
+/// Refuse `count` words for one environment map other than its n².
+pub fn check_word_count(cfg: &PipelineConfig, count: i64, what: &str) -> crate::error::Result<()> {
+    let n = cfg.env_map_side() as i64;
+    if count != n * n {
         return Err(crate::error::Error::Other(format!(
-            "{what}: {} words, not the {n}x{n} map's {}\n  fix: give the whole map: {} (env_map_bits = {})",
-            words.len(),
+            "{what}: {count} words, not the {n}x{n} map's {}\n  fix: give the whole map: {} (env_map_bits = {})",
             n * n,
             word_layout(cfg),
             cfg.env_map_bits
         )));
     }
+    Ok(())
+}
+
+/// The texels of one environment map from its RAM words ([`word_layout`]): exactly n² words,
+/// none wider than a texel. `what` names the words' source in an error.
+pub fn texels_of_words(cfg: &PipelineConfig, words: &[u64], what: &str) -> crate::error::Result<Vec<[u32; 3]>> {
+    check_word_count(cfg, words.len() as i64, what)?;
     words
         .iter()
         .enumerate()

@@ -36,6 +36,8 @@ pub fn rom_files(
     // The power tables: the one asked for, or each one a scene's objects read (a vector dump
     // of the scene makes one set per table).
     let mut tables = std::collections::BTreeSet::from([n]);
+    // EMBM's environment maps: the power-up ones, or each object's of a scene.
+    let mut env = Vec::new();
     let (palette, source) = match scene {
         Some(s) => {
             let scene = Scene::load(s)?;
@@ -77,10 +79,21 @@ pub fn rom_files(
                     crate::rtlgen::rom::bump_map_rom(cfg, &o.stored, &object, &filter),
                     Some(cfg),
                 ));
+                // EMBM: the object's environment maps, which its records light with.
+                env.extend(env_roms(cfg, &o.env, &format!("{}_o{i}", scene.name), &object));
             }
             (palette_of(0), scene.name.clone())
         }
-        None => (default_palette(cfg), DEFAULT_PALETTE.to_string()),
+        None => {
+            let maps = crate::model::env_map::default_maps(cfg);
+            env.extend(env_roms(
+                cfg,
+                &maps,
+                crate::rtlgen::rom::DEFAULT_ENV_MAPS,
+                crate::rtlgen::rom::DEFAULT_ENV_MAPS,
+            ));
+            (default_palette(cfg), DEFAULT_PALETTE.to_string())
+        }
     };
     let cmd = format!(
         "gbump rom {} --shininess {n} --cube-size {cube} --out {}",
@@ -91,7 +104,8 @@ pub fn rom_files(
     let mut files = Vec::new();
     // A name carries what the contents depend on: the exponent, the palette's source, the
     // cube size; the config hash stands for the widths.
-    let table = cfg.power_unit != crate::config::PowerUnitKind::Squaring;
+    // No table where the top reads none (a squaring unit computes x^n, EMBM lights from its maps).
+    let table = crate::rtlgen::top::power_table_read(cfg);
     for (stem, rom, of) in [
         Some((
             format!("bump_palette_{source}_{hash}"),
@@ -109,6 +123,7 @@ pub fn rom_files(
             .map(|n| (format!("power_table_n{n}_{hash}"), power_rom(cfg, n), Some(cfg))),
     )
     .chain(maps)
+    .chain(env)
     {
         let hl = rom_header(&rom, of, &cmd, &rom.name);
         for f in RomFormat::ALL {
@@ -116,6 +131,30 @@ pub fn rom_files(
         }
     }
     Ok(files)
+}
+
+/// EMBM's environment maps `maps` as ROMs (one per map the top has a port for), named
+/// `env_<which>_<source>_<hash>`; none for another configuration. `what` is the maps' source
+/// in the ROM's header.
+fn env_roms<'a>(
+    cfg: &'a PipelineConfig,
+    maps: &crate::model::env_map::EnvMaps,
+    source: &str,
+    what: &str,
+) -> Vec<(String, crate::rtlgen::rom::Rom, Option<&'a PipelineConfig>)> {
+    let hash = &cfg.hash()[..8];
+    crate::rtlgen::top::env_map_memories(cfg)
+        .iter()
+        .map(|m| {
+            let which = m.prefix.trim_start_matches("env_");
+            let map = if which == "specular" { &maps.specular } else { &maps.diffuse };
+            (
+                format!("{}_{source}_{hash}", m.prefix),
+                crate::rtlgen::rom::env_map_rom(cfg, map, which, what),
+                Some(cfg),
+            )
+        })
+        .collect()
 }
 
 /// The shininess and cube-map size a ROM request comes to, whoever asks (`gbump rom`, the
@@ -126,6 +165,12 @@ pub fn rom_files(
 pub fn rom_choices(cfg: &PipelineConfig, shininess: Option<u32>, cube: Option<usize>, names: [&str; 2]) -> Result<(u32, usize)> {
     use crate::limits::{check_count, MAX_CUBE_SIDE, MAX_SHININESS};
     let [sn, cn] = names;
+    if let (Some(n), true) = (shininess, cfg.embm()) {
+        return Err(crate::error::Error::Other(format!(
+            "{}: EMBM has no power unit (its specular light comes from the environment map)\n  fix: drop {sn}",
+            crate::names::choice(sn, n)
+        )));
+    }
     let n = shininess.unwrap_or(cfg.shininess);
     check_count(sn, n.into(), 0, MAX_SHININESS.into(), "MAX_SHININESS")?;
     if let Some(fixed) = cfg.fixed_shininess().filter(|_| n != cfg.shininess) {
@@ -134,7 +179,8 @@ pub fn rom_choices(cfg: &PipelineConfig, shininess: Option<u32>, cube: Option<us
     let cube = match (cube, cfg.cube_map_face as usize) {
         (Some(c), face) if face != 0 && c != face => {
             return Err(crate::error::Error::Other(format!(
-                "{cn} {c}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop {cn} (the map is the configuration's), or give a configuration whose cube_map_face is the size you want"
+                "{}: the configuration's normalise_cube unit reads a map of {face} texels a face edge (cube_map_face = {face})\n  fix: drop {cn} (the map is the configuration's), or give a configuration whose cube_map_face is the size you want",
+                crate::names::choice(cn, c)
             )))
         }
         (Some(c), _) => c,

@@ -127,6 +127,32 @@ mod tests {
             &Spelling::cli("random:10")
         )
         .is_ok());
+        // Each other rule, in the command line's words.
+        let cli = Spelling::cli("random:10");
+        let scene = Source::Scene("blend_split".into());
+        let asked = |level, size, shininess| Asked {
+            seed: false,
+            level,
+            size,
+            shininess,
+        };
+        let cases = [
+            (&random, asked(true, false, None), "--level has no effect on --source random:10"),
+            (&random, asked(false, true, None), "--size: only scene sources render an image"),
+            (&scene, asked(false, false, Some(3)), "--shininess has no effect"),
+        ];
+        for (src, a, want) in cases {
+            let e = refuse_ignored(src, &a, &cli).unwrap_err().to_string();
+            assert!(e.contains(want) && e.contains("fix:"), "{e}");
+        }
+        assert!(refuse_ignored(&scene, &asked(false, true, None), &cli).is_ok());
+        assert!(refuse_ignored(&Source::Corners(2), &asked(true, false, None), &cli).is_ok());
+        let embm = PipelineConfig {
+            env_map_bits: 4,
+            ..PipelineConfig::default()
+        };
+        let e = refuse_unservable(&embm, &["top"], &asked(false, false, Some(embm.shininess)), &cli).unwrap_err();
+        assert!(e.to_string().contains("EMBM has no power unit"), "{e}");
         let rom = PipelineConfig {
             power_rom: true,
             ..PipelineConfig::default()
