@@ -43,8 +43,8 @@ pub struct Cli {
 pub enum Cmd {
     /// List the built-in scenes, or print one as TOML.
     Scenes {
-        /// Print a built-in scene's TOML (a template for your own), or check a scene file
-        /// and print it.
+        /// Print a built-in scene's TOML (a template for your own), or check a scene file (as
+        /// `gbump render` does, rendering it at its own size) and print it.
         #[arg(long, value_name = "NAME|FILE")]
         show: Option<String>,
     },
@@ -1098,7 +1098,15 @@ pub fn run() -> anyhow::Result<()> {
             // prints no report. A built-in scene that covers no pixel at this size is the
             // size's fault, not the scene file's.
             let stats = crate::measure::unit_error::unit_errors(&cfg, random, seed);
-            let scenes = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| match e {
+            // The scene that gave the configuration is measured too, first: a file of one's
+            // own is the scene one asked about. Its faults are its own, not the size's.
+            let own = match pick.scene.as_deref().filter(|_| pick.config.is_none()) {
+                Some(s) if crate::scene::builtin::get(s).is_none() => {
+                    Some(crate::measure::scene_error::scene_error(&Scene::load(s)?, &cfg, w, h)?)
+                }
+                _ => None,
+            };
+            let (scenes, left_out) = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| match e {
                 Error::Field { ref field, .. } if field == "objects" => {
                     let first = e.to_string().lines().next().unwrap_or_default().to_string();
                     Error::Other(format!(
@@ -1108,9 +1116,11 @@ pub fn run() -> anyhow::Result<()> {
                 }
                 other => other,
             })?;
+            let scenes: Vec<_> = own.into_iter().chain(scenes).collect();
             if let Some(j) = json {
                 let v = serde_json::json!({"config_hash": cfg.hash(), "config": cfg, "units": stats,
-                    "scenes": scenes.iter().map(|(n, g, r)| serde_json::json!({"scene": n, "vs_gouraud_f64": g, "vs_reference": r})).collect::<Vec<_>>()});
+                    "scenes": scenes.iter().map(|(n, g, r)| serde_json::json!({"scene": n, "vs_gouraud_f64": g, "vs_reference": r})).collect::<Vec<_>>(),
+                    "left_out": left_out.iter().map(|(n, why)| serde_json::json!({"scene": n, "why": why})).collect::<Vec<_>>()});
                 write_atomic(&j, serde_json::to_string_pretty(&v).expect("json").as_bytes())?;
             }
             out!("{}", crate::measure::unit_error::markdown(&cfg, &stats));
@@ -1123,6 +1133,12 @@ pub fn run() -> anyhow::Result<()> {
                 },
                 crate::measure::scene_error::scene_error_table(&scenes)
             );
+            if !left_out.is_empty() {
+                out!("\nLeft out, needing more than this configuration holds:\n");
+                for (name, why) in &left_out {
+                    out!("- {name}: {why}\n");
+                }
+            }
         }
         Cmd::PowerSpace {
             pick,
@@ -1556,8 +1572,15 @@ fn scenes(show: Option<String>) -> Result<()> {
         Some(name) => match builtin::get(&name) {
             Some(text) => out!("{text}"),
             None => {
-                // A file is loaded (so every error it holds is reported) before it is shown.
-                Scene::load(&name)?;
+                // A file is checked as `gbump render` checks it before it is shown: loaded, its
+                // configuration derived, its maps read and its image rendered at its own size
+                // (an object must cover a pixel), so what passes here renders.
+                let s = Scene::load(&name)?;
+                let cfg = s.derive_config()?;
+                crate::names::check(&s.file, "name", &s.name)?;
+                let (w, h) = (s.size[0], s.size[1]);
+                crate::limits::check_render(crate::limits::PixelUse::Render, &s.file, w, h, s.triangles())?;
+                crate::render::render(&s, &cfg, w, h, false)?;
                 out!("{}", crate::limits::read_text(Path::new(&name))?)
             }
         },

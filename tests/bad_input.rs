@@ -162,6 +162,36 @@ fn cases() -> Vec<Case> {
             vec!["unknown field", "shinyness"],
         ),
         (
+            "a stray key beside a kind that takes no fields",
+            scene(r(
+                "shape = { kind = \"plane\", size = [4.0, 2.0] }",
+                "shape = { kind = \"teapot\", segments = 9 }",
+            )),
+            render(&[]),
+            vec!["s.toml:", "unknown field `segments`", "takes no fields"],
+        ),
+        (
+            "a stray key beside a flat height source",
+            scene(r(
+                "source = { kind = \"bricks\", rows = 8, cols = 4, mortar = 0.08 }",
+                "source = { kind = \"flat\", sise = 3 }",
+            )),
+            render(&[]),
+            vec!["s.toml:", "unknown field `sise`"],
+        ),
+        (
+            "every object with both blends off",
+            scene(r("bump = {", "diffuse = false\nspecular = false\nbump = {")),
+            render(&[]),
+            vec!["s.toml:", "objects[0].diffuse", "nothing would be lit", "fix:"],
+        ),
+        (
+            "a scene shown that covers no pixel",
+            scene(r("target = [0.0, 0.0, 0.0]", "target = [0.0, 0.0, 12.0]")),
+            vec!["scenes", "--show", "s.toml"],
+            vec!["s.toml", "no object covers a pixel"],
+        ),
+        (
             "missing camera",
             scene(|t| t.replace("[camera]", "[kamera]")),
             render(&[]),

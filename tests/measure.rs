@@ -87,3 +87,41 @@ fn error_report_bounds_each_unit() {
     assert!(p["max_lsb"].as_f64().unwrap() < 1.0 && p["max_lsb"].as_f64().unwrap() > 0.5, "{p}");
     assert!(r["scenes"].as_array().unwrap().len() >= 11);
 }
+
+/// `gbump error --scene FILE` measures the file's own scene first, beside the built-in ones
+/// its configuration renders, and names each built-in one it leaves out and why (a one-light
+/// configuration cannot render a two-light scene).
+#[test]
+fn error_measures_the_scene_given_and_names_the_scenes_left_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("err.json");
+    let out = Command::cargo_bin("gbump")
+        .unwrap()
+        .args([
+            "error",
+            "--scene",
+            "tests/scenes/bump_spot.toml",
+            "--random",
+            "100",
+            "--size",
+            "24x18",
+            "--json",
+        ])
+        .arg(&json)
+        .assert()
+        .success();
+    let text = String::from_utf8_lossy(&out.get_output().stdout).into_owned();
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(r["scenes"][0]["scene"], "bump_spot", "the scene given comes first: {}", r["scenes"]);
+    let left: Vec<&str> = r["left_out"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["scene"].as_str().unwrap())
+        .collect();
+    assert!(left.contains(&"torus_caps"), "{left:?}");
+    assert!(text.contains("Left out") && text.contains("- torus_caps: "), "{text}");
+    // Every built-in scene is either measured or named as left out.
+    let measured = r["scenes"].as_array().unwrap().len() - 1;
+    assert_eq!(measured + left.len(), gbump::scene::builtin::ALL.len());
+}

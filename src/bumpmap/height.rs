@@ -32,8 +32,9 @@ impl HeightField {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum HeightSource {
-    /// No relief: every normal is (0, 0, 1) (paper Fig. 7's constant bump normals).
-    Flat,
+    /// No relief: every normal is (0, 0, 1) (paper Fig. 7's constant bump normals). An empty
+    /// struct variant, so a stray key beside `kind` is refused as in every other table.
+    Flat {},
     /// Running-bond bricks with recessed mortar (Cg tutorial Fig. 8-1, paper Fig. 6).
     Bricks { rows: u32, cols: u32, mortar: f64 },
     /// A grid of hemispherical caps (paper Fig. 4).
@@ -57,7 +58,7 @@ impl HeightSource {
     /// Generate at `size`×`size` (PNG sources keep their own size). `base` resolves relative paths.
     pub fn generate(&self, size: usize, base: &std::path::Path) -> Result<HeightField> {
         Ok(match self {
-            HeightSource::Flat => HeightField::from_fn(size, |_, _| 0.5),
+            HeightSource::Flat {} => HeightField::from_fn(size, |_, _| 0.5),
             HeightSource::Bricks { rows, cols, mortar } => {
                 let (rows, cols, m) = (*rows as f64, *cols as f64, *mortar);
                 HeightField::from_fn(size, |u, v| {

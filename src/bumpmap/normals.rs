@@ -77,7 +77,7 @@ mod tests {
 
     #[test]
     fn flat_field_gives_up_normals_and_slopes_tilt_away() {
-        let hf = HeightSource::Flat.generate(8, std::path::Path::new(".")).unwrap();
+        let hf = HeightSource::Flat {}.generate(8, std::path::Path::new(".")).unwrap();
         for m in [NormalMethod::Eq2, NormalMethod::Cg] {
             assert!(NormalMap::from_height(&hf, m, 4.0).data.iter().all(|n| *n == DVec3::Z));
         }

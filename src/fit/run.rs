@@ -63,30 +63,54 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
     let t0 = std::time::Instant::now();
     let scenes: Vec<Scene> = scene_names.iter().map(|n| Scene::load(n)).collect::<Result<_>>()?;
     let base = common_base(&scenes)?;
+    // Warnings name where the configurations come from: the scene's, not the default.
+    if let [one] = scene_names {
+        crate::config::note_derived(one);
+    }
     // A palette is offered when every map fits one exactly at the base's normal width.
     let mut palette_exact = true;
     for s in &scenes {
         palette_exact &= crate::scene::needs::distinct_normals(s, &base)?.iter().all(|&n| n <= 256);
     }
+    // A field a scene's [pipeline] sets is the scene's to choose, not the search's.
+    let set: std::collections::BTreeSet<String> = scenes
+        .iter()
+        .flat_map(|s| s.pipeline.iter().flat_map(|t| t.keys().cloned()))
+        .collect();
+    let space = Space::full(palette_exact).pin(&base, &set);
     let mut eval = Evaluator::new(scenes, &base, budget)?;
     let mut search = Search {
         eval: &mut eval,
         area,
         seen: Vec::new(),
+        pinned: space.pinned.clone(),
     };
-    let (chosen, sized) = search.run(&base, &Space::full(palette_exact), min_throughput)?;
+    let (chosen, sized) = search.run(&base, &space, min_throughput)?;
     let seen = std::mem::take(&mut search.seen);
     let evaluations = eval.evaluations;
     let Some(chosen) = chosen else {
         let best = seen.iter().map(|c| budget.error(&c.measured)).fold(f64::INFINITY, f64::min);
         let best = if matches!(budget, Budget::Psnr(_)) { -best } else { best };
+        let searched: Vec<&str> = ["power_unit", "rounding", "normal_range", "palette"]
+            .into_iter()
+            .chain(super::search::WIDTHS)
+            .filter(|f| set.contains(*f))
+            .collect();
         return Err(crate::error::Error::Other(format!(
-            "no configuration renders {} within {budget}{}: the best measured {best:.2}\n  fix: loosen the budget",
+            "no configuration renders {} within {budget}{}{}: the best measured {best:.2}\n  fix: loosen the budget{}",
             scene_names.join(", "),
             if min_throughput > 0.0 {
                 format!(" at {min_throughput} fragments per clock")
             } else {
                 String::new()
+            },
+            match searched.is_empty() {
+                true => String::new(),
+                false => format!(" keeping {} as the scene's [pipeline] sets", searched.join(", ")),
+            },
+            match searched.is_empty() {
+                true => String::new(),
+                false => ", or drop those fields from [pipeline] to let the search choose them".to_string(),
             }
         )));
     };

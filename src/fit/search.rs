@@ -50,6 +50,8 @@ pub struct Space {
     pub roundings: Vec<Rounding>,
     pub normal_ranges: Vec<NormalRange>,
     pub palettes: Vec<bool>,
+    /// Widths a scene's `[pipeline]` sets: kept at the base's value, never shrunk.
+    pub pinned: Vec<&'static str>,
 }
 
 impl Space {
@@ -60,7 +62,29 @@ impl Space {
             roundings: vec![Rounding::HalfUp, Rounding::Truncate, Rounding::NearestEven],
             normal_ranges: vec![NormalRange::Binary, NormalRange::Symmetric],
             palettes: if palette_exact { vec![false, true] } else { vec![false] },
+            pinned: Vec::new(),
         }
+    }
+
+    /// Every field of `set` (the keys of the scenes' `[pipeline]` tables) that the search
+    /// would choose stays `base`'s: a scene that asks for a palette, a rounding or a width
+    /// gets it, and the search chooses the rest.
+    pub fn pin(mut self, base: &PipelineConfig, set: &std::collections::BTreeSet<String>) -> Space {
+        let has = |f: &str| set.contains(f);
+        if has("power_unit") {
+            self.power_units = vec![base.power_unit];
+        }
+        if has("rounding") {
+            self.roundings = vec![base.rounding];
+        }
+        if has("normal_range") {
+            self.normal_ranges = vec![base.normal_range];
+        }
+        if has("palette") {
+            self.palettes = vec![base.palette];
+        }
+        self.pinned = WIDTHS.into_iter().filter(|f| has(f)).collect();
+        self
     }
 }
 
@@ -72,12 +96,16 @@ impl Space {
             for &rounding in &self.roundings {
                 for &normal_range in &self.normal_ranges {
                     for &palette in &self.palettes {
-                        out.push(PipelineConfig {
+                        let mut c = PipelineConfig {
                             rounding,
                             normal_range,
                             palette,
                             ..start(base, kind)
-                        });
+                        };
+                        for f in &self.pinned {
+                            c = set(&c, f, get(base, f));
+                        }
+                        out.push(c);
                     }
                 }
             }
@@ -144,6 +172,8 @@ pub struct Search<'a> {
     pub eval: &'a mut Evaluator,
     pub area: &'a dyn Fn(&PipelineConfig) -> Result<f64>,
     pub seen: Vec<Candidate>,
+    /// Widths kept as they start ([`Space::pinned`]).
+    pub pinned: Vec<&'static str>,
 }
 
 impl Search<'_> {
@@ -182,7 +212,7 @@ impl Search<'_> {
                 if field == "power_segments" && cfg.power_unit != PowerUnitKind::Segmented {
                     continue;
                 }
-                if inputs_kept && INPUT_WIDTHS.contains(&field) {
+                if (inputs_kept && INPUT_WIDTHS.contains(&field)) || self.pinned.contains(&field) {
                     continue;
                 }
                 let (lo, _) = range(field);
@@ -281,6 +311,29 @@ pub fn pareto(cands: &[Candidate], error: impl Fn(&Measured) -> f64) -> Vec<&Can
 
 #[cfg(test)]
 mod tests {
+    /// A field a scene's [pipeline] sets is kept: its choice alone is searched, and a pinned
+    /// width starts, and stays, at the base's value.
+    #[test]
+    fn fields_a_scene_sets_are_not_searched() {
+        use super::*;
+        let base = PipelineConfig {
+            rounding: Rounding::Truncate,
+            normal_bits: 7,
+            ..PipelineConfig::default()
+        };
+        let set = ["rounding", "normal_bits", "blend_order"].map(String::from).into_iter().collect();
+        let space = Space::full(true).pin(&base, &set);
+        assert_eq!(space.roundings, vec![Rounding::Truncate]);
+        assert_eq!(space.palettes, vec![false, true], "palette is not set, so still searched");
+        assert_eq!(space.pinned, vec!["normal_bits"]);
+        let starts = space.starts(&base);
+        assert!(!starts.is_empty() && starts.iter().all(|c| c.normal_bits == 7 && c.rounding == Rounding::Truncate));
+        assert!(
+            starts.iter().all(|c| c.lh_bits == limit("lh_bits").1),
+            "the other widths start at their top"
+        );
+    }
+
     use super::*;
     use crate::fit::budget::Budget;
 
@@ -297,6 +350,7 @@ mod tests {
             eval: &mut ev,
             area: &area,
             seen: Vec::new(),
+            pinned: Vec::new(),
         };
         let w = search
             .shrink(start(&base, PowerUnitKind::Table))

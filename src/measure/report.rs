@@ -101,7 +101,7 @@ pub fn report(
     let (w, h) = super::scene_error::IMAGE_SIZE;
     md += &format!("\n### Image error per scene (default configuration, {w}x{h})\n\n");
     md += &scene_error_note();
-    md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, w, h)?);
+    md += &super::scene_error::scene_error_table(&super::scene_error::scene_errors(&cfg, w, h)?.0);
     md += "\n## The power unit's design space\n\n`gbump power-space --area` (8-bit dot product) and `gbump power-space --area --config` with `dot_frac_bits = 12`\n\n";
     md += "### 8-bit dot product\n\n";
     md += &power_section(

@@ -44,21 +44,27 @@ pub const IMAGE_SIZE: (u32, u32) = (192, 144);
 /// [`IMAGE_SIZE`] as `--size` takes it.
 pub const IMAGE_SIZE_ARG: &str = "192x144";
 
-/// Image error of every built-in scene that fits `cfg`'s light slots.
-pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<Vec<SceneError>> {
-    let mut out = Vec::new();
+/// Image error of every built-in scene that fits `cfg`, and the ones that do not with why
+/// (the first line of the refusal `gbump render --config` would give).
+pub fn scene_errors(cfg: &PipelineConfig, w: u32, h: u32) -> Result<(Vec<SceneError>, Vec<(String, String)>)> {
+    let (mut out, mut left_out) = (Vec::new(), Vec::new());
     for (name, _) in builtin::ALL {
         let s = Scene::load(name)?;
-        if s.check_config(cfg, "").is_err() {
+        if let Err(e) = s.check_config_fields(cfg, "the configuration") {
+            left_out.push((name.to_string(), e.to_string().lines().next().unwrap_or_default().to_string()));
             continue;
         }
-        // The scene's own per-object choices stay; the hardware is `cfg`.
-        let img = crate::render::render(&s, cfg, w, h, false)?;
-        let g = compare(&img.golden, &img.gouraud, &img.covered, img.colour_max);
-        let r = compare(&img.golden, &img.reference, &img.covered, img.colour_max);
-        out.push((name.to_string(), g, r));
+        out.push(scene_error(&s, cfg, w, h)?);
     }
-    Ok(out)
+    Ok((out, left_out))
+}
+
+/// Image error of scene `s` rendered under `cfg` at `w`x`h`; its per-object choices stay.
+pub fn scene_error(s: &Scene, cfg: &PipelineConfig, w: u32, h: u32) -> Result<SceneError> {
+    let img = crate::render::render(s, cfg, w, h, false)?;
+    let g = compare(&img.golden, &img.gouraud, &img.covered, img.colour_max);
+    let r = compare(&img.golden, &img.reference, &img.covered, img.colour_max);
+    Ok((s.name.clone(), g, r))
 }
 
 #[cfg(test)]

@@ -102,7 +102,7 @@ pub fn min_segments(shape: &Shape) -> [u32; 2] {
         Shape::Sphere { .. } => [3, 2],
         Shape::Torus { .. } => [3, 3],
         Shape::Cylinder { sides: 0, .. } => [3, 1],
-        Shape::Cylinder { .. } | Shape::Plane { .. } | Shape::Teapot => [1, 1],
+        Shape::Cylinder { .. } | Shape::Plane { .. } | Shape::Teapot {} => [1, 1],
     }
 }
 
@@ -111,7 +111,7 @@ pub fn triangle_count(o: &Object) -> u64 {
     let [su, sv] = o.segments.map(u64::from);
     match &o.shape {
         Shape::Cylinder { sides, .. } if *sides > 0 => 2 * u64::from(*sides) * sv,
-        Shape::Teapot => 32 * 2 * su * sv,
+        Shape::Teapot {} => 32 * 2 * su * sv,
         _ => 2 * su * sv,
     }
 }
@@ -180,7 +180,7 @@ pub fn tessellate(o: &Object) -> Mesh {
             },
             &mut m,
         ),
-        Shape::Teapot => {
+        Shape::Teapot {} => {
             for patch in teapot::patches() {
                 grid(s, uvs, |u, v| teapot::eval(&patch, u, v), &mut m);
             }

@@ -148,8 +148,9 @@ pub enum Shape {
         major: f64,
         minor: f64,
     },
-    /// Newell's teapot, about 3 units tall.
-    Teapot,
+    /// Newell's teapot, about 3 units tall. (An empty struct variant, not a unit one: serde
+    /// lets a unit variant of a tagged enum take any other key, which must be refused.)
+    Teapot {},
 }
 
 impl Shape {
@@ -161,7 +162,7 @@ impl Shape {
             Shape::Cylinder { sides: 0, .. } => "smooth cylinder",
             Shape::Cylinder { .. } => "cylinder",
             Shape::Torus { .. } => "torus",
-            Shape::Teapot => "teapot",
+            Shape::Teapot {} => "teapot",
         }
     }
 }
@@ -473,7 +474,7 @@ impl Scene {
         }
     }
 
-    fn check_config_fields(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
+    pub(crate) fn check_config_fields(&self, cfg: &PipelineConfig, cfg_file: &str) -> Result<()> {
         if cfg.embm() {
             // EMBM's lights, any number and colour, are in each object's maps, and it reads
             // no power table.

@@ -214,6 +214,14 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
     if s.objects.is_empty() {
         return Err(c.fail("objects", "the scene has no objects".into(), "add an [[objects]] table"));
     }
+    if !s.objects.iter().any(|o| o.diffuse || o.specular) {
+        // The derived configuration would have no blend unit to light with.
+        return Err(c.fail(
+            "objects[0].diffuse",
+            "every object has diffuse = false and specular = false: nothing would be lit, and a pipeline needs one blend".into(),
+            "set diffuse = true or specular = true on an object",
+        ));
+    }
     for (i, o) in s.objects.iter().enumerate() {
         let p = format!("objects[{i}]");
         let pos = |k: &str, v: f64| c.num(&format!("{p}.shape.{k}"), v, 1e-6, 1e6);
@@ -238,7 +246,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 pos("major", *major)?;
                 pos("minor", *minor)?;
             }
-            Shape::Teapot => {}
+            Shape::Teapot {} => {}
         }
         let least = super::mesh::min_segments(&o.shape);
         for (k, v) in o.segments.iter().enumerate() {
@@ -348,7 +356,12 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                 let full = s.base.join(path);
                 let at = format!("{p}.bump.source.path");
                 if !full.is_file() {
-                    let what = if full.exists() { "is not a file" } else { "is not there" };
+                    // Why, as the system says it: a loop of links or a folder is not "missing".
+                    let what = match std::fs::metadata(&full) {
+                        Ok(_) => "is not a file".to_string(),
+                        Err(e) if e.kind() == std::io::ErrorKind::NotFound => "is not there".to_string(),
+                        Err(e) => format!("cannot be read ({e})"),
+                    };
                     return Err(c.fail(
                         &at,
                         format!("{} {what}", full.display()),
@@ -356,7 +369,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
                     ));
                 }
             }
-            H::Flat => {}
+            H::Flat {} => {}
         }
     }
     let tris: u64 = s.objects.iter().map(super::mesh::triangle_count).sum();
@@ -370,7 +383,7 @@ pub fn validate(s: &Scene, text: &str) -> Result<()> {
             .max_by_key(|t| t.2)
             .expect("a scene with triangles has an object");
         let rule = match &o.shape {
-            Shape::Teapot => "64 triangles per segment pair: two per quad of each of its 32 patches".to_string(),
+            Shape::Teapot {} => "64 triangles per segment pair: two per quad of each of its 32 patches".to_string(),
             Shape::Cylinder { sides, .. } if *sides > 0 => format!("2 x sides ({sides}) x segments[1] triangles"),
             _ => "2 triangles per segment pair".to_string(),
         };
