@@ -1577,9 +1577,8 @@ fn scenes(show: Option<String>) -> Result<()> {
                 // (an object must cover a pixel), so what passes here renders.
                 let s = Scene::load(&name)?;
                 let cfg = s.derive_config()?;
-                crate::names::check(&s.file, "name", &s.name)?;
                 let (w, h) = (s.size[0], s.size[1]);
-                crate::limits::check_render(crate::limits::PixelUse::Render, &s.file, w, h, s.triangles())?;
+                crate::render::report::renderable(&s, crate::limits::PixelUse::Render, w, h)?;
                 crate::render::render(&s, &cfg, w, h, false)?;
                 out!("{}", crate::limits::read_text(Path::new(&name))?)
             }

@@ -3,7 +3,7 @@
 //! targets the scene's own configuration unless one is given, and a failed dump leaves no
 //! partial set behind. (Its place is `vectors/`, which is being rewritten; see ARCHITECTURE.)
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::scene::Scene;
 use crate::vectors::{dump, DumpOptions, Source};
 use std::path::Path;
@@ -35,7 +35,6 @@ pub struct VectorsRequest<'a> {
 pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
     let source = r.source;
     let mut src = Source::parse(source)?;
-    let ignored = |flag: &str, why: &str| Error::Other(format!("{flag} has no effect on --source {source}: {why}\n  fix: drop {flag}"));
     let spelling = crate::vectors::choices::Spelling::cli(source);
     let asked = crate::vectors::choices::Asked {
         seed: r.seed.is_some(),
@@ -78,10 +77,7 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
     if let Source::Exhaustive(u) = &src {
         // An exhaustive source sweeps one unit's inputs: it writes that unit's set only.
         if r.targets.iter().any(|t| t != "all" && t != u) {
-            return Err(ignored(
-                "--target",
-                &format!("an exhaustive source writes the set of its unit `{u}` only"),
-            ));
+            return Err(spelling.ignored("--target", &format!("an exhaustive source writes the set of its unit `{u}` only")));
         }
     }
     // The targets whose sets this dump writes.

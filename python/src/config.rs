@@ -261,24 +261,27 @@ impl Config {
         let (n, cube_size) =
             gbump::rtlgen::rom_files::rom_choices(cfg, shininess, cube_size, ["shininess=", "cube_size="]).map_err(crate::err)?;
         // The ROMs `gbump rom` writes for this configuration, by the names this takes.
-        let envs: Vec<&str> = gbump::rtlgen::top::env_map_memories(cfg).iter().map(|m| m.prefix).collect();
+        let envs: Vec<String> = gbump::rtlgen::top::env_map_names(cfg).iter().map(|w| format!("env_{w}")).collect();
         let table = gbump::rtlgen::top::power_table_read(cfg);
         let r = match name {
             "power_table" if table => rom::power_rom(cfg, n),
             "bump_palette" => rom::palette_rom(cfg, &rom::default_palette(cfg), rom::DEFAULT_PALETTE),
             "cube_map" => rom::cube_map_rom(cube_size),
-            _ if envs.contains(&name) => {
-                let maps = gbump::model::env_map::default_maps(cfg);
+            _ if envs.iter().any(|e| e == name) => {
                 let which = name.trim_start_matches("env_");
-                let map = if which == "specular" { &maps.specular } else { &maps.diffuse };
-                rom::env_map_rom(cfg, map, which, rom::DEFAULT_ENV_MAPS)
+                rom::env_map_rom(
+                    cfg,
+                    gbump::model::env_map::default_maps(cfg).named(which),
+                    which,
+                    rom::DEFAULT_ENV_MAPS,
+                )
             }
             _ => {
                 let names: Vec<&str> = ["power_table"]
                     .into_iter()
                     .filter(|_| table)
                     .chain(["bump_palette", "cube_map"])
-                    .chain(envs.iter().copied())
+                    .chain(envs.iter().map(String::as_str))
                     .collect();
                 let why = match (name, cfg.power_table_unused()) {
                     ("power_table", Some(why)) => format!("the top reads no power table ({why})"),

@@ -100,7 +100,7 @@ pub fn pack(h: &GbumpConfig, t: &Target, fields: &Bound<'_, PyDict>) -> PyResult
                 .get_item(0)
                 .and_then(|n| n.extract::<u64>())
                 .unwrap_or(0);
-            crate::arrays::plan(h, t, "pack", n, crate::arrays::fields_bytes(t) + 4 * t.layout.words32() as u64)?;
+            crate::arrays::plan(h, t, "pack", n, crate::arrays::fields_bytes(t) + crate::arrays::words_bytes(t))?;
         }
         let (n, vals) = column_values(&v, c)?;
         match count {

@@ -36,11 +36,7 @@ impl Stimulus {
     fn next<'py>(&mut self, py: Python<'py>, n: crate::Int) -> PyResult<Bound<'py, PyAny>> {
         let n = crate::arg("Stimulus.next: n", n.0, 0, gbump::limits::MAX_BATCH_RECORDS, "MAX_BATCH_RECORDS")?;
         let w = self.s.layout.words32();
-        let bytes = n * w as u64 * 4;
-        if bytes >= gbump::capi::PLAN_FREE_BYTES {
-            gbump::limits::check_memory(&format!("Stimulus.next: {n} records"), bytes, "take fewer records per call")
-                .map_err(crate::err)?;
-        }
+        gbump::capi::plan_memory(&format!("Stimulus.next: {n} records"), n * w as u64 * 4).map_err(crate::err)?;
         let mut out = Vec::with_capacity(n as usize * w);
         for _ in 0..n {
             out.extend(self.s.next_record().to_words32(w));

@@ -14,6 +14,16 @@ use std::ffi::CString;
 /// Bytes a batch may hold without being planned against the machine's memory.
 pub const PLAN_FREE_BYTES: u64 = 64 << 20;
 
+/// Refuse a batch that would hold `bytes` and not fit in memory (`limits::check_memory`): a
+/// failed allocation aborts the caller's whole process. A batch under [`PLAN_FREE_BYTES`] is
+/// not planned (the per-record calls of a scoreboard would each read /proc).
+pub fn plan_memory(what: &str, bytes: u64) -> Result<()> {
+    if bytes < PLAN_FREE_BYTES {
+        return Ok(());
+    }
+    crate::limits::check_memory(what, bytes, "pass fewer records per call (split the batch), or free memory")
+}
+
 /// One evaluation target: `top` or a unit the configuration has.
 pub struct Target {
     pub name: &'static str,
@@ -127,20 +137,10 @@ impl GbumpConfig {
         Ok(())
     }
 
-    /// Refuse a batch of `count` records that holds `per_record` bytes each while it runs
-    /// and would not fit in memory (`limits::memory_budget`): a failed allocation aborts the
-    /// caller's whole process. A batch under [`PLAN_FREE_BYTES`] is not planned (the
-    /// per-record calls of a scoreboard would each read /proc).
+    /// [`plan_memory`] for `count` records of `t` that hold `per_record` bytes each while
+    /// the call runs.
     pub fn plan_batch(&self, t: &Target, count: u64, per_record: u64, what: &str) -> Result<()> {
-        let bytes = count.saturating_mul(per_record);
-        if bytes < PLAN_FREE_BYTES {
-            return Ok(());
-        }
-        crate::limits::check_memory(
-            &format!("{what}: {count} `{}` records", t.name),
-            bytes,
-            "pass fewer records per call (split the batch), or free memory",
-        )
+        plan_memory(&format!("{what}: {count} `{}` records", t.name), count.saturating_mul(per_record))
     }
 
     /// Load environment map `which` ("diffuse" or "specular") from its RAM words, as the top's
@@ -150,21 +150,20 @@ impl GbumpConfig {
     /// sets'. Refused, the map unchanged, where the configuration has none or a word does not
     /// fit.
     pub fn set_env_map(&mut self, which: &str, words: &[u64]) -> Result<()> {
-        let specular = self.env_map_named(which)?;
-        let what = format!("env map `{which}`");
-        let texels = crate::model::env_map::texels_of_words(&self.cfg, words, &what)?;
+        self.env_map_named(which)?;
+        let texels = crate::model::env_map::texels_of_words(&self.cfg, words, &format!("env map `{which}`"))?;
         for (i, t) in texels.iter().enumerate() {
-            self.fast.set_env_texel(specular, i, *t);
+            self.fast.set_env_texel(which, i, *t);
         }
-        *self.env_map_mut(specular) = texels;
+        *self.mem.env.named_mut(which) = texels;
         Ok(())
     }
 
     /// Write texel `index` of environment map `which`, as one write of the top's
     /// `env_<which>_we`/`_waddr`/`_wdata` port: `word` is the texel's RAM word.
     pub fn set_env_texel(&mut self, which: &str, index: i64, word: u64) -> Result<()> {
-        let specular = self.env_map_named(which)?;
-        let n = self.env_map_mut(specular).len();
+        self.env_map_named(which)?;
+        let n = self.mem.env.named(which).len();
         let i = usize::try_from(index).ok().filter(|&i| i < n).ok_or_else(|| {
             Error::Other(format!(
                 "env map `{which}`: texel {index} is outside the map's 0..={}\n  fix: pass an index in 0..={} (texel (x, y) at y*{} + x)",
@@ -174,14 +173,13 @@ impl GbumpConfig {
             ))
         })?;
         let texel = crate::model::env_map::texel_of_word(&self.cfg, word, &format!("env map `{which}`: texel {index}'s word"))?;
-        self.env_map_mut(specular)[i] = texel;
-        self.fast.set_env_texel(specular, i, texel);
+        self.mem.env.named_mut(which)[i] = texel;
+        self.fast.set_env_texel(which, i, texel);
         Ok(())
     }
 
-    /// Whether map `which` is the specular one; refused for another name or a configuration
-    /// without maps.
-    pub fn env_map_named(&self, which: &str) -> Result<bool> {
+    /// Refuse `which` unless it names a map the top has a port for.
+    pub fn env_map_named(&self, which: &str) -> Result<()> {
         if !self.cfg.embm() {
             return Err(Error::Other(
                 "env map: this configuration has none (env_map_bits = 0: it is not EMBM)\n  fix: load maps into an EMBM configuration (env_map_bits > 0)".into(),
@@ -189,10 +187,7 @@ impl GbumpConfig {
         }
         super::guard::one_line_arg(which, "env map", "\"diffuse\" or \"specular\"")?;
         // The maps the top has a port for: one per blend the configuration has.
-        let has: Vec<&str> = crate::rtlgen::top::env_map_memories(&self.cfg)
-            .iter()
-            .map(|m| m.prefix.trim_start_matches("env_"))
-            .collect();
+        let has = crate::rtlgen::top::env_map_names(&self.cfg);
         if !has.contains(&which) {
             let names: Vec<String> = has.iter().map(|h| format!("\"{h}\"")).collect();
             return Err(Error::Other(format!(
@@ -200,14 +195,7 @@ impl GbumpConfig {
                 names.join(" or ")
             )));
         }
-        Ok(which == "specular")
-    }
-
-    fn env_map_mut(&mut self, specular: bool) -> &mut Vec<[u32; 3]> {
-        match specular {
-            true => &mut self.mem.env.specular,
-            false => &mut self.mem.env.diffuse,
-        }
+        Ok(())
     }
 
     /// Evaluate one record of `t`: the stimulus columns of `input` are read, and the whole

@@ -15,7 +15,7 @@ pub mod ffi;
 mod guard;
 mod handle;
 
-pub use handle::{GbumpConfig, GbumpStim, Target, PLAN_FREE_BYTES};
+pub use handle::{plan_memory, GbumpConfig, GbumpStim, Target};
 
 /// The calling conventions, stated once: the header opens with them and `ffi`'s functions
 /// follow them.

@@ -83,7 +83,6 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
         eval: &mut eval,
         area,
         seen: Vec::new(),
-        pinned: space.pinned.clone(),
     };
     let (chosen, sized) = search.run(&base, &space, min_throughput)?;
     let seen = std::mem::take(&mut search.seen);
@@ -91,27 +90,21 @@ pub fn fit(scene_names: &[String], budget: Budget, min_throughput: f64, area: &d
     let Some(chosen) = chosen else {
         let best = seen.iter().map(|c| budget.error(&c.measured)).fold(f64::INFINITY, f64::min);
         let best = if matches!(budget, Budget::Psnr(_)) { -best } else { best };
-        let searched: Vec<&str> = ["power_unit", "rounding", "normal_range", "palette"]
-            .into_iter()
-            .chain(super::search::WIDTHS)
-            .filter(|f| set.contains(*f))
-            .collect();
+        let (kept, fix) = match space.kept.is_empty() {
+            true => (String::new(), ""),
+            false => (
+                format!(" keeping {} as the scene's [pipeline] sets", space.kept.join(", ")),
+                ", or drop those fields from [pipeline] to let the search choose them",
+            ),
+        };
         return Err(crate::error::Error::Other(format!(
-            "no configuration renders {} within {budget}{}{}: the best measured {best:.2}\n  fix: loosen the budget{}",
+            "no configuration renders {} within {budget}{}{kept}: the best measured {best:.2}\n  fix: loosen the budget{fix}",
             scene_names.join(", "),
             if min_throughput > 0.0 {
                 format!(" at {min_throughput} fragments per clock")
             } else {
                 String::new()
             },
-            match searched.is_empty() {
-                true => String::new(),
-                false => format!(" keeping {} as the scene's [pipeline] sets", searched.join(", ")),
-            },
-            match searched.is_empty() {
-                true => String::new(),
-                false => ", or drop those fields from [pipeline] to let the search choose them".to_string(),
-            }
         )));
     };
     let front = pareto(&sized, |m| budget.error(m)).into_iter().cloned().collect();

@@ -23,6 +23,9 @@ pub const WIDTHS: [&str; 7] = [
     "power_frac_bits",
 ];
 
+/// The arithmetic choices the search makes, beside the widths.
+const CHOICES: [&str; 4] = ["power_unit", "rounding", "normal_range", "palette"];
+
 /// The widths of the stored and sent inputs. An `exact<=` budget measures the arithmetic on the
 /// stored codes, not how well the codes hold the true vectors, so under it these stay the
 /// base's: narrower inputs make the arithmetic exact by making the inputs coarse (3-bit
@@ -52,6 +55,9 @@ pub struct Space {
     pub palettes: Vec<bool>,
     /// Widths a scene's `[pipeline]` sets: kept at the base's value, never shrunk.
     pub pinned: Vec<&'static str>,
+    /// Every field the search would choose that a scene's `[pipeline]` sets (choices and
+    /// widths), for messages.
+    pub kept: Vec<&'static str>,
 }
 
 impl Space {
@@ -63,6 +69,7 @@ impl Space {
             normal_ranges: vec![NormalRange::Binary, NormalRange::Symmetric],
             palettes: if palette_exact { vec![false, true] } else { vec![false] },
             pinned: Vec::new(),
+            kept: Vec::new(),
         }
     }
 
@@ -71,6 +78,7 @@ impl Space {
     /// gets it, and the search chooses the rest.
     pub fn pin(mut self, base: &PipelineConfig, set: &std::collections::BTreeSet<String>) -> Space {
         let has = |f: &str| set.contains(f);
+        self.kept = CHOICES.into_iter().chain(WIDTHS).filter(|f| has(f)).collect();
         if has("power_unit") {
             self.power_units = vec![base.power_unit];
         }
@@ -172,8 +180,6 @@ pub struct Search<'a> {
     pub eval: &'a mut Evaluator,
     pub area: &'a dyn Fn(&PipelineConfig) -> Result<f64>,
     pub seen: Vec<Candidate>,
-    /// Widths kept as they start ([`Space::pinned`]).
-    pub pinned: Vec<&'static str>,
 }
 
 impl Search<'_> {
@@ -200,7 +206,8 @@ impl Search<'_> {
     }
 
     /// The smallest widths from `cfg` that keep the budget, or None when `cfg` misses it.
-    pub fn shrink(&mut self, cfg: PipelineConfig) -> Result<Option<PipelineConfig>> {
+    /// `pinned` widths stay as they are ([`Space::pinned`]).
+    pub fn shrink(&mut self, cfg: PipelineConfig, pinned: &[&str]) -> Result<Option<PipelineConfig>> {
         if !self.note(&cfg)? {
             return Ok(None);
         }
@@ -212,7 +219,7 @@ impl Search<'_> {
                 if field == "power_segments" && cfg.power_unit != PowerUnitKind::Segmented {
                     continue;
                 }
-                if (inputs_kept && INPUT_WIDTHS.contains(&field)) || self.pinned.contains(&field) {
+                if (inputs_kept && INPUT_WIDTHS.contains(&field)) || pinned.contains(&field) {
                     continue;
                 }
                 let (lo, _) = range(field);
@@ -251,7 +258,7 @@ impl Search<'_> {
             if inputs_kept {
                 (c.normal_bits, c.lh_bits) = (base.normal_bits, base.lh_bits);
             }
-            if let Some(w) = self.shrink(c)? {
+            if let Some(w) = self.shrink(c, &space.pinned)? {
                 let m = self.eval.measure(&w)?;
                 winners.push((w, m));
             }
@@ -350,10 +357,9 @@ mod tests {
             eval: &mut ev,
             area: &area,
             seen: Vec::new(),
-            pinned: Vec::new(),
         };
         let w = search
-            .shrink(start(&base, PowerUnitKind::Table))
+            .shrink(start(&base, PowerUnitKind::Table), &[])
             .unwrap()
             .expect("the generous start meets 45 dB");
         assert!(search.seen.iter().any(|c| !c.met), "the search never probed below the budget");

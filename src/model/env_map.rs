@@ -97,6 +97,26 @@ pub struct EnvMaps {
     pub specular: Vec<[u32; 3]>,
 }
 
+impl EnvMaps {
+    /// The map called `which`: "specular", else the diffuse one.
+    pub fn named(&self, which: &str) -> &Vec<[u32; 3]> {
+        if which == "specular" {
+            &self.specular
+        } else {
+            &self.diffuse
+        }
+    }
+
+    /// [`named`](Self::named), to change.
+    pub fn named_mut(&mut self, which: &str) -> &mut Vec<[u32; 3]> {
+        if which == "specular" {
+            &mut self.specular
+        } else {
+            &mut self.diffuse
+        }
+    }
+}
+
 /// Fraction bits of the exact map coordinate S.
 pub fn coord_frac(cfg: &PipelineConfig) -> u32 {
     (cfg.lh_bits - 2) + (cfg.normal_bits - 1)

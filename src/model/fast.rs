@@ -115,12 +115,11 @@ impl FastModel {
         FastModel::with_maps(cfg, mem.table, Some(mem.palette), mem.env.clone())
     }
 
-    /// Texel `i` of EMBM's specular map (or its diffuse map, when not `specular`) is now
-    /// `texel`, as the model's memories were changed; nothing without maps.
-    pub fn set_env_texel(&mut self, specular: bool, i: usize, texel: [u32; 3]) {
+    /// Texel `i` of EMBM's map `which` is now `texel`, as the model's memories were changed;
+    /// nothing without maps.
+    pub fn set_env_texel(&mut self, which: &str, i: usize, texel: [u32; 3]) {
         if let Some((_, maps)) = &mut self.embm {
-            let map = if specular { &mut maps.specular } else { &mut maps.diffuse };
-            map[i] = texel;
+            maps.named_mut(which)[i] = texel;
         }
     }
 

@@ -46,6 +46,13 @@ pub fn scene_and_config(scene: &str, config: Option<&Path>) -> Result<(Scene, Pi
     Ok((s, cfg))
 }
 
+/// Refuse scene `s` at `w`x`h` where its name cannot name its files or the render would not
+/// fit in memory (`use_` says what the command keeps per pixel), before anything is rendered.
+pub fn renderable(s: &crate::scene::Scene, use_: crate::limits::PixelUse, w: u32, h: u32) -> Result<()> {
+    crate::names::check(&s.file, "name", &s.name)?;
+    crate::limits::check_render(use_, &s.file, w, h, s.triangles())
+}
+
 /// Render, write the files and report; `lock` takes the RTL's work folder (only with `rtl`,
 /// after the golden images are rendered, before any file is written). An RTL image that differs is an error.
 pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &mut dyn FnMut(&str) -> Result<()>) -> Result<()> {
@@ -54,13 +61,12 @@ pub fn render(r: &RenderRequest, lock: impl FnOnce() -> Result<WorkLock>, say: &
         Some(sz) => crate::limits::parse_size("--size", sz)?,
         None => (s.size[0], s.size[1]),
     };
-    crate::names::check(&s.file, "name", &s.name)?;
     let use_ = if r.rtl.is_some() {
         crate::limits::PixelUse::RenderRtl
     } else {
         crate::limits::PixelUse::Render
     };
-    crate::limits::check_render(use_, &s.file, w, h, s.triangles())?;
+    renderable(&s, use_, w, h)?;
     if let Some(work) = r.rtl {
         // Scene fragments reach the RTL as a scene vector set: refused where one is.
         let from = r

@@ -143,14 +143,12 @@ fn env_roms<'a>(
     what: &str,
 ) -> Vec<(String, crate::rtlgen::rom::Rom, Option<&'a PipelineConfig>)> {
     let hash = &cfg.hash()[..8];
-    crate::rtlgen::top::env_map_memories(cfg)
-        .iter()
-        .map(|m| {
-            let which = m.prefix.trim_start_matches("env_");
-            let map = if which == "specular" { &maps.specular } else { &maps.diffuse };
+    crate::rtlgen::top::env_map_names(cfg)
+        .into_iter()
+        .map(|which| {
             (
-                format!("{}_{source}_{hash}", m.prefix),
-                crate::rtlgen::rom::env_map_rom(cfg, map, which, what),
+                format!("env_{which}_{source}_{hash}"),
+                crate::rtlgen::rom::env_map_rom(cfg, maps.named(which), which, what),
                 Some(cfg),
             )
         })

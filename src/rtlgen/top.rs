@@ -84,6 +84,11 @@ pub fn env_map_memories(cfg: &PipelineConfig) -> Vec<units::Memory> {
     memories(cfg).into_iter().filter(|m| m.prefix.starts_with("env_")).collect()
 }
 
+/// The names of [`env_map_memories`]: "diffuse", "specular" (those the top has a port for).
+pub fn env_map_names(cfg: &PipelineConfig) -> Vec<&'static str> {
+    env_map_memories(cfg).iter().map(|m| m.prefix.trim_start_matches("env_")).collect()
+}
+
 /// The memories other than the power table: (the top's init parameter, the unit that holds
 /// the memory, the init file's name in the generated RTL).
 pub fn memory_inits(cfg: &PipelineConfig) -> Vec<(String, String, String)> {

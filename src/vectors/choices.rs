@@ -44,7 +44,8 @@ impl Spelling {
         }
     }
 
-    fn ignored(&self, choice: &str, why: &str) -> Error {
+    /// The refusal of `choice`, which this source ignores for the reason `why`.
+    pub fn ignored(&self, choice: &str, why: &str) -> Error {
         Error::Other(format!("{choice} has no effect on {}: {why}\n  fix: drop {choice}", self.source))
     }
 }

@@ -394,11 +394,7 @@ pub fn write_env_maps(dir: &Path, stem: &str, cfg: &PipelineConfig, maps: &EnvMa
         write_listed(dir, name, &text)
     };
     // Only the maps the top has a port for (one per blend of the configuration).
-    let has = |which: &str| {
-        crate::rtlgen::top::env_map_memories(cfg)
-            .iter()
-            .any(|m| m.prefix == format!("env_{which}"))
-    };
+    let has = |which: &str| crate::rtlgen::top::env_map_names(cfg).contains(&which);
     Ok(EnvMapFiles {
         diffuse: has("diffuse").then(|| one("diffuse", &maps.diffuse)).transpose()?,
         specular: has("specular").then(|| one("specular", &maps.specular)).transpose()?,
