@@ -10,12 +10,15 @@ fn main() {
         Err(e) => {
             gbump::interrupt::kill_remaining();
             gbump::render::output::remove_made_folders(&[gbump::work_lock::LOCK_NAME]);
-            eprintln!("gbump: error: {}", gbump::error::shown(&format!("{e:#}")));
-            std::process::exit(if gbump::interrupt::interrupted() {
-                gbump::interrupt::exit_status()
-            } else {
-                1
-            });
+            let shown = gbump::error::shown(&format!("{e:#}"));
+            if !gbump::interrupt::interrupted() {
+                eprintln!("gbump: error: {shown}");
+                std::process::exit(1);
+            }
+            // One prefix for every way a signal ends a run (this error path, a forced stop,
+            // a signal after the last check), so a script greps `gbump: interrupted:` alone.
+            eprintln!("gbump: interrupted: {}", shown.strip_prefix("interrupted: ").unwrap_or(&shown));
+            std::process::exit(gbump::interrupt::exit_status());
         }
         // A signal that came after the run's last check: it finished, but a script that sent
         // the signal must not read a plain success.

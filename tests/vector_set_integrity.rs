@@ -340,6 +340,11 @@ fn a_set_written_again_in_one_format_leaves_no_older_file_of_the_other() {
     assert!(names().contains(&"random20_top.hex".to_string()) && names().contains(&"random20_top.bin".to_string()));
     dump(&["--seed", "5", "--format", "bin"]);
     assert_eq!(names(), ["random20_top.bin", "random20_top.json", "random20_top_power_table.hex"]);
+    assert_eq!(
+        read_manifest(&d.path().join("random20_top.json")).seed,
+        Some(5),
+        "a random set records its seed"
+    );
     dump(&["--format", "hex"]);
     assert_eq!(names(), ["random20_top.hex", "random20_top.json", "random20_top_power_table.hex"]);
     gbump::vectors::verify(&d.path().join("random20_top.json")).unwrap();
@@ -370,6 +375,8 @@ fn a_recorded_command_repeats_from_any_folder() {
     );
     gbump(d, &words(&["rtl", "--config=two.toml", "--out", "rtl"]));
     let m = read_manifest(&d.join("a/corners_top.json"));
+    // Corners draw nothing: no seed is recorded (and none is put in the command below).
+    assert_eq!(m.seed, None);
     let abs = d.join("two.toml").display().to_string();
     assert!(m.command.contains(&format!("--config {abs}")), "{}", m.command);
     let iface = std::fs::read_dir(d.join("rtl"))

@@ -96,16 +96,14 @@ pub fn vectors<'py>(
 ) -> PyResult<Bound<'py, PyList>> {
     use gbump::vectors::choices::{refuse_ignored, refuse_unservable, Asked, Spelling};
     let cfg = &h.cfg;
-    let src = Source::parse(source).map_err(crate::err)?;
-    let (asked, spelling) = (
-        Asked {
-            seed: seed.is_some(),
-            shininess,
-            size: size.is_some(),
-            level: false,
-        },
-        Spelling::keywords(source),
-    );
+    let spelling = Spelling::keywords(source);
+    let src = Source::parse_as(source, &spelling.source).map_err(crate::err)?;
+    let asked = Asked {
+        seed: seed.is_some(),
+        shininess,
+        size: size.is_some(),
+        level: false,
+    };
     refuse_ignored(&src, &asked, &spelling).map_err(crate::err)?;
     let written = match &src {
         // The unit must exist before its shininess is judged (as `gbump vectors` does).

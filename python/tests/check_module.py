@@ -212,6 +212,9 @@ check(
 )
 check(raises(lambda: model.stimulus(1).next(-1), f"0..={2**24}"), "a negative count names the batch limit")
 check(raises(lambda: model.vectors("random:0"), "1..="), "random:0 names the range it takes")
+# A source is named as the call spelt it, not as gbump vectors' flag.
+for bad in ["random:0", "bogus", "exhaustive:a/b"]:
+    check(raises(lambda: model.vectors(bad), f'source "{bad}"') and not raises(lambda: model.vectors(bad), "--source"), f"{bad} is named in Python's spelling")
 # A choice the source ignores, or a shininess the hardware cannot hold, is refused as
 # `gbump vectors` refuses it (a set made without it would pass for what was asked).
 check(raises(lambda: model.vectors("corners", seed=3), "seed=", "fix:"), "a seed of a corner set is refused")

@@ -46,7 +46,10 @@ pub struct Manifest {
     /// The source as the command line spells it (`random:N`, `scene:NAME`, `corners`);
     /// manifests before it were spelled `Random(N)`, `Scene("NAME")`, `Corners(1)`.
     pub source: String,
-    pub seed: u64,
+    /// The seed of a random set, which alone draws from one; other sources write none (a
+    /// manifest before this read `1` for every set).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
     pub count: u64,
     pub config_hash: String,
     pub config: crate::PipelineConfig,
@@ -517,8 +520,8 @@ pub fn recorded_command(m: &Manifest) -> String {
         None => (spelt.as_str(), String::new()),
     };
     let mut cmd = format!("gbump vectors --source {}{level}", quoted(source));
-    if matches!(src, Some(Source::Random(_))) {
-        cmd += &format!(" --seed {}", m.seed);
+    if let (Some(Source::Random(_)), Some(seed)) = (&src, m.seed) {
+        cmd += &format!(" --seed {seed}");
     }
     // A scene's sets take their shininess from its objects.
     if m.shininess != m.config.shininess && !matches!(src, Some(Source::Scene(_))) {

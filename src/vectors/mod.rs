@@ -1,8 +1,8 @@
 //! The vector dumper: stimulus and expected response from the golden model, for the top and
 //! for each unit, as `$readmemh`-ready text (one record per line) and fixed-size binary
-//! records, each set with a JSON manifest (generator, config and hash, seed, source, count,
-//! column layout, sha256 of every file). Seeded and deterministic: the same command gives the
-//! same bytes.
+//! records, each set with a JSON manifest (generator, config and hash, source, a random set's
+//! seed, count, column layout, sha256 of every file). Seeded and deterministic: the same
+//! command gives the same bytes.
 
 pub mod choices;
 pub mod digest;

@@ -19,9 +19,15 @@ pub enum Source {
 
 impl Source {
     pub fn parse(s: &str) -> Result<Source> {
+        Source::parse_as(s, &format!("--source {s}"))
+    }
+
+    /// [`parse`](Self::parse), its messages naming the source as the caller spelt it
+    /// (`named`: `--source random:0`, or a library call's `source "random:0"`).
+    pub fn parse_as(s: &str, named: &str) -> Result<Source> {
         let bad = || {
             Error::Other(format!(
-                "--source {s}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"
+                "{named}: not understood\n  fix: use scene:NAME, corners, random:N or exhaustive:UNIT"
             ))
         };
         Ok(match s.split_once(':') {
@@ -30,21 +36,15 @@ impl Source {
                 let src = Source::Scene(n.to_string());
                 // The scene file's stem names every file of the set: the fix is to rename the
                 // file (a built-in scene's name is always plain).
-                super::writer::check_set_names(&format!("--source {s}"), "the scene file", &src.stem(), "top", false)?;
+                super::writer::check_set_names(named, "the scene file", &src.stem(), "top", false)?;
                 src
             }
             Some(("random", n)) => {
                 let max = crate::limits::MAX_RANDOM_VECTORS;
-                Source::Random(crate::limits::parse_count(
-                    &format!("--source {s}"),
-                    n,
-                    1,
-                    max,
-                    "MAX_RANDOM_VECTORS",
-                )?)
+                Source::Random(crate::limits::parse_count(named, n, 1, max, "MAX_RANDOM_VECTORS")?)
             }
             Some(("exhaustive", u)) => {
-                crate::names::check("--source", "exhaustive:UNIT", u)?;
+                crate::names::check(named, "exhaustive:UNIT", u)?;
                 Source::Exhaustive(u.to_string())
             }
             _ => return Err(bad()),

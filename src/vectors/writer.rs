@@ -312,7 +312,7 @@ impl SetWriter {
             target: self.target.clone(),
             module,
             source: src.to_string(),
-            seed: o.seed,
+            seed: matches!(src, Source::Random(_)).then_some(o.seed),
             count: self.count,
             config_hash: cfg.hash(),
             config: cfg.clone(),
