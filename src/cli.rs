@@ -564,10 +564,46 @@ fn engine_why(why: &str, scene: &PipelineConfig, fixed: &PipelineConfig) -> Stri
                     "# shininess = {0}: the scene's; the engine's squaring power unit computes x^{0} by successive squarings (no table)\n",
                     fixed.shininess
                 ),
-                _ => format!("{l}\n"),
+                (Some("shininess"), _) if fixed.embm() => format!(
+                    "# shininess = {0}: the scene's; EMBM has no power table: the specular environment map holds x^{0}, built when the map is\n",
+                    fixed.shininess
+                ),
+                (Some("k_frac_bits"), _) if fixed.embm() => format!(
+                    "# k_frac_bits = {}: no k under EMBM (its four light slots are the bilinear filter's texels; the maps hold the lights)\n",
+                    fixed.k_frac_bits
+                ),
+                _ => unheld_advice(l, fixed),
             }
         })
         .collect()
+}
+
+/// A line of a scene's needs as it holds for an engine's configuration: advice to set a field
+/// (`palette = true holds them exactly`, `power_rom = true makes it a ROM`) that the engine's
+/// configuration refuses gives the refusal's reason instead, so no line suggests a
+/// configuration `gbump` then refuses.
+fn unheld_advice(line: &str, fixed: &PipelineConfig) -> String {
+    let advice: [(&str, fn(&mut PipelineConfig)); 3] = [
+        ("palette = true", |c| c.palette = true),
+        ("power_rom = true", |c| c.power_rom = true),
+        ("renormalise_bump = true", |c| c.renormalise_bump = true),
+    ];
+    for (words, set) in advice {
+        let Some(at) = line.find(words) else { continue };
+        let mut c = fixed.clone();
+        set(&mut c);
+        if let Err(e) = c.validate("the engine's configuration") {
+            let why = match &e {
+                Error::Field { msg, .. } => msg.clone(),
+                e => e.to_string().lines().next().unwrap_or_default().to_string(),
+            };
+            // The advice is the clause from `words` to its end; the line's facts before it stay.
+            let (keep, _) = line.split_at(at);
+            let keep = keep.trim_end_matches(['(', ' ', ';']);
+            return format!("{keep} ({words} is refused here: {why})\n");
+        }
+    }
+    format!("{line}\n")
 }
 
 /// Refuse an output file that is one of the inputs this run has read (checked as soon as the
@@ -740,8 +776,44 @@ fn clap_exit(e: clap::Error) -> ! {
     ) {
         e.exit()
     }
+    if let Some(msg) = value_refusal(&e) {
+        eprintln!("gbump: error: {}", crate::error::shown(&msg));
+        std::process::exit(1);
+    }
     eprint!("{}", crate::error::shown(&e.render().to_string()));
     std::process::exit(e.exit_code())
+}
+
+/// A value the parser took and gbump's own check refused (a number out of its range, an
+/// output folder that is a file) as gbump words every error, with the exit status 1 the README
+/// gives a value out of range; None for what is clap's to refuse (a number that is not one,
+/// an unknown option), which keeps clap's message and status 2.
+fn value_refusal(e: &clap::Error) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() != ErrorKind::ValueValidation {
+        return None;
+    }
+    let src = std::error::Error::source(e)?;
+    if src.is::<std::num::ParseIntError>() || src.is::<std::num::ParseFloatError>() {
+        return None;
+    }
+    let text = |k| match e.get(k) {
+        Some(ContextValue::String(s)) => Some(s.clone()),
+        _ => None,
+    };
+    // clap names the option with its value's placeholder (`--level <LEVEL>`).
+    let arg = text(ContextKind::InvalidArg)?;
+    let flag = arg.split(' ').next().unwrap_or(&arg).to_string();
+    let value = text(ContextKind::InvalidValue).unwrap_or_default();
+    let why = src.to_string();
+    let (what, fix) = match why.split_once(" (fix: ") {
+        Some((w, f)) => (w.to_string(), f.strip_suffix(')').unwrap_or(f).to_string()),
+        None => match why.split_once(" is not in ") {
+            Some((_, range)) => (why.clone(), format!("use {range}")),
+            None => (why.clone(), format!("give a value {flag} takes (its line in the command's --help)")),
+        },
+    };
+    Some(format!("{flag} {value}: {what}\n  fix: {fix}"))
 }
 
 pub fn run() -> anyhow::Result<()> {

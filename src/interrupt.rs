@@ -48,7 +48,8 @@ pub fn kill_remaining() {
     }
 }
 
-fn kill_tree() {
+/// End every process this one started (and theirs), whatever the reason for stopping.
+pub fn kill_tree() {
     #[cfg(target_os = "linux")]
     end_tree(std::process::id(), libc::SIGKILL);
 }

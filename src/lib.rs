@@ -19,6 +19,7 @@ pub mod limits;
 pub mod measure;
 pub mod model;
 pub mod names;
+pub mod out_of_memory;
 pub mod progress;
 pub mod raster;
 pub mod reference;

@@ -274,7 +274,7 @@ pub fn memory_budget() -> u64 {
 }
 
 /// The process's address-space limit (`ulimit -v`), when it has one.
-fn address_space_limit() -> Option<u64> {
+pub fn address_space_limit() -> Option<u64> {
     #[cfg(unix)]
     {
         let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };

@@ -1,4 +1,9 @@
+// Running out says so and cleans up, rather than aborting with the run's temporary files left.
+#[global_allocator]
+static ALLOCATOR: gbump::out_of_memory::Allocator = gbump::out_of_memory::Allocator;
+
 fn main() {
+    gbump::out_of_memory::install();
     gbump::interrupt::install();
     match gbump::cli::run() {
         // The reader of standard output closed it early (`gbump config | head -1`): quiet, with

@@ -53,9 +53,25 @@ pub fn remove_own() -> usize {
     remove_own_under(Path::new("/"))
 }
 
+/// [`remove_own`] from a path that may have interrupted this process's own use of the list
+/// (an allocation that failed while a name was being added): a list that is held is left, for
+/// the next run in the folder to clear, rather than waited for forever.
+pub fn remove_own_unless_held() -> usize {
+    let set = match MADE.try_lock() {
+        Ok(g) => g.clone().unwrap_or_default(),
+        Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner().clone().unwrap_or_default(),
+        Err(std::sync::TryLockError::WouldBlock) => return 0,
+    };
+    remove_listed(set, Path::new("/"))
+}
+
 /// [`remove_own`] for the names under `dir` alone.
 pub fn remove_own_under(dir: &Path) -> usize {
     let set = MADE.lock().unwrap_or_else(|e| e.into_inner()).clone().unwrap_or_default();
+    remove_listed(set, dir)
+}
+
+fn remove_listed(set: HashSet<PathBuf>, dir: &Path) -> usize {
     set.iter()
         .filter(|p| p.starts_with(dir))
         .filter(|p| {

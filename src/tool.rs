@@ -47,7 +47,7 @@ fn probe(prog: &str) -> Probe {
     for flag in ["--version", "-V"] {
         // Its output is not read: a process it leaves behind holding a pipe cannot hold the
         // probe open.
-        let Ok(mut child) = Command::new(prog)
+        let Ok(mut child) = ends_with_gbump(&mut Command::new(prog))
             .arg(flag)
             .stdin(std::process::Stdio::null())
             .stdout(std::process::Stdio::null())
@@ -66,6 +66,34 @@ fn probe(prog: &str) -> Probe {
         }
     }
     Probe::Missing
+}
+
+/// `cmd`, set to be killed if gbump dies first. A signal gbump catches ends its tools itself
+/// (`interrupt`), but SIGKILL (an OOM killer, a CI runner's hard stop) cannot be caught, and a
+/// simulator left behind ran on at full speed with no one to read it. The kernel sends the
+/// signal when the thread that started the tool ends; every caller waits for its tool on that
+/// thread.
+pub fn ends_with_gbump(cmd: &mut Command) -> &mut Command {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::process::CommandExt;
+        let parent = std::process::id() as libc::pid_t;
+        // SAFETY: between fork and exec the closure calls only prctl, getppid and _exit, which
+        // are async-signal-safe, and allocates nothing.
+        unsafe {
+            cmd.pre_exec(move || {
+                if libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+                // gbump ended between the fork and the prctl: no signal would come.
+                if libc::getppid() != parent {
+                    libc::_exit(1);
+                }
+                Ok(())
+            });
+        }
+    }
+    cmd
 }
 
 /// The error for a program that is not installed; it says how to install it.
@@ -92,7 +120,7 @@ pub fn run_cmd(cmd: &mut Command, what: &str) -> Result<(bool, String, f64)> {
             Error::Other(format!("{what}: cannot start {prog}: {e}"))
         }
     };
-    let child = cmd
+    let child = ends_with_gbump(cmd)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
@@ -194,7 +222,7 @@ pub fn wait_capped(mut child: std::process::Child) -> std::io::Result<std::proce
 
 /// [`std::process::Command::output`], each stream read by [`read_capped`].
 pub fn output(cmd: &mut Command) -> std::io::Result<std::process::Output> {
-    let child = cmd
+    let child = ends_with_gbump(cmd)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())

@@ -1059,7 +1059,19 @@ fn cases() -> Vec<Case> {
             "a --work folder that is a file",
             vec![("afile", "x".into())],
             vec!["bench", "--work", "afile"],
-            vec!["--work", "afile is a file, not a folder"],
+            vec!["gbump: error: --work afile: afile is a file, not a folder", "\n  fix: give a folder path"],
+        ),
+        (
+            "an --out folder that is a file (gbump's own check: exit 1, not the parser's 2)",
+            vec![("afile", "x".into())],
+            vec!["rom", "--out", "afile"],
+            vec!["gbump: error: --out afile: afile is a file, not a folder", "\n  fix: give a folder path"],
+        ),
+        (
+            "a corner level out of its range",
+            vec![],
+            vec!["vectors", "--source", "corners", "--level", "3", "--out", "out"],
+            vec!["gbump: error: --level 3: 3 is not in 1..=2", "fix: use 1..=2"],
         ),
         (
             "error at a size no built-in scene covers a pixel of",
@@ -1142,7 +1154,7 @@ fn cases() -> Vec<Case> {
             vec![(
                 "m.json",
                 include_str!("../vectors/corners_top.json")
-                    .replacen("\"seed\":", "\"sead\": 1,\n  \"seed\":", 1)
+                    .replacen("\"count\":", "\"sead\": 1,\n  \"count\":", 1)
                     .into(),
             )],
             vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
@@ -2519,6 +2531,83 @@ fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
     }
     let _ = std::process::Command::new("kill").args(["-KILL", sleeper.trim()]).status();
     panic!("the simulator's child outlived the run: {stat}");
+}
+
+/// A simulator does not outlive a gbump ended by SIGKILL, which no handler sees: the kernel
+/// ends it (it had run on at full speed with no one reading it).
+#[test]
+fn a_simulator_dies_with_a_gbump_killed_outright() {
+    let dir = tempfile::tempdir().unwrap();
+    let pid_file = dir.path().join("sim.pid");
+    let path = fake_tools::icarus(
+        &dir.path().join("bin"),
+        &format!(
+            "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\necho $$ > {}.tmp && mv {0}.tmp {0}\nexec sleep 300",
+            pid_file.display()
+        ),
+    );
+    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+        .env("PATH", &path)
+        .env_remove("GBUMP_TOOL_TIMEOUT")
+        .args(["regress", "--sim", "icarus", "--work"])
+        .arg(dir.path().join("w"))
+        .arg("--vectors")
+        .arg(&vectors)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let t = std::time::Instant::now();
+    while !pid_file.exists() {
+        assert!(child.try_wait().unwrap().is_none(), "gbump ended before the simulator ran");
+        assert!(t.elapsed().as_secs() < 60, "the simulator did not start in 60 s");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let sim = std::fs::read_to_string(&pid_file).unwrap();
+    let mut stat = String::new();
+    for _ in 0..50 {
+        stat = std::fs::read_to_string(format!("/proc/{}/stat", sim.trim())).unwrap_or_default();
+        if stat.is_empty() || stat.rsplit_once(')').unwrap().1.trim_start().starts_with('Z') {
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let _ = std::process::Command::new("kill").args(["-KILL", sim.trim()]).status();
+    panic!("the simulator outlived a gbump killed with SIGKILL: {stat}");
+}
+
+/// Under an address-space limit (`ulimit -v`) a dump either fits or ends with gbump's own
+/// error, exit 1 and no temporary file: per-thread allocator arenas had used up 400 MB
+/// before any record was made, and the failed allocation aborted the process with its
+/// temporary files left behind.
+#[test]
+fn a_dump_under_an_address_space_limit_fits_or_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |limit_kb: u64, source: &str, out: &str| {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "ulimit -v {limit_kb}; exec '{}' vectors --source {source} --out {out}",
+                env!("CARGO_BIN_EXE_gbump")
+            ))
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let o = run(400_000, "random:20000", "fits");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Too little for the binary's own start: gbump's error, never an abort.
+    let o = run(60_000, "random:2000000 --target top --format both", "short");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("gbump: error:") && err.contains("fix:"), "{err}");
+    let left: Vec<String> = std::fs::read_dir(dir.path().join("short"))
+        .map(|d| d.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect())
+        .unwrap_or_default();
+    assert!(left.iter().all(|n| !n.contains(".gbump.tmp")), "{left:?}");
 }
 
 /// Past a file-size limit (`ulimit -f`) a write fails with a message naming the file and

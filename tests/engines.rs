@@ -404,6 +404,25 @@ fn an_engines_config_comments_agree_with_its_values() {
             if cfg.power_unit == gbump::config::PowerUnitKind::Squaring {
                 assert!(!text.contains("the table need never be reloaded"), "{} on {scene}:\n{text}", e.name);
             }
+            // Advice to set a field holds for this configuration, or says it is refused here.
+            for field in ["palette", "power_rom", "renormalise_bump"] {
+                let advice = format!("{field} = true");
+                for l in text.lines().filter(|l| l.starts_with('#') && l.contains(&advice)) {
+                    let asked: String = toml_text
+                        .lines()
+                        .filter(|t| !t.starts_with(&format!("{field} =")))
+                        .map(|t| format!("{t}\n"))
+                        .collect::<String>()
+                        + &advice;
+                    let held = gbump::PipelineConfig::from_toml("advice.toml", &asked);
+                    assert_eq!(
+                        held.is_err(),
+                        l.contains(&format!("{advice} is refused here")),
+                        "{} on {scene}: {l}\n{held:?}",
+                        e.name
+                    );
+                }
+            }
         }
     }
 }

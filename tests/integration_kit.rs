@@ -297,6 +297,60 @@ fn the_fusesoc_core_runs_the_top_testbench_on_icarus_and_verilator() {
     assert_eq!(passed_failed(&log), (100, 0), "{log}");
 }
 
+/// Every memory the top reads powers up from a file the core copies into the simulator's
+/// folder: EMBM's two maps (left out, every result was X) and a palette configuration's
+/// palette, each run with nothing loaded; a power table nothing reads is neither copied nor
+/// offered as `--table`.
+#[test]
+fn the_fusesoc_core_copies_every_memorys_power_up_file() {
+    use gbump::rtlgen::top::{memory_init_file, power_table_read, read_memories};
+    for t in ["fusesoc", "iverilog"] {
+        need(t);
+    }
+    for config in ["tests/configs/embm.toml", "tests/configs/palette_serial.toml"] {
+        let cfg = cfg_of(Some(config));
+        let tmp = tempfile::tempdir().unwrap();
+        let cores = tmp.path().join("cores/gbump");
+        rtl(Some(config), &cores);
+        let top = module_name(&cfg, "gbump_pipeline");
+        let text = std::fs::read_to_string(cores.join(format!("{top}.core"))).unwrap();
+        let read = read_memories(&cfg);
+        assert!(read.len() >= 2, "{config}: a top with memories besides the table");
+        for m in &read {
+            let f = memory_init_file(&cfg, m);
+            assert!(text.contains(&format!("copyto: {f}}}")), "{config}: {f} not copied:\n{text}");
+            assert!(
+                text.contains(&format!("  {}:\n", m.init_param)),
+                "{config}: no {} parameter",
+                m.init_param
+            );
+        }
+        assert_eq!(text.contains("copyto: power_table_"), power_table_read(&cfg), "{config}:\n{text}");
+        assert_eq!(text.contains("--table="), power_table_read(&cfg), "{config}:\n{text}");
+        let c = root().join(config).display().to_string();
+        let v = tmp.path().join("v");
+        gbump(&[
+            "vectors",
+            "--source",
+            "random:300",
+            "--target",
+            "top",
+            "--format",
+            "hex",
+            "--config",
+            &c,
+            "--out",
+            v.to_str().unwrap(),
+        ]);
+        let cwd = tmp.path().join("elsewhere");
+        std::fs::create_dir_all(&cwd).unwrap();
+        let plus = ["--vectors=../v/random300_top.hex".to_string(), "--count=300".into()];
+        let log = fusesoc(&cwd, Path::new("../cores"), "sim_icarus", &format!("gbump:gbump:{top}"), &plus);
+        assert_eq!(passed_failed(&log), (300, 0), "{config}:\n{log}");
+        assert!(!log.contains("Unable to open"), "{config}: a power-up file is missing:\n{log}");
+    }
+}
+
 /// A record's field from a `$readmemh` line (hex digits, LSB last).
 fn hex_field(line: &str, lsb: u32, width: u32) -> String {
     let bits: Vec<u8> = line

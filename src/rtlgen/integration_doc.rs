@@ -32,7 +32,8 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     );
     s += "**Clock and reset.** One clock, `clk`, rising edge. `rst` is synchronous and active high. ";
     s += &format!(
-        "Holding `rst` high for {RESET_CYCLES} rising edge(s) brings the top from any power-up state to idle: every valid bit is cleared, `out_valid` is low and `out_c` is 0 (no X leaves the top after reset, once its memories hold values: a `$readmemh` that cannot open its init file does not stop Icarus, which prints an `ERROR: … Unable to open` line and runs on, and the unloaded table's X then reaches `out_c`; see INIT_FILE below). From the first reset on, `out_c` is 0 at every edge at which `out_valid` is low (the top gates it with `out_valid`). A reset in the middle of a run discards every fragment in flight{}{}; at the first edge at which `rst` is sampled high, `out_valid` and `out_c` still show the state from before (a result offered there{} is taken by the receiver, the last one before the reset), and from the next edge on `out_valid` is low until a fragment accepted after the reset comes out. ",
+        "Holding `rst` high for {RESET_CYCLES} rising edge(s) brings the top from any power-up state to idle: every valid bit is cleared, `out_valid` is low and `out_c` is 0 ({}). From the first reset on, `out_c` is 0 at every edge at which `out_valid` is low (the top gates it with `out_valid`). A reset in the middle of a run discards every fragment in flight{}{}; at the first edge at which `rst` is sampled high, `out_valid` and `out_c` still show the state from before (a result offered there{} is taken by the receiver, the last one before the reset), and from the next edge on `out_valid` is low until a fragment accepted after the reset comes out. ",
+        no_x_after_reset(cfg),
         if cfg.backpressure { " and every result waiting for `out_ready`" } else { "" },
         if cfg.per_triangle() {
             "; the next fragment needs a triangle setup first, as after power-up"
@@ -210,6 +211,23 @@ pub fn markdown(cfg: &PipelineConfig) -> String {
     s
 }
 
+/// Why no X leaves the top after reset, and the one way it still can: a memory the top reads
+/// that its init file did not load (named by its parameter; a top that reads none has no such
+/// way).
+fn no_x_after_reset(cfg: &PipelineConfig) -> String {
+    let params: Vec<String> = super::top::read_memories(cfg)
+        .iter()
+        .map(|m| format!("`{}`", m.init_param))
+        .collect();
+    if params.is_empty() {
+        return "no X leaves the top after reset: it reads no memory".into();
+    }
+    format!(
+        "no X leaves the top after reset, once its memories hold values: a `$readmemh` that cannot open its init file does not stop Icarus, which prints an `ERROR: … Unable to open` line and runs on, and the unloaded memory's X then reaches `out_c`; the init parameters are {}",
+        params.join(", ")
+    )
+}
+
 /// How a testbench drives a unit's vectors: one record per edge, each column when it enters,
 /// and which memory a unit's load port writes.
 fn unit_vectors(cfg: &PipelineConfig) -> String {
@@ -219,25 +237,38 @@ fn unit_vectors(cfg: &PipelineConfig) -> String {
             late.push(format!("`{}`'s `{}` enters {} edge(s) late", u.name(), p.name, p.enters));
         }
     }
+    // Only a configuration with a late column has the rule to state.
     let late = if late.is_empty() {
-        "none in this configuration".to_string()
+        "sampled at one edge (no column of this configuration's units enters late)".to_string()
     } else {
-        late.join(", ")
+        format!(
+            "sampled at one edge, except a column whose manifest `enters` is e > 0, sampled e edges later ({}: a running sum fed back into the unit's last stage)",
+            late.join(", ")
+        )
     };
-    let mut mem = vec!["`power_unit` reads the power table, written through its `we`, `waddr` and `wdata` from the set's `_power_table.hex` as the top's is (its parameter `R`, the read ports, stays 1: the vectors hold one `x` lane)".to_string()];
+    let mut mem = Vec::new();
     for u in crate::units::included(cfg) {
-        if let Some(m) = u.memory(cfg).filter(|_| u.name() != "power_unit") {
-            mem.push(format!(
-                "`{}` reads the {} memory its `{}` loads at power-up, which its sets assume: its load port stays idle",
+        let Some(m) = u.memory(cfg) else { continue };
+        mem.push(if m.prefix == crate::units::POWER_TABLE {
+            format!("`{}` reads the power table, written through its `we`, `waddr` and `wdata` from the set's `_power_table.hex` as the top's is (its parameter `R`, the read ports, stays 1: the vectors hold one `x` lane)", u.name())
+        } else {
+            // The unit's own module names its file `INIT_FILE`; the top passes its own
+            // parameter down to it.
+            format!(
+                "`{}` reads the {} memory its parameter `INIT_FILE` (the top's `{}`) loads at power-up, which its sets assume: its load port stays idle",
                 u.name(),
                 m.prefix,
                 m.init_param
-            ));
-        }
+            )
+        });
     }
-    format!(
-        "\n**Unit vectors** (`gbump vectors --target UNIT`, `exhaustive:UNIT`). A unit is a bare datapath with registered outputs: no valid, ready or reset. Its records stream one per rising edge (initiation interval 1): a record's stimulus columns are sampled at one edge, except a column whose manifest `enters` is e > 0, sampled e edges later ({late}: a running sum fed back into the unit's last stage); its expected columns are on the outputs `latency` edges after the first (the manifest's `latency`, the unit table above). `tb_units`, which `gbump regress` runs, drives them so. Memories: {}.\n",
+    let mem = if mem.is_empty() {
+        "no unit of this configuration reads one".to_string()
+    } else {
         mem.join("; ")
+    };
+    format!(
+        "\n**Unit vectors** (`gbump vectors --target UNIT`, `exhaustive:UNIT`). A unit is a bare datapath with registered outputs: no valid, ready or reset. Its records stream one per rising edge (initiation interval 1): a record's stimulus columns are {late}; its expected columns are on the outputs `latency` edges after the first (the manifest's `latency`, the unit table above). `tb_units`, which `gbump regress` runs, drives them so. Memories: {mem}.\n"
     )
 }
 

@@ -14,7 +14,7 @@
 
 use super::header::header;
 use super::top::latency;
-use super::units_v::{module_name, rom_file_name};
+use super::units_v::module_name;
 use super::GenFile;
 use crate::config::PipelineConfig;
 use crate::vectors::layout::{Layout, Role};
@@ -89,16 +89,31 @@ pub fn filelists(cfg: &PipelineConfig, command: &str, sources: &[String]) -> Vec
     vec![(f, plain), (fi, icarus), (fy, tcl)]
 }
 
-/// The FuseSoC CAPI2 core: the RTL, its power-up table (copied into the simulator's working
-/// folder, where the relative `INIT_FILE` finds it), the lint waivers and the top testbench.
+/// The FuseSoC CAPI2 core: the RTL, the power-up file of every memory the top reads (copied
+/// into the simulator's working folder, where each relative init parameter finds it), the
+/// lint waivers and the top testbench.
 pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     let top = module_name(cfg, "gbump_pipeline");
-    let init = rom_file_name(cfg, "power_table", "hex");
+    // Every memory the top reads, with its init parameter and file: a file the RTL reads at
+    // power-up and the core did not copy left that memory X in every run (EMBM's maps).
+    let inits: Vec<(&'static str, String, &'static str)> = super::top::read_memories(cfg)
+        .iter()
+        .map(|m| (m.init_param, super::top::memory_init_file(cfg, m), m.prefix))
+        .collect();
+    let params: Vec<&str> = inits.iter().map(|i| i.0).collect();
+    let table = super::top::power_table_read(cfg);
+    // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
+    let others: Vec<&'static str> = super::testbench::other_memories(cfg).iter().map(|m| m.prefix).collect();
     let vlt = format!("{top}.vlt");
     let mut s = String::from("CAPI=2:\n");
     s += &header(cfg, command, "FuseSoC CAPI2 core of the pipeline and its top testbench", "# ");
+    let loads: String = table
+        .then(|| " [--table=SET_top_power_table.hex]".to_string())
+        .into_iter()
+        .chain(others.iter().map(|p| format!(" [--{p}=FILE]")))
+        .collect();
     s += &format!(
-        "# fusesoc --cores-root DIR run --target sim_icarus gbump:gbump:{top} --vectors=SET_top.hex [--count=N] [--table=SET_top_power_table.hex] [--bubbles=N]\n"
+        "# fusesoc --cores-root DIR run --target sim_icarus gbump:gbump:{top} --vectors=SET_top.hex [--count=N]{loads} [--bubbles=N]\n"
     );
     s += &format!("name: gbump:gbump:{top}:{}\n", env!("CARGO_PKG_VERSION"));
     s += &format!(
@@ -111,7 +126,9 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     for f in sources {
         s += &format!("      - {f}\n");
     }
-    s += &format!("      - {init}: {{file_type: user, copyto: {init}}}\n");
+    for (_, file, _) in &inits {
+        s += &format!("      - {file}: {{file_type: user, copyto: {file}}}\n");
+    }
     s += "    file_type: verilogSource\n";
     s += &format!("  waivers:\n    files:\n      - {vlt}\n    file_type: vlt\n");
     s += &format!(
@@ -120,17 +137,23 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
     );
     s += &format!("  tb:\n    files:\n      - {}\n    file_type: verilogSource\n\n", tb_file_name(cfg));
     s += "targets:\n";
-    s += &format!("  default:\n    filesets: [rtl]\n    toplevel: {top}\n    parameters: [INIT_FILE]\n");
+    s += &format!(
+        "  default:\n    filesets: [rtl]\n    toplevel: {top}\n    parameters: [{}]\n",
+        params.join(", ")
+    );
     s += &format!(
         "  lint:\n    default_tool: verilator\n    filesets: [rtl, waivers, package]\n    toplevel: {top}\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n"
     );
-    // The top's other memories (EMBM's maps) load from a file the same way, by their prefix.
-    let others: Vec<&'static str> = super::testbench::other_memories(cfg).iter().map(|m| m.prefix).collect();
     let tb = tb_module_name(cfg);
-    let plus = format!(
-        "[INIT_FILE, vectors, count, table, {}bubbles, max_errors]",
-        others.iter().map(|p| format!("{p}, ")).collect::<String>()
-    );
+    let plus: Vec<&str> = params
+        .iter()
+        .copied()
+        .chain(["vectors", "count"])
+        .chain(table.then_some("table"))
+        .chain(others.iter().copied())
+        .chain(["bubbles", "max_errors"])
+        .collect();
+    let plus = format!("[{}]", plus.join(", "));
     s += &format!(
         "  sim_icarus:\n    default_tool: icarus\n    filesets: [rtl, tb]\n    toplevel: {tb}\n    parameters: {plus}\n    tools:\n      icarus:\n        iverilog_options: [-g2005, -Wall]\n"
     );
@@ -138,14 +161,18 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  sim_verilator:\n    default_tool: verilator\n    filesets: [rtl, waivers, tb]\n    toplevel: {tb}\n    parameters: {plus}\n    tools:\n      verilator:\n        mode: binary\n        verilator_options: [-Wno-lint, -Wno-style]\n\n"
     );
     s += "parameters:\n";
-    s += &format!(
-        "  INIT_FILE:\n    datatype: str\n    paramtype: vlogparam\n    default: {init}\n    description: $readmemh file of the power table's power-up contents, relative to the simulator's working folder\n"
-    );
+    for (param, file, prefix) in &inits {
+        s += &format!(
+            "  {param}:\n    datatype: str\n    paramtype: vlogparam\n    default: {file}\n    description: $readmemh file of the {prefix} memory's power-up contents, relative to the simulator's working folder\n"
+        );
+    }
     s += "  vectors:\n    datatype: file\n    paramtype: plusarg\n    description: top vector set in text form (gbump vectors --target top --format hex), one record per line\n";
     s += "  count:\n    datatype: int\n    paramtype: plusarg\n    description: records the vector file must hold (its manifest's count); without it a file cut at a line boundary runs as a shorter set\n";
-    s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
+    if table {
+        s += "  table:\n    datatype: file\n    paramtype: plusarg\n    description: power table loaded through power_table_we/power_table_waddr/power_table_wdata before streaming (the set's _power_table.hex)\n";
+    }
     for p in &others {
-        s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata after the table (the _{p}.hex a set's manifest names, where it names one); without it the power-up contents\n");
+        s += &format!("  {p}:\n    datatype: file\n    paramtype: plusarg\n    description: contents loaded through {p}_we/{p}_waddr/{p}_wdata before streaming (the _{p}.hex a set's manifest names, where it names one); without it the power-up contents\n");
     }
     s += "  bubbles:\n    datatype: int\n    paramtype: plusarg\n    description: idle in_valid for 1-3 cycles before every Nth record\n";
     s += "  max_errors:\n    datatype: int\n    paramtype: plusarg\n    description: stop after this many mismatches (default 20)\n";

@@ -240,7 +240,7 @@ pub fn run_stream(cfg: &PipelineConfig, s: &Stream, r: &StreamRun) -> Result<Out
     if r.stall > 0 {
         cmd.args(["--stall", &r.stall.to_string()]);
     }
-    let mut child = cmd
+    let mut child = crate::tool::ends_with_gbump(&mut cmd)
         .current_dir(r.cwd)
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())

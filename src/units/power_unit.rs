@@ -33,6 +33,19 @@ pub fn table_memory(cfg: &PipelineConfig) -> Memory {
     }
 }
 
+/// What `fs` is, for the configuration's kind of power unit (x read as a real in [0, 1];
+/// the README's "power units" gives each in codes): one text for every kind had described the
+/// rounded table lookup whatever the unit did.
+fn fs_doc(cfg: &PipelineConfig) -> &'static str {
+    match (cfg.power_unit, cfg.power_index) {
+        (PowerUnitKind::Table, crate::config::PowerIndex::Nearest) => "table[round(x (N-1))]",
+        (PowerUnitKind::Table, crate::config::PowerIndex::Truncate) => "table[floor(x (N-1))]",
+        (PowerUnitKind::Lerp, _) => "linear between the two of the N uniform knots around x",
+        (PowerUnitKind::Segmented, _) => "linear between the two knots around x of its segment (segments halve towards x = 1)",
+        (PowerUnitKind::Squaring, _) => "x^e by successive squarings, e = 2^round(log2 n); no table",
+    }
+}
+
 impl Unit for PowerUnit {
     fn name(&self) -> &'static str {
         "power_unit"
@@ -49,7 +62,7 @@ impl Unit for PowerUnit {
     fn ports(&self, cfg: &PipelineConfig) -> Vec<Port> {
         vec![
             p("x", Dir::In, cfg.dot_fmt(), 1, "clamped B·H"),
-            p("fs", Dir::Out, cfg.power_fmt(), 1, "table[round(x (N-1))]"),
+            p("fs", Dir::Out, cfg.power_fmt(), 1, fs_doc(cfg)),
         ]
     }
     fn input_max(&self, cfg: &PipelineConfig) -> Vec<(&'static str, i64, &'static str)> {
@@ -135,5 +148,35 @@ impl Unit for PowerUnit {
             ("x one LSB below 1: the steepest part of x^n".into(), vec![vec![one - 1]]),
             ("x = 1: the last entry, exactly 1.0".into(), vec![vec![one]]),
         ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::PowerIndex;
+
+    /// `fs`'s port text names what each kind of unit computes: five kinds, five texts.
+    #[test]
+    fn the_fs_port_says_what_each_kind_computes() {
+        let kinds = [
+            (PowerUnitKind::Table, PowerIndex::Nearest, "round("),
+            (PowerUnitKind::Table, PowerIndex::Truncate, "floor("),
+            (PowerUnitKind::Lerp, PowerIndex::Nearest, "uniform knots"),
+            (PowerUnitKind::Segmented, PowerIndex::Nearest, "segment"),
+            (PowerUnitKind::Squaring, PowerIndex::Nearest, "squarings"),
+        ];
+        let mut seen = std::collections::BTreeSet::new();
+        for (power_unit, power_index, word) in kinds {
+            let cfg = PipelineConfig {
+                power_unit,
+                power_index,
+                ..PipelineConfig::default()
+            };
+            let fs = PowerUnit.ports(&cfg).into_iter().find(|p| p.name == "fs").expect("an fs port");
+            assert!(fs.doc.contains(word), "{power_unit:?}/{power_index:?}: {}", fs.doc);
+            seen.insert(fs.doc);
+        }
+        assert_eq!(seen.len(), kinds.len());
     }
 }
