@@ -1179,6 +1179,11 @@ pub fn run() -> anyhow::Result<()> {
                 _ => None,
             };
             let (scenes, left_out) = crate::measure::scene_error::scene_errors(&cfg, w, h).map_err(|e| match e {
+                Error::NoPixelAtSize { .. } => Error::Other(format!(
+                    "--size {w}x{h}: {}\n  fix: give a larger --size (the default is {})",
+                    e.to_string().lines().next().unwrap_or_default(),
+                    crate::measure::scene_error::IMAGE_SIZE_ARG
+                )),
                 Error::Field { ref field, .. } if field == "objects" => {
                     let first = e.to_string().lines().next().unwrap_or_default().to_string();
                     Error::Other(format!(

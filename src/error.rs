@@ -25,6 +25,12 @@ pub enum Error {
         fix: String,
     },
 
+    /// A scene rendered smaller than its own image size covers no pixel centre: the size asked
+    /// for is what to change (at its own size or above, its camera or objects are: a `Field`
+    /// error of `objects`).
+    #[error("scene {scene} at {w}x{h}: no object covers a pixel centre, so no fragment reaches the pipeline\n  fix: give a larger size (the scene's own is {}x{})", .own[0], .own[1])]
+    NoPixelAtSize { scene: String, w: u32, h: u32, own: [u32; 2] },
+
     #[error("unknown scene `{name}`\n  fix: run `gbump scenes` for the built-in names, or pass a path to a .toml scene file")]
     UnknownScene { name: String },
 

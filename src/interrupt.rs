@@ -257,6 +257,48 @@ fn record_signal_number(sig: libc::c_int) {
 pub const SAME_STOP: std::time::Duration = std::time::Duration::from_secs(1);
 static FIRST_SIGNAL: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
 
+/// The other signals whose default ends the process (Ctrl-\\'s SIGQUIT, `ulimit -t`'s SIGXCPU,
+/// an alarm or profiling timer, a user signal): each stops the run as SIGTERM does, through
+/// its cleanup, and the exit status is still 128 + its own number. By default they ended the
+/// process at once, with a dump's temporary files left behind.
+#[cfg(unix)]
+const OTHER_STOPS: [libc::c_int; 7] = [
+    libc::SIGQUIT,
+    libc::SIGUSR1,
+    libc::SIGUSR2,
+    libc::SIGALRM,
+    libc::SIGVTALRM,
+    libc::SIGPROF,
+    libc::SIGXCPU,
+];
+
+/// Route each of [`OTHER_STOPS`] the process was not started ignoring to the SIGTERM handler.
+#[cfg(unix)]
+fn forward_other_stops() {
+    extern "C" fn forward(sig: libc::c_int) {
+        // Async-signal-safe: an atomic, getpid and kill. The first signal's number is kept,
+        // so the status says which one stopped the run.
+        let _ = SIGNAL.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst);
+        // SAFETY: sends SIGTERM to this process, whose handler is installed.
+        unsafe {
+            libc::kill(libc::getpid(), libc::SIGTERM);
+        }
+    }
+    for s in OTHER_STOPS {
+        // SAFETY: reads the current action, and replaces a default one with `forward`.
+        unsafe {
+            let mut old: libc::sigaction = std::mem::zeroed();
+            if libc::sigaction(s, std::ptr::null(), &mut old) != 0 || old.sa_sigaction != libc::SIG_DFL {
+                continue;
+            }
+            let mut new: libc::sigaction = std::mem::zeroed();
+            new.sa_sigaction = forward as extern "C" fn(libc::c_int) as usize;
+            new.sa_flags = libc::SA_RESTART;
+            libc::sigaction(s, &new, std::ptr::null_mut());
+        }
+    }
+}
+
 /// Install the handler (once, from `main`).
 pub fn install() {
     // Past a file-size limit (`ulimit -f`) a write fails with EFBIG, which names the file and
@@ -313,6 +355,10 @@ pub fn install() {
         if installed.is_ok() && !ignored.contains(&s) {
             record_signal_number(s);
         }
+    }
+    #[cfg(unix)]
+    if installed.is_ok() && !ignored.contains(&libc::SIGTERM) {
+        forward_other_stops();
     }
     #[cfg(unix)]
     for s in ignored {

@@ -1161,6 +1161,22 @@ fn cases() -> Vec<Case> {
             vec!["m.json", "unknown field `sead`"],
         ),
         (
+            "render of a built-in scene at a size too small for any pixel centre: the size is the fault, not the scene",
+            vec![],
+            vec!["render", "--scene", "torus_caps", "--size", "1x1", "--out", "o"],
+            vec!["scene torus_caps at 1x1: no object covers a pixel centre", "fix: give a larger size (the scene's own is 256x192)"],
+        ),
+        (
+            "manifest naming neither a text nor a binary file",
+            vec![("m.json", {
+                let t = include_str!("../vectors/corners_top.json");
+                let (a, b) = (t.find("  \"hex\": {").unwrap(), t.find("  \"power_table\": {").unwrap());
+                format!("{}{}", &t[..a], &t[b..]).into()
+            })],
+            vec!["regress", "--sim", "icarus", "--vectors", "m.json", "--work", "w"],
+            vec!["m.json: names neither a `hex` nor a `bin` file", "fix: regenerate the set with: gbump vectors"],
+        ),
+        (
             "regress --scene-size 8192x8192",
             vec![],
             vec!["regress", "--scene-size", "8192x8192", "--work", "w"],
@@ -1753,13 +1769,25 @@ fn a_hung_simulator_is_stopped_at_the_tool_time_limit() {
     }
 }
 
-/// Ctrl-C, a CI runner's SIGTERM and a closed terminal's SIGHUP each stop a dump midway with
-/// nothing left behind; so does the same signal sent twice a few milliseconds apart, as GNU
+/// Ctrl-C, a CI runner's SIGTERM, a closed terminal's SIGHUP and every other signal whose
+/// default ends a process each stop a dump midway with nothing left behind; so does the same signal sent twice a few milliseconds apart, as GNU
 /// `timeout` sends it (to the process, then to its group), which had cut the cleanup short
 /// and left the half-written set under its temporary name.
 #[test]
 fn an_interrupted_dump_leaves_nothing_behind() {
-    for (signal, twice) in [("INT", false), ("TERM", false), ("HUP", false), ("INT", true), ("TERM", true)] {
+    let cases = [
+        ("INT", false),
+        ("TERM", false),
+        ("HUP", false),
+        ("INT", true),
+        ("TERM", true),
+        // Ctrl-\\, `ulimit -t`, a timer, a user signal: they had ended the run at once.
+        ("QUIT", false),
+        ("XCPU", false),
+        ("ALRM", false),
+        ("USR1", false),
+    ];
+    for (signal, twice) in cases {
         let dir = tempfile::tempdir().unwrap();
         let child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
             .args([
@@ -1795,12 +1823,14 @@ fn an_interrupted_dump_leaves_nothing_behind() {
             "SIG{signal}: {err}"
         );
         let want = 128
-            + if signal == "INT" {
-                libc::SIGINT
-            } else if signal == "TERM" {
-                libc::SIGTERM
-            } else {
-                libc::SIGHUP
+            + match signal {
+                "INT" => libc::SIGINT,
+                "TERM" => libc::SIGTERM,
+                "HUP" => libc::SIGHUP,
+                "QUIT" => libc::SIGQUIT,
+                "XCPU" => libc::SIGXCPU,
+                "ALRM" => libc::SIGALRM,
+                _ => libc::SIGUSR1,
             };
         assert_eq!(
             o.status.code(),

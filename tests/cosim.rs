@@ -327,6 +327,26 @@ fn an_edited_interface_json_is_refused_by_field() {
     std::fs::write(&jf, original).unwrap();
 }
 
+/// A damaged Verilog file in a folder of the user's fails the build with the simulator's own
+/// lines and a fix that names the file as not what `gbump rtl` wrote, never "a gbump bug".
+#[test]
+fn a_damaged_verilog_file_is_named_as_not_gbumps() {
+    let w = work("damaged_v");
+    let dir = w.join("rtl");
+    rtl(None, &dir);
+    let cfg = gbump::PipelineConfig::default();
+    let name = format!("{}.v", gbump::rtlgen::units_v::module_name(&cfg, "light_accumulate"));
+    let f = dir.join(&name);
+    let text = std::fs::read_to_string(&f).unwrap();
+    std::fs::write(&f, &text[..text.len() / 2]).unwrap();
+    let (ok, log) = gbump(&["cosim", "--rtl", dir.to_str().unwrap(), "--random", "10"], &w);
+    assert!(!ok, "{log}");
+    assert!(
+        log.contains("is not what `gbump rtl` writes") && log.contains(&name) && !log.contains("gbump bug"),
+        "{log}"
+    );
+}
+
 /// The DPI-C package alone is clean under `verilator --lint-only -Wall`, as a testbench that
 /// imports it for a few functions is linted.
 #[test]

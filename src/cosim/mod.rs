@@ -198,6 +198,35 @@ fn library(o: &CosimOptions) -> Result<PathBuf> {
     Ok(lib)
 }
 
+/// A build of the RTL in a folder of the user's (`--rtl DIR`) that failed: where its Verilog
+/// is not what `gbump rtl` writes for `cfg`, the fix is the edit (or a damaged copy) and says
+/// which files, not "a gbump bug"; otherwise the build's own error stands.
+fn blame_edits(cfg: &PipelineConfig, dir: &Path, e: Error) -> Error {
+    // The header names the command that wrote a file; the rest is the design.
+    let code = |t: &str| {
+        t.lines()
+            .filter(|l| !l.trim_start().starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let edited: Vec<String> = crate::rtlgen::generate(cfg, "")
+        .into_iter()
+        .filter(|(name, _)| name.ends_with(".v") || name.ends_with(".sv"))
+        .filter(|(name, text)| std::fs::read_to_string(dir.join(name)).map_or(true, |t| code(&t) != code(text)))
+        .map(|(name, _)| name)
+        .collect();
+    if edited.is_empty() {
+        return e;
+    }
+    let text = e.to_string();
+    let what = text.split("\n  fix:").next().unwrap_or(&text);
+    Error::Other(format!(
+        "{what}\n  fix: the Verilog in --rtl {} is not what `gbump rtl` writes for this configuration ({} differ or are missing: an edit, or a damaged copy): correct the edit, or regenerate the folder with `gbump rtl --config FILE --out {0}`",
+        dir.display(),
+        edited.join(", ")
+    ))
+}
+
 /// The interface JSON of the RTL folder `dir`: the one `gbump_pipeline_*.json` in it.
 pub fn interface_file(dir: &Path) -> Result<PathBuf> {
     let entries = std::fs::read_dir(dir).map_err(|e| {
@@ -394,7 +423,10 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
     if std::fs::read(&cfg_file).ok().as_deref() != Some(cfg.to_toml().as_bytes()) {
         crate::render::output::write_atomic(&cfg_file, cfg.to_toml().as_bytes())?;
     }
-    let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib)?;
+    let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib).map_err(|e| match &o.rtl {
+        Some(_) => blame_edits(cfg, &rtl_dir, e),
+        None => e,
+    })?;
     let args = vec![
         format!("+config={}", cfg_file.display()),
         format!("+seed={:x}", o.seed),

@@ -32,10 +32,37 @@ fn edge(a: DVec2, b: DVec2, p: DVec2) -> f64 {
 /// without testing anything.
 pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
     let (w, h) = (p.camera.width, p.camera.height);
+    let hits = hits_of(p, &p.camera);
+    if hits.iter().all(Option::is_none) {
+        let [sw, sh] = p.scene.size;
+        let own = || crate::scene::camera::Camera::new(&p.scene.camera, sw, sh);
+        if (w < sw || h < sh) && hits_of(p, &own()).iter().any(Option::is_some) {
+            // Covered at the scene's own size, not at the smaller one asked for: the size is
+            // what to change (otherwise the camera or the objects are, as below).
+            return Err(Error::NoPixelAtSize {
+                scene: p.scene.name.clone(),
+                w,
+                h,
+                own: [sw, sh],
+            });
+        }
+        return Err(Error::field(
+            &p.scene.file,
+            "objects",
+            format!("no object covers a pixel centre in front of camera.eye at {w}×{h}: the image is background only, so no fragment reaches the pipeline"),
+            "point camera.target at the objects, move camera.eye back so they lie in front of it (the eye is the near plane), lower camera.height (the view's height in world units), or make the objects larger than a pixel",
+        ));
+    }
+    Ok(GBuffer { w, h, hits })
+}
+
+/// The nearest object's triangle at each pixel centre of `camera`'s image (row by row).
+fn hits_of(p: &Prepared, camera: &crate::scene::camera::Camera) -> Vec<Option<Hit>> {
+    let (w, h) = (camera.width, camera.height);
     let mut hits = vec![None; (w * h) as usize];
     let mut depth = vec![f64::INFINITY; (w * h) as usize];
     for (oi, o) in p.objects.iter().enumerate() {
-        let proj: Vec<(DVec2, f64)> = o.mesh.verts.iter().map(|v| p.camera.project(v.p)).collect();
+        let proj: Vec<(DVec2, f64)> = o.mesh.verts.iter().map(|v| camera.project(v.p)).collect();
         for (ti, t) in o.mesh.tris.iter().enumerate() {
             let [a, b, c] = t.map(|i| proj[i as usize]);
             let area = edge(a.0, b.0, c.0);
@@ -69,15 +96,7 @@ pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
             }
         }
     }
-    if hits.iter().all(Option::is_none) {
-        return Err(Error::field(
-            &p.scene.file,
-            "objects",
-            format!("no object covers a pixel centre in front of camera.eye at {w}×{h}: the image is background only, so no fragment reaches the pipeline"),
-            "point camera.target at the objects, move camera.eye back so they lie in front of it (the eye is the near plane), lower camera.height (the view's height in world units), or make the objects larger than a pixel",
-        ));
-    }
-    Ok(GBuffer { w, h, hits })
+    hits
 }
 
 #[cfg(test)]

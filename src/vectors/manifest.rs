@@ -225,6 +225,15 @@ pub fn timing(cfg: &crate::PipelineConfig, target: &str) -> (String, u32, u32) {
 /// one its hash names, its target is a set this configuration has, its record layout is that
 /// target's, its shininess in range. The data files' checksums cannot see an edited manifest.
 fn check_fields(manifest: &Path, m: &Manifest) -> Result<()> {
+    // `gbump vectors` writes at least one of the two (`--format`); a set with neither has no
+    // records to run.
+    if m.hex.is_none() && m.bin.is_none() {
+        return Err(Error::Other(format!(
+            "{}: names neither a `hex` nor a `bin` file, so the set has no records: the manifest was edited\n  fix: regenerate the set with: {}",
+            manifest.display(),
+            regenerate_into(&recorded_command(m), &folder_of(manifest))
+        )));
+    }
     // An EMBM scene's top set runs on its object's maps, one for each map the top has; no
     // other set names any.
     let scene_top = m.config.embm() && m.target == "top" && matches!(manifest_source(&m.source), Some(super::sources::Source::Scene(_)));

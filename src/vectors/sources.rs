@@ -573,17 +573,7 @@ pub fn scene_groups(cfg: &PipelineConfig, name: &str, size: Option<(u32, u32)>) 
     let (w, h) = size.unwrap_or((s.size[0], s.size[1]));
     crate::limits::check_render(crate::limits::PixelUse::SceneVectors, &s.file, w, h, s.triangles())?;
     let p = crate::raster::Prepared::new(&s, cfg, w, h)?;
-    let gb = crate::raster::rasterise::rasterise(&p).map_err(|e| match size {
-        // The size was the caller's and below the scene's own: that is what to change (at
-        // its own size or above, the scene's camera or objects are, as the error says).
-        Some(_) if w < s.size[0] || h < s.size[1] => Error::Other(format!(
-            "scene {name} at {w}x{h}: {}\n  fix: give a larger size (the scene's own is {}x{})",
-            e.to_string().lines().next().unwrap_or_default(),
-            s.size[0],
-            s.size[1]
-        )),
-        _ => e,
-    })?;
+    let gb = crate::raster::rasterise::rasterise(&p)?;
     let frags = crate::raster::fragment::fragments(&p, &gb);
     let mut groups: std::collections::BTreeMap<u32, (Vec<TopStim>, Vec<[u32; 2]>)> = Default::default();
     // `fragments` gives each triangle's fragments together: a setup starts each run.
