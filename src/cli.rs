@@ -87,6 +87,11 @@ pub enum Cmd {
         /// Side of each normalisation cube-map face (default: the config's cube_map_face, else 32).
         #[arg(long)]
         cube_size: Option<usize>,
+        /// With --scene: the configuration is engine NAME's bit-accurate path on the scene, as
+        /// `gbump config --scene S --engine NAME` prints it (`embm`: each object's environment
+        /// maps).
+        #[arg(long, value_name = "NAME", requires = "scene")]
+        engine: Option<String>,
     },
     /// Dump stimulus/response vectors from the golden model (text, binary and a manifest).
     Vectors {
@@ -578,6 +583,15 @@ fn engine_why(why: &str, scene: &PipelineConfig, fixed: &PipelineConfig) -> Stri
         .collect()
 }
 
+/// Engine `name`'s bit-accurate configuration on `scene` (`gbump config --engine`, `gbump rom
+/// --engine`).
+fn engine_config(scene: &Scene, name: &str) -> Result<PipelineConfig> {
+    let e = crate::engines::fixed_engine(name)?;
+    let fixed = e.fixed_config(scene)?.expect("fixed_engine has a bit-accurate path");
+    fixed.validate(&format!("{} (engine {name})", scene.file))?;
+    Ok(fixed)
+}
+
 /// A line of a scene's needs as it holds for an engine's configuration: advice to set a field
 /// (`palette = true holds them exactly`, `power_rom = true makes it a ROM`) that the engine's
 /// configuration refuses gives the refusal's reason instead, so no line suggests a
@@ -871,9 +885,16 @@ pub fn run() -> anyhow::Result<()> {
             out,
             shininess,
             cube_size,
+            engine,
         } => {
-            let cfg = pick.resolve()?;
-            let files = crate::rtlgen::rom_files::rom_files(&cfg, pick.scene.as_deref(), &pick.args(), shininess, cube_size, &out)?;
+            let (cfg, args) = match (&engine, &pick.scene) {
+                (Some(name), Some(scene)) => (
+                    engine_config(&Scene::load(scene)?, name)?,
+                    format!("{} --engine {}", pick.args(), quoted(name)),
+                ),
+                _ => (pick.resolve()?, pick.args()),
+            };
+            let files = crate::rtlgen::rom_files::rom_files(&cfg, pick.scene.as_deref(), &args, shininess, cube_size, &out)?;
             let stale = match &pick.scene {
                 Some(s) => crate::rtlgen::rom_files::stale_scene_roms(&out, s, &cfg, &files),
                 None => Vec::new(),
@@ -883,6 +904,13 @@ pub fn run() -> anyhow::Result<()> {
                 crate::commit::retire(p)?;
             }
             outln!("wrote {} ROM files to {}", files.len(), out.display());
+            if let Some((_, why)) = (!crate::rtlgen::top::power_table_read(&cfg))
+                .then(|| crate::rtlgen::top::unused_load_docs(&cfg))
+                .flatten()
+            {
+                // Said, since every other configuration's set of files has one.
+                outln!("no power table: the top reads none ({})", why.trim_start_matches("unused: "));
+            }
             if !stale.is_empty() {
                 outln!("removed {} ROM file(s) of objects the scene no longer has", stale.len());
             }
@@ -1568,13 +1596,11 @@ pub fn run() -> anyhow::Result<()> {
                 match engine {
                     None => out!("{why}# config hash {}\n{}", cfg.hash(), cfg.to_toml()),
                     Some(name) => {
-                        let e = crate::engines::fixed_engine(&name)?;
-                        let fixed = e.fixed_config(&scene)?.expect("fixed_engine has a bit-accurate path");
-                        fixed.validate(&format!("{} (engine {name})", scene.file))?;
+                        let fixed = engine_config(&scene, &name)?;
                         let why = engine_why(&why, &cfg, &fixed);
                         out!(
                             "{why}# engine {name}'s bit-accurate path on this scene: {}\n# config hash {}\n{}",
-                            e.fixed.expect("a bit-accurate path"),
+                            crate::engines::fixed_engine(&name)?.fixed.expect("a bit-accurate path"),
                             fixed.hash(),
                             fixed.to_toml()
                         );

@@ -250,6 +250,38 @@ fn rom_files_follow_the_configurations_memories() {
     }
 }
 
+/// `gbump rom --scene S --engine embm`, the command line's way to a scene under EMBM, writes
+/// each object's maps (the words the library gives for that configuration and scene) and no
+/// power table; `gbump rom --scene S` alone is the scene's own Gouraud configuration.
+#[test]
+fn rom_of_a_scene_under_an_engine_writes_its_objects_maps() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = assert_cmd::Command::cargo_bin("gbump")
+        .unwrap()
+        .args(["rom", "--scene", "cg_wall_floor", "--engine", "embm", "--out"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let wall = gbump::scene::Scene::load("cg_wall_floor").unwrap();
+    let embm = gbump::engines::fixed_engine("embm").unwrap().fixed_config(&wall).unwrap().unwrap();
+    let want = gbump::rtlgen::rom_files::rom_files(&embm, Some("cg_wall_floor"), "", None, None, Path::new("rom")).unwrap();
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(!names.iter().any(|n| n.starts_with("power_table")), "{names:?}");
+    for i in 0..wall.objects.len() {
+        for which in ["diffuse", "specular"] {
+            let name = format!("env_{which}_cg_wall_floor_o{i}_{}.hex", &embm.hash()[..8]);
+            let got = std::fs::read_to_string(dir.path().join(&name)).unwrap_or_else(|_| panic!("no {name} in {names:?}"));
+            let (_, text) = want.iter().find(|f| f.0 == name).unwrap();
+            assert_eq!(parse(&got, RomFormat::Hex).unwrap(), parse(text, RomFormat::Hex).unwrap(), "{name}");
+        }
+    }
+}
+
 /// `gbump rom --scene` writes each object's bump map as the texture memory holds it, with the
 /// addressing its header states: decoded as the header says, word y·w + x is the model's
 /// stored texel (x, y) (the model's sampler at that texel's centre gives it, whatever the

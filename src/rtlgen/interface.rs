@@ -21,10 +21,24 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         .collect();
     let mut params = serde_json::Map::new();
     let mut memories = serde_json::Map::new();
+    let read: Vec<&str> = super::top::read_memories(cfg).iter().map(|m| m.prefix).collect();
     for m in super::top::memories(cfg) {
         let init = rom_file_name(cfg, m.init_stem, "hex");
-        params.insert(m.init_param.into(), json!({"default": init, "doc": format!("$readmemh file with the power-up contents of the {} memory; relative paths resolve against the simulator's working folder", m.prefix)}));
-        memories.insert(m.prefix.into(), json!({"init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": m.doc, "load_port": load_port(cfg, m.prefix)}));
+        // A memory whose port stays on the top with nothing behind it (EMBM's or a squaring
+        // unit's power table) says so in every text a testbench may read, not only in its
+        // load port: one written from `doc` alone had loaded a table the top never reads.
+        let (is_read, doc, param_doc) = if read.contains(&m.prefix) {
+            (
+                true,
+                m.doc.to_string(),
+                format!("$readmemh file with the power-up contents of the {} memory; relative paths resolve against the simulator's working folder", m.prefix),
+            )
+        } else {
+            let why = super::top::unused_load_docs(cfg).map_or("unused", |u| u.1);
+            (false, why.to_string(), format!("not read: {why}"))
+        };
+        params.insert(m.init_param.into(), json!({"default": init, "doc": param_doc}));
+        memories.insert(m.prefix.into(), json!({"read": is_read, "init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": doc, "load_port": load_port(cfg, m.prefix)}));
     }
     let v = json!({
         "generator": crate::TOOL,
@@ -41,7 +55,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         } else {
             "a fragment is accepted at a rising edge at which in_valid && in_ready are high; its C_new is on out_c, with out_valid high, when sampled at the rising edge exactly latency_cycles later; results leave in order"
         },
-        "nullable": "output_buffer_results is null without back-pressure (backpressure = false); under bump_state, banks, bank_hold_cycles and setup_edges are present only with at = triangle; every other key is always present",
+        "nullable": "output_buffer_results is null without back-pressure (backpressure = false); under bump_state, banks, bank_hold_cycles and setup_edges are present only with at = triangle; every other key is always present (memories lists every memory's load port the top has; memories.NAME.read is false where nothing behind the port is read, as the power table's under EMBM or a squaring power unit)",
         "bump_state": if cfg.per_triangle() {
             json!({"at": "triangle", "banks": cfg.triangle_banks, "bank_hold_cycles": super::top::bank_hold(cfg), "setup_edges": super::top::setup_edges(cfg), "setup_edges_definition": "the fewest rising edges a setup spans, from the first edge at which tri_valid offers it to the edge that accepts it, both counted, whether its bank is free yet or not (the serial top writes one light slot per edge into its bank RAM): a setup is accepted at the later of first offer + setup_edges - 1 and last use of its bank + bank_hold_cycles, where tri_ready is high; when setup_edges > 1, tri_ready depends on tri_valid and is high only at the accepting edge (low while no setup is offered, whatever the banks), so raise tri_valid without waiting for tri_ready; hold tri_* while tri_valid && !tri_ready, as valid/ready requires", "bank_hold_definition": "rising edges from the edge that accepts the last fragment using a bank to the first edge at which a setup may load that bank again; setup m after reset loads bank m mod banks", "setup": "a triangle's bump state (ports of kind `triangle`) is accepted at a rising edge at which tri_valid && tri_ready are high; every fragment accepted after that edge, up to the next setup, uses it; a fragment accepted at the same edge belongs to the previous triangle; no fragment may come before the first setup after reset", "vectors": "a record whose tri_start column is 1 starts a triangle: offer a setup from its tri_* columns only after the previous record's fragment has been accepted, and offer its own fragment only after the setup is taken (gbump's testbenches hold in_valid low meanwhile); a fragment accepted at the same edge as the setup belongs to the previous triangle, but one still waiting for in_ready when the setup is taken becomes the new triangle's"})
         } else {
