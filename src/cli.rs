@@ -417,8 +417,12 @@ pub enum Cmd {
     /// Print the bounds on every size and count (the README's Limits table) as Markdown.
     Limits,
     /// Print every unit's latency at each pipeline_depth and where its register cuts sit (the
-    /// README's timing table) as Markdown.
-    Timing,
+    /// README's timing table) as Markdown; with --config or --scene, that configuration's
+    /// units and top at each depth.
+    Timing {
+        #[command(flatten)]
+        pick: ConfigPick,
+    },
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -1620,7 +1624,10 @@ pub fn run() -> anyhow::Result<()> {
             }
         },
         Cmd::Limits => out!("{}\n{}", crate::limits::markdown(), crate::config::limits_markdown()),
-        Cmd::Timing => out!("{}", crate::units::timing::markdown()),
+        Cmd::Timing { pick } => match (&pick.config, &pick.scene) {
+            (None, None) => out!("{}", crate::units::timing::markdown()),
+            _ => out!("{}", crate::units::timing::config_markdown(&pick.resolve()?)),
+        },
     }
     Ok(())
 }

@@ -60,19 +60,69 @@ pub fn cut(cfg: &PipelineConfig, cuts: &[&str], i: usize) -> bool {
     (i as u32) < cuts_in_place(cfg, cuts)
 }
 
-/// The README table: every unit's latency at every depth, where its cuts sit, and the
-/// latency of the default and the one-light parallel top.
-pub fn markdown() -> String {
+/// The cuts of unit `name` (a power unit's by its kind; none for a unit whose output register
+/// is its only one).
+fn cuts_of(name: &str, kind: crate::config::PowerUnitKind) -> &'static [&'static str] {
+    match name {
+        "dot_clamp" => DOT_CLAMP,
+        "diffuse_blend" | "specular_blend" => BLEND,
+        "light_accumulate" => ACCUMULATE,
+        "texture_modulate" => TEXTURE,
+        "normalise" | "normalise_b" => NORMALISE,
+        "normalise_cube" => NORMALISE_CUBE,
+        "frame_transform" => FRAME_TRANSFORM,
+        "quat_frame" => QUAT_FRAME,
+        "env_coords" => ENV_COORDS,
+        "power_unit" if kind == crate::config::PowerUnitKind::Squaring => SQUARING,
+        _ => &[],
+    }
+}
+
+/// The table header: a column per depth, `mine` marked as the configuration's own.
+fn header(mine: Option<u32>) -> String {
     let hi = crate::limits::MAX_PIPELINE_DEPTH;
     let mut s = String::from("| unit |");
     for d in 1..=hi {
-        s += &format!(" depth {d} |");
+        s += &format!(" depth {d}{} |", if Some(d) == mine { " (this configuration)" } else { "" });
     }
     s += " register cuts, in the order depth adds them |\n|---|";
     for _ in 1..=hi {
         s += "---:|";
     }
-    s += "---|\n";
+    s + "---|\n"
+}
+
+/// `gbump timing --config`: the table for one configuration, each unit it includes and its
+/// top at every depth (the rest of the configuration as it is), its own depth marked. The
+/// README's table covers the default's units and two tops; an EMBM or Cg top's units and
+/// latency are here.
+pub fn config_markdown(cfg: &PipelineConfig) -> String {
+    let hi = crate::limits::MAX_PIPELINE_DEPTH;
+    let at = |d: u32| PipelineConfig {
+        pipeline_depth: d,
+        ..cfg.clone()
+    };
+    let mut s = format!("Config `{}`\n\n", cfg.hash()) + &header(Some(cfg.pipeline_depth));
+    for u in super::included(cfg) {
+        s += &format!("| `{}` |", u.name());
+        for d in 1..=hi {
+            s += &format!(" {} |", u.latency(&at(d)));
+        }
+        let cuts = cuts_of(u.name(), cfg.power_unit);
+        s += &format!(" {} |\n", if cuts.is_empty() { "none".to_string() } else { cuts.join("; ") });
+    }
+    s += "| top |";
+    for d in 1..=hi {
+        s += &format!(" {} |", crate::rtlgen::top::latency(&at(d)));
+    }
+    s + " the scheduler's result (`rtlgen::top::latency`) |\n"
+}
+
+/// The README table: every unit's latency at every depth, where its cuts sit, and the
+/// latency of the default and the one-light parallel top.
+pub fn markdown() -> String {
+    let hi = crate::limits::MAX_PIPELINE_DEPTH;
+    let mut s = header(None);
     // Every unit under a configuration that includes it, at each depth.
     let base = |depth: u32, serial: bool, kind: crate::config::PowerUnitKind, palette: bool| PipelineConfig {
         pipeline_depth: depth,
@@ -149,18 +199,7 @@ pub fn markdown() -> String {
             }
             s += &format!(" {} |", u.latency(&cfg));
         }
-        let cuts = match name {
-            "dot_clamp" => DOT_CLAMP,
-            "diffuse_blend" | "specular_blend" => BLEND,
-            "light_accumulate" => ACCUMULATE,
-            "texture_modulate" => TEXTURE,
-            "normalise" | "normalise_b" => NORMALISE,
-            "normalise_cube" => NORMALISE_CUBE,
-            "frame_transform" => FRAME_TRANSFORM,
-            "quat_frame" => QUAT_FRAME,
-            "power_unit" if kind == Squaring => SQUARING,
-            _ => &[],
-        };
+        let cuts = cuts_of(name, kind);
         let text = match (cuts.is_empty(), kind) {
             (true, _) => note.to_string(),
             (false, Squaring) => format!("squaring: {}", cuts.join("; ")),
