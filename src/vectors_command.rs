@@ -95,15 +95,92 @@ pub fn vectors(r: &VectorsRequest, say: &mut dyn FnMut(&str) -> Result<()>) -> R
         shininess: r.shininess,
     };
     let t0 = std::time::Instant::now();
+    let before = set_configs(r.out);
     // Every set lands together or none does: a failed or interrupted dump over an earlier one
     // leaves the earlier one whole.
     let sets = crate::render::output::undo_on_error(r.out, || crate::commit::together(|| dump(&cfg, &src, &targets, r.out, &opts)))?;
     let secs = t0.elapsed().as_secs_f64();
+    mixed_folder_warning(r.out, &cfg.hash(), &before, &sets);
     for s in &sets {
         say(&format!("{:18} {:>10} vectors  {}", s.target, s.count, s.manifest.display()))?;
     }
     let total: u64 = sets.iter().map(|s| s.count).sum();
     say(&format!("{total} vectors for config {} in {secs:.2} s", cfg.hash()))
+}
+
+/// The configuration hash of every vector manifest in `dir`, by file name (a file that is
+/// not one is passed over).
+fn set_configs(dir: &std::path::Path) -> std::collections::BTreeMap<String, String> {
+    // Only a vector manifest has both keys (an interface JSON has a config_hash alone).
+    #[derive(serde::Deserialize)]
+    struct Hash {
+        config_hash: String,
+        #[allow(dead_code)]
+        record_bits: u32,
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Default::default();
+    };
+    entries
+        .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "json") && e.metadata().is_ok_and(|m| m.is_file() && m.len() < 1 << 20))
+        .filter_map(|e| {
+            let text = std::fs::read_to_string(e.path()).ok()?;
+            let h: Hash = serde_json::from_str(&text).ok()?;
+            Some((e.file_name().to_string_lossy().into_owned(), h.config_hash))
+        })
+        .collect()
+}
+
+/// Set files are named by source and target, not configuration: a dump into a folder that
+/// held another configuration's sets replaced those of the same names and left the others
+/// beside its own, silently (a testbench that opens `corners_dot_clamp.hex` by name then reads
+/// records of another width, and `gbump regress` refuses the folder). Say both.
+fn mixed_folder_warning(
+    dir: &std::path::Path,
+    hash: &str,
+    before: &std::collections::BTreeMap<String, String>,
+    sets: &[crate::vectors::VectorSet],
+) {
+    let written: Vec<String> = sets
+        .iter()
+        .filter_map(|s| s.manifest.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect();
+    let replaced: Vec<String> = written
+        .iter()
+        .filter_map(|n| {
+            before
+                .get(n)
+                .filter(|h| *h != hash)
+                .map(|h| format!("{n} (config {})", &h[..h.len().min(8)]))
+        })
+        .collect();
+    let beside: Vec<String> = set_configs(dir)
+        .into_iter()
+        .filter(|(n, h)| h != hash && !written.contains(n))
+        .map(|(n, h)| format!("{n} (config {})", &h[..h.len().min(8)]))
+        .collect();
+    if replaced.is_empty() && beside.is_empty() {
+        return;
+    }
+    let mut what = Vec::new();
+    if !replaced.is_empty() {
+        what.push(format!(
+            "replaced another configuration's set(s) of the same name: {}",
+            replaced.join(", ")
+        ));
+    }
+    if !beside.is_empty() {
+        what.push(format!(
+            "the folder also holds another configuration's set(s): {}",
+            beside.join(", ")
+        ));
+    }
+    crate::warn::warn(format!(
+        "gbump: warning: --out {}: {} (set files are named by source and target, not by configuration; `gbump regress` refuses a folder that mixes configurations)\n  fix: give each configuration a folder of its own",
+        dir.display(),
+        what.join("; ")
+    ));
 }
 
 /// Say that `what` (`--source scene:NAME`, `--stream scene:NAME`) runs under scene `name`'s

@@ -739,12 +739,20 @@ fn every_configurations_integration_notes_state_its_interface_numbers() {
         // the column of the configuration's own depth.
         let timing = gbump::units::timing::config_markdown(&cfg);
         for u in gbump::units::included(&cfg) {
-            assert!(timing.contains(&format!("| `{}` |", u.name())), "{name}: timing has no {} row", u.name());
+            assert!(
+                timing.contains(&format!("| `{}` |", u.name())),
+                "{name}: timing has no {} row",
+                u.name()
+            );
         }
         let header: Vec<&str> = timing.lines().find(|l| l.starts_with("| unit |")).unwrap().split('|').collect();
         let col = header.iter().position(|c| c.contains("(this configuration)")).unwrap();
         let top: Vec<&str> = timing.lines().find(|l| l.starts_with("| top |")).unwrap().split('|').collect();
-        assert_eq!(top[col].trim(), lat.to_string(), "{name}: timing's top row against the interface's latency");
+        assert_eq!(
+            top[col].trim(),
+            lat.to_string(),
+            "{name}: timing's top row against the interface's latency"
+        );
         let ii = &j["initiation_interval"];
         assert!(doc.contains(&format!("Initiation interval **{ii}**")), "{name}: interval {ii}");
         if let Some(d) = j["output_buffer_results"].as_u64() {

@@ -436,3 +436,39 @@ fn a_scene_dumped_again_leaves_none_of_its_earlier_sets() {
         ]
     );
 }
+
+/// Set files are named by source and target, not configuration: a dump that replaces another
+/// configuration's set of the same name, or lands beside one, says so (it had done so
+/// silently); a dump again under the same configuration says nothing.
+#[test]
+fn a_dump_among_another_configurations_sets_says_so() {
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("two.toml"), "lights = 2\n").unwrap();
+    let dump = |args: &[&str]| {
+        let o = std::process::Command::new(assert_cmd::cargo::cargo_bin("gbump"))
+            .args(["vectors", "--target", "dot_clamp", "--out", "v"])
+            .args(args)
+            .current_dir(d.path())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let quiet = dump(&["--source", "corners"]);
+    assert!(!quiet.contains("warning"), "{quiet}");
+    let again = dump(&["--source", "corners"]);
+    assert!(!again.contains("warning"), "the same configuration again: {again}");
+    let default = &gbump::PipelineConfig::default().hash()[..8];
+    let replaced = dump(&["--source", "corners", "--config", "two.toml"]);
+    assert!(
+        replaced.contains("replaced another configuration's set(s) of the same name: corners_dot_clamp.json")
+            && replaced.contains(default)
+            && replaced.contains("fix: give each configuration a folder of its own"),
+        "{replaced}"
+    );
+    let beside = dump(&["--source", "random:5"]);
+    assert!(
+        beside.contains("also holds another configuration's set(s): corners_dot_clamp.json"),
+        "{beside}"
+    );
+}
