@@ -769,3 +769,82 @@ fn every_configurations_integration_notes_state_its_interface_numbers() {
     }
     assert!(n >= 20);
 }
+
+/// The interface JSON's `units` are the generated modules' own ports and the vector sets'
+/// columns: for every kept configuration, each unit's module declares exactly the ports the
+/// JSON lists (name, direction, width at the default parameters), and its stimulus and
+/// expected ports are the unit layout's columns (widths, formats, `enters`).
+#[test]
+fn the_interface_json_describes_each_unit_as_its_module_and_its_vectors_do() {
+    let mut configs = vec![PipelineConfig::default()];
+    for e in std::fs::read_dir("tests/configs").unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "toml") {
+            configs.push(PipelineConfig::load(&p).unwrap());
+        }
+    }
+    let width = |range: &str| -> u64 {
+        // `[N:0]` or `[R*K-1:0]` at R = 1.
+        let hi = range.trim_start_matches('[').split(':').next().unwrap();
+        match hi.strip_prefix("R*") {
+            Some(k) => k.trim_end_matches("-1").parse::<u64>().unwrap(),
+            None => hi.parse::<u64>().unwrap() + 1,
+        }
+    };
+    for cfg in &configs {
+        let files = gbump::rtlgen::generate(cfg, "");
+        let j: serde_json::Value = serde_json::from_str(&gbump::rtlgen::interface::interface_json(cfg, "")).unwrap();
+        let units = j["units"].as_object().unwrap();
+        assert_eq!(units.len(), gbump::units::included(cfg).len(), "{}", cfg.hash());
+        for (name, u) in units {
+            let module = u["module"].as_str().unwrap();
+            let (_, text) = files
+                .iter()
+                .find(|f| f.0 == format!("{module}.v"))
+                .unwrap_or_else(|| panic!("no {module}.v"));
+            let at = text.find(&format!("module {module}")).unwrap();
+            let header = &text[at..at + text[at..].find(");").unwrap()];
+            let mut declared: Vec<(String, String, u64)> = header
+                .lines()
+                .map(str::trim)
+                .filter(|l| l.starts_with("input") || l.starts_with("output"))
+                .map(|l| {
+                    let l = l.trim_end_matches(',');
+                    let dir = if l.starts_with("input") { "in" } else { "out" };
+                    let words: Vec<&str> = l.split_whitespace().collect();
+                    let range = words.iter().find(|w| w.starts_with('['));
+                    (words.last().unwrap().to_string(), dir.to_string(), range.map_or(1, |r| width(r)))
+                })
+                .collect();
+            let mut listed: Vec<(String, String, u64)> = u["ports"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| {
+                    (
+                        p["name"].as_str().unwrap().into(),
+                        p["dir"].as_str().unwrap().into(),
+                        p["width"].as_u64().unwrap(),
+                    )
+                })
+                .collect();
+            declared.sort();
+            listed.sort();
+            assert_eq!(declared, listed, "{} unit {name}: the module's ports against the JSON", cfg.hash());
+            assert_eq!(u["latency_cycles"], gbump::units::unit(name).unwrap().latency(cfg), "{name}");
+            let layout = gbump::vectors::targets::unit_layout(cfg, name);
+            let data: Vec<&serde_json::Value> = u["ports"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .filter(|p| ["stimulus", "expected"].contains(&p["role"].as_str().unwrap()))
+                .collect();
+            assert_eq!(data.len(), layout.columns.len(), "{} unit {name}: columns", cfg.hash());
+            for (p, c) in data.iter().zip(&layout.columns) {
+                assert_eq!(p["name"], c.name.as_str(), "{name}");
+                assert_eq!(p["width"], c.width, "{name}.{}", c.name);
+                assert_eq!(p["enters"], c.enters, "{name}.{}", c.name);
+            }
+        }
+    }
+}

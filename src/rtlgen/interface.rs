@@ -78,6 +78,7 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         "initiation_interval_definition": "rising edges between two accepts while in_valid stays high: in_ready is low for the initiation_interval - 1 edges after an accept and high at the next",
         "parameters": params,
         "memories": memories,
+        "units": units_json(cfg),
         "power_table": {"present": super::top::power_table_read(cfg), "init_file": rom_file_name(cfg, "power_table", "hex"), "power_unit": cfg.power_unit_design().label(), "words": cfg.power_depth(), "entry_format": cfg.power_fmt().name(), "shininess": cfg.shininess, "rom": cfg.power_rom, "load_port": load_port(cfg, "power_table")},
         "files": {
             "filelist": super::kit::filelist_names(cfg).0,
@@ -90,7 +91,86 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
         },
         "ports": ports,
     });
-    serde_json::to_string_pretty(&v).expect("json") + "\n"
+    // Every generated file is ASCII: a unit's port text (`B·H`) is escaped, as JSON allows.
+    ascii_json(&serde_json::to_string_pretty(&v).expect("json")) + "\n"
+}
+
+/// `json` with every character beyond ASCII written as its `\\uXXXX` escape (a surrogate pair
+/// beyond the first plane), which any JSON reader decodes back.
+fn ascii_json(json: &str) -> String {
+    let mut out = String::with_capacity(json.len());
+    for c in json.chars() {
+        if c.is_ascii() {
+            out.push(c);
+        } else {
+            let mut units = [0u16; 2];
+            for u in c.encode_utf16(&mut units) {
+                out += &format!("\\u{u:04x}");
+            }
+        }
+    }
+    out
+}
+
+/// Every unit the top includes, as a testbench of one unit drives it (`gbump vectors --target
+/// UNIT` sets): its module, latency, ports (the clock, a memory's load port, then the record's
+/// columns in the manifests' order, each with its format and when it enters) and parameters.
+/// The top's description alone had left a unit-level testbench to the Markdown table.
+fn units_json(cfg: &PipelineConfig) -> serde_json::Value {
+    use crate::units::Dir;
+    let mut units = serde_json::Map::new();
+    for u in crate::units::included(cfg) {
+        let mut ports = vec![
+            json!({"name": "clk", "dir": "in", "width": 1, "role": "clock", "doc": "rising edge; no reset and no valid: a record's stimulus every edge"}),
+        ];
+        let mut params = serde_json::Map::new();
+        // A squaring power unit keeps the table's load port and parameters, unused, so that
+        // every power unit instantiates alike.
+        let unused = u.name() == "power_unit" && u.memory(cfg).is_none();
+        let memory = u.memory(cfg).or_else(|| unused.then(|| crate::units::table_memory(cfg)));
+        if let Some(m) = memory {
+            let load = |name: &str, width: u32, doc: String| json!({"name": name, "dir": "in", "width": width, "role": "load", "doc": doc});
+            let we = if unused {
+                "unused: this power unit reads no table (power_unit = \"squaring\"); hold it low".to_string()
+            } else if m.prefix == crate::units::POWER_TABLE {
+                "write enable of the power table: its sets load the set's _power_table.hex through we, waddr and wdata before the records"
+                    .to_string()
+            } else {
+                format!(
+                    "write enable of its {} memory: its sets assume the power-up contents (INIT_FILE), so hold it low",
+                    m.prefix
+                )
+            };
+            ports.push(load("we", 1, we));
+            ports.push(load("waddr", m.addr_bits, format!("{} word address", m.prefix)));
+            ports.push(load("wdata", m.data_bits, m.doc.to_string()));
+            params.insert("INIT_FILE".into(), json!({"default": rom_file_name(cfg, m.init_stem, "hex"), "doc": format!("$readmemh file of the {} memory's power-up contents (the top passes its {})", m.prefix, m.init_param)}));
+            if u.name() == "power_unit" {
+                params.insert(
+                    "R".into(),
+                    json!({"default": 1, "doc": "read ports: x and fs hold R lanes of the widths below (the vectors hold one)"}),
+                );
+            }
+        }
+        for p in u.ports(cfg) {
+            ports.push(json!({
+                "name": p.name,
+                "dir": if p.dir == Dir::In { "in" } else { "out" },
+                "width": p.fmt.width * p.lanes,
+                "lanes": p.lanes,
+                "format": p.fmt.name(),
+                "signed": p.fmt.signed,
+                "enters": p.enters,
+                "role": if p.dir == Dir::In { "stimulus" } else { "expected" },
+                "doc": p.doc,
+            }));
+        }
+        units.insert(
+            u.name().into(),
+            json!({"module": module_name(cfg, u.name()), "latency_cycles": u.latency(cfg), "initiation_interval": 1, "ports": ports, "parameters": params}),
+        );
+    }
+    serde_json::Value::Object(units)
 }
 
 /// The README's interface section: top ports, then every unit's ports.
