@@ -767,7 +767,12 @@ fn refuse_control_characters() -> Result<()> {
 /// (or, after `=`, read `-0` as 0).
 fn refuse_negative_numbers() -> Result<()> {
     let args = lossy_arguments();
-    let negative = |v: &str| v.starts_with('-') && v[1..].parse::<f64>().is_ok_and(|x| !x.is_nan());
+    // A number, or a value that starts as one (`-16x12`, a size): clap would read it as an
+    // unknown short option and say `unexpected argument '-1'`.
+    let negative = |v: &str| {
+        v.strip_prefix('-')
+            .is_some_and(|r| r.parse::<f64>().is_ok_and(|x| !x.is_nan()) || r.starts_with(|c: char| c.is_ascii_digit()))
+    };
     for (i, a) in args.iter().enumerate() {
         let (flag, value) = match a.split_once('=') {
             Some((f, v)) if f.starts_with("--") => (f, v),
@@ -792,7 +797,18 @@ fn clap_exit(e: clap::Error) -> ! {
         e.kind(),
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
     ) {
-        e.exit()
+        // Written and flushed here, so a failed write (a full disk, /dev/full) is an error,
+        // not the silent success `exit` gives; a reader that closed the pipe ends it quietly.
+        use std::io::Write;
+        let written = e.print().and_then(|_| std::io::stdout().flush());
+        match written {
+            Ok(()) => std::process::exit(e.exit_code()),
+            Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(128 + 13),
+            Err(w) => {
+                eprintln!("gbump: error: standard output: {w}\n  fix: write the help where there is room (a file on a disk with space, or the terminal)");
+                std::process::exit(1)
+            }
+        }
     }
     if let Some(msg) = value_refusal(&e) {
         eprintln!("gbump: error: {}", crate::error::shown(&msg));

@@ -257,7 +257,8 @@ fn record_signal_number(sig: libc::c_int) {
 pub const SAME_STOP: std::time::Duration = std::time::Duration::from_secs(1);
 static FIRST_SIGNAL: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
 
-/// The other signals whose default ends the process (Ctrl-\\'s SIGQUIT, `ulimit -t`'s SIGXCPU,
+/// The other signals whose default ends the process (Ctrl-\\'s SIGQUIT, a soft CPU-time limit's
+/// SIGXCPU (`ulimit -St`; at the hard limit the kernel sends SIGKILL),
 /// an alarm or profiling timer, a user signal): each stops the run as SIGTERM does, through
 /// its cleanup, and the exit status is still 128 + its own number. By default they ended the
 /// process at once, with a dump's temporary files left behind.
@@ -278,7 +279,12 @@ fn forward_other_stops() {
     extern "C" fn forward(sig: libc::c_int) {
         // Async-signal-safe: an atomic, getpid and kill. The first signal's number is kept,
         // so the status says which one stopped the run.
-        let _ = SIGNAL.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst);
+        let first = SIGNAL.compare_exchange(0, sig, Ordering::SeqCst, Ordering::SeqCst).is_ok();
+        // A CPU-time limit's SIGXCPU comes again every CPU second: past the first it is the
+        // same stop, not a second one that would cut the cleanup short.
+        if !first && sig == libc::SIGXCPU && SIGNAL.load(Ordering::SeqCst) == libc::SIGXCPU {
+            return;
+        }
         // SAFETY: sends SIGTERM to this process, whose handler is installed.
         unsafe {
             libc::kill(libc::getpid(), libc::SIGTERM);
@@ -392,7 +398,8 @@ pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
 }
 
-/// How long a tool ended by SIGINT, SIGTERM or SIGHUP waits for gbump's own handler.
+/// How long a tool ended by a stop signal (SIGINT, SIGTERM, SIGHUP, [`OTHER_STOPS`]) waits
+/// for gbump's own handler.
 const SETTLE: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// A tool ended by signal `sig`: when that is a stop signal that may have reached gbump too
@@ -401,7 +408,7 @@ const SETTLE: std::time::Duration = std::time::Duration::from_secs(1);
 /// process the kernel signalled first.
 #[cfg(unix)]
 pub fn settle(sig: i32) -> Result<()> {
-    if [libc::SIGINT, libc::SIGTERM, libc::SIGHUP].contains(&sig) {
+    if [libc::SIGINT, libc::SIGTERM, libc::SIGHUP].contains(&sig) || OTHER_STOPS.contains(&sig) {
         // A signal that reached gbump too ends in the handler's decision: it exits the
         // process (no cleanup to wait for), or sets INTERRUPTED and then HANDLED.
         let t = std::time::Instant::now();

@@ -49,19 +49,33 @@ fn checked(p: *mut u8, bytes: usize) -> *mut u8 {
     p
 }
 
+thread_local! {
+    /// This thread is running the error path (a failure inside it is left to abort).
+    static HANDLING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 #[cold]
 fn out_of_memory(bytes: usize) {
-    // A failure inside the error path itself: let the caller abort as Rust does.
-    if FAILED.swap(true, Ordering::SeqCst) {
+    if HANDLING.with(|h| h.get()) {
         return;
     }
+    if FAILED.swap(true, Ordering::SeqCst) {
+        // Another thread ran out first and is cleaning up: wait for its exit, which ends this
+        // one too (returning the null would abort the process under it).
+        loop {
+            // SAFETY: pause blocks until a signal; nothing is allocated.
+            unsafe {
+                libc::pause();
+            }
+        }
+    }
+    HANDLING.with(|h| h.set(true));
     let reserve = RESERVE.swap(std::ptr::null_mut(), Ordering::SeqCst);
     if !reserve.is_null() {
         // SAFETY: allocated in `install` with this layout, and taken out of RESERVE once.
         unsafe { System.dealloc(reserve, reserve_layout()) };
     }
-    let limit = crate::limits::address_space_limit();
-    let fix = match limit {
+    let fix = match crate::limits::address_space_limit() {
         Some(l) => format!(
             "ulimit -v allows this process {} MiB of address space: raise it, or ask for less (fewer records, a smaller --size)",
             l >> 20
@@ -70,15 +84,23 @@ fn out_of_memory(bytes: usize) {
     };
     crate::interrupt::kill_tree();
     let removed = crate::temp_files::remove_own_unless_held();
-    eprintln!(
-        "gbump: error: out of memory: an allocation of {bytes} bytes failed{}\n  fix: {fix}",
+    crate::render::output::remove_made_folders_unless_held(&[crate::work_lock::LOCK_NAME]);
+    let msg = format!(
+        "gbump: error: out of memory: an allocation of {bytes} bytes failed{}\n  fix: {fix}\n",
         if removed > 0 {
             format!(" (its {removed} unfinished file(s) were removed; nothing partial was kept)")
         } else {
             String::new()
         }
     );
-    std::process::exit(1);
+    // Past the standard error's lock, which a thread stopped above may hold.
+    // SAFETY: writes the bytes of a live String to file descriptor 2.
+    unsafe {
+        libc::write(2, msg.as_ptr().cast(), msg.len());
+        // Not `process::exit`, whose flush of standard output could wait on a lock a stopped
+        // thread holds.
+        libc::_exit(1);
+    }
 }
 
 /// Set the reserve aside, and under an address-space limit (`ulimit -v`) keep the system

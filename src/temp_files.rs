@@ -57,12 +57,20 @@ pub fn remove_own() -> usize {
 /// (an allocation that failed while a name was being added): a list that is held is left, for
 /// the next run in the folder to clear, rather than waited for forever.
 pub fn remove_own_unless_held() -> usize {
-    let set = match MADE.try_lock() {
-        Ok(g) => g.clone().unwrap_or_default(),
-        Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner().clone().unwrap_or_default(),
-        Err(std::sync::TryLockError::WouldBlock) => return 0,
-    };
-    remove_listed(set, Path::new("/"))
+    // A thread that was adding a name when memory ran out is stopped for good; one that
+    // holds the list for a moment lets go of it within a few milliseconds.
+    for _ in 0..50 {
+        let set = match MADE.try_lock() {
+            Ok(g) => g.clone().unwrap_or_default(),
+            Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner().clone().unwrap_or_default(),
+            Err(std::sync::TryLockError::WouldBlock) => {
+                std::thread::sleep(std::time::Duration::from_millis(1));
+                continue;
+            }
+        };
+        return remove_listed(set, Path::new("/"));
+    }
+    0
 }
 
 /// [`remove_own`] for the names under `dir` alone.

@@ -72,7 +72,8 @@ fn probe(prog: &str) -> Probe {
 /// (`interrupt`), but SIGKILL (an OOM killer, a CI runner's hard stop) cannot be caught, and a
 /// simulator left behind ran on at full speed with no one to read it. The kernel sends the
 /// signal when the thread that started the tool ends; every caller waits for its tool on that
-/// thread.
+/// thread. It reaches the tool itself, not what the tool started (a compiler job of `make`
+/// runs on to its end). The hook makes the start a fork rather than a posix_spawn.
 pub fn ends_with_gbump(cmd: &mut Command) -> &mut Command {
     #[cfg(target_os = "linux")]
     {

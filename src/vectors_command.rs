@@ -142,23 +142,20 @@ fn mixed_folder_warning(
     before: &std::collections::BTreeMap<String, String>,
     sets: &[crate::vectors::VectorSet],
 ) {
+    // A manifest's name and the start of its hash (any text a file holds: cut by characters).
+    let named = |n: &str, h: &str| format!("{n} (config {})", h.chars().take(8).collect::<String>());
     let written: Vec<String> = sets
         .iter()
         .filter_map(|s| s.manifest.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
     let replaced: Vec<String> = written
         .iter()
-        .filter_map(|n| {
-            before
-                .get(n)
-                .filter(|h| *h != hash)
-                .map(|h| format!("{n} (config {})", &h[..h.len().min(8)]))
-        })
+        .filter_map(|n| before.get(n).filter(|h| *h != hash).map(|h| named(n, h)))
         .collect();
     let beside: Vec<String> = set_configs(dir)
         .into_iter()
         .filter(|(n, h)| h != hash && !written.contains(n))
-        .map(|(n, h)| format!("{n} (config {})", &h[..h.len().min(8)]))
+        .map(|(n, h)| named(&n, &h))
         .collect();
     if replaced.is_empty() && beside.is_empty() {
         return;

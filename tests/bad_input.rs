@@ -763,6 +763,15 @@ fn cases() -> Vec<Case> {
             vec!["big.png", "12000x12000", "MAX_BUMP_SIDE"],
         ),
         (
+            "PNG header declaring 2^31-1 a side (past the decoder's own allocation limit)",
+            vec![
+                ("s.toml", WALL.replacen(bump, "source = { kind = \"png\", path = \"huge.png\" }", 1).into()),
+                ("huge.png", png_header(i32::MAX as u32, i32::MAX as u32)),
+            ],
+            render(&[]),
+            vec!["huge.png", "2147483647x2147483647", "MAX_BUMP_SIDE"],
+        ),
+        (
             "teapot at the largest segments",
             scene(|t| {
                 t.replacen("kind = \"plane\", size = [4.0, 2.0]", "kind = \"teapot\"", 1)
@@ -1165,6 +1174,12 @@ fn cases() -> Vec<Case> {
             vec![],
             vec!["render", "--scene", "torus_caps", "--size", "1x1", "--out", "o"],
             vec!["scene torus_caps at 1x1: no object covers a pixel centre", "fix: give a larger size (the scene's own is 256x192)"],
+        ),
+        (
+            "a size that starts with a minus sign (clap had said `unexpected argument '-1'`)",
+            vec![],
+            vec!["render", "--size", "-16x12", "--out", "o"],
+            vec!["--size -16x12: a negative number", "fix:"],
         ),
         (
             "manifest naming neither a text nor a binary file",
@@ -1579,6 +1594,17 @@ fn a_full_stdout_and_an_unwritable_folder_are_errors() {
         .output()
         .unwrap();
     assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("No space left"));
+    // The help and the version too (clap's own exit had ignored the failed write).
+    for flag in ["--help", "--version"] {
+        let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
+            .arg(flag)
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.code() == Some(1) && err.contains("No space left"), "{flag}: {err}");
+    }
     // A reader that closed standard output (`gbump config | head -1`): quiet, with the
     // status of a tool killed by SIGPIPE, not an error.
     let (reader, writer) = std::io::pipe().unwrap();
@@ -2633,11 +2659,13 @@ fn a_dump_under_an_address_space_limit_fits_or_fails_cleanly() {
     let o = run(60_000, "random:2000000 --target top --format both", "short");
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("gbump: error:") && err.contains("fix:"), "{err}");
-    let left: Vec<String> = std::fs::read_dir(dir.path().join("short"))
-        .map(|d| d.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect())
-        .unwrap_or_default();
-    assert!(left.iter().all(|n| !n.contains(".gbump.tmp")), "{left:?}");
+    assert!(err.contains("gbump: error: out of memory") && err.contains("fix:"), "{err}");
+    // Its files and the folder it made for them are gone.
+    assert!(
+        !dir.path().join("short").exists(),
+        "{:?}",
+        std::fs::read_dir(dir.path().join("short")).map(|d| d.flatten().map(|e| e.file_name()).collect::<Vec<_>>())
+    );
 }
 
 /// Past a file-size limit (`ulimit -f`) a write fails with a message naming the file and

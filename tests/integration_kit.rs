@@ -326,6 +326,22 @@ fn the_fusesoc_core_copies_every_memorys_power_up_file() {
             );
         }
         assert_eq!(text.contains("copyto: power_table_"), power_table_read(&cfg), "{config}:\n{text}");
+        // A target's Verilog parameters are ones its toplevel declares (Verilator refuses a
+        // `-G` of a parameter the design lacks): the testbench's for sim_*, the top's for default.
+        let tb = std::fs::read_to_string(cores.join(kit::tb_file_name(&cfg))).unwrap();
+        let rtl_top = std::fs::read_to_string(cores.join(format!("{top}.v"))).unwrap();
+        let vlog = |name: &str| text.contains(&format!("  {name}:\n    datatype: str\n    paramtype: vlogparam"));
+        for line in text.lines().filter(|l| l.trim_start().starts_with("parameters: [")) {
+            let list = line.split('[').nth(1).unwrap().trim_end_matches(']');
+            for name in list.split(", ").filter(|n| vlog(n)) {
+                // The simulation targets' lists hold the plusargs too.
+                let toplevel = if list.contains("vectors") { &tb } else { &rtl_top };
+                assert!(
+                    toplevel.contains(&format!("parameter {name} =")),
+                    "{config}: {name} of `{line}` is not its toplevel's"
+                );
+            }
+        }
         assert_eq!(text.contains("--table="), power_table_read(&cfg), "{config}:\n{text}");
         let c = root().join(config).display().to_string();
         let v = tmp.path().join("v");

@@ -466,6 +466,12 @@ fn a_dump_among_another_configurations_sets_says_so() {
             && replaced.contains("fix: give each configuration a folder of its own"),
         "{replaced}"
     );
+    // A JSON file of anyone's, whatever its text, is named, never a crash.
+    std::fs::write(
+        d.path().join("v/odd.json"),
+        r#"{"config_hash": "a\u00e9\u00e9\u00e9\u00e9\u00e9\u00e9", "record_bits": 3}"#,
+    )
+    .unwrap();
     let beside = dump(&["--source", "random:5"]);
     assert!(
         beside.contains("also holds another configuration's set(s): corners_dot_clamp.json"),

@@ -132,7 +132,11 @@ fn read_png(p: &std::path::Path) -> Result<image::DynamicImage> {
             .and_then(|r| r.with_guessed_format())
             .map_err(|e| bad(e.to_string()))
     };
-    let (w, h) = open()?.into_dimensions().map_err(|e| bad(e.to_string()))?;
+    // The header read without the decoder's allocation limit, which a declared size of
+    // gigabytes trips before the side can be named.
+    let mut header = open()?;
+    header.no_limits();
+    let (w, h) = header.into_dimensions().map_err(|e| bad(e.to_string()))?;
     if w > MAX_BUMP_SIDE || h > MAX_BUMP_SIDE {
         return Err(bad(format!(
             "its header declares {w}x{h} texels, more than MAX_BUMP_SIDE = {MAX_BUMP_SIDE} per side (scale it down)"

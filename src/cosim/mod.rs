@@ -201,7 +201,10 @@ fn library(o: &CosimOptions) -> Result<PathBuf> {
 /// A build of the RTL in a folder of the user's (`--rtl DIR`) that failed: where its Verilog
 /// is not what `gbump rtl` writes for `cfg`, the fix is the edit (or a damaged copy) and says
 /// which files, not "a gbump bug"; otherwise the build's own error stands.
-fn blame_edits(cfg: &PipelineConfig, dir: &Path, e: Error) -> Error {
+fn blame_edits(cfg: &PipelineConfig, dir: &Path, rtl: &Rtl, e: Error) -> Error {
+    if crate::interrupt::interrupted() {
+        return e;
+    }
     // The header names the command that wrote a file; the rest is the design.
     let code = |t: &str| {
         t.lines()
@@ -211,7 +214,8 @@ fn blame_edits(cfg: &PipelineConfig, dir: &Path, e: Error) -> Error {
     };
     let edited: Vec<String> = crate::rtlgen::generate(cfg, "")
         .into_iter()
-        .filter(|(name, _)| name.ends_with(".v") || name.ends_with(".sv"))
+        // The sources the build compiled, each against what `gbump rtl` writes under its name.
+        .filter(|(name, _)| rtl.sources.iter().any(|p| p.file_name().is_some_and(|n| n == name.as_str())))
         .filter(|(name, text)| std::fs::read_to_string(dir.join(name)).map_or(true, |t| code(&t) != code(text)))
         .map(|(name, _)| name)
         .collect();
@@ -424,7 +428,7 @@ pub fn cosim(cfg: &PipelineConfig, o: &CosimOptions) -> Result<Outcome> {
         crate::render::output::write_atomic(&cfg_file, cfg.to_toml().as_bytes())?;
     }
     let exe = crate::sim::verilator::build_cosim(&o.work.join("builds"), &source, &rtl, &lib).map_err(|e| match &o.rtl {
-        Some(_) => blame_edits(cfg, &rtl_dir, e),
+        Some(_) => blame_edits(cfg, &rtl_dir, &rtl, e),
         None => e,
     })?;
     let args = vec![

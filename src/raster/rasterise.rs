@@ -36,7 +36,7 @@ pub fn rasterise(p: &Prepared) -> Result<GBuffer> {
     if hits.iter().all(Option::is_none) {
         let [sw, sh] = p.scene.size;
         let own = || crate::scene::camera::Camera::new(&p.scene.camera, sw, sh);
-        if (w < sw || h < sh) && hits_of(p, &own()).iter().any(Option::is_some) {
+        if (w < sw || h < sh) && covers_any(p, &own()) {
             // Covered at the scene's own size, not at the smaller one asked for: the size is
             // what to change (otherwise the camera or the objects are, as below).
             return Err(Error::NoPixelAtSize {
@@ -61,6 +61,31 @@ fn hits_of(p: &Prepared, camera: &crate::scene::camera::Camera) -> Vec<Option<Hi
     let (w, h) = (camera.width, camera.height);
     let mut hits = vec![None; (w * h) as usize];
     let mut depth = vec![f64::INFINITY; (w * h) as usize];
+    covers(p, camera, |i, obj, tri, bary, z| {
+        if z < depth[i] {
+            depth[i] = z;
+            hits[i] = Some(Hit { obj, tri, bary });
+        }
+        true
+    });
+    hits
+}
+
+/// Whether any object covers a pixel centre of `camera`'s image, found without a buffer of
+/// the image (the scene's own size, asked only to word an error, was never planned for).
+fn covers_any(p: &Prepared, camera: &crate::scene::camera::Camera) -> bool {
+    let mut any = false;
+    covers(p, camera, |_, _, _, _, _| {
+        any = true;
+        false
+    });
+    any
+}
+
+/// `f(pixel, object, triangle, barycentrics, depth)` for each pixel centre of `camera`'s image
+/// a triangle covers in front of the eye, until `f` returns false.
+fn covers(p: &Prepared, camera: &crate::scene::camera::Camera, mut f: impl FnMut(usize, u32, u32, [f64; 3], f64) -> bool) {
+    let (w, h) = (camera.width, camera.height);
     for (oi, o) in p.objects.iter().enumerate() {
         let proj: Vec<(DVec2, f64)> = o.mesh.verts.iter().map(|v| camera.project(v.p)).collect();
         for (ti, t) in o.mesh.tris.iter().enumerate() {
@@ -83,20 +108,13 @@ fn hits_of(p: &Prepared, camera: &crate::scene::camera::Camera) -> Vec<Option<Hi
                         continue;
                     }
                     let z = wa * a.1 + wb * b.1 + wc * c.1;
-                    let i = (y * w + x) as usize;
-                    if z >= 0.0 && z < depth[i] {
-                        depth[i] = z;
-                        hits[i] = Some(Hit {
-                            obj: oi as u32,
-                            tri: ti as u32,
-                            bary: [wa, wb, wc],
-                        });
+                    if z >= 0.0 && !f((y * w + x) as usize, oi as u32, ti as u32, [wa, wb, wc], z) {
+                        return;
                     }
                 }
             }
         }
     }
-    hits
 }
 
 #[cfg(test)]

@@ -212,7 +212,23 @@ static MADE: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
 /// folders behind. A folder that holds nothing but files named in `own` (the run's own
 /// bookkeeping, such as its work lock) counts as empty; one with anything else in it stays.
 pub fn remove_made_folders(own: &[&str]) {
-    let mut made = std::mem::take(&mut *MADE.lock().unwrap_or_else(|p| p.into_inner()));
+    let made = std::mem::take(&mut *MADE.lock().unwrap_or_else(|p| p.into_inner()));
+    remove_folders(made, own);
+}
+
+/// [`remove_made_folders`] from a path that may have stopped another thread while it held
+/// the list (out of memory): a list that stays held is left as it is.
+pub fn remove_made_folders_unless_held(own: &[&str]) {
+    for _ in 0..50 {
+        match MADE.try_lock() {
+            Ok(mut g) => return remove_folders(std::mem::take(&mut *g), own),
+            Err(std::sync::TryLockError::Poisoned(p)) => return remove_folders(std::mem::take(&mut *p.into_inner()), own),
+            Err(std::sync::TryLockError::WouldBlock) => std::thread::sleep(std::time::Duration::from_millis(1)),
+        }
+    }
+}
+
+fn remove_folders(mut made: Vec<std::path::PathBuf>, own: &[&str]) {
     made.sort_by_key(|p| std::cmp::Reverse(p.components().count()));
     for d in made {
         let names: Vec<_> = std::fs::read_dir(&d)

@@ -248,19 +248,24 @@ fn unit_vectors(cfg: &PipelineConfig) -> String {
     };
     let mut mem = Vec::new();
     for u in crate::units::included(cfg) {
+        use super::top::TableUse;
+        if u.name() == "power_unit" {
+            mem.push(match super::top::table_use(cfg) {
+                TableUse::Loaded => "`power_unit` reads the power table, written through its `we`, `waddr` and `wdata` from the set's `_power_table.hex` as the top's is (its parameter `R`, the read ports, stays 1: the vectors hold one `x` lane)".to_string(),
+                TableUse::Rom => "`power_unit` reads a ROM its parameter `INIT_FILE` fills at power-up, which its sets assume: its load port is unused (hold `we` low)".to_string(),
+                TableUse::Unread(why) => format!("`power_unit` reads no table ({why}): its load port is unused (hold `we` low)"),
+            });
+            continue;
+        }
         let Some(m) = u.memory(cfg) else { continue };
-        mem.push(if m.prefix == crate::units::POWER_TABLE {
-            format!("`{}` reads the power table, written through its `we`, `waddr` and `wdata` from the set's `_power_table.hex` as the top's is (its parameter `R`, the read ports, stays 1: the vectors hold one `x` lane)", u.name())
-        } else {
-            // The unit's own module names its file `INIT_FILE`; the top passes its own
-            // parameter down to it.
-            format!(
-                "`{}` reads the {} memory its parameter `INIT_FILE` (the top's `{}`) loads at power-up, which its sets assume: its load port stays idle",
-                u.name(),
-                m.prefix,
-                m.init_param
-            )
-        });
+        // The unit's own module names its file `INIT_FILE`; the top passes its own parameter
+        // down to it.
+        mem.push(format!(
+            "`{}` reads the {} memory its parameter `INIT_FILE` (the top's `{}`) loads at power-up, which its sets assume: its load port stays idle",
+            u.name(),
+            m.prefix,
+            m.init_param
+        ));
     }
     let mem = if mem.is_empty() {
         "no unit of this configuration reads one".to_string()

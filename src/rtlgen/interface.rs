@@ -34,8 +34,11 @@ pub fn interface_json(cfg: &PipelineConfig, command: &str) -> String {
                 format!("$readmemh file with the power-up contents of the {} memory; relative paths resolve against the simulator's working folder", m.prefix),
             )
         } else {
-            let why = super::top::unused_load_docs(cfg).map_or("unused", |u| u.1);
-            (false, why.to_string(), format!("not read: {why}"))
+            let why = match super::top::table_use(cfg) {
+                super::top::TableUse::Unread(why) => why,
+                _ => "nothing reads it",
+            };
+            (false, format!("not read: {why}"), format!("not read: {why}"))
         };
         params.insert(m.init_param.into(), json!({"default": init, "doc": param_doc}));
         memories.insert(m.prefix.into(), json!({"read": is_read, "init_file": init, "words": m.depth, "addr_bits": m.addr_bits, "data_bits": m.data_bits, "doc": doc, "load_port": load_port(cfg, m.prefix)}));
@@ -130,16 +133,15 @@ fn units_json(cfg: &PipelineConfig) -> serde_json::Value {
         let memory = u.memory(cfg).or_else(|| unused.then(|| crate::units::table_memory(cfg)));
         if let Some(m) = memory {
             let load = |name: &str, width: u32, doc: String| json!({"name": name, "dir": "in", "width": width, "role": "load", "doc": doc});
-            let we = if unused {
-                "unused: this power unit reads no table (power_unit = \"squaring\"); hold it low".to_string()
-            } else if m.prefix == crate::units::POWER_TABLE {
-                "write enable of the power table: its sets load the set's _power_table.hex through we, waddr and wdata before the records"
-                    .to_string()
-            } else {
-                format!(
-                    "write enable of its {} memory: its sets assume the power-up contents (INIT_FILE), so hold it low",
-                    m.prefix
-                )
+            let we = match (m.prefix == crate::units::POWER_TABLE, super::top::table_use(cfg)) {
+                (true, super::top::TableUse::Loaded) => {
+                    "write enable of the power table: its sets load the set's _power_table.hex through we, waddr and wdata before the records".to_string()
+                }
+                (true, super::top::TableUse::Rom) => {
+                    "unused: power_rom = true (the table is a ROM its INIT_FILE fills, which its sets assume); hold it low".to_string()
+                }
+                (true, super::top::TableUse::Unread(why)) => format!("unused: this power unit reads no table ({why}); hold it low"),
+                (false, _) => format!("write enable of its {} memory: its sets assume the power-up contents (INIT_FILE), so hold it low", m.prefix),
             };
             ports.push(load("we", 1, we));
             ports.push(load("waddr", m.addr_bits, format!("{} word address", m.prefix)));

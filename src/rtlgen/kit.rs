@@ -145,10 +145,10 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  lint:\n    default_tool: verilator\n    filesets: [rtl, waivers, package]\n    toplevel: {top}\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n"
     );
     let tb = tb_module_name(cfg);
-    let plus: Vec<&str> = params
-        .iter()
-        .copied()
-        .chain(["vectors", "count"])
+    // The testbench declares `INIT_FILE` alone and names the other memories' files itself: a
+    // parameter it does not declare is an error to Verilator (`-G` of nothing).
+    let plus: Vec<&str> = ["INIT_FILE", "vectors", "count"]
+        .into_iter()
         .chain(table.then_some("table"))
         .chain(others.iter().copied())
         .chain(["bubbles", "max_errors"])
@@ -161,6 +161,13 @@ pub fn core(cfg: &PipelineConfig, command: &str, sources: &[String]) -> String {
         "  sim_verilator:\n    default_tool: verilator\n    filesets: [rtl, waivers, tb]\n    toplevel: {tb}\n    parameters: {plus}\n    tools:\n      verilator:\n        mode: binary\n        verilator_options: [-Wno-lint, -Wno-style]\n\n"
     );
     s += "parameters:\n";
+    if !table {
+        // The testbench's own parameter, on a top that reads no table.
+        s += &format!(
+            "  INIT_FILE:\n    datatype: str\n    paramtype: vlogparam\n    default: {}\n    description: not read, as this top has no power table\n",
+            super::top::memory_init_file(cfg, &crate::units::table_memory(cfg))
+        );
+    }
     for (param, file, prefix) in &inits {
         s += &format!(
             "  {param}:\n    datatype: str\n    paramtype: vlogparam\n    default: {file}\n    description: $readmemh file of the {prefix} memory's power-up contents, relative to the simulator's working folder\n"

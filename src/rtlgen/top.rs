@@ -153,6 +153,27 @@ pub fn kept_memories(cfg: &PipelineConfig) -> Vec<String> {
         .collect()
 }
 
+/// What the power unit's table is to a testbench: written through its load port, a ROM its
+/// init file fills, or not read at all (why). Every text that says what to do with the load
+/// port (the interface JSON's memories and units, the integration notes) asks here.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableUse {
+    Loaded,
+    Rom,
+    Unread(&'static str),
+}
+
+pub fn table_use(cfg: &PipelineConfig) -> TableUse {
+    if !power_table_read(cfg) {
+        let why = unused_load_docs(cfg).map_or("no power table", |u| u.0);
+        TableUse::Unread(why.trim_start_matches("unused: "))
+    } else if cfg.power_rom {
+        TableUse::Rom
+    } else {
+        TableUse::Loaded
+    }
+}
+
 /// The power table's load-port docs where the port is unused: (write enable, address and
 /// data).
 pub fn unused_load_docs(cfg: &PipelineConfig) -> Option<(&'static str, &'static str)> {

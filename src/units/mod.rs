@@ -356,7 +356,20 @@ pub fn markdown_table(cfg: &PipelineConfig) -> String {
             );
         }
     }
-    s
+    // The ports the table leaves out, which a unit's module declares all the same.
+    let loaded: Vec<String> = included(cfg)
+        .iter()
+        .filter(|u| u.memory(cfg).is_some() || u.name() == "power_unit")
+        .map(|u| format!("`{}`", u.name()))
+        .collect();
+    s += "\nEvery unit's module also has `clk` (rising edge; no reset and no valid)";
+    if !loaded.is_empty() {
+        s += &format!(
+            ", and {} a memory's load port `we`, `waddr`, `wdata` and its parameter `INIT_FILE` (`power_unit` also `R`, its read ports)",
+            loaded.join(", ")
+        );
+    }
+    s + ": the interface JSON's `units` lists every port and parameter of each module.\n"
 }
 
 #[cfg(test)]
