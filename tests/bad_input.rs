@@ -2541,25 +2541,19 @@ fn a_lock_file_that_is_not_a_file_is_named_as_the_work_folders() {
     }
 }
 
-/// A simulator that ignores SIGTERM does not outlive a run stopped by a signal: the run
-/// sends SIGTERM at the signal and SIGKILL to whatever is left as it exits.
-#[test]
-fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
-    let dir = tempfile::tempdir().unwrap();
-    let pid_file = dir.path().join("sleeper.pid");
+/// `gbump regress` on the checked-in corner set with a fake `vvp` whose body, past its version
+/// answer, is `body` (which writes a pid into `pid_file`); returned once that file exists.
+fn regress_on_a_fake_simulator(dir: &Path, body: &str, pid_file: &Path) -> std::process::Child {
     let path = fake_tools::icarus(
-        &dir.path().join("bin"),
-        &format!(
-            "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\ntrap '' TERM INT HUP\nsleep 300 &\necho $! > {}.tmp && mv {0}.tmp {0}\nwait",
-            pid_file.display()
-        ),
+        &dir.join("bin"),
+        &format!("if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\n{body}"),
     );
     let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
         .env("PATH", &path)
         .env_remove("GBUMP_TOOL_TIMEOUT")
         .args(["regress", "--sim", "icarus", "--work"])
-        .arg(dir.path().join("w"))
+        .arg(dir.join("w"))
         .arg("--vectors")
         .arg(&vectors)
         .stdout(std::process::Stdio::null())
@@ -2572,21 +2566,40 @@ fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
         assert!(t.elapsed().as_secs() < 60, "the simulator did not start in 60 s");
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
-    send("INT", child.id());
-    let out = child.wait_with_output().unwrap();
-    assert_eq!(out.status.code(), Some(130), "{}", String::from_utf8_lossy(&out.stderr));
-    let sleeper = std::fs::read_to_string(&pid_file).unwrap();
+    child
+}
+
+/// Wait up to `tenths` tenths of a second for the process whose pid `pid_file` holds to end
+/// (gone, or a zombie for init to reap); kill it and fail with `what` if it does not.
+fn assert_ends(pid_file: &Path, tenths: u32, what: &str) {
+    let pid = std::fs::read_to_string(pid_file).unwrap();
     let mut stat = String::new();
-    for _ in 0..20 {
-        stat = std::fs::read_to_string(format!("/proc/{}/stat", sleeper.trim())).unwrap_or_default();
-        // Gone, or a zombie waiting for init to reap it.
+    for _ in 0..tenths {
+        stat = std::fs::read_to_string(format!("/proc/{}/stat", pid.trim())).unwrap_or_default();
         if stat.is_empty() || stat.rsplit_once(')').unwrap().1.trim_start().starts_with('Z') {
             return;
         }
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
-    let _ = std::process::Command::new("kill").args(["-KILL", sleeper.trim()]).status();
-    panic!("the simulator's child outlived the run: {stat}");
+    let _ = std::process::Command::new("kill").args(["-KILL", pid.trim()]).status();
+    panic!("{what}: {stat}");
+}
+
+/// A simulator that ignores SIGTERM does not outlive a run stopped by a signal: the run
+/// sends SIGTERM at the signal and SIGKILL to whatever is left as it exits.
+#[test]
+fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let pid_file = dir.path().join("sleeper.pid");
+    let body = format!(
+        "trap '' TERM INT HUP\nsleep 300 &\necho $! > {}.tmp && mv {0}.tmp {0}\nwait",
+        pid_file.display()
+    );
+    let child = regress_on_a_fake_simulator(dir.path(), &body, &pid_file);
+    send("INT", child.id());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_ends(&pid_file, 20, "the simulator's child outlived the run");
 }
 
 /// A simulator does not outlive a gbump ended by SIGKILL, which no handler sees: the kernel
@@ -2595,44 +2608,11 @@ fn a_simulator_that_ignores_sigterm_is_killed_when_a_signal_stops_the_run() {
 fn a_simulator_dies_with_a_gbump_killed_outright() {
     let dir = tempfile::tempdir().unwrap();
     let pid_file = dir.path().join("sim.pid");
-    let path = fake_tools::icarus(
-        &dir.path().join("bin"),
-        &format!(
-            "if [ \"$1\" = --version ]; then echo fake vvp; exit 0; fi\necho $$ > {}.tmp && mv {0}.tmp {0}\nexec sleep 300",
-            pid_file.display()
-        ),
-    );
-    let vectors = Path::new(env!("CARGO_MANIFEST_DIR")).join("vectors/corners_top.json");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbump"))
-        .env("PATH", &path)
-        .env_remove("GBUMP_TOOL_TIMEOUT")
-        .args(["regress", "--sim", "icarus", "--work"])
-        .arg(dir.path().join("w"))
-        .arg("--vectors")
-        .arg(&vectors)
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    let t = std::time::Instant::now();
-    while !pid_file.exists() {
-        assert!(child.try_wait().unwrap().is_none(), "gbump ended before the simulator ran");
-        assert!(t.elapsed().as_secs() < 60, "the simulator did not start in 60 s");
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+    let body = format!("echo $$ > {}.tmp && mv {0}.tmp {0}\nexec sleep 300", pid_file.display());
+    let mut child = regress_on_a_fake_simulator(dir.path(), &body, &pid_file);
     child.kill().unwrap();
     child.wait().unwrap();
-    let sim = std::fs::read_to_string(&pid_file).unwrap();
-    let mut stat = String::new();
-    for _ in 0..50 {
-        stat = std::fs::read_to_string(format!("/proc/{}/stat", sim.trim())).unwrap_or_default();
-        if stat.is_empty() || stat.rsplit_once(')').unwrap().1.trim_start().starts_with('Z') {
-            return;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(100));
-    }
-    let _ = std::process::Command::new("kill").args(["-KILL", sim.trim()]).status();
-    panic!("the simulator outlived a gbump killed with SIGKILL: {stat}");
+    assert_ends(&pid_file, 50, "the simulator outlived a gbump killed with SIGKILL");
 }
 
 /// Under an address-space limit (`ulimit -v`) a dump either fits or ends with gbump's own
