@@ -57,20 +57,24 @@ pub fn remove_own() -> usize {
 /// (an allocation that failed while a name was being added): a list that is held is left, for
 /// the next run in the folder to clear, rather than waited for forever.
 pub fn remove_own_unless_held() -> usize {
-    // A thread that was adding a name when memory ran out is stopped for good; one that
-    // holds the list for a moment lets go of it within a few milliseconds.
-    for _ in 0..50 {
-        let set = match MADE.try_lock() {
-            Ok(g) => g.clone().unwrap_or_default(),
-            Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner().clone().unwrap_or_default(),
-            Err(std::sync::TryLockError::WouldBlock) => {
-                std::thread::sleep(std::time::Duration::from_millis(1));
-                continue;
-            }
-        };
-        return remove_listed(set, Path::new("/"));
+    match lock_unless_held(&MADE) {
+        Some(g) => remove_listed(g.clone().unwrap_or_default(), Path::new("/")),
+        None => 0,
     }
-    0
+}
+
+/// `m`'s guard, waiting a few milliseconds for it at most (poisoned or not): a thread that
+/// holds it for a moment lets go, one stopped for good (out of memory while adding to it)
+/// never does, and the caller goes on without it.
+pub fn lock_unless_held<T>(m: &Mutex<T>) -> Option<std::sync::MutexGuard<'_, T>> {
+    for _ in 0..50 {
+        match m.try_lock() {
+            Ok(g) => return Some(g),
+            Err(std::sync::TryLockError::Poisoned(p)) => return Some(p.into_inner()),
+            Err(std::sync::TryLockError::WouldBlock) => std::thread::sleep(std::time::Duration::from_millis(1)),
+        }
+    }
+    None
 }
 
 /// [`remove_own`] for the names under `dir` alone.

@@ -219,12 +219,8 @@ pub fn remove_made_folders(own: &[&str]) {
 /// [`remove_made_folders`] from a path that may have stopped another thread while it held
 /// the list (out of memory): a list that stays held is left as it is.
 pub fn remove_made_folders_unless_held(own: &[&str]) {
-    for _ in 0..50 {
-        match MADE.try_lock() {
-            Ok(mut g) => return remove_folders(std::mem::take(&mut *g), own),
-            Err(std::sync::TryLockError::Poisoned(p)) => return remove_folders(std::mem::take(&mut *p.into_inner()), own),
-            Err(std::sync::TryLockError::WouldBlock) => std::thread::sleep(std::time::Duration::from_millis(1)),
-        }
+    if let Some(mut g) = crate::temp_files::lock_unless_held(&MADE) {
+        remove_folders(std::mem::take(&mut *g), own);
     }
 }
 

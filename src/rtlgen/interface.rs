@@ -127,10 +127,12 @@ fn units_json(cfg: &PipelineConfig) -> serde_json::Value {
             json!({"name": "clk", "dir": "in", "width": 1, "role": "clock", "doc": "rising edge; no reset and no valid: a record's stimulus every edge"}),
         ];
         let mut params = serde_json::Map::new();
-        // A squaring power unit keeps the table's load port and parameters, unused, so that
-        // every power unit instantiates alike.
-        let unused = u.name() == "power_unit" && u.memory(cfg).is_none();
-        let memory = u.memory(cfg).or_else(|| unused.then(|| crate::units::table_memory(cfg)));
+        // Every power unit's module has the table's load port and parameters, a squaring one's
+        // unused, so that every power unit instantiates alike.
+        let memory = match u.name() {
+            "power_unit" => Some(crate::units::table_memory(cfg)),
+            _ => u.memory(cfg),
+        };
         if let Some(m) = memory {
             let load = |name: &str, width: u32, doc: String| json!({"name": name, "dir": "in", "width": width, "role": "load", "doc": doc});
             let we = match (m.prefix == crate::units::POWER_TABLE, super::top::table_use(cfg)) {
@@ -146,7 +148,7 @@ fn units_json(cfg: &PipelineConfig) -> serde_json::Value {
             ports.push(load("we", 1, we));
             ports.push(load("waddr", m.addr_bits, format!("{} word address", m.prefix)));
             ports.push(load("wdata", m.data_bits, m.doc.to_string()));
-            params.insert("INIT_FILE".into(), json!({"default": rom_file_name(cfg, m.init_stem, "hex"), "doc": format!("$readmemh file of the {} memory's power-up contents (the top passes its {})", m.prefix, m.init_param)}));
+            params.insert("INIT_FILE".into(), json!({"default": super::top::memory_init_file(cfg, &m), "doc": format!("$readmemh file of the {} memory's power-up contents (the top passes its {})", m.prefix, m.init_param)}));
             if u.name() == "power_unit" {
                 params.insert(
                     "R".into(),
